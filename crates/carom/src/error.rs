@@ -1,0 +1,126 @@
+//! The one error type of the engine.
+
+use crate::math::{Real, Vec2};
+
+/// Everything that can go wrong when building shapes, bodies and worlds, or stepping them.
+///
+/// Each message says what was wrong and what would be accepted, so a user can fix the input.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CaromError {
+    /// A polygon needs at least three distinct, non-collinear points.
+    #[error("a polygon needs at least 3 vertices, got {count}")]
+    TooFewVertices {
+        /// How many usable points were left.
+        count: usize,
+    },
+    /// A value that must be finite was NaN or infinite.
+    #[error("{what} must be finite, got {value}")]
+    NonFinite {
+        /// What the value was (for example "vertex 2 x" or "position").
+        what: String,
+        /// The offending value, as text so vectors and scalars both fit.
+        value: String,
+    },
+    /// Two polygon vertices (closer than the weld tolerance) coincide.
+    #[error("polygon vertices {first} and {second} coincide at ({x}, {y}); remove one of them")]
+    DuplicateVertex {
+        /// Index of the first vertex in the input.
+        first: usize,
+        /// Index of the second vertex in the input.
+        second: usize,
+        /// Where they coincide.
+        x: Real,
+        /// Where they coincide.
+        y: Real,
+    },
+    /// The points enclose no area (all collinear, or degenerate).
+    #[error("the polygon has zero area (its points are collinear or coincident)")]
+    ZeroArea,
+    /// A vertex turns the wrong way, so the polygon is not convex.
+    #[error(
+        "the polygon is not convex: vertex {index} at ({x}, {y}) is reflex; \
+         use Polygon::hull to take the convex hull of the points"
+    )]
+    ReflexVertex {
+        /// Index of the reflex vertex in the input.
+        index: usize,
+        /// Its position.
+        x: Real,
+        /// Its position.
+        y: Real,
+    },
+    /// The outline winds around its interior more than once (a star or a figure eight).
+    #[error(
+        "the polygon's edges cross each other (its outline winds {turns} times); give the vertices in order around the outline"
+    )]
+    SelfIntersecting {
+        /// How many times the outline turns around.
+        turns: i32,
+    },
+    /// A circle radius was zero or negative.
+    #[error("circle radius must be positive, got {radius}")]
+    InvalidRadius {
+        /// The rejected radius.
+        radius: Real,
+    },
+    /// A density was zero or negative for a body that needs mass.
+    #[error("density must be positive for a dynamic body, got {density}")]
+    InvalidDensity {
+        /// The rejected density.
+        density: Real,
+    },
+    /// A parameter was outside its allowed range.
+    #[error("{name} must be {expected}, got {value}")]
+    OutOfRange {
+        /// The parameter's name.
+        name: &'static str,
+        /// What would be accepted.
+        expected: &'static str,
+        /// The rejected value.
+        value: Real,
+    },
+    /// A handle refers to a body that was removed (or never belonged to this world).
+    #[error("no body for handle {index}v{generation}: it was removed or belongs to another world")]
+    StaleHandle {
+        /// The handle's slot index.
+        index: u32,
+        /// The handle's generation.
+        generation: u32,
+    },
+}
+
+impl CaromError {
+    /// The error for a non-finite scalar called `what`.
+    pub(crate) fn non_finite(what: impl Into<String>, value: Real) -> Self {
+        CaromError::NonFinite {
+            what: what.into(),
+            value: value.to_string(),
+        }
+    }
+
+    /// The error for a non-finite vector called `what`.
+    pub(crate) fn non_finite_vec(what: impl Into<String>, value: Vec2) -> Self {
+        CaromError::NonFinite {
+            what: what.into(),
+            value: format!("({}, {})", value.x, value.y),
+        }
+    }
+}
+
+/// Checks that a scalar is finite.
+pub(crate) fn check_finite(what: &str, value: Real) -> Result<Real, CaromError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(CaromError::non_finite(what, value))
+    }
+}
+
+/// Checks that both components of a vector are finite.
+pub(crate) fn check_finite_vec(what: &str, value: Vec2) -> Result<Vec2, CaromError> {
+    if crate::math::is_finite_vec(value) {
+        Ok(value)
+    } else {
+        Err(CaromError::non_finite_vec(what, value))
+    }
+}

@@ -1,0 +1,51 @@
+//! # carom
+//!
+//! A 2D rigid-body physics engine: circles and convex polygons, bodies with mass from density,
+//! forces, drag, queries, and (as they land) collision detection, contact solvers, continuous
+//! collision and sleeping. It has no graphics dependency.
+//!
+//! Units are SI: metres, kilograms, seconds, radians. Angles are counter-clockwise. Every body's
+//! origin is its centre of mass: shapes are recentred on their centroid when built.
+//!
+//! Drop a box under gravity:
+//!
+//! ```
+//! use carom::{BodyDef, Shape, World, vec2};
+//!
+//! let mut world = World::new(); // gravity (0, -10)
+//! let falling_box = world.add_body(
+//!     BodyDef::dynamic(Shape::rect(0.5, 0.5)?).position(vec2(0.0, 10.0)),
+//! )?;
+//! for _ in 0..60 {
+//!     world.step(1.0 / 60.0)?;
+//! }
+//! let body = world.body(falling_box).unwrap();
+//! // One second of free fall: v = g t, and semi-implicit Euler drops y by g t² (n + 1) / (2 n).
+//! assert!((body.linear_velocity().y + 10.0).abs() < 1e-4);
+//! assert!((body.position().y - (10.0 - 5.0 * 61.0 / 60.0)).abs() < 1e-3);
+//! # Ok::<(), carom::CaromError>(())
+//! ```
+
+pub mod aabb;
+pub mod body;
+pub mod body_set;
+pub mod drag;
+pub mod error;
+mod integrate;
+pub mod mass;
+pub mod math;
+pub mod ray;
+pub mod segment;
+pub mod shape;
+pub mod world;
+
+pub use aabb::Aabb;
+pub use body::{Body, BodyDef, BodyHandle, BodyKind};
+pub use drag::DragModel;
+pub use error::CaromError;
+pub use mass::MassProperties;
+pub use math::{Isometry, Mat3, Real, Rot, Vec2, vec2};
+pub use ray::{Ray, RayHit};
+pub use segment::{SegmentIntersection, intersect_segments};
+pub use shape::{Circle, Polygon, Shape, WorldShape};
+pub use world::{World, WorldRayHit, WorldSettings};

@@ -1,0 +1,234 @@
+//! Area, centroid and rotational inertia of shapes of uniform density.
+//!
+//! Polygons are split into triangles: the area by the shoelace formula, the centroid as the
+//! area-weighted mean of the triangles' barycentres, and the polar moment from the per-triangle
+//! formula `I = ρ · cross(p, q) / 12 · (p·p + p·q + q·q)` for the triangle (origin, p, q).
+//! Every triangle area is *signed*, so the sum is right wherever the origin lies, inside the
+//! polygon or not. The sums run in `f64`: they are done once per shape and the extra digits
+//! keep the centroid exact enough to recentre large coordinates.
+
+use crate::error::CaromError;
+use crate::math::{Real, Vec2};
+use std::f64::consts::PI;
+
+/// Mass, centre of mass and rotational inertia of a shape.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassProperties {
+    /// Mass in kilograms (density times area).
+    pub mass: Real,
+    /// Centre of mass in the shape's local frame.
+    pub center: Vec2,
+    /// Rotational inertia about the centre of mass, in kg·m².
+    pub inertia: Real,
+}
+
+impl MassProperties {
+    /// `1 / mass`, or 0 for a massless (static) description.
+    #[inline]
+    pub fn inv_mass(&self) -> Real {
+        if self.mass > 0.0 {
+            1.0 / self.mass
+        } else {
+            0.0
+        }
+    }
+
+    /// `1 / inertia`, or 0 when there is no rotational inertia.
+    #[inline]
+    pub fn inv_inertia(&self) -> Real {
+        if self.inertia > 0.0 {
+            1.0 / self.inertia
+        } else {
+            0.0
+        }
+    }
+
+    /// Inertia about another point, by the parallel-axis theorem: `I + m d²`.
+    #[inline]
+    pub fn inertia_about(&self, point: Vec2) -> Real {
+        self.inertia + self.mass * (self.center - point).norm_squared()
+    }
+}
+
+/// Area, centroid and second moment of a polygon outline, in `f64`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Moments {
+    /// Signed area: positive for counter-clockwise outlines.
+    pub area: f64,
+    /// Area-weighted centroid.
+    pub centroid: [f64; 2],
+    /// Polar second moment of area about the origin (inertia at unit density).
+    pub second_moment: f64,
+}
+
+/// The moments of a closed outline given by its vertices in order.
+///
+/// Returns `None` when the area is zero (the centroid is then undefined).
+pub(crate) fn moments(points: &[Vec2]) -> Option<Moments> {
+    let n = points.len();
+    if n < 3 {
+        return None;
+    }
+    let p = |i: usize| [points[i].x as f64, points[i].y as f64];
+    // Centroid triangles are fanned from the first vertex: with large coordinates this keeps
+    // the cross products small and the sum accurate.
+    let origin = p(0);
+    let mut area = 0.0;
+    let mut cx = 0.0;
+    let mut cy = 0.0;
+    for i in 1..n - 1 {
+        let (a, b) = (p(i), p(i + 1));
+        let (ex, ey) = (a[0] - origin[0], a[1] - origin[1]);
+        let (fx, fy) = (b[0] - origin[0], b[1] - origin[1]);
+        let triangle_area = 0.5 * (ex * fy - ey * fx);
+        area += triangle_area;
+        cx += triangle_area * (ex + fx) / 3.0;
+        cy += triangle_area * (ey + fy) / 3.0;
+    }
+    if area == 0.0 || !area.is_finite() {
+        return None;
+    }
+    let centroid = [origin[0] + cx / area, origin[1] + cy / area];
+
+    let mut second_moment = 0.0;
+    for i in 0..n {
+        let (a, b) = (p(i), p((i + 1) % n));
+        let cross = a[0] * b[1] - a[1] * b[0];
+        let dots =
+            a[0] * a[0] + a[1] * a[1] + a[0] * b[0] + a[1] * b[1] + b[0] * b[0] + b[1] * b[1];
+        second_moment += cross * dots / 12.0;
+    }
+    Some(Moments {
+        area,
+        centroid,
+        second_moment,
+    })
+}
+
+/// Signed area of a polygon outline (shoelace formula): positive when counter-clockwise.
+pub fn polygon_area(points: &[Vec2]) -> Real {
+    moments(points).map_or(0.0, |m| m.area as Real)
+}
+
+/// Centroid of a polygon outline, or `None` when it has no area.
+pub fn polygon_centroid(points: &[Vec2]) -> Option<Vec2> {
+    moments(points).map(|m| Vec2::new(m.centroid[0] as Real, m.centroid[1] as Real))
+}
+
+/// Rotational inertia of a polygon of uniform `density` about the origin of its coordinates.
+///
+/// The outline may be given in either winding; the result is the physical (positive) inertia.
+pub fn polygon_inertia_about_origin(points: &[Vec2], density: Real) -> Real {
+    moments(points).map_or(0.0, |m| {
+        // Reversing the winding flips the sign of every term, so the sign of the area fixes it.
+        (density as f64 * m.second_moment * m.area.signum()) as Real
+    })
+}
+
+/// Checks that a density is usable for a body with mass.
+pub fn check_density(density: Real) -> Result<Real, CaromError> {
+    if !density.is_finite() {
+        return Err(CaromError::non_finite("density", density));
+    }
+    if density <= 0.0 {
+        return Err(CaromError::InvalidDensity { density });
+    }
+    Ok(density)
+}
+
+/// Mass properties of a circle centred on its local origin: `m = ρπr²`, `I = m r² / 2`.
+pub fn circle_mass(radius: Real, density: Real) -> MassProperties {
+    let r = radius as f64;
+    let mass = density as f64 * PI * r * r;
+    MassProperties {
+        mass: mass as Real,
+        center: Vec2::zeros(),
+        inertia: (0.5 * mass * r * r) as Real,
+    }
+}
+
+/// Mass properties of a polygon outline (any winding) at uniform density.
+///
+/// The inertia is about the centroid. Returns `None` for an outline with zero area.
+pub fn polygon_mass(points: &[Vec2], density: Real) -> Option<MassProperties> {
+    let m = moments(points)?;
+    let area = m.area.abs();
+    let rho = density as f64;
+    let [cx, cy] = m.centroid;
+    // Parallel-axis theorem, from the origin to the centroid: I_c = I_o - A d².
+    let about_origin = m.second_moment * m.area.signum();
+    let about_centroid = (about_origin - area * (cx * cx + cy * cy)).max(0.0);
+    Some(MassProperties {
+        mass: (rho * area) as Real,
+        center: Vec2::new(cx as Real, cy as Real),
+        inertia: (rho * about_centroid) as Real,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::vec2;
+
+    fn pts(coords: &[(Real, Real)]) -> Vec<Vec2> {
+        coords.iter().map(|&(x, y)| vec2(x, y)).collect()
+    }
+
+    #[test]
+    fn unit_square_about_its_centre() {
+        let square = pts(&[(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)]);
+        let mass = polygon_mass(&square, 2.0).unwrap();
+        assert_eq!(mass.mass, 2.0);
+        assert_eq!(mass.center, vec2(0.0, 0.0));
+        // Box: m (w² + h²) / 12.
+        assert!((mass.inertia - 2.0 * 2.0 / 12.0).abs() < 1e-7);
+    }
+
+    #[test]
+    fn winding_does_not_change_the_physics() {
+        let ccw = pts(&[(1.0, 1.0), (4.0, 1.0), (2.0, 5.0)]);
+        let cw: Vec<Vec2> = ccw.iter().rev().copied().collect();
+        assert_eq!(polygon_area(&ccw), -polygon_area(&cw));
+        let (a, b) = (
+            polygon_mass(&ccw, 1.0).unwrap(),
+            polygon_mass(&cw, 1.0).unwrap(),
+        );
+        assert!((a.inertia - b.inertia).abs() < 1e-5);
+        assert!((a.center - b.center).norm() < 1e-6);
+        assert_eq!(
+            polygon_inertia_about_origin(&ccw, 1.0),
+            polygon_inertia_about_origin(&cw, 1.0)
+        );
+    }
+
+    #[test]
+    fn circle_inertia_is_half_m_r_squared() {
+        let mass = circle_mass(2.0, 0.5);
+        let expected_mass = 0.5 * std::f32::consts::PI * 4.0;
+        assert!((mass.mass - expected_mass).abs() < 1e-5);
+        assert!((mass.inertia - 0.5 * expected_mass * 4.0).abs() < 1e-4);
+    }
+
+    #[test]
+    fn density_must_be_positive_and_finite() {
+        assert!(check_density(1.0).is_ok());
+        assert_eq!(
+            check_density(0.0),
+            Err(CaromError::InvalidDensity { density: 0.0 })
+        );
+        assert!(check_density(-3.0).is_err());
+        assert!(matches!(
+            check_density(Real::NAN),
+            Err(CaromError::NonFinite { .. })
+        ));
+        assert!(check_density(Real::INFINITY).is_err());
+    }
+
+    #[test]
+    fn degenerate_outlines_have_no_mass() {
+        let line = pts(&[(0.0, 0.0), (1.0, 0.0), (2.0, 0.0)]);
+        assert!(polygon_mass(&line, 1.0).is_none());
+        assert!(polygon_centroid(&line).is_none());
+        assert_eq!(polygon_area(&line), 0.0);
+    }
+}

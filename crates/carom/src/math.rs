@@ -1,0 +1,89 @@
+//! Scalar and vector types, and the few 2D products nalgebra does not name.
+
+/// The floating-point type of the whole engine.
+pub type Real = f32;
+
+/// A 2D vector or point.
+pub type Vec2 = nalgebra::Vector2<Real>;
+
+/// A rotation in the plane (a unit complex number: `cos + i sin`).
+pub type Rot = nalgebra::UnitComplex<Real>;
+
+/// A rigid transform: rotation followed by translation.
+pub type Isometry = nalgebra::Isometry2<Real>;
+
+/// A 3x3 homogeneous matrix, as renderers want it.
+pub type Mat3 = nalgebra::Matrix3<Real>;
+
+/// Builds a vector from its components.
+#[inline]
+pub fn vec2(x: Real, y: Real) -> Vec2 {
+    Vec2::new(x, y)
+}
+
+/// The 2D cross product `a.x * b.y - a.y * b.x` (the z of the 3D cross product).
+#[inline]
+pub fn cross(a: Vec2, b: Vec2) -> Real {
+    a.x * b.y - a.y * b.x
+}
+
+/// The cross product of a scalar (a vector along z) with a vector: `s × v = (-s v.y, s v.x)`.
+///
+/// Used for the velocity of a point on a spinning body: `v + ω × r`.
+#[inline]
+pub fn cross_sv(s: Real, v: Vec2) -> Vec2 {
+    Vec2::new(-s * v.y, s * v.x)
+}
+
+/// The counter-clockwise perpendicular `(-v.y, v.x)`.
+#[inline]
+pub fn perp_ccw(v: Vec2) -> Vec2 {
+    Vec2::new(-v.y, v.x)
+}
+
+/// The clockwise perpendicular `(v.y, -v.x)`: the outward normal of a counter-clockwise edge.
+#[inline]
+pub fn perp_cw(v: Vec2) -> Vec2 {
+    Vec2::new(v.y, -v.x)
+}
+
+/// True when both components are finite (neither NaN nor infinite).
+#[inline]
+pub fn is_finite_vec(v: Vec2) -> bool {
+    v.x.is_finite() && v.y.is_finite()
+}
+
+/// Shortens `v` to at most `max_len`, keeping its direction.
+#[inline]
+pub fn clamp_magnitude(v: Vec2, max_len: Real) -> Vec2 {
+    let len_sq = v.norm_squared();
+    if len_sq > max_len * max_len {
+        v * (max_len / len_sq.sqrt())
+    } else {
+        v
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn perpendiculars_and_crosses_agree() {
+        let a = vec2(2.0, 1.0);
+        let b = vec2(-0.5, 3.0);
+        assert_eq!(cross(a, b), 6.5);
+        assert_eq!(perp_ccw(a).dot(&a), 0.0);
+        // The clockwise perpendicular of a CCW edge points to its right, i.e. outward.
+        assert_eq!(perp_cw(vec2(1.0, 0.0)), vec2(0.0, -1.0));
+        assert_eq!(cross_sv(2.0, vec2(1.0, 0.0)), vec2(0.0, 2.0));
+    }
+
+    #[test]
+    fn clamp_magnitude_keeps_short_vectors() {
+        assert_eq!(clamp_magnitude(vec2(0.3, 0.4), 1.0), vec2(0.3, 0.4));
+        let long = clamp_magnitude(vec2(3.0, 4.0), 1.0);
+        assert!((long.norm() - 1.0).abs() < 1e-6);
+        assert!((long - vec2(0.6, 0.8)).norm() < 1e-6);
+    }
+}

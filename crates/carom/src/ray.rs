@@ -1,0 +1,180 @@
+//! Ray casts against circles and polygons.
+//!
+//! A ray is a segment: the points `origin + t * translation` for fractions `t` in `[0, 1]`.
+//! A cast reports where the ray *enters* a shape; a ray that starts inside a shape does not hit
+//! it (as in Box2D), so a query from inside a body looks past that body.
+
+use crate::math::{Real, Vec2};
+use crate::shape::CONTAINMENT_TOLERANCE;
+
+/// A ray: from `origin` along `translation` (its length is the ray's reach).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ray {
+    /// Where the ray starts.
+    pub origin: Vec2,
+    /// Where the ray goes: it ends at `origin + translation`.
+    pub translation: Vec2,
+}
+
+impl Ray {
+    /// A ray from `origin` along `translation`.
+    #[inline]
+    pub fn new(origin: Vec2, translation: Vec2) -> Self {
+        Ray {
+            origin,
+            translation,
+        }
+    }
+
+    /// The ray from `start` to `end`.
+    #[inline]
+    pub fn between(start: Vec2, end: Vec2) -> Self {
+        Ray::new(start, end - start)
+    }
+
+    /// The point at `fraction` along the ray.
+    #[inline]
+    pub fn at(&self, fraction: Real) -> Vec2 {
+        self.origin + self.translation * fraction
+    }
+}
+
+/// Where a ray enters a shape.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RayHit {
+    /// The entry point.
+    pub point: Vec2,
+    /// The shape's outward unit normal there.
+    pub normal: Vec2,
+    /// How far along the ray, in `[0, 1]`.
+    pub fraction: Real,
+}
+
+/// Casts a ray against a circle.
+pub fn ray_cast_circle(center: Vec2, radius: Real, ray: &Ray) -> Option<RayHit> {
+    let length = ray.translation.norm();
+    if length == 0.0 || !length.is_finite() {
+        return None;
+    }
+    let direction = ray.translation / length;
+    // Distance along the ray to the point closest to the centre, and how far that point is
+    // from the centre: solving from the closest approach keeps precision for distant origins.
+    let to_origin = ray.origin - center;
+    let closest_along = -to_origin.dot(&direction);
+    let closest = to_origin + direction * closest_along;
+    let half_chord_sq = radius * radius - closest.norm_squared();
+    if half_chord_sq < 0.0 {
+        return None;
+    }
+    let distance = closest_along - half_chord_sq.sqrt();
+    if distance < 0.0 || distance > length {
+        return None;
+    }
+    let point = ray.origin + direction * distance;
+    Some(RayHit {
+        point,
+        normal: (closest - direction * half_chord_sq.sqrt()) / radius,
+        fraction: distance / length,
+    })
+}
+
+/// Casts a ray against a convex polygon given by its counter-clockwise vertices and unit
+/// outward normals (in the same frame as the ray).
+///
+/// The ray is clipped against each edge's half-plane: entering the last one is the hit. A ray
+/// running along an edge's line counts as inside that half-plane, so it enters at the edge's
+/// first corner, as geometry says.
+pub fn ray_cast_polygon(vertices: &[Vec2], normals: &[Vec2], ray: &Ray) -> Option<RayHit> {
+    let mut lower: Real = 0.0;
+    let mut upper: Real = 1.0;
+    let mut entry_edge = None;
+    for (v, n) in vertices.iter().zip(normals) {
+        // Distance of the origin behind this edge (positive: on the inner side).
+        let depth = n.dot(&(v - ray.origin));
+        let approach = n.dot(&ray.translation);
+        if approach == 0.0 {
+            if depth < -CONTAINMENT_TOLERANCE {
+                return None;
+            }
+        } else {
+            let t = depth / approach;
+            if approach < 0.0 {
+                if t > lower {
+                    lower = t;
+                    entry_edge = Some(n);
+                }
+            } else if t < upper {
+                upper = t;
+            }
+            if upper < lower {
+                return None;
+            }
+        }
+    }
+    let normal = *entry_edge?;
+    Some(RayHit {
+        point: ray.at(lower),
+        normal,
+        fraction: lower,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::vec2;
+    use crate::shape::Polygon;
+
+    #[test]
+    fn circle_hit_miss_and_inside() {
+        let ray = Ray::new(vec2(-5.0, 0.0), vec2(10.0, 0.0));
+        let hit = ray_cast_circle(vec2(0.0, 0.0), 1.0, &ray).unwrap();
+        assert!((hit.point - vec2(-1.0, 0.0)).norm() < 1e-6);
+        assert!((hit.normal - vec2(-1.0, 0.0)).norm() < 1e-6);
+        assert!((hit.fraction - 0.4).abs() < 1e-6);
+        assert!(ray_cast_circle(vec2(0.0, 3.0), 1.0, &ray).is_none());
+        // Too short to reach.
+        assert!(
+            ray_cast_circle(
+                vec2(0.0, 0.0),
+                1.0,
+                &Ray::new(vec2(-5.0, 0.0), vec2(3.0, 0.0))
+            )
+            .is_none()
+        );
+        // Starting inside: no entry.
+        assert!(
+            ray_cast_circle(
+                vec2(0.0, 0.0),
+                1.0,
+                &Ray::new(vec2(0.0, 0.0), vec2(3.0, 0.0))
+            )
+            .is_none()
+        );
+        // Tangent ray grazes the top.
+        let tangent = ray_cast_circle(
+            vec2(0.0, 0.0),
+            1.0,
+            &Ray::new(vec2(-2.0, 1.0), vec2(4.0, 0.0)),
+        )
+        .unwrap();
+        assert!((tangent.point - vec2(0.0, 1.0)).norm() < 1e-6);
+    }
+
+    #[test]
+    fn polygon_hit_from_each_side() {
+        let square = Polygon::rect(1.0, 1.0).unwrap();
+        let cast = |o: Vec2, d: Vec2| {
+            ray_cast_polygon(square.vertices(), square.normals(), &Ray::new(o, d))
+        };
+        let hit = cast(vec2(-3.0, 0.5), vec2(4.0, 0.0)).unwrap();
+        assert!((hit.point - vec2(-1.0, 0.5)).norm() < 1e-6);
+        assert_eq!(hit.normal, vec2(-1.0, 0.0));
+        assert!((hit.fraction - 0.5).abs() < 1e-6);
+        let from_top = cast(vec2(0.2, 5.0), vec2(0.0, -10.0)).unwrap();
+        assert_eq!(from_top.normal, vec2(0.0, 1.0));
+        assert!(cast(vec2(-3.0, 2.0), vec2(6.0, 0.0)).is_none());
+        assert!(cast(vec2(0.0, 0.0), vec2(6.0, 0.0)).is_none());
+        assert!(cast(vec2(-3.0, 0.0), vec2(1.0, 0.0)).is_none());
+    }
+}
