@@ -83,8 +83,15 @@ pub fn ray_cast_circle(center: Vec2, radius: Real, ray: &Ray) -> Option<RayHit> 
 ///
 /// The ray is clipped against each edge's half-plane: entering the last one is the hit. A ray
 /// running along an edge's line counts as inside that half-plane, so it enters at the edge's
-/// first corner, as geometry says.
+/// first corner, as geometry says; so does a ray that only touches a corner.
 pub fn ray_cast_polygon(vertices: &[Vec2], normals: &[Vec2], ray: &Ray) -> Option<RayHit> {
+    let length = ray.translation.norm();
+    if length == 0.0 || !length.is_finite() {
+        return None;
+    }
+    // A ray that only touches a corner enters and leaves at the same fraction; rounding may
+    // order the two the wrong way by a hair, so they may cross by the containment tolerance.
+    let slack = CONTAINMENT_TOLERANCE / length;
     let mut lower: Real = 0.0;
     let mut upper: Real = 1.0;
     let mut entry_edge = None;
@@ -106,7 +113,7 @@ pub fn ray_cast_polygon(vertices: &[Vec2], normals: &[Vec2], ray: &Ray) -> Optio
             } else if t < upper {
                 upper = t;
             }
-            if upper < lower {
+            if upper + slack < lower {
                 return None;
             }
         }

@@ -207,15 +207,15 @@ impl World {
             }
             let inverse = body.rotation().inverse();
             let local = Ray::new(body.local_point(ray.origin), inverse * ray.translation);
-            if let Some(hit) = body.shape().ray_cast_local(&local) {
-                if best.is_none_or(|b| hit.fraction < b.fraction) {
-                    best = Some(WorldRayHit {
-                        body: body.handle(),
-                        point: ray.at(hit.fraction),
-                        normal: body.rotation() * hit.normal,
-                        fraction: hit.fraction,
-                    });
-                }
+            if let Some(hit) = body.shape().ray_cast_local(&local)
+                && best.is_none_or(|b| hit.fraction < b.fraction)
+            {
+                best = Some(WorldRayHit {
+                    body: body.handle(),
+                    point: ray.at(hit.fraction),
+                    normal: body.rotation() * hit.normal,
+                    fraction: hit.fraction,
+                });
             }
         }
         best

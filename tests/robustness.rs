@@ -1,0 +1,227 @@
+//! Degenerate and random input: constructors answer with a value or an error, never a panic,
+//! and what they accept is a well-formed shape.
+
+use carom::{BodyDef, CaromError, Polygon, Real, Shape, Vec2, World, vec2};
+use carom_tests::Rng;
+
+/// A polygon carom accepted must be convex, counter-clockwise, centred, with unit outward
+/// normals.
+fn assert_well_formed(polygon: &Polygon) {
+    let (vertices, normals) = (polygon.vertices(), polygon.normals());
+    let n = vertices.len();
+    assert!(n >= 3);
+    for i in 0..n {
+        let (a, b, c) = (vertices[i], vertices[(i + 1) % n], vertices[(i + 2) % n]);
+        assert!(
+            carom::math::cross(b - a, c - b) > 0.0,
+            "not strictly convex at {i}"
+        );
+        assert!((normals[i].norm() - 1.0).abs() < 1e-5);
+        assert!(normals[i].dot(&(b - a)).abs() < 1e-4 * (b - a).norm());
+        // The centroid (origin) is behind every edge.
+        assert!(normals[i].dot(&a) > 0.0);
+    }
+    let centroid = carom::mass::polygon_centroid(vertices).unwrap();
+    assert!(centroid.norm() < 1e-4 * polygon.radius().max(1.0));
+}
+
+#[test]
+fn hull_of_random_clouds_contains_every_point() {
+    let mut rng = Rng::new(42);
+    for round in 0..500 {
+        let count = 3 + rng.below(40);
+        let scale = [0.01, 1.0, 100.0][round % 3];
+        let cloud: Vec<Vec2> = (0..count)
+            .map(|_| vec2(rng.range(-scale, scale), rng.range(-scale, scale)))
+            .collect();
+        match Polygon::hull(&cloud) {
+            Ok(hull) => {
+                assert_well_formed(&hull);
+                for p in &cloud {
+                    let local = p - hull.source_centroid();
+                    let outside = hull
+                        .vertices()
+                        .iter()
+                        .zip(hull.normals())
+                        .map(|(v, n)| n.dot(&(local - v)))
+                        .fold(Real::MIN, Real::max);
+                    assert!(
+                        outside <= 1e-4 * scale,
+                        "round {round}: point {p:?} outside by {outside}"
+                    );
+                }
+            }
+            Err(e) => assert!(count < 3 || matches!(e, CaromError::ZeroArea), "{e}"),
+        }
+    }
+}
+
+#[test]
+fn random_outlines_are_accepted_only_when_convex() {
+    let mut rng = Rng::new(7);
+    let (mut accepted, mut rejected) = (0, 0);
+    for _ in 0..2000 {
+        let count = 3 + rng.below(6);
+        let points: Vec<Vec2> = (0..count)
+            .map(|_| vec2(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
+            .collect();
+        match Polygon::new(&points) {
+            Ok(polygon) => {
+                assert_well_formed(&polygon);
+                accepted += 1;
+            }
+            Err(e) => {
+                assert!(!e.to_string().is_empty());
+                rejected += 1;
+            }
+        }
+    }
+    // Random outlines are mostly not convex, but triangles always are.
+    assert!(accepted > 200 && rejected > 200, "{accepted} / {rejected}");
+}
+
+#[test]
+fn points_on_a_circle_in_any_order_of_winding() {
+    for n in [3, 4, 7, 16, 64] {
+        let ring: Vec<Vec2> = (0..n)
+            .map(|i| {
+                let a = std::f32::consts::TAU * i as Real / n as Real;
+                vec2(5.0 + 2.0 * a.cos(), -3.0 + 2.0 * a.sin())
+            })
+            .collect();
+        let ccw = Polygon::new(&ring).unwrap();
+        let reversed: Vec<Vec2> = ring.iter().rev().copied().collect();
+        let cw = Polygon::new(&reversed).unwrap();
+        assert_well_formed(&ccw);
+        assert_well_formed(&cw);
+        assert_eq!(ccw.len(), n);
+        assert!((ccw.source_centroid() - vec2(5.0, -3.0)).norm() < 1e-4);
+        assert!((cw.source_centroid() - ccw.source_centroid()).norm() < 1e-5);
+    }
+}
+
+#[test]
+fn degenerate_input_is_an_error_with_a_message() {
+    let cases: Vec<(Vec<Vec2>, &str)> = vec![
+        (vec![], "at least 3"),
+        (vec![vec2(0.0, 0.0), vec2(1.0, 0.0)], "at least 3"),
+        (
+            vec![vec2(0.0, 0.0), vec2(1.0, 0.0), vec2(Real::INFINITY, 1.0)],
+            "finite",
+        ),
+        (
+            vec![vec2(0.0, 0.0), vec2(1.0, 0.0), vec2(0.0, 0.0)],
+            "coincide",
+        ),
+        (
+            vec![
+                vec2(0.0, 0.0),
+                vec2(1.0, 1.0),
+                vec2(2.0, 2.0),
+                vec2(3.0, 3.0),
+            ],
+            "zero area",
+        ),
+        (
+            vec![
+                vec2(0.0, 0.0),
+                vec2(2.0, 0.0),
+                vec2(1.0, 1.0),
+                vec2(2.0, 2.0),
+                vec2(0.0, 2.0),
+            ],
+            "vertex 2",
+        ),
+        // A bow tie: its two halves cancel, so its signed area is zero.
+        (
+            vec![
+                vec2(0.0, 0.0),
+                vec2(1.0, 1.0),
+                vec2(1.0, 0.0),
+                vec2(0.0, 1.0),
+            ],
+            "zero area",
+        ),
+    ];
+    for (points, expected) in cases {
+        let message = Polygon::new(&points).unwrap_err().to_string();
+        assert!(
+            message.contains(expected),
+            "{message:?} should mention {expected:?}"
+        );
+    }
+    assert!(
+        Shape::circle(0.0)
+            .unwrap_err()
+            .to_string()
+            .contains("positive")
+    );
+    assert!(
+        Shape::circle(Real::NAN)
+            .unwrap_err()
+            .to_string()
+            .contains("finite")
+    );
+}
+
+#[test]
+fn bodies_with_bad_values_are_refused_at_the_door() {
+    let mut world = World::new();
+    let square = || Shape::rect(0.5, 0.5).unwrap();
+    let bad = [
+        BodyDef::dynamic(square()).density(0.0),
+        BodyDef::dynamic(square()).density(-2.0),
+        BodyDef::dynamic(square()).density(Real::NAN),
+        BodyDef::dynamic(square()).position(vec2(Real::NAN, 0.0)),
+        BodyDef::dynamic(square()).angle(Real::INFINITY),
+        BodyDef::dynamic(square()).linear_velocity(vec2(0.0, Real::NEG_INFINITY)),
+        BodyDef::dynamic(square()).friction(-1.0),
+        BodyDef::dynamic(square()).restitution(Real::NAN),
+        BodyDef::dynamic(square()).damping(-0.5, 0.0),
+        BodyDef::static_body(square()).density(Real::NAN),
+    ];
+    for def in bad {
+        assert!(world.add_body(def).is_err());
+    }
+    assert_eq!(world.body_count(), 0);
+    // A static body needs no positive density: it has no mass.
+    assert!(
+        world
+            .add_body(BodyDef::static_body(square()).density(0.0))
+            .is_ok()
+    );
+    assert!(world.set_gravity(vec2(0.0, Real::NAN)).is_err());
+    assert_eq!(world.gravity(), vec2(0.0, -10.0));
+}
+
+#[test]
+fn stepping_a_world_of_extreme_but_valid_bodies_stays_finite() {
+    let mut world = World::new();
+    let mut rng = Rng::new(3);
+    for _ in 0..200 {
+        let shape = if rng.below(2) == 0 {
+            Shape::circle(rng.range(1e-3, 50.0)).unwrap()
+        } else {
+            Shape::regular(3 + rng.below(10), rng.range(1e-3, 50.0)).unwrap()
+        };
+        world
+            .add_body(
+                BodyDef::dynamic(shape)
+                    .position(vec2(rng.range(-1e4, 1e4), rng.range(-1e4, 1e4)))
+                    .linear_velocity(vec2(rng.range(-1e3, 1e3), rng.range(-1e3, 1e3)))
+                    .angular_velocity(rng.range(-1e3, 1e3))
+                    .density(rng.range(1e-3, 1e3))
+                    .damping(rng.range(0.0, 1e3), rng.range(0.0, 1e3)),
+            )
+            .unwrap();
+    }
+    for _ in 0..600 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    for body in world.bodies() {
+        assert!(body.position().iter().all(|x| x.is_finite()));
+        assert!(body.linear_velocity().iter().all(|x| x.is_finite()));
+        assert!(body.angle().is_finite() && body.angular_velocity().is_finite());
+        assert!(body.aabb().min.iter().all(|x| x.is_finite()));
+    }
+}
