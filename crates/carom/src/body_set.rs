@@ -110,12 +110,6 @@ impl BodySet {
     pub fn len(&self) -> usize {
         self.bodies.len()
     }
-
-    /// True when there are no bodies.
-    #[inline]
-    pub fn is_empty(&self) -> bool {
-        self.bodies.is_empty()
-    }
 }
 
 #[cfg(test)]
@@ -154,7 +148,7 @@ mod tests {
     fn a_rejected_body_takes_no_slot() {
         let mut set = BodySet::default();
         assert!(set.insert(ball_at(f32::NAN)).is_err());
-        assert!(set.is_empty());
+        assert_eq!(set.len(), 0);
         let a = set.insert(ball_at(0.0)).unwrap();
         assert_eq!((a.index(), a.generation()), (0, 0));
     }

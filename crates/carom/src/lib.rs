@@ -28,7 +28,7 @@
 
 pub mod aabb;
 pub mod body;
-pub mod body_set;
+mod body_set;
 pub mod drag;
 pub mod error;
 mod integrate;

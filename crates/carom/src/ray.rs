@@ -50,10 +50,10 @@ pub struct RayHit {
     pub fraction: Real,
 }
 
-/// Casts a ray against a circle.
+/// Casts a ray against a circle. A circle without a positive, finite radius is never hit.
 pub fn ray_cast_circle(center: Vec2, radius: Real, ray: &Ray) -> Option<RayHit> {
     let length = ray.translation.norm();
-    if length == 0.0 || !length.is_finite() {
+    if length == 0.0 || !length.is_finite() || !(radius > 0.0 && radius.is_finite()) {
         return None;
     }
     let direction = ray.translation / length;
@@ -149,6 +149,9 @@ mod tests {
             )
             .is_none()
         );
+        // Degenerate circles are never hit (no NaN normal).
+        assert!(ray_cast_circle(vec2(0.0, 0.0), 0.0, &ray).is_none());
+        assert!(ray_cast_circle(vec2(0.0, 0.0), Real::NAN, &ray).is_none());
         // Starting inside: no entry.
         assert!(
             ray_cast_circle(

@@ -123,8 +123,8 @@ fn exactly_inside_pentagon(x_tenths: i64, y_tenths: i64) -> (bool, bool) {
     (inside, inside && on_boundary)
 }
 
-#[test]
-fn grid_experiment_matches_exact_half_planes() {
+/// A world holding the tutorial's pentagon as a static body, placed where its points say.
+fn pentagon_world() -> (World, carom::BodyHandle, Polygon) {
     let polygon = Polygon::new(&pts(&PENTAGON)).unwrap();
     let mut world = World::new();
     let pentagon = world
@@ -133,6 +133,12 @@ fn grid_experiment_matches_exact_half_planes() {
                 .position(polygon.source_centroid()),
         )
         .unwrap();
+    (world, pentagon, polygon)
+}
+
+#[test]
+fn grid_experiment_matches_exact_half_planes() {
+    let (world, pentagon, polygon) = pentagon_world();
     let (mut inside_count, mut boundary_count) = (0, 0);
     // (-2, 2.5) to (2.5, -2) in steps of 0.1, both ends included.
     for row in 0..=45 {
@@ -161,14 +167,7 @@ fn grid_experiment_matches_exact_half_planes() {
 
 #[test]
 fn rays_through_vertices_and_along_edges() {
-    let polygon = Polygon::new(&pts(&PENTAGON)).unwrap();
-    let mut world = World::new();
-    let pentagon = world
-        .add_body(
-            BodyDef::static_body(Shape::Polygon(polygon.clone()))
-                .position(polygon.source_centroid()),
-        )
-        .unwrap();
+    let (world, pentagon, polygon) = pentagon_world();
     let corners = pts(&PENTAGON);
     let n = corners.len();
     let normals: Vec<Vec2> = polygon.normals().to_vec();
