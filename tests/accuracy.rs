@@ -5,7 +5,12 @@ use carom::{BodyDef, DragModel, Real, Shape, Vec2, World, WorldSettings, vec2};
 const DT: Real = 1.0 / 60.0;
 
 fn world_with(gravity: Vec2, drag: DragModel) -> World {
-    World::with_settings(WorldSettings { gravity, drag }).unwrap()
+    World::with_settings(WorldSettings {
+        gravity,
+        drag,
+        ..WorldSettings::default()
+    })
+    .unwrap()
 }
 
 #[test]

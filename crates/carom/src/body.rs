@@ -214,6 +214,8 @@ pub struct Body {
     user_tag: u64,
     world_shape: WorldShape,
     aabb: Aabb,
+    /// Borrowed mutably since the last step: the world must re-check its broadphase entry.
+    touched: bool,
 }
 
 /// Checks that a coefficient is finite and not negative.
@@ -261,6 +263,7 @@ impl Body {
             user_tag: def.user_tag,
             world_shape,
             aabb,
+            touched: false,
         };
         body.update_mass()?;
         if body.kind != BodyKind::Static {
@@ -650,6 +653,16 @@ impl Body {
     pub fn clear_forces(&mut self) {
         self.force = Vec2::zeros();
         self.torque = 0.0;
+    }
+
+    /// Marks the body as possibly edited by the user; true the first time since the last step.
+    pub(crate) fn mark_touched(&mut self) -> bool {
+        !std::mem::replace(&mut self.touched, true)
+    }
+
+    /// Clears the mark once the world has caught up with the edits.
+    pub(crate) fn clear_touched(&mut self) {
+        self.touched = false;
     }
 
     /// Re-places the world shape and bounding box after the body moved.

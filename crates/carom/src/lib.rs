@@ -1,8 +1,9 @@
 //! # carom
 //!
 //! A 2D rigid-body physics engine: circles and convex polygons, bodies with mass from density,
-//! forces, drag, queries, and (as they land) collision detection, contact solvers, continuous
-//! collision and sleeping. It has no graphics dependency.
+//! forces, drag, queries, a dynamic-tree broadphase, SAT narrowphase with clipped contact
+//! manifolds, and (as they land) contact solvers, continuous collision and sleeping. It has
+//! no graphics dependency.
 //!
 //! Units are SI: metres, kilograms, seconds, radians. Angles are counter-clockwise. Every body's
 //! origin is its centre of mass: shapes are recentred on their centroid when built.
@@ -29,23 +30,33 @@
 pub mod aabb;
 pub mod body;
 mod body_set;
+pub mod broadphase;
+pub mod contact;
 pub mod drag;
 pub mod error;
 mod integrate;
+pub mod manifold;
 pub mod mass;
 pub mod math;
+pub mod narrowphase;
 pub mod ray;
 pub mod segment;
+pub mod settings;
 pub mod shape;
 pub mod world;
 
 pub use aabb::Aabb;
 pub use body::{Body, BodyDef, BodyHandle, BodyKind};
+pub use broadphase::{BroadPhase, DynamicTree};
+pub use contact::{Contact, ContactEvent};
 pub use drag::DragModel;
 pub use error::CaromError;
+pub use manifold::{FeatureId, Manifold, ManifoldPoint};
 pub use mass::MassProperties;
 pub use math::{Isometry, Mat3, Real, Rot, Vec2, vec2};
+pub use narrowphase::Separation;
 pub use ray::{Ray, RayHit};
 pub use segment::{SegmentIntersection, intersect_segments};
+pub use settings::WorldSettings;
 pub use shape::{Circle, Polygon, Shape, WorldShape};
-pub use world::{World, WorldRayHit, WorldSettings};
+pub use world::{World, WorldRayHit};

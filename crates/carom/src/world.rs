@@ -1,30 +1,16 @@
 //! The world: bodies, global settings, the step, and queries.
 
+use crate::aabb::Aabb;
 use crate::body::{Body, BodyDef, BodyHandle, BodyKind};
 use crate::body_set::BodySet;
+use crate::broadphase::BroadPhase;
+use crate::contact::{Contact, ContactEvent, ContactSet};
 use crate::drag::DragModel;
 use crate::error::{CaromError, check_finite_vec};
 use crate::integrate;
 use crate::math::{Real, Vec2};
 use crate::ray::Ray;
-
-/// World-wide settings.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct WorldSettings {
-    /// Gravitational acceleration, m/s². Default `(0, -10)`, as in Box2D.
-    pub gravity: Vec2,
-    /// The law that applies each body's drag coefficients. Default exponential damping.
-    pub drag: DragModel,
-}
-
-impl Default for WorldSettings {
-    fn default() -> Self {
-        WorldSettings {
-            gravity: Vec2::new(0.0, -10.0),
-            drag: DragModel::default(),
-        }
-    }
-}
+use crate::settings::WorldSettings;
 
 /// The closest body a ray enters.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,9 +29,30 @@ pub struct WorldRayHit {
 #[derive(Debug, Clone, Default)]
 pub struct World {
     bodies: BodySet,
+    broadphase: BroadPhase,
+    contacts: ContactSet,
+    /// Bodies lent out by `body_mut` since the last step; their broadphase entries may lag.
+    touched: Vec<BodyHandle>,
     settings: WorldSettings,
     time: f64,
     step_count: u64,
+}
+
+fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {
+    check_finite_vec("gravity", settings.gravity)?;
+    for (name, value) in [
+        ("speculative distance", settings.speculative_distance),
+        ("AABB margin", settings.aabb_margin),
+    ] {
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(CaromError::OutOfRange {
+                name,
+                expected: "finite and not negative",
+                value,
+            });
+        }
+    }
+    Ok(())
 }
 
 impl World {
@@ -56,7 +63,7 @@ impl World {
 
     /// An empty world with the given settings.
     pub fn with_settings(settings: WorldSettings) -> Result<Self, CaromError> {
-        check_finite_vec("gravity", settings.gravity)?;
+        check_settings(&settings)?;
         Ok(World {
             settings,
             ..World::default()
@@ -66,6 +73,13 @@ impl World {
     /// The settings.
     pub fn settings(&self) -> &WorldSettings {
         &self.settings
+    }
+
+    /// Replaces the settings (checked first).
+    pub fn set_settings(&mut self, settings: WorldSettings) -> Result<(), CaromError> {
+        check_settings(&settings)?;
+        self.settings = settings;
+        Ok(())
     }
 
     /// Gravity, m/s².
@@ -84,18 +98,37 @@ impl World {
         self.settings.drag = model;
     }
 
+    /// How much the broadphase enlarges a body of this kind's box.
+    fn margin_for(&self, kind: BodyKind) -> Real {
+        match kind {
+            BodyKind::Static => self.settings.speculative_distance,
+            BodyKind::Kinematic | BodyKind::Dynamic => self
+                .settings
+                .aabb_margin
+                .max(self.settings.speculative_distance),
+        }
+    }
+
     /// Adds a body; its definition is checked first.
     ///
     /// # Errors
     /// Non-finite placement or velocity, a non-positive density for a dynamic body, or a
     /// negative friction, restitution or drag coefficient.
     pub fn add_body(&mut self, def: BodyDef) -> Result<BodyHandle, CaromError> {
-        self.bodies.insert(def)
+        let handle = self.bodies.insert(def)?;
+        let body = self.bodies.get(handle).expect("just inserted");
+        let (kind, aabb) = (body.kind(), body.aabb());
+        self.broadphase
+            .insert(handle, kind, aabb, self.margin_for(kind));
+        Ok(handle)
     }
 
-    /// Removes a body and returns it.
+    /// Removes a body and returns it. Its contacts end (reported after the next step).
     pub fn remove_body(&mut self, handle: BodyHandle) -> Result<Body, CaromError> {
-        self.bodies.remove(handle)
+        let body = self.bodies.remove(handle)?;
+        self.contacts.remove_body(handle);
+        self.broadphase.remove(handle);
+        Ok(body)
     }
 
     /// The body behind a handle, unless it was removed.
@@ -103,9 +136,15 @@ impl World {
         self.bodies.get(handle)
     }
 
-    /// The body behind a handle, mutably, unless it was removed.
+    /// The body behind a handle, mutably, unless it was removed. The world notes the loan,
+    /// so moving the body or changing its shape or kind is seen by the next step and by
+    /// queries.
     pub fn body_mut(&mut self, handle: BodyHandle) -> Option<&mut Body> {
-        self.bodies.get_mut(handle)
+        let body = self.bodies.get_mut(handle)?;
+        if body.mark_touched() {
+            self.touched.push(handle);
+        }
+        Some(body)
     }
 
     /// True when the handle refers to a body of this world.
@@ -118,14 +157,24 @@ impl World {
         self.bodies.as_slice().iter()
     }
 
-    /// Every body, mutably.
-    pub fn bodies_mut(&mut self) -> impl ExactSizeIterator<Item = &mut Body> {
-        self.bodies.as_mut_slice().iter_mut()
-    }
-
     /// How many bodies there are.
     pub fn body_count(&self) -> usize {
         self.bodies.len()
+    }
+
+    /// Every contact: pairs whose enlarged boxes overlap, touching or not.
+    pub fn contacts(&self) -> impl ExactSizeIterator<Item = &Contact> {
+        self.contacts.iter()
+    }
+
+    /// Contacts began and ended during the last step (and by removals before it).
+    pub fn contact_events(&self) -> &[ContactEvent] {
+        self.contacts.events()
+    }
+
+    /// The broadphase, for inspection (fat boxes, tree shape).
+    pub fn broadphase(&self) -> &BroadPhase {
+        &self.broadphase
     }
 
     /// Simulated time so far, in seconds.
@@ -140,8 +189,10 @@ impl World {
 
     /// Advances the world by `dt` seconds.
     ///
-    /// The stages, in order: integrate forces (gravity, applied forces, drag) into velocities,
-    /// then integrate velocities into positions. Collision stages slot in between as they land.
+    /// The stages, in order: integrate forces (gravity, applied forces, drag) into velocities;
+    /// find new pairs in the broadphase; build contact manifolds in the narrowphase; integrate
+    /// velocities into positions and refresh the broadphase. The solver slots in before the
+    /// position integration as it lands.
     ///
     /// # Errors
     /// A time step that is not finite and positive; the world is left untouched.
@@ -153,17 +204,71 @@ impl World {
                 value: dt,
             });
         }
-        let bodies = self.bodies.as_mut_slice();
+        self.contacts.begin_step();
+        self.catch_up_with_edits();
+
         integrate::integrate_velocities(
-            bodies,
+            self.bodies.as_mut_slice(),
             self.settings.gravity,
             Some(self.settings.drag),
             dt,
         );
-        integrate::integrate_positions(bodies, dt);
+        self.find_pairs();
+        self.contacts.update(
+            &self.bodies,
+            &self.broadphase,
+            self.settings.speculative_distance,
+        );
+        integrate::integrate_positions(self.bodies.as_mut_slice(), dt);
+        self.refresh_broadphase();
+
         self.time += dt as f64;
         self.step_count += 1;
         Ok(())
+    }
+
+    /// Brings the broadphase up to date with bodies the user edited since the last step.
+    fn catch_up_with_edits(&mut self) {
+        for handle in std::mem::take(&mut self.touched) {
+            let Some(body) = self.bodies.get_mut(handle) else {
+                continue;
+            };
+            body.clear_touched();
+            let (kind, aabb) = (body.kind(), body.aabb());
+            let margin = self.margin_for(kind);
+            self.broadphase.update(handle, kind, aabb, margin);
+        }
+    }
+
+    /// Creates contacts for pairs whose enlarged boxes began to overlap.
+    fn find_pairs(&mut self) {
+        let contacts = &self.contacts;
+        let pairs = self.broadphase.update_pairs(|a, b| contacts.contains(a, b));
+        for (a, b) in pairs {
+            self.contacts.add(a, b);
+        }
+    }
+
+    /// Re-fits the broadphase entries of bodies that moved this step.
+    fn refresh_broadphase(&mut self) {
+        let margins = [
+            self.margin_for(BodyKind::Kinematic),
+            self.margin_for(BodyKind::Dynamic),
+        ];
+        for body in self.bodies.as_slice() {
+            let margin = match body.kind() {
+                BodyKind::Static => continue,
+                BodyKind::Kinematic => margins[0],
+                BodyKind::Dynamic => margins[1],
+            };
+            self.broadphase
+                .update(body.handle(), body.kind(), body.aabb(), margin);
+        }
+    }
+
+    /// Handles of bodies whose tree entries may not cover them yet (edited since the step).
+    fn lagging(&self) -> impl Iterator<Item = &Body> {
+        self.touched.iter().filter_map(|h| self.bodies.get(*h))
     }
 
     /// The body under a world point, for grabbing with the mouse.
@@ -176,17 +281,23 @@ impl World {
             BodyKind::Kinematic => 1,
             BodyKind::Dynamic => 2,
         };
-        self.bodies()
-            .filter(|body| body.contains_point(point))
-            .max_by_key(|body| rank(body.kind()))
-            .map(Body::handle)
+        self.bodies_at(point)
+            .into_iter()
+            .filter_map(|h| Some((self.bodies.dense_index(h).ok()?, h)))
+            .max_by_key(|&(order, _)| (rank(self.bodies.as_slice()[order].kind()), order))
+            .map(|(_, h)| h)
     }
 
-    /// Every body containing the point.
-    pub fn bodies_at(&self, point: Vec2) -> impl Iterator<Item = BodyHandle> + '_ {
-        self.bodies()
-            .filter(move |body| body.contains_point(point))
-            .map(Body::handle)
+    /// Every body containing the point, in storage order.
+    pub fn bodies_at(&self, point: Vec2) -> Vec<BodyHandle> {
+        let probe = Aabb::new(point, point);
+        let mut found = Vec::new();
+        self.broadphase.query(&probe, |handle| found.push(handle));
+        found.extend(self.lagging().map(Body::handle));
+        found.retain(|h| self.bodies.get(*h).is_some_and(|b| b.contains_point(point)));
+        found.sort_unstable_by_key(|h| self.bodies.dense_index(*h).unwrap_or(usize::MAX));
+        found.dedup();
+        found
     }
 
     /// The first body the ray enters, if any.
@@ -196,18 +307,11 @@ impl World {
             return None;
         }
         let mut best: Option<WorldRayHit> = None;
-        for body in self.bodies() {
-            let reach = best.map_or(1.0, |hit| hit.fraction);
-            if body
-                .aabb()
-                .ray_interval(ray.origin, ray.translation, reach)
-                .is_none()
-            {
-                continue;
-            }
+        let mut try_body = |body: &Body, reach: Real| {
             let inverse = body.rotation().inverse();
             let local = Ray::new(body.local_point(ray.origin), inverse * ray.translation);
             if let Some(hit) = body.shape().ray_cast_local(&local)
+                && hit.fraction <= reach
                 && best.is_none_or(|b| hit.fraction < b.fraction)
             {
                 best = Some(WorldRayHit {
@@ -217,6 +321,17 @@ impl World {
                     fraction: hit.fraction,
                 });
             }
+            best.map_or(reach, |b| b.fraction)
+        };
+        self.broadphase
+            .ray_cast(ray.origin, ray.translation, |handle, reach| {
+                match self.bodies.get(handle) {
+                    Some(body) => try_body(body, reach),
+                    None => reach,
+                }
+            });
+        for body in self.lagging() {
+            try_body(body, 1.0);
         }
         best
     }
@@ -229,12 +344,18 @@ mod tests {
     use crate::shape::Shape;
 
     #[test]
-    fn bad_time_steps_are_refused() {
+    fn bad_time_steps_and_settings_are_refused() {
         let mut world = World::new();
         for dt in [0.0, -1.0, Real::NAN, Real::INFINITY] {
             assert!(world.step(dt).is_err());
         }
         assert_eq!(world.step_count(), 0);
+        let bad = WorldSettings {
+            speculative_distance: -1.0,
+            ..WorldSettings::default()
+        };
+        assert!(World::with_settings(bad).is_err());
+        assert!(world.set_settings(bad).is_err());
     }
 
     #[test]
@@ -258,6 +379,8 @@ mod tests {
         assert!((p.position() - vec2(1.0, 0.0)).norm() < 1e-4);
         assert_eq!(p.linear_velocity(), vec2(1.0, 0.0));
         assert!((p.angle() - 0.5).abs() < 1e-4);
+        // Static and kinematic bodies never pair up.
+        assert_eq!(world.contacts().len(), 0);
     }
 
     #[test]
@@ -276,7 +399,35 @@ mod tests {
         assert_eq!(world.body_at(vec2(0.8, 0.0)), Some(low));
         assert_eq!(world.body_at(vec2(3.0, 3.0)), Some(floor));
         assert_eq!(world.body_at(vec2(30.0, 3.0)), None);
-        assert_eq!(world.bodies_at(vec2(0.0, 0.0)).count(), 3);
+        assert_eq!(world.bodies_at(vec2(0.0, 0.0)), vec![floor, low, high]);
+    }
+
+    #[test]
+    fn queries_see_bodies_moved_since_the_last_step() {
+        let mut world = World::new();
+        let ball = world
+            .add_body(BodyDef::dynamic(Shape::circle(0.5).unwrap()))
+            .unwrap();
+        world
+            .body_mut(ball)
+            .unwrap()
+            .set_position(vec2(20.0, 0.0))
+            .unwrap();
+        assert_eq!(world.body_at(vec2(20.0, 0.2)), Some(ball));
+        assert_eq!(world.body_at(vec2(0.0, 0.0)), None);
+        let hit = world
+            .cast_ray(&Ray::new(vec2(10.0, 0.0), vec2(20.0, 0.0)))
+            .unwrap();
+        assert_eq!(hit.body, ball);
+        world.step(1.0 / 60.0).unwrap();
+        assert!(world.body_at(vec2(20.0, 0.0)).is_some());
+        assert!(
+            world
+                .broadphase()
+                .fat_aabb(ball)
+                .unwrap()
+                .contains_point(vec2(20.0, 0.0))
+        );
     }
 
     #[test]
@@ -315,5 +466,75 @@ mod tests {
                 .cast_ray(&Ray::new(vec2(Real::NAN, 0.0), vec2(1.0, 0.0)))
                 .is_none()
         );
+    }
+
+    #[test]
+    fn contacts_begin_and_end_with_events() {
+        let mut world = World::with_settings(WorldSettings {
+            gravity: Vec2::zeros(),
+            ..WorldSettings::default()
+        })
+        .unwrap();
+        let wall = world
+            .add_body(BodyDef::static_body(Shape::rect(0.1, 2.0).unwrap()))
+            .unwrap();
+        // Passes straight through the wall: there is no solver yet, only detection.
+        let ball = world
+            .add_body(
+                BodyDef::dynamic(Shape::circle(0.25).unwrap())
+                    .position(vec2(-2.0, 0.0))
+                    .linear_velocity(vec2(3.0, 0.0)),
+            )
+            .unwrap();
+        let (mut begins, mut ends, mut touching_steps) = (0, 0, 0);
+        for _ in 0..120 {
+            world.step(1.0 / 60.0).unwrap();
+            for event in world.contact_events() {
+                match *event {
+                    ContactEvent::Begin { body_a, body_b } => {
+                        assert_eq!((body_a, body_b), (wall, ball));
+                        begins += 1;
+                    }
+                    ContactEvent::End { .. } => ends += 1,
+                }
+            }
+            touching_steps += world.contacts().filter(|c| c.is_touching()).count();
+        }
+        assert_eq!((begins, ends), (1, 1));
+        // Crossing 0.7 m (plus the margin) at 3 m/s takes about 15 steps.
+        assert!((12..=20).contains(&touching_steps), "{touching_steps}");
+        assert_eq!(world.contacts().len(), 0, "the pair is dropped once apart");
+    }
+
+    #[test]
+    fn removing_a_touching_body_ends_its_contact_after_the_next_step() {
+        let mut world = World::new();
+        let ground = world
+            .add_body(
+                BodyDef::static_body(Shape::rect(5.0, 0.5).unwrap()).position(vec2(0.0, -0.5)),
+            )
+            .unwrap();
+        let crate_box = world
+            .add_body(BodyDef::kinematic(Shape::rect(0.5, 0.5).unwrap()).position(vec2(0.0, 0.5)))
+            .unwrap();
+        let ball = world
+            .add_body(BodyDef::dynamic(Shape::circle(0.5).unwrap()).position(vec2(3.0, 0.49)))
+            .unwrap();
+        world.step(1.0 / 60.0).unwrap();
+        assert!(world.contact_events().contains(&ContactEvent::Begin {
+            body_a: ground,
+            body_b: ball
+        }));
+        world.remove_body(ball).unwrap();
+        world.step(1.0 / 60.0).unwrap();
+        assert_eq!(
+            world.contact_events(),
+            &[ContactEvent::End {
+                body_a: ground,
+                body_b: ball
+            }]
+        );
+        assert!(world.contains(crate_box));
+        assert_eq!(world.contacts().len(), 0);
     }
 }

@@ -1,0 +1,222 @@
+//! Persistent contacts: one per pair of bodies whose fat boxes overlap, kept across steps.
+//!
+//! The broadphase creates a contact when two bodies' fat boxes begin to overlap; each step the
+//! narrowphase rebuilds its manifold (carrying impulses over by feature id) and destroys it
+//! once the boxes part. A contact is *touching* while its manifold has points, speculative
+//! ones included, as in Box2D: the shapes are within the speculative margin. Changes of
+//! touching are reported as begin and end events, readable after the step.
+
+use crate::body::BodyHandle;
+use crate::body_set::BodySet;
+use crate::broadphase::{BroadPhase, kinds_can_collide};
+use crate::manifold::{self, Manifold};
+use crate::math::Real;
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
+/// A pair of bodies the narrowphase watches.
+#[derive(Debug, Clone)]
+pub struct Contact {
+    body_a: BodyHandle,
+    body_b: BodyHandle,
+    manifold: Manifold,
+    touching: bool,
+}
+
+impl Contact {
+    /// The first body (the manifold normal points away from it).
+    pub fn body_a(&self) -> BodyHandle {
+        self.body_a
+    }
+
+    /// The second body.
+    pub fn body_b(&self) -> BodyHandle {
+        self.body_b
+    }
+
+    /// Where the bodies touch, as of the last step.
+    pub fn manifold(&self) -> &Manifold {
+        &self.manifold
+    }
+
+    /// True while the manifold has points.
+    pub fn is_touching(&self) -> bool {
+        self.touching
+    }
+}
+
+/// A change in whether two bodies touch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactEvent {
+    /// The bodies began to touch.
+    Begin {
+        /// First body of the pair.
+        body_a: BodyHandle,
+        /// Second body of the pair.
+        body_b: BodyHandle,
+    },
+    /// The bodies stopped touching (or one of them was removed).
+    End {
+        /// First body of the pair.
+        body_a: BodyHandle,
+        /// Second body of the pair.
+        body_b: BodyHandle,
+    },
+}
+
+/// A cheap hasher for pair keys (two slot indices packed in a `u64`), which need no
+/// protection against adversarial input.
+#[derive(Default)]
+struct PairHasher(u64);
+
+impl Hasher for PairHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0.rotate_left(8) ^ b as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        }
+    }
+    fn write_u64(&mut self, key: u64) {
+        self.0 = (key ^ (key >> 29)).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    }
+}
+
+fn pair_key(a: BodyHandle, b: BodyHandle) -> u64 {
+    let (low, high) = if a.index() < b.index() {
+        (a, b)
+    } else {
+        (b, a)
+    };
+    (low.index() as u64) << 32 | high.index() as u64
+}
+
+/// The contacts of a world, stored contiguously, with a lookup by pair.
+#[derive(Debug, Clone, Default)]
+pub struct ContactSet {
+    contacts: Vec<Contact>,
+    lookup: HashMap<u64, usize, BuildHasherDefault<PairHasher>>,
+    events: Vec<ContactEvent>,
+    /// Events raised between steps (removing a body), reported after the next step.
+    pending: Vec<ContactEvent>,
+}
+
+impl ContactSet {
+    /// True when the pair already has a contact.
+    pub fn contains(&self, a: BodyHandle, b: BodyHandle) -> bool {
+        self.lookup.contains_key(&pair_key(a, b))
+    }
+
+    /// Starts watching a pair.
+    pub(crate) fn add(&mut self, body_a: BodyHandle, body_b: BodyHandle) {
+        let key = pair_key(body_a, body_b);
+        if self.lookup.contains_key(&key) {
+            return;
+        }
+        self.lookup.insert(key, self.contacts.len());
+        self.contacts.push(Contact {
+            body_a,
+            body_b,
+            manifold: Manifold::default(),
+            touching: false,
+        });
+    }
+
+    /// Drops the contact at `index`, ending it if it touched.
+    fn destroy(&mut self, index: usize, events_now: bool) {
+        let contact = self.contacts.swap_remove(index);
+        self.lookup
+            .remove(&pair_key(contact.body_a, contact.body_b));
+        if let Some(moved) = self.contacts.get(index) {
+            self.lookup
+                .insert(pair_key(moved.body_a, moved.body_b), index);
+        }
+        if contact.touching {
+            let event = ContactEvent::End {
+                body_a: contact.body_a,
+                body_b: contact.body_b,
+            };
+            if events_now {
+                self.events.push(event);
+            } else {
+                self.pending.push(event);
+            }
+        }
+    }
+
+    /// Drops every contact of a body that is being removed.
+    pub(crate) fn remove_body(&mut self, handle: BodyHandle) {
+        let mut index = self.contacts.len();
+        while index > 0 {
+            index -= 1;
+            let c = &self.contacts[index];
+            if c.body_a == handle || c.body_b == handle {
+                self.destroy(index, false);
+            }
+        }
+    }
+
+    /// Forgets last step's events; those raised since (by removals) become this step's.
+    pub(crate) fn begin_step(&mut self) {
+        self.events.clear();
+        self.events.append(&mut self.pending);
+    }
+
+    /// The narrowphase stage: rebuilds every manifold from the bodies' world shapes, carries
+    /// impulses over by feature id, reports touching changes, and drops contacts whose fat
+    /// boxes no longer overlap (or whose bodies can no longer collide).
+    pub(crate) fn update(&mut self, bodies: &BodySet, broadphase: &BroadPhase, margin: Real) {
+        let mut index = self.contacts.len();
+        // Backwards, so destroying (swap-remove) never skips a contact.
+        while index > 0 {
+            index -= 1;
+            let contact = &self.contacts[index];
+            let (Some(a), Some(b)) = (bodies.get(contact.body_a), bodies.get(contact.body_b))
+            else {
+                self.destroy(index, true);
+                continue;
+            };
+            if !kinds_can_collide(a.kind(), b.kind())
+                || !broadphase.fat_aabbs_overlap(contact.body_a, contact.body_b)
+            {
+                self.destroy(index, true);
+                continue;
+            }
+            let mut manifold = manifold::collide(a.world_shape(), b.world_shape(), margin);
+            let contact = &mut self.contacts[index];
+            manifold.carry_impulses_from(&contact.manifold);
+            contact.manifold = manifold;
+            let touching = !manifold.is_empty();
+            if touching != contact.touching {
+                contact.touching = touching;
+                let (body_a, body_b) = (contact.body_a, contact.body_b);
+                self.events.push(if touching {
+                    ContactEvent::Begin { body_a, body_b }
+                } else {
+                    ContactEvent::End { body_a, body_b }
+                });
+            }
+        }
+    }
+
+    /// Every contact.
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = &Contact> {
+        self.contacts.iter()
+    }
+
+    /// How many contacts there are.
+    pub fn len(&self) -> usize {
+        self.contacts.len()
+    }
+
+    /// True when there are no contacts.
+    pub fn is_empty(&self) -> bool {
+        self.contacts.is_empty()
+    }
+
+    /// The begin and end events of the last step, in the order they happened.
+    pub fn events(&self) -> &[ContactEvent] {
+        &self.events
+    }
+}

@@ -1,0 +1,463 @@
+//! Contact manifolds: where two shapes touch, as at most two points.
+//!
+//! For two polygons the tutorial's construction: the *reference* edge is the face most
+//! perpendicular to the contact normal (the separating-axis face), the *incident* edge is the
+//! other polygon's edge most anti-parallel to it, and the incident edge is clipped against the
+//! two side planes through the reference edge's ends. Each surviving point sits midway between
+//! the two surfaces and carries its separation (negative = penetration) and a [`FeatureId`]
+//! naming the reference and incident vertices it came from, which stays the same from step to
+//! step while the same features touch, so the solver can warm start from last step's impulses.
+//!
+//! Points are kept up to a speculative margin *apart*: a pair about to touch already has
+//! points with positive separation, which lets the solver stop a fast body at the surface.
+
+use crate::math::{Real, Vec2};
+use crate::narrowphase::{self, PolygonFeature};
+use crate::settings::LINEAR_SLOP;
+use crate::shape::WorldShape;
+
+/// B's face must beat A's by this much to become the reference, so nearly equal faces do not
+/// take turns from one step to the next (Box2D's 0.1 × slop).
+pub const REFERENCE_TOLERANCE: Real = 0.1 * LINEAR_SLOP;
+
+/// Which features of the two shapes produced a contact point.
+///
+/// Built from the reference and incident vertex indices (and whether B held the reference
+/// face); equal ids on consecutive steps mean the same point, so impulses can carry over.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct FeatureId(u32);
+
+impl FeatureId {
+    const FLIPPED: u32 = 1 << 31;
+    const VERTEX_PAIR: u32 = 1 << 30;
+    const INDEX_BITS: u32 = 15;
+    const INDEX_MASK: u32 = (1 << Self::INDEX_BITS) - 1;
+
+    /// The id of the single point of a contact involving a circle.
+    pub const SINGLE: FeatureId = FeatureId(0);
+
+    /// A clipped point: reference vertex and incident vertex, and whether the reference face
+    /// belongs to B.
+    pub fn clipped(reference_on_b: bool, reference_vertex: usize, incident_vertex: usize) -> Self {
+        let flag = if reference_on_b { Self::FLIPPED } else { 0 };
+        FeatureId(
+            flag | (reference_vertex as u32 & Self::INDEX_MASK) << Self::INDEX_BITS
+                | (incident_vertex as u32 & Self::INDEX_MASK),
+        )
+    }
+
+    /// Two corners facing each other: A's vertex and B's vertex.
+    pub fn vertex_pair(vertex_a: usize, vertex_b: usize) -> Self {
+        FeatureId(
+            Self::VERTEX_PAIR
+                | (vertex_a as u32 & Self::INDEX_MASK) << Self::INDEX_BITS
+                | (vertex_b as u32 & Self::INDEX_MASK),
+        )
+    }
+
+    /// The packed value.
+    pub fn raw(self) -> u32 {
+        self.0
+    }
+}
+
+/// One point of contact.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ManifoldPoint {
+    /// World position, midway between the two surfaces.
+    pub point: Vec2,
+    /// Distance between the surfaces along the normal: negative when they overlap.
+    pub separation: Real,
+    /// Which features touch here.
+    pub id: FeatureId,
+    /// Accumulated normal impulse, kept across steps for warm starting.
+    pub normal_impulse: Real,
+    /// Accumulated friction impulse, kept across steps for warm starting.
+    pub tangent_impulse: Real,
+}
+
+/// Which shape of a pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PairSide {
+    /// The first shape.
+    A,
+    /// The second shape.
+    B,
+}
+
+/// An edge taking part in a contact, for drawing and inspection.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactEdge {
+    /// Which shape it belongs to.
+    pub side: PairSide,
+    /// Its index in that polygon (edge `i` runs from vertex `i` to `i + 1`).
+    pub index: usize,
+    /// World start point.
+    pub start: Vec2,
+    /// World end point.
+    pub end: Vec2,
+}
+
+/// Where two shapes touch: a normal from A to B and up to two points.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Manifold {
+    /// Unit normal from A to B.
+    pub normal: Vec2,
+    points: [ManifoldPoint; 2],
+    point_count: usize,
+    /// The reference face, when a polygon face defines the normal.
+    pub reference_edge: Option<ContactEdge>,
+    /// The incident edge that was clipped, for polygon pairs.
+    pub incident_edge: Option<ContactEdge>,
+}
+
+impl Manifold {
+    /// The contact points (0, 1 or 2).
+    #[inline]
+    pub fn points(&self) -> &[ManifoldPoint] {
+        &self.points[..self.point_count]
+    }
+
+    /// The contact points, mutably (the solver stores its impulses here).
+    #[inline]
+    pub fn points_mut(&mut self) -> &mut [ManifoldPoint] {
+        &mut self.points[..self.point_count]
+    }
+
+    /// True when the shapes are farther apart than the speculative margin.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.point_count == 0
+    }
+
+    /// The smallest separation among the points (the deepest penetration, negated).
+    pub fn min_separation(&self) -> Option<Real> {
+        self.points().iter().map(|p| p.separation).reduce(Real::min)
+    }
+
+    fn with_normal(normal: Vec2) -> Self {
+        Manifold {
+            normal,
+            ..Manifold::default()
+        }
+    }
+
+    fn push(&mut self, point: Vec2, separation: Real, id: FeatureId) {
+        self.points[self.point_count] = ManifoldPoint {
+            point,
+            separation,
+            id,
+            normal_impulse: 0.0,
+            tangent_impulse: 0.0,
+        };
+        self.point_count += 1;
+    }
+
+    /// The same contact described from B's side.
+    fn flipped(mut self) -> Self {
+        let swap = |edge: Option<ContactEdge>| {
+            edge.map(|mut e| {
+                e.side = match e.side {
+                    PairSide::A => PairSide::B,
+                    PairSide::B => PairSide::A,
+                };
+                e
+            })
+        };
+        self.normal = -self.normal;
+        self.reference_edge = swap(self.reference_edge);
+        self.incident_edge = swap(self.incident_edge);
+        self
+    }
+
+    /// Copies accumulated impulses from last step's points with the same feature ids.
+    pub fn carry_impulses_from(&mut self, previous: &Manifold) {
+        for point in self.points_mut() {
+            if let Some(old) = previous.points().iter().find(|old| old.id == point.id) {
+                point.normal_impulse = old.normal_impulse;
+                point.tangent_impulse = old.tangent_impulse;
+            }
+        }
+    }
+}
+
+/// The manifold of two placed shapes, with points for every feature closer than `margin`
+/// (use 0 for touching points only).
+pub fn collide(a: &WorldShape, b: &WorldShape, margin: Real) -> Manifold {
+    match (a, b) {
+        (
+            WorldShape::Circle {
+                center: ca,
+                radius: ra,
+            },
+            WorldShape::Circle {
+                center: cb,
+                radius: rb,
+            },
+        ) => collide_circles(*ca, *ra, *cb, *rb, margin),
+        (WorldShape::Polygon { vertices, normals }, WorldShape::Circle { center, radius }) => {
+            collide_polygon_circle(vertices, normals, *center, *radius, margin)
+        }
+        (WorldShape::Circle { center, radius }, WorldShape::Polygon { vertices, normals }) => {
+            collide_polygon_circle(vertices, normals, *center, *radius, margin).flipped()
+        }
+        (
+            WorldShape::Polygon {
+                vertices: va,
+                normals: na,
+            },
+            WorldShape::Polygon {
+                vertices: vb,
+                normals: nb,
+            },
+        ) => collide_polygons(va, na, vb, nb, margin),
+    }
+}
+
+fn collide_circles(ca: Vec2, ra: Real, cb: Vec2, rb: Real, margin: Real) -> Manifold {
+    let s = narrowphase::circle_circle(ca, ra, cb, rb);
+    let mut manifold = Manifold::with_normal(s.normal);
+    if s.separation <= margin {
+        let surface_a = ca + s.normal * ra;
+        let surface_b = cb - s.normal * rb;
+        manifold.push(
+            (surface_a + surface_b) * 0.5,
+            s.separation,
+            FeatureId::SINGLE,
+        );
+    }
+    manifold
+}
+
+fn collide_polygon_circle(
+    vertices: &[Vec2],
+    normals: &[Vec2],
+    center: Vec2,
+    radius: Real,
+    margin: Real,
+) -> Manifold {
+    let pc = narrowphase::polygon_circle(vertices, normals, center, radius);
+    let s = pc.separation;
+    let mut manifold = Manifold::with_normal(s.normal);
+    if s.separation > margin {
+        return manifold;
+    }
+    let surface_b = center - s.normal * radius;
+    manifold.push(
+        (pc.polygon_point + surface_b) * 0.5,
+        s.separation,
+        FeatureId::SINGLE,
+    );
+    if let PolygonFeature::Edge(i) = pc.feature {
+        manifold.reference_edge = Some(ContactEdge {
+            side: PairSide::A,
+            index: i,
+            start: vertices[i],
+            end: vertices[(i + 1) % vertices.len()],
+        });
+    }
+    manifold
+}
+
+fn collide_polygons(
+    a_vertices: &[Vec2],
+    a_normals: &[Vec2],
+    b_vertices: &[Vec2],
+    b_normals: &[Vec2],
+    margin: Real,
+) -> Manifold {
+    let pp = narrowphase::polygon_polygon(a_vertices, a_normals, b_vertices, b_normals);
+    let (edge_a, separation_a) = pp.edge_a;
+    let (edge_b, separation_b) = pp.edge_b;
+    if pp.separation.separation > margin {
+        return Manifold::with_normal(pp.separation.normal);
+    }
+    // Apart with two corners facing each other: one point on the line between them.
+    if let Some(closest) = pp.closest
+        && pp.separation.separation > separation_a.max(separation_b)
+    {
+        let mut manifold = Manifold::with_normal(pp.separation.normal);
+        let id =
+            FeatureId::vertex_pair(closest.vertex_a.unwrap_or(0), closest.vertex_b.unwrap_or(0));
+        manifold.push(
+            (closest.point_a + closest.point_b) * 0.5,
+            closest.distance,
+            id,
+        );
+        return manifold;
+    }
+
+    let reference_on_b = separation_b > separation_a + REFERENCE_TOLERANCE;
+    let (reference, incident) = if reference_on_b {
+        ((b_vertices, b_normals, edge_b), (a_vertices, a_normals))
+    } else {
+        ((a_vertices, a_normals, edge_a), (b_vertices, b_normals))
+    };
+    let (ref_vertices, ref_normals, i1) = reference;
+    let (inc_vertices, inc_normals) = incident;
+    let i2 = (i1 + 1) % ref_vertices.len();
+    let (v11, v12) = (ref_vertices[i1], ref_vertices[i2]);
+    let normal = ref_normals[i1];
+
+    // The incident edge: the one facing the reference face most directly.
+    let j1 = (0..inc_normals.len())
+        .min_by(|&x, &y| {
+            inc_normals[x]
+                .dot(&normal)
+                .total_cmp(&inc_normals[y].dot(&normal))
+        })
+        .expect("polygons have edges");
+    let j2 = (j1 + 1) % inc_vertices.len();
+    let (v21, v22) = (inc_vertices[j1], inc_vertices[j2]);
+
+    // Clip the incident edge to the strip between the side planes through v11 and v12,
+    // working in distances along the reference edge from v11.
+    let edge = v12 - v11;
+    let length = edge.norm();
+    let tangent = edge / length;
+    let (s21, s22) = (tangent.dot(&(v21 - v11)), tangent.dot(&(v22 - v11)));
+    // The incident edge normally runs against the reference edge, so v22 is the lower end.
+    let ((low, s_low, j_low), (high, s_high, j_high)) = if s22 <= s21 {
+        ((v22, s22, j2), (v21, s21, j1))
+    } else {
+        ((v21, s21, j1), (v22, s22, j2))
+    };
+    let span = s_high - s_low;
+    let at = |s: Real| {
+        if span > Real::EPSILON * length {
+            low + (high - low) * ((s - s_low) / span)
+        } else {
+            low
+        }
+    };
+
+    let mut manifold = Manifold::with_normal(if reference_on_b { -normal } else { normal });
+    manifold.reference_edge = Some(ContactEdge {
+        side: if reference_on_b {
+            PairSide::B
+        } else {
+            PairSide::A
+        },
+        index: i1,
+        start: v11,
+        end: v12,
+    });
+    manifold.incident_edge = Some(ContactEdge {
+        side: if reference_on_b {
+            PairSide::A
+        } else {
+            PairSide::B
+        },
+        index: j1,
+        start: v21,
+        end: v22,
+    });
+
+    let candidates = if s_low > length || s_high < 0.0 {
+        // The incident edge lies wholly beyond one end of the reference face (possible only
+        // for shapes barely within the margin): keep its nearer end.
+        if s_low > length {
+            [Some((low, i2, j_low)), None]
+        } else {
+            [Some((high, i1, j_high)), None]
+        }
+    } else {
+        let lower = if s_low < 0.0 { at(0.0) } else { low };
+        let upper = if s_high > length { at(length) } else { high };
+        [Some((lower, i1, j_low)), Some((upper, i2, j_high))]
+    };
+    for (point, reference_vertex, incident_vertex) in candidates.into_iter().flatten() {
+        let separation = normal.dot(&(point - v11));
+        if separation <= margin {
+            manifold.push(
+                point - normal * (0.5 * separation),
+                separation,
+                FeatureId::clipped(reference_on_b, reference_vertex, incident_vertex),
+            );
+        }
+    }
+    manifold
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::{Isometry, vec2};
+    use crate::shape::Shape;
+
+    fn placed(shape: Shape, x: Real, y: Real, angle: Real) -> WorldShape {
+        WorldShape::new(&shape, &Isometry::new(vec2(x, y), angle))
+    }
+
+    #[test]
+    fn box_resting_on_ground_gets_two_points() {
+        let ground = placed(Shape::rect(5.0, 0.5).unwrap(), 0.0, -0.5, 0.0);
+        let crate_box = placed(Shape::rect(0.5, 0.5).unwrap(), 1.0, 0.49, 0.0);
+        let m = collide(&ground, &crate_box, 0.0);
+        assert_eq!(m.points().len(), 2);
+        assert_eq!(m.normal, vec2(0.0, 1.0));
+        for p in m.points() {
+            assert!((p.separation + 0.01).abs() < 1e-5);
+            assert!((p.point.y + 0.005).abs() < 1e-5);
+        }
+        let xs: Vec<Real> = m.points().iter().map(|p| p.point.x).collect();
+        assert!(xs.contains(&0.5) && xs.contains(&1.5), "{xs:?}");
+        let reference = m.reference_edge.unwrap();
+        assert_eq!(reference.side, PairSide::A);
+        assert_eq!(m.incident_edge.unwrap().side, PairSide::B);
+        // Ids differ and survive a small move.
+        let ids: Vec<FeatureId> = m.points().iter().map(|p| p.id).collect();
+        assert_ne!(ids[0], ids[1]);
+        let moved = placed(Shape::rect(0.5, 0.5).unwrap(), 1.02, 0.495, 0.001);
+        let m2 = collide(&ground, &moved, 0.0);
+        let ids2: Vec<FeatureId> = m2.points().iter().map(|p| p.id).collect();
+        assert_eq!(ids, ids2);
+    }
+
+    #[test]
+    fn speculative_points_only_within_the_margin() {
+        let ground = placed(Shape::rect(5.0, 0.5).unwrap(), 0.0, -0.5, 0.0);
+        let hovering = placed(Shape::rect(0.5, 0.5).unwrap(), 0.0, 0.51, 0.0);
+        assert!(collide(&ground, &hovering, 0.0).is_empty());
+        let m = collide(&ground, &hovering, 0.02);
+        assert_eq!(m.points().len(), 2);
+        assert!(
+            m.points()
+                .iter()
+                .all(|p| (p.separation - 0.01).abs() < 1e-5)
+        );
+        assert!(collide(&ground, &hovering, 0.005).is_empty());
+    }
+
+    #[test]
+    fn circle_contacts_have_one_point_midway() {
+        let a = placed(Shape::circle(1.0).unwrap(), 0.0, 0.0, 0.0);
+        let b = placed(Shape::circle(0.5).unwrap(), 1.4, 0.0, 0.0);
+        let m = collide(&a, &b, 0.0);
+        assert_eq!(m.points().len(), 1);
+        assert!((m.points()[0].point - vec2(0.95, 0.0)).norm() < 1e-6);
+        assert!((m.points()[0].separation + 0.1).abs() < 1e-6);
+        // Circle against a polygon, both orders: normals opposite, same point.
+        let square = placed(Shape::rect(1.0, 1.0).unwrap(), 0.0, 0.0, 0.0);
+        let ball = placed(Shape::circle(0.5).unwrap(), 0.0, 1.4, 0.0);
+        let ab = collide(&square, &ball, 0.0);
+        let ba = collide(&ball, &square, 0.0);
+        assert_eq!(ab.normal, -ba.normal);
+        assert_eq!(ab.points()[0].point, ba.points()[0].point);
+        assert_eq!(ab.reference_edge.unwrap().side, PairSide::A);
+        assert_eq!(ba.reference_edge.unwrap().side, PairSide::B);
+    }
+
+    #[test]
+    fn impulses_follow_feature_ids() {
+        let ground = placed(Shape::rect(5.0, 0.5).unwrap(), 0.0, -0.5, 0.0);
+        let crate_box = placed(Shape::rect(0.5, 0.5).unwrap(), 0.0, 0.49, 0.0);
+        let mut old = collide(&ground, &crate_box, 0.0);
+        old.points_mut()[0].normal_impulse = 3.0;
+        old.points_mut()[1].normal_impulse = 5.0;
+        let mut new = collide(&ground, &crate_box, 0.0);
+        new.carry_impulses_from(&old);
+        assert_eq!(new.points()[0].normal_impulse, 3.0);
+        assert_eq!(new.points()[1].normal_impulse, 5.0);
+    }
+}
