@@ -28,6 +28,12 @@ pub struct BodyHandle {
 }
 
 impl BodyHandle {
+    /// A handle from its parts, for tools that drive a [`crate::BroadPhase`] directly or
+    /// store handles elsewhere. A world only answers to handles it issued.
+    pub fn from_raw_parts(index: u32, generation: u32) -> Self {
+        BodyHandle { index, generation }
+    }
+
     /// The slot index (reused after removal, with a new generation).
     #[inline]
     pub fn index(&self) -> u32 {

@@ -32,10 +32,13 @@ impl TreeNode {
     }
 }
 
-/// A bounding-volume hierarchy of axis-aligned boxes, balanced by tree rotations.
+/// A bounding-volume hierarchy of axis-aligned boxes.
 ///
-/// Leaves are proxies: a box and a `u32` payload. Insertion descends by the surface-area
-/// heuristic (perimeter in 2D), so queries cost `O(log n + hits)` on average.
+/// Leaves are proxies: a box and a `u32` payload. Quality is kept by the surface-area heuristic
+/// (perimeter in 2D) as in Box2D v3: a leaf goes under the sibling that adds the least total
+/// perimeter (a branch-and-bound search, ties broken by distance), and on the way back up
+/// nodes are rotated whenever swapping a child with a grandchild shrinks the tree, so queries
+/// cost `O(log n + hits)` on average.
 #[derive(Debug, Clone)]
 pub struct DynamicTree {
     nodes: Vec<TreeNode>,
@@ -140,6 +143,22 @@ impl DynamicTree {
         }
     }
 
+    /// The sum of internal nodes' perimeters over the root's: the tree's quality, lower is
+    /// better (queries visit fewer nodes). 0 for a tree of at most one leaf.
+    pub fn area_ratio(&self) -> Real {
+        if self.root == NULL {
+            return 0.0;
+        }
+        let internal: Real = self
+            .nodes
+            .iter()
+            .enumerate()
+            .filter(|(id, n)| n.height > 0 && *id as u32 != self.root)
+            .map(|(_, n)| n.aabb.perimeter())
+            .sum();
+        internal / self.nodes[self.root as usize].aabb.perimeter()
+    }
+
     /// Calls `visit(proxy)` for every leaf whose box overlaps `aabb`.
     pub fn query(&self, aabb: &Aabb, mut visit: impl FnMut(u32)) {
         if self.root == NULL {
@@ -203,34 +222,8 @@ impl DynamicTree {
             self.nodes[leaf as usize].parent = NULL;
             return;
         }
-        // Descend to the sibling that makes the tree's total perimeter grow least.
         let leaf_aabb = self.nodes[leaf as usize].aabb;
-        let mut index = self.root;
-        while !self.nodes[index as usize].is_leaf() {
-            let node = &self.nodes[index as usize];
-            let (child1, child2) = (node.child1, node.child2);
-            let perimeter = node.aabb.perimeter();
-            let combined = node.aabb.union(&leaf_aabb).perimeter();
-            // Cost of a new parent for this node and the leaf, and the cost pushed down to
-            // every ancestor below this one if we descend further.
-            let cost_here = 2.0 * combined;
-            let inheritance = 2.0 * (combined - perimeter);
-            let descend_cost = |child: u32| {
-                let c = &self.nodes[child as usize];
-                let grown = c.aabb.union(&leaf_aabb).perimeter();
-                if c.is_leaf() {
-                    grown + inheritance
-                } else {
-                    grown - c.aabb.perimeter() + inheritance
-                }
-            };
-            let (cost1, cost2) = (descend_cost(child1), descend_cost(child2));
-            if cost_here < cost1 && cost_here < cost2 {
-                break;
-            }
-            index = if cost1 < cost2 { child1 } else { child2 };
-        }
-        let sibling = index;
+        let sibling = self.find_best_sibling(&leaf_aabb);
 
         let old_parent = self.nodes[sibling as usize].parent;
         let new_parent = self.allocate_node();
@@ -286,10 +279,76 @@ impl DynamicTree {
         }
     }
 
-    /// Rebalances and refits boxes and heights from `index` to the root.
+    /// The node under which a new leaf with box `leaf` adds the least total perimeter: the
+    /// cost of a new parent there plus the growth of every ancestor. Branch and bound: a
+    /// subtree is entered only while its lower bound can still beat the best found.
+    fn find_best_sibling(&self, leaf: &Aabb) -> u32 {
+        let leaf_perimeter = leaf.perimeter();
+        let leaf_center = leaf.center();
+        let root = &self.nodes[self.root as usize];
+        let mut index = self.root;
+        let mut area = root.aabb.perimeter();
+        let mut direct_cost = root.aabb.union(leaf).perimeter();
+        let mut inherited_cost: Real = 0.0;
+        let (mut best_sibling, mut best_cost) = (self.root, direct_cost);
+        while !self.nodes[index as usize].is_leaf() {
+            let node = &self.nodes[index as usize];
+            let cost = direct_cost + inherited_cost;
+            if cost < best_cost {
+                best_sibling = index;
+                best_cost = cost;
+            }
+            // Every node below pays for this node's growth.
+            inherited_cost += direct_cost - area;
+
+            let mut lower = [Real::INFINITY; 2];
+            let mut child_area = [0.0; 2];
+            let mut child_direct = [0.0; 2];
+            let mut is_leaf = [false; 2];
+            for (k, &child) in [node.child1, node.child2].iter().enumerate() {
+                let c = &self.nodes[child as usize];
+                child_direct[k] = c.aabb.union(leaf).perimeter();
+                is_leaf[k] = c.is_leaf();
+                if is_leaf[k] {
+                    let cost = child_direct[k] + inherited_cost;
+                    if cost < best_cost {
+                        best_sibling = child;
+                        best_cost = cost;
+                    }
+                } else {
+                    child_area[k] = c.aabb.perimeter();
+                    lower[k] = inherited_cost
+                        + child_direct[k]
+                        + (leaf_perimeter - child_area[k]).min(0.0);
+                }
+            }
+            if (is_leaf[0] && is_leaf[1]) || (best_cost <= lower[0] && best_cost <= lower[1]) {
+                break;
+            }
+            if lower[0] == lower[1] && !is_leaf[0] {
+                // Both children already hold the leaf's box: go to the nearer one.
+                let (c1, c2) = (
+                    &self.nodes[node.child1 as usize],
+                    &self.nodes[node.child2 as usize],
+                );
+                lower[0] = (c1.aabb.center() - leaf_center).norm_squared();
+                lower[1] = (c2.aabb.center() - leaf_center).norm_squared();
+            }
+            let k = if lower[0] < lower[1] && !is_leaf[0] {
+                0
+            } else {
+                1
+            };
+            index = if k == 0 { node.child1 } else { node.child2 };
+            area = child_area[k];
+            direct_cost = child_direct[k];
+        }
+        best_sibling
+    }
+
+    /// Refits boxes and heights from `index` to the root, rotating where that shrinks the tree.
     fn refit_upwards(&mut self, mut index: u32) {
         while index != NULL {
-            index = self.balance(index);
             let node = &self.nodes[index as usize];
             let (c1, c2) = (
                 &self.nodes[node.child1 as usize],
@@ -299,75 +358,116 @@ impl DynamicTree {
             let node = &mut self.nodes[index as usize];
             node.height = height;
             node.aabb = aabb;
-            index = node.parent;
+            self.rotate(index);
+            index = self.nodes[index as usize].parent;
         }
     }
 
-    /// If `a`'s subtrees differ in height by more than one, rotates the taller child up and
-    /// returns the new root of this subtree.
-    fn balance(&mut self, a: u32) -> u32 {
-        let node_a = &self.nodes[a as usize];
-        if node_a.is_leaf() || node_a.height < 2 {
-            return a;
-        }
-        let (b, c) = (node_a.child1, node_a.child2);
-        let skew = self.nodes[c as usize].height - self.nodes[b as usize].height;
-        if skew > 1 {
-            self.rotate_up(a, c, b, true)
-        } else if skew < -1 {
-            self.rotate_up(a, b, c, false)
-        } else {
-            a
-        }
+    fn aabb(&self, id: u32) -> Aabb {
+        self.nodes[id as usize].aabb
     }
 
-    /// Rotates `up` (a child of `a`) into `a`'s place. `a` keeps `stay` (its other child) and
-    /// takes the shorter of `up`'s children; `up` keeps the taller one. `up_is_child2` says
-    /// which slot of `a` `up` occupied, which is the slot its adopted grandchild fills.
-    fn rotate_up(&mut self, a: u32, up: u32, stay: u32, up_is_child2: bool) -> u32 {
-        let (f, g) = (
-            self.nodes[up as usize].child1,
-            self.nodes[up as usize].child2,
+    fn node_height(&self, id: u32) -> i32 {
+        self.nodes[id as usize].height
+    }
+
+    /// Points `child`'s parent link at `parent`.
+    fn adopt(&mut self, parent: u32, child: u32) {
+        self.nodes[child as usize].parent = parent;
+    }
+
+    /// Makes `parent`'s box and height those of its children.
+    fn refit(&mut self, parent: u32) {
+        let (c1, c2) = (
+            self.nodes[parent as usize].child1,
+            self.nodes[parent as usize].child2,
         );
-        let a_parent = self.nodes[a as usize].parent;
+        let aabb = self.aabb(c1).union(&self.aabb(c2));
+        let height = 1 + self.node_height(c1).max(self.node_height(c2));
+        let node = &mut self.nodes[parent as usize];
+        node.aabb = aabb;
+        node.height = height;
+    }
 
-        self.nodes[up as usize].child1 = a;
-        self.nodes[up as usize].parent = a_parent;
-        self.nodes[a as usize].parent = up;
-        if a_parent == NULL {
-            self.root = up;
-        } else {
-            self.replace_child(a_parent, a, up);
+    /// Swaps a child of `a` with a grandchild, or two grandchildren, when that lowers the sum
+    /// of the perimeters of `a`'s two children (`a`'s own box holds the same leaves either way).
+    fn rotate(&mut self, a: u32) {
+        if self.nodes[a as usize].height < 2 {
+            return;
         }
-
-        let (keep, give) = if self.nodes[f as usize].height > self.nodes[g as usize].height {
-            (f, g)
-        } else {
-            (g, f)
+        let (b, c) = (self.nodes[a as usize].child1, self.nodes[a as usize].child2);
+        let (b_leaf, c_leaf) = (
+            self.nodes[b as usize].is_leaf(),
+            self.nodes[c as usize].is_leaf(),
+        );
+        // Each option: (cost, swap `x` in node `x_parent` with `y` in node `y_parent`).
+        let mut best: (Real, Option<(u32, u32)>) = (0.0, None);
+        let mut consider = |cost: Real, base: Real, x: u32, y: u32| {
+            if cost < base && best.1.is_none_or(|_| cost < best.0) {
+                best = (cost, Some((x, y)));
+            }
         };
-        self.nodes[up as usize].child2 = keep;
-        if up_is_child2 {
-            self.nodes[a as usize].child2 = give;
-        } else {
-            self.nodes[a as usize].child1 = give;
+        let union_perimeter = |t: &Self, x: u32, y: u32| t.aabb(x).union(&t.aabb(y)).perimeter();
+        if !c_leaf {
+            // Lift one of C's children in exchange for B.
+            let (f, g) = (self.nodes[c as usize].child1, self.nodes[c as usize].child2);
+            let area_b = if b_leaf {
+                0.0
+            } else {
+                self.aabb(b).perimeter()
+            };
+            let base = area_b + self.aabb(c).perimeter();
+            consider(area_b + union_perimeter(self, b, g), base, b, f);
+            consider(area_b + union_perimeter(self, b, f), base, b, g);
+            if !b_leaf {
+                // Exchange grandchildren across.
+                let (d, e) = (self.nodes[b as usize].child1, self.nodes[b as usize].child2);
+                consider(
+                    union_perimeter(self, f, e) + union_perimeter(self, d, g),
+                    base,
+                    d,
+                    f,
+                );
+                consider(
+                    union_perimeter(self, g, e) + union_perimeter(self, f, d),
+                    base,
+                    d,
+                    g,
+                );
+            }
         }
-        self.nodes[give as usize].parent = a;
-
-        let (stay_node, give_node) = (&self.nodes[stay as usize], &self.nodes[give as usize]);
-        let a_aabb = stay_node.aabb.union(&give_node.aabb);
-        let a_height = 1 + stay_node.height.max(give_node.height);
-        let keep_node = &self.nodes[keep as usize];
-        let up_aabb = a_aabb.union(&keep_node.aabb);
-        let up_height = 1 + a_height.max(keep_node.height);
-        self.nodes[a as usize].aabb = a_aabb;
-        self.nodes[a as usize].height = a_height;
-        self.nodes[up as usize].aabb = up_aabb;
-        self.nodes[up as usize].height = up_height;
-        up
+        if !b_leaf {
+            // Lift one of B's children in exchange for C.
+            let (d, e) = (self.nodes[b as usize].child1, self.nodes[b as usize].child2);
+            let area_c = if c_leaf {
+                0.0
+            } else {
+                self.aabb(c).perimeter()
+            };
+            let base = area_c + self.aabb(b).perimeter();
+            consider(area_c + union_perimeter(self, c, e), base, c, d);
+            consider(area_c + union_perimeter(self, c, d), base, c, e);
+        }
+        let Some((x, y)) = best.1 else {
+            return;
+        };
+        // Swap the two subtrees `x` and `y` between their parents, then refit bottom-up.
+        let (px, py) = (self.nodes[x as usize].parent, self.nodes[y as usize].parent);
+        self.replace_child(px, x, y);
+        self.replace_child(py, y, x);
+        self.adopt(py, x);
+        self.adopt(px, y);
+        // The deeper of the two parents first, then the other, then `a`.
+        for parent in [px, py] {
+            if parent != a {
+                self.refit(parent);
+            }
+        }
+        self.refit(a);
     }
 
     /// Checks every structural invariant: parent links, heights, boxes containing their
-    /// children, balance, and the leaf count. For tests.
+    /// children, and the leaf count. For tests.
     pub fn validate(&self) -> Result<(), String> {
         if self.root == NULL {
             return if self.proxy_count == 0 {
@@ -399,9 +499,6 @@ impl DynamicTree {
             }
             if node.height != 1 + c1.height.max(c2.height) {
                 return Err(format!("node {id} has a stale height"));
-            }
-            if (c1.height - c2.height).abs() > 1 {
-                return Err(format!("node {id} is unbalanced"));
             }
             if !node.aabb.contains(&c1.aabb) || !node.aabb.contains(&c2.aabb) {
                 return Err(format!("node {id} does not contain its children"));
@@ -517,8 +614,12 @@ impl BroadPhase {
             p.kind = kind;
         }
         let tree = &mut self.trees[proxy.tree()];
-        if !tree.fat_aabb(proxy.node).contains(&aabb) {
+        let left_fat_box = !tree.fat_aabb(proxy.node).contains(&aabb);
+        if left_fat_box {
             tree.move_proxy(proxy.node, aabb.fattened(margin));
+        }
+        // A new kind can pair with bodies the old one ignored (kinematic turned dynamic).
+        if left_fat_box || kind != proxy.kind {
             self.enqueue(slot);
         }
     }
@@ -698,4 +799,186 @@ pub fn brute_force_pairs(
     }
     pairs.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
     pairs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::vec2;
+
+    /// A tiny deterministic generator for the randomised tests.
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> Real {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1);
+            (self.0 >> 40) as Real / (1u64 << 24) as Real
+        }
+        fn range(&mut self, lo: Real, hi: Real) -> Real {
+            lo + (hi - lo) * self.next()
+        }
+    }
+
+    fn random_box(rng: &mut Lcg, extent: Real) -> Aabb {
+        let c = vec2(rng.range(-extent, extent), rng.range(-extent, extent));
+        let h = vec2(rng.range(0.05, 1.0), rng.range(0.05, 1.0));
+        Aabb::new(c - h, c + h)
+    }
+
+    fn handle(index: u32) -> BodyHandle {
+        BodyHandle {
+            index,
+            generation: 0,
+        }
+    }
+
+    #[test]
+    fn tree_stays_valid_and_balanced_under_churn() {
+        let mut rng = Lcg(1);
+        let mut tree = DynamicTree::new();
+        let mut live: Vec<(u32, Aabb)> = Vec::new();
+        for round in 0..3000 {
+            let choice = rng.next();
+            if live.is_empty() || choice < 0.5 {
+                let aabb = random_box(&mut rng, 50.0);
+                live.push((tree.create_proxy(aabb, round), aabb));
+            } else if choice < 0.8 {
+                let i = (rng.next() * live.len() as Real) as usize % live.len();
+                let aabb = random_box(&mut rng, 50.0);
+                tree.move_proxy(live[i].0, aabb);
+                live[i].1 = aabb;
+            } else {
+                let i = (rng.next() * live.len() as Real) as usize % live.len();
+                tree.destroy_proxy(live.swap_remove(i).0);
+            }
+            if round % 100 == 0 {
+                tree.validate().unwrap();
+            }
+        }
+        tree.validate().unwrap();
+        assert_eq!(tree.proxy_count(), live.len());
+        // Rotations keep the height logarithmic.
+        let bound = 2.0 * (live.len() as Real).log2() + 2.0;
+        assert!((tree.height() as Real) <= bound, "height {}", tree.height());
+        // Queries find exactly the overlapping leaves.
+        for _ in 0..50 {
+            let probe = random_box(&mut rng, 50.0);
+            let mut found = Vec::new();
+            tree.query(&probe, |p| found.push(p));
+            found.sort_unstable();
+            let mut expected: Vec<u32> = live
+                .iter()
+                .filter(|(_, a)| a.overlaps(&probe))
+                .map(|(p, _)| *p)
+                .collect();
+            expected.sort_unstable();
+            assert_eq!(found, expected);
+        }
+    }
+
+    #[test]
+    fn tree_ray_cast_visits_every_box_on_the_segment() {
+        let mut rng = Lcg(5);
+        let mut tree = DynamicTree::new();
+        let boxes: Vec<Aabb> = (0..500).map(|_| random_box(&mut rng, 30.0)).collect();
+        for (i, b) in boxes.iter().enumerate() {
+            tree.create_proxy(*b, i as u32);
+        }
+        let (origin, translation) = (vec2(-40.0, -3.0), vec2(80.0, 7.0));
+        let mut visited = Vec::new();
+        tree.ray_cast(origin, translation, 1.0, |p, max| {
+            visited.push(tree.payload(p));
+            max
+        });
+        visited.sort_unstable();
+        let expected: Vec<u32> = (0..boxes.len() as u32)
+            .filter(|&i| {
+                boxes[i as usize]
+                    .ray_interval(origin, translation, 1.0)
+                    .is_some()
+            })
+            .collect();
+        assert_eq!(visited, expected);
+        assert!(!expected.is_empty());
+    }
+
+    #[test]
+    fn incremental_pairs_match_brute_force_as_bodies_move() {
+        let mut rng = Lcg(9);
+        let mut broadphase = BroadPhase::new();
+        let kinds = [
+            BodyKind::Static,
+            BodyKind::Kinematic,
+            BodyKind::Dynamic,
+            BodyKind::Dynamic,
+        ];
+        let mut bodies: Vec<(BodyHandle, BodyKind, Aabb)> = (0..2000)
+            .map(|i| {
+                let kind = kinds[i % kinds.len()];
+                (handle(i as u32), kind, random_box(&mut rng, 60.0))
+            })
+            .collect();
+        let margin = 0.1;
+        for (h, kind, aabb) in &bodies {
+            broadphase.insert(*h, *kind, *aabb, margin);
+        }
+        // The pairs a world would hold: created by `update_pairs`, dropped when fat boxes part.
+        let mut held: Vec<(BodyHandle, BodyHandle)> = Vec::new();
+        for round in 0..6 {
+            let new = broadphase.update_pairs(|a, b| held.contains(&(a, b)));
+            let mut sorted_new = new.clone();
+            sorted_new.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
+            assert_eq!(new, sorted_new, "pairs come out in a deterministic order");
+            held.extend(new);
+            held.retain(|&(a, b)| broadphase.fat_aabbs_overlap(a, b));
+            held.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
+
+            let fat: Vec<(BodyHandle, BodyKind, Aabb)> = bodies
+                .iter()
+                .map(|(h, k, _)| (*h, *k, broadphase.fat_aabb(*h).unwrap()))
+                .collect();
+            let expected = brute_force_pairs(&fat);
+            assert_eq!(held, expected, "round {round}");
+            assert_eq!(broadphase.overlapping_pairs(), expected, "round {round}");
+            assert!(expected.len() > 100, "the test world must have pairs");
+            assert!(held.iter().all(|(a, b)| a.index() < b.index()));
+
+            // Move the non-static bodies: small drifts and a few long jumps.
+            for (h, kind, aabb) in bodies.iter_mut() {
+                if *kind == BodyKind::Static {
+                    continue;
+                }
+                let jump = if rng.next() < 0.05 { 20.0 } else { 0.3 };
+                let d = vec2(rng.range(-jump, jump), rng.range(-jump, jump));
+                *aabb = Aabb::new(aabb.min + d, aabb.max + d);
+                broadphase.update(*h, *kind, *aabb, margin);
+            }
+        }
+        for tree in broadphase.trees() {
+            tree.validate().unwrap();
+        }
+    }
+
+    #[test]
+    fn static_pairs_are_never_reported_and_kind_changes_move_trees() {
+        let mut broadphase = BroadPhase::new();
+        let unit = Aabb::new(vec2(0.0, 0.0), vec2(1.0, 1.0));
+        broadphase.insert(handle(0), BodyKind::Static, unit, 0.0);
+        broadphase.insert(handle(1), BodyKind::Static, unit, 0.0);
+        broadphase.insert(handle(2), BodyKind::Kinematic, unit, 0.0);
+        assert!(broadphase.update_pairs(|_, _| false).is_empty());
+        // A body that becomes dynamic pairs with everything it overlaps.
+        broadphase.update(handle(2), BodyKind::Dynamic, unit, 0.0);
+        assert_eq!(
+            broadphase.update_pairs(|_, _| false),
+            vec![(handle(0), handle(2)), (handle(1), handle(2))]
+        );
+        assert_eq!(broadphase.trees()[STATIC_TREE].proxy_count(), 2);
+        assert_eq!(broadphase.trees()[MOVING_TREE].proxy_count(), 1);
+        broadphase.remove(handle(0));
+        assert_eq!(broadphase.overlapping_pairs(), vec![(handle(1), handle(2))]);
+        assert!(broadphase.fat_aabb(handle(0)).is_none());
+    }
 }

@@ -183,9 +183,9 @@ impl ContactSet {
                 self.destroy(index, true);
                 continue;
             }
-            let mut manifold = manifold::collide(a.world_shape(), b.world_shape(), margin);
             let contact = &mut self.contacts[index];
-            manifold.carry_impulses_from(&contact.manifold);
+            let manifold =
+                manifold::update(a.world_shape(), b.world_shape(), margin, &contact.manifold);
             contact.manifold = manifold;
             let touching = !manifold.is_empty();
             if touching != contact.touching {

@@ -16,8 +16,9 @@ use crate::narrowphase::{self, PolygonFeature};
 use crate::settings::LINEAR_SLOP;
 use crate::shape::WorldShape;
 
-/// B's face must beat A's by this much to become the reference, so nearly equal faces do not
-/// take turns from one step to the next (Box2D's 0.1 × slop).
+/// Once a contact has a reference face, the other shape's best face must beat it by this much
+/// to take over, so nearly equal faces do not take turns from one step to the next (Box2D's
+/// 0.1 × slop).
 pub const REFERENCE_TOLERANCE: Real = 0.1 * LINEAR_SLOP;
 
 /// Which features of the two shapes produced a contact point.
@@ -183,7 +184,28 @@ impl Manifold {
 
 /// The manifold of two placed shapes, with points for every feature closer than `margin`
 /// (use 0 for touching points only).
+///
+/// The reference face is the better of the two polygons' best faces, so swapping the
+/// arguments gives the same points with the normal flipped.
 pub fn collide(a: &WorldShape, b: &WorldShape, margin: Real) -> Manifold {
+    collide_after(a, b, margin, None)
+}
+
+/// [`collide`] for a pair that touched last step: the side that held the reference face keeps
+/// it unless the other side's face is better by [`REFERENCE_TOLERANCE`], and impulses carry
+/// over to points with the same feature ids.
+pub fn update(a: &WorldShape, b: &WorldShape, margin: Real, previous: &Manifold) -> Manifold {
+    let mut manifold = collide_after(a, b, margin, previous.reference_edge.map(|e| e.side));
+    manifold.carry_impulses_from(previous);
+    manifold
+}
+
+fn collide_after(
+    a: &WorldShape,
+    b: &WorldShape,
+    margin: Real,
+    previous_reference: Option<PairSide>,
+) -> Manifold {
     match (a, b) {
         (
             WorldShape::Circle {
@@ -210,7 +232,7 @@ pub fn collide(a: &WorldShape, b: &WorldShape, margin: Real) -> Manifold {
                 vertices: vb,
                 normals: nb,
             },
-        ) => collide_polygons(va, na, vb, nb, margin),
+        ) => collide_polygons(va, na, vb, nb, margin, previous_reference),
     }
 }
 
@@ -218,15 +240,41 @@ fn collide_circles(ca: Vec2, ra: Real, cb: Vec2, rb: Real, margin: Real) -> Mani
     let s = narrowphase::circle_circle(ca, ra, cb, rb);
     let mut manifold = Manifold::with_normal(s.normal);
     if s.separation <= margin {
-        let surface_a = ca + s.normal * ra;
-        let surface_b = cb - s.normal * rb;
-        manifold.push(
-            (surface_a + surface_b) * 0.5,
-            s.separation,
-            FeatureId::SINGLE,
-        );
+        let offset = s.normal.dot(&(cb - ca));
+        let u = middle((-ra, ra), (offset - rb, offset + rb));
+        manifold.push(ca + s.normal * u, s.separation, FeatureId::SINGLE);
     }
     manifold
+}
+
+/// The stretch `(lo, hi)` of the line `origin + u × direction` inside a convex polygon
+/// (empty when `lo > hi`): the slab test over its edges.
+fn polygon_chord(
+    vertices: &[Vec2],
+    normals: &[Vec2],
+    origin: Vec2,
+    direction: Vec2,
+) -> (Real, Real) {
+    let (mut lo, mut hi) = (Real::NEG_INFINITY, Real::INFINITY);
+    for (v, n) in vertices.iter().zip(normals) {
+        let inside_by = n.dot(&(v - origin));
+        let rate = n.dot(&direction);
+        if rate > 0.0 {
+            hi = hi.min(inside_by / rate);
+        } else if rate < 0.0 {
+            lo = lo.max(inside_by / rate);
+        } else if inside_by < 0.0 {
+            return (Real::INFINITY, Real::NEG_INFINITY);
+        }
+    }
+    (lo, hi)
+}
+
+/// The middle of what two stretches of one line share, or of the gap between them when they
+/// share nothing (the stretches must be finite where they face each other).
+#[inline]
+fn middle(a: (Real, Real), b: (Real, Real)) -> Real {
+    0.5 * (a.0.max(b.0) + a.1.min(b.1))
 }
 
 fn collide_polygon_circle(
@@ -242,9 +290,13 @@ fn collide_polygon_circle(
     if s.separation > margin {
         return manifold;
     }
-    let surface_b = center - s.normal * radius;
+    // Along the normal from the polygon's nearest point: the polygon behind it, the circle
+    // from `separation` to `separation + 2 r` in front of it.
+    let polygon = polygon_chord(vertices, normals, pc.polygon_point, s.normal);
+    let circle = (s.separation, s.separation + 2.0 * radius);
+    let u = middle((polygon.0, polygon.1.min(0.0)), circle);
     manifold.push(
-        (pc.polygon_point + surface_b) * 0.5,
+        pc.polygon_point + s.normal * u,
         s.separation,
         FeatureId::SINGLE,
     );
@@ -265,6 +317,7 @@ fn collide_polygons(
     b_vertices: &[Vec2],
     b_normals: &[Vec2],
     margin: Real,
+    previous_reference: Option<PairSide>,
 ) -> Manifold {
     let pp = narrowphase::polygon_polygon(a_vertices, a_normals, b_vertices, b_normals);
     let (edge_a, separation_a) = pp.edge_a;
@@ -287,7 +340,11 @@ fn collide_polygons(
         return manifold;
     }
 
-    let reference_on_b = separation_b > separation_a + REFERENCE_TOLERANCE;
+    let reference_on_b = match previous_reference {
+        Some(PairSide::A) => separation_b > separation_a + REFERENCE_TOLERANCE,
+        Some(PairSide::B) => separation_b + REFERENCE_TOLERANCE >= separation_a,
+        None => separation_b > separation_a,
+    };
     let (reference, incident) = if reference_on_b {
         ((b_vertices, b_normals, edge_b), (a_vertices, a_normals))
     } else {
@@ -368,15 +425,78 @@ fn collide_polygons(
     };
     for (point, reference_vertex, incident_vertex) in candidates.into_iter().flatten() {
         let separation = normal.dot(&(point - v11));
-        if separation <= margin {
+        if separation > margin {
+            continue;
+        }
+        let u = if separation < 0.0 {
+            // In a deep overlap the incident point can poke out past the reference polygon's
+            // other faces: then it marks no contact at all.
+            if distance_outside(ref_vertices, ref_normals, point) > SPURIOUS_TOLERANCE {
+                continue;
+            }
+            // Midway to the reference face, unless the incident polygon is thinner than that
+            // along the normal (a small shape deep in a large one).
+            let (_, incident_extent) = polygon_chord(inc_vertices, inc_normals, point, normal);
+            0.5 * (-separation).min(incident_extent.max(0.0))
+        } else {
+            -0.5 * separation
+        };
+        manifold.push(
+            point + normal * u,
+            separation,
+            FeatureId::clipped(reference_on_b, reference_vertex, incident_vertex),
+        );
+    }
+    if manifold.is_empty() && pp.separation.separation < 0.0 {
+        // Every clipped point was spurious, yet the shapes overlap: one point in the middle of
+        // the overlap keeps the pair in contact.
+        if let Some(center) = overlap_center(ref_vertices, ref_normals, inc_vertices) {
             manifold.push(
-                point - normal * (0.5 * separation),
-                separation,
-                FeatureId::clipped(reference_on_b, reference_vertex, incident_vertex),
+                center,
+                pp.separation.separation,
+                FeatureId::clipped(reference_on_b, i1, j1),
             );
         }
     }
     manifold
+}
+
+/// How far outside the reference polygon a clipped point may lie and still count: rounding,
+/// not geometry, at the scale of the slop.
+pub const SPURIOUS_TOLERANCE: Real = 0.1 * LINEAR_SLOP;
+
+/// How far a point lies outside a convex polygon (negative inside).
+fn distance_outside(vertices: &[Vec2], normals: &[Vec2], point: Vec2) -> Real {
+    vertices
+        .iter()
+        .zip(normals)
+        .map(|(v, n)| n.dot(&(point - v)))
+        .fold(Real::NEG_INFINITY, Real::max)
+}
+
+/// The centre (vertex average) of the overlap of two convex polygons, by clipping the second
+/// against each edge of the first, or `None` when they do not overlap.
+fn overlap_center(a_vertices: &[Vec2], a_normals: &[Vec2], b_vertices: &[Vec2]) -> Option<Vec2> {
+    let mut clipped: Vec<Vec2> = b_vertices.to_vec();
+    let mut next = Vec::with_capacity(clipped.len() + a_vertices.len());
+    for (v, n) in a_vertices.iter().zip(a_normals) {
+        next.clear();
+        for i in 0..clipped.len() {
+            let (p, q) = (clipped[i], clipped[(i + 1) % clipped.len()]);
+            let (dp, dq) = (n.dot(&(p - v)), n.dot(&(q - v)));
+            if dp <= 0.0 {
+                next.push(p);
+            }
+            if (dp < 0.0) != (dq < 0.0) {
+                next.push(p + (q - p) * (dp / (dp - dq)));
+            }
+        }
+        std::mem::swap(&mut clipped, &mut next);
+        if clipped.is_empty() {
+            return None;
+        }
+    }
+    Some(clipped.iter().sum::<Vec2>() / clipped.len() as Real)
 }
 
 #[cfg(test)]
@@ -446,6 +566,30 @@ mod tests {
         assert_eq!(ab.points()[0].point, ba.points()[0].point);
         assert_eq!(ab.reference_edge.unwrap().side, PairSide::A);
         assert_eq!(ba.reference_edge.unwrap().side, PairSide::B);
+    }
+
+    #[test]
+    fn the_reference_face_holds_through_near_ties() {
+        // Two equal boxes, B tilted a hair: B's bottom face is barely better than A's top.
+        let a = placed(Shape::rect(0.5, 0.5).unwrap(), 0.0, 0.0, 0.0);
+        let tilt = |angle: Real| placed(Shape::rect(0.5, 0.5).unwrap(), 0.1, 0.99, angle);
+        let first = collide(&a, &tilt(0.0), 0.0);
+        assert_eq!(first.reference_edge.unwrap().side, PairSide::A);
+        // Stateless, the tiniest tilt hands the reference to whichever face is better...
+        let tilted = tilt(-1e-4);
+        let fresh = collide(&a, &tilted, 0.0);
+        // ...but a contact that had A's face keeps it, and keeps its feature ids.
+        let held = update(&a, &tilted, 0.0, &first);
+        assert_eq!(held.reference_edge.unwrap().side, PairSide::A);
+        let ids = |m: &Manifold| m.points().iter().map(|p| p.id).collect::<Vec<_>>();
+        assert_eq!(ids(&held), ids(&first));
+        if fresh.reference_edge.unwrap().side == PairSide::B {
+            assert_ne!(ids(&fresh), ids(&first));
+        }
+        // A clear win still takes over: A tilted, its corner poking into B's flat face.
+        let tilted_a = placed(Shape::rect(0.5, 0.5).unwrap(), 0.0, 0.0, 0.3);
+        let clear = update(&tilted_a, &tilt(0.0), 0.0, &first);
+        assert_eq!(clear.reference_edge.unwrap().side, PairSide::B);
     }
 
     #[test]

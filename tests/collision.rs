@@ -1,0 +1,483 @@
+//! Collision detection against the tutorial's worked example, brute-force references, and
+//! degenerate input.
+
+use carom::manifold::{PairSide, collide};
+use carom::narrowphase::separation;
+use carom::{
+    BodyDef, Isometry, Polygon, Real, Shape, Vec2, World, WorldSettings, WorldShape, vec2,
+};
+use carom_tests::Rng;
+use proptest::prelude::*;
+
+fn placed(shape: &Shape, position: Vec2, angle: Real) -> WorldShape {
+    WorldShape::new(shape, &Isometry::new(position, angle))
+}
+
+/// A polygon in world coordinates exactly where its points say (not recentred).
+fn polygon_at_its_points(points: &[(Real, Real)]) -> WorldShape {
+    let points: Vec<Vec2> = points.iter().map(|&(x, y)| vec2(x, y)).collect();
+    let polygon = Polygon::new(&points).unwrap();
+    let at = polygon.source_centroid();
+    placed(&Shape::Polygon(polygon), at, 0.0)
+}
+
+fn close(a: Vec2, b: Vec2, tolerance: Real) -> bool {
+    (a - b).norm() <= tolerance
+}
+
+/// The tutorial's worked example, derived by hand.
+///
+/// A is the rectangle (-1,0) (3,0) (3,-2) (-1,-2), B the quadrilateral (3.5,-1.666) (4.5,0)
+/// (1.5,2) (1.5,-0.333); both are given clockwise and carom turns them counter-clockwise.
+///
+/// SAT over A's normals (B's deepest vertex behind each face):
+///   bottom (0,-1): -4.0; right (1,0): 3 - 4.5 = -1.5; top (0,1): -1.666 - 0 = -1.666;
+///   left (-1,0): -5.5. Best: the right face, -1.5.
+/// Over B's normals, the edge e = (1.5,-0.333) -> (3.5,-1.666) = (2, -1.333) has
+///   |e| = sqrt(4 + 1.776889) = 2.4035164 and outward normal (-1.333, -2) / |e|
+///   = (-0.5546110, -0.8321160). A's deepest vertex behind it is (3, 0):
+///   ((3 - 1.5)(-1.333) + (0 + 0.333)(-2)) / |e| = -2.6655 / 2.4035164 = -1.1090003.
+///   The other faces of B give -4.7157, -4.7150 and -1.5, so this one is the best: -1.109.
+/// B's face beats A's (-1.109 > -1.5): it is the reference edge, and the MTV is
+///   1.1090003 along (0.5546110, 0.8321160) (from A to B), i.e. (0.6150641, 0.9228171).
+/// Incident edge: A's face most anti-parallel to the reference normal is the top edge
+///   (0,1)·n = -0.832, running (3,0) -> (-1,0).
+/// Clipping it to the strip over the reference edge, with t = e / |e| = (0.832116, -0.554611):
+///   (3, 0) lies at t·((3,0) - (1.5,-0.333)) = 1.0634 in [0, 2.4035]: kept, depth 1.1090003.
+///   (-1, 0) lies at -2.2648 < 0: clipped at the side plane through (1.5, -0.333), where
+///   2 (x - 1.5) - 1.333 (0 + 0.333) = 0, so x = 1.5 + 0.443889 / 2 = 1.7219445;
+///   its separation is ((0.2219445)(-1.333) + (0.333)(-2)) / |e| = -0.96185 / 2.4035164
+///   = -0.4001854.
+/// Each manifold point sits halfway between these incident points and the reference face.
+#[test]
+fn tutorial_worked_example() {
+    let a = polygon_at_its_points(&[(-1.0, 0.0), (3.0, 0.0), (3.0, -2.0), (-1.0, -2.0)]);
+    let b = polygon_at_its_points(&[(3.5, -1.666), (4.5, 0.0), (1.5, 2.0), (1.5, -0.333)]);
+    let length = (4.0_f64 + 1.333 * 1.333).sqrt();
+    let normal = vec2((1.333 / length) as Real, (2.0 / length) as Real);
+    let depth = (2.6655 / length) as Real;
+
+    let s = separation(&a, &b);
+    assert!(close(s.normal, normal, 1e-6), "{:?}", s.normal);
+    assert!((s.separation + depth).abs() < 1e-5, "{}", s.separation);
+    assert!(close(s.mtv(), vec2(0.615_064_1, 0.922_817_1), 1e-5));
+
+    let m = collide(&a, &b, 0.0);
+    assert!(close(m.normal, normal, 1e-6));
+    let reference = m.reference_edge.unwrap();
+    assert_eq!(reference.side, PairSide::B);
+    assert!(close(reference.start, vec2(1.5, -0.333), 1e-5));
+    assert!(close(reference.end, vec2(3.5, -1.666), 1e-5));
+    let incident = m.incident_edge.unwrap();
+    assert_eq!(incident.side, PairSide::A);
+    assert!(close(incident.start, vec2(3.0, 0.0), 1e-5));
+    assert!(close(incident.end, vec2(-1.0, 0.0), 1e-5));
+
+    let expected = [
+        (vec2(1.721_944_5, 0.0), -0.400_185_4),
+        (vec2(3.0, 0.0), -depth),
+    ];
+    assert_eq!(m.points().len(), 2);
+    for (point, (incident_point, separation)) in m.points().iter().zip(expected) {
+        assert!(
+            (point.separation - separation).abs() < 1e-5,
+            "{}",
+            point.separation
+        );
+        // Halfway to the reference face: back along the A-to-B normal by half the depth.
+        let midway = incident_point + normal * (0.5 * separation);
+        assert!(
+            close(point.point, midway, 1e-5),
+            "{:?} vs {midway:?}",
+            point.point
+        );
+    }
+}
+
+// ---------------------------------------------------------------- brute-force references
+
+/// Projection interval of a placed shape on a direction.
+fn interval(shape: &WorldShape, d: [f64; 2]) -> (f64, f64) {
+    match shape {
+        WorldShape::Circle { center, radius } => {
+            let c = center.x as f64 * d[0] + center.y as f64 * d[1];
+            (c - *radius as f64, c + *radius as f64)
+        }
+        WorldShape::Polygon { vertices, .. } => {
+            vertices
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                    let p = v.x as f64 * d[0] + v.y as f64 * d[1];
+                    (lo.min(p), hi.max(p))
+                })
+        }
+    }
+}
+
+/// Directions worth testing: many evenly spaced ones, every edge normal, and the directions
+/// between every pair of "corners" (vertices and circle centres).
+fn axes(a: &WorldShape, b: &WorldShape) -> Vec<[f64; 2]> {
+    let mut axes: Vec<[f64; 2]> = (0..7200)
+        .map(|i| {
+            let t = std::f64::consts::TAU * i as f64 / 7200.0;
+            [t.cos(), t.sin()]
+        })
+        .collect();
+    let corners = |s: &WorldShape| -> Vec<[f64; 2]> {
+        match s {
+            WorldShape::Circle { center, .. } => vec![[center.x as f64, center.y as f64]],
+            WorldShape::Polygon { vertices, .. } => {
+                vertices.iter().map(|v| [v.x as f64, v.y as f64]).collect()
+            }
+        }
+    };
+    for s in [a, b] {
+        if let WorldShape::Polygon { vertices, .. } = s {
+            for i in 0..vertices.len() {
+                let (p, q) = (vertices[i], vertices[(i + 1) % vertices.len()]);
+                let (ex, ey) = (q.x as f64 - p.x as f64, q.y as f64 - p.y as f64);
+                let l = (ex * ex + ey * ey).sqrt();
+                axes.push([ey / l, -ex / l]);
+                axes.push([-ey / l, ex / l]);
+            }
+        }
+    }
+    for p in corners(a) {
+        for q in corners(b) {
+            let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+            let l = (dx * dx + dy * dy).sqrt();
+            if l > 1e-12 {
+                axes.push([dx / l, dy / l]);
+            }
+        }
+    }
+    axes
+}
+
+/// Signed distance by the support-function definition: the largest gap between the shapes'
+/// projections over all directions (the distance when apart, minus the depth when not).
+fn brute_separation(a: &WorldShape, b: &WorldShape) -> f64 {
+    axes(a, b)
+        .into_iter()
+        .map(|d| {
+            let (_, a_hi) = interval(a, d);
+            let (b_lo, _) = interval(b, d);
+            b_lo - a_hi
+        })
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// How far a point is outside a shape (negative inside), exactly for points inside.
+fn depth_outside(shape: &WorldShape, p: Vec2) -> Real {
+    match shape {
+        WorldShape::Circle { center, radius } => (p - center).norm() - radius,
+        WorldShape::Polygon { vertices, normals } => vertices
+            .iter()
+            .zip(normals)
+            .map(|(v, n)| n.dot(&(p - v)))
+            .fold(Real::NEG_INFINITY, Real::max),
+    }
+}
+
+fn translated(shape: &WorldShape, by: Vec2) -> WorldShape {
+    match shape {
+        WorldShape::Circle { center, radius } => WorldShape::Circle {
+            center: center + by,
+            radius: *radius,
+        },
+        WorldShape::Polygon { vertices, normals } => WorldShape::Polygon {
+            vertices: vertices.iter().map(|v| v + by).collect(),
+            normals: normals.clone(),
+        },
+    }
+}
+
+// ---------------------------------------------------------------- property tests
+
+fn shape_strategy() -> impl Strategy<Value = Shape> {
+    prop_oneof![
+        (0.05f32..1.5).prop_map(|r| Shape::circle(r).unwrap()),
+        prop::collection::vec((-1.5f32..1.5, -1.5f32..1.5), 3..10).prop_filter_map(
+            "degenerate hull",
+            |points| {
+                let points: Vec<Vec2> = points.into_iter().map(|(x, y)| vec2(x, y)).collect();
+                // Skip slivers: properties are about geometry, not float noise.
+                Shape::hull(&points).ok().filter(|s| s.min_extent() > 0.05)
+            }
+        ),
+    ]
+}
+
+fn placed_strategy() -> impl Strategy<Value = WorldShape> {
+    (shape_strategy(), -1.5f32..1.5, -1.5f32..1.5, -3.2f32..3.2)
+        .prop_map(|(shape, x, y, angle)| placed(&shape, vec2(x, y), angle))
+}
+
+/// 400 cases from a fixed seed, so CI is deterministic; proptest's own `PROPTEST_CASES` and
+/// `PROPTEST_RNG_SEED` variables widen or vary the search locally.
+fn config() -> ProptestConfig {
+    let from_env = ProptestConfig::default();
+    ProptestConfig {
+        cases: if std::env::var_os("PROPTEST_CASES").is_some() {
+            from_env.cases
+        } else {
+            400
+        },
+        rng_seed: if std::env::var_os("PROPTEST_RNG_SEED").is_some() {
+            from_env.rng_seed
+        } else {
+            proptest::test_runner::RngSeed::Fixed(0xca20)
+        },
+        max_global_rejects: 1 << 20,
+        ..from_env
+    }
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn collide_is_symmetric(a in placed_strategy(), b in placed_strategy()) {
+        let ab = separation(&a, &b);
+        let ba = separation(&b, &a);
+        prop_assert!((ab.separation - ba.separation).abs() < 1e-5);
+        prop_assert!((ab.normal + ba.normal).norm() < 1e-5, "{:?} vs {:?}", ab, ba);
+
+        let (mab, mba) = (collide(&a, &b, 0.02), collide(&b, &a, 0.02));
+        prop_assert_eq!(mab.points().len(), mba.points().len());
+        if !mab.is_empty() {
+            prop_assert!((mab.normal + mba.normal).norm() < 1e-5);
+            for p in mab.points() {
+                prop_assert!(mba.points().iter().any(|q| (p.point - q.point).norm() < 1e-5
+                    && (p.separation - q.separation).abs() < 1e-6));
+            }
+        }
+    }
+
+    #[test]
+    fn separation_matches_brute_force(a in placed_strategy(), b in placed_strategy()) {
+        let s = separation(&a, &b);
+        let brute = brute_separation(&a, &b);
+        prop_assert!((s.separation as f64 - brute).abs() < 2e-5, "{} vs {}", s.separation, brute);
+        prop_assert!((s.normal.norm() - 1.0).abs() < 1e-5);
+    }
+
+    #[test]
+    fn mtv_just_separates(a in placed_strategy(), b in shape_strategy(), offset in (-0.5f32..0.5, -0.5f32..0.5), angle in -3.2f32..3.2) {
+        // B is placed near A's centre, so the pair overlaps nearly always.
+        let center = match &a {
+            WorldShape::Circle { center, .. } => *center,
+            WorldShape::Polygon { vertices, .. } => vertices.iter().sum::<Vec2>() / vertices.len() as Real,
+        };
+        let b = placed(&b, center + vec2(offset.0, offset.1), angle);
+        let s = separation(&a, &b);
+        prop_assume!(s.separation < -1e-3);
+        let moved = translated(&b, s.mtv());
+        let after = brute_separation(&a, &moved);
+        prop_assert!(after.abs() < 1e-6, "left touching within 1e-6, got {}", after);
+        // No shorter translation, in any direction, separates them.
+        let shorter = -s.separation * 0.999;
+        for i in 0..72 {
+            let t = std::f32::consts::TAU * i as Real / 72.0;
+            let try_b = translated(&b, vec2(t.cos(), t.sin()) * shorter);
+            prop_assert!(brute_separation(&a, &try_b) < 0.0, "direction {} separated", t);
+        }
+    }
+
+    #[test]
+    fn manifold_points_lie_in_both_shapes(a in placed_strategy(), b in placed_strategy()) {
+        let m = collide(&a, &b, 0.0);
+        let brute = brute_separation(&a, &b);
+        if brute < -1e-4 {
+            prop_assert!(!m.is_empty(), "overlapping shapes need contact points");
+        }
+        for p in m.points() {
+            // No point is deeper than the penetration depth.
+            prop_assert!(p.separation as f64 >= brute - 2e-5, "{} deeper than {}", p.separation, brute);
+            // Inside both, within the tolerance the clipper itself allows for rounding.
+            let tolerance = carom::manifold::SPURIOUS_TOLERANCE + 1e-5;
+            prop_assert!(depth_outside(&a, p.point) <= tolerance);
+            prop_assert!(depth_outside(&b, p.point) <= tolerance);
+        }
+        if matches!(a, WorldShape::Circle { .. }) || matches!(b, WorldShape::Circle { .. }) {
+            prop_assert!(m.points().len() <= 1);
+        }
+    }
+}
+
+// ---------------------------------------------------------------- degenerate but valid input
+
+fn assert_finite(a: &WorldShape, b: &WorldShape) -> carom::Separation {
+    let s = separation(a, b);
+    assert!(
+        s.separation.is_finite() && s.normal.iter().all(|x| x.is_finite()),
+        "{s:?}"
+    );
+    assert!((s.normal.norm() - 1.0).abs() < 1e-4);
+    let m = collide(a, b, 0.02);
+    assert!(m.normal.iter().all(|x| x.is_finite()));
+    for p in m.points() {
+        assert!(p.point.iter().all(|x| x.is_finite()) && p.separation.is_finite());
+    }
+    s
+}
+
+#[test]
+fn tiny_and_huge_shapes() {
+    let mm = Shape::rect(0.0005, 0.0005).unwrap();
+    let s = assert_finite(
+        &placed(&mm, vec2(0.0, 0.0), 0.0),
+        &placed(&mm, vec2(0.0008, 0.0), 0.0),
+    );
+    assert!((s.separation + 0.0002).abs() < 1e-7);
+    let km = Shape::rect(5000.0, 5000.0).unwrap();
+    let s = assert_finite(
+        &placed(&km, vec2(0.0, 0.0), 0.0),
+        &placed(&km, vec2(0.0, 9999.0), 0.0),
+    );
+    assert!((s.separation + 1.0).abs() < 1e-2);
+    let ball = Shape::circle(5000.0).unwrap();
+    assert_finite(
+        &placed(&km, vec2(0.0, 0.0), 0.0),
+        &placed(&ball, vec2(3.0, 9990.0), 0.0),
+    );
+    // A millimetre box on a kilometre floor.
+    let s = assert_finite(
+        &placed(&km, vec2(0.0, -5000.0), 0.0),
+        &placed(&mm, vec2(1.0, 0.0004), 0.3),
+    );
+    assert!(s.separation < 0.0);
+}
+
+#[test]
+fn slivers_one_to_a_thousand() {
+    let sliver = Shape::rect(1.0, 0.001).unwrap();
+    let quarter = std::f32::consts::FRAC_PI_2;
+    for angle in [0.0, 0.001, 0.7, quarter - 1e-4, quarter] {
+        let s = assert_finite(
+            &placed(&sliver, vec2(0.0, 0.0), 0.0),
+            &placed(&sliver, vec2(0.3, 0.0005), angle),
+        );
+        assert!(s.separation <= 0.0);
+        let m = collide(
+            &placed(&sliver, vec2(0.0, 0.0), 0.0),
+            &placed(&sliver, vec2(0.3, 0.0005), angle),
+            0.0,
+        );
+        assert!(!m.is_empty());
+    }
+}
+
+#[test]
+fn identical_polygons_on_top_of_each_other() {
+    for shape in [
+        Shape::rect(0.5, 0.5).unwrap(),
+        Shape::regular(7, 1.0).unwrap(),
+    ] {
+        let a = placed(&shape, vec2(1.0, 2.0), 0.3);
+        let s = assert_finite(&a, &a.clone());
+        // The cheapest way out is the polygon's own narrowest width.
+        let widths = match &a {
+            WorldShape::Polygon { vertices, normals } => normals
+                .iter()
+                .zip(vertices)
+                .map(|(n, v)| {
+                    vertices
+                        .iter()
+                        .map(|w| n.dot(&(v - w)))
+                        .fold(0.0, Real::max)
+                })
+                .fold(Real::INFINITY, Real::min),
+            _ => unreachable!(),
+        };
+        assert!(
+            (s.separation + widths).abs() < 1e-4,
+            "{} vs {widths}",
+            s.separation
+        );
+        assert_eq!(collide(&a, &a.clone(), 0.0).points().len(), 2);
+    }
+}
+
+#[test]
+fn coincident_circle_centres() {
+    let a = placed(&Shape::circle(0.5).unwrap(), vec2(3.0, -1.0), 0.0);
+    let b = placed(&Shape::circle(0.25).unwrap(), vec2(3.0, -1.0), 2.0);
+    let s = assert_finite(&a, &b);
+    assert_eq!(s.separation, -0.75);
+    assert_eq!(s.normal, carom::narrowphase::COINCIDENT_NORMAL);
+    let moved = translated(&b, s.mtv());
+    assert!(separation(&a, &moved).separation.abs() < 1e-6);
+}
+
+#[test]
+fn circle_centred_on_a_polygon_vertex_or_edge() {
+    let square = placed(&Shape::rect(1.0, 1.0).unwrap(), vec2(0.0, 0.0), 0.0);
+    let ball = Shape::circle(0.3).unwrap();
+    // On a vertex: the way out is through either adjacent face, 0.3 deep.
+    let s = assert_finite(&square, &placed(&ball, vec2(1.0, 1.0), 0.0));
+    assert!((s.separation + 0.3).abs() < 1e-6);
+    assert!(s.normal == vec2(1.0, 0.0) || s.normal == vec2(0.0, 1.0));
+    // On an edge.
+    let s = assert_finite(&square, &placed(&ball, vec2(0.2, 1.0), 0.0));
+    assert_eq!(s.normal, vec2(0.0, 1.0));
+    assert!((s.separation + 0.3).abs() < 1e-6);
+    // At the centre.
+    let s = assert_finite(&square, &placed(&ball, vec2(0.0, 0.0), 0.0));
+    assert!((s.separation + 1.3).abs() < 1e-6);
+}
+
+// ---------------------------------------------------------------- the pipeline in a world
+
+#[test]
+fn world_contacts_track_brute_force_pairs_as_thousands_of_bodies_move() {
+    let mut world = World::with_settings(WorldSettings {
+        gravity: Vec2::zeros(),
+        ..WorldSettings::default()
+    })
+    .unwrap();
+    let mut rng = Rng::new(11);
+    for i in 0..2500 {
+        let shape = if i % 3 == 0 {
+            Shape::circle(rng.range(0.1, 0.6)).unwrap()
+        } else {
+            Shape::regular(3 + rng.below(5), rng.range(0.1, 0.7)).unwrap()
+        };
+        let position = vec2(rng.range(-60.0, 60.0), rng.range(-60.0, 60.0));
+        let def = match i % 10 {
+            0 => BodyDef::static_body(shape),
+            1 => BodyDef::kinematic(shape).linear_velocity(vec2(rng.range(-3.0, 3.0), 0.0)),
+            _ => BodyDef::dynamic(shape)
+                .linear_velocity(vec2(rng.range(-8.0, 8.0), rng.range(-8.0, 8.0)))
+                .angular_velocity(rng.range(-5.0, 5.0)),
+        };
+        world.add_body(def.position(position)).unwrap();
+    }
+    // Contacts are made at the start of a step from the fat boxes the last step left, so
+    // after step k + 1 the world must hold exactly the brute-force pairs of step k's boxes.
+    let mut expected_from_last_step: Option<Vec<_>> = None;
+    for step in 0..30 {
+        world.step(1.0 / 60.0).unwrap();
+        let mut held: Vec<_> = world.contacts().map(|c| (c.body_a(), c.body_b())).collect();
+        held.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
+        if let Some(expected) = expected_from_last_step.take() {
+            assert_eq!(held, expected, "step {step}");
+        }
+        let entries: Vec<_> = world
+            .bodies()
+            .map(|b| {
+                let fat = world.broadphase().fat_aabb(b.handle()).unwrap();
+                assert!(fat.contains(&b.aabb()), "a fat box must cover its body");
+                (b.handle(), b.kind(), fat)
+            })
+            .collect();
+        let expected = carom::broadphase::brute_force_pairs(&entries);
+        assert_eq!(
+            world.broadphase().overlapping_pairs(),
+            expected,
+            "step {step}"
+        );
+        assert!(expected.len() > 200, "the test world must have pairs");
+        expected_from_last_step = Some(expected);
+    }
+}
