@@ -3,22 +3,16 @@
 
 use carom::manifold::{PairSide, collide};
 use carom::narrowphase::separation;
-use carom::{
-    BodyDef, Isometry, Polygon, Real, Shape, Vec2, World, WorldSettings, WorldShape, vec2,
-};
+use carom::{BodyDef, Polygon, Real, Shape, Vec2, World, WorldSettings, WorldShape, vec2};
 use carom_tests::Rng;
 use proptest::prelude::*;
-
-fn placed(shape: &Shape, position: Vec2, angle: Real) -> WorldShape {
-    WorldShape::new(shape, &Isometry::new(position, angle))
-}
 
 /// A polygon in world coordinates exactly where its points say (not recentred).
 fn polygon_at_its_points(points: &[(Real, Real)]) -> WorldShape {
     let points: Vec<Vec2> = points.iter().map(|&(x, y)| vec2(x, y)).collect();
     let polygon = Polygon::new(&points).unwrap();
     let at = polygon.source_centroid();
-    placed(&Shape::Polygon(polygon), at, 0.0)
+    WorldShape::at(&Shape::Polygon(polygon), at, 0.0)
 }
 
 fn close(a: Vec2, b: Vec2, tolerance: Real) -> bool {
@@ -210,7 +204,7 @@ fn shape_strategy() -> impl Strategy<Value = Shape> {
 
 fn placed_strategy() -> impl Strategy<Value = WorldShape> {
     (shape_strategy(), -1.5f32..1.5, -1.5f32..1.5, -3.2f32..3.2)
-        .prop_map(|(shape, x, y, angle)| placed(&shape, vec2(x, y), angle))
+        .prop_map(|(shape, x, y, angle)| WorldShape::at(&shape, vec2(x, y), angle))
 }
 
 /// 400 cases from a fixed seed, so CI is deterministic; proptest's own `PROPTEST_CASES` and
@@ -269,7 +263,7 @@ proptest! {
             WorldShape::Circle { center, .. } => *center,
             WorldShape::Polygon { vertices, .. } => vertices.iter().sum::<Vec2>() / vertices.len() as Real,
         };
-        let b = placed(&b, center + vec2(offset.0, offset.1), angle);
+        let b = WorldShape::at(&b, center + vec2(offset.0, offset.1), angle);
         let s = separation(&a, &b);
         prop_assume!(s.separation < -1e-3);
         let moved = translated(&b, s.mtv());
@@ -326,25 +320,25 @@ fn assert_finite(a: &WorldShape, b: &WorldShape) -> carom::Separation {
 fn tiny_and_huge_shapes() {
     let mm = Shape::rect(0.0005, 0.0005).unwrap();
     let s = assert_finite(
-        &placed(&mm, vec2(0.0, 0.0), 0.0),
-        &placed(&mm, vec2(0.0008, 0.0), 0.0),
+        &WorldShape::at(&mm, vec2(0.0, 0.0), 0.0),
+        &WorldShape::at(&mm, vec2(0.0008, 0.0), 0.0),
     );
     assert!((s.separation + 0.0002).abs() < 1e-7);
     let km = Shape::rect(5000.0, 5000.0).unwrap();
     let s = assert_finite(
-        &placed(&km, vec2(0.0, 0.0), 0.0),
-        &placed(&km, vec2(0.0, 9999.0), 0.0),
+        &WorldShape::at(&km, vec2(0.0, 0.0), 0.0),
+        &WorldShape::at(&km, vec2(0.0, 9999.0), 0.0),
     );
     assert!((s.separation + 1.0).abs() < 1e-2);
     let ball = Shape::circle(5000.0).unwrap();
     assert_finite(
-        &placed(&km, vec2(0.0, 0.0), 0.0),
-        &placed(&ball, vec2(3.0, 9990.0), 0.0),
+        &WorldShape::at(&km, vec2(0.0, 0.0), 0.0),
+        &WorldShape::at(&ball, vec2(3.0, 9990.0), 0.0),
     );
     // A millimetre box on a kilometre floor.
     let s = assert_finite(
-        &placed(&km, vec2(0.0, -5000.0), 0.0),
-        &placed(&mm, vec2(1.0, 0.0004), 0.3),
+        &WorldShape::at(&km, vec2(0.0, -5000.0), 0.0),
+        &WorldShape::at(&mm, vec2(1.0, 0.0004), 0.3),
     );
     assert!(s.separation < 0.0);
 }
@@ -355,13 +349,13 @@ fn slivers_one_to_a_thousand() {
     let quarter = std::f32::consts::FRAC_PI_2;
     for angle in [0.0, 0.001, 0.7, quarter - 1e-4, quarter] {
         let s = assert_finite(
-            &placed(&sliver, vec2(0.0, 0.0), 0.0),
-            &placed(&sliver, vec2(0.3, 0.0005), angle),
+            &WorldShape::at(&sliver, vec2(0.0, 0.0), 0.0),
+            &WorldShape::at(&sliver, vec2(0.3, 0.0005), angle),
         );
         assert!(s.separation <= 0.0);
         let m = collide(
-            &placed(&sliver, vec2(0.0, 0.0), 0.0),
-            &placed(&sliver, vec2(0.3, 0.0005), angle),
+            &WorldShape::at(&sliver, vec2(0.0, 0.0), 0.0),
+            &WorldShape::at(&sliver, vec2(0.3, 0.0005), angle),
             0.0,
         );
         assert!(!m.is_empty());
@@ -374,7 +368,7 @@ fn identical_polygons_on_top_of_each_other() {
         Shape::rect(0.5, 0.5).unwrap(),
         Shape::regular(7, 1.0).unwrap(),
     ] {
-        let a = placed(&shape, vec2(1.0, 2.0), 0.3);
+        let a = WorldShape::at(&shape, vec2(1.0, 2.0), 0.3);
         let s = assert_finite(&a, &a.clone());
         // The cheapest way out is the polygon's own narrowest width.
         let widths = match &a {
@@ -401,8 +395,8 @@ fn identical_polygons_on_top_of_each_other() {
 
 #[test]
 fn coincident_circle_centres() {
-    let a = placed(&Shape::circle(0.5).unwrap(), vec2(3.0, -1.0), 0.0);
-    let b = placed(&Shape::circle(0.25).unwrap(), vec2(3.0, -1.0), 2.0);
+    let a = WorldShape::at(&Shape::circle(0.5).unwrap(), vec2(3.0, -1.0), 0.0);
+    let b = WorldShape::at(&Shape::circle(0.25).unwrap(), vec2(3.0, -1.0), 2.0);
     let s = assert_finite(&a, &b);
     assert_eq!(s.separation, -0.75);
     assert_eq!(s.normal, carom::narrowphase::COINCIDENT_NORMAL);
@@ -412,18 +406,18 @@ fn coincident_circle_centres() {
 
 #[test]
 fn circle_centred_on_a_polygon_vertex_or_edge() {
-    let square = placed(&Shape::rect(1.0, 1.0).unwrap(), vec2(0.0, 0.0), 0.0);
+    let square = WorldShape::at(&Shape::rect(1.0, 1.0).unwrap(), vec2(0.0, 0.0), 0.0);
     let ball = Shape::circle(0.3).unwrap();
     // On a vertex: the way out is through either adjacent face, 0.3 deep.
-    let s = assert_finite(&square, &placed(&ball, vec2(1.0, 1.0), 0.0));
+    let s = assert_finite(&square, &WorldShape::at(&ball, vec2(1.0, 1.0), 0.0));
     assert!((s.separation + 0.3).abs() < 1e-6);
     assert!(s.normal == vec2(1.0, 0.0) || s.normal == vec2(0.0, 1.0));
     // On an edge.
-    let s = assert_finite(&square, &placed(&ball, vec2(0.2, 1.0), 0.0));
+    let s = assert_finite(&square, &WorldShape::at(&ball, vec2(0.2, 1.0), 0.0));
     assert_eq!(s.normal, vec2(0.0, 1.0));
     assert!((s.separation + 0.3).abs() < 1e-6);
     // At the centre.
-    let s = assert_finite(&square, &placed(&ball, vec2(0.0, 0.0), 0.0));
+    let s = assert_finite(&square, &WorldShape::at(&ball, vec2(0.0, 0.0), 0.0));
     assert!((s.separation + 1.3).abs() < 1e-6);
 }
 

@@ -408,45 +408,46 @@ impl DynamicTree {
             }
         };
         let union_perimeter = |t: &Self, x: u32, y: u32| t.aabb(x).union(&t.aabb(y)).perimeter();
-        if !c_leaf {
-            // Lift one of C's children in exchange for B.
-            let (f, g) = (self.nodes[c as usize].child1, self.nodes[c as usize].child2);
-            let area_b = if b_leaf {
+        let area = |t: &Self, x: u32| {
+            if t.nodes[x as usize].is_leaf() {
                 0.0
             } else {
-                self.aabb(b).perimeter()
-            };
-            let base = area_b + self.aabb(c).perimeter();
-            consider(area_b + union_perimeter(self, b, g), base, b, f);
-            consider(area_b + union_perimeter(self, b, f), base, b, g);
-            if !b_leaf {
-                // Exchange grandchildren across.
-                let (d, e) = (self.nodes[b as usize].child1, self.nodes[b as usize].child2);
-                consider(
-                    union_perimeter(self, f, e) + union_perimeter(self, d, g),
-                    base,
-                    d,
-                    f,
-                );
-                consider(
-                    union_perimeter(self, g, e) + union_perimeter(self, f, d),
-                    base,
-                    d,
-                    g,
-                );
+                t.aabb(x).perimeter()
             }
+        };
+        // Either way the cost compared is the perimeter of B plus that of C (leaves count 0).
+        let base = area(self, b) + area(self, c);
+        // Lift a child of `other` in exchange for `down`, its sibling under `a`.
+        let mut lifts = |t: &Self, down: u32, other: u32| {
+            let (f, g) = (
+                t.nodes[other as usize].child1,
+                t.nodes[other as usize].child2,
+            );
+            consider(area(t, down) + union_perimeter(t, down, g), base, down, f);
+            consider(area(t, down) + union_perimeter(t, down, f), base, down, g);
+        };
+        if !c_leaf {
+            lifts(self, b, c);
         }
         if !b_leaf {
-            // Lift one of B's children in exchange for C.
+            lifts(self, c, b);
+        }
+        if !b_leaf && !c_leaf {
+            // Exchange grandchildren across.
             let (d, e) = (self.nodes[b as usize].child1, self.nodes[b as usize].child2);
-            let area_c = if c_leaf {
-                0.0
-            } else {
-                self.aabb(c).perimeter()
-            };
-            let base = area_c + self.aabb(b).perimeter();
-            consider(area_c + union_perimeter(self, c, e), base, c, d);
-            consider(area_c + union_perimeter(self, c, d), base, c, e);
+            let (f, g) = (self.nodes[c as usize].child1, self.nodes[c as usize].child2);
+            consider(
+                union_perimeter(self, f, e) + union_perimeter(self, d, g),
+                base,
+                d,
+                f,
+            );
+            consider(
+                union_perimeter(self, g, e) + union_perimeter(self, f, d),
+                base,
+                d,
+                g,
+            );
         }
         let Some((x, y)) = best.1 else {
             return;

@@ -344,11 +344,11 @@ pub fn polygon_polygon(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::{Isometry, vec2};
+    use crate::math::vec2;
     use crate::shape::Shape;
 
     fn placed(shape: Shape, x: Real, y: Real, angle: Real) -> WorldShape {
-        WorldShape::new(&shape, &Isometry::new(vec2(x, y), angle))
+        WorldShape::at(&shape, vec2(x, y), angle)
     }
 
     #[test]

@@ -466,6 +466,11 @@ pub enum WorldShape {
 }
 
 impl WorldShape {
+    /// The shape with its centroid at `position`, turned by `angle` radians.
+    pub fn at(shape: &Shape, position: Vec2, angle: Real) -> Self {
+        WorldShape::new(shape, &Isometry::new(position, angle))
+    }
+
     /// The shape placed by `transform`.
     pub fn new(shape: &Shape, transform: &Isometry) -> Self {
         let mut world = match shape {
