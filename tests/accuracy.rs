@@ -24,14 +24,17 @@ fn free_fall_matches_semi_implicit_euler_exactly_and_physics_closely() {
         world.step(DT).unwrap();
     }
     let body = world.body(ball).unwrap();
-    let (g, n, t) = (10.0_f64, steps as f64, steps as f64 * DT as f64);
-    // Semi-implicit Euler: v_n = -g n dt, y_n = y0 - g dt² n (n + 1) / 2.
-    let expected_y = 100.0 - g * (DT as f64).powi(2) * n * (n + 1.0) / 2.0;
+    // The default solver integrates in substeps of h = dt / substeps.
+    let substeps = world.solver().substeps as f64;
+    let (g, t) = (10.0_f64, steps as f64 * DT as f64);
+    let (n, h) = (steps as f64 * substeps, DT as f64 / substeps);
+    // Semi-implicit Euler over n substeps: v_n = -g n h, y_n = y0 - g h² n (n + 1) / 2.
+    let expected_y = 100.0 - g * h * h * n * (n + 1.0) / 2.0;
     assert!((body.position().y as f64 - expected_y).abs() < 1e-3);
     assert!((body.linear_velocity().y as f64 + g * t).abs() < 1e-3);
-    // And within one step's worth of the exact parabola y0 - g t² / 2.
+    // And within one substep's worth of the exact parabola y0 - g t² / 2.
     let exact_y = 100.0 - 0.5 * g * t * t;
-    assert!((body.position().y as f64 - exact_y).abs() <= g * t * DT as f64 / 2.0 + 1e-3);
+    assert!((body.position().y as f64 - exact_y).abs() <= g * t * h / 2.0 + 1e-3);
     assert_eq!(body.position().x, 0.0);
 }
 
@@ -83,8 +86,11 @@ fn exponential_damping_follows_its_closed_form() {
         world.step(DT).unwrap();
     }
     let body = world.body(ball).unwrap();
-    let linear_factor = (1.0 / (1.0 + DT as f64 * c as f64)).powi(steps);
-    let angular_factor = (1.0 / (1.0 + DT as f64 * 2.0 * c as f64)).powi(steps);
+    // Damping acts once per substep of h = dt / substeps.
+    let substeps = world.solver().substeps as i32;
+    let h = DT as f64 / substeps as f64;
+    let linear_factor = (1.0 / (1.0 + h * c as f64)).powi(steps * substeps);
+    let angular_factor = (1.0 / (1.0 + h * 2.0 * c as f64)).powi(steps * substeps);
     let v = body.linear_velocity();
     assert!((v.x as f64 - 6.0 * linear_factor).abs() < 1e-4);
     assert!((v.y as f64 + 3.0 * linear_factor).abs() < 1e-4);

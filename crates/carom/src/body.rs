@@ -677,19 +677,17 @@ impl Body {
         self.aabb = self.world_shape.aabb();
     }
 
-    /// Velocities for the integrator to read and write.
-    #[inline]
-    pub(crate) fn velocities_mut(&mut self) -> (&mut Vec2, &mut Real) {
-        (&mut self.linear_velocity, &mut self.angular_velocity)
-    }
-
-    /// Moves the body by its velocity over `dt` (semi-implicit Euler's position half).
-    #[inline]
-    pub(crate) fn advance(&mut self, dt: Real) {
-        self.position += self.linear_velocity * dt;
-        self.rotation = Rot::new(self.angular_velocity * dt) * self.rotation;
+    /// Commits a solved step: velocities, and the motion accumulated over it. Forces are
+    /// cleared and the world shape re-placed.
+    pub(crate) fn finish_step(&mut self, v: Vec2, w: Real, dp: Vec2, dq: Rot) {
+        self.linear_velocity = v;
+        self.angular_velocity = w;
+        self.position += dp;
+        self.rotation = dq * self.rotation;
         // Renormalise so thousands of small rotations do not drift off the unit circle.
         self.rotation.renormalize_fast();
+        self.clear_forces();
+        self.sync_world_shape();
     }
 }
 

@@ -39,6 +39,11 @@ impl Contact {
         &self.manifold
     }
 
+    /// The manifold, for the solver to store impulses in.
+    pub(crate) fn manifold_mut(&mut self) -> &mut Manifold {
+        &mut self.manifold
+    }
+
     /// True while the manifold has points.
     pub fn is_touching(&self) -> bool {
         self.touching
@@ -203,6 +208,11 @@ impl ContactSet {
     /// Every contact.
     pub fn iter(&self) -> impl ExactSizeIterator<Item = &Contact> {
         self.contacts.iter()
+    }
+
+    /// Every contact, mutably, for the solver.
+    pub(crate) fn as_mut_slice(&mut self) -> &mut [Contact] {
+        &mut self.contacts
     }
 
     /// How many contacts there are.

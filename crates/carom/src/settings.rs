@@ -2,6 +2,7 @@
 
 use crate::drag::DragModel;
 use crate::math::{Real, Vec2};
+use crate::solver::SolverParams;
 
 /// Penetration the solver tolerates, and the scale of "touching", in metres (Box2D's 0.5 cm).
 pub const LINEAR_SLOP: Real = 0.005;
@@ -26,6 +27,8 @@ pub struct WorldSettings {
     /// Broadphase enlargement of moving bodies' boxes. Default [`AABB_MARGIN`]; static
     /// bodies use the speculative distance, which keeps every speculative pair visible.
     pub aabb_margin: Real,
+    /// Which contact solver runs, and how hard it works. Default: soft step, 4 substeps.
+    pub solver: SolverParams,
 }
 
 impl Default for WorldSettings {
@@ -35,6 +38,7 @@ impl Default for WorldSettings {
             drag: DragModel::default(),
             speculative_distance: SPECULATIVE_DISTANCE,
             aabb_margin: AABB_MARGIN,
+            solver: SolverParams::default(),
         }
     }
 }

@@ -1,0 +1,80 @@
+//! The solver's copy of a body: velocities and the motion accumulated over the step, stored
+//! contiguously so the inner loops touch little memory.
+
+use super::{Environment, SolverParams};
+use crate::body::{Body, BodyKind};
+use crate::math::{Real, Rot, Vec2, clamp_magnitude};
+
+/// One body as the solver sees it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BodyState {
+    /// Linear velocity.
+    pub v: Vec2,
+    /// Angular velocity.
+    pub w: Real,
+    /// Translation since the start of the step.
+    pub dp: Vec2,
+    /// Rotation since the start of the step.
+    pub dq: Rot,
+}
+
+impl BodyState {
+    pub fn from_body(body: &Body) -> Self {
+        BodyState {
+            v: body.linear_velocity(),
+            w: body.angular_velocity(),
+            dp: Vec2::zeros(),
+            dq: Rot::identity(),
+        }
+    }
+
+    /// Commits the step: the body moves by `dp` and `dq` and takes the new velocities.
+    pub fn write_back(&self, body: &mut Body) {
+        if body.kind() == BodyKind::Static {
+            return;
+        }
+        body.finish_step(self.v, self.w, self.dp, self.dq);
+    }
+}
+
+/// Velocities from gravity, applied forces and drag over `h`, with the speed guard rails.
+pub(crate) fn integrate_velocities(
+    params: &SolverParams,
+    environment: Environment,
+    bodies: &[Body],
+    states: &mut [BodyState],
+    h: Real,
+) {
+    // No body may turn more than `max_rotation` in one (sub)step.
+    let max_angular_speed = params.max_rotation / h;
+    for (body, state) in bodies.iter().zip(states.iter_mut()) {
+        if body.kind() != BodyKind::Dynamic {
+            continue;
+        }
+        let acceleration =
+            environment.gravity * body.gravity_scale() + body.force() * body.inv_mass();
+        let mut v = state.v + acceleration * h;
+        let mut w = state.w + body.torque() * body.inv_inertia() * h;
+        if let Some(model) = environment.drag {
+            if body.linear_damping() > 0.0 {
+                v = model.apply_linear(v, body.linear_damping(), h);
+            }
+            if body.angular_damping() > 0.0 {
+                w = model.apply_angular(w, body.angular_damping(), h);
+            }
+        }
+        state.v = clamp_magnitude(v, params.max_linear_speed);
+        state.w = w.clamp(-max_angular_speed, max_angular_speed);
+    }
+}
+
+/// Positions from velocities over `h` (accumulated in `dp` and `dq`).
+pub(crate) fn integrate_positions(bodies: &[Body], states: &mut [BodyState], h: Real) {
+    for (body, state) in bodies.iter().zip(states.iter_mut()) {
+        if body.kind() == BodyKind::Static {
+            continue;
+        }
+        state.dp += state.v * h;
+        state.dq = Rot::new(state.w * h) * state.dq;
+    }
+}

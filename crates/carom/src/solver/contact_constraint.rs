@@ -1,0 +1,195 @@
+//! A touching contact as the solver sees it: fixed anchors, effective masses, impulses.
+
+use super::BodyState;
+use crate::body::{Body, BodyKind};
+use crate::contact::Contact;
+use crate::math::{Real, Vec2, cross, cross_sv, perp_cw};
+
+/// One point of a contact constraint.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct ConstraintPoint {
+    /// From A's centre of mass to the contact point, at the start of the step.
+    pub anchor_a: Vec2,
+    /// From B's centre of mass to the contact point, at the start of the step.
+    pub anchor_b: Vec2,
+    /// The separation at the start of the step, less the anchors' offset along the normal, so
+    /// the current separation is `base_separation + normal · (dp_B + R(dq_B) r_B - dp_A -
+    /// R(dq_A) r_A)`, without re-running collision.
+    pub base_separation: Real,
+    /// The separation at the start of the step.
+    pub separation: Real,
+    /// `1 / k` along the normal.
+    pub normal_mass: Real,
+    /// `1 / k` along the tangent.
+    pub tangent_mass: Real,
+    /// Accumulated normal impulse.
+    pub normal_impulse: Real,
+    /// Accumulated friction impulse.
+    pub tangent_impulse: Real,
+    /// The largest normal impulse this step: restitution only acts on points that pushed.
+    pub max_normal_impulse: Real,
+    /// Normal velocity of B relative to A at the start of the step (for restitution).
+    pub relative_velocity: Real,
+}
+
+/// A touching contact prepared for solving.
+#[derive(Debug, Clone)]
+pub(crate) struct ContactConstraint {
+    /// Where the contact lives in the contact set.
+    pub contact_index: usize,
+    /// Dense index of body A.
+    pub a: usize,
+    /// Dense index of body B.
+    pub b: usize,
+    pub inv_mass_a: Real,
+    pub inv_inertia_a: Real,
+    pub inv_mass_b: Real,
+    pub inv_inertia_b: Real,
+    /// Unit normal from A to B.
+    pub normal: Vec2,
+    /// Friction coefficient: the geometric mean of the bodies'.
+    pub friction: Real,
+    /// Restitution: the larger of the bodies'.
+    pub restitution: Real,
+    /// True when one body is static (soft step makes such contacts stiffer).
+    pub touches_static: bool,
+    points: [ConstraintPoint; 2],
+    point_count: usize,
+}
+
+impl ContactConstraint {
+    /// Prepares a contact whose bodies sit at dense indices `a` and `b`.
+    pub fn new(
+        contact_index: usize,
+        contact: &Contact,
+        a: usize,
+        b: usize,
+        bodies: &[Body],
+    ) -> Self {
+        let (body_a, body_b) = (&bodies[a], &bodies[b]);
+        let manifold = contact.manifold();
+        let normal = manifold.normal;
+        let tangent = perp_cw(normal);
+        let (ma, ia) = (body_a.inv_mass(), body_a.inv_inertia());
+        let (mb, ib) = (body_b.inv_mass(), body_b.inv_inertia());
+        let mut points = [ConstraintPoint::default(); 2];
+        let point_count = manifold.points().len();
+        for (point, mp) in points.iter_mut().zip(manifold.points()) {
+            let ra = mp.point - body_a.position();
+            let rb = mp.point - body_b.position();
+            let k_normal =
+                ma + mb + ia * cross(ra, normal).powi(2) + ib * cross(rb, normal).powi(2);
+            let k_tangent =
+                ma + mb + ia * cross(ra, tangent).powi(2) + ib * cross(rb, tangent).powi(2);
+            let relative = body_b.linear_velocity() + cross_sv(body_b.angular_velocity(), rb)
+                - body_a.linear_velocity()
+                - cross_sv(body_a.angular_velocity(), ra);
+            *point = ConstraintPoint {
+                anchor_a: ra,
+                anchor_b: rb,
+                base_separation: mp.separation - normal.dot(&(rb - ra)),
+                separation: mp.separation,
+                normal_mass: if k_normal > 0.0 { 1.0 / k_normal } else { 0.0 },
+                tangent_mass: if k_tangent > 0.0 {
+                    1.0 / k_tangent
+                } else {
+                    0.0
+                },
+                normal_impulse: mp.normal_impulse,
+                tangent_impulse: mp.tangent_impulse,
+                max_normal_impulse: 0.0,
+                relative_velocity: normal.dot(&relative),
+            };
+        }
+        ContactConstraint {
+            contact_index,
+            a,
+            b,
+            inv_mass_a: ma,
+            inv_inertia_a: ia,
+            inv_mass_b: mb,
+            inv_inertia_b: ib,
+            normal,
+            friction: (body_a.friction() * body_b.friction()).sqrt(),
+            restitution: body_a.restitution().max(body_b.restitution()),
+            touches_static: body_a.kind() == BodyKind::Static || body_b.kind() == BodyKind::Static,
+            points,
+            point_count,
+        }
+    }
+
+    /// The points.
+    #[inline]
+    pub fn points(&self) -> &[ConstraintPoint] {
+        &self.points[..self.point_count]
+    }
+
+    /// The points, mutably.
+    #[inline]
+    pub fn points_mut(&mut self) -> &mut [ConstraintPoint] {
+        &mut self.points[..self.point_count]
+    }
+
+    /// The tangent direction used for friction.
+    #[inline]
+    pub fn tangent(&self) -> Vec2 {
+        perp_cw(self.normal)
+    }
+
+    /// The separation of a point now, from the bodies' motion since the step began.
+    #[inline]
+    pub fn current_separation(
+        &self,
+        point: &ConstraintPoint,
+        a: &BodyState,
+        b: &BodyState,
+    ) -> Real {
+        let d = (b.dp - a.dp) + b.dq * point.anchor_b - a.dq * point.anchor_a;
+        point.base_separation + self.normal.dot(&d)
+    }
+
+    /// Applies an impulse `p` at a point: `-p` to A, `+p` to B.
+    #[inline]
+    pub fn apply(&self, point: &ConstraintPoint, p: Vec2, a: &mut BodyState, b: &mut BodyState) {
+        a.v -= p * self.inv_mass_a;
+        a.w -= self.inv_inertia_a * cross(point.anchor_a, p);
+        b.v += p * self.inv_mass_b;
+        b.w += self.inv_inertia_b * cross(point.anchor_b, p);
+    }
+
+    /// Velocity of B relative to A at a point.
+    #[inline]
+    pub fn relative_velocity(point: &ConstraintPoint, a: &BodyState, b: &BodyState) -> Vec2 {
+        b.v + cross_sv(b.w, point.anchor_b) - a.v - cross_sv(a.w, point.anchor_a)
+    }
+
+    /// Copies accumulated impulses back into the contact's manifold for warm starting.
+    pub fn store_impulses(&self, contact: &mut Contact) {
+        for (mp, point) in contact
+            .manifold_mut()
+            .points_mut()
+            .iter_mut()
+            .zip(self.points())
+        {
+            mp.normal_impulse = point.normal_impulse;
+            mp.tangent_impulse = point.tangent_impulse;
+        }
+    }
+}
+
+/// Two distinct states out of one slice, mutably.
+#[inline]
+pub(crate) fn pair_mut(
+    states: &mut [BodyState],
+    a: usize,
+    b: usize,
+) -> (&mut BodyState, &mut BodyState) {
+    debug_assert_ne!(a, b);
+    if a < b {
+        let (low, high) = states.split_at_mut(b);
+        (&mut low[a], &mut high[0])
+    } else {
+        let (low, high) = states.split_at_mut(a);
+        (&mut high[0], &mut low[b])
+    }
+}

@@ -1,0 +1,287 @@
+//! Contact solvers, from the tutorial's to the state of the art, all selectable at run time.
+//!
+//! Every solver here owns the motion of one step: it integrates forces into velocities,
+//! resolves contacts, and integrates velocities into positions, because the state of the art
+//! (soft step) interleaves those stages in substeps. The bodies are copied into contiguous
+//! [`BodyState`]s and the touching contacts into [`ContactConstraint`]s, solved, and written back.
+//!
+//! - [`SolverKind::PushOut`]: the tutorial with "impulse resolution" unchecked.
+//! - [`SolverKind::TutorialImpulse`]: the tutorial's impulse loop, exactly.
+//! - [`SolverKind::SequentialImpulse`]: Catto's 2006 accumulated impulses with warm starting.
+//! - [`SolverKind::SoftStep`]: Box2D v3's substepped soft-constraint solver (the default).
+
+mod body_state;
+mod contact_constraint;
+mod push_out;
+mod sequential_impulse;
+mod soft_step;
+mod tutorial_impulse;
+
+pub(crate) use body_state::BodyState;
+pub(crate) use contact_constraint::ContactConstraint;
+
+use crate::body::Body;
+use crate::contact::Contact;
+use crate::drag::DragModel;
+use crate::math::{Real, Vec2};
+use crate::settings::LINEAR_SLOP;
+
+/// Which contact solver runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SolverKind {
+    /// Moves overlapping bodies apart along the contact normal in proportion to their inverse
+    /// masses and removes their approaching velocity. No impulses: stacks sink and jitter,
+    /// which is the point of showing it.
+    PushOut,
+    /// The tutorial's impulses: per point, `j = max((-vn + bias) / k, 0)` with Baumgarte bias
+    /// `0.2 / dt · max(0, depth - 0.01)`, repeated for the iterations, nothing accumulated.
+    TutorialImpulse,
+    /// Sequential impulses (Catto 2006): accumulated, clamped normal and friction impulses, warm
+    /// started from the last step, restitution, Baumgarte bias beyond the slop.
+    SequentialImpulse,
+    /// Box2D v3's soft step: substeps, soft contacts, relaxation, a restitution pass.
+    #[default]
+    SoftStep,
+}
+
+impl SolverKind {
+    /// Every solver, from the simplest.
+    pub const ALL: [SolverKind; 4] = [
+        SolverKind::PushOut,
+        SolverKind::TutorialImpulse,
+        SolverKind::SequentialImpulse,
+        SolverKind::SoftStep,
+    ];
+
+    /// A short name for menus and reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            SolverKind::PushOut => "push-out",
+            SolverKind::TutorialImpulse => "tutorial impulse",
+            SolverKind::SequentialImpulse => "sequential impulse",
+            SolverKind::SoftStep => "soft step",
+        }
+    }
+
+    /// True for the solvers that divide the step into substeps.
+    pub fn has_substeps(self) -> bool {
+        self == SolverKind::SoftStep
+    }
+}
+
+/// Solver settings. The defaults are Box2D v3's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverParams {
+    /// The impulse solver used while [`SolverParams::impulse_resolution`] is on.
+    pub kind: SolverKind,
+    /// The tutorial's "impulse resolution" checkbox: off runs [`SolverKind::PushOut`] whatever
+    /// `kind` says. Default on.
+    pub impulse_resolution: bool,
+    /// Velocity iterations: per step for the classic solvers, per substep (solve and relax
+    /// each) for soft step. Default 1 (soft step's); [`SolverParams::for_kind`] picks 8 for the
+    /// classic solvers.
+    pub iterations: u32,
+    /// Substeps per step (soft step only). Default 4.
+    pub substeps: u32,
+    /// Start each step from last step's impulses (sequential impulse and soft step). Default on.
+    pub warm_starting: bool,
+    /// Soft step: contact stiffness in Hz, capped at a quarter of the substep rate. Default 30.
+    pub contact_hertz: Real,
+    /// Soft step: contact damping ratio. Default 10 (heavily over-damped: no bounce from bias).
+    pub damping_ratio: Real,
+    /// Soft step: contacts against static bodies are this much stiffer. Default 2.
+    pub static_stiffness: Real,
+    /// Soft step: the fastest overlap is pushed apart, m/s. Default 3.
+    pub max_push_speed: Real,
+    /// Sequential and tutorial impulse: fraction of the overlap beyond the slop removed per
+    /// step, in `[0, 1]` (0 turns the bias off). Default 0.2.
+    pub baumgarte: Real,
+    /// Overlap left alone, so resting contacts stay in touch, m. Default 0.005.
+    pub linear_slop: Real,
+    /// Approach speeds below this do not bounce, m/s. Default 1.
+    pub restitution_threshold: Real,
+    /// Guard rail: no body moves faster, m/s. Default 400.
+    pub max_linear_speed: Real,
+    /// Guard rail: no body turns more per (sub)step, rad. Default π / 4.
+    pub max_rotation: Real,
+}
+
+impl Default for SolverParams {
+    fn default() -> Self {
+        SolverParams {
+            kind: SolverKind::SoftStep,
+            impulse_resolution: true,
+            iterations: 1,
+            substeps: 4,
+            warm_starting: true,
+            contact_hertz: 30.0,
+            damping_ratio: 10.0,
+            static_stiffness: 2.0,
+            max_push_speed: 3.0,
+            baumgarte: 0.2,
+            linear_slop: LINEAR_SLOP,
+            restitution_threshold: 1.0,
+            max_linear_speed: 400.0,
+            max_rotation: 0.25 * std::f32::consts::PI,
+        }
+    }
+}
+
+impl SolverParams {
+    /// Defaults suited to a solver: 8 iterations for the classic ones, soft step as Box2D.
+    pub fn for_kind(kind: SolverKind) -> Self {
+        let iterations = if kind == SolverKind::SoftStep { 1 } else { 8 };
+        SolverParams {
+            kind,
+            iterations,
+            ..SolverParams::default()
+        }
+    }
+
+    /// The solver that actually runs, given the impulse-resolution toggle.
+    pub fn effective_kind(&self) -> SolverKind {
+        if self.impulse_resolution {
+            self.kind
+        } else {
+            SolverKind::PushOut
+        }
+    }
+
+    /// Checks every value, naming the first bad one.
+    pub fn validate(&self) -> Result<(), crate::CaromError> {
+        let positive = |name: &'static str, value: Real| {
+            if value.is_finite() && value > 0.0 {
+                Ok(())
+            } else {
+                Err(crate::CaromError::OutOfRange {
+                    name,
+                    expected: "finite and positive",
+                    value,
+                })
+            }
+        };
+        let counts = [("iterations", self.iterations), ("substeps", self.substeps)];
+        for (name, value) in counts {
+            if !(1..=1024).contains(&value) {
+                return Err(crate::CaromError::OutOfRange {
+                    name,
+                    expected: "between 1 and 1024",
+                    value: value as Real,
+                });
+            }
+        }
+        positive("contact hertz", self.contact_hertz)?;
+        positive("damping ratio", self.damping_ratio)?;
+        positive("static stiffness", self.static_stiffness)?;
+        positive("max push speed", self.max_push_speed)?;
+        if !(self.baumgarte.is_finite() && (0.0..=1.0).contains(&self.baumgarte)) {
+            return Err(crate::CaromError::OutOfRange {
+                name: "baumgarte",
+                expected: "between 0 and 1",
+                value: self.baumgarte,
+            });
+        }
+        positive("linear slop", self.linear_slop)?;
+        positive("restitution threshold", self.restitution_threshold)?;
+        positive("max linear speed", self.max_linear_speed)?;
+        positive("max rotation", self.max_rotation)
+    }
+}
+
+/// A soft constraint's coefficients for one (sub)step (Box2D's `b2MakeSoft`): how much of
+/// the position error becomes velocity bias, and how much the impulse is softened.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Softness {
+    pub bias_rate: Real,
+    pub mass_scale: Real,
+    pub impulse_scale: Real,
+}
+
+impl Softness {
+    /// A spring of `hertz` with `damping_ratio`, stepped at `h` seconds.
+    pub fn new(hertz: Real, damping_ratio: Real, h: Real) -> Self {
+        if hertz == 0.0 {
+            return Softness {
+                bias_rate: 0.0,
+                mass_scale: 1.0,
+                impulse_scale: 0.0,
+            };
+        }
+        let omega = 2.0 * std::f32::consts::PI * hertz;
+        let a1 = 2.0 * damping_ratio + h * omega;
+        let a2 = h * omega * a1;
+        let a3 = 1.0 / (1.0 + a2);
+        Softness {
+            bias_rate: omega / a1,
+            mass_scale: a2 * a3,
+            impulse_scale: a3,
+        }
+    }
+}
+
+/// Forces, gravity and drag for one step: what the integrator reads besides the bodies.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Environment {
+    pub gravity: Vec2,
+    pub drag: Option<DragModel>,
+}
+
+/// Runs one step of the chosen solver over the bodies (dense, in storage order) and the
+/// contacts; `dense[i]` gives the dense indices of contact `i`'s bodies.
+pub(crate) fn step(
+    params: &SolverParams,
+    environment: Environment,
+    bodies: &mut [Body],
+    contacts: &mut [Contact],
+    dense: &[(usize, usize)],
+    dt: Real,
+) {
+    let mut states: Vec<BodyState> = bodies.iter().map(BodyState::from_body).collect();
+    let mut constraints: Vec<ContactConstraint> = contacts
+        .iter()
+        .zip(dense)
+        .enumerate()
+        .filter(|(_, (c, _))| c.is_touching())
+        .map(|(i, (c, &(a, b)))| ContactConstraint::new(i, c, a, b, bodies))
+        .collect();
+    match params.effective_kind() {
+        SolverKind::PushOut => push_out::solve(
+            params,
+            environment,
+            bodies,
+            &mut states,
+            &mut constraints,
+            dt,
+        ),
+        SolverKind::TutorialImpulse => tutorial_impulse::solve(
+            params,
+            environment,
+            bodies,
+            &mut states,
+            &mut constraints,
+            dt,
+        ),
+        SolverKind::SequentialImpulse => sequential_impulse::solve(
+            params,
+            environment,
+            bodies,
+            &mut states,
+            &mut constraints,
+            dt,
+        ),
+        SolverKind::SoftStep => soft_step::solve(
+            params,
+            environment,
+            bodies,
+            &mut states,
+            &mut constraints,
+            dt,
+        ),
+    }
+    for constraint in &constraints {
+        constraint.store_impulses(&mut contacts[constraint.contact_index]);
+    }
+    for (body, state) in bodies.iter_mut().zip(&states) {
+        state.write_back(body);
+    }
+}

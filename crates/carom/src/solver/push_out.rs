@@ -1,0 +1,48 @@
+//! The tutorial with impulse resolution unchecked: overlapping bodies are moved apart along
+//! the contact normal, each in proportion to its inverse mass, and their approaching velocity
+//! is removed. No rotation, friction or bounce: it shows why impulses are needed.
+
+use super::body_state::{integrate_positions, integrate_velocities};
+use super::contact_constraint::pair_mut;
+use super::{BodyState, ContactConstraint, Environment, SolverParams};
+use crate::body::Body;
+use crate::math::Real;
+
+pub(super) fn solve(
+    params: &SolverParams,
+    environment: Environment,
+    bodies: &[Body],
+    states: &mut [BodyState],
+    constraints: &mut [ContactConstraint],
+    dt: Real,
+) {
+    // The tutorial's order: its bodies moved, then it found and resolved the contacts; gravity
+    // comes after the resolution, so a resting body sinks g dt² a step unless bias lifts it.
+    for _ in 0..params.iterations {
+        for c in constraints.iter() {
+            let total = c.inv_mass_a + c.inv_mass_b;
+            if total == 0.0 {
+                continue;
+            }
+            let (a, b) = pair_mut(states, c.a, c.b);
+            let deepest = c
+                .points()
+                .iter()
+                .map(|p| c.current_separation(p, a, b))
+                .fold(Real::INFINITY, Real::min);
+            if deepest >= 0.0 {
+                continue;
+            }
+            let correction = c.normal * -deepest;
+            a.dp -= correction * (c.inv_mass_a / total);
+            b.dp += correction * (c.inv_mass_b / total);
+            let approach = (b.v - a.v).dot(&c.normal);
+            if approach < 0.0 {
+                a.v += c.normal * (approach * c.inv_mass_a / total);
+                b.v -= c.normal * (approach * c.inv_mass_b / total);
+            }
+        }
+    }
+    integrate_velocities(params, environment, bodies, states, dt);
+    integrate_positions(bodies, states, dt);
+}

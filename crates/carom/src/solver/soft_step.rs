@@ -1,0 +1,169 @@
+//! Box2D v3's soft step: substeps with soft contacts, relaxation and a restitution pass.
+//!
+//! Per substep: integrate velocities, warm start, solve with a soft-constraint bias (a stiff,
+//! heavily damped spring pulls overlap out at a bounded speed), integrate positions, then
+//! relax (solve again without bias, so the push-out leaves no energy behind). Anchors stay
+//! fixed for the step; each point's separation is updated from the bodies' motion.
+
+use super::body_state::{integrate_positions, integrate_velocities};
+use super::contact_constraint::pair_mut;
+use super::{BodyState, ContactConstraint, Environment, Softness, SolverParams};
+use crate::body::Body;
+use crate::math::Real;
+
+pub(super) fn solve(
+    params: &SolverParams,
+    environment: Environment,
+    bodies: &[Body],
+    states: &mut [BodyState],
+    constraints: &mut [ContactConstraint],
+    dt: Real,
+) {
+    let substeps = params.substeps.max(1);
+    let h = dt / substeps as Real;
+    let inv_h = 1.0 / h;
+    // Stiffer than a quarter of the substep rate would ring.
+    let hertz = params.contact_hertz.min(0.25 * inv_h);
+    let soft = Softness::new(hertz, params.damping_ratio, h);
+    let static_soft = Softness::new(params.static_stiffness * hertz, params.damping_ratio, h);
+    if !params.warm_starting {
+        forget_impulses(constraints);
+    }
+    for _ in 0..substeps {
+        integrate_velocities(params, environment, bodies, states, h);
+        warm_start(constraints, states);
+        for _ in 0..params.iterations {
+            solve_contacts(
+                constraints,
+                states,
+                soft,
+                static_soft,
+                inv_h,
+                params.max_push_speed,
+                true,
+            );
+        }
+        integrate_positions(bodies, states, h);
+        for _ in 0..params.iterations {
+            solve_contacts(
+                constraints,
+                states,
+                soft,
+                static_soft,
+                inv_h,
+                params.max_push_speed,
+                false,
+            );
+        }
+    }
+    apply_restitution(params, constraints, states);
+}
+
+/// Starts from zero impulses (warm starting off).
+pub(super) fn forget_impulses(constraints: &mut [ContactConstraint]) {
+    for point in constraints.iter_mut().flat_map(|c| c.points_mut()) {
+        point.normal_impulse = 0.0;
+        point.tangent_impulse = 0.0;
+    }
+}
+
+/// Applies the accumulated impulses, so the solve starts near last time's answer.
+pub(super) fn warm_start(constraints: &[ContactConstraint], states: &mut [BodyState]) {
+    for c in constraints {
+        let (a, b) = pair_mut(states, c.a, c.b);
+        let tangent = c.tangent();
+        for point in c.points() {
+            let p = c.normal * point.normal_impulse + tangent * point.tangent_impulse;
+            c.apply(point, p, a, b);
+        }
+    }
+}
+
+/// One pass over the contacts: non-penetration with the soft bias (or none when relaxing),
+/// then, when relaxing, Coulomb friction. Friction sees only unbiased velocities: reacting to
+/// the push-out velocity makes tall stacks lean (as Box2D 3.2 and Rapier found).
+fn solve_contacts(
+    constraints: &mut [ContactConstraint],
+    states: &mut [BodyState],
+    soft: Softness,
+    static_soft: Softness,
+    inv_h: Real,
+    max_push_speed: Real,
+    use_bias: bool,
+) {
+    for c in constraints.iter_mut() {
+        let (a, b) = pair_mut(states, c.a, c.b);
+        let softness = if c.touches_static { static_soft } else { soft };
+        for i in 0..c.points().len() {
+            let mut point = c.points()[i];
+            let s = c.current_separation(&point, a, b);
+            let (bias, mass_scale, impulse_scale) = if s > 0.0 {
+                // Speculative: may close exactly the gap this substep.
+                (s * inv_h, 1.0, 0.0)
+            } else if use_bias {
+                (
+                    (softness.bias_rate * s).max(-max_push_speed),
+                    softness.mass_scale,
+                    softness.impulse_scale,
+                )
+            } else {
+                (0.0, 1.0, 0.0)
+            };
+            let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
+            let impulse = -point.normal_mass * mass_scale * (vn + bias)
+                - impulse_scale * point.normal_impulse;
+            let total = (point.normal_impulse + impulse).max(0.0);
+            let applied = total - point.normal_impulse;
+            point.normal_impulse = total;
+            point.max_normal_impulse = point.max_normal_impulse.max(applied);
+            c.apply(&point, c.normal * applied, a, b);
+            c.points_mut()[i] = point;
+        }
+        if !use_bias {
+            solve_friction(c, a, b);
+        }
+    }
+}
+
+/// Coulomb friction at each point: the tangent impulse stays within `μ ×` the normal one.
+pub(super) fn solve_friction(c: &mut ContactConstraint, a: &mut BodyState, b: &mut BodyState) {
+    let tangent = c.tangent();
+    for i in 0..c.points().len() {
+        let mut point = c.points()[i];
+        let vt = ContactConstraint::relative_velocity(&point, a, b).dot(&tangent);
+        let limit = c.friction * point.normal_impulse;
+        let total = (point.tangent_impulse - point.tangent_mass * vt).clamp(-limit, limit);
+        let applied = total - point.tangent_impulse;
+        point.tangent_impulse = total;
+        c.apply(&point, tangent * applied, a, b);
+        c.points_mut()[i] = point;
+    }
+}
+
+/// Bounces: points that approached faster than the threshold and pushed this step get a
+/// normal velocity of `-restitution ×` their approach speed.
+pub(super) fn apply_restitution(
+    params: &SolverParams,
+    constraints: &mut [ContactConstraint],
+    states: &mut [BodyState],
+) {
+    for c in constraints.iter_mut().filter(|c| c.restitution > 0.0) {
+        let (a, b) = pair_mut(states, c.a, c.b);
+        for i in 0..c.points().len() {
+            let mut point = c.points()[i];
+            if point.relative_velocity > -params.restitution_threshold
+                || point.max_normal_impulse == 0.0
+            {
+                continue;
+            }
+            let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
+            let impulse = -point.normal_mass * (vn + c.restitution * point.relative_velocity);
+            let total = (point.normal_impulse + impulse).max(0.0);
+            let applied = total - point.normal_impulse;
+            point.normal_impulse = total;
+            point.max_normal_impulse = point.max_normal_impulse.max(applied);
+            c.apply(&point, c.normal * applied, a, b);
+            c.points_mut()[i] = point;
+        }
+    }
+}

@@ -1,0 +1,40 @@
+//! The tutorial's impulse resolution, exactly: per contact point the impulse
+//! `j = max((-vn + bias) / k, 0)`, with `k` from masses and inertias and the Baumgarte bias
+//! `0.2 / dt · max(0, depth - 0.01)`, applied to both bodies and repeated for the iterations.
+//! Nothing accumulates between iterations or steps, and there is no friction or restitution.
+
+use super::body_state::{integrate_positions, integrate_velocities};
+use super::contact_constraint::pair_mut;
+use super::{BodyState, ContactConstraint, Environment, SolverParams};
+use crate::body::Body;
+use crate::math::Real;
+
+/// The overlap the tutorial leaves alone, m.
+pub const TUTORIAL_SLOP: Real = 0.01;
+
+pub(super) fn solve(
+    params: &SolverParams,
+    environment: Environment,
+    bodies: &[Body],
+    states: &mut [BodyState],
+    constraints: &mut [ContactConstraint],
+    dt: Real,
+) {
+    // The tutorial's order: its bodies moved, then it found and resolved the contacts; gravity
+    // comes after the resolution, so a resting body sinks g dt² a step unless bias lifts it.
+    for _ in 0..params.iterations {
+        for c in constraints.iter() {
+            let (a, b) = pair_mut(states, c.a, c.b);
+            // The tutorial knows only overlapping points.
+            for point in c.points().iter().filter(|p| p.separation <= 0.0) {
+                let depth = -point.separation;
+                let vn = ContactConstraint::relative_velocity(point, a, b).dot(&c.normal);
+                let bias = params.baumgarte / dt * (depth - TUTORIAL_SLOP).max(0.0);
+                let j = ((-vn + bias) * point.normal_mass).max(0.0);
+                c.apply(point, c.normal * j, a, b);
+            }
+        }
+    }
+    integrate_velocities(params, environment, bodies, states, dt);
+    integrate_positions(bodies, states, dt);
+}
