@@ -661,6 +661,14 @@ impl Body {
         self.torque = 0.0;
     }
 
+    /// Puts the body back along its path to where continuous collision found the impact; it
+    /// keeps its velocity.
+    pub(crate) fn move_to_time_of_impact(&mut self, pose: Isometry) {
+        self.position = pose.translation.vector;
+        self.rotation = pose.rotation;
+        self.sync_world_shape();
+    }
+
     /// Marks the body as possibly edited by the user; true the first time since the last step.
     pub(crate) fn mark_touched(&mut self) -> bool {
         !std::mem::replace(&mut self.touched, true)

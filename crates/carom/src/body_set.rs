@@ -78,6 +78,19 @@ impl BodySet {
             })
     }
 
+    /// How many slots exist (live or free).
+    pub fn slot_count(&self) -> usize {
+        self.slots.len()
+    }
+
+    /// The dense index of the body in a slot, if the slot is live (generation not checked).
+    pub fn dense_index_of_slot(&self, slot: usize) -> Option<usize> {
+        self.slots
+            .get(slot)
+            .and_then(|s| s.dense)
+            .map(|d| d as usize)
+    }
+
     /// True when the handle refers to a live body.
     pub fn contains(&self, handle: BodyHandle) -> bool {
         self.dense_index(handle).is_ok()

@@ -33,6 +33,7 @@ pub mod body;
 mod body_set;
 pub mod broadphase;
 pub mod contact;
+mod continuous;
 pub mod drag;
 pub mod error;
 pub mod manifold;

@@ -29,6 +29,8 @@ pub struct WorldSettings {
     pub aabb_margin: Real,
     /// Which contact solver runs, and how hard it works. Default: soft step, 4 substeps.
     pub solver: SolverParams,
+    /// Sweep fast bodies so they cannot tunnel through thin ones. Default on.
+    pub continuous: bool,
 }
 
 impl Default for WorldSettings {
@@ -39,6 +41,7 @@ impl Default for WorldSettings {
             speculative_distance: SPECULATIVE_DISTANCE,
             aabb_margin: AABB_MARGIN,
             solver: SolverParams::default(),
+            continuous: true,
         }
     }
 }

@@ -5,6 +5,7 @@ use crate::body::{Body, BodyDef, BodyHandle, BodyKind};
 use crate::body_set::BodySet;
 use crate::broadphase::BroadPhase;
 use crate::contact::{Contact, ContactEvent, ContactSet};
+use crate::continuous::{self, Pose};
 use crate::drag::DragModel;
 use crate::error::{CaromError, check_finite_vec};
 use crate::math::{Real, Vec2};
@@ -204,7 +205,8 @@ impl World {
     ///
     /// The stages, in order: find new pairs in the broadphase; build contact manifolds in the
     /// narrowphase; solve (integrate forces into velocities, resolve contacts, integrate
-    /// positions, in substeps for soft step); refresh the broadphase from the new positions.
+    /// positions, in substeps for soft step); continuous collision for fast bodies; refresh the
+    /// broadphase from the new positions.
     ///
     /// # Errors
     /// A time step that is not finite and positive; the world is left untouched.
@@ -225,12 +227,36 @@ impl World {
             &self.broadphase,
             self.settings.speculative_distance,
         );
+        let starts = self.settings.continuous.then(|| self.poses());
         self.solve(dt);
+        if let Some(starts) = starts {
+            self.solve_continuous(&starts);
+        }
         self.refresh_broadphase();
 
         self.time += dt as f64;
         self.step_count += 1;
         Ok(())
+    }
+
+    /// Every body's pose, in storage order.
+    fn poses(&self) -> Vec<Pose> {
+        self.bodies.as_slice().iter().map(Pose::of).collect()
+    }
+
+    /// Moves fast bodies that would have passed through something back to the impact.
+    fn solve_continuous(&mut self, starts: &[Pose]) {
+        let slots = &self.bodies;
+        let dense: Vec<Option<usize>> = (0..slots.slot_count())
+            .map(|slot| slots.dense_index_of_slot(slot))
+            .collect();
+        continuous::solve_continuous(
+            self.bodies.as_mut_slice(),
+            starts,
+            &self.broadphase,
+            |h| dense.get(h.index() as usize).copied().flatten(),
+            self.settings.solver.linear_slop,
+        );
     }
 
     /// Runs the configured solver over every body and touching contact.

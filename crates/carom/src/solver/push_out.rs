@@ -1,6 +1,7 @@
 //! The tutorial with impulse resolution unchecked: overlapping bodies are moved apart along
 //! the contact normal, each in proportion to its inverse mass, and their approaching velocity
-//! is removed. No rotation, friction or bounce: it shows why impulses are needed.
+//! is removed. No rotation, friction or bounce: it shows why impulses are needed. Bodies still
+//! apart (speculative points) may close the gap but not pass it.
 
 use super::body_state::{integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
@@ -30,16 +31,16 @@ pub(super) fn solve(
                 .iter()
                 .map(|p| c.current_separation(p, a, b))
                 .fold(Real::INFINITY, Real::min);
-            if deepest >= 0.0 {
-                continue;
-            }
-            let correction = c.normal * -deepest;
+            let correction = c.normal * (-deepest).max(0.0);
             a.dp -= correction * (c.inv_mass_a / total);
             b.dp += correction * (c.inv_mass_b / total);
-            let approach = (b.v - a.v).dot(&c.normal);
-            if approach < 0.0 {
-                a.v += c.normal * (approach * c.inv_mass_a / total);
-                b.v -= c.normal * (approach * c.inv_mass_b / total);
+            // Approaching faster than closes the gap this step (any approach, once touching) is
+            // removed; the allowance for a gap matters after continuous collision, which leaves
+            // fast bodies just short of a surface.
+            let excess = (b.v - a.v).dot(&c.normal) + deepest.max(0.0) / dt;
+            if excess < 0.0 {
+                a.v += c.normal * (excess * c.inv_mass_a / total);
+                b.v -= c.normal * (excess * c.inv_mass_b / total);
             }
         }
     }

@@ -2,6 +2,9 @@
 //! `j = max((-vn + bias) / k, 0)`, with `k` from masses and inertias and the Baumgarte bias
 //! `0.2 / dt · max(0, depth - 0.01)`, applied to both bodies and repeated for the iterations.
 //! Nothing accumulates between iterations or steps, and there is no friction or restitution.
+//! The one addition: a point still apart by `s` (a speculative point, which the tutorial
+//! lacked) gets the bias `-s / dt`, so the bodies may close the gap but not pass it; without it
+//! continuous collision would leave fast bodies frozen just short of a surface.
 
 use super::body_state::{integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
@@ -25,11 +28,14 @@ pub(super) fn solve(
     for _ in 0..params.iterations {
         for c in constraints.iter() {
             let (a, b) = pair_mut(states, c.a, c.b);
-            // The tutorial knows only overlapping points.
-            for point in c.points().iter().filter(|p| p.separation <= 0.0) {
-                let depth = -point.separation;
+            for point in c.points() {
                 let vn = ContactConstraint::relative_velocity(point, a, b).dot(&c.normal);
-                let bias = params.baumgarte / dt * (depth - TUTORIAL_SLOP).max(0.0);
+                let bias = if point.separation > 0.0 {
+                    -point.separation / dt
+                } else {
+                    let depth = -point.separation;
+                    params.baumgarte / dt * (depth - TUTORIAL_SLOP).max(0.0)
+                };
                 let j = ((-vn + bias) * point.normal_mass).max(0.0);
                 c.apply(point, c.normal * j, a, b);
             }
