@@ -1,0 +1,112 @@
+//! Continuous collision: the tutorial's tunnelling case, and Box2D's hardest sweeps.
+
+use carom::{BodyDef, Real, Shape, SolverParams, Vec2, World, WorldSettings, vec2};
+
+const DT: Real = 1.0 / 60.0;
+
+fn world(continuous: bool, gravity: Vec2) -> World {
+    World::with_settings(WorldSettings {
+        gravity,
+        continuous,
+        solver: SolverParams::default(),
+        ..WorldSettings::default()
+    })
+    .unwrap()
+}
+
+/// Fires a 0.25 m circle at 300 m/s, from 10 m away along `direction`, at a 0.1 m thick static
+/// wall through the origin facing it; returns how far past the wall's far face it ended
+/// (negative: it stayed on its side).
+fn fire_at_wall(continuous: bool, direction: Real) -> Real {
+    let mut world = world(continuous, Vec2::zeros());
+    let along = vec2(direction.cos(), direction.sin());
+    world
+        .add_body(BodyDef::static_body(Shape::rect(0.05, 4.0).unwrap()).angle(direction))
+        .unwrap();
+    let bullet = world
+        .add_body(
+            BodyDef::dynamic(Shape::circle(0.25).unwrap())
+                .position(-along * 10.0)
+                .linear_velocity(along * 300.0)
+                .density(4.0),
+        )
+        .unwrap();
+    for _ in 0..30 {
+        world.step(DT).unwrap();
+    }
+    world.body(bullet).unwrap().position().dot(&along) - 0.05
+}
+
+#[test]
+fn without_continuous_collision_the_bullet_tunnels() {
+    let past = fire_at_wall(false, 0.0);
+    assert!(
+        past > 1.0,
+        "expected a tunnel, ended {past} m past the wall"
+    );
+}
+
+#[test]
+fn with_continuous_collision_the_bullet_never_passes_the_wall() {
+    for run in 0..100 {
+        let direction = run as Real * 0.0631;
+        let past = fire_at_wall(true, direction);
+        // Its centre stays at least a radius in front of the near face.
+        assert!(
+            past < -0.1 - 0.25 + 0.01,
+            "run {run}: ended {past} m past the wall"
+        );
+    }
+}
+
+/// Drops a 4 x 0.1 m plank at 100 m/s spinning at 50 rad/s onto a thin static floor next to
+/// a thin static post; returns the lowest point the plank reached and whether it crossed the
+/// post's centre line.
+fn drop_plank(angle: Real, spin: Real, offset: Real) -> (Real, bool) {
+    let mut world = world(true, vec2(0.0, -10.0));
+    // The "segment": a 0.02 m thick static floor with its top at y = 0.
+    world
+        .add_body(BodyDef::static_body(Shape::rect(20.0, 0.01).unwrap()).position(vec2(0.0, -0.01)))
+        .unwrap();
+    // A 0.2 x 2 m post standing on it at x = 1.
+    world
+        .add_body(BodyDef::static_body(Shape::rect(0.1, 1.0).unwrap()).position(vec2(1.0, 1.0)))
+        .unwrap();
+    let plank = world
+        .add_body(
+            BodyDef::dynamic(Shape::rect(2.0, 0.05).unwrap())
+                .position(vec2(offset, 8.0))
+                .angle(angle)
+                .linear_velocity(vec2(0.0, -100.0))
+                .angular_velocity(spin)
+                .friction(0.9),
+        )
+        .unwrap();
+    let mut lowest = Real::INFINITY;
+    let start_side = offset < 1.0;
+    let mut crossed = false;
+    for _ in 0..60 {
+        world.step(DT).unwrap();
+        let body = world.body(plank).unwrap();
+        lowest = lowest.min(body.aabb().min.y);
+        // The plank's centre must never jump to the other side of the post below its top.
+        let p = body.position();
+        if p.y < 2.0 && (p.x < 1.0) != start_side {
+            crossed = true;
+        }
+    }
+    (lowest, crossed)
+}
+
+#[test]
+fn a_fast_spinning_plank_never_passes_the_floor_or_the_post() {
+    for run in 0..100 {
+        let angle = run as Real * 0.377;
+        let spin = if run % 2 == 0 { 50.0 } else { -50.0 };
+        let offset = [-1.5, -0.5, 0.3][run % 3];
+        let (lowest, crossed) = drop_plank(angle, spin, offset);
+        // Below the floor's top by no more than the slop it is allowed to sink.
+        assert!(lowest > -0.02, "run {run}: reached y = {lowest}");
+        assert!(!crossed, "run {run}: passed through the post");
+    }
+}
