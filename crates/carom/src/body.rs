@@ -222,6 +222,12 @@ pub struct Body {
     aabb: Aabb,
     /// Borrowed mutably since the last step: the world must re-check its broadphase entry.
     touched: bool,
+    /// How long the body has moved slower than the sleep threshold, s.
+    sleep_time: Real,
+    /// Asleep: skipped by every stage until something wakes it.
+    sleeping: bool,
+    /// The island the body fell asleep with; its whole island wakes together.
+    sleep_group: u32,
 }
 
 /// Checks that a coefficient is finite and not negative.
@@ -270,6 +276,9 @@ impl Body {
             world_shape,
             aabb,
             touched: false,
+            sleep_time: 0.0,
+            sleeping: false,
+            sleep_group: 0,
         };
         body.update_mass()?;
         if body.kind != BodyKind::Static {
@@ -467,6 +476,58 @@ impl Body {
         self.aabb
     }
 
+    /// True when the body sleeps: it is skipped by every stage of the step until touched by a
+    /// moving body, pushed, or moved by the user. Only dynamic bodies sleep.
+    #[inline]
+    pub fn is_sleeping(&self) -> bool {
+        self.sleeping
+    }
+
+    /// True when the step moves this body: it is not static and not asleep.
+    #[inline]
+    pub fn moves(&self) -> bool {
+        self.kind != BodyKind::Static && !self.sleeping
+    }
+
+    /// How long the body has been slower than the sleep threshold, s.
+    #[inline]
+    pub fn sleep_time(&self) -> Real {
+        self.sleep_time
+    }
+
+    /// Wakes the body (its island follows at the next step, through their contacts).
+    pub fn wake_up(&mut self) {
+        self.sleeping = false;
+        self.sleep_time = 0.0;
+    }
+
+    /// Puts the body to sleep with its island: it stops until woken.
+    pub(crate) fn fall_asleep(&mut self, group: u32) {
+        self.sleeping = true;
+        self.sleep_group = group;
+        self.linear_velocity = Vec2::zeros();
+        self.angular_velocity = 0.0;
+    }
+
+    /// The island the body fell asleep with.
+    pub(crate) fn sleep_group(&self) -> u32 {
+        self.sleep_group
+    }
+
+    /// Advances or resets the sleep timer from the body's fastest point speed.
+    pub(crate) fn update_sleep_time(&mut self, threshold: Real, dt: Real) {
+        let reach = match &self.shape {
+            Shape::Circle(c) => c.radius(),
+            Shape::Polygon(p) => p.radius(),
+        };
+        let speed = self.linear_velocity.norm() + reach * self.angular_velocity.abs();
+        if speed > threshold || self.kind != BodyKind::Dynamic {
+            self.sleep_time = 0.0;
+        } else {
+            self.sleep_time += dt;
+        }
+    }
+
     /// Kinetic energy, linear plus rotational, in joules.
     pub fn kinetic_energy(&self) -> Real {
         0.5 * self.mass.mass * self.linear_velocity.norm_squared()
@@ -496,6 +557,7 @@ impl Body {
     /// Moves the body (teleports it: no velocity change).
     pub fn set_position(&mut self, position: Vec2) -> Result<(), CaromError> {
         self.position = check_finite_vec("body position", position)?;
+        self.wake_up();
         self.sync_world_shape();
         Ok(())
     }
@@ -503,6 +565,7 @@ impl Body {
     /// Turns the body to `angle` radians.
     pub fn set_angle(&mut self, angle: Real) -> Result<(), CaromError> {
         self.rotation = Rot::new(check_finite("body angle", angle)?);
+        self.wake_up();
         self.sync_world_shape();
         Ok(())
     }
@@ -512,6 +575,7 @@ impl Body {
         check_finite_vec("linear velocity", velocity)?;
         if self.kind != BodyKind::Static {
             self.linear_velocity = velocity;
+            self.wake_up();
         }
         Ok(())
     }
@@ -521,6 +585,7 @@ impl Body {
         check_finite("angular velocity", velocity)?;
         if self.kind != BodyKind::Static {
             self.angular_velocity = velocity;
+            self.wake_up();
         }
         Ok(())
     }
@@ -538,6 +603,7 @@ impl Body {
             self.angular_velocity = 0.0;
         }
         self.clear_forces();
+        self.wake_up();
         Ok(())
     }
 
@@ -559,6 +625,7 @@ impl Body {
             self.shape = previous;
             return Err(e);
         }
+        self.wake_up();
         self.sync_world_shape();
         Ok(())
     }
@@ -607,6 +674,7 @@ impl Body {
         if self.is_dynamic() {
             self.force += force;
             self.torque += cross(world_point - self.position, force);
+            self.wake_up();
         }
         Ok(())
     }
@@ -616,6 +684,7 @@ impl Body {
         check_finite_vec("force", force)?;
         if self.is_dynamic() {
             self.force += force;
+            self.wake_up();
         }
         Ok(())
     }
@@ -625,6 +694,7 @@ impl Body {
         check_finite("torque", torque)?;
         if self.is_dynamic() {
             self.torque += torque;
+            self.wake_up();
         }
         Ok(())
     }
@@ -634,6 +704,7 @@ impl Body {
     pub fn apply_impulse(&mut self, impulse: Vec2, world_point: Vec2) -> Result<(), CaromError> {
         check_finite_vec("impulse", impulse)?;
         check_finite_vec("impulse application point", world_point)?;
+        self.wake_up();
         self.linear_velocity += impulse * self.mass.inv_mass;
         self.angular_velocity +=
             self.mass.inv_inertia * cross(world_point - self.position, impulse);
@@ -643,6 +714,7 @@ impl Body {
     /// Applies an impulse through the centre of mass.
     pub fn apply_impulse_at_center(&mut self, impulse: Vec2) -> Result<(), CaromError> {
         check_finite_vec("impulse", impulse)?;
+        self.wake_up();
         self.linear_velocity += impulse * self.mass.inv_mass;
         Ok(())
     }
@@ -650,6 +722,7 @@ impl Body {
     /// Applies an angular impulse, N·m·s.
     pub fn apply_angular_impulse(&mut self, impulse: Real) -> Result<(), CaromError> {
         check_finite("angular impulse", impulse)?;
+        self.wake_up();
         self.angular_velocity += self.mass.inv_inertia * impulse;
         Ok(())
     }

@@ -170,8 +170,17 @@ impl ContactSet {
 
     /// The narrowphase stage: rebuilds every manifold from the bodies' world shapes, carries
     /// impulses over by feature id, reports touching changes, and drops contacts whose fat
-    /// boxes no longer overlap (or whose bodies can no longer collide).
-    pub(crate) fn update(&mut self, bodies: &BodySet, broadphase: &BroadPhase, margin: Real) {
+    /// boxes no longer overlap (or whose bodies can no longer collide). Pairs where neither
+    /// body moves (static or asleep) are left as they are. Sleeping islands touched by a moving
+    /// body are added to `wake`. Returns the deepest penetration seen.
+    pub(crate) fn update(
+        &mut self,
+        bodies: &BodySet,
+        broadphase: &BroadPhase,
+        margin: Real,
+        wake: &mut Vec<u32>,
+    ) -> Real {
+        let mut deepest: Real = 0.0;
         let mut index = self.contacts.len();
         // Backwards, so destroying (swap-remove) never skips a contact.
         while index > 0 {
@@ -182,6 +191,9 @@ impl ContactSet {
                 self.destroy(index, true);
                 continue;
             };
+            if !a.moves() && !b.moves() {
+                continue;
+            }
             if !kinds_can_collide(a.kind(), b.kind())
                 || !broadphase.fat_aabbs_overlap(contact.body_a, contact.body_b)
             {
@@ -193,6 +205,14 @@ impl ContactSet {
                 manifold::update(a.world_shape(), b.world_shape(), margin, &contact.manifold);
             contact.manifold = manifold;
             let touching = !manifold.is_empty();
+            if touching {
+                deepest = deepest.max(-manifold.min_separation().unwrap_or(0.0));
+                for (sleeper, other) in [(a, b), (b, a)] {
+                    if sleeper.is_sleeping() && other.moves() {
+                        wake.push(sleeper.sleep_group());
+                    }
+                }
+            }
             if touching != contact.touching {
                 contact.touching = touching;
                 let (body_a, body_b) = (contact.body_a, contact.body_b);
@@ -203,6 +223,7 @@ impl ContactSet {
                 });
             }
         }
+        deepest
     }
 
     /// Every contact.

@@ -44,7 +44,9 @@ pub mod ray;
 pub mod segment;
 pub mod settings;
 pub mod shape;
+pub mod sleep;
 pub mod solver;
+pub mod stats;
 pub mod world;
 
 pub use aabb::Aabb;
@@ -62,4 +64,5 @@ pub use segment::{SegmentIntersection, intersect_segments};
 pub use settings::WorldSettings;
 pub use shape::{Circle, Polygon, Shape, WorldShape};
 pub use solver::{SolverKind, SolverParams};
+pub use stats::{StageTimes, StepStats};
 pub use world::{World, WorldRayHit};

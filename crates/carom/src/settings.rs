@@ -31,6 +31,8 @@ pub struct WorldSettings {
     pub solver: SolverParams,
     /// Sweep fast bodies so they cannot tunnel through thin ones. Default on.
     pub continuous: bool,
+    /// Let islands of resting bodies sleep, costing nothing until disturbed. Default on.
+    pub sleeping: bool,
 }
 
 impl Default for WorldSettings {
@@ -42,6 +44,7 @@ impl Default for WorldSettings {
             aabb_margin: AABB_MARGIN,
             solver: SolverParams::default(),
             continuous: true,
+            sleeping: true,
         }
     }
 }

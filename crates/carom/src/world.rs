@@ -11,7 +11,10 @@ use crate::error::{CaromError, check_finite_vec};
 use crate::math::{Real, Vec2};
 use crate::ray::Ray;
 use crate::settings::WorldSettings;
+use crate::sleep;
 use crate::solver::{self, Environment, SolverParams};
+use crate::stats::StepStats;
+use std::time::Instant;
 
 /// The closest body a ray enters.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -37,6 +40,9 @@ pub struct World {
     settings: WorldSettings,
     time: f64,
     step_count: u64,
+    /// Numbers islands as they fall asleep.
+    sleep_groups: u32,
+    stats: StepStats,
 }
 
 fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {
@@ -77,11 +83,26 @@ impl World {
         &self.settings
     }
 
-    /// Replaces the settings (checked first).
+    /// Replaces the settings (checked first). Turning sleeping off wakes every body.
     pub fn set_settings(&mut self, settings: WorldSettings) -> Result<(), CaromError> {
         check_settings(&settings)?;
+        if !settings.sleeping {
+            self.wake_all();
+        }
         self.settings = settings;
         Ok(())
+    }
+
+    /// Wakes every sleeping body.
+    pub fn wake_all(&mut self) {
+        for body in self.bodies.as_mut_slice() {
+            body.wake_up();
+        }
+    }
+
+    /// What the last step did and what each stage cost.
+    pub fn stats(&self) -> &StepStats {
+        &self.stats
     }
 
     /// Gravity, m/s².
@@ -218,21 +239,73 @@ impl World {
                 value: dt,
             });
         }
+        let step_start = Instant::now();
+        let mut stats = StepStats::default();
         self.contacts.begin_step();
         self.catch_up_with_edits();
 
+        let clock = Instant::now();
         self.find_pairs();
-        self.contacts.update(
+        stats.times.broadphase = clock.elapsed();
+
+        let clock = Instant::now();
+        let mut wake = Vec::new();
+        stats.max_penetration = self.contacts.update(
             &self.bodies,
             &self.broadphase,
             self.settings.speculative_distance,
+            &mut wake,
         );
+        // Islands a moving body touched join this step.
+        sleep::wake_groups(self.bodies.as_mut_slice(), &wake);
+        stats.times.narrowphase = clock.elapsed();
+
+        let clock = Instant::now();
+        let dense = self.contact_bodies();
         let starts = self.settings.continuous.then(|| self.poses());
-        self.solve(dt);
+        stats.contact_points = self.solve(dt, &dense);
+        stats.times.solve = clock.elapsed();
+
         if let Some(starts) = starts {
-            self.solve_continuous(&starts);
+            let clock = Instant::now();
+            stats.continuous_impacts = self.solve_continuous(&starts);
+            stats.times.continuous = clock.elapsed();
         }
+
+        let clock = Instant::now();
         self.refresh_broadphase();
+        stats.times.broadphase += clock.elapsed();
+
+        if self.settings.sleeping {
+            let clock = Instant::now();
+            let touching: Vec<(usize, usize)> = self
+                .contacts
+                .iter()
+                .zip(&dense)
+                .filter(|(c, _)| c.is_touching())
+                .map(|(_, pair)| *pair)
+                .collect();
+            sleep::update_sleep(
+                self.bodies.as_mut_slice(),
+                &touching,
+                dt,
+                &mut self.sleep_groups,
+            );
+            stats.times.sleep = clock.elapsed();
+        }
+
+        stats.bodies = self.bodies.len();
+        stats.contacts = self.contacts.len();
+        stats.touching_contacts = self.contacts.iter().filter(|c| c.is_touching()).count();
+        for body in self.bodies.as_slice() {
+            if body.is_sleeping() {
+                stats.sleeping_bodies += 1;
+            } else if body.moves() {
+                stats.kinetic_energy += body.kinetic_energy();
+            }
+        }
+        stats.times.total = step_start.elapsed();
+        self.stats = stats;
 
         self.time += dt as f64;
         self.step_count += 1;
@@ -244,8 +317,9 @@ impl World {
         self.bodies.as_slice().iter().map(Pose::of).collect()
     }
 
-    /// Moves fast bodies that would have passed through something back to the impact.
-    fn solve_continuous(&mut self, starts: &[Pose]) {
+    /// Moves fast bodies that would have passed through something back to the impact;
+    /// returns how many.
+    fn solve_continuous(&mut self, starts: &[Pose]) -> usize {
         let slots = &self.bodies;
         let dense: Vec<Option<usize>> = (0..slots.slot_count())
             .map(|slot| slots.dense_index_of_slot(slot))
@@ -256,36 +330,38 @@ impl World {
             &self.broadphase,
             |h| dense.get(h.index() as usize).copied().flatten(),
             self.settings.solver.linear_slop,
-        );
+        )
     }
 
-    /// Runs the configured solver over every body and touching contact.
-    fn solve(&mut self, dt: Real) {
+    /// The dense indices of every contact's two bodies, in contact order.
+    fn contact_bodies(&self) -> Vec<(usize, usize)> {
+        let bodies = &self.bodies;
+        let index = |h| {
+            bodies
+                .dense_index(h)
+                .expect("contacts only join live bodies")
+        };
+        self.contacts
+            .iter()
+            .map(|c| (index(c.body_a()), index(c.body_b())))
+            .collect()
+    }
+
+    /// Runs the configured solver over every moving body and touching contact; returns how
+    /// many contact points it solved.
+    fn solve(&mut self, dt: Real, dense: &[(usize, usize)]) -> usize {
         let environment = Environment {
             gravity: self.settings.gravity,
             drag: Some(self.settings.drag),
         };
-        let bodies = &self.bodies;
-        let dense: Vec<(usize, usize)> = self
-            .contacts
-            .iter()
-            .map(|c| {
-                let index = |h| {
-                    bodies
-                        .dense_index(h)
-                        .expect("contacts only join live bodies")
-                };
-                (index(c.body_a()), index(c.body_b()))
-            })
-            .collect();
         solver::step(
             &self.settings.solver,
             environment,
             self.bodies.as_mut_slice(),
             self.contacts.as_mut_slice(),
-            &dense,
+            dense,
             dt,
-        );
+        )
     }
 
     /// Brings the broadphase up to date with bodies the user edited since the last step.
@@ -316,7 +392,7 @@ impl World {
             self.margin_for(BodyKind::Kinematic),
             self.margin_for(BodyKind::Dynamic),
         ];
-        for body in self.bodies.as_slice() {
+        for body in self.bodies.as_slice().iter().filter(|b| b.moves()) {
             let margin = match body.kind() {
                 BodyKind::Static => continue,
                 BodyKind::Kinematic => margins[0],

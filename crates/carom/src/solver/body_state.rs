@@ -30,7 +30,7 @@ impl BodyState {
 
     /// Commits the step: the body moves by `dp` and `dq` and takes the new velocities.
     pub fn write_back(&self, body: &mut Body) {
-        if body.kind() == BodyKind::Static {
+        if !body.moves() {
             return;
         }
         body.finish_step(self.v, self.w, self.dp, self.dq);
@@ -48,7 +48,7 @@ pub(crate) fn integrate_velocities(
     // No body may turn more than `max_rotation` in one (sub)step.
     let max_angular_speed = params.max_rotation / h;
     for (body, state) in bodies.iter().zip(states.iter_mut()) {
-        if body.kind() != BodyKind::Dynamic {
+        if body.kind() != BodyKind::Dynamic || body.is_sleeping() {
             continue;
         }
         let acceleration =
@@ -71,7 +71,7 @@ pub(crate) fn integrate_velocities(
 /// Positions from velocities over `h` (accumulated in `dp` and `dq`).
 pub(crate) fn integrate_positions(bodies: &[Body], states: &mut [BodyState], h: Real) {
     for (body, state) in bodies.iter().zip(states.iter_mut()) {
-        if body.kind() == BodyKind::Static {
+        if !body.moves() {
             continue;
         }
         state.dp += state.v * h;

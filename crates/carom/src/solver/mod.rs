@@ -227,7 +227,8 @@ pub(crate) struct Environment {
 }
 
 /// Runs one step of the chosen solver over the bodies (dense, in storage order) and the
-/// contacts; `dense[i]` gives the dense indices of contact `i`'s bodies.
+/// contacts; `dense[i]` gives the dense indices of contact `i`'s bodies. Returns how many
+/// contact points were solved.
 pub(crate) fn step(
     params: &SolverParams,
     environment: Environment,
@@ -235,13 +236,13 @@ pub(crate) fn step(
     contacts: &mut [Contact],
     dense: &[(usize, usize)],
     dt: Real,
-) {
+) -> usize {
     let mut states: Vec<BodyState> = bodies.iter().map(BodyState::from_body).collect();
     let mut constraints: Vec<ContactConstraint> = contacts
         .iter()
         .zip(dense)
         .enumerate()
-        .filter(|(_, (c, _))| c.is_touching())
+        .filter(|(_, (c, (a, b)))| c.is_touching() && (bodies[*a].moves() || bodies[*b].moves()))
         .map(|(i, (c, &(a, b)))| ContactConstraint::new(i, c, a, b, bodies))
         .collect();
     match params.effective_kind() {
@@ -284,4 +285,5 @@ pub(crate) fn step(
     for (body, state) in bodies.iter_mut().zip(&states) {
         state.write_back(body);
     }
+    constraints.iter().map(|c| c.points().len()).sum()
 }

@@ -1,0 +1,87 @@
+//! Sleeping: islands of bodies at rest stop costing anything until something disturbs them.
+//!
+//! A body's sleep timer runs while its fastest point moves slower than [`SLEEP_THRESHOLD`].
+//! Islands are the groups of awake dynamic bodies joined by touching contacts (static and
+//! kinematic bodies do not join islands, or one floor would tie a whole world together). An
+//! island whose every body has rested for [`TIME_TO_SLEEP`] falls asleep as one: its bodies
+//! are skipped by integration, the solver, the narrowphase and the broadphase. It wakes as one
+//! when a moving body touches it, or when the user moves or pushes one of its bodies.
+
+use crate::body::{Body, BodyKind};
+use crate::math::Real;
+
+/// Bodies whose fastest point moves slower than this may sleep, m/s (Box2D's 5 cm/s).
+pub const SLEEP_THRESHOLD: Real = 0.05;
+
+/// How long a whole island must rest before it sleeps, s (Box2D's 0.5 s).
+pub const TIME_TO_SLEEP: Real = 0.5;
+
+fn find(parent: &mut [u32], mut i: u32) -> u32 {
+    while parent[i as usize] != i {
+        // Path halving keeps the trees flat.
+        parent[i as usize] = parent[parent[i as usize] as usize];
+        i = parent[i as usize];
+    }
+    i
+}
+
+/// Advances sleep timers and puts resting islands to sleep. `touching` lists the dense indices
+/// of every touching contact's bodies; `next_group` numbers the islands that fall asleep.
+/// Returns how many bodies fell asleep.
+pub(crate) fn update_sleep(
+    bodies: &mut [Body],
+    touching: &[(usize, usize)],
+    dt: Real,
+    next_group: &mut u32,
+) -> usize {
+    let awake_dynamic = |b: &Body| b.kind() == BodyKind::Dynamic && !b.is_sleeping();
+    for body in bodies.iter_mut().filter(|b| awake_dynamic(b)) {
+        body.update_sleep_time(SLEEP_THRESHOLD, dt);
+    }
+    let mut parent: Vec<u32> = (0..bodies.len() as u32).collect();
+    for &(a, b) in touching {
+        if awake_dynamic(&bodies[a]) && awake_dynamic(&bodies[b]) {
+            let (ra, rb) = (find(&mut parent, a as u32), find(&mut parent, b as u32));
+            if ra != rb {
+                parent[ra.max(rb) as usize] = ra.min(rb);
+            }
+        }
+    }
+    // The island rests as long as its most restless body.
+    let mut island_rest = vec![Real::INFINITY; bodies.len()];
+    for i in 0..bodies.len() {
+        if awake_dynamic(&bodies[i]) {
+            let root = find(&mut parent, i as u32) as usize;
+            island_rest[root] = island_rest[root].min(bodies[i].sleep_time());
+        }
+    }
+    let mut group_of_root: Vec<u32> = vec![0; bodies.len()];
+    let mut fell_asleep = 0;
+    for i in 0..bodies.len() {
+        if !awake_dynamic(&bodies[i]) {
+            continue;
+        }
+        let root = find(&mut parent, i as u32) as usize;
+        if island_rest[root] >= TIME_TO_SLEEP {
+            if group_of_root[root] == 0 {
+                *next_group += 1;
+                group_of_root[root] = *next_group;
+            }
+            bodies[i].fall_asleep(group_of_root[root]);
+            fell_asleep += 1;
+        }
+    }
+    fell_asleep
+}
+
+/// Wakes every sleeping body of the given islands.
+pub(crate) fn wake_groups(bodies: &mut [Body], groups: &[u32]) {
+    if groups.is_empty() {
+        return;
+    }
+    for body in bodies.iter_mut().filter(|b| b.is_sleeping()) {
+        if groups.contains(&body.sleep_group()) {
+            body.wake_up();
+        }
+    }
+}

@@ -1,0 +1,44 @@
+//! What a step did and what it cost: the figures the demo and the benchmarks show.
+
+use crate::math::Real;
+use std::time::Duration;
+
+/// Wall-clock time spent in each stage of one step.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct StageTimes {
+    /// Finding new pairs and refreshing the trees.
+    pub broadphase: Duration,
+    /// Building contact manifolds.
+    pub narrowphase: Duration,
+    /// Integrating and resolving contacts.
+    pub solve: Duration,
+    /// Sweeping fast bodies.
+    pub continuous: Duration,
+    /// Sleep timers and islands.
+    pub sleep: Duration,
+    /// The whole step.
+    pub total: Duration,
+}
+
+/// Counts and measures from the last step.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct StepStats {
+    /// Bodies in the world.
+    pub bodies: usize,
+    /// Bodies asleep after the step.
+    pub sleeping_bodies: usize,
+    /// Pairs the narrowphase watches.
+    pub contacts: usize,
+    /// Pairs with contact points.
+    pub touching_contacts: usize,
+    /// Contact points solved.
+    pub contact_points: usize,
+    /// The deepest overlap among the contacts built this step, m.
+    pub max_penetration: Real,
+    /// Kinetic energy of the moving bodies after the step, J.
+    pub kinetic_energy: Real,
+    /// Fast bodies continuous collision moved back to an impact.
+    pub continuous_impacts: usize,
+    /// Time per stage.
+    pub times: StageTimes,
+}
