@@ -49,16 +49,16 @@ pub(crate) fn update_sleep(
     }
     // The island rests as long as its most restless body.
     let mut island_rest = vec![Real::INFINITY; bodies.len()];
-    for i in 0..bodies.len() {
-        if awake_dynamic(&bodies[i]) {
+    for (i, body) in bodies.iter().enumerate() {
+        if awake_dynamic(body) {
             let root = find(&mut parent, i as u32) as usize;
-            island_rest[root] = island_rest[root].min(bodies[i].sleep_time());
+            island_rest[root] = island_rest[root].min(body.sleep_time());
         }
     }
     let mut group_of_root: Vec<u32> = vec![0; bodies.len()];
     let mut fell_asleep = 0;
-    for i in 0..bodies.len() {
-        if !awake_dynamic(&bodies[i]) {
+    for (i, body) in bodies.iter_mut().enumerate() {
+        if !awake_dynamic(body) {
             continue;
         }
         let root = find(&mut parent, i as u32) as usize;
@@ -67,7 +67,7 @@ pub(crate) fn update_sleep(
                 *next_group += 1;
                 group_of_root[root] = *next_group;
             }
-            bodies[i].fall_asleep(group_of_root[root]);
+            body.fall_asleep(group_of_root[root]);
             fell_asleep += 1;
         }
     }
