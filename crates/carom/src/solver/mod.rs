@@ -85,7 +85,10 @@ pub struct SolverParams {
     pub substeps: u32,
     /// Start each step from last step's impulses (sequential impulse and soft step). Default on.
     pub warm_starting: bool,
-    /// Soft step: contact stiffness in Hz, capped at a quarter of the substep rate. Default 30.
+    /// Soft step: contact stiffness in Hz, capped at a quarter of the substep rate. Default 30,
+    /// as in Box2D. Soft contacts give a little under load (about 13 mm under 19 stacked 1 m
+    /// boxes at 30 Hz), so a tall column of boxes can buckle: at 30 Hz a column of 10 stands and
+    /// one of 20 falls; 60 Hz (allowed from 4 substeps) holds 20.
     pub contact_hertz: Real,
     /// Soft step: contact damping ratio. Default 10 (heavily over-damped: no bounce from bias).
     pub damping_ratio: Real,
