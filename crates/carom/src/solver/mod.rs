@@ -229,6 +229,18 @@ pub(crate) struct Environment {
     pub drag: Option<DragModel>,
 }
 
+/// What every solver reads and does not change: its settings, the world's forces, the bodies
+/// (for mass, forces and kind), and the step.
+pub(crate) struct SolverContext<'a> {
+    pub params: &'a SolverParams,
+    pub environment: Environment,
+    pub bodies: &'a [Body],
+    pub dt: Real,
+}
+
+/// A solver: moves the body states through one step, resolving the constraints.
+type Solve = fn(&SolverContext, &mut [BodyState], &mut [ContactConstraint]);
+
 /// Runs one step of the chosen solver over the bodies (dense, in storage order) and the
 /// contacts; `dense[i]` gives the dense indices of contact `i`'s bodies. Returns how many
 /// contact points were solved.
@@ -248,40 +260,19 @@ pub(crate) fn step(
         .filter(|(_, (c, (a, b)))| c.is_touching() && (bodies[*a].moves() || bodies[*b].moves()))
         .map(|(i, (c, &(a, b)))| ContactConstraint::new(i, c, a, b, bodies))
         .collect();
-    match params.effective_kind() {
-        SolverKind::PushOut => push_out::solve(
-            params,
-            environment,
-            bodies,
-            &mut states,
-            &mut constraints,
-            dt,
-        ),
-        SolverKind::TutorialImpulse => tutorial_impulse::solve(
-            params,
-            environment,
-            bodies,
-            &mut states,
-            &mut constraints,
-            dt,
-        ),
-        SolverKind::SequentialImpulse => sequential_impulse::solve(
-            params,
-            environment,
-            bodies,
-            &mut states,
-            &mut constraints,
-            dt,
-        ),
-        SolverKind::SoftStep => soft_step::solve(
-            params,
-            environment,
-            bodies,
-            &mut states,
-            &mut constraints,
-            dt,
-        ),
-    }
+    let solve: Solve = match params.effective_kind() {
+        SolverKind::PushOut => push_out::solve,
+        SolverKind::TutorialImpulse => tutorial_impulse::solve,
+        SolverKind::SequentialImpulse => sequential_impulse::solve,
+        SolverKind::SoftStep => soft_step::solve,
+    };
+    let context = SolverContext {
+        params,
+        environment,
+        bodies,
+        dt,
+    };
+    solve(&context, &mut states, &mut constraints);
     for constraint in &constraints {
         constraint.store_impulses(&mut contacts[constraint.contact_index]);
     }

@@ -5,18 +5,19 @@
 use super::body_state::{integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
 use super::soft_step::{apply_restitution, forget_impulses, solve_friction, warm_start};
-use super::{BodyState, ContactConstraint, Environment, SolverParams};
-use crate::body::Body;
-use crate::math::Real;
+use super::{BodyState, ContactConstraint, SolverContext};
 
 pub(super) fn solve(
-    params: &SolverParams,
-    environment: Environment,
-    bodies: &[Body],
+    context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
-    dt: Real,
 ) {
+    let SolverContext {
+        params,
+        environment,
+        bodies,
+        dt,
+    } = *context;
     let inv_dt = 1.0 / dt;
     integrate_velocities(params, environment, bodies, states, dt);
     if params.warm_starting {

@@ -7,25 +7,31 @@
 
 use super::body_state::{integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
-use super::{BodyState, ContactConstraint, Environment, Softness, SolverParams};
-use crate::body::Body;
+use super::{BodyState, ContactConstraint, Softness, SolverContext, SolverParams};
 use crate::math::Real;
 
 pub(super) fn solve(
-    params: &SolverParams,
-    environment: Environment,
-    bodies: &[Body],
+    context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
-    dt: Real,
 ) {
+    let SolverContext {
+        params,
+        environment,
+        bodies,
+        dt,
+    } = *context;
     let substeps = params.substeps.max(1);
     let h = dt / substeps as Real;
     let inv_h = 1.0 / h;
     // Stiffer than a quarter of the substep rate would ring.
     let hertz = params.contact_hertz.min(0.25 * inv_h);
-    let soft = Softness::new(hertz, params.damping_ratio, h);
-    let static_soft = Softness::new(params.static_stiffness * hertz, params.damping_ratio, h);
+    let bias = Bias {
+        soft: Softness::new(hertz, params.damping_ratio, h),
+        static_soft: Softness::new(params.static_stiffness * hertz, params.damping_ratio, h),
+        inv_h,
+        max_push_speed: params.max_push_speed,
+    };
     if !params.warm_starting {
         forget_impulses(constraints);
     }
@@ -33,30 +39,26 @@ pub(super) fn solve(
         integrate_velocities(params, environment, bodies, states, h);
         warm_start(constraints, states);
         for _ in 0..params.iterations {
-            solve_contacts(
-                constraints,
-                states,
-                soft,
-                static_soft,
-                inv_h,
-                params.max_push_speed,
-                true,
-            );
+            solve_contacts(constraints, states, &bias, true);
         }
         integrate_positions(bodies, states, h);
         for _ in 0..params.iterations {
-            solve_contacts(
-                constraints,
-                states,
-                soft,
-                static_soft,
-                inv_h,
-                params.max_push_speed,
-                false,
-            );
+            solve_contacts(constraints, states, &bias, false);
         }
     }
     apply_restitution(params, constraints, states);
+}
+
+/// How the biased pass pushes overlap out in one substep.
+struct Bias {
+    /// Softness of contacts between moving bodies.
+    soft: Softness,
+    /// Softness of contacts with static bodies (stiffer).
+    static_soft: Softness,
+    /// One over the substep.
+    inv_h: Real,
+    /// The fastest push-out, m/s.
+    max_push_speed: Real,
 }
 
 /// Starts from zero impulses (warm starting off).
@@ -85,24 +87,25 @@ pub(super) fn warm_start(constraints: &[ContactConstraint], states: &mut [BodySt
 fn solve_contacts(
     constraints: &mut [ContactConstraint],
     states: &mut [BodyState],
-    soft: Softness,
-    static_soft: Softness,
-    inv_h: Real,
-    max_push_speed: Real,
+    bias: &Bias,
     use_bias: bool,
 ) {
     for c in constraints.iter_mut() {
         let (a, b) = pair_mut(states, c.a, c.b);
-        let softness = if c.touches_static { static_soft } else { soft };
+        let softness = if c.touches_static {
+            bias.static_soft
+        } else {
+            bias.soft
+        };
         for i in 0..c.points().len() {
             let mut point = c.points()[i];
             let s = c.current_separation(&point, a, b);
-            let (bias, mass_scale, impulse_scale) = if s > 0.0 {
+            let (velocity_bias, mass_scale, impulse_scale) = if s > 0.0 {
                 // Speculative: may close exactly the gap this substep.
-                (s * inv_h, 1.0, 0.0)
+                (s * bias.inv_h, 1.0, 0.0)
             } else if use_bias {
                 (
-                    (softness.bias_rate * s).max(-max_push_speed),
+                    (softness.bias_rate * s).max(-bias.max_push_speed),
                     softness.mass_scale,
                     softness.impulse_scale,
                 )
@@ -110,7 +113,7 @@ fn solve_contacts(
                 (0.0, 1.0, 0.0)
             };
             let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
-            let impulse = -point.normal_mass * mass_scale * (vn + bias)
+            let impulse = -point.normal_mass * mass_scale * (vn + velocity_bias)
                 - impulse_scale * point.normal_impulse;
             let total = (point.normal_impulse + impulse).max(0.0);
             let applied = total - point.normal_impulse;

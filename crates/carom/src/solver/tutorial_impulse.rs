@@ -8,21 +8,23 @@
 
 use super::body_state::{integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
-use super::{BodyState, ContactConstraint, Environment, SolverParams};
-use crate::body::Body;
+use super::{BodyState, ContactConstraint, SolverContext};
 use crate::math::Real;
 
 /// The overlap the tutorial leaves alone, m.
 pub const TUTORIAL_SLOP: Real = 0.01;
 
 pub(super) fn solve(
-    params: &SolverParams,
-    environment: Environment,
-    bodies: &[Body],
+    context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
-    dt: Real,
 ) {
+    let SolverContext {
+        params,
+        environment,
+        bodies,
+        dt,
+    } = *context;
     // The tutorial's order: its bodies moved, then it found and resolved the contacts; gravity
     // comes after the resolution, so a resting body sinks g dt² a step unless bias lifts it.
     for _ in 0..params.iterations {
