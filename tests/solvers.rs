@@ -204,21 +204,22 @@ fn warm_starting_cuts_the_iterations_a_stack_needs() {
     // The fewest sequential-impulse iterations that keep a 10-box stack's top within 5 cm for
     // 5 s, with and without warm starting.
     let needed = |warm_starting: bool| {
-        (1..=64)
-            .find(|&iterations| {
-                let params = SolverParams {
-                    iterations,
-                    warm_starting,
-                    ..SolverParams::for_kind(SolverKind::SequentialImpulse)
-                };
-                stack_drift(params, 10, 5.0) < 0.05
-            })
-            .unwrap_or(u32::MAX)
+        (1..=64).find(|&iterations| {
+            let params = SolverParams {
+                iterations,
+                warm_starting,
+                ..SolverParams::for_kind(SolverKind::SequentialImpulse)
+            };
+            stack_drift(params, 10, 5.0) < 0.05
+        })
     };
     let (warm, cold) = (needed(true), needed(false));
-    println!("iterations needed for a 10-box stack: warm {warm}, cold {cold} (MAX: none up to 64)");
-    assert!(warm < u32::MAX, "warm starting never held the stack");
-    assert!(warm * 2 <= cold, "warm {warm} vs cold {cold}");
+    println!("iterations a 10-box stack needs: warm {warm:?}, cold {cold:?} (None: more than 64)");
+    let warm = warm.expect("warm starting never held the stack");
+    assert!(
+        cold.is_none_or(|cold| warm * 2 <= cold),
+        "warm {warm} vs cold {cold:?}"
+    );
 }
 
 #[test]
