@@ -1,13 +1,15 @@
 //! Continuous collision: the tutorial's tunnelling case, and Box2D's hardest sweeps.
 
-use carom::{BodyDef, Real, Shape, SolverParams, Vec2, World, WorldSettings, vec2};
+use carom::{
+    BodyDef, Effect, Effects, Real, Shape, SolverParams, Vec2, World, WorldSettings, vec2,
+};
 
 const DT: Real = 1.0 / 60.0;
 
 fn world(continuous: bool, gravity: Vec2) -> World {
     World::with_settings(WorldSettings {
         gravity,
-        continuous,
+        effects: Effects::ALL.switched(Effect::Continuous, continuous),
         solver: SolverParams::default(),
         ..WorldSettings::default()
     })

@@ -1,12 +1,12 @@
 //! Sleeping: resting islands stop, and wake when disturbed.
 
-use carom::{BodyDef, BodyHandle, Real, Shape, World, WorldSettings, vec2};
+use carom::{BodyDef, BodyHandle, Effect, Effects, Real, Shape, World, WorldSettings, vec2};
 
 const DT: Real = 1.0 / 60.0;
 
 fn world(sleeping: bool) -> World {
     World::with_settings(WorldSettings {
-        sleeping,
+        effects: Effects::ALL.switched(Effect::Sleeping, sleeping),
         ..WorldSettings::default()
     })
     .unwrap()

@@ -1,12 +1,12 @@
 //! What sleeping bodies cost: one step of 2000 boxes resting on a floor, asleep and (with
 //! sleeping off) awake. Run with `cargo bench -p carom --bench sleeping`.
 
-use carom::{BodyDef, Real, Shape, World, WorldSettings, vec2};
+use carom::{BodyDef, Effect, Effects, Real, Shape, World, WorldSettings, vec2};
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn resting_boxes(sleeping: bool) -> World {
     let mut world = World::with_settings(WorldSettings {
-        sleeping,
+        effects: Effects::ALL.switched(Effect::Sleeping, sleeping),
         ..WorldSettings::default()
     })
     .unwrap();

@@ -103,14 +103,16 @@ fn time_of_impact(shape: &Shape, sweep: &Sweep, other: &WorldShape, target: Real
 
 /// Sweeps every fast body and moves the ones that would have tunnelled back to their time of
 /// impact. `starts` holds each body's pose at the start of the step, in storage order.
+/// Returns the number of impacts and the number of bodies swept.
 pub(crate) fn solve_continuous(
     bodies: &mut [Body],
     starts: &[Pose],
     broadphase: &BroadPhase,
     dense_index: impl Fn(crate::BodyHandle) -> Option<usize>,
     target: Real,
-) -> usize {
+) -> (usize, usize) {
     let mut impacts: Vec<(usize, Isometry)> = Vec::new();
+    let mut sweeps = 0;
     for (index, body) in bodies.iter().enumerate() {
         if body.kind() != BodyKind::Dynamic {
             continue;
@@ -120,6 +122,7 @@ pub(crate) fn solve_continuous(
         if reach <= FAST_FRACTION * body.shape().min_extent() {
             continue;
         }
+        sweeps += 1;
         let start_box = WorldShape::new(body.shape(), &sweep.at(0.0)).aabb();
         let swept = start_box.union(&body.aabb());
         let mut first: Option<Real> = None;
@@ -146,5 +149,5 @@ pub(crate) fn solve_continuous(
     for &(index, pose) in &impacts {
         bodies[index].move_to_time_of_impact(pose);
     }
-    impacts.len()
+    (impacts.len(), sweeps)
 }

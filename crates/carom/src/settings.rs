@@ -1,6 +1,7 @@
 //! World settings and the engine's tuning constants, each named once.
 
 use crate::drag::DragModel;
+use crate::effects::Effects;
 use crate::math::{Real, Vec2};
 use crate::solver::SolverParams;
 
@@ -29,10 +30,8 @@ pub struct WorldSettings {
     pub aabb_margin: Real,
     /// Which contact solver runs, and how hard it works. Default: soft step, 4 substeps.
     pub solver: SolverParams,
-    /// Sweep fast bodies so they cannot tunnel through thin ones. Default on.
-    pub continuous: bool,
-    /// Let islands of resting bodies sleep, costing nothing until disturbed. Default on.
-    pub sleeping: bool,
+    /// The effects simulated; what is not named costs nothing. Default: all of them.
+    pub effects: Effects,
 }
 
 impl Default for WorldSettings {
@@ -43,8 +42,7 @@ impl Default for WorldSettings {
             speculative_distance: SPECULATIVE_DISTANCE,
             aabb_margin: AABB_MARGIN,
             solver: SolverParams::default(),
-            continuous: true,
-            sleeping: true,
+            effects: Effects::ALL,
         }
     }
 }

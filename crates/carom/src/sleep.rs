@@ -27,7 +27,7 @@ fn find(parent: &mut [u32], mut i: u32) -> u32 {
 
 /// Advances sleep timers and puts resting islands to sleep. `touching` lists the dense indices
 /// of every touching contact's bodies; `next_group` numbers the islands that fall asleep.
-/// Returns how many bodies fell asleep.
+/// Returns how many sleep timers were advanced.
 pub(crate) fn update_sleep(
     bodies: &mut [Body],
     touching: &[(usize, usize)],
@@ -35,8 +35,10 @@ pub(crate) fn update_sleep(
     next_group: &mut u32,
 ) -> usize {
     let awake_dynamic = |b: &Body| b.kind() == BodyKind::Dynamic && !b.is_sleeping();
+    let mut checked = 0;
     for body in bodies.iter_mut().filter(|b| awake_dynamic(b)) {
         body.update_sleep_time(SLEEP_THRESHOLD, dt);
+        checked += 1;
     }
     let mut parent: Vec<u32> = (0..bodies.len() as u32).collect();
     for &(a, b) in touching {
@@ -56,7 +58,6 @@ pub(crate) fn update_sleep(
         }
     }
     let mut group_of_root: Vec<u32> = vec![0; bodies.len()];
-    let mut fell_asleep = 0;
     for (i, body) in bodies.iter_mut().enumerate() {
         if !awake_dynamic(body) {
             continue;
@@ -68,10 +69,9 @@ pub(crate) fn update_sleep(
                 group_of_root[root] = *next_group;
             }
             body.fall_asleep(group_of_root[root]);
-            fell_asleep += 1;
         }
     }
-    fell_asleep
+    checked
 }
 
 /// Wakes every sleeping body of the given islands.

@@ -20,6 +20,34 @@ pub struct StageTimes {
     pub total: Duration,
 }
 
+/// Work the optional effects did in the last step: zero for effects that are off.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Work {
+    /// Gravity terms added to body velocities (one per body per substep).
+    pub gravity_terms: usize,
+    /// Drag terms applied (one per damped body per substep).
+    pub drag_terms: usize,
+    /// Tangent (friction) impulses computed.
+    pub friction_impulses: usize,
+    /// Restitution impulses computed.
+    pub restitution_impulses: usize,
+    /// Fast bodies swept by continuous collision.
+    pub sweeps: usize,
+    /// Bodies whose sleep timers were advanced.
+    pub sleep_checks: usize,
+}
+
+impl std::ops::AddAssign for Work {
+    fn add_assign(&mut self, other: Work) {
+        self.gravity_terms += other.gravity_terms;
+        self.drag_terms += other.drag_terms;
+        self.friction_impulses += other.friction_impulses;
+        self.restitution_impulses += other.restitution_impulses;
+        self.sweeps += other.sweeps;
+        self.sleep_checks += other.sleep_checks;
+    }
+}
+
 /// Counts and measures from the last step.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StepStats {
@@ -41,4 +69,6 @@ pub struct StepStats {
     pub continuous_impacts: usize,
     /// Time per stage.
     pub times: StageTimes,
+    /// Work done by the optional effects.
+    pub work: Work,
 }

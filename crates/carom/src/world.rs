@@ -7,6 +7,7 @@ use crate::broadphase::BroadPhase;
 use crate::contact::{Contact, ContactEvent, ContactSet};
 use crate::continuous::{self, Pose};
 use crate::drag::DragModel;
+use crate::effects::{Effect, Effects};
 use crate::error::{CaromError, check_finite_vec};
 use crate::math::{Real, Vec2};
 use crate::ray::Ray;
@@ -86,11 +87,30 @@ impl World {
     /// Replaces the settings (checked first). Turning sleeping off wakes every body.
     pub fn set_settings(&mut self, settings: WorldSettings) -> Result<(), CaromError> {
         check_settings(&settings)?;
-        if !settings.sleeping {
+        self.settings = settings;
+        self.set_effects(settings.effects);
+        Ok(())
+    }
+
+    /// The effects simulated.
+    pub fn effects(&self) -> Effects {
+        self.settings.effects
+    }
+
+    /// Chooses the effects simulated; the rest are not computed at all. Turning sleeping off
+    /// wakes every body.
+    pub fn set_effects(&mut self, effects: Effects) {
+        self.settings.effects = effects;
+        if !effects.contains(Effect::Sleeping) {
             self.wake_all();
         }
-        self.settings = settings;
-        Ok(())
+    }
+
+    /// Switches one effect on or off.
+    pub fn set_effect(&mut self, effect: Effect, on: bool) {
+        let mut effects = self.settings.effects;
+        effects.set(effect, on);
+        self.set_effects(effects);
     }
 
     /// Wakes every sleeping body.
@@ -262,13 +282,14 @@ impl World {
 
         let clock = Instant::now();
         let dense = self.contact_bodies();
-        let starts = self.settings.continuous.then(|| self.poses());
-        stats.contact_points = self.solve(dt, &dense);
+        let effects = self.settings.effects;
+        let starts = effects.contains(Effect::Continuous).then(|| self.poses());
+        (stats.contact_points, stats.work) = self.solve(dt, &dense);
         stats.times.solve = clock.elapsed();
 
         if let Some(starts) = starts {
             let clock = Instant::now();
-            stats.continuous_impacts = self.solve_continuous(&starts);
+            (stats.continuous_impacts, stats.work.sweeps) = self.solve_continuous(&starts);
             stats.times.continuous = clock.elapsed();
         }
 
@@ -276,7 +297,7 @@ impl World {
         self.refresh_broadphase();
         stats.times.broadphase += clock.elapsed();
 
-        if self.settings.sleeping {
+        if effects.contains(Effect::Sleeping) {
             let clock = Instant::now();
             let touching: Vec<(usize, usize)> = self
                 .contacts
@@ -285,7 +306,7 @@ impl World {
                 .filter(|(c, _)| c.is_touching())
                 .map(|(_, pair)| *pair)
                 .collect();
-            sleep::update_sleep(
+            stats.work.sleep_checks = sleep::update_sleep(
                 self.bodies.as_mut_slice(),
                 &touching,
                 dt,
@@ -318,8 +339,8 @@ impl World {
     }
 
     /// Moves fast bodies that would have passed through something back to the impact;
-    /// returns how many.
-    fn solve_continuous(&mut self, starts: &[Pose]) -> usize {
+    /// returns how many, and how many fast bodies were swept.
+    fn solve_continuous(&mut self, starts: &[Pose]) -> (usize, usize) {
         let slots = &self.bodies;
         let dense: Vec<Option<usize>> = (0..slots.slot_count())
             .map(|slot| slots.dense_index_of_slot(slot))
@@ -348,11 +369,16 @@ impl World {
     }
 
     /// Runs the configured solver over every moving body and touching contact; returns how
-    /// many contact points it solved.
-    fn solve(&mut self, dt: Real, dense: &[(usize, usize)]) -> usize {
+    /// many contact points it solved and the work its effects did.
+    fn solve(&mut self, dt: Real, dense: &[(usize, usize)]) -> (usize, crate::stats::Work) {
+        let effects = self.settings.effects;
         let environment = Environment {
-            gravity: self.settings.gravity,
-            drag: Some(self.settings.drag),
+            gravity: effects
+                .contains(Effect::Gravity)
+                .then_some(self.settings.gravity),
+            drag: effects.contains(Effect::Drag).then_some(self.settings.drag),
+            friction: effects.contains(Effect::Friction),
+            restitution: effects.contains(Effect::Restitution),
         };
         solver::step(
             &self.settings.solver,

@@ -4,6 +4,7 @@
 use super::{Environment, SolverParams};
 use crate::body::{Body, BodyKind};
 use crate::math::{Real, Rot, Vec2, clamp_magnitude};
+use crate::stats::Work;
 
 /// One body as the solver sees it.
 #[derive(Debug, Clone, Copy)]
@@ -38,34 +39,38 @@ impl BodyState {
 }
 
 /// Velocities from gravity, applied forces and drag over `h`, with the speed guard rails.
+/// Gravity and drag are skipped entirely when off.
 pub(crate) fn integrate_velocities(
     params: &SolverParams,
     environment: Environment,
     bodies: &[Body],
     states: &mut [BodyState],
     h: Real,
-) {
+) -> Work {
+    let mut work = Work::default();
     // No body may turn more than `max_rotation` in one (sub)step.
     let max_angular_speed = params.max_rotation / h;
     for (body, state) in bodies.iter().zip(states.iter_mut()) {
         if body.kind() != BodyKind::Dynamic || body.is_sleeping() {
             continue;
         }
-        let acceleration =
-            environment.gravity * body.gravity_scale() + body.force() * body.inv_mass();
-        let mut v = state.v + acceleration * h;
+        let mut v = state.v + body.force() * (body.inv_mass() * h);
         let mut w = state.w + body.torque() * body.inv_inertia() * h;
-        if let Some(model) = environment.drag {
-            if body.linear_damping() > 0.0 {
-                v = model.apply_linear(v, body.linear_damping(), h);
-            }
-            if body.angular_damping() > 0.0 {
-                w = model.apply_angular(w, body.angular_damping(), h);
-            }
+        if let Some(gravity) = environment.gravity {
+            v += gravity * (body.gravity_scale() * h);
+            work.gravity_terms += 1;
+        }
+        if let Some(model) = environment.drag
+            && (body.linear_damping() > 0.0 || body.angular_damping() > 0.0)
+        {
+            v = model.apply_linear(v, body.linear_damping(), h);
+            w = model.apply_angular(w, body.angular_damping(), h);
+            work.drag_terms += 1;
         }
         state.v = clamp_magnitude(v, params.max_linear_speed);
         state.w = w.clamp(-max_angular_speed, max_angular_speed);
     }
+    work
 }
 
 /// Positions from velocities over `h` (accumulated in `dp` and `dq`).

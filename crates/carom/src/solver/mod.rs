@@ -25,6 +25,7 @@ use crate::contact::Contact;
 use crate::drag::DragModel;
 use crate::math::{Real, Vec2};
 use crate::settings::LINEAR_SLOP;
+use crate::stats::Work;
 
 /// Which contact solver runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -222,11 +223,14 @@ impl Softness {
     }
 }
 
-/// Forces, gravity and drag for one step: what the integrator reads besides the bodies.
+/// The world's forces and the contact effects in force for one step: `None` or `false` for
+/// an effect that is off, which is then not computed at all.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Environment {
-    pub gravity: Vec2,
+    pub gravity: Option<Vec2>,
     pub drag: Option<DragModel>,
+    pub friction: bool,
+    pub restitution: bool,
 }
 
 /// What every solver reads and does not change: its settings, the world's forces, the bodies
@@ -238,12 +242,13 @@ pub(crate) struct SolverContext<'a> {
     pub dt: Real,
 }
 
-/// A solver: moves the body states through one step, resolving the constraints.
-type Solve = fn(&SolverContext, &mut [BodyState], &mut [ContactConstraint]);
+/// A solver: moves the body states through one step, resolving the constraints, and reports
+/// the work its optional effects did.
+type Solve = fn(&SolverContext, &mut [BodyState], &mut [ContactConstraint]) -> Work;
 
 /// Runs one step of the chosen solver over the bodies (dense, in storage order) and the
 /// contacts; `dense[i]` gives the dense indices of contact `i`'s bodies. Returns how many
-/// contact points were solved.
+/// contact points were solved and the work the optional effects did.
 pub(crate) fn step(
     params: &SolverParams,
     environment: Environment,
@@ -251,7 +256,7 @@ pub(crate) fn step(
     contacts: &mut [Contact],
     dense: &[(usize, usize)],
     dt: Real,
-) -> usize {
+) -> (usize, Work) {
     let mut states: Vec<BodyState> = bodies.iter().map(BodyState::from_body).collect();
     let mut constraints: Vec<ContactConstraint> = contacts
         .iter()
@@ -272,12 +277,12 @@ pub(crate) fn step(
         bodies,
         dt,
     };
-    solve(&context, &mut states, &mut constraints);
+    let work = solve(&context, &mut states, &mut constraints);
     for constraint in &constraints {
         constraint.store_impulses(&mut contacts[constraint.contact_index]);
     }
     for (body, state) in bodies.iter_mut().zip(&states) {
         state.write_back(body);
     }
-    constraints.iter().map(|c| c.points().len()).sum()
+    (constraints.iter().map(|c| c.points().len()).sum(), work)
 }

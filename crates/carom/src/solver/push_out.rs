@@ -7,12 +7,13 @@ use super::body_state::{integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
 use super::{BodyState, ContactConstraint, SolverContext};
 use crate::math::Real;
+use crate::stats::Work;
 
 pub(super) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
-) {
+) -> Work {
     let SolverContext {
         params,
         environment,
@@ -46,6 +47,7 @@ pub(super) fn solve(
             }
         }
     }
-    integrate_velocities(params, environment, bodies, states, dt);
+    let work = integrate_velocities(params, environment, bodies, states, dt);
     integrate_positions(bodies, states, dt);
+    work
 }

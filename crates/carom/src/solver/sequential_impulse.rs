@@ -6,12 +6,13 @@ use super::body_state::{integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
 use super::soft_step::{apply_restitution, forget_impulses, solve_friction, warm_start};
 use super::{BodyState, ContactConstraint, SolverContext};
+use crate::stats::Work;
 
 pub(super) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
-) {
+) -> Work {
     let SolverContext {
         params,
         environment,
@@ -19,7 +20,7 @@ pub(super) fn solve(
         dt,
     } = *context;
     let inv_dt = 1.0 / dt;
-    integrate_velocities(params, environment, bodies, states, dt);
+    let mut work = integrate_velocities(params, environment, bodies, states, dt);
     if params.warm_starting {
         warm_start(constraints, states);
     } else {
@@ -29,7 +30,9 @@ pub(super) fn solve(
         for c in constraints.iter_mut() {
             let (a, b) = pair_mut(states, c.a, c.b);
             // Friction first, against last iteration's normal impulse (Box2D v2's order).
-            solve_friction(c, a, b);
+            if environment.friction {
+                work.friction_impulses += solve_friction(c, a, b);
+            }
             for i in 0..c.points().len() {
                 let mut point = c.points()[i];
                 // The slowest normal velocity allowed: close a speculative gap exactly, or
@@ -49,6 +52,9 @@ pub(super) fn solve(
             }
         }
     }
-    apply_restitution(params, constraints, states);
+    if environment.restitution {
+        work.restitution_impulses = apply_restitution(params, constraints, states);
+    }
     integrate_positions(bodies, states, dt);
+    work
 }

@@ -9,12 +9,13 @@ use super::body_state::{integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
 use super::{BodyState, ContactConstraint, Softness, SolverContext, SolverParams};
 use crate::math::Real;
+use crate::stats::Work;
 
 pub(super) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
-) {
+) -> Work {
     let SolverContext {
         params,
         environment,
@@ -35,18 +36,23 @@ pub(super) fn solve(
     if !params.warm_starting {
         forget_impulses(constraints);
     }
+    let mut work = Work::default();
     for _ in 0..substeps {
-        integrate_velocities(params, environment, bodies, states, h);
+        work += integrate_velocities(params, environment, bodies, states, h);
         warm_start(constraints, states);
         for _ in 0..params.iterations {
-            solve_contacts(constraints, states, &bias, true);
+            solve_contacts(constraints, states, &bias, true, false);
         }
         integrate_positions(bodies, states, h);
         for _ in 0..params.iterations {
-            solve_contacts(constraints, states, &bias, false);
+            work.friction_impulses +=
+                solve_contacts(constraints, states, &bias, false, environment.friction);
         }
     }
-    apply_restitution(params, constraints, states);
+    if environment.restitution {
+        work.restitution_impulses = apply_restitution(params, constraints, states);
+    }
+    work
 }
 
 /// How the biased pass pushes overlap out in one substep.
@@ -82,14 +88,17 @@ pub(super) fn warm_start(constraints: &[ContactConstraint], states: &mut [BodySt
 }
 
 /// One pass over the contacts: non-penetration with the soft bias (or none when relaxing),
-/// then, when relaxing, Coulomb friction. Friction sees only unbiased velocities: reacting to
-/// the push-out velocity makes tall stacks lean (as Box2D 3.2 and Rapier found).
+/// then Coulomb friction if asked (soft step asks in the relax pass only: friction reacting to
+/// the push-out velocity makes stacks lean, as Box2D 3.2 and Rapier found). Returns how many
+/// friction impulses were computed.
 fn solve_contacts(
     constraints: &mut [ContactConstraint],
     states: &mut [BodyState],
     bias: &Bias,
     use_bias: bool,
-) {
+    friction: bool,
+) -> usize {
+    let mut friction_impulses = 0;
     for c in constraints.iter_mut() {
         let (a, b) = pair_mut(states, c.a, c.b);
         let softness = if c.touches_static {
@@ -122,14 +131,20 @@ fn solve_contacts(
             c.apply(&point, c.normal * applied, a, b);
             c.points_mut()[i] = point;
         }
-        if !use_bias {
-            solve_friction(c, a, b);
+        if friction {
+            friction_impulses += solve_friction(c, a, b);
         }
     }
+    friction_impulses
 }
 
 /// Coulomb friction at each point: the tangent impulse stays within `μ ×` the normal one.
-pub(super) fn solve_friction(c: &mut ContactConstraint, a: &mut BodyState, b: &mut BodyState) {
+/// Returns how many impulses were computed.
+pub(super) fn solve_friction(
+    c: &mut ContactConstraint,
+    a: &mut BodyState,
+    b: &mut BodyState,
+) -> usize {
     let tangent = c.tangent();
     for i in 0..c.points().len() {
         let mut point = c.points()[i];
@@ -141,15 +156,18 @@ pub(super) fn solve_friction(c: &mut ContactConstraint, a: &mut BodyState, b: &m
         c.apply(&point, tangent * applied, a, b);
         c.points_mut()[i] = point;
     }
+    c.points().len()
 }
 
 /// Bounces: points that approached faster than the threshold and pushed this step get a
-/// normal velocity of `-restitution ×` their approach speed.
+/// normal velocity of `-restitution ×` their approach speed. Returns how many impulses were
+/// computed.
 pub(super) fn apply_restitution(
     params: &SolverParams,
     constraints: &mut [ContactConstraint],
     states: &mut [BodyState],
-) {
+) -> usize {
+    let mut impulses = 0;
     for c in constraints.iter_mut().filter(|c| c.restitution > 0.0) {
         let (a, b) = pair_mut(states, c.a, c.b);
         for i in 0..c.points().len() {
@@ -159,6 +177,7 @@ pub(super) fn apply_restitution(
             {
                 continue;
             }
+            impulses += 1;
             let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
             let impulse = -point.normal_mass * (vn + c.restitution * point.relative_velocity);
             let total = (point.normal_impulse + impulse).max(0.0);
@@ -169,4 +188,5 @@ pub(super) fn apply_restitution(
             c.points_mut()[i] = point;
         }
     }
+    impulses
 }
