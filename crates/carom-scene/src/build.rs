@@ -1,0 +1,271 @@
+//! Turning a scene into a world: bodies, generators, settings and effects, each checked.
+
+use crate::error::SceneError;
+use crate::events::Events;
+use crate::scene::{
+    BodySpec, EffectName, Generator, KindName, Material, Scene, ShapeSpec, SolverName, WorldSpec,
+};
+use carom::{
+    BodyDef, BodyHandle, BodyKind, CaromError, Effect, Effects, Real, Shape, SolverKind,
+    SolverParams, World, WorldSettings, vec2,
+};
+use std::collections::HashMap;
+
+/// A scene built into a world, with what the scene adds on top: its time step, the names and
+/// colours of its bodies, and its timed events.
+#[derive(Debug)]
+pub struct SceneWorld {
+    /// The world.
+    pub world: World,
+    /// Seconds per step.
+    pub time_step: Real,
+    /// Bodies by the names the scene gave them.
+    pub names: HashMap<String, BodyHandle>,
+    /// Colours the scene asked for.
+    pub colors: HashMap<BodyHandle, (f32, f32, f32)>,
+    events: Events,
+}
+
+impl SceneWorld {
+    /// Fires the events due and advances the world by one time step.
+    pub fn step(&mut self) -> Result<(), CaromError> {
+        self.events.fire(&mut self.world);
+        self.world.step(self.time_step)
+    }
+}
+
+/// Builds a scene; `file` names it in error messages.
+pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
+    let invalid = |what: String, reason: String| SceneError::Invalid {
+        file: file.to_string(),
+        what,
+        reason,
+    };
+    let settings = world_settings(&scene.world, &scene.effects)
+        .map_err(|e| invalid("world".into(), e.to_string()))?;
+    let time_step = scene.world.time_step;
+    if !(time_step.is_finite() && time_step > 0.0) {
+        return Err(invalid(
+            "world".into(),
+            format!("time_step must be finite and positive, got {time_step}"),
+        ));
+    }
+    let mut world =
+        World::with_settings(settings).map_err(|e| invalid("world".into(), e.to_string()))?;
+    let mut names = HashMap::new();
+    let mut colors = HashMap::new();
+    let mut initial = HashMap::new();
+
+    for (index, spec) in scene.bodies.iter().enumerate() {
+        let what = match &spec.name {
+            Some(name) => format!("body {index} ({name:?})"),
+            None => format!("body {index}"),
+        };
+        let def = body_def(spec).map_err(|e| invalid(what.clone(), e.to_string()))?;
+        let handle = world
+            .add_body(def.clone())
+            .map_err(|e| invalid(what.clone(), e.to_string()))?;
+        if let Some(color) = spec.material.color {
+            colors.insert(handle, color);
+        }
+        if let Some(name) = &spec.name {
+            if names.insert(name.clone(), handle).is_some() {
+                return Err(invalid(what, format!("the name {name:?} is used twice")));
+            }
+            initial.insert(handle, def);
+        }
+    }
+    for (index, generator) in scene.generators.iter().enumerate() {
+        let what = format!("generator {index} ({})", generator_name(generator));
+        let (defs, material) = generate(generator).map_err(|e| invalid(what.clone(), e))?;
+        for def in defs {
+            let handle = world
+                .add_body(def)
+                .map_err(|e| invalid(what.clone(), e.to_string()))?;
+            if let Some(color) = material.color {
+                colors.insert(handle, color);
+            }
+        }
+    }
+    let events = Events::new(&scene.events, &names, initial)
+        .map_err(|(index, reason)| invalid(format!("event {index}"), reason))?;
+    Ok(SceneWorld {
+        world,
+        time_step,
+        names,
+        colors,
+        events,
+    })
+}
+
+fn world_settings(spec: &WorldSpec, effects: &[EffectName]) -> Result<WorldSettings, CaromError> {
+    let kind = match spec.solver {
+        SolverName::PushOut => SolverKind::PushOut,
+        SolverName::TutorialImpulse => SolverKind::TutorialImpulse,
+        SolverName::SequentialImpulse => SolverKind::SequentialImpulse,
+        SolverName::SoftStep => SolverKind::SoftStep,
+    };
+    let mut solver = SolverParams::for_kind(kind);
+    solver.iterations = spec.iterations.unwrap_or(solver.iterations);
+    solver.substeps = spec.substeps.unwrap_or(solver.substeps);
+    solver.warm_starting = spec.warm_starting.unwrap_or(solver.warm_starting);
+    solver.contact_hertz = spec.contact_hertz.unwrap_or(solver.contact_hertz);
+    solver.damping_ratio = spec.damping_ratio.unwrap_or(solver.damping_ratio);
+    solver.max_push_speed = spec.max_push_speed.unwrap_or(solver.max_push_speed);
+    solver.validate()?;
+    let effects = effects.iter().fold(Effects::NONE, |set, name| {
+        set.with(match name {
+            EffectName::Gravity => Effect::Gravity,
+            EffectName::Drag => Effect::Drag,
+            EffectName::Friction => Effect::Friction,
+            EffectName::Restitution => Effect::Restitution,
+            EffectName::Continuous => Effect::Continuous,
+            EffectName::Sleeping => Effect::Sleeping,
+        })
+    });
+    Ok(WorldSettings {
+        gravity: vec2(spec.gravity.0, spec.gravity.1),
+        solver,
+        effects,
+        ..WorldSettings::default()
+    })
+}
+
+fn kind(name: KindName) -> BodyKind {
+    match name {
+        KindName::Static => BodyKind::Static,
+        KindName::Kinematic => BodyKind::Kinematic,
+        KindName::Dynamic => BodyKind::Dynamic,
+    }
+}
+
+fn shape(spec: &ShapeSpec) -> Result<Shape, CaromError> {
+    let points =
+        |points: &[(f32, f32)]| points.iter().map(|&(x, y)| vec2(x, y)).collect::<Vec<_>>();
+    match spec {
+        ShapeSpec::Circle { radius } => Shape::circle(*radius),
+        ShapeSpec::Box { width, height } => Shape::rect(0.5 * width, 0.5 * height),
+        ShapeSpec::Regular { sides, radius } => Shape::regular(*sides as usize, *radius),
+        ShapeSpec::Polygon { points: p } => Shape::polygon(&points(p)),
+        ShapeSpec::Hull { points: p } => Shape::hull(&points(p)),
+    }
+}
+
+fn with_material(def: BodyDef, material: &Material) -> BodyDef {
+    def.density(material.density)
+        .friction(material.friction)
+        .restitution(material.restitution)
+        .damping(material.damping.0, material.damping.1)
+}
+
+fn body_def(spec: &BodySpec) -> Result<BodyDef, CaromError> {
+    let def = BodyDef::new(kind(spec.kind), shape(&spec.shape)?)
+        .position(vec2(spec.position.0, spec.position.1))
+        .angle(spec.angle)
+        .linear_velocity(vec2(spec.linear_velocity.0, spec.linear_velocity.1))
+        .angular_velocity(spec.angular_velocity)
+        .bullet(spec.bullet);
+    Ok(with_material(def, &spec.material))
+}
+
+fn generator_name(generator: &Generator) -> &'static str {
+    match generator {
+        Generator::Stack { .. } => "stack",
+        Generator::Pyramid { .. } => "pyramid",
+        Generator::Grid { .. } => "grid",
+        Generator::Room { .. } => "room",
+    }
+}
+
+/// The bodies a generator makes, and their material.
+fn generate(generator: &Generator) -> Result<(Vec<BodyDef>, Material), String> {
+    let square = |size: f32| Shape::rect(0.5 * size, 0.5 * size).map_err(|e| e.to_string());
+    Ok(match generator {
+        Generator::Stack {
+            base,
+            count,
+            size,
+            offset,
+            material,
+        } => {
+            let shape = square(*size)?;
+            let defs = (0..*count)
+                .map(|i| {
+                    let shift = if i % 2 == 0 { *offset } else { -*offset };
+                    let at = vec2(base.0 + shift, base.1 + (i as f32 + 0.5) * size);
+                    with_material(BodyDef::dynamic(shape.clone()).position(at), material)
+                })
+                .collect();
+            (defs, *material)
+        }
+        Generator::Pyramid {
+            base,
+            count,
+            size,
+            material,
+        } => {
+            let shape = square(*size)?;
+            let mut defs = Vec::new();
+            for row in 0..*count {
+                let in_row = count - row;
+                for column in 0..in_row {
+                    let x = base.0 + (column as f32 - 0.5 * (in_row as f32 - 1.0)) * size;
+                    let y = base.1 + (row as f32 + 0.5) * size;
+                    defs.push(with_material(
+                        BodyDef::dynamic(shape.clone()).position(vec2(x, y)),
+                        material,
+                    ));
+                }
+            }
+            (defs, *material)
+        }
+        Generator::Grid {
+            origin,
+            columns,
+            rows,
+            spacing,
+            shape: spec,
+            kind: kind_name,
+            material,
+        } => {
+            let shape = shape(spec).map_err(|e| e.to_string())?;
+            let mut defs = Vec::new();
+            for row in 0..*rows {
+                for column in 0..*columns {
+                    let at = vec2(
+                        origin.0 + column as f32 * spacing.0,
+                        origin.1 + row as f32 * spacing.1,
+                    );
+                    defs.push(with_material(
+                        BodyDef::new(kind(*kind_name), shape.clone()).position(at),
+                        material,
+                    ));
+                }
+            }
+            (defs, *material)
+        }
+        Generator::Room {
+            center,
+            width,
+            height,
+            thickness,
+            material,
+        } => {
+            let (c, w, h, t) = (vec2(center.0, center.1), *width, *height, *thickness);
+            let wall = |half_w: f32, half_h: f32, dx: f32, dy: f32| {
+                Shape::rect(half_w, half_h)
+                    .map(|s| {
+                        with_material(BodyDef::static_body(s).position(c + vec2(dx, dy)), material)
+                    })
+                    .map_err(|e| e.to_string())
+            };
+            let defs = vec![
+                wall(0.5 * w + t, 0.5 * t, 0.0, -0.5 * (h + t))?,
+                wall(0.5 * w + t, 0.5 * t, 0.0, 0.5 * (h + t))?,
+                wall(0.5 * t, 0.5 * h, -0.5 * (w + t), 0.0)?,
+                wall(0.5 * t, 0.5 * h, 0.5 * (w + t), 0.0)?,
+            ];
+            (defs, *material)
+        }
+    })
+}

@@ -1,0 +1,37 @@
+//! Scenes as data for carom: RON files in `demos/` describe a world (settings, effects,
+//! bodies, generators) and what happens in it over time. Loading lives here so the physics core
+//! stays free of file formats.
+//!
+//! ```
+//! let scene = carom_scene::parse(r#"(
+//!     name: "drop",
+//!     bodies: [
+//!         (kind: static, shape: Box(width: 20.0, height: 1.0), position: (0.0, -0.5)),
+//!         (name: Some("ball"), shape: Circle(radius: 0.5), position: (0.0, 5.0)),
+//!     ],
+//! )"#, "drop.ron")?;
+//! let mut built = carom_scene::build(&scene, "drop.ron")?;
+//! for _ in 0..60 {
+//!     built.step()?;
+//! }
+//! let ball = built.world.body(built.names["ball"]).unwrap();
+//! assert!(ball.position().y < 5.0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+mod build;
+mod error;
+mod events;
+mod load;
+pub mod scene;
+
+pub use build::{SceneWorld, build};
+pub use error::SceneError;
+pub use load::{parse, read};
+pub use scene::Scene;
+
+/// Reads, parses and builds a scene file.
+pub fn load(path: &std::path::Path) -> Result<SceneWorld, SceneError> {
+    let scene = read(path)?;
+    build(&scene, &path.display().to_string())
+}

@@ -1,0 +1,345 @@
+//! The scene format: what a RON file in `demos/` holds. Every field but `name` has a default.
+
+use serde::{Deserialize, Serialize};
+
+/// A 2D vector written `(x, y)`.
+pub type Pair = (f32, f32);
+
+/// One scene: a world to build, how to look at it, and what happens over time.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// Short name, shown in menus.
+    pub name: String,
+    /// What the scene shows and what to try.
+    #[serde(default)]
+    pub description: String,
+    /// Where the camera starts.
+    #[serde(default)]
+    pub camera: Camera,
+    /// World settings.
+    #[serde(default)]
+    pub world: WorldSpec,
+    /// The effects simulated; anything not named is not computed. Default: all.
+    #[serde(default = "all_effects")]
+    pub effects: Vec<EffectName>,
+    /// Bodies listed one by one.
+    #[serde(default)]
+    pub bodies: Vec<BodySpec>,
+    /// Bodies made in bulk.
+    #[serde(default)]
+    pub generators: Vec<Generator>,
+    /// Things that happen at given times.
+    #[serde(default)]
+    pub events: Vec<EventSpec>,
+}
+
+fn all_effects() -> Vec<EffectName> {
+    vec![
+        EffectName::Gravity,
+        EffectName::Drag,
+        EffectName::Friction,
+        EffectName::Restitution,
+        EffectName::Continuous,
+        EffectName::Sleeping,
+    ]
+}
+
+/// Where the camera looks and how close.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Camera {
+    /// The world point at the centre of the view, m.
+    pub center: Pair,
+    /// Pixels per metre.
+    pub zoom: f32,
+}
+
+impl Default for Camera {
+    fn default() -> Self {
+        Camera {
+            center: (0.0, 5.0),
+            zoom: 30.0,
+        }
+    }
+}
+
+/// The solvers, as scene files name them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum SolverName {
+    /// The tutorial without impulses.
+    PushOut,
+    /// The tutorial's impulses.
+    TutorialImpulse,
+    /// Catto's sequential impulses.
+    SequentialImpulse,
+    /// Box2D v3's soft step.
+    #[default]
+    SoftStep,
+}
+
+/// The effects, as scene files name them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EffectName {
+    /// Gravity.
+    Gravity,
+    /// Air drag.
+    Drag,
+    /// Coulomb friction.
+    Friction,
+    /// Bounces.
+    Restitution,
+    /// No tunnelling.
+    Continuous,
+    /// Resting islands sleep.
+    Sleeping,
+}
+
+/// World settings; unset solver fields take the solver's defaults.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WorldSpec {
+    /// Gravity, m/s².
+    pub gravity: Pair,
+    /// Seconds per step.
+    pub time_step: f32,
+    /// The contact solver.
+    pub solver: SolverName,
+    /// Velocity iterations.
+    pub iterations: Option<u32>,
+    /// Substeps (soft step).
+    pub substeps: Option<u32>,
+    /// Warm starting.
+    pub warm_starting: Option<bool>,
+    /// Contact stiffness, Hz (soft step).
+    pub contact_hertz: Option<f32>,
+    /// Contact damping ratio (soft step).
+    pub damping_ratio: Option<f32>,
+    /// Fastest push-out, m/s (soft step).
+    pub max_push_speed: Option<f32>,
+}
+
+impl Default for WorldSpec {
+    fn default() -> Self {
+        WorldSpec {
+            gravity: (0.0, -10.0),
+            time_step: 1.0 / 60.0,
+            solver: SolverName::default(),
+            iterations: None,
+            substeps: None,
+            warm_starting: None,
+            contact_hertz: None,
+            damping_ratio: None,
+            max_push_speed: None,
+        }
+    }
+}
+
+/// How a body moves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum KindName {
+    /// Never moves.
+    Static,
+    /// Moves at its given velocity.
+    Kinematic,
+    /// Moves under forces and contacts.
+    #[default]
+    Dynamic,
+}
+
+/// A shape, in the body's frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum ShapeSpec {
+    /// A circle.
+    Circle {
+        /// Radius, m.
+        radius: f32,
+    },
+    /// An axis-aligned box (before the body's angle).
+    Box {
+        /// Full width, m.
+        width: f32,
+        /// Full height, m.
+        height: f32,
+    },
+    /// A regular polygon with a flat bottom.
+    Regular {
+        /// Number of sides.
+        sides: u32,
+        /// Distance from centre to corners, m.
+        radius: f32,
+    },
+    /// A convex polygon, its points in order (either winding); it is recentred on its centroid.
+    Polygon {
+        /// The corners.
+        points: Vec<Pair>,
+    },
+    /// The convex hull of any points.
+    Hull {
+        /// The points.
+        points: Vec<Pair>,
+    },
+}
+
+/// Material and look shared by generated bodies.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Material {
+    /// kg/m².
+    pub density: f32,
+    /// Coulomb coefficient.
+    pub friction: f32,
+    /// Bounciness.
+    pub restitution: f32,
+    /// Linear and angular drag coefficients.
+    pub damping: Pair,
+    /// RGB in 0..1, for drawing.
+    pub color: Option<(f32, f32, f32)>,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Material {
+            density: 1.0,
+            friction: 0.6,
+            restitution: 0.0,
+            damping: (0.0, 0.0),
+            color: None,
+        }
+    }
+}
+
+/// One body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// A name events can refer to.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// How it moves.
+    #[serde(default)]
+    pub kind: KindName,
+    /// Its shape.
+    pub shape: ShapeSpec,
+    /// Where its centroid starts, m.
+    #[serde(default)]
+    pub position: Pair,
+    /// Starting angle, rad.
+    #[serde(default)]
+    pub angle: f32,
+    /// Starting velocity, m/s.
+    #[serde(default)]
+    pub linear_velocity: Pair,
+    /// Starting spin, rad/s.
+    #[serde(default)]
+    pub angular_velocity: f32,
+    /// Density, friction, restitution, drag, colour.
+    #[serde(default)]
+    pub material: Material,
+    /// Swept against moving bodies too.
+    #[serde(default)]
+    pub bullet: bool,
+}
+
+/// Bodies made in bulk.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Generator {
+    /// A column of square boxes standing on `base` (the middle of the bottom box's bottom).
+    Stack {
+        /// Where the column stands.
+        base: Pair,
+        /// How many boxes.
+        count: u32,
+        /// Box side, m.
+        #[serde(default = "one")]
+        size: f32,
+        /// Horizontal shift of every other box, m (Box2D offsets rows by ±0.01).
+        #[serde(default)]
+        offset: f32,
+        /// Their material.
+        #[serde(default)]
+        material: Material,
+    },
+    /// A pyramid of square boxes: `count` in the bottom row, one fewer each row up, standing on
+    /// `base` (the middle of the bottom row's bottom), touching exactly (Box2D's recipe).
+    Pyramid {
+        /// Where it stands.
+        base: Pair,
+        /// Boxes in the bottom row.
+        count: u32,
+        /// Box side, m.
+        #[serde(default = "one")]
+        size: f32,
+        /// Their material.
+        #[serde(default)]
+        material: Material,
+    },
+    /// `columns × rows` copies of a shape, the first centred on `origin`.
+    Grid {
+        /// Centre of the first (bottom-left) body.
+        origin: Pair,
+        /// Bodies per row.
+        columns: u32,
+        /// Rows.
+        rows: u32,
+        /// Distance between neighbours' centres, m.
+        spacing: Pair,
+        /// The shape of each.
+        shape: ShapeSpec,
+        /// Their kind.
+        #[serde(default)]
+        kind: KindName,
+        /// Their material.
+        #[serde(default)]
+        material: Material,
+    },
+    /// Four static walls of a box-shaped room centred on `center`.
+    Room {
+        /// Centre of the room.
+        center: Pair,
+        /// Inside width, m.
+        width: f32,
+        /// Inside height, m.
+        height: f32,
+        /// Wall thickness, m.
+        #[serde(default = "one")]
+        thickness: f32,
+        /// The walls' material.
+        #[serde(default)]
+        material: Material,
+    },
+}
+
+fn one() -> f32 {
+    1.0
+}
+
+/// Something that happens during the run.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum EventSpec {
+    /// At `at` seconds, the named body gets this velocity.
+    Launch {
+        /// When, s.
+        at: f32,
+        /// Which body (its `name`).
+        body: String,
+        /// Its new velocity, m/s.
+        velocity: Pair,
+        /// Its new spin, rad/s.
+        #[serde(default)]
+        angular_velocity: f32,
+    },
+    /// Every `every` seconds, the named body goes back to where and how it started.
+    Respawn {
+        /// Period, s.
+        every: f32,
+        /// Which body (its `name`).
+        body: String,
+    },
+}

@@ -1,0 +1,70 @@
+//! Scene files: bad input says where and why; good input builds the world it describes.
+
+use carom_scene::{SceneError, load};
+use std::path::PathBuf;
+
+fn path(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(name)
+}
+
+/// Loads a bad file and returns its error message, which must start with the file's path.
+fn error_of(name: &str) -> (SceneError, String) {
+    let file = path(name);
+    let error = load(&file).expect_err("a bad scene must not load");
+    let message = error.to_string();
+    assert!(
+        message.starts_with(&file.display().to_string()),
+        "{message}"
+    );
+    (error, message)
+}
+
+#[test]
+fn malformed_ron_names_file_line_and_column() {
+    let (error, message) = error_of("scenes/bad_syntax.ron");
+    let SceneError::Syntax { line, column, .. } = error else {
+        panic!("expected a syntax error, got {message}");
+    };
+    assert_eq!(line, 3, "{message}");
+    assert!(column >= 5, "{message}");
+    assert!(message.contains(":3:"), "{message}");
+}
+
+#[test]
+fn an_unknown_effect_is_named_with_its_place() {
+    let (error, message) = error_of("scenes/bad_effect.ron");
+    assert!(
+        matches!(error, SceneError::Syntax { line: 3, .. }),
+        "{message}"
+    );
+    assert!(message.contains("magnetism"), "{message}");
+}
+
+#[test]
+fn semantic_errors_name_the_body_or_event_and_the_reason() {
+    for (file, what, reason) in [
+        ("scenes/bad_polygon.ron", "body 0 (\"arrow\")", "not convex"),
+        (
+            "scenes/bad_density.ron",
+            "body 1",
+            "density must be positive",
+        ),
+        ("scenes/bad_nan.ron", "body 0 (\"lost\")", "finite"),
+        (
+            "scenes/bad_event.ron",
+            "event 0",
+            "no body is named \"bal\"",
+        ),
+    ] {
+        let (error, message) = error_of(file);
+        assert!(matches!(error, SceneError::Invalid { .. }), "{message}");
+        assert!(message.contains(what), "{message} should name {what}");
+        assert!(message.contains(reason), "{message} should say {reason}");
+    }
+}
+
+#[test]
+fn a_missing_file_is_an_error_not_a_panic() {
+    let (error, _) = error_of("scenes/no_such_scene.ron");
+    assert!(matches!(error, SceneError::Io { .. }));
+}
