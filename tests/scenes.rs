@@ -68,3 +68,25 @@ fn a_missing_file_is_an_error_not_a_panic() {
     let (error, _) = error_of("scenes/no_such_scene.ron");
     assert!(matches!(error, SceneError::Io { .. }));
 }
+
+#[test]
+fn the_documented_example_is_a_valid_scene() {
+    // The commented example in demos/README.md must parse and build as documented.
+    let readme = std::fs::read_to_string(path("../demos/README.md")).unwrap();
+    let start = readme
+        .find("```ron\n")
+        .expect("the README has a RON example")
+        + 7;
+    let end = start + readme[start..].find("```").unwrap();
+    let scene = carom_scene::parse(&readme[start..end], "demos/README.md")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut built = carom_scene::build(&scene, "demos/README.md").unwrap_or_else(|e| panic!("{e}"));
+    // 5 bodies, a stack of 10, a pyramid of 15, a grid of 8 and 4 walls.
+    assert_eq!(built.world.body_count(), 5 + 10 + 15 + 8 + 4);
+    let ball = built.names["ball"];
+    for _ in 0..121 {
+        built.step().unwrap();
+    }
+    // The launch at 2 s gave the ball its rightward velocity (drag and friction aside).
+    assert!(built.world.body(ball).unwrap().linear_velocity().x > 4.0);
+}

@@ -1,0 +1,107 @@
+//! Every scene shipped in `demos/` loads and runs without NaN.
+
+use carom_scene::load;
+use std::path::PathBuf;
+
+fn demos() -> Vec<PathBuf> {
+    let folder = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&folder)
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    files.sort();
+    files
+}
+
+#[test]
+fn every_demo_loads_and_runs_finite() {
+    let files = demos();
+    assert!(files.len() >= 7, "found {files:?}");
+    for file in files {
+        let mut scene = load(&file).unwrap_or_else(|e| panic!("{e}"));
+        // Big scenes get fewer steps here; `carom run` runs them at length.
+        let steps = if scene.world.body_count() > 1000 {
+            10
+        } else {
+            240
+        };
+        for _ in 0..steps {
+            scene.step().unwrap();
+        }
+        for body in scene.world.bodies() {
+            let finite = body
+                .position()
+                .iter()
+                .chain(body.linear_velocity().iter())
+                .all(|x| x.is_finite());
+            assert!(finite, "{}: a body went non-finite", file.display());
+        }
+    }
+}
+
+#[test]
+fn the_tunneling_demo_tunnels_until_continuous_collision_is_on() {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos/tunneling.ron");
+    let run = |continuous: bool| {
+        let mut scene = load(&file).unwrap();
+        scene
+            .world
+            .set_effect(carom::Effect::Continuous, continuous);
+        for _ in 0..30 {
+            scene.step().unwrap();
+        }
+        scene.world.body(scene.names["ball"]).unwrap().position().x
+    };
+    assert!(run(false) > 1.0, "the ball should pass the wall");
+    assert!(run(true) < -0.25, "the wall should hold");
+}
+
+#[test]
+fn the_large_pyramid_is_box2d_s_recipe() {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos/large_pyramid.ron");
+    let scene = load(&file).unwrap();
+    assert_eq!(scene.world.body_count(), 5051);
+    // Row i, box j (j from i to 99): x = (i + 1) 0.5 + (j - i) - 50, y = (2 i + 1) 0.5.
+    let mut expected: Vec<(i32, i32)> = Vec::new();
+    for i in 0..100 {
+        for j in i..100 {
+            let x = (i + 1) as f32 * 0.5 + (j - i) as f32 - 50.0;
+            let y = (2 * i + 1) as f32 * 0.5;
+            expected.push(((x * 2.0).round() as i32, (y * 2.0).round() as i32));
+        }
+    }
+    let mut actual: Vec<(i32, i32)> = scene
+        .world
+        .bodies()
+        .filter(|b| b.is_dynamic())
+        .map(|b| {
+            (
+                (b.position().x * 2.0).round() as i32,
+                (b.position().y * 2.0).round() as i32,
+            )
+        })
+        .collect();
+    expected.sort_unstable();
+    actual.sort_unstable();
+    assert_eq!(actual, expected);
+    assert!(!scene.world.effects().contains(carom::Effect::Sleeping));
+}
+
+#[test]
+fn the_normals_demo_reproduces_the_worked_example() {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos/normals.ron");
+    let mut scene = load(&file).unwrap();
+    scene.step().unwrap();
+    let (rectangle, quad) = (scene.names["rectangle"], scene.names["quad"]);
+    let contact = scene
+        .world
+        .contacts()
+        .find(|c| [c.body_a(), c.body_b()] == [rectangle, quad])
+        .expect("the worked example's pair touches");
+    let manifold = contact.manifold();
+    // The MTV of the worked example (see tests/collision.rs): 1.109 along (0.5546, 0.8321).
+    assert!((manifold.normal - carom::vec2(0.554_611, 0.832_116)).norm() < 1e-4);
+    let deepest = manifold.min_separation().unwrap();
+    assert!((deepest + 1.109).abs() < 1e-3, "{deepest}");
+}
