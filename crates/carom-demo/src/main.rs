@@ -1,27 +1,99 @@
 //! `carom`: the demo app.
 //!
 //! The windowed demo (scenes from `demos/`, grabbing and throwing with the mouse, solver
-//! controls) and the headless `run` / `snapshot` subcommands arrive with later work. Until
-//! then this binary says so and drops a few bodies headless, printing where they go, so
-//! `cargo run --release` exercises the physics core end to end.
+//! controls) arrives with the demo work. Today: `carom run` runs a scene headless and reports
+//! what it measured; plain `carom` says what is coming and drops a few bodies.
 
-use carom::{BodyDef, CaromError, Shape, World, vec2};
+mod run;
+
+use carom::{BodyDef, CaromError, Effect, Shape, SolverKind, World, vec2};
+use clap::{Parser, Subcommand, ValueEnum};
+use run::{RunOptions, run};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
-const USAGE: &str = "\
-carom: the carom physics demo
+/// The carom physics demo.
+#[derive(Parser, Debug)]
+#[command(name = "carom", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
 
-USAGE:
-    carom            drop a few bodies headless and print their fall
-    carom --help     show this message
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run a scene headless and print what it measured.
+    Run {
+        /// The scene file, for example demos/pyramid.ron.
+        scene: PathBuf,
+        /// How many steps.
+        #[arg(long, default_value_t = 600)]
+        steps: usize,
+        /// Replace the scene's solver.
+        #[arg(long, value_enum)]
+        solver: Option<SolverArg>,
+        /// Velocity iterations (1 to 64).
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=64))]
+        iterations: Option<u32>,
+        /// Substeps (1 to 16).
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16))]
+        substeps: Option<u32>,
+        /// Add (+) or remove (-) effects, for example `--effects=+continuous,-drag`.
+        #[arg(long, value_parser = parse_effects, allow_hyphen_values = true)]
+        effects: Option<EffectChanges>,
+        /// Print one JSON object instead of a summary.
+        #[arg(long)]
+        json: bool,
+    },
+}
 
-Coming next: a window with scenes from demos/, mouse grabbing, solver and
-iteration controls with live timing, and the headless `carom run` and
-`carom snapshot` subcommands.";
+/// The solvers, as the command line names them.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+enum SolverArg {
+    PushOut,
+    TutorialImpulse,
+    SequentialImpulse,
+    SoftStep,
+}
+
+impl From<SolverArg> for SolverKind {
+    fn from(arg: SolverArg) -> Self {
+        match arg {
+            SolverArg::PushOut => SolverKind::PushOut,
+            SolverArg::TutorialImpulse => SolverKind::TutorialImpulse,
+            SolverArg::SequentialImpulse => SolverKind::SequentialImpulse,
+            SolverArg::SoftStep => SolverKind::SoftStep,
+        }
+    }
+}
+
+/// Effects to switch on (`true`) and off, in order.
+#[derive(Debug, Clone)]
+struct EffectChanges(Vec<(Effect, bool)>);
+
+/// Parses `+continuous,-drag` into effects to switch on and off.
+fn parse_effects(text: &str) -> Result<EffectChanges, String> {
+    text.split(',')
+        .filter(|part| !part.is_empty())
+        .map(|part| {
+            let (on, name) = match part.split_at(1) {
+                ("+", name) => (true, name),
+                ("-", name) => (false, name),
+                _ => return Err(format!("`{part}`: start each effect with + or -")),
+            };
+            let effect = Effect::from_name(name).ok_or_else(|| {
+                let known: Vec<&str> = Effect::ALL.iter().map(|e| e.name()).collect();
+                format!("unknown effect `{name}`; known: {}", known.join(", "))
+            })?;
+            Ok((effect, on))
+        })
+        .collect::<Result<_, _>>()
+        .map(EffectChanges)
+}
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    match args.first().map(String::as_str) {
+    let cli = Cli::parse();
+    match cli.command {
         None => match drop_demo() {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
@@ -29,20 +101,46 @@ fn main() -> ExitCode {
                 ExitCode::FAILURE
             }
         },
-        Some("-h" | "--help") => {
-            println!("{USAGE}");
-            ExitCode::SUCCESS
-        }
-        Some(other) => {
-            eprintln!("error: unknown argument `{other}`\n\n{USAGE}");
-            ExitCode::from(2)
+        Some(Command::Run {
+            scene,
+            steps,
+            solver,
+            iterations,
+            substeps,
+            effects,
+            json,
+        }) => {
+            let options = RunOptions {
+                steps,
+                solver: solver.map(SolverKind::from),
+                iterations,
+                substeps,
+                effects: effects.map(|changes| changes.0).unwrap_or_default(),
+            };
+            match run(&scene, &options) {
+                Ok(report) => {
+                    if json {
+                        println!("{}", report.to_json());
+                    } else {
+                        println!("{}", report.summary(&scene.display().to_string()));
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
+                }
+            }
         }
     }
 }
 
 /// Drops a box, a ball and a spinning pentagon for two seconds and prints a table.
 fn drop_demo() -> Result<(), CaromError> {
-    println!("{USAGE}\n");
+    println!(
+        "carom: the window, scenes, mouse grabbing and solver controls arrive with the demo work.\n\
+         Try `carom run demos/pyramid.ron` to run a scene headless. Meanwhile, three bodies fall:\n"
+    );
     let mut world = World::new();
     let bodies = [
         (
@@ -71,7 +169,6 @@ fn drop_demo() -> Result<(), CaromError> {
         "{:>6} {:>10} {:>18} {:>18} {:>9}",
         "t (s)", "body", "position", "velocity", "angle"
     );
-    let dt = 1.0 / 60.0;
     for step in 0..=120 {
         if step % 30 == 0 {
             for (name, handle) in &bodies {
@@ -87,7 +184,7 @@ fn drop_demo() -> Result<(), CaromError> {
                 );
             }
         }
-        world.step(dt)?;
+        world.step(1.0 / 60.0)?;
     }
     Ok(())
 }

@@ -434,6 +434,24 @@ impl World {
         self.touched.iter().filter_map(|h| self.bodies.get(*h))
     }
 
+    /// A fingerprint of the simulation state: FNV-1a over every body's position, rotation and
+    /// velocities, bit for bit, in storage order. Equal runs give equal hashes.
+    pub fn state_hash(&self) -> u64 {
+        let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+        let mut mix = |value: Real| {
+            for byte in value.to_bits().to_le_bytes() {
+                hash = (hash ^ byte as u64).wrapping_mul(0x0000_0100_0000_01b3);
+            }
+        };
+        for body in self.bodies() {
+            let (p, q, v) = (body.position(), body.rotation(), body.linear_velocity());
+            for value in [p.x, p.y, q.re, q.im, v.x, v.y, body.angular_velocity()] {
+                mix(value);
+            }
+        }
+        hash
+    }
+
     /// The body under a world point, for grabbing with the mouse.
     ///
     /// Dynamic bodies win over kinematic ones and those over static ones; among equals the one

@@ -1,0 +1,159 @@
+//! `carom run`: a scene headless, and what it measured.
+
+use carom::{Effect, SolverKind};
+use carom_scene::SceneWorld;
+use std::path::Path;
+use std::time::Instant;
+
+/// How to run a scene, beyond what the scene file says.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Steps to take.
+    pub steps: usize,
+    /// Replace the scene's solver.
+    pub solver: Option<SolverKind>,
+    /// Replace the iteration count.
+    pub iterations: Option<u32>,
+    /// Replace the substep count.
+    pub substeps: Option<u32>,
+    /// Effects to add (`true`) or remove (`false`).
+    pub effects: Vec<(Effect, bool)>,
+}
+
+/// What a run measured.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunReport {
+    /// Mean wall time of a step, the first left out (as Box2D's benchmark does), ms.
+    pub ms_per_step: f64,
+    /// Median wall time of a step, ms.
+    pub ms_per_step_median: f64,
+    /// Steps taken.
+    pub steps: usize,
+    /// Bodies in the world.
+    pub bodies: usize,
+    /// Contacts at the end.
+    pub contacts: usize,
+    /// The deepest overlap seen in any step, m.
+    pub max_penetration: f32,
+    /// Kinetic energy at the end, J.
+    pub kinetic_energy: f32,
+    /// The fastest body seen in any step, m/s.
+    pub max_speed: f32,
+    /// True if any position or velocity ever went NaN or infinite.
+    pub nan: bool,
+    /// Bodies asleep at the end.
+    pub asleep: usize,
+    /// Fingerprint of the final positions and velocities.
+    pub hash: u64,
+}
+
+impl RunReport {
+    /// One JSON object with the keys in a fixed order.
+    pub fn to_json(&self) -> String {
+        format!(
+            "{{\"ms_per_step\": {}, \"ms_per_step_median\": {}, \"steps\": {}, \"bodies\": {}, \
+             \"contacts\": {}, \"max_penetration\": {}, \"kinetic_energy\": {}, \
+             \"max_speed\": {}, \"nan\": {}, \"asleep\": {}, \"hash\": \"{:016x}\"}}",
+            json_number(self.ms_per_step),
+            json_number(self.ms_per_step_median),
+            self.steps,
+            self.bodies,
+            self.contacts,
+            json_number(self.max_penetration as f64),
+            json_number(self.kinetic_energy as f64),
+            json_number(self.max_speed as f64),
+            self.nan,
+            self.asleep,
+            self.hash
+        )
+    }
+
+    /// A few lines for people.
+    pub fn summary(&self, name: &str) -> String {
+        format!(
+            "{name}: {} steps, {} bodies, {} contacts\n\
+             time      {:.4} ms/step (mean after the first), {:.4} ms/step (median)\n\
+             accuracy  max penetration {:.5} m, max speed {:.3} m/s, kinetic energy {:.4} J\n\
+             state     {} asleep, nan: {}, hash {:016x}",
+            self.steps,
+            self.bodies,
+            self.contacts,
+            self.ms_per_step,
+            self.ms_per_step_median,
+            self.max_penetration,
+            self.max_speed,
+            self.kinetic_energy,
+            self.asleep,
+            self.nan,
+            self.hash
+        )
+    }
+}
+
+/// JSON has no NaN or infinity: they become null.
+fn json_number(value: f64) -> String {
+    if value.is_finite() {
+        format!("{value}")
+    } else {
+        "null".into()
+    }
+}
+
+/// Loads a scene, applies the options, and runs it.
+pub fn run(file: &Path, options: &RunOptions) -> Result<RunReport, String> {
+    let mut scene = carom_scene::load(file).map_err(|e| e.to_string())?;
+    apply(&mut scene, options)?;
+    let mut times = Vec::with_capacity(options.steps);
+    let (mut max_penetration, mut max_speed, mut nan) = (0.0f32, 0.0f32, false);
+    for _ in 0..options.steps {
+        let clock = Instant::now();
+        scene.step().map_err(|e| e.to_string())?;
+        times.push(clock.elapsed().as_secs_f64() * 1e3);
+        max_penetration = max_penetration.max(scene.world.stats().max_penetration);
+        for body in scene.world.bodies() {
+            let (p, v) = (body.position(), body.linear_velocity());
+            nan |= !(p.iter().chain(v.iter()).all(|x| x.is_finite())
+                && body.angular_velocity().is_finite());
+            max_speed = max_speed.max(v.norm());
+        }
+    }
+    let timed = &times[times.len().min(1)..];
+    let ms_per_step = if timed.is_empty() {
+        0.0
+    } else {
+        timed.iter().sum::<f64>() / timed.len() as f64
+    };
+    let mut sorted = times.clone();
+    sorted.sort_by(f64::total_cmp);
+    let stats = scene.world.stats();
+    Ok(RunReport {
+        ms_per_step,
+        ms_per_step_median: sorted.get(sorted.len() / 2).copied().unwrap_or(0.0),
+        steps: options.steps,
+        bodies: scene.world.body_count(),
+        contacts: scene.world.contacts().len(),
+        max_penetration,
+        kinetic_energy: stats.kinetic_energy,
+        max_speed,
+        nan,
+        asleep: stats.sleeping_bodies,
+        hash: scene.world.state_hash(),
+    })
+}
+
+/// Overrides the scene's solver settings and effects.
+fn apply(scene: &mut SceneWorld, options: &RunOptions) -> Result<(), String> {
+    let mut solver = *scene.world.solver();
+    if let Some(kind) = options.solver {
+        let defaults = carom::SolverParams::for_kind(kind);
+        solver.kind = kind;
+        solver.iterations = defaults.iterations;
+    }
+    solver.iterations = options.iterations.unwrap_or(solver.iterations);
+    solver.substeps = options.substeps.unwrap_or(solver.substeps);
+    scene.world.set_solver(solver).map_err(|e| e.to_string())?;
+    for &(effect, on) in &options.effects {
+        scene.world.set_effect(effect, on);
+    }
+    Ok(())
+}

@@ -1,0 +1,165 @@
+//! `carom run` as a user calls it: the real binary, its output and its exit status.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn carom(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_carom"))
+        .args(args)
+        .current_dir(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../.."))
+        .output()
+        .expect("the carom binary runs")
+}
+
+fn stdout(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// The value of `key` in the one-line JSON object `json` (a test-sized reader).
+fn field<'a>(json: &'a str, key: &str) -> &'a str {
+    let start = json
+        .find(&format!("\"{key}\": "))
+        .unwrap_or_else(|| panic!("no {key} in {json}"))
+        + key.len()
+        + 4;
+    let rest = &json[start..];
+    let end = rest.find([',', '}']).unwrap();
+    rest[..end].trim_matches('"')
+}
+
+#[test]
+fn json_has_the_promised_keys_in_order() {
+    let output = carom(&["run", "demos/collision.ron", "--steps", "30", "--json"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let json = stdout(&output);
+    let keys = [
+        "ms_per_step",
+        "ms_per_step_median",
+        "steps",
+        "bodies",
+        "contacts",
+        "max_penetration",
+        "kinetic_energy",
+        "max_speed",
+        "nan",
+        "asleep",
+        "hash",
+    ];
+    let positions: Vec<usize> = keys
+        .iter()
+        .map(|k| {
+            json.find(&format!("\"{k}\""))
+                .unwrap_or_else(|| panic!("{k} missing"))
+        })
+        .collect();
+    assert!(
+        positions.windows(2).all(|w| w[0] < w[1]),
+        "keys out of order: {json}"
+    );
+    assert_eq!(field(&json, "steps"), "30");
+    assert_eq!(field(&json, "nan"), "false");
+    assert_eq!(field(&json, "hash").len(), 16);
+}
+
+#[test]
+fn the_same_run_gives_the_same_hash() {
+    let args = [
+        "run",
+        "demos/pyramid.ron",
+        "--steps",
+        "120",
+        "--json",
+        "--solver",
+        "sequential-impulse",
+    ];
+    let (first, second) = (stdout(&carom(&args)), stdout(&carom(&args)));
+    assert_eq!(field(&first, "hash"), field(&second, "hash"));
+    // Different options, different result.
+    let other = stdout(&carom(&[
+        "run",
+        "demos/pyramid.ron",
+        "--steps",
+        "120",
+        "--json",
+    ]));
+    assert_ne!(field(&first, "hash"), field(&other, "hash"));
+}
+
+#[test]
+fn every_demo_runs_600_steps_without_nan() {
+    let folder = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../demos");
+    let mut scenes: Vec<String> = std::fs::read_dir(folder)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| name.ends_with(".ron"))
+        .collect();
+    scenes.sort();
+    assert!(!scenes.is_empty());
+    for scene in scenes {
+        // The 5000-body benchmark scene is measured by `carom bench`; a short run proves it here.
+        let steps = if scene == "large_pyramid.ron" {
+            "20"
+        } else {
+            "600"
+        };
+        let output = carom(&["run", &format!("demos/{scene}"), "--steps", steps, "--json"]);
+        assert!(output.status.success(), "{scene}: {}", stderr(&output));
+        assert_eq!(field(&stdout(&output), "nan"), "false", "{scene}");
+    }
+}
+
+#[test]
+fn effects_can_be_added_and_removed() {
+    let run = |effects: &str| {
+        let output = carom(&[
+            "run",
+            "demos/tunneling.ron",
+            "--steps",
+            "40",
+            "--json",
+            effects,
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        stdout(&output)
+    };
+    // The scene leaves continuous collision out: the ball keeps its 300 m/s through the wall.
+    assert_eq!(field(&run("--effects=-drag"), "contacts"), "0");
+    // Added, the wall stops it and holds a contact with it.
+    assert_eq!(field(&run("--effects=+continuous"), "contacts"), "1");
+}
+
+#[test]
+fn bad_input_fails_cleanly_with_the_reason() {
+    for (args, expected) in [
+        (vec!["run", "demos/no_such.ron"], "cannot read"),
+        (
+            vec!["run", "tests/scenes/bad_syntax.ron"],
+            "bad_syntax.ron:3:5",
+        ),
+        (
+            vec!["run", "tests/scenes/bad_event.ron"],
+            "no body is named",
+        ),
+        (
+            vec!["run", "demos/pyramid.ron", "--effects=+magic"],
+            "unknown effect",
+        ),
+        (
+            vec!["run", "demos/pyramid.ron", "--iterations", "0"],
+            "iterations",
+        ),
+    ] {
+        let output = carom(&args);
+        let message = stderr(&output);
+        assert!(!output.status.success(), "{args:?} succeeded");
+        assert!(message.contains(expected), "{args:?}: {message}");
+        assert!(
+            !message.contains("panicked"),
+            "{args:?} panicked: {message}"
+        );
+    }
+}
