@@ -105,3 +105,66 @@ fn the_normals_demo_reproduces_the_worked_example() {
     let deepest = manifold.min_separation().unwrap();
     assert!((deepest + 1.109).abs() < 1e-3, "{deepest}");
 }
+
+#[test]
+fn the_incline_boxes_hold_below_the_critical_angle_and_slide_above() {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos/incline_friction.ron");
+    let mut scene = load(&file).unwrap();
+    let start: Vec<_> = scene
+        .world
+        .bodies()
+        .filter(|b| b.is_dynamic())
+        .map(|b| b.position())
+        .collect();
+    for _ in 0..120 {
+        scene.step().unwrap();
+    }
+    let moved: Vec<f32> = scene
+        .world
+        .bodies()
+        .filter(|b| b.is_dynamic())
+        .zip(&start)
+        .map(|(b, s)| (b.position() - s).norm())
+        .collect();
+    // Slopes at 0.8, 0.9, 1.0, 1.1 and 1.2 times the critical angle.
+    assert!(moved[0] < 0.01 && moved[1] < 0.01, "{moved:?}");
+    assert!(moved[3] > 0.3 && moved[4] > 0.3, "{moved:?}");
+}
+
+#[test]
+fn the_cradle_passes_the_momentum_down_the_row() {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos/newtons_cradle.ron");
+    let mut scene = load(&file).unwrap();
+    for _ in 0..120 {
+        scene.step().unwrap();
+    }
+    let velocities: Vec<f32> = scene
+        .world
+        .bodies()
+        .map(|b| b.linear_velocity().x)
+        .collect();
+    let striker = velocities[0];
+    let last = *velocities.last().unwrap();
+    assert!(striker.abs() < 0.3, "striker still moving: {velocities:?}");
+    assert!((last - 4.0).abs() < 0.3, "last ball: {velocities:?}");
+    let momentum: f32 = velocities.iter().sum();
+    assert!((momentum - 4.0).abs() < 1e-3, "{velocities:?}");
+}
+
+#[test]
+fn the_overlapped_pyramid_recovers_without_exploding() {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos/overlap_recovery.ron");
+    let mut scene = load(&file).unwrap();
+    let mut fastest: f32 = 0.0;
+    for _ in 0..180 {
+        scene.step().unwrap();
+        fastest = scene
+            .world
+            .bodies()
+            .map(|b| b.linear_velocity().norm())
+            .fold(fastest, f32::max);
+    }
+    // Soft step pushes overlap out at no more than 3 m/s.
+    assert!(fastest < 3.5, "fastest {fastest} m/s");
+    assert!(scene.world.stats().max_penetration < 0.01);
+}

@@ -202,15 +202,22 @@ fn generate(generator: &Generator) -> Result<(Vec<BodyDef>, Material), String> {
             base,
             count,
             size,
+            rows,
+            overlap,
             material,
         } => {
+            if !(0.0..1.0).contains(overlap) {
+                return Err(format!("overlap must be in [0, 1), got {overlap}"));
+            }
             let shape = square(*size)?;
+            // Centre to centre: a box, less the overlap.
+            let pitch = size * (1.0 - overlap);
             let mut defs = Vec::new();
-            for row in 0..*count {
+            for row in 0..rows.unwrap_or(*count).min(*count) {
                 let in_row = count - row;
                 for column in 0..in_row {
-                    let x = base.0 + (column as f32 - 0.5 * (in_row as f32 - 1.0)) * size;
-                    let y = base.1 + (row as f32 + 0.5) * size;
+                    let x = base.0 + (column as f32 - 0.5 * (in_row as f32 - 1.0)) * pitch;
+                    let y = base.1 + 0.5 * size + row as f32 * pitch;
                     defs.push(with_material(
                         BodyDef::dynamic(shape.clone()).position(vec2(x, y)),
                         material,

@@ -275,6 +275,13 @@ pub enum Generator {
         /// Box side, m.
         #[serde(default = "one")]
         size: f32,
+        /// Only this many rows from the bottom (the rest left to other bodies). Default all.
+        #[serde(default)]
+        rows: Option<u32>,
+        /// Fraction of a box by which neighbours start overlapping (Box2D's overlap recovery
+        /// uses 0.25). Default 0: touching.
+        #[serde(default)]
+        overlap: f32,
         /// Their material.
         #[serde(default)]
         material: Material,
