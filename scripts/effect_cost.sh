@@ -30,5 +30,6 @@ for config in "${configs[@]}"; do
     b=$(count 300 "$config")
     per_step=$(((b - a) / 200))
     base=${base:-$per_step}
-    printf '| `%s` | %d | %.3f |\n' "$config" "$per_step" "$(echo "$per_step / $base" | bc -l)"
+    ratio=$(awk -v a="$per_step" -v b="$base" 'BEGIN { printf "%.3f", a / b }')
+    printf '| `%s` | %d | %s |\n' "$config" "$per_step" "$ratio"
 done
