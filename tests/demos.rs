@@ -168,3 +168,47 @@ fn the_overlapped_pyramid_recovers_without_exploding() {
     assert!(fastest < 3.5, "fastest {fastest} m/s");
     assert!(scene.world.stats().max_penetration < 0.01);
 }
+
+#[test]
+fn many_pyramids_is_box2d_s_recipe() {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos/many_pyramids.ron");
+    let scene = load(&file).unwrap();
+    assert_eq!(scene.world.body_count(), 20 + 22_000);
+    // Box2D: x = (i + 1) 0.5 + (j - i) + centreX - 0.5, y = (2 i + 1) 0.5 + baseY, with
+    // centreX = -110 + 11 column + 1 and baseY = 11 row, i the row in the pyramid, j from i to 9.
+    let mut expected: Vec<(i32, i32)> = Vec::new();
+    for row in 0..20 {
+        for column in 0..20 {
+            let (center_x, base_y) = (-110.0 + 11.0 * column as f32 + 1.0, 11.0 * row as f32);
+            for i in 0..10 {
+                for j in i..10 {
+                    let x = (i + 1) as f32 * 0.5 + (j - i) as f32 + center_x - 0.5;
+                    let y = (2 * i + 1) as f32 * 0.5 + base_y;
+                    expected.push(((x * 2.0).round() as i32, (y * 2.0).round() as i32));
+                }
+            }
+        }
+    }
+    let mut actual: Vec<(i32, i32)> = scene
+        .world
+        .bodies()
+        .filter(|b| b.is_dynamic())
+        .map(|b| {
+            (
+                (b.position().x * 2.0).round() as i32,
+                (b.position().y * 2.0).round() as i32,
+            )
+        })
+        .collect();
+    expected.sort_unstable();
+    actual.sort_unstable();
+    assert_eq!(actual, expected);
+}
+
+#[test]
+fn rain_is_the_same_every_time() {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos/rain.ron");
+    let (a, b) = (load(&file).unwrap(), load(&file).unwrap());
+    assert_eq!(a.world.state_hash(), b.world.state_hash());
+    assert_eq!(a.world.body_count(), 4 + 300);
+}

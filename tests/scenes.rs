@@ -81,8 +81,8 @@ fn the_documented_example_is_a_valid_scene() {
     let scene = carom_scene::parse(&readme[start..end], "demos/README.md")
         .unwrap_or_else(|e| panic!("{e}"));
     let mut built = carom_scene::build(&scene, "demos/README.md").unwrap_or_else(|e| panic!("{e}"));
-    // 5 bodies, a stack of 10, a pyramid of 15, a grid of 8 and 4 walls.
-    assert_eq!(built.world.body_count(), 5 + 10 + 15 + 8 + 4);
+    // 5 bodies, a stack of 10, a pyramid of 15, a grid of 8, 4 walls, 20 drops, 2 stacks of 3.
+    assert_eq!(built.world.body_count(), 5 + 10 + 15 + 8 + 4 + 20 + 6);
     let ball = built.names["ball"];
     for _ in 0..121 {
         built.step().unwrap();

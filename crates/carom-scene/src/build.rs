@@ -174,6 +174,8 @@ fn generator_name(generator: &Generator) -> &'static str {
         Generator::Pyramid { .. } => "pyramid",
         Generator::Grid { .. } => "grid",
         Generator::Room { .. } => "room",
+        Generator::Rain { .. } => "rain",
+        Generator::Repeat { .. } => "repeat",
     }
 }
 
@@ -250,6 +252,57 @@ fn generate(generator: &Generator) -> Result<(Vec<BodyDef>, Material), String> {
                 }
             }
             (defs, *material)
+        }
+        Generator::Rain {
+            low,
+            high,
+            count,
+            shape: spec,
+            seed,
+            material,
+        } => {
+            let shape = shape(spec).map_err(|e| e.to_string())?;
+            // xorshift64*: small, deterministic on every machine.
+            let mut state = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
+            let mut unit = move || {
+                state ^= state >> 12;
+                state ^= state << 25;
+                state ^= state >> 27;
+                (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
+            };
+            let defs = (0..*count)
+                .map(|_| {
+                    let at = vec2(
+                        low.0 + (high.0 - low.0) * unit(),
+                        low.1 + (high.1 - low.1) * unit(),
+                    );
+                    let angle = std::f32::consts::TAU * unit();
+                    with_material(
+                        BodyDef::dynamic(shape.clone()).position(at).angle(angle),
+                        material,
+                    )
+                })
+                .collect();
+            (defs, *material)
+        }
+        Generator::Repeat {
+            columns,
+            rows,
+            spacing,
+            of,
+        } => {
+            let (one, material) = generate(of)?;
+            let mut defs = Vec::with_capacity(one.len() * (*columns * *rows) as usize);
+            for row in 0..*rows {
+                for column in 0..*columns {
+                    let shift = vec2(column as f32 * spacing.0, row as f32 * spacing.1);
+                    defs.extend(one.iter().cloned().map(|mut def| {
+                        def.position += shift;
+                        def
+                    }));
+                }
+            }
+            (defs, material)
         }
         Generator::Room {
             center,

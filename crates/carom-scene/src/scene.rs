@@ -305,6 +305,35 @@ pub enum Generator {
         #[serde(default)]
         material: Material,
     },
+    /// `count` copies of a shape scattered over the rectangle from `low` to `high` (its
+    /// corners), at positions drawn from `seed`: the same seed, the same scatter.
+    Rain {
+        /// Lower-left corner of the area.
+        low: Pair,
+        /// Upper-right corner of the area.
+        high: Pair,
+        /// How many bodies.
+        count: u32,
+        /// The shape of each.
+        shape: ShapeSpec,
+        /// Seed of the scatter.
+        #[serde(default)]
+        seed: u64,
+        /// Their material.
+        #[serde(default)]
+        material: Material,
+    },
+    /// Another generator repeated `columns × rows` times, each copy shifted by `spacing`.
+    Repeat {
+        /// Copies per row.
+        columns: u32,
+        /// Rows of copies.
+        rows: u32,
+        /// Shift between neighbouring copies, m.
+        spacing: Pair,
+        /// What is repeated.
+        of: Box<Generator>,
+    },
     /// Four static walls of a box-shaped room centred on `center`.
     Room {
         /// Centre of the room.
