@@ -157,6 +157,25 @@ impl ContactConstraint {
         b.w += self.inv_inertia_b * cross(point.anchor_b, p);
     }
 
+    /// Adds `impulse` to point `index`'s accumulated normal impulse, keeping the total from
+    /// pulling (≥ 0), and applies what was actually added to the bodies.
+    #[inline]
+    pub fn add_normal_impulse(
+        &mut self,
+        index: usize,
+        impulse: Real,
+        a: &mut BodyState,
+        b: &mut BodyState,
+    ) {
+        let mut point = self.points[index];
+        let total = (point.normal_impulse + impulse).max(0.0);
+        let applied = total - point.normal_impulse;
+        point.normal_impulse = total;
+        point.max_normal_impulse = point.max_normal_impulse.max(applied);
+        self.apply(&point, self.normal * applied, a, b);
+        self.points[index] = point;
+    }
+
     /// Velocity of B relative to A at a point.
     #[inline]
     pub fn relative_velocity(point: &ConstraintPoint, a: &BodyState, b: &BodyState) -> Vec2 {

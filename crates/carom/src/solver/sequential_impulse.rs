@@ -34,7 +34,7 @@ pub(super) fn solve(
                 work.friction_impulses += solve_friction(c, a, b);
             }
             for i in 0..c.points().len() {
-                let mut point = c.points()[i];
+                let point = c.points()[i];
                 // The slowest normal velocity allowed: close a speculative gap exactly, or
                 // push out a fraction of the overlap beyond the slop.
                 let target = if point.separation > 0.0 {
@@ -43,12 +43,7 @@ pub(super) fn solve(
                     params.baumgarte * inv_dt * (-point.separation - params.linear_slop).max(0.0)
                 };
                 let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
-                let total = (point.normal_impulse + point.normal_mass * (target - vn)).max(0.0);
-                let applied = total - point.normal_impulse;
-                point.normal_impulse = total;
-                point.max_normal_impulse = point.max_normal_impulse.max(applied);
-                c.apply(&point, c.normal * applied, a, b);
-                c.points_mut()[i] = point;
+                c.add_normal_impulse(i, point.normal_mass * (target - vn), a, b);
             }
         }
     }

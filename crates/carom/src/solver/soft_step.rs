@@ -107,7 +107,7 @@ fn solve_contacts(
             bias.soft
         };
         for i in 0..c.points().len() {
-            let mut point = c.points()[i];
+            let point = c.points()[i];
             let s = c.current_separation(&point, a, b);
             let (velocity_bias, mass_scale, impulse_scale) = if s > 0.0 {
                 // Speculative: may close exactly the gap this substep.
@@ -124,12 +124,7 @@ fn solve_contacts(
             let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
             let impulse = -point.normal_mass * mass_scale * (vn + velocity_bias)
                 - impulse_scale * point.normal_impulse;
-            let total = (point.normal_impulse + impulse).max(0.0);
-            let applied = total - point.normal_impulse;
-            point.normal_impulse = total;
-            point.max_normal_impulse = point.max_normal_impulse.max(applied);
-            c.apply(&point, c.normal * applied, a, b);
-            c.points_mut()[i] = point;
+            c.add_normal_impulse(i, impulse, a, b);
         }
         if friction {
             friction_impulses += solve_friction(c, a, b);
@@ -171,7 +166,7 @@ pub(super) fn apply_restitution(
     for c in constraints.iter_mut().filter(|c| c.restitution > 0.0) {
         let (a, b) = pair_mut(states, c.a, c.b);
         for i in 0..c.points().len() {
-            let mut point = c.points()[i];
+            let point = c.points()[i];
             if point.relative_velocity > -params.restitution_threshold
                 || point.max_normal_impulse == 0.0
             {
@@ -180,12 +175,7 @@ pub(super) fn apply_restitution(
             impulses += 1;
             let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
             let impulse = -point.normal_mass * (vn + c.restitution * point.relative_velocity);
-            let total = (point.normal_impulse + impulse).max(0.0);
-            let applied = total - point.normal_impulse;
-            point.normal_impulse = total;
-            point.max_normal_impulse = point.max_normal_impulse.max(applied);
-            c.apply(&point, c.normal * applied, a, b);
-            c.points_mut()[i] = point;
+            c.add_normal_impulse(i, impulse, a, b);
         }
     }
     impulses
