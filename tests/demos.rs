@@ -205,3 +205,21 @@ fn rain_is_the_same_every_time() {
     assert_eq!(a.world.state_hash(), b.world.state_hash());
     assert_eq!(a.world.body_count(), 4 + 300);
 }
+
+#[test]
+fn the_card_house_stands() {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos/card_house.ron");
+    let mut scene = load(&file).unwrap();
+    let start: Vec<_> = scene.world.bodies().map(|b| b.position()).collect();
+    for _ in 0..300 {
+        scene.step().unwrap();
+    }
+    // The leaning pairs close their millimetre gaps and settle; a collapse drops cards by metres.
+    let dropped = scene
+        .world
+        .bodies()
+        .zip(&start)
+        .map(|(b, s)| s.y - b.position().y)
+        .fold(0.0, f32::max);
+    assert!(dropped < 0.05, "a card fell {dropped} m");
+}
