@@ -259,62 +259,66 @@ impl World {
                 value: dt,
             });
         }
-        let step_start = Instant::now();
+        let started = Instant::now();
         let mut stats = StepStats::default();
+        let times = &mut stats.times;
         self.contacts.begin_step();
         self.catch_up_with_edits();
 
-        let clock = Instant::now();
-        self.find_pairs();
-        stats.times.broadphase = clock.elapsed();
+        timed(&mut times.broadphase, || self.find_pairs());
+        stats.max_penetration = timed(&mut times.narrowphase, || self.build_manifolds());
+        let dense = self.contact_bodies();
+        let effects = self.settings.effects;
+        let starts = effects.contains(Effect::Continuous).then(|| self.poses());
+        (stats.contact_points, stats.work) = timed(&mut times.solve, || self.solve(dt, &dense));
+        if let Some(starts) = starts {
+            (stats.continuous_impacts, stats.work.sweeps) =
+                timed(&mut times.continuous, || self.solve_continuous(&starts));
+        }
+        timed(&mut times.broadphase, || self.refresh_broadphase());
+        if effects.contains(Effect::Sleeping) {
+            stats.work.sleep_checks = timed(&mut times.sleep, || self.update_sleep(dt, &dense));
+        }
 
-        let clock = Instant::now();
+        self.record(stats, started);
+        self.time += dt as f64;
+        self.step_count += 1;
+        Ok(())
+    }
+
+    /// Rebuilds the manifolds of every pair where something moves, and wakes the sleeping
+    /// islands a moving body touched so they join this step; returns the deepest overlap.
+    fn build_manifolds(&mut self) -> Real {
         let mut wake = Vec::new();
-        stats.max_penetration = self.contacts.update(
+        let deepest = self.contacts.update(
             &self.bodies,
             &self.broadphase,
             self.settings.speculative_distance,
             &mut wake,
         );
-        // Islands a moving body touched join this step.
         sleep::wake_groups(self.bodies.as_mut_slice(), &wake);
-        stats.times.narrowphase = clock.elapsed();
+        deepest
+    }
 
-        let clock = Instant::now();
-        let dense = self.contact_bodies();
-        let effects = self.settings.effects;
-        let starts = effects.contains(Effect::Continuous).then(|| self.poses());
-        (stats.contact_points, stats.work) = self.solve(dt, &dense);
-        stats.times.solve = clock.elapsed();
+    /// Advances sleep timers and puts resting islands to sleep; returns the bodies checked.
+    fn update_sleep(&mut self, dt: Real, dense: &[(usize, usize)]) -> usize {
+        let touching: Vec<(usize, usize)> = self
+            .contacts
+            .iter()
+            .zip(dense)
+            .filter(|(c, _)| c.is_touching())
+            .map(|(_, pair)| *pair)
+            .collect();
+        sleep::update_sleep(
+            self.bodies.as_mut_slice(),
+            &touching,
+            dt,
+            &mut self.sleep_groups,
+        )
+    }
 
-        if let Some(starts) = starts {
-            let clock = Instant::now();
-            (stats.continuous_impacts, stats.work.sweeps) = self.solve_continuous(&starts);
-            stats.times.continuous = clock.elapsed();
-        }
-
-        let clock = Instant::now();
-        self.refresh_broadphase();
-        stats.times.broadphase += clock.elapsed();
-
-        if effects.contains(Effect::Sleeping) {
-            let clock = Instant::now();
-            let touching: Vec<(usize, usize)> = self
-                .contacts
-                .iter()
-                .zip(&dense)
-                .filter(|(c, _)| c.is_touching())
-                .map(|(_, pair)| *pair)
-                .collect();
-            stats.work.sleep_checks = sleep::update_sleep(
-                self.bodies.as_mut_slice(),
-                &touching,
-                dt,
-                &mut self.sleep_groups,
-            );
-            stats.times.sleep = clock.elapsed();
-        }
-
+    /// Completes a step's statistics with counts taken after it, and keeps them.
+    fn record(&mut self, mut stats: StepStats, started: Instant) {
         stats.bodies = self.bodies.len();
         stats.contacts = self.contacts.len();
         stats.touching_contacts = self.contacts.iter().filter(|c| c.is_touching()).count();
@@ -325,12 +329,8 @@ impl World {
                 stats.kinetic_energy += body.kinetic_energy();
             }
         }
-        stats.times.total = step_start.elapsed();
+        stats.times.total = started.elapsed();
         self.stats = stats;
-
-        self.time += dt as f64;
-        self.step_count += 1;
-        Ok(())
     }
 
     /// Every body's pose, in storage order.
@@ -516,6 +516,14 @@ impl World {
         }
         best
     }
+}
+
+/// Runs a stage and adds its wall time to `slot`.
+fn timed<T>(slot: &mut std::time::Duration, stage: impl FnOnce() -> T) -> T {
+    let clock = Instant::now();
+    let result = stage();
+    *slot += clock.elapsed();
+    result
 }
 
 #[cfg(test)]
