@@ -55,6 +55,11 @@ fn semantic_errors_name_the_body_or_event_and_the_reason() {
             "event 0",
             "no body is named \"bal\"",
         ),
+        (
+            "scenes/bad_spin.ron",
+            "event 0",
+            "\"crate\" must be kinematic to spin",
+        ),
     ] {
         let (error, message) = error_of(file);
         assert!(matches!(error, SceneError::Invalid { .. }), "{message}");
@@ -81,12 +86,48 @@ fn the_documented_example_is_a_valid_scene() {
     let scene = carom_scene::parse(&readme[start..end], "demos/README.md")
         .unwrap_or_else(|e| panic!("{e}"));
     let mut built = carom_scene::build(&scene, "demos/README.md").unwrap_or_else(|e| panic!("{e}"));
-    // 5 bodies, a stack of 10, a pyramid of 15, a grid of 8, 4 walls, 20 drops, 2 stacks of 3.
-    assert_eq!(built.world.body_count(), 5 + 10 + 15 + 8 + 4 + 20 + 6);
+    // 6 bodies, a stack of 10, a pyramid of 15, a grid of 8, 4 walls, 20 drops, 2 stacks of 3.
+    assert_eq!(built.world.body_count(), 6 + 10 + 15 + 8 + 4 + 20 + 6);
     let ball = built.names["ball"];
     for _ in 0..121 {
         built.step().unwrap();
     }
     // The launch at 2 s gave the ball its rightward velocity (drag and friction aside).
     assert!(built.world.body(ball).unwrap().linear_velocity().x > 4.0);
+}
+
+#[test]
+fn a_spun_frame_turns_rigidly_about_its_pivot() {
+    // Two kinematic arms on either side of a pivot, turned at 1 rad/s for 20 s: each ends
+    // exactly where the analytic rotation puts it, however many steps it took.
+    let text = r#"(
+        name: "spin",
+        effects: [],
+        bodies: [
+            (name: Some("east"), kind: kinematic, shape: Box(width: 1.0, height: 0.2), position: (3.0, 1.0)),
+            (name: Some("west"), kind: kinematic, shape: Box(width: 1.0, height: 0.2), position: (-1.0, 1.0)),
+        ],
+        events: [Spin(bodies: ["east", "west"], pivot: (1.0, 1.0), angular_velocity: 1.0)],
+    )"#;
+    let scene = carom_scene::parse(text, "spin.ron").unwrap();
+    let mut built = carom_scene::build(&scene, "spin.ron").unwrap();
+    for _ in 0..1200 {
+        built.step().unwrap();
+    }
+    let turn = built.world.time() as f32;
+    for (name, offset) in [("east", 2.0f32), ("west", -2.0)] {
+        let body = built.world.body(built.names[name]).unwrap();
+        let expected = carom::vec2(1.0 + offset * turn.cos(), 1.0 + offset * turn.sin());
+        assert!(
+            (body.position() - expected).norm() < 1e-3,
+            "{name} at {:?}, expected {expected:?}",
+            body.position()
+        );
+        let angle_error = (body.rotation() * carom::Rot::new(turn).inverse()).angle();
+        assert!(
+            angle_error.abs() < 1e-3,
+            "{name} turned {angle_error} rad off"
+        );
+        assert!((body.angular_velocity() - 1.0).abs() < 1e-3);
+    }
 }

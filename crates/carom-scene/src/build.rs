@@ -29,7 +29,7 @@ pub struct SceneWorld {
 impl SceneWorld {
     /// Fires the events due and advances the world by one time step.
     pub fn step(&mut self) -> Result<(), CaromError> {
-        self.events.fire(&mut self.world);
+        self.events.fire(&mut self.world, self.time_step);
         self.world.step(self.time_step)
     }
 }
@@ -87,7 +87,7 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
             }
         }
     }
-    let events = Events::new(&scene.events, &names, initial)
+    let events = Events::new(&scene.events, &names, initial, &world)
         .map_err(|(index, reason)| invalid(format!("event {index}"), reason))?;
     Ok(SceneWorld {
         world,

@@ -1,7 +1,8 @@
-//! Timed events: launching a body at a moment, respawning one periodically.
+//! Timed events: launching a body at a moment, respawning one periodically, spinning a
+//! kinematic frame.
 
 use crate::scene::EventSpec;
-use carom::{BodyDef, BodyHandle, World, vec2};
+use carom::{BodyDef, BodyHandle, BodyKind, World, vec2};
 use std::collections::HashMap;
 
 #[derive(Debug)]
@@ -19,6 +20,12 @@ enum Action {
         start: BodyDef,
         next: f64,
     },
+    Spin {
+        pivot: carom::Vec2,
+        angular_velocity: f64,
+        /// Each body with its offset from the pivot and its angle at time zero.
+        bodies: Vec<(BodyHandle, carom::Vec2, f32)>,
+    },
 }
 
 /// A scene's events, ready to fire.
@@ -33,6 +40,7 @@ impl Events {
         specs: &[EventSpec],
         names: &HashMap<String, BodyHandle>,
         mut initial: HashMap<BodyHandle, BodyDef>,
+        world: &World,
     ) -> Result<Self, (usize, String)> {
         let find = |index: usize, name: &str| {
             names
@@ -75,13 +83,40 @@ impl Events {
                         next: *every as f64,
                     }
                 }
+                EventSpec::Spin {
+                    bodies,
+                    pivot,
+                    angular_velocity,
+                } => {
+                    if !angular_velocity.is_finite() || !pivot.0.is_finite() || !pivot.1.is_finite()
+                    {
+                        return Err((index, "pivot and angular_velocity must be finite".into()));
+                    }
+                    let pivot = vec2(pivot.0, pivot.1);
+                    let mut frame = Vec::with_capacity(bodies.len());
+                    for name in bodies {
+                        let handle = find(index, name)?;
+                        let body = world
+                            .body(handle)
+                            .ok_or((index, format!("{name:?} is gone")))?;
+                        if body.kind() != BodyKind::Kinematic {
+                            return Err((index, format!("{name:?} must be kinematic to spin")));
+                        }
+                        frame.push((handle, body.position() - pivot, body.angle()));
+                    }
+                    Action::Spin {
+                        pivot,
+                        angular_velocity: *angular_velocity as f64,
+                        bodies: frame,
+                    }
+                }
             });
         }
         Ok(Events { actions })
     }
 
-    /// Fires every event due at the world's current time.
-    pub fn fire(&mut self, world: &mut World) {
+    /// Fires every event due at the world's current time, before a step of `dt` seconds.
+    pub fn fire(&mut self, world: &mut World, dt: f32) {
         let now = world.time() + 1e-9;
         for action in &mut self.actions {
             match action {
@@ -114,6 +149,22 @@ impl Events {
                             let _ = b.set_angle(start.angle);
                             let _ = b.set_linear_velocity(start.linear_velocity);
                             let _ = b.set_angular_velocity(start.angular_velocity);
+                        }
+                    }
+                }
+                Action::Spin {
+                    pivot,
+                    angular_velocity,
+                    bodies,
+                } => {
+                    // Aim at the exact pose at the end of the step, so the frame stays
+                    // rigid however long it turns (velocities alone would spiral out).
+                    let turn = (*angular_velocity * (world.time() + dt as f64)) as f32;
+                    let rotation = carom::Rot::new(turn);
+                    for (handle, offset, angle) in bodies.iter() {
+                        if let Some(b) = world.body_mut(*handle) {
+                            let _ =
+                                b.move_kinematic_to(*pivot + rotation * offset, angle + turn, dt);
                         }
                     }
                 }

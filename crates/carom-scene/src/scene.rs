@@ -378,4 +378,14 @@ pub enum EventSpec {
         /// Which body (its `name`).
         body: String,
     },
+    /// From the start, the named kinematic bodies turn together about `pivot` as one
+    /// rigid frame (a drum, a tumbler): each keeps its offset from the pivot.
+    Spin {
+        /// Which bodies (their `name`s); each must be kinematic.
+        bodies: Vec<String>,
+        /// The centre of the turn, m.
+        pivot: Pair,
+        /// Turn rate, rad/s (positive is counter-clockwise).
+        angular_velocity: f32,
+    },
 }
