@@ -3,11 +3,12 @@
 use crate::error::SceneError;
 use crate::events::Events;
 use crate::scene::{
-    BodySpec, EffectName, Generator, KindName, Material, Scene, ShapeSpec, SolverName, WorldSpec,
+    BodySpec, Camera, EffectName, Generator, KindName, Material, Scene, ShapeSpec, SolverName,
+    WorldSpec,
 };
 use carom::{
-    BodyDef, BodyHandle, BodyKind, CaromError, Effect, Effects, Real, Shape, SolverKind,
-    SolverParams, World, WorldSettings, vec2,
+    BodyDef, BodyHandle, BodyKind, CaromError, Color, DebugDraw, DrawFlags, DrawOptions, Effect,
+    Effects, Real, Shape, SolverKind, SolverParams, World, WorldSettings, vec2,
 };
 use std::collections::HashMap;
 
@@ -23,6 +24,10 @@ pub struct SceneWorld {
     pub names: HashMap<String, BodyHandle>,
     /// Colours the scene asked for.
     pub colors: HashMap<BodyHandle, (f32, f32, f32)>,
+    /// Where the scene's camera starts.
+    pub camera: Camera,
+    /// What the scene asks to be drawn.
+    pub draw: DrawFlags,
     events: Events,
 }
 
@@ -31,6 +36,19 @@ impl SceneWorld {
     pub fn step(&mut self) -> Result<(), CaromError> {
         self.events.fire(&mut self.world, self.time_step);
         self.world.step(self.time_step)
+    }
+
+    /// Describes the world to `out` as `options` select, in the scene's colours.
+    pub fn debug_draw(&self, options: &DrawOptions, out: &mut impl DebugDraw) {
+        self.world.debug_draw(
+            options,
+            |body| {
+                self.colors
+                    .get(&body.handle())
+                    .map(|&(r, g, b)| Color::rgb(r, g, b))
+            },
+            out,
+        );
     }
 }
 
@@ -94,6 +112,11 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
         time_step,
         names,
         colors,
+        camera: scene.camera,
+        draw: scene
+            .draw
+            .iter()
+            .fold(DrawFlags::NONE, |flags, name| flags | name.flag()),
         events,
     })
 }

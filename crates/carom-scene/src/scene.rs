@@ -32,6 +32,55 @@ pub struct Scene {
     /// Things that happen at given times.
     #[serde(default)]
     pub events: Vec<EventSpec>,
+    /// What the demo and snapshots draw at first. Default: shapes, sleeping bodies dimmed.
+    #[serde(default = "default_draw")]
+    pub draw: Vec<DrawName>,
+}
+
+fn default_draw() -> Vec<DrawName> {
+    vec![DrawName::Shapes, DrawName::Sleeping]
+}
+
+/// The debug-draw layers, as scene files name them (see `carom::DrawFlags`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DrawName {
+    /// Bodies' shapes.
+    Shapes,
+    /// Polygon edge normals.
+    EdgeNormals,
+    /// Bounding boxes.
+    Aabbs,
+    /// Contact points.
+    ContactPoints,
+    /// Contact normals.
+    ContactNormals,
+    /// Reference and incident edges.
+    ContactEdges,
+    /// Centres of mass.
+    CentersOfMass,
+    /// Velocity arrows.
+    Velocities,
+    /// Sleeping bodies dimmed.
+    Sleeping,
+}
+
+impl DrawName {
+    /// The core's flag for this layer.
+    pub fn flag(self) -> carom::DrawFlags {
+        use carom::DrawFlags as F;
+        match self {
+            DrawName::Shapes => F::SHAPES,
+            DrawName::EdgeNormals => F::EDGE_NORMALS,
+            DrawName::Aabbs => F::AABBS,
+            DrawName::ContactPoints => F::CONTACT_POINTS,
+            DrawName::ContactNormals => F::CONTACT_NORMALS,
+            DrawName::ContactEdges => F::CONTACT_EDGES,
+            DrawName::CentersOfMass => F::CENTERS_OF_MASS,
+            DrawName::Velocities => F::VELOCITIES,
+            DrawName::Sleeping => F::SLEEPING,
+        }
+    }
 }
 
 fn all_effects() -> Vec<EffectName> {
@@ -51,8 +100,19 @@ fn all_effects() -> Vec<EffectName> {
 pub struct Camera {
     /// The world point at the centre of the view, m.
     pub center: Pair,
-    /// Pixels per metre.
+    /// Pixels per metre in a view 720 pixels high; views of other heights scale it, so every
+    /// size shows the same part of the world.
     pub zoom: f32,
+}
+
+impl Camera {
+    /// The height, in pixels, at which `zoom` is exact.
+    pub const REFERENCE_HEIGHT: f32 = 720.0;
+
+    /// Pixels per metre in a view `height` pixels high.
+    pub fn zoom_for_height(&self, height: u32) -> f32 {
+        self.zoom * height as f32 / Camera::REFERENCE_HEIGHT
+    }
 }
 
 impl Default for Camera {

@@ -1,0 +1,603 @@
+//! How a world describes itself for drawing, without knowing how drawing is done.
+//!
+//! [`World::debug_draw`] walks the bodies and contacts and calls a [`DebugDraw`] sink with a
+//! handful of primitives: filled convex polygons, discs, segments, arrows and points. The
+//! [`DrawFlags`] choose what is described. [`DrawList`] is a sink that just records, so a
+//! renderer (the `carom-render` crate) can upload it in one go; a test can inspect it.
+//!
+//! Positions and lengths of shapes are in metres. Line widths and point sizes are in screen
+//! pixels, so overlays stay readable at any zoom.
+
+use crate::body::{Body, BodyKind};
+use crate::math::{Real, Vec2, vec2};
+use crate::shape::WorldShape;
+use crate::world::World;
+
+/// A colour with straight (not premultiplied) alpha, components in `0..=1`, sRGB-encoded as
+/// colours are usually written down.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Color {
+    /// Red.
+    pub r: f32,
+    /// Green.
+    pub g: f32,
+    /// Blue.
+    pub b: f32,
+    /// Opacity.
+    pub a: f32,
+}
+
+impl Color {
+    /// An opaque colour.
+    pub const fn rgb(r: f32, g: f32, b: f32) -> Self {
+        Color { r, g, b, a: 1.0 }
+    }
+
+    /// The same colour with opacity `a`.
+    pub const fn with_alpha(self, a: f32) -> Self {
+        Color { a, ..self }
+    }
+
+    /// Blended toward `other` by `t` (0 keeps this colour, 1 gives `other`).
+    pub fn mix(self, other: Color, t: f32) -> Self {
+        let lerp = |x: f32, y: f32| x + (y - x) * t;
+        Color {
+            r: lerp(self.r, other.r),
+            g: lerp(self.g, other.g),
+            b: lerp(self.b, other.b),
+            a: lerp(self.a, other.a),
+        }
+    }
+
+    /// The components as an array, red first.
+    pub const fn to_array(self) -> [f32; 4] {
+        [self.r, self.g, self.b, self.a]
+    }
+
+    /// The background the demo and the snapshots clear to.
+    pub const BACKGROUND: Color = Color::rgb(0.09, 0.10, 0.12);
+}
+
+/// Which parts of the world [`World::debug_draw`] describes. Combine with `|`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct DrawFlags(u32);
+
+impl DrawFlags {
+    /// Nothing.
+    pub const NONE: DrawFlags = DrawFlags(0);
+    /// Bodies' shapes, filled and outlined; circles with a radius line to show their turn.
+    pub const SHAPES: DrawFlags = DrawFlags(1);
+    /// Each polygon edge's outward normal, from the edge's middle.
+    pub const EDGE_NORMALS: DrawFlags = DrawFlags(1 << 1);
+    /// Bodies' bounding boxes.
+    pub const AABBS: DrawFlags = DrawFlags(1 << 2);
+    /// Contact points of touching pairs.
+    pub const CONTACT_POINTS: DrawFlags = DrawFlags(1 << 3);
+    /// Contact normals, from each contact point.
+    pub const CONTACT_NORMALS: DrawFlags = DrawFlags(1 << 4);
+    /// The reference (red) and incident (blue) edges of polygon contacts.
+    pub const CONTACT_EDGES: DrawFlags = DrawFlags(1 << 5);
+    /// Centres of mass (every body's origin).
+    pub const CENTERS_OF_MASS: DrawFlags = DrawFlags(1 << 6);
+    /// Linear velocities, as arrows from the centre of mass.
+    pub const VELOCITIES: DrawFlags = DrawFlags(1 << 7);
+    /// Sleeping bodies dimmed.
+    pub const SLEEPING: DrawFlags = DrawFlags(1 << 8);
+
+    /// Every flag, each with its name as scenes and the command line spell it.
+    pub const NAMED: [(&'static str, DrawFlags); 9] = [
+        ("shapes", DrawFlags::SHAPES),
+        ("edge_normals", DrawFlags::EDGE_NORMALS),
+        ("aabbs", DrawFlags::AABBS),
+        ("contact_points", DrawFlags::CONTACT_POINTS),
+        ("contact_normals", DrawFlags::CONTACT_NORMALS),
+        ("contact_edges", DrawFlags::CONTACT_EDGES),
+        ("centers_of_mass", DrawFlags::CENTERS_OF_MASS),
+        ("velocities", DrawFlags::VELOCITIES),
+        ("sleeping", DrawFlags::SLEEPING),
+    ];
+
+    /// Everything.
+    pub const ALL: DrawFlags = DrawFlags((1 << 9) - 1);
+
+    /// The flag called `name` (see [`DrawFlags::NAMED`]).
+    pub fn from_name(name: &str) -> Option<DrawFlags> {
+        DrawFlags::NAMED
+            .iter()
+            .find(|(known, _)| *known == name)
+            .map(|(_, flag)| *flag)
+    }
+
+    /// True if every flag of `other` is set here.
+    pub const fn contains(self, other: DrawFlags) -> bool {
+        self.0 & other.0 == other.0
+    }
+
+    /// Sets or clears the flags of `other`.
+    pub fn set(&mut self, other: DrawFlags, on: bool) {
+        if on {
+            self.0 |= other.0;
+        } else {
+            self.0 &= !other.0;
+        }
+    }
+}
+
+impl Default for DrawFlags {
+    /// Shapes, with sleeping bodies dimmed.
+    fn default() -> Self {
+        DrawFlags::SHAPES | DrawFlags::SLEEPING
+    }
+}
+
+impl std::ops::BitOr for DrawFlags {
+    type Output = DrawFlags;
+    fn bitor(self, other: DrawFlags) -> DrawFlags {
+        DrawFlags(self.0 | other.0)
+    }
+}
+
+/// What to draw and at what scale.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawOptions {
+    /// Which parts to describe.
+    pub flags: DrawFlags,
+    /// Length of contact and edge normal arrows, m.
+    pub normal_length: Real,
+    /// Velocity arrows are the distance covered in this many seconds.
+    pub velocity_scale: Real,
+}
+
+impl Default for DrawOptions {
+    fn default() -> Self {
+        DrawOptions {
+            flags: DrawFlags::default(),
+            normal_length: 0.5,
+            velocity_scale: 0.1,
+        }
+    }
+}
+
+/// A sink for drawing primitives. Widths and sizes are screen pixels; everything else is metres.
+pub trait DebugDraw {
+    /// A convex polygon, vertices counter-clockwise, filled and outlined
+    /// [`OUTLINE_WIDTH`] pixels thick.
+    fn polygon(&mut self, vertices: &[Vec2], fill: Color, outline: Color);
+    /// A disc, filled and outlined.
+    fn circle(&mut self, center: Vec2, radius: Real, fill: Color, outline: Color);
+    /// A straight line `width` pixels thick.
+    fn segment(&mut self, start: Vec2, end: Vec2, width: f32, color: Color);
+    /// An arrow from `start` to the head at `end`.
+    fn arrow(&mut self, start: Vec2, end: Vec2, color: Color);
+    /// A dot `size` pixels across.
+    fn point(&mut self, at: Vec2, size: f32, color: Color);
+}
+
+/// A filled, outlined convex polygon of a [`DrawList`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawPolygon {
+    /// Index of its first vertex in [`DrawList::vertices`].
+    pub first: u32,
+    /// How many vertices, counter-clockwise.
+    pub count: u32,
+    /// Interior colour.
+    pub fill: Color,
+    /// Outline colour.
+    pub outline: Color,
+}
+
+/// A filled, outlined disc of a [`DrawList`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawCircle {
+    /// Centre, m.
+    pub center: Vec2,
+    /// Radius, m.
+    pub radius: Real,
+    /// Interior colour.
+    pub fill: Color,
+    /// Outline colour.
+    pub outline: Color,
+}
+
+/// A thick line (or an arrow) of a [`DrawList`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawSegment {
+    /// Start, m.
+    pub start: Vec2,
+    /// End, m.
+    pub end: Vec2,
+    /// Thickness, pixels.
+    pub width: f32,
+    /// Colour.
+    pub color: Color,
+}
+
+/// A dot of a [`DrawList`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawPoint {
+    /// Where, m.
+    pub at: Vec2,
+    /// Diameter, pixels.
+    pub size: f32,
+    /// Colour.
+    pub color: Color,
+}
+
+/// Every primitive recorded, by type, in drawing order within each type. A renderer draws
+/// polygons, then circles, then segments and arrows, then points, so overlays stay on top.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct DrawList {
+    /// Polygon vertices, shared by [`DrawList::polygons`].
+    pub vertices: Vec<Vec2>,
+    /// Filled polygons.
+    pub polygons: Vec<DrawPolygon>,
+    /// Filled discs.
+    pub circles: Vec<DrawCircle>,
+    /// Lines, polygon outlines included.
+    pub segments: Vec<DrawSegment>,
+    /// Arrows, drawn as segments with a head.
+    pub arrows: Vec<DrawSegment>,
+    /// Dots.
+    pub points: Vec<DrawPoint>,
+}
+
+impl DrawList {
+    /// An empty list.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Empties the list, keeping its memory for the next frame.
+    pub fn clear(&mut self) {
+        self.vertices.clear();
+        self.polygons.clear();
+        self.circles.clear();
+        self.segments.clear();
+        self.arrows.clear();
+        self.points.clear();
+    }
+
+    /// True when nothing was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.polygons.is_empty()
+            && self.circles.is_empty()
+            && self.segments.is_empty()
+            && self.arrows.is_empty()
+            && self.points.is_empty()
+    }
+
+    /// The vertices of one recorded polygon.
+    pub fn polygon_vertices(&self, polygon: &DrawPolygon) -> &[Vec2] {
+        let first = polygon.first as usize;
+        &self.vertices[first..first + polygon.count as usize]
+    }
+}
+
+impl DebugDraw for DrawList {
+    fn polygon(&mut self, vertices: &[Vec2], fill: Color, outline: Color) {
+        self.polygons.push(DrawPolygon {
+            first: self.vertices.len() as u32,
+            count: vertices.len() as u32,
+            fill,
+            outline,
+        });
+        self.vertices.extend_from_slice(vertices);
+    }
+
+    fn circle(&mut self, center: Vec2, radius: Real, fill: Color, outline: Color) {
+        self.circles.push(DrawCircle {
+            center,
+            radius,
+            fill,
+            outline,
+        });
+    }
+
+    fn segment(&mut self, start: Vec2, end: Vec2, width: f32, color: Color) {
+        self.segments.push(DrawSegment {
+            start,
+            end,
+            width,
+            color,
+        });
+    }
+
+    fn arrow(&mut self, start: Vec2, end: Vec2, color: Color) {
+        self.arrows.push(DrawSegment {
+            start,
+            end,
+            width: ARROW_WIDTH,
+            color,
+        });
+    }
+
+    fn point(&mut self, at: Vec2, size: f32, color: Color) {
+        self.points.push(DrawPoint { at, size, color });
+    }
+}
+
+/// The house colours: kinds, contacts and overlays.
+pub mod palette {
+    use super::Color;
+
+    /// Static bodies.
+    pub const STATIC: Color = Color::rgb(0.42, 0.52, 0.45);
+    /// Kinematic bodies.
+    pub const KINEMATIC: Color = Color::rgb(0.45, 0.55, 0.85);
+    /// Dynamic bodies take one of these, by handle, so neighbours differ.
+    pub const DYNAMIC: [Color; 6] = [
+        Color::rgb(0.90, 0.62, 0.35),
+        Color::rgb(0.55, 0.78, 0.45),
+        Color::rgb(0.40, 0.70, 0.85),
+        Color::rgb(0.85, 0.50, 0.55),
+        Color::rgb(0.80, 0.75, 0.40),
+        Color::rgb(0.65, 0.55, 0.85),
+    ];
+    /// What sleeping bodies fade toward.
+    pub const ASLEEP: Color = Color::rgb(0.35, 0.35, 0.38);
+    /// Contact points.
+    pub const CONTACT_POINT: Color = Color::rgb(1.0, 0.85, 0.2);
+    /// Contact normals.
+    pub const CONTACT_NORMAL: Color = Color::rgb(0.95, 0.95, 0.95);
+    /// Reference edges.
+    pub const REFERENCE_EDGE: Color = Color::rgb(0.95, 0.25, 0.2);
+    /// Incident edges.
+    pub const INCIDENT_EDGE: Color = Color::rgb(0.25, 0.55, 1.0);
+    /// Edge normals.
+    pub const EDGE_NORMAL: Color = Color::rgb(0.3, 0.9, 0.9);
+    /// Bounding boxes.
+    pub const AABB: Color = Color::rgb(0.85, 0.4, 0.85);
+    /// Velocities.
+    pub const VELOCITY: Color = Color::rgb(0.4, 1.0, 0.4);
+    /// Centres of mass.
+    pub const CENTER_OF_MASS: Color = Color::rgb(0.95, 0.95, 0.95);
+}
+
+/// Arrow shaft thickness, pixels.
+pub const ARROW_WIDTH: f32 = 2.0;
+/// Shape outline thickness, pixels: renderers draw polygon and circle outlines this thick,
+/// and circles' radius lines.
+pub const OUTLINE_WIDTH: f32 = 1.5;
+/// Reference and incident edge thickness, pixels.
+const CONTACT_EDGE_WIDTH: f32 = 4.0;
+/// Contact point diameter, pixels.
+const CONTACT_POINT_SIZE: f32 = 7.0;
+
+/// The colour a body is drawn in when the caller has none for it.
+pub fn default_color(body: &Body) -> Color {
+    match body.kind() {
+        BodyKind::Static => palette::STATIC,
+        BodyKind::Kinematic => palette::KINEMATIC,
+        BodyKind::Dynamic => {
+            let index = body.handle().index() as usize;
+            palette::DYNAMIC[index % palette::DYNAMIC.len()]
+        }
+    }
+}
+
+impl World {
+    /// Describes the parts of the world `options` selects to `out`. `color_of` may give a body
+    /// its own colour (a scene's choice); otherwise [`default_color`] picks one.
+    pub fn debug_draw(
+        &self,
+        options: &DrawOptions,
+        color_of: impl Fn(&Body) -> Option<Color>,
+        out: &mut impl DebugDraw,
+    ) {
+        let flags = options.flags;
+        for body in self.bodies() {
+            let mut color = color_of(body).unwrap_or_else(|| default_color(body));
+            if flags.contains(DrawFlags::SLEEPING) && body.is_sleeping() {
+                color = color.mix(palette::ASLEEP, 0.6);
+            }
+            if flags.contains(DrawFlags::SHAPES) {
+                draw_shape(body, color, out);
+            }
+            if flags.contains(DrawFlags::EDGE_NORMALS)
+                && let WorldShape::Polygon { vertices, normals } = body.world_shape()
+            {
+                for (i, normal) in normals.iter().enumerate() {
+                    let middle = (vertices[i] + vertices[(i + 1) % vertices.len()]) * 0.5;
+                    let end = middle + normal * options.normal_length;
+                    out.arrow(middle, end, palette::EDGE_NORMAL);
+                }
+            }
+            if flags.contains(DrawFlags::AABBS) {
+                let aabb = body.aabb();
+                let corners = [
+                    aabb.min,
+                    vec2(aabb.max.x, aabb.min.y),
+                    aabb.max,
+                    vec2(aabb.min.x, aabb.max.y),
+                ];
+                for i in 0..4 {
+                    out.segment(corners[i], corners[(i + 1) % 4], 1.0, palette::AABB);
+                }
+            }
+            if flags.contains(DrawFlags::VELOCITIES) && body.kind() != BodyKind::Static {
+                let velocity = body.linear_velocity() * options.velocity_scale;
+                if velocity.norm_squared() > 1e-8 {
+                    out.arrow(
+                        body.position(),
+                        body.position() + velocity,
+                        palette::VELOCITY,
+                    );
+                }
+            }
+            if flags.contains(DrawFlags::CENTERS_OF_MASS) {
+                out.point(body.position(), 5.0, palette::CENTER_OF_MASS);
+            }
+        }
+        let contact_flags =
+            DrawFlags::CONTACT_POINTS | DrawFlags::CONTACT_NORMALS | DrawFlags::CONTACT_EDGES;
+        if flags.0 & contact_flags.0 != 0 {
+            self.draw_contacts(options, out);
+        }
+    }
+
+    fn draw_contacts(&self, options: &DrawOptions, out: &mut impl DebugDraw) {
+        let flags = options.flags;
+        for contact in self.contacts().filter(|c| c.is_touching()) {
+            let manifold = contact.manifold();
+            if flags.contains(DrawFlags::CONTACT_EDGES) {
+                for (edge, color) in [
+                    (manifold.reference_edge, palette::REFERENCE_EDGE),
+                    (manifold.incident_edge, palette::INCIDENT_EDGE),
+                ] {
+                    if let Some(edge) = edge {
+                        out.segment(edge.start, edge.end, CONTACT_EDGE_WIDTH, color);
+                    }
+                }
+            }
+            for point in manifold.points() {
+                if flags.contains(DrawFlags::CONTACT_NORMALS) {
+                    let end = point.point + manifold.normal * options.normal_length;
+                    out.arrow(point.point, end, palette::CONTACT_NORMAL);
+                }
+                if flags.contains(DrawFlags::CONTACT_POINTS) {
+                    out.point(point.point, CONTACT_POINT_SIZE, palette::CONTACT_POINT);
+                }
+            }
+        }
+    }
+}
+
+/// A body's shape: polygons filled and outlined, circles with a radius line at their angle.
+fn draw_shape(body: &Body, color: Color, out: &mut impl DebugDraw) {
+    let outline = color.mix(Color::rgb(1.0, 1.0, 1.0), 0.45);
+    let fill = color.mix(Color::BACKGROUND, 0.35);
+    match body.world_shape() {
+        WorldShape::Polygon { vertices, .. } => {
+            out.polygon(vertices, fill, outline);
+        }
+        WorldShape::Circle { center, radius } => {
+            out.circle(*center, *radius, fill, outline);
+            let rim = center + body.rotation() * vec2(*radius, 0.0);
+            out.segment(*center, rim, OUTLINE_WIDTH, outline);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{BodyDef, Shape};
+
+    /// A box resting on a floor and a ball in the air, after a few steps.
+    fn scene() -> World {
+        let mut world = World::new();
+        world
+            .add_body(
+                BodyDef::static_body(Shape::rect(5.0, 0.5).unwrap()).position(vec2(0.0, -0.5)),
+            )
+            .unwrap();
+        world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap()).position(vec2(0.0, 0.5)))
+            .unwrap();
+        world
+            .add_body(BodyDef::dynamic(Shape::circle(0.25).unwrap()).position(vec2(2.0, 3.0)))
+            .unwrap();
+        for _ in 0..5 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        world
+    }
+
+    fn draw(world: &World, flags: DrawFlags) -> DrawList {
+        let mut list = DrawList::new();
+        let options = DrawOptions {
+            flags,
+            ..DrawOptions::default()
+        };
+        world.debug_draw(&options, |_| None, &mut list);
+        list
+    }
+
+    #[test]
+    fn shapes_are_described_in_world_coordinates() {
+        let world = scene();
+        let list = draw(&world, DrawFlags::SHAPES);
+        assert_eq!(list.polygons.len(), 2);
+        assert_eq!(list.circles.len(), 1);
+        // The ball's radius line, and nothing else, is a segment.
+        assert_eq!(list.segments.len(), 1);
+        let floor = list.polygon_vertices(&list.polygons[0]);
+        assert_eq!(floor.len(), 4);
+        assert!(
+            floor
+                .iter()
+                .all(|v| v.y.abs() < 1e-6 || (v.y + 1.0).abs() < 1e-6)
+        );
+        assert!((list.circles[0].radius - 0.25).abs() < 1e-6);
+        assert!(list.points.is_empty() && list.arrows.is_empty());
+    }
+
+    #[test]
+    fn contacts_are_drawn_only_when_asked() {
+        let world = scene();
+        assert!(draw(&world, DrawFlags::NONE).is_empty());
+        let list = draw(
+            &world,
+            DrawFlags::CONTACT_POINTS | DrawFlags::CONTACT_NORMALS | DrawFlags::CONTACT_EDGES,
+        );
+        // The box touches the floor along a face: two points, two normals pointing up,
+        // and a reference and an incident edge.
+        assert_eq!(list.points.len(), 2);
+        assert_eq!(list.arrows.len(), 2);
+        for arrow in &list.arrows {
+            let direction = (arrow.end - arrow.start).normalize();
+            assert!(direction.y.abs() > 0.999, "{direction:?}");
+        }
+        assert_eq!(list.segments.len(), 2);
+        let colors: Vec<Color> = list.segments.iter().map(|s| s.color).collect();
+        assert!(colors.contains(&palette::REFERENCE_EDGE));
+        assert!(colors.contains(&palette::INCIDENT_EDGE));
+    }
+
+    #[test]
+    fn overlays_follow_their_flags() {
+        let world = scene();
+        let list = draw(
+            &world,
+            DrawFlags::AABBS | DrawFlags::CENTERS_OF_MASS | DrawFlags::EDGE_NORMALS,
+        );
+        assert_eq!(list.segments.len(), 3 * 4, "four sides per box");
+        assert_eq!(list.points.len(), 3);
+        assert_eq!(list.arrows.len(), 8, "one normal per polygon edge");
+        let falling = draw(&world, DrawFlags::VELOCITIES);
+        // The ball falls (the box rests, its velocity too small to draw or pointing down).
+        assert!(!falling.arrows.is_empty());
+        assert!(falling.arrows.iter().all(|a| a.end.y < a.start.y));
+    }
+
+    #[test]
+    fn caller_colours_win_and_sleepers_are_dimmed() {
+        let mut world = scene();
+        let red = Color::rgb(1.0, 0.0, 0.0);
+        let options = DrawOptions::default();
+        let mut list = DrawList::new();
+        world.debug_draw(&options, |_| Some(red), &mut list);
+        let awake_fill = list.circles[0].fill;
+        assert_eq!(awake_fill, red.mix(Color::BACKGROUND, 0.35));
+        let ball = world.bodies().nth(2).unwrap().handle();
+        world.body_mut(ball).unwrap().fall_asleep(0);
+        list.clear();
+        world.debug_draw(&options, |_| Some(red), &mut list);
+        assert_ne!(list.circles[0].fill, awake_fill);
+        assert!(list.circles[0].fill.r < awake_fill.r);
+    }
+
+    #[test]
+    fn flags_have_names() {
+        for (name, flag) in DrawFlags::NAMED {
+            assert_eq!(DrawFlags::from_name(name), Some(flag));
+            assert!(DrawFlags::ALL.contains(flag));
+        }
+        assert_eq!(DrawFlags::from_name("sparkles"), None);
+        let mut flags = DrawFlags::NONE;
+        flags.set(DrawFlags::AABBS, true);
+        assert!(flags.contains(DrawFlags::AABBS) && !flags.contains(DrawFlags::SHAPES));
+        flags.set(DrawFlags::AABBS, false);
+        assert_eq!(flags, DrawFlags::NONE);
+    }
+}
