@@ -4,11 +4,9 @@
 //! controls) arrives with the demo work. Today: `carom run` runs a scene headless and reports
 //! what it measured; plain `carom` says what is coming and drops a few bodies.
 
-mod run;
-
 use carom::{BodyDef, CaromError, Effect, Shape, SolverKind, World, vec2};
+use carom_demo::run::{RunOptions, run};
 use clap::{Parser, Subcommand, ValueEnum};
-use run::{RunOptions, run};
 use std::path::PathBuf;
 use std::process::ExitCode;
 

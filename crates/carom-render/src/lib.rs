@@ -1,8 +1,13 @@
-//! `carom-render` will draw the description a [`carom::World`] gives of itself with wgpu, to a
-//! window surface or to an offscreen image.
+//! `carom-render` draws the description a [`carom::World`] gives of itself
+//! ([`carom::DrawList`]) with wgpu, to a window surface or to an offscreen image.
 //!
-//! It is a placeholder until the renderer issue lands: the physics core does not depend on it,
-//! and nothing here draws yet.
+//! Today it holds the [`Camera`], the world-to-screen mapping the demo's input handling and the
+//! renderer share; the wgpu pipelines (WGSL in the top-level `shaders/` folder) are still to
+//! land. The physics core does not depend on this crate.
 
-/// The WGSL folder, relative to the workspace root, that the renderer will include at compile time.
+mod camera;
+
+pub use camera::Camera;
+
+/// The WGSL folder, relative to the workspace root, that the renderer includes at compile time.
 pub const SHADER_DIR: &str = "shaders";

@@ -1,0 +1,318 @@
+//! The demo's state, apart from any window: the scene and its camera, the grab, the settings,
+//! the fixed-step clock and the live metrics. The window feeds it input events and frame
+//! times and draws what it describes; tests feed it synthetic events the same way.
+
+use crate::metrics::Metrics;
+use carom::{Color, DrawList, DrawOptions, MouseJoint, Vec2};
+use carom_render::Camera;
+use carom_scene::SceneWorld;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// A scene file found in the scenes folder.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneEntry {
+    /// The file.
+    pub path: PathBuf,
+    /// Its `name`.
+    pub name: String,
+    /// Its `description`.
+    pub description: String,
+}
+
+/// Every `*.ron` scene in `folder` that parses, sorted by file name, and the files that do not
+/// parse with the reason (shown, not fatal: one broken scene must not hide the others).
+pub fn find_scenes(folder: &Path) -> (Vec<SceneEntry>, Vec<String>) {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(folder)
+        .map(|entries| {
+            entries
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+                .collect()
+        })
+        .unwrap_or_default();
+    paths.sort();
+    let (mut found, mut broken) = (Vec::new(), Vec::new());
+    for path in paths {
+        match carom_scene::read(&path) {
+            Ok(scene) => found.push(SceneEntry {
+                path,
+                name: scene.name,
+                description: scene.description,
+            }),
+            Err(e) => broken.push(e.to_string()),
+        }
+    }
+    (found, broken)
+}
+
+/// A mouse button, as the demo cares about them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Button {
+    /// Grabs.
+    Left,
+    /// Pans.
+    Right,
+    /// Pans too.
+    Middle,
+}
+
+/// The keys the demo answers to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Key {
+    /// Pause or play.
+    Space,
+    /// One step (pauses).
+    Step,
+    /// Reload the scene.
+    Reset,
+    /// Scene by number: 1 is the first, 0 the tenth.
+    Digit(u8),
+}
+
+/// The key hints the sidebar shows.
+pub const HINTS: &str = "Left drag: grab and throw · Right/middle drag: pan · Wheel: zoom\n\
+                         Space: pause · S: step · R: reset · 1-9, 0: scenes";
+
+/// The demo, minus the window.
+pub struct Demo {
+    /// Scenes to choose from.
+    pub scenes: Vec<SceneEntry>,
+    /// Index into `scenes` of the one running (if it came from the list).
+    pub current: Option<usize>,
+    /// The file of the scene running.
+    pub scene_path: PathBuf,
+    /// The running scene.
+    pub scene: SceneWorld,
+    /// The view.
+    pub camera: Camera,
+    /// Size of the view, pixels.
+    pub viewport: [u32; 2],
+    /// What is drawn.
+    pub draw: DrawOptions,
+    /// Stopped between steps.
+    pub paused: bool,
+    /// Simulated seconds per real second.
+    pub time_scale: f32,
+    /// Most steps one frame may take, so a slow machine slows down instead of spiralling.
+    pub max_steps_per_frame: u32,
+    /// Step costs and errors.
+    pub metrics: Metrics,
+    accumulator: f64,
+    grab: Option<MouseJoint>,
+    pan_from: Option<Vec2>,
+}
+
+impl Demo {
+    /// Opens `scene` (a file), listing the scenes of `folder` for the menu.
+    pub fn open(folder: &Path, scene: &Path, viewport: [u32; 2]) -> Result<Demo, String> {
+        let (scenes, _) = find_scenes(folder);
+        let loaded = carom_scene::load(scene).map_err(|e| e.to_string())?;
+        let current = scenes.iter().position(|s| same_file(&s.path, scene));
+        let mut demo = Demo {
+            scenes,
+            current,
+            scene_path: scene.to_path_buf(),
+            camera: scene_camera(&loaded, viewport[1].max(1)),
+            draw: DrawOptions {
+                flags: loaded.draw,
+                ..DrawOptions::default()
+            },
+            scene: loaded,
+            viewport,
+            paused: false,
+            time_scale: 1.0,
+            max_steps_per_frame: 4,
+            metrics: Metrics::default(),
+            accumulator: 0.0,
+            grab: None,
+            pan_from: None,
+        };
+        demo.metrics.clear();
+        Ok(demo)
+    }
+
+    /// Switches to scene `index` of the list, with its own settings.
+    pub fn select(&mut self, index: usize) -> Result<(), String> {
+        let entry = self.scenes.get(index).ok_or("no such scene")?.clone();
+        self.load(&entry.path)?;
+        self.current = Some(index);
+        Ok(())
+    }
+
+    /// Reloads the scene from its file, keeping the user's solver and effect choices.
+    pub fn reset(&mut self) -> Result<(), String> {
+        let (solver, effects) = (*self.scene.world.solver(), self.scene.world.effects());
+        let path = self.scene_path.clone();
+        let draw = self.draw;
+        let camera = self.camera;
+        self.load(&path)?;
+        self.scene
+            .world
+            .set_solver(solver)
+            .map_err(|e| e.to_string())?;
+        self.scene.world.set_effects(effects);
+        self.draw = draw;
+        self.camera = camera;
+        Ok(())
+    }
+
+    fn load(&mut self, path: &Path) -> Result<(), String> {
+        let loaded = carom_scene::load(path).map_err(|e| e.to_string())?;
+        self.camera = scene_camera(&loaded, self.viewport[1].max(1));
+        self.draw.flags = loaded.draw;
+        self.scene = loaded;
+        self.scene_path = path.to_path_buf();
+        self.metrics.clear();
+        self.accumulator = 0.0;
+        self.grab = None;
+        self.pan_from = None;
+        Ok(())
+    }
+
+    /// The view changed size: the camera keeps its centre and scales its zoom with the height,
+    /// so the same part of the world stays in view.
+    pub fn resize(&mut self, viewport: [u32; 2]) {
+        let (old, new) = (self.viewport[1].max(1), viewport[1].max(1));
+        self.camera.zoom *= new as f32 / old as f32;
+        self.viewport = viewport;
+    }
+
+    /// Advances by a frame of `seconds` of real time: as many fixed steps as are due (scaled
+    /// by `time_scale`, at most `max_steps_per_frame`). Returns the steps taken.
+    pub fn frame(&mut self, seconds: f64) -> Result<u32, String> {
+        if self.paused {
+            return Ok(0);
+        }
+        let dt = self.scene.time_step as f64;
+        self.accumulator += seconds.clamp(0.0, 0.25) * self.time_scale as f64;
+        let mut steps = 0;
+        while self.accumulator >= dt && steps < self.max_steps_per_frame {
+            self.step()?;
+            self.accumulator -= dt;
+            steps += 1;
+        }
+        if steps == self.max_steps_per_frame {
+            // Behind: drop the backlog rather than chase it.
+            self.accumulator = self.accumulator.min(dt);
+        }
+        Ok(steps)
+    }
+
+    /// One fixed step, with the grab's spring applied and the cost recorded.
+    pub fn step(&mut self) -> Result<(), String> {
+        if let Some(joint) = &self.grab {
+            joint
+                .apply(&mut self.scene.world)
+                .map_err(|e| e.to_string())?;
+        }
+        let clock = Instant::now();
+        self.scene.step().map_err(|e| e.to_string())?;
+        let ms = clock.elapsed().as_secs_f64() * 1e3;
+        self.metrics.record(&self.scene.world, ms);
+        if self
+            .grab
+            .is_some_and(|joint| self.scene.world.body(joint.body()).is_none())
+        {
+            self.grab = None;
+        }
+        Ok(())
+    }
+
+    /// A key was pressed.
+    pub fn key(&mut self, key: Key) -> Result<(), String> {
+        match key {
+            Key::Space => self.paused = !self.paused,
+            Key::Step => {
+                self.paused = true;
+                self.step()?;
+            }
+            Key::Reset => self.reset()?,
+            Key::Digit(digit) => {
+                let index = if digit == 0 { 9 } else { digit as usize - 1 };
+                if index < self.scenes.len() {
+                    self.select(index)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// A button went down at `screen` (pixels, origin top-left). The left button grabs the
+    /// body under the cursor at the point clicked; on empty space it does nothing.
+    pub fn press(&mut self, button: Button, screen: Vec2) {
+        match button {
+            Button::Left => {
+                let point = self.camera.screen_to_world(screen, self.viewport);
+                self.grab = self
+                    .scene
+                    .world
+                    .body_at(point)
+                    .and_then(|body| MouseJoint::new(&self.scene.world, body, point));
+            }
+            Button::Right | Button::Middle => self.pan_from = Some(screen),
+        }
+    }
+
+    /// The cursor moved to `screen`.
+    pub fn move_to(&mut self, screen: Vec2) {
+        if let Some(joint) = &mut self.grab {
+            let point = self.camera.screen_to_world(screen, self.viewport);
+            // Screen points map to finite world points; a failure would leave the old target.
+            let _ = joint.set_target(point);
+        }
+        if let Some(from) = self.pan_from {
+            self.camera.pan_by_pixels(screen - from);
+            self.pan_from = Some(screen);
+        }
+    }
+
+    /// A button went up: a held body is let go with the velocity it has (a throw).
+    pub fn release(&mut self, button: Button) {
+        match button {
+            Button::Left => self.grab = None,
+            Button::Right | Button::Middle => self.pan_from = None,
+        }
+    }
+
+    /// The wheel turned by `lines` (positive zooms in) with the cursor at `screen`.
+    pub fn wheel(&mut self, lines: f32, screen: Vec2) {
+        let factor = 1.1f32.powf(lines.clamp(-10.0, 10.0));
+        self.camera.zoom_about(screen, factor, self.viewport);
+    }
+
+    /// The body held, if any.
+    pub fn grabbed(&self) -> Option<carom::BodyHandle> {
+        self.grab.map(|joint| joint.body())
+    }
+
+    /// Describes the scene and the grab's spring to `out` (cleared first).
+    pub fn describe(&self, out: &mut DrawList) {
+        out.clear();
+        self.scene.debug_draw(&self.draw, out);
+        if let Some(joint) = &self.grab
+            && let Some(anchor) = joint.anchor(&self.scene.world)
+        {
+            let spring = Color::rgb(1.0, 1.0, 1.0);
+            carom::DebugDraw::segment(out, anchor, joint.target(), 1.5, spring);
+            carom::DebugDraw::point(out, anchor, 6.0, spring);
+            carom::DebugDraw::point(out, joint.target(), 4.0, spring);
+        }
+    }
+}
+
+/// The scene's camera for a view `height` pixels high.
+pub fn scene_camera(scene: &SceneWorld, height: u32) -> Camera {
+    let (x, y) = scene.camera.center;
+    Camera {
+        center: carom::vec2(x, y),
+        zoom: scene.camera.zoom_for_height(height),
+    }
+}
+
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => a == b,
+    }
+}

@@ -1,0 +1,148 @@
+//! The demo without its window: synthetic mouse events grab, drag and throw a body.
+
+use carom::{Vec2, vec2};
+use carom_demo::demo::{Button, Demo, Key};
+use std::path::PathBuf;
+
+const VIEWPORT: [u32; 2] = [980, 720];
+const FRAME: f64 = 1.0 / 60.0;
+
+fn demos() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../demos")
+}
+
+fn open(scene: &str) -> Demo {
+    Demo::open(&demos(), &demos().join(scene), VIEWPORT).unwrap()
+}
+
+fn frames(demo: &mut Demo, count: usize) {
+    for _ in 0..count {
+        demo.frame(FRAME).unwrap();
+    }
+}
+
+/// The box of the grabbing scene: its handle and where it is on screen.
+fn the_box(demo: &Demo) -> (carom::BodyHandle, Vec2) {
+    let body = demo
+        .scene
+        .world
+        .bodies()
+        .find(|b| b.is_dynamic() && (b.mass() - 1.44).abs() < 1e-3)
+        .expect("the grabbing scene has a 1.2 m box");
+    let screen = demo.camera.world_to_screen(body.position(), VIEWPORT);
+    (body.handle(), screen)
+}
+
+#[test]
+fn a_body_is_grabbed_dragged_against_a_wall_and_thrown() {
+    let mut demo = open("grabbing.ron");
+    frames(&mut demo, 60);
+    let (handle, screen) = the_box(&demo);
+
+    // Press on the box: it is grabbed at the point clicked.
+    demo.press(Button::Left, screen);
+    assert_eq!(demo.grabbed(), Some(handle));
+
+    // Drag far past the right wall (its inner face is at x = 7): the box follows the cursor
+    // but stops at the wall.
+    let target = demo.camera.world_to_screen(vec2(12.0, 3.0), VIEWPORT);
+    for i in 1..=90 {
+        let t = (i as f32 / 60.0).min(1.0);
+        demo.move_to(screen + (target - screen) * t);
+        frames(&mut demo, 1);
+        let x = demo.scene.world.body(handle).unwrap().position().x;
+        assert!(x < 7.0 - 0.6 + 0.02, "the box went into the wall: x = {x}");
+    }
+    let pressed = demo.scene.world.body(handle).unwrap().position();
+    assert!(
+        pressed.x > 6.0,
+        "the box did not follow the cursor: {pressed:?}"
+    );
+    // Pressed into the wall, friction holds it a little below the cursor's height.
+    assert!(
+        pressed.y > 1.5,
+        "the box did not follow the cursor up: {pressed:?}"
+    );
+
+    // Swing it up and to the left, then let go mid-swing: it flies on that way.
+    let start = demo.camera.world_to_screen(pressed, VIEWPORT);
+    for i in 1..=8 {
+        demo.move_to(start + vec2(-40.0, -20.0) * i as f32);
+        frames(&mut demo, 1);
+    }
+    demo.release(Button::Left);
+    assert_eq!(demo.grabbed(), None);
+    let velocity = demo.scene.world.body(handle).unwrap().linear_velocity();
+    assert!(
+        velocity.x < -2.0 && velocity.y > 0.5,
+        "thrown at {velocity:?}"
+    );
+    let released_at = demo.scene.world.body(handle).unwrap().position();
+    frames(&mut demo, 10);
+    let later = demo.scene.world.body(handle).unwrap().position();
+    assert!(
+        later.x < released_at.x - 0.3,
+        "{released_at:?} -> {later:?}"
+    );
+}
+
+#[test]
+fn pressing_on_empty_space_grabs_nothing_and_right_drag_pans() {
+    let mut demo = open("grabbing.ron");
+    let empty = demo.camera.world_to_screen(vec2(0.0, 9.0), VIEWPORT);
+    demo.press(Button::Left, empty);
+    assert_eq!(demo.grabbed(), None);
+    demo.release(Button::Left);
+
+    let before = demo.camera.screen_to_world(vec2(490.0, 360.0), VIEWPORT);
+    demo.press(Button::Right, vec2(490.0, 360.0));
+    demo.move_to(vec2(590.0, 360.0));
+    demo.release(Button::Right);
+    // Dragging the view right by 100 px shows what was 100 px to the left.
+    let after = demo.camera.screen_to_world(vec2(590.0, 360.0), VIEWPORT);
+    assert!((after - before).norm() < 1e-3, "{before:?} vs {after:?}");
+
+    // The wheel zooms about the cursor: the point under it stays put.
+    let cursor = vec2(200.0, 150.0);
+    let under = demo.camera.screen_to_world(cursor, VIEWPORT);
+    demo.wheel(3.0, cursor);
+    assert!((demo.camera.screen_to_world(cursor, VIEWPORT) - under).norm() < 1e-3);
+}
+
+#[test]
+fn keys_pause_step_reset_and_pick_scenes() {
+    let mut demo = open("grabbing.ron");
+    demo.key(Key::Space).unwrap();
+    assert!(demo.paused);
+    assert_eq!(demo.frame(1.0).unwrap(), 0, "paused: no steps");
+    demo.key(Key::Step).unwrap();
+    assert_eq!(demo.scene.world.step_count(), 1);
+    demo.key(Key::Reset).unwrap();
+    assert_eq!(demo.scene.world.step_count(), 0);
+    demo.key(Key::Digit(1)).unwrap();
+    assert_eq!(demo.current, Some(0));
+    assert_eq!(demo.scene_path, demo.scenes[0].path);
+    assert!(demo.scenes.len() >= 17, "found {}", demo.scenes.len());
+}
+
+#[test]
+fn a_slow_machine_takes_at_most_the_cap_of_steps_per_frame() {
+    let mut demo = open("grabbing.ron");
+    // A frame that took a whole second catches up by at most the cap, not 60 steps.
+    let steps = demo.frame(1.0).unwrap();
+    assert_eq!(steps, demo.max_steps_per_frame);
+    let steps = demo.frame(FRAME).unwrap();
+    assert!(steps <= 2, "the backlog was dropped, not chased: {steps}");
+}
+
+#[test]
+fn every_step_is_measured() {
+    let mut demo = open("pyramid.ron");
+    frames(&mut demo, 30);
+    let steps = demo.scene.world.step_count() as usize;
+    assert!(steps >= 29, "{steps} steps in half a second");
+    assert_eq!(demo.metrics.samples().len(), steps);
+    let latest = *demo.metrics.latest().unwrap();
+    assert!(latest.step_ms > 0.0 && latest.max_penetration >= 0.0);
+    assert!(latest.energy_change.is_finite());
+}
