@@ -1,13 +1,18 @@
 //! `carom-render` draws the description a [`carom::World`] gives of itself
-//! ([`carom::DrawList`]) with wgpu, to a window surface or to an offscreen image.
-//!
-//! Today it holds the [`Camera`], the world-to-screen mapping the demo's input handling and the
-//! renderer share; the wgpu pipelines (WGSL in the top-level `shaders/` folder) are still to
-//! land. The physics core does not depend on this crate.
+//! ([`carom::DrawList`]) with wgpu: to a window's surface through [`Renderer`], or to an
+//! offscreen texture read back as an image through [`Offscreen`], so tests and CI render real
+//! pixels with no window and no GPU (Mesa's lavapipe or llvmpipe do). WGSL lives in the
+//! workspace's `shaders/` folder and is built in. The physics core does not depend on this crate.
 
 mod camera;
+mod error;
+mod gpu;
+mod offscreen;
+mod renderer;
+pub mod shaders;
 
 pub use camera::Camera;
-
-/// The WGSL folder, relative to the workspace root, that the renderer includes at compile time.
-pub const SHADER_DIR: &str = "shaders";
+pub use error::RenderError;
+pub use gpu::Gpu;
+pub use offscreen::Offscreen;
+pub use renderer::Renderer;

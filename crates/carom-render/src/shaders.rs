@@ -1,0 +1,15 @@
+//! The WGSL sources, from the workspace's `shaders/` folder, built into the binary.
+
+/// Filled polygons.
+pub const POLYGONS_WGSL: &str = include_str!("../../../shaders/polygons.wgsl");
+/// Instanced discs: circles and points.
+pub const DISCS_WGSL: &str = include_str!("../../../shaders/discs.wgsl");
+/// Instanced thick segments: outlines, lines, arrows.
+pub const SEGMENTS_WGSL: &str = include_str!("../../../shaders/segments.wgsl");
+
+/// Every shader, with its file name.
+pub const ALL: [(&str, &str); 3] = [
+    ("polygons.wgsl", POLYGONS_WGSL),
+    ("discs.wgsl", DISCS_WGSL),
+    ("segments.wgsl", SEGMENTS_WGSL),
+];
