@@ -6,6 +6,7 @@
 
 use carom::{BodyDef, CaromError, Effect, Shape, SolverKind, World, vec2};
 use carom_demo::run::{RunOptions, run};
+use carom_demo::snapshot::{self, SnapshotOptions, parse_size};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -43,6 +44,34 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Render a scene after some steps to a PNG, offscreen (no window needed).
+    Snapshot {
+        /// The scene file, for example demos/collision.ron.
+        scene: PathBuf,
+        /// Steps to simulate first.
+        #[arg(long, default_value_t = 0)]
+        steps: usize,
+        /// Where to write the PNG.
+        #[arg(long)]
+        out: PathBuf,
+        /// Image size, WIDTHxHEIGHT.
+        #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+        size: (u32, u32),
+        /// Add (+) or remove (-) draw layers, for example `--draw=+aabbs,+contact_points`.
+        #[arg(long, value_parser = parse_draw_changes, allow_hyphen_values = true)]
+        draw: Option<DrawChanges>,
+        /// Also render this many more frames and print the median frame time.
+        #[arg(long, default_value_t = 0)]
+        time_frames: usize,
+    },
+}
+
+/// Draw layers to switch on (`true`) and off.
+#[derive(Debug, Clone)]
+struct DrawChanges(Vec<(carom::DrawFlags, bool)>);
+
+fn parse_draw_changes(text: &str) -> Result<DrawChanges, String> {
+    snapshot::parse_draw_changes(text).map(DrawChanges)
 }
 
 /// The solvers, as the command line names them.
@@ -130,7 +159,63 @@ fn main() -> ExitCode {
                 }
             }
         }
+        Some(Command::Snapshot {
+            scene,
+            steps,
+            out,
+            size,
+            draw,
+            time_frames,
+        }) => {
+            let options = SnapshotOptions {
+                steps,
+                width: size.0,
+                height: size.1,
+                draw: draw.map(|changes| changes.0).unwrap_or_default(),
+            };
+            match snapshot_command(&scene, &options, &out, time_frames) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
+                }
+            }
+        }
     }
+}
+
+/// `carom snapshot`: steps, renders, writes the PNG, and optionally times more frames.
+fn snapshot_command(
+    scene: &std::path::Path,
+    options: &SnapshotOptions,
+    out: &std::path::Path,
+    time_frames: usize,
+) -> Result<(), String> {
+    let mut renderer =
+        carom_render::Offscreen::new(options.width, options.height).map_err(|e| e.to_string())?;
+    let world = snapshot::load_and_step(scene, options.steps)?;
+    let image = snapshot::render_scene(&world, options, &mut renderer)?;
+    image
+        .save(out)
+        .map_err(|e| format!("cannot write {}: {e}", out.display()))?;
+    println!(
+        "{}: {} steps, {} bodies, {}x{} on {} -> {}",
+        scene.display(),
+        options.steps,
+        world.world.body_count(),
+        options.width,
+        options.height,
+        renderer.gpu().describe(),
+        out.display()
+    );
+    if time_frames > 0 {
+        let times = snapshot::time_frames(&world, options, &mut renderer, time_frames)?;
+        println!(
+            "frame     {:.3} ms describe + {:.3} ms render and read back (medians of {} frames)",
+            times.describe_ms, times.render_ms, times.frames
+        );
+    }
+    Ok(())
 }
 
 /// Drops a box, a ball and a spinning pentagon for two seconds and prints a table.

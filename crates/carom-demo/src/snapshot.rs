@@ -1,7 +1,8 @@
 //! `carom snapshot`: a scene after some steps, rendered offscreen to an image.
 
+use crate::demo::scene_camera;
 use carom::{Color, DrawFlags, DrawList, DrawOptions};
-use carom_render::{Camera, Offscreen};
+use carom_render::Offscreen;
 use carom_scene::SceneWorld;
 use image::RgbaImage;
 use std::path::Path;
@@ -28,15 +29,6 @@ impl Default for SnapshotOptions {
             height: 720,
             draw: Vec::new(),
         }
-    }
-}
-
-/// The scene's camera for a view `height` pixels high.
-pub fn scene_camera(scene: &SceneWorld, height: u32) -> Camera {
-    let (x, y) = scene.camera.center;
-    Camera {
-        center: carom::vec2(x, y),
-        zoom: scene.camera.zoom_for_height(height),
     }
 }
 
@@ -174,7 +166,11 @@ mod tests {
             parse_draw_changes("+aabbs,-shapes"),
             Ok(vec![(DrawFlags::AABBS, true), (DrawFlags::SHAPES, false)])
         );
-        assert!(parse_draw_changes("+glow").unwrap_err().contains("contact_points"));
+        assert!(
+            parse_draw_changes("+glow")
+                .unwrap_err()
+                .contains("contact_points")
+        );
         assert!(parse_draw_changes("aabbs").unwrap_err().contains("+ or -"));
     }
 }

@@ -58,7 +58,10 @@ fn compare(golden: &RgbaImage, actual: &RgbaImage) -> Difference {
     let (mut differing, mut largest) = (0, 0u8);
     for (x, y, expected) in golden.enumerate_pixels() {
         let got = actual.get_pixel(x, y);
-        let delta = (0..4).map(|c| expected[c].abs_diff(got[c])).max().unwrap_or(0);
+        let delta = (0..4)
+            .map(|c| expected[c].abs_diff(got[c]))
+            .max()
+            .unwrap_or(0);
         largest = largest.max(delta);
         let shown = if delta > CHANNEL_TOLERANCE {
             differing += 1;
@@ -94,7 +97,8 @@ fn scenes_render_as_their_golden_images() {
             height: HEIGHT,
             draw: Vec::new(),
         };
-        let actual = render_scene(&scene, &options, &mut renderer).unwrap_or_else(|e| panic!("{e}"));
+        let actual =
+            render_scene(&scene, &options, &mut renderer).unwrap_or_else(|e| panic!("{e}"));
         let golden_path = workspace().join(format!("tests/snapshots/{name}.png"));
         if update {
             actual.save(&golden_path).unwrap();
