@@ -1,12 +1,13 @@
 //! `carom`: the demo app.
 //!
-//! The windowed demo (scenes from `demos/`, grabbing and throwing with the mouse, solver
-//! controls) arrives with the demo work. Today: `carom run` runs a scene headless and reports
-//! what it measured; plain `carom` says what is coming and drops a few bodies.
+//! Plain `carom` opens the window: scenes from `demos/`, bodies grabbed and thrown with the
+//! mouse, solver, effect and drawing controls, and the live cost of accuracy. `carom run` runs a
+//! scene headless and reports what it measured; `carom snapshot` renders one to a PNG.
 
-use carom::{BodyDef, CaromError, Effect, Shape, SolverKind, World, vec2};
+use carom::{Effect, SolverKind};
 use carom_demo::run::{RunOptions, run};
 use carom_demo::snapshot::{self, SnapshotOptions, parse_size};
+use carom_demo::window::{self, WindowOptions};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -17,9 +18,21 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// The scene the window opens (default: demos/grabbing.ron).
+    #[arg(long)]
+    scene: Option<PathBuf>,
+    /// Window size in logical pixels, WIDTHxHEIGHT.
+    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    size: (u32, u32),
+    /// Close the window after this many frames.
+    #[arg(long)]
+    frames: Option<u64>,
+    /// Save the window's contents (sidebar included) to this PNG after the last frame.
+    #[arg(long, requires = "frames")]
+    screenshot: Option<PathBuf>,
 }
 
-#[derive(Subcommand, Debug)]
+#[derive(Subcommand, Debug, Clone)]
 enum Command {
     /// Run a scene headless and print what it measured.
     Run {
@@ -120,14 +133,23 @@ fn parse_effects(text: &str) -> Result<EffectChanges, String> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match cli.command {
-        None => match drop_demo() {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::FAILURE
+    match cli.command.clone() {
+        None => {
+            let options = match window_options(&cli) {
+                Ok(options) => options,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::FAILURE;
+                }
+            };
+            match window::run(options) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
+                }
             }
-        },
+        }
         Some(Command::Run {
             scene,
             steps,
@@ -218,56 +240,42 @@ fn snapshot_command(
     Ok(())
 }
 
-/// Drops a box, a ball and a spinning pentagon for two seconds and prints a table.
-fn drop_demo() -> Result<(), CaromError> {
-    println!(
-        "carom: the window, scenes, mouse grabbing and solver controls arrive with the demo work.\n\
-         Try `carom run demos/pyramid.ron` to run a scene headless. Meanwhile, three bodies fall:\n"
-    );
-    let mut world = World::new();
-    let bodies = [
-        (
-            "box",
-            world.add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)?).position(vec2(-2.0, 10.0)))?,
-        ),
-        (
-            "ball",
-            world.add_body(
-                BodyDef::dynamic(Shape::circle(0.5)?)
-                    .position(vec2(0.0, 10.0))
-                    .damping(0.5, 0.0),
-            )?,
-        ),
-        (
-            "pentagon",
-            world.add_body(
-                BodyDef::dynamic(Shape::regular(5, 0.6)?)
-                    .position(vec2(2.0, 10.0))
-                    .linear_velocity(vec2(1.0, 5.0))
-                    .angular_velocity(3.0),
-            )?,
-        ),
+/// The window's options: the scene given, else `demos/grabbing.ron` from the working directory
+/// or, for `cargo run` from elsewhere, from the source tree.
+fn window_options(cli: &Cli) -> Result<WindowOptions, String> {
+    let scene = match &cli.scene {
+        Some(scene) => scene.clone(),
+        None => default_demos_folder()?.join(DEFAULT_SCENE),
+    };
+    let scenes_folder = match scene.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    Ok(WindowOptions {
+        scene,
+        scenes_folder,
+        size: cli.size,
+        frames: cli.frames,
+        screenshot: cli.screenshot.clone(),
+    })
+}
+
+/// The scene a plain `carom` opens.
+const DEFAULT_SCENE: &str = "grabbing.ron";
+
+fn default_demos_folder() -> Result<PathBuf, String> {
+    let candidates = [
+        PathBuf::from("demos"),
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../demos"),
     ];
-    println!(
-        "{:>6} {:>10} {:>18} {:>18} {:>9}",
-        "t (s)", "body", "position", "velocity", "angle"
-    );
-    for step in 0..=120 {
-        if step % 30 == 0 {
-            for (name, handle) in &bodies {
-                let body = world.body(*handle).expect("bodies are never removed here");
-                let (p, v) = (body.position(), body.linear_velocity());
-                println!(
-                    "{:>6.2} {:>10} {:>18} {:>18} {:>9.3}",
-                    world.time(),
-                    name,
-                    format!("({:.2}, {:.2})", p.x, p.y),
-                    format!("({:.2}, {:.2})", v.x, v.y),
-                    body.angle()
-                );
-            }
-        }
-        world.step(1.0 / 60.0)?;
-    }
-    Ok(())
+    candidates
+        .iter()
+        .find(|folder| folder.join(DEFAULT_SCENE).is_file())
+        .cloned()
+        .ok_or_else(|| {
+            format!(
+                "cannot find demos/{DEFAULT_SCENE}; run carom from the repository's root or pass \
+                 --scene FILE"
+            )
+        })
 }

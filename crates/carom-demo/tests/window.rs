@@ -15,7 +15,13 @@ fn the_window_shows_the_scene_and_the_sidebar() {
     let _ = std::fs::remove_file(&screenshot);
     let output = Command::new(env!("CARGO_BIN_EXE_carom"))
         .current_dir(&root)
-        .args(["--scene", "demos/collision.ron", "--frames", "120", "--screenshot"])
+        .args([
+            "--scene",
+            "demos/collision.ron",
+            "--frames",
+            "120",
+            "--screenshot",
+        ])
         .arg(&screenshot)
         .output()
         .unwrap();
@@ -39,14 +45,23 @@ fn the_window_shows_the_scene_and_the_sidebar() {
     let background = [23u8, 26, 31]; // Color::BACKGROUND, sRGB bytes
     let panel = image.get_pixel(5, height - 5);
     let scene = image.get_pixel(width - 5, 5);
-    assert_ne!([panel[0], panel[1], panel[2]], [scene[0], scene[1], scene[2]]);
+    assert_ne!(
+        [panel[0], panel[1], panel[2]],
+        [scene[0], scene[1], scene[2]]
+    );
     assert!(
-        scene.0[..3].iter().zip(background).all(|(a, b)| a.abs_diff(b) <= 2),
+        scene.0[..3]
+            .iter()
+            .zip(background)
+            .all(|(a, b)| a.abs_diff(b) <= 2),
         "the scene's corner should be the background, got {scene:?}"
     );
     let text_pixels = (0..300.min(width))
         .flat_map(|x| (0..height / 2).map(move |y| (x, y)))
         .filter(|&(x, y)| image.get_pixel(x, y)[0] > 150)
         .count();
-    assert!(text_pixels > 500, "no text in the sidebar ({text_pixels} light pixels)");
+    assert!(
+        text_pixels > 500,
+        "no text in the sidebar ({text_pixels} light pixels)"
+    );
 }

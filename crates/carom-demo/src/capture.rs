@@ -58,7 +58,11 @@ pub fn copy_to_buffer(
 
 impl Capture {
     /// Waits for the copy and returns the pixels as RGBA, whatever the texture's byte order.
-    pub fn read(self, device: &wgpu::Device, format: wgpu::TextureFormat) -> Result<RgbaImage, String> {
+    pub fn read(
+        self,
+        device: &wgpu::Device,
+        format: wgpu::TextureFormat,
+    ) -> Result<RgbaImage, String> {
         let slice = self.buffer.slice(..);
         slice.map_async(wgpu::MapMode::Read, |_| {});
         device

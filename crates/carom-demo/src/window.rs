@@ -127,12 +127,11 @@ impl Running {
                 .map_err(|e| format!("cannot create the window: {e}"))?,
         );
         let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
-        let instance = wgpu::Instance::new(
-            wgpu::InstanceDescriptor::new_with_display_handle(Box::new(
-                event_loop.owned_display_handle(),
-            ))
-            .with_backends(backends),
-        );
+        let mut descriptor = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(
+            event_loop.owned_display_handle(),
+        ));
+        descriptor.backends = backends;
+        let instance = wgpu::Instance::new(descriptor);
         let surface = instance
             .create_surface(window.clone())
             .map_err(|e| format!("cannot draw into the window: {e}"))?;
@@ -140,6 +139,7 @@ impl Running {
             power_preference: wgpu::PowerPreference::HighPerformance,
             force_fallback_adapter: false,
             compatible_surface: Some(&surface),
+            ..Default::default()
         }))
         .map_err(|e| {
             format!(
@@ -177,6 +177,7 @@ impl Running {
             desired_maximum_frame_latency: 2,
             alpha_mode: capabilities.alpha_modes[0],
             view_formats: Vec::new(),
+            color_space: wgpu::SurfaceColorSpace::Auto,
         };
         surface.configure(&device, &config);
         let renderer = Renderer::new(&device, format);
@@ -309,9 +310,13 @@ impl Running {
             size_in_pixels: [self.config.width, self.config.height],
             pixels_per_point,
         };
-        for (id, delta) in &output.textures_delta.set {
-            self.egui_renderer
-                .update_texture(&self.device, &self.queue, *id, delta);
+        // Drain the texture changes: egui checks in debug builds that none is dropped unseen.
+        let mut textures = output.textures_delta;
+        for (id, deltas) in textures.set.drain() {
+            for delta in &deltas {
+                self.egui_renderer
+                    .update_texture(&self.device, &self.queue, id, delta);
+            }
         }
 
         let frame = match self.surface.get_current_texture() {
@@ -374,8 +379,8 @@ impl Running {
         }
         self.window.pre_present_notify();
         self.queue.present(frame);
-        for id in &output.textures_delta.free {
-            self.egui_renderer.free_texture(id);
+        for id in textures.free.drain() {
+            self.egui_renderer.free_texture(&id);
         }
         self.frames += 1;
         Ok(!last)
@@ -400,7 +405,10 @@ impl Running {
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(clear_color(Color::BACKGROUND, self.config.format)),
+                        load: wgpu::LoadOp::Clear(clear_color(
+                            Color::BACKGROUND,
+                            self.config.format,
+                        )),
                         store: wgpu::StoreOp::Store,
                     },
                 })],
