@@ -21,13 +21,14 @@ struct Segment {
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) pixel: vec2<f32>,
-    @location(1) start: vec2<f32>,
-    @location(2) end: vec2<f32>,
-    @location(3) half_width: f32,
-    @location(4) color: vec4<f32>,
+    @location(1) @interpolate(flat) start: vec2<f32>,
+    @location(2) @interpolate(flat) end: vec2<f32>,
+    @location(3) @interpolate(flat) half_width: f32,
+    @location(4) @interpolate(flat) color: vec4<f32>,
 };
 
-fn output_color(color: vec4<f32>) -> vec4<f32> {
+// Colours arrive sRGB-encoded; an sRGB target wants them linear. Done per vertex, not per pixel.
+fn target_color(color: vec4<f32>) -> vec4<f32> {
     if view.srgb_target > 0.5 {
         let low = color.rgb / 12.92;
         let high = pow((color.rgb + vec3<f32>(0.055)) / 1.055, vec3<f32>(2.4));
@@ -48,11 +49,11 @@ fn vs(@builtin(vertex_index) corner: u32, segment: Segment) -> VertexOut {
     let across = vec2<f32>(-along.y, along.x);
     let half_width = 0.5 * segment.width;
     let reach = half_width + 1.0;
-    var corners = array<vec2<f32>, 6>(
-        vec2<f32>(0.0, -1.0), vec2<f32>(1.0, -1.0), vec2<f32>(1.0, 1.0),
-        vec2<f32>(0.0, -1.0), vec2<f32>(1.0, 1.0), vec2<f32>(0.0, 1.0),
+    // Two triangles: x runs from the start (0) to the end (1), y across (-1 to 1).
+    let c = vec2<f32>(
+        select(0.0, 1.0, corner == 1u || corner == 2u || corner == 4u),
+        select(-1.0, 1.0, corner == 2u || corner == 4u || corner == 5u),
     );
-    let c = corners[corner];
     // Extend past both ends by the reach, for the round caps.
     let base = mix(start - along * reach, end + along * reach, c.x);
     let pixel = base + across * reach * c.y;
@@ -62,7 +63,7 @@ fn vs(@builtin(vertex_index) corner: u32, segment: Segment) -> VertexOut {
     out.start = start;
     out.end = end;
     out.half_width = half_width;
-    out.color = segment.color;
+    out.color = target_color(segment.color);
     return out;
 }
 
@@ -75,5 +76,5 @@ fn fs(in: VertexOut) -> @location(0) vec4<f32> {
     if coverage <= 0.0 {
         discard;
     }
-    return output_color(vec4<f32>(in.color.rgb, in.color.a * coverage));
+    return vec4<f32>(in.color.rgb, in.color.a * coverage);
 }

@@ -158,3 +158,39 @@ fn a_moved_body_is_caught() {
         difference.differing
     );
 }
+
+#[test]
+fn every_shipped_scene_renders_something() {
+    // What `carom snapshot` does, for every scene in demos/: each must draw visibly more than
+    // its background.
+    let mut renderer = Offscreen::new(WIDTH, HEIGHT).unwrap_or_else(|e| panic!("{e}"));
+    let options = SnapshotOptions {
+        width: WIDTH,
+        height: HEIGHT,
+        ..SnapshotOptions::default()
+    };
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(workspace().join("demos"))
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    scenes.sort();
+    assert!(scenes.len() >= 10, "only {} scenes found", scenes.len());
+    let background = carom::Color::BACKGROUND
+        .to_array()
+        .map(|c| (c * 255.0).round() as u8);
+    for scene in scenes {
+        let image = render_scene(&load_and_step(&scene, 1).unwrap(), &options, &mut renderer)
+            .unwrap_or_else(|e| panic!("{}: {e}", scene.display()));
+        let drawn = image
+            .pixels()
+            .filter(|p| (0..3).any(|c| p[c].abs_diff(background[c]) > 8))
+            .count();
+        let fraction = drawn as f64 / (WIDTH * HEIGHT) as f64;
+        assert!(
+            fraction > 0.001,
+            "{}: only {drawn} pixels differ from the background",
+            scene.display()
+        );
+    }
+}

@@ -147,6 +147,7 @@ impl Running {
                  mesa-vulkan-drivers (Vulkan) or libegl1 libegl-mesa0 libgl1-mesa-dri (GL)"
             )
         })?;
+        Renderer::check(&adapter).map_err(|e| e.to_string())?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("carom"),
             required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),

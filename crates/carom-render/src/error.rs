@@ -9,6 +9,12 @@ pub enum RenderError {
          or libegl1 libegl-mesa0 libgl1-mesa-dri (GL, llvmpipe)"
     )]
     NoAdapter(String),
+    /// The adapter lacks something the renderer's shaders use.
+    #[error(
+        "the graphics adapter {0} cannot read storage buffers in vertex shaders, which the \
+         polygon shader needs; Mesa's lavapipe (mesa-vulkan-drivers) and llvmpipe can"
+    )]
+    Unsupported(String),
     /// The adapter refused to open a device.
     #[error("cannot open the graphics device: {0}")]
     Device(String),

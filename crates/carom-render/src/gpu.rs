@@ -1,6 +1,7 @@
 //! The adapter, device and queue, found without a window.
 
 use crate::error::RenderError;
+use crate::renderer::Renderer;
 
 /// A device ready to draw offscreen.
 pub struct Gpu {
@@ -24,6 +25,7 @@ impl Gpu {
             ..Default::default()
         }))
         .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
+        Renderer::check(&adapter)?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("carom offscreen"),
             required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),

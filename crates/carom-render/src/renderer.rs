@@ -1,7 +1,9 @@
-//! Draws a [`DrawList`] with three pipelines: polygon fills, instanced discs and instanced
-//! thick segments. Buffers are kept and grown, never rebuilt for a frame that fits.
+//! Draws a [`DrawList`] with three instanced pipelines: polygons (filled and outlined in one
+//! pass), discs and thick segments. Buffers are kept and grown, never rebuilt for a frame that
+//! fits.
 
 use crate::camera::Camera;
+use crate::error::RenderError;
 use crate::shaders;
 use bytemuck::{Pod, Zeroable};
 use carom::debug_draw::{ARROW_WIDTH, OUTLINE_WIDTH};
@@ -19,11 +21,25 @@ struct View {
     _pad: [f32; 2],
 }
 
+/// One polygon: its corners in the corner buffer and its colours.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
-struct PolygonVertex {
-    position: [f32; 2],
-    color: [f32; 4],
+struct PolygonInstance {
+    first: u32,
+    count: u32,
+    fill: [f32; 4],
+    outline: [f32; 4],
+    outline_width: f32,
+}
+
+/// A polygon corner for the shader: the vertex and the outward unit normal of the edge that
+/// starts there.
+type Corner = [f32; 4];
+
+/// Polygons are drawn in one call per vertex count (a fan of `count - 2` triangles each).
+struct PolygonBatch {
+    vertex_count: u32,
+    instances: Range<u32>,
 }
 
 #[repr(C)]
@@ -49,37 +65,48 @@ struct SegmentInstance {
 /// Arrow heads are this long on screen, pixels.
 const ARROW_HEAD: f32 = 10.0;
 
-/// A vertex or instance buffer that grows by doubling and is otherwise reused.
+/// A buffer that grows by doubling and is otherwise reused.
 struct GrowingBuffer {
     buffer: wgpu::Buffer,
     label: &'static str,
+    usage: wgpu::BufferUsages,
 }
 
 impl GrowingBuffer {
-    fn new(device: &wgpu::Device, label: &'static str) -> Self {
+    fn new(device: &wgpu::Device, label: &'static str, usage: wgpu::BufferUsages) -> Self {
+        let usage = usage | wgpu::BufferUsages::COPY_DST;
         GrowingBuffer {
-            buffer: Self::create(device, label, 4096),
+            buffer: Self::create(device, label, usage, 4096),
             label,
+            usage,
         }
     }
 
-    fn create(device: &wgpu::Device, label: &'static str, size: u64) -> wgpu::Buffer {
+    fn create(
+        device: &wgpu::Device,
+        label: &'static str,
+        usage: wgpu::BufferUsages,
+        size: u64,
+    ) -> wgpu::Buffer {
         device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(label),
             size,
-            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+            usage,
             mapped_at_creation: false,
         })
     }
 
-    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, bytes: &[u8]) {
+    /// Writes `bytes` at the start; true when the buffer had to be replaced by a larger one.
+    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, bytes: &[u8]) -> bool {
         let needed = bytes.len() as u64;
-        if needed > self.buffer.size() {
-            self.buffer = Self::create(device, self.label, needed.next_power_of_two());
+        let grown = needed > self.buffer.size();
+        if grown {
+            self.buffer = Self::create(device, self.label, self.usage, needed.next_power_of_two());
         }
         if !bytes.is_empty() {
             queue.write_buffer(&self.buffer, 0, bytes);
         }
+        grown
     }
 }
 
@@ -89,25 +116,40 @@ pub struct Renderer {
     discs: wgpu::RenderPipeline,
     segments: wgpu::RenderPipeline,
     view: wgpu::Buffer,
+    bind_group_layout: wgpu::BindGroupLayout,
     bind_group: wgpu::BindGroup,
+    corner_buffer: GrowingBuffer,
     polygon_buffer: GrowingBuffer,
     disc_buffer: GrowingBuffer,
     segment_buffer: GrowingBuffer,
     srgb_target: bool,
     // Staging, kept to avoid allocating per frame.
-    polygon_vertices: Vec<PolygonVertex>,
+    corners: Vec<Corner>,
+    polygon_instances: Vec<PolygonInstance>,
+    polygon_scratch: Vec<PolygonInstance>,
     disc_instances: Vec<DiscInstance>,
     segment_instances: Vec<SegmentInstance>,
     // What the last `prepare` uploaded, as ranges to draw.
-    polygon_count: u32,
+    polygon_batches: Vec<PolygonBatch>,
     circle_range: Range<u32>,
     point_range: Range<u32>,
-    outline_range: Range<u32>,
     overlay_range: Range<u32>,
 }
 
 impl Renderer {
-    /// Pipelines for a target of `format`.
+    /// Whether `adapter` can run the renderer's shaders (polygon corners are read from a storage
+    /// buffer in the vertex stage, which some downlevel GL and WebGL adapters cannot).
+    pub fn check(adapter: &wgpu::Adapter) -> Result<(), RenderError> {
+        let flags = adapter.get_downlevel_capabilities().flags;
+        if flags.contains(wgpu::DownlevelFlags::VERTEX_STORAGE) {
+            Ok(())
+        } else {
+            Err(RenderError::Unsupported(adapter.get_info().name))
+        }
+    }
+
+    /// Pipelines for a target of `format`, on a device whose adapter passed
+    /// [`Renderer::check`].
     pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Renderer {
         let view = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("view"),
@@ -115,33 +157,34 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
+        let buffer_entry = |binding, ty| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("view"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            }],
+            label: Some("view and polygon corners"),
+            entries: &[
+                buffer_entry(0, wgpu::BufferBindingType::Uniform),
+                buffer_entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
+            ],
         });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("view"),
-            layout: &layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: view.as_entire_binding(),
-            }],
-        });
+        let corner_buffer =
+            GrowingBuffer::new(device, "polygon corners", wgpu::BufferUsages::STORAGE);
+        let bind_group = bind_group(device, &layout, &view, &corner_buffer.buffer);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("carom"),
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let polygon_attributes = wgpu::vertex_attr_array![0 => Float32x2, 1 => Float32x4];
+        let polygon_attributes = wgpu::vertex_attr_array![
+            0 => Uint32, 1 => Uint32, 2 => Float32x4, 3 => Float32x4, 4 => Float32
+        ];
         let disc_attributes = wgpu::vertex_attr_array![
             0 => Float32x2, 1 => Float32x2, 2 => Float32x4, 3 => Float32x4, 4 => Float32
         ];
@@ -182,8 +225,8 @@ impl Renderer {
             "polygons",
             shaders::POLYGONS_WGSL,
             wgpu::VertexBufferLayout {
-                array_stride: std::mem::size_of::<PolygonVertex>() as u64,
-                step_mode: wgpu::VertexStepMode::Vertex,
+                array_stride: std::mem::size_of::<PolygonInstance>() as u64,
+                step_mode: wgpu::VertexStepMode::Instance,
                 attributes: &polygon_attributes,
             },
         );
@@ -205,30 +248,35 @@ impl Renderer {
                 attributes: &segment_attributes,
             },
         );
+        let instance = wgpu::BufferUsages::VERTEX;
         Renderer {
             polygons,
             discs,
             segments,
             view,
+            bind_group_layout: layout,
             bind_group,
-            polygon_buffer: GrowingBuffer::new(device, "polygon vertices"),
-            disc_buffer: GrowingBuffer::new(device, "disc instances"),
-            segment_buffer: GrowingBuffer::new(device, "segment instances"),
+            corner_buffer,
+            polygon_buffer: GrowingBuffer::new(device, "polygon instances", instance),
+            disc_buffer: GrowingBuffer::new(device, "disc instances", instance),
+            segment_buffer: GrowingBuffer::new(device, "segment instances", instance),
             srgb_target: format.is_srgb(),
-            polygon_vertices: Vec::new(),
+            corners: Vec::new(),
+            polygon_instances: Vec::new(),
+            polygon_scratch: Vec::new(),
             disc_instances: Vec::new(),
             segment_instances: Vec::new(),
-            polygon_count: 0,
+            polygon_batches: Vec::new(),
             circle_range: 0..0,
             point_range: 0..0,
-            outline_range: 0..0,
             overlay_range: 0..0,
         }
     }
 
     /// Bytes of GPU buffer held for geometry, for checking that frames reuse them.
     pub fn buffer_capacity(&self) -> u64 {
-        self.polygon_buffer.buffer.size()
+        self.corner_buffer.buffer.size()
+            + self.polygon_buffer.buffer.size()
             + self.disc_buffer.buffer.size()
             + self.segment_buffer.buffer.size()
     }
@@ -251,30 +299,9 @@ impl Renderer {
         };
         queue.write_buffer(&self.view, 0, bytemuck::bytes_of(&view));
 
-        self.polygon_vertices.clear();
         self.segment_instances.clear();
         self.disc_instances.clear();
-        for polygon in &list.polygons {
-            let vertices = list.polygon_vertices(polygon);
-            for i in 1..vertices.len().saturating_sub(1) {
-                for v in [vertices[0], vertices[i], vertices[i + 1]] {
-                    self.polygon_vertices.push(PolygonVertex {
-                        position: [v.x, v.y],
-                        color: polygon.fill.to_array(),
-                    });
-                }
-            }
-            for i in 0..vertices.len() {
-                let next = vertices[(i + 1) % vertices.len()];
-                self.segment_instances.push(segment(
-                    vertices[i],
-                    next,
-                    OUTLINE_WIDTH,
-                    polygon.outline,
-                ));
-            }
-        }
-        let outlines = self.segment_instances.len() as u32;
+        self.batch_polygons(list);
         for line in &list.segments {
             self.segment_instances
                 .push(segment(line.start, line.end, line.width, line.color));
@@ -318,32 +345,106 @@ impl Renderer {
                 outline_width: 0.0,
             });
         }
-        self.polygon_count = self.polygon_vertices.len() as u32;
-        self.outline_range = 0..outlines;
-        self.overlay_range = outlines..self.segment_instances.len() as u32;
+        self.overlay_range = 0..self.segment_instances.len() as u32;
         self.circle_range = 0..circles;
         self.point_range = circles..self.disc_instances.len() as u32;
+        if self
+            .corner_buffer
+            .upload(device, queue, bytemuck::cast_slice(&self.corners))
+        {
+            // The bind group names the corner buffer, so a new buffer needs a new group.
+            self.bind_group = bind_group(
+                device,
+                &self.bind_group_layout,
+                &self.view,
+                &self.corner_buffer.buffer,
+            );
+        }
         self.polygon_buffer
-            .upload(device, queue, bytemuck::cast_slice(&self.polygon_vertices));
+            .upload(device, queue, bytemuck::cast_slice(&self.polygon_instances));
         self.segment_buffer
             .upload(device, queue, bytemuck::cast_slice(&self.segment_instances));
         self.disc_buffer
             .upload(device, queue, bytemuck::cast_slice(&self.disc_instances));
     }
 
-    /// Draws what the last [`Renderer::prepare`] uploaded: fills, outlines, circles, lines and
-    /// arrows, then points on top.
+    /// Draws what the last [`Renderer::prepare`] uploaded: polygons, circles, lines and arrows,
+    /// then points on top.
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {
         pass.set_bind_group(0, &self.bind_group, &[]);
-        if self.polygon_count > 0 {
+        if !self.polygon_batches.is_empty() {
             pass.set_pipeline(&self.polygons);
             pass.set_vertex_buffer(0, self.polygon_buffer.buffer.slice(..));
-            pass.draw(0..self.polygon_count, 0..1);
+            for batch in &self.polygon_batches {
+                pass.draw(0..batch.vertex_count, batch.instances.clone());
+            }
         }
-        self.draw_segments(pass, self.outline_range.clone());
         self.draw_discs(pass, self.circle_range.clone());
         self.draw_segments(pass, self.overlay_range.clone());
         self.draw_discs(pass, self.point_range.clone());
+    }
+
+    /// Fills the corner and polygon staging, polygons grouped by vertex count (a counting sort,
+    /// so a frame allocates nothing once the staging has grown).
+    fn batch_polygons(&mut self, list: &DrawList) {
+        self.corners.clear();
+        self.polygon_scratch.clear();
+        self.polygon_batches.clear();
+        let mut counts = [0u32; MAX_BATCHED_COUNT + 1];
+        let mut corners_before = 0u32;
+        for polygon in &list.polygons {
+            let vertices = list.polygon_vertices(polygon);
+            if vertices.len() < 3 {
+                continue;
+            }
+            let Some(normals) = outward_normals(vertices) else {
+                continue;
+            };
+            counts[vertices.len().min(MAX_BATCHED_COUNT)] += 1;
+            self.corners.extend(
+                vertices
+                    .iter()
+                    .zip(normals)
+                    .map(|(v, n)| [v.x, v.y, n.x, n.y]),
+            );
+            self.polygon_scratch.push(PolygonInstance {
+                first: corners_before,
+                count: vertices.len() as u32,
+                fill: polygon.fill.to_array(),
+                outline: polygon.outline.to_array(),
+                outline_width: OUTLINE_WIDTH,
+            });
+            corners_before += vertices.len() as u32;
+        }
+        // Polygons with more corners than the table holds share its last row, drawn one by
+        // one; carom's own shapes never have that many.
+        let mut start = 0u32;
+        let mut offsets = [0u32; MAX_BATCHED_COUNT + 1];
+        for (count, &n) in counts.iter().enumerate() {
+            offsets[count] = start;
+            if n > 0 && count < MAX_BATCHED_COUNT {
+                self.polygon_batches.push(PolygonBatch {
+                    vertex_count: 3 * (count as u32 - 2),
+                    instances: start..start + n,
+                });
+            }
+            start += n;
+        }
+        self.polygon_instances.clear();
+        self.polygon_instances
+            .resize(self.polygon_scratch.len(), PolygonInstance::zeroed());
+        for instance in &self.polygon_scratch {
+            let row = (instance.count as usize).min(MAX_BATCHED_COUNT);
+            let slot = offsets[row];
+            offsets[row] += 1;
+            self.polygon_instances[slot as usize] = *instance;
+            if row == MAX_BATCHED_COUNT {
+                self.polygon_batches.push(PolygonBatch {
+                    vertex_count: 3 * (instance.count - 2),
+                    instances: slot..slot + 1,
+                });
+            }
+        }
     }
 
     fn draw_segments(&self, pass: &mut wgpu::RenderPass<'_>, range: Range<u32>) {
@@ -361,6 +462,48 @@ impl Renderer {
             pass.draw(0..6, range);
         }
     }
+}
+
+/// Polygons up to this many vertices are drawn in one call per vertex count.
+const MAX_BATCHED_COUNT: usize = 16;
+
+/// The outward unit normal of each edge (from each vertex to the next) of a counter-clockwise
+/// polygon. A zero-length edge borrows the normal before it (its line is then that edge's
+/// line again); None when every edge has zero length.
+fn outward_normals(vertices: &[Vec2]) -> Option<impl Iterator<Item = Vec2> + '_> {
+    let n = vertices.len();
+    let normal = move |i: usize| {
+        let edge = vertices[(i + 1) % n] - vertices[i];
+        let length = edge.norm();
+        (length > 1e-12).then(|| carom::vec2(edge.y, -edge.x) / length)
+    };
+    let last_valid = (0..n).rev().find_map(normal)?;
+    Some((0..n).scan(last_valid, move |previous, i| {
+        *previous = normal(i).unwrap_or(*previous);
+        Some(*previous)
+    }))
+}
+
+fn bind_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    view: &wgpu::Buffer,
+    corners: &wgpu::Buffer,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("view and polygon corners"),
+        layout,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: view.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: corners.as_entire_binding(),
+            },
+        ],
+    })
 }
 
 fn segment(start: Vec2, end: Vec2, width: f32, color: Color) -> SegmentInstance {

@@ -93,3 +93,67 @@ fn an_empty_list_is_the_background_and_buffers_are_reused() {
     }
     assert_eq!(renderer.renderer().buffer_capacity(), capacity);
 }
+
+#[test]
+fn polygons_have_their_outline_on_the_edge_whatever_their_vertex_count() {
+    // 10 pixels per metre. A square, a hexagon and a 20-gon (more corners than one batch
+    // holds) side by side, plus a degenerate polygon that must be skipped, not drawn wrong.
+    let mut renderer = offscreen(160, 60);
+    let camera = Camera {
+        center: vec2(0.0, 0.0),
+        zoom: 10.0,
+    };
+    let fill = Color::rgb(0.2, 0.4, 0.9);
+    let outline = Color::rgb(1.0, 0.9, 0.2);
+    let mut list = DrawList::new();
+    let ngon = |center: carom::Vec2, sides: usize, radius: f32| -> Vec<carom::Vec2> {
+        (0..sides)
+            .map(|i| {
+                let angle = std::f32::consts::TAU * (i as f32 + 0.5) / sides as f32;
+                center + vec2(angle.cos(), angle.sin()) * radius
+            })
+            .collect()
+    };
+    // The square spans x -7..-3 m, pixels 10..50; its left edge is at pixel 10.
+    list.polygon(
+        &[
+            vec2(-7.0, -2.0),
+            vec2(-3.0, -2.0),
+            vec2(-3.0, 2.0),
+            vec2(-7.0, 2.0),
+        ],
+        fill,
+        outline,
+    );
+    list.polygon(&ngon(vec2(0.0, 0.0), 6, 2.0), fill, outline);
+    list.polygon(&ngon(vec2(5.0, 0.0), 20, 2.0), fill, outline);
+    // A polygon whose vertices coincide, and one with a repeated vertex.
+    list.polygon(&[vec2(-5.0, -2.5); 4], outline, outline);
+    list.polygon(
+        &[
+            vec2(-7.5, -2.8),
+            vec2(-7.5, -2.8),
+            vec2(-6.5, -2.8),
+            vec2(-7.0, -2.6),
+        ],
+        fill,
+        outline,
+    );
+    let image = renderer.render(&list, &camera, Color::BACKGROUND).unwrap();
+    // Inside each shape: the fill.
+    close(&image, 30, 30, fill);
+    close(&image, 80, 30, fill);
+    close(&image, 130, 30, fill);
+    // On the square's left edge (x = 10 px, between pixel columns 9 and 10): the outline.
+    let edge = image.get_pixel(10, 30);
+    assert!(
+        edge[0] > 150 && edge[2] < 150,
+        "the square's edge should be outline-yellow, got {edge:?}"
+    );
+    // Three pixels outside it: the background.
+    close(&image, 6, 30, Color::BACKGROUND);
+    // The 20-gon's rightmost edge is near x = 7 m (pixel 150); past it, the background.
+    close(&image, 154, 30, Color::BACKGROUND);
+    // No stray fill colour anywhere the degenerate polygons were.
+    close(&image, 30, 55, Color::BACKGROUND);
+}
