@@ -299,6 +299,46 @@ proptest! {
     }
 }
 
+#[test]
+fn overlapping_triangle_faces_keep_two_points() {
+    // Two equilateral triangles face to face, overlapping by 0.1 m and offset along the face.
+    // Their corners are sharper than a right angle, so the side planes of the reference face
+    // leave the incident edge's ends outside the reference triangle; the clipper must pull them
+    // inside, not drop them: with one point the pair rotates into itself.
+    let h = (3.0 as Real).sqrt() / 2.0;
+    let a = polygon_at_its_points(&[(0.0, 0.0), (1.0, 0.0), (0.5, h)]);
+    // Outward normal of A's face from (1, 0) to (0.5, h), and the face's direction.
+    let normal = vec2(h, 0.5);
+    let along = vec2(-0.5, h);
+    let shift = -normal * 0.1 + along * 0.2;
+    let b = polygon_at_its_points(&[
+        (1.0 + shift.x, shift.y),
+        (1.5 + shift.x, h + shift.y),
+        (0.5 + shift.x, h + shift.y),
+    ]);
+    for (first, second) in [(&a, &b), (&b, &a)] {
+        let manifold = collide(first, second, 0.02);
+        assert_eq!(manifold.points().len(), 2, "{manifold:?}");
+        for point in manifold.points() {
+            assert!((point.separation + 0.1).abs() < 0.02, "{point:?}");
+            assert!(
+                depth_outside(&a, point.point) <= 1e-4,
+                "{point:?} outside A"
+            );
+            assert!(
+                depth_outside(&b, point.point) <= 1e-4,
+                "{point:?} outside B"
+            );
+        }
+        // Spread along the face, so the pair cannot pivot about a single point.
+        let [p, q] = [manifold.points()[0].point, manifold.points()[1].point];
+        assert!(
+            (p - q).norm() > 0.5,
+            "points {p:?} and {q:?} bunch together"
+        );
+    }
+}
+
 // ---------------------------------------------------------------- degenerate but valid input
 
 fn assert_finite(a: &WorldShape, b: &WorldShape) -> carom::Separation {

@@ -43,15 +43,21 @@ fn a_body_is_grabbed_dragged_against_a_wall_and_thrown() {
     demo.press(Button::Left, screen);
     assert_eq!(demo.grabbed(), Some(handle));
 
-    // Drag far past the right wall (its inner face is at x = 7): the box follows the cursor
-    // but stops at the wall.
+    // Drag far past the right wall (0.5 m thick, its inner face at x = 7): the box follows the
+    // cursor but stops at the wall. Contacts are soft, as Box2D's: the box hits the wall at
+    // about 10 m/s and is pressed into it by the spring, so its corner may sink a little into
+    // the wall, never far and never through.
     let target = demo.camera.world_to_screen(vec2(12.0, 3.0), VIEWPORT);
     for i in 1..=90 {
         let t = (i as f32 / 60.0).min(1.0);
         demo.move_to(screen + (target - screen) * t);
         frames(&mut demo, 1);
-        let x = demo.scene.world.body(handle).unwrap().position().x;
-        assert!(x < 7.0 - 0.6 + 0.02, "the box went into the wall: x = {x}");
+        let right = demo.scene.world.body(handle).unwrap().aabb().max.x;
+        assert!(
+            right < 7.0 + 0.1,
+            "frame {i}: the box's right side went {} m into the wall",
+            right - 7.0
+        );
     }
     let pressed = demo.scene.world.body(handle).unwrap().position();
     assert!(

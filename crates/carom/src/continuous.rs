@@ -70,35 +70,54 @@ fn outer_radius(shape: &Shape) -> Real {
     }
 }
 
-/// The first time in `[0, 1]` at which `shape` on `sweep` comes within `target` of `other`,
-/// or `None` if it never does (or already overlaps it at the start: that is the solver's
-/// job, not a tunnel).
+/// The first time in `(0, 1)` at which `shape` on `sweep` would pass into `other`, by
+/// conservative advancement: with `distance` the signed gap (negative when overlapping) and
+/// `bound` the fastest any point of the shape can close it, advancing by `distance / bound`
+/// can never step past the goal.
+///
+/// A shape that starts clear of `other` is stopped when it comes within `target` of it. A shape
+/// already touching at the start (a fast box sliding on the floor it rests on, a plank landing
+/// on one end) is the solver's business, but the solver may not stop all of it in one step:
+/// it may go on as long as no point sinks more than [`sink_allowance`] deeper than it started.
+/// Stopping it at the first touch instead would freeze a sliding body where it started, every
+/// step; sweeping only a core around its centre (Box2D's fallback) lets a spinning plank's far
+/// end swing through a thin floor.
 fn time_of_impact(shape: &Shape, sweep: &Sweep, other: &WorldShape, target: Real) -> Option<Real> {
     let radius = outer_radius(shape);
     // The fastest any point of the shape moves, per unit of sweep time.
     let bound = sweep.translation.norm() + sweep.turn.abs() * radius;
+    let tolerance = 0.25 * target;
+    let mut placed = WorldShape::new(shape, &sweep.at(0.0));
+    let start = separation(other, &placed).separation;
+    let goal = if start >= target + tolerance {
+        target
+    } else {
+        start.min(target) - sink_allowance(shape, target)
+    };
     if bound <= 0.0 {
         return None;
     }
-    let tolerance = 0.25 * target;
-    let mut placed = WorldShape::new(shape, &sweep.at(0.0));
     let mut t: Real = 0.0;
+    let mut distance = start;
     for _ in 0..MAX_ITERATIONS {
-        let distance = separation(other, &placed).separation;
-        if t == 0.0 && distance < 0.0 {
-            return None;
-        }
-        if distance < target + tolerance {
+        if distance < goal + tolerance {
             return Some(t);
         }
-        t += (distance - target) / bound;
+        t += (distance - goal) / bound;
         if t >= 1.0 {
             return None;
         }
         placed.update(shape, &sweep.at(t));
+        distance = separation(other, &placed).separation;
     }
-    // Still approaching after many small advances: stop here, short of the contact.
+    // Still approaching after many small advances: stop here, short of the goal.
     Some(t)
+}
+
+/// How much deeper than it started a shape that already touches another may sink within one
+/// step: a quarter of its smallest extent, and never less than the contact target.
+fn sink_allowance(shape: &Shape, target: Real) -> Real {
+    (0.25 * shape.min_extent()).max(2.0 * target)
 }
 
 /// Sweeps every fast body and moves the ones that would have tunnelled back to their time of

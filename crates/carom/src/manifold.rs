@@ -421,7 +421,27 @@ fn collide_polygons(
     } else {
         let lower = if s_low < 0.0 { at(0.0) } else { low };
         let upper = if s_high > length { at(length) } else { high };
-        [Some((lower, i1, j_low)), Some((upper, i2, j_high))]
+        // Behind the reference face, the side planes can leave an end outside the reference
+        // polygon when its corner is sharper than a right angle (a triangle's): slide that end
+        // along the incident edge until it enters the polygon, so a face-to-face overlap keeps
+        // both of its points instead of losing one and rotating into the other shape.
+        let inside = |end: Vec2, other_end: Vec2| {
+            if normal.dot(&(end - v11)) >= 0.0
+                || distance_outside(ref_vertices, ref_normals, end) <= SPURIOUS_TOLERANCE
+            {
+                return end;
+            }
+            let (enter, leave) = polygon_chord(ref_vertices, ref_normals, end, other_end - end);
+            if enter <= leave && (0.0..=1.0).contains(&enter) {
+                end + (other_end - end) * enter
+            } else {
+                end
+            }
+        };
+        [
+            Some((inside(lower, upper), i1, j_low)),
+            Some((inside(upper, lower), i2, j_high)),
+        ]
     };
     for (point, reference_vertex, incident_vertex) in candidates.into_iter().flatten() {
         let separation = normal.dot(&(point - v11));
@@ -430,7 +450,7 @@ fn collide_polygons(
         }
         let u = if separation < 0.0 {
             // In a deep overlap the incident point can poke out past the reference polygon's
-            // other faces: then it marks no contact at all.
+            // other faces, with no part of its edge inside: then it marks no contact at all.
             if distance_outside(ref_vertices, ref_normals, point) > SPURIOUS_TOLERANCE {
                 continue;
             }
