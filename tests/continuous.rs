@@ -112,7 +112,7 @@ fn drop_plank(continuous: bool, angle: Real, spin: Real, offset: Real) -> (Real,
 /// The drop of run `run` of 100: angles, spins and offsets from the post vary.
 fn plank_run(continuous: bool, run: usize) -> (Real, bool) {
     let angle = run as Real * 0.377;
-    let spin = if run % 2 == 0 { 50.0 } else { -50.0 };
+    let spin = if run.is_multiple_of(2) { 50.0 } else { -50.0 };
     let offset = [-1.5, -0.5, 0.3][run % 3];
     drop_plank(continuous, angle, spin, offset)
 }
