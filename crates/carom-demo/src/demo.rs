@@ -113,7 +113,7 @@ impl Demo {
             scenes,
             current,
             scene_path: scene.to_path_buf(),
-            camera: scene_camera(&loaded, viewport[1].max(1)),
+            camera: scene_camera(&loaded, viewport),
             draw: DrawOptions {
                 flags: loaded.draw,
                 ..DrawOptions::default()
@@ -159,7 +159,7 @@ impl Demo {
 
     fn load(&mut self, path: &Path) -> Result<(), String> {
         let loaded = carom_scene::load(path).map_err(|e| e.to_string())?;
-        self.camera = scene_camera(&loaded, self.viewport[1].max(1));
+        self.camera = scene_camera(&loaded, self.viewport);
         self.draw.flags = loaded.draw;
         self.scene = loaded;
         self.scene_path = path.to_path_buf();
@@ -170,11 +170,11 @@ impl Demo {
         Ok(())
     }
 
-    /// The view changed size: the camera keeps its centre and scales its zoom with the height,
-    /// so the same part of the world stays in view.
+    /// The view changed size: the camera keeps its centre and scales its zoom as the scene's
+    /// own camera would, so the same part of the world stays in view.
     pub fn resize(&mut self, viewport: [u32; 2]) {
-        let (old, new) = (self.viewport[1].max(1), viewport[1].max(1));
-        self.camera.zoom *= new as f32 / old as f32;
+        let scale = |[width, height]: [u32; 2]| carom_scene::Camera::view_scale(width, height);
+        self.camera.zoom *= scale(viewport) / scale(self.viewport);
         self.viewport = viewport;
     }
 
@@ -301,12 +301,12 @@ impl Demo {
     }
 }
 
-/// The scene's camera for a view `height` pixels high.
-pub fn scene_camera(scene: &SceneWorld, height: u32) -> Camera {
+/// The scene's camera for a view `viewport` pixels in size.
+pub fn scene_camera(scene: &SceneWorld, viewport: [u32; 2]) -> Camera {
     let (x, y) = scene.camera.center;
     Camera {
         center: carom::vec2(x, y),
-        zoom: scene.camera.zoom_for_height(height),
+        zoom: scene.camera.zoom_for_view(viewport[0], viewport[1]),
     }
 }
 

@@ -67,7 +67,7 @@ pub fn render_scene(
     renderer
         .render(
             &list,
-            &scene_camera(scene, options.height),
+            &scene_camera(scene, [options.width, options.height]),
             Color::BACKGROUND,
         )
         .map_err(|e| e.to_string())
@@ -93,7 +93,7 @@ pub fn time_frames(
     frames: usize,
 ) -> Result<FrameTimes, String> {
     let draw = draw_options(scene, &options.draw);
-    let camera = scene_camera(scene, options.height);
+    let camera = scene_camera(scene, [options.width, options.height]);
     let mut list = DrawList::new();
     renderer.resize(options.width, options.height);
     let (mut describe, mut render) = (Vec::new(), Vec::new());

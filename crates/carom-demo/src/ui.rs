@@ -22,13 +22,13 @@ pub fn sidebar(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>) {
     egui::ScrollArea::vertical().show(ui, |ui| {
         scene_section(ui, demo, error);
         ui.separator();
+        // The cost of accuracy right under the settings that change it.
         solver_section(ui, demo, error);
+        cost_section(ui, demo);
         ui.separator();
         effects_section(ui, demo);
         ui.separator();
         draw_section(ui, demo);
-        ui.separator();
-        cost_section(ui, demo);
         ui.separator();
         ui.small(HINTS);
         if let Some(message) = error {
@@ -66,7 +66,7 @@ fn scene_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>)
         ui.label(&entry.description);
     }
     ui.horizontal(|ui| {
-        let play = if demo.paused { "▶ Play" } else { "⏸ Pause" };
+        let play = if demo.paused { "Play" } else { "Pause" };
         if ui.button(play).clicked() {
             demo.paused = !demo.paused;
         }
@@ -197,20 +197,28 @@ fn cost_section(ui: &mut egui::Ui, demo: &mut Demo) {
             latest.energy_change
         ));
     }
+    // Two small plots, not one: milliseconds and millimetres share no scale.
     let samples = metrics.samples();
     let step_line: PlotPoints = samples.iter().map(|s| [s.time, s.step_ms]).collect();
     let penetration_line: PlotPoints = samples
         .iter()
         .map(|s| [s.time, s.max_penetration as f64 * 1e3])
         .collect();
-    Plot::new("cost")
-        .height(140.0)
+    small_plot(ui, "step_ms", Line::new("step ms", step_line));
+    small_plot(
+        ui,
+        "penetration_mm",
+        Line::new("penetration mm", penetration_line),
+    );
+}
+
+/// A fixed plot of one line over the last seconds, with its legend.
+fn small_plot(ui: &mut egui::Ui, id: &str, line: Line<'_>) {
+    Plot::new(id)
+        .height(70.0)
         .legend(Legend::default())
         .allow_drag(false)
         .allow_zoom(false)
         .allow_scroll(false)
-        .show(ui, |plot| {
-            plot.line(Line::new("step ms", step_line));
-            plot.line(Line::new("penetration mm", penetration_line));
-        });
+        .show(ui, |plot| plot.line(line));
 }

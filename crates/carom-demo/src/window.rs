@@ -41,10 +41,13 @@ pub fn run(options: WindowOptions) -> Result<(), String> {
     event_loop
         .run_app(&mut app)
         .map_err(|e| format!("the event loop failed: {e}"))?;
-    match app.failure {
-        Some(message) => Err(message),
-        None => Ok(()),
+    if let Some(message) = app.failure {
+        return Err(message);
     }
+    if let (Some(_), Some(running)) = (app.options.frames, &app.running) {
+        println!("{}", running.report());
+    }
+    Ok(())
 }
 
 struct App {
@@ -70,8 +73,12 @@ struct Running {
     cursor: egui::Pos2,
     last_frame: Instant,
     frames: u64,
-    /// Seconds of wall time per frame, for the title bar's frame rate.
+    /// Seconds of wall time per frame, smoothed, for the sidebar's frame rate.
     frame_seconds: f64,
+    /// Wall time of every frame after the first, ms, for the report `--frames` prints.
+    frame_ms: Vec<f64>,
+    /// The adapter drawing, for that report.
+    adapter: String,
 }
 
 impl ApplicationHandler for App {
@@ -104,6 +111,13 @@ impl ApplicationHandler for App {
                     event_loop.exit();
                 }
             },
+            // The cursor's position and a button's release always reach the demo, so a grab
+            // or a pan ends even when the button comes up over the sidebar.
+            WindowEvent::CursorMoved { .. }
+            | WindowEvent::MouseInput {
+                state: ElementState::Released,
+                ..
+            } => running.input(&event),
             other if !response.consumed => running.input(&other),
             _ => {}
         }
@@ -214,6 +228,12 @@ impl Running {
             last_frame: Instant::now(),
             frames: 0,
             frame_seconds: 1.0 / 60.0,
+            frame_ms: Vec::new(),
+            adapter: format!(
+                "{} on {:?}",
+                adapter.get_info().name,
+                adapter.get_info().backend
+            ),
         })
     }
 
@@ -287,6 +307,9 @@ impl Running {
         let elapsed = (now - self.last_frame).as_secs_f64();
         self.last_frame = now;
         self.frame_seconds += (elapsed - self.frame_seconds) * 0.05;
+        if self.frames > 0 {
+            self.frame_ms.push(elapsed * 1e3);
+        }
         if let Err(message) = self.demo.frame(elapsed) {
             self.error = Some(message);
         }
@@ -389,6 +412,25 @@ impl Running {
 }
 
 impl Running {
+    /// What the frames cost: the median frame time and rate, and the median physics step.
+    fn report(&self) -> String {
+        let mut frame_ms = self.frame_ms.clone();
+        frame_ms.sort_by(f64::total_cmp);
+        let median = frame_ms.get(frame_ms.len() / 2).copied().unwrap_or(0.0);
+        format!(
+            "{}: {} frames at {}x{} on {}: median frame {median:.1} ms ({:.1} frames/s), \
+             median step {:.3} ms, {} bodies",
+            self.demo.scene_path.display(),
+            self.frames,
+            self.config.width,
+            self.config.height,
+            self.adapter,
+            1e3 / median.max(1e-6),
+            self.demo.metrics.median(|s| s.step_ms),
+            self.demo.scene.world.body_count(),
+        )
+    }
+
     /// Records one frame into `target`: the scene right of the sidebar, egui over everything.
     fn encode(
         &self,

@@ -100,18 +100,25 @@ fn all_effects() -> Vec<EffectName> {
 pub struct Camera {
     /// The world point at the centre of the view, m.
     pub center: Pair,
-    /// Pixels per metre in a view 720 pixels high; views of other heights scale it, so every
-    /// size shows the same part of the world.
+    /// Pixels per metre in a 1280 x 720 view. Other views scale it so that they show at least
+    /// what that view shows: by their height, or by their width when they are narrower.
     pub zoom: f32,
 }
 
 impl Camera {
-    /// The height, in pixels, at which `zoom` is exact.
-    pub const REFERENCE_HEIGHT: f32 = 720.0;
+    /// The view size, in pixels, at which `zoom` is exact.
+    pub const REFERENCE_VIEW: (f32, f32) = (1280.0, 720.0);
 
-    /// Pixels per metre in a view `height` pixels high.
-    pub fn zoom_for_height(&self, height: u32) -> f32 {
-        self.zoom * height as f32 / Camera::REFERENCE_HEIGHT
+    /// Pixels per metre in a `width` x `height` pixel view.
+    pub fn zoom_for_view(&self, width: u32, height: u32) -> f32 {
+        self.zoom * Camera::view_scale(width, height)
+    }
+
+    /// How much larger than the reference view a `width` x `height` view is, as far as
+    /// fitting the reference view's contents goes.
+    pub fn view_scale(width: u32, height: u32) -> f32 {
+        let (reference_width, reference_height) = Camera::REFERENCE_VIEW;
+        (height.max(1) as f32 / reference_height).min(width.max(1) as f32 / reference_width)
     }
 }
 
