@@ -96,6 +96,10 @@ pub struct Demo {
     pub time_scale: f32,
     /// Most steps one frame may take, so a slow machine slows down instead of spiralling.
     pub max_steps_per_frame: u32,
+    /// Wall time one frame may spend stepping; past it the frame takes no more steps (it always
+    /// takes one), so a scene slower than real time runs slowed down at a usable frame rate
+    /// instead of a few frames a second.
+    pub step_budget: std::time::Duration,
     /// Step costs and errors.
     pub metrics: Metrics,
     accumulator: f64,
@@ -123,6 +127,7 @@ impl Demo {
             paused: false,
             time_scale: 1.0,
             max_steps_per_frame: 4,
+            step_budget: std::time::Duration::from_millis(10),
             metrics: Metrics::default(),
             accumulator: 0.0,
             grab: None,
@@ -179,21 +184,29 @@ impl Demo {
     }
 
     /// Advances by a frame of `seconds` of real time: as many fixed steps as are due (scaled
-    /// by `time_scale`, at most `max_steps_per_frame`). Returns the steps taken.
+    /// by `time_scale`), at most `max_steps_per_frame` and no more once `step_budget` is spent.
+    /// Returns the steps taken.
     pub fn frame(&mut self, seconds: f64) -> Result<u32, String> {
         if self.paused {
             return Ok(0);
         }
         let dt = self.scene.time_step as f64;
         self.accumulator += seconds.clamp(0.0, 0.25) * self.time_scale as f64;
+        let started = Instant::now();
         let mut steps = 0;
-        while self.accumulator >= dt && steps < self.max_steps_per_frame {
+        let mut behind = false;
+        while self.accumulator >= dt {
+            let over_budget = steps > 0 && started.elapsed() > self.step_budget;
+            if steps == self.max_steps_per_frame || over_budget {
+                behind = true;
+                break;
+            }
             self.step()?;
             self.accumulator -= dt;
             steps += 1;
         }
-        if steps == self.max_steps_per_frame {
-            // Behind: drop the backlog rather than chase it.
+        if behind {
+            // Drop the backlog rather than chase it.
             self.accumulator = self.accumulator.min(dt);
         }
         Ok(steps)

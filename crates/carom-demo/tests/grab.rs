@@ -152,3 +152,14 @@ fn every_step_is_measured() {
     assert!(latest.step_ms > 0.0 && latest.max_penetration >= 0.0);
     assert!(latest.energy_change.is_finite());
 }
+
+#[test]
+fn a_slow_scene_takes_one_step_per_frame_when_the_budget_is_spent() {
+    let mut demo = open("pyramid.ron");
+    // A budget every step overruns: each frame still takes one step, never more.
+    demo.step_budget = std::time::Duration::ZERO;
+    for _ in 0..5 {
+        assert_eq!(demo.frame(0.5).unwrap(), 1);
+    }
+    assert_eq!(demo.scene.world.step_count(), 5);
+}
