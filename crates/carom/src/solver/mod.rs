@@ -37,8 +37,9 @@ pub enum SolverKind {
     /// The tutorial's impulses: per point, `j = max((-vn + bias) / k, 0)` with Baumgarte bias
     /// `0.2 / dt · max(0, depth - 0.01)`, repeated for the iterations, nothing accumulated.
     TutorialImpulse,
-    /// Sequential impulses (Catto 2006): accumulated, clamped normal and friction impulses, warm
-    /// started from the last step, restitution, Baumgarte bias beyond the slop.
+    /// Sequential impulses (Catto 2006) as Box2D v2.4 runs them: accumulated, clamped normal and
+    /// friction impulses, warm started from the last step, restitution; overlap beyond the slop
+    /// removed by position passes after the bodies move, not by a velocity bias.
     SequentialImpulse,
     /// Box2D v3's soft step: substeps, soft contacts, relaxation, a restitution pass.
     #[default]
@@ -98,7 +99,8 @@ pub struct SolverParams {
     /// Soft step: the fastest overlap is pushed apart, m/s. Default 3.
     pub max_push_speed: Real,
     /// Sequential and tutorial impulse: fraction of the overlap beyond the slop removed per
-    /// step, in `[0, 1]` (0 turns the bias off). Default 0.2.
+    /// position pass (sequential impulse) or per step by a velocity bias (tutorial impulse), in
+    /// `[0, 1]` (0 turns it off). Default 0.2.
     pub baumgarte: Real,
     /// Overlap left alone, so resting contacts stay in touch, m. Default 0.005.
     pub linear_slop: Real,

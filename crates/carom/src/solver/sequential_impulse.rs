@@ -1,11 +1,22 @@
-//! Sequential impulses (Catto, GDC 2006): accumulated impulses clamped as a whole, so many
-//! iterations converge to the contact forces; warm started from the last step; Baumgarte
-//! bias pushes out overlap beyond the slop; restitution as a final pass.
+//! Sequential impulses (Catto, GDC 2006) as Box2D v2.4 runs them: accumulated impulses clamped
+//! as a whole, so many iterations converge to the contact forces; warm started from the last
+//! step; restitution as a final pass. Overlap is removed on positions, not velocities: after
+//! the bodies move, a few Gauss-Seidel passes push overlap beyond the slop out directly
+//! (Baumgarte's fraction per pass, at most [`MAX_CORRECTION`]). A velocity bias would stay in
+//! the bodies as energy and, in a pressed pile, feed on itself until it explodes.
 
 use super::body_state::{integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
 use super::soft_step::{apply_restitution, forget_impulses, solve_friction, warm_start};
-use super::{BodyState, ContactConstraint, SolverContext};
+use super::{BodyState, ContactConstraint, SolverContext, SolverParams};
+use crate::math::{Real, Rot, cross};
+
+/// Position passes after each step (Box2D v2.4's default).
+pub const POSITION_ITERATIONS: usize = 3;
+
+/// The most overlap one position pass removes at a point, m (Box2D v2.4's
+/// `b2_maxLinearCorrection`): a deep overlap is taken apart over several steps, not flung.
+pub const MAX_CORRECTION: Real = 0.2;
 use crate::stats::Work;
 
 pub(super) fn solve(
@@ -35,13 +46,9 @@ pub(super) fn solve(
             }
             for i in 0..c.points().len() {
                 let point = c.points()[i];
-                // The slowest normal velocity allowed: close a speculative gap exactly, or
-                // push out a fraction of the overlap beyond the slop.
-                let target = if point.separation > 0.0 {
-                    -point.separation * inv_dt
-                } else {
-                    params.baumgarte * inv_dt * (-point.separation - params.linear_slop).max(0.0)
-                };
+                // The slowest normal velocity allowed: close a speculative gap exactly; an
+                // overlap is the position passes' business.
+                let target = -point.separation.max(0.0) * inv_dt;
                 let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
                 c.add_normal_impulse(i, point.normal_mass * (target - vn), a, b);
             }
@@ -51,5 +58,43 @@ pub(super) fn solve(
         work.restitution_impulses = apply_restitution(params, constraints, states);
     }
     integrate_positions(bodies, states, dt);
+    for _ in 0..POSITION_ITERATIONS {
+        correct_positions(params, constraints, states);
+    }
     work
+}
+
+/// One Gauss-Seidel pass on positions: each point's overlap beyond the slop, a Baumgarte
+/// fraction of it and at most [`MAX_CORRECTION`], is pushed out along the normal by moving the
+/// two bodies as an impulse would (no velocity changes).
+fn correct_positions(
+    params: &SolverParams,
+    constraints: &[ContactConstraint],
+    states: &mut [BodyState],
+) {
+    for c in constraints {
+        let (a, b) = pair_mut(states, c.a, c.b);
+        for point in c.points() {
+            let separation = c.current_separation(point, a, b);
+            let correction =
+                (params.baumgarte * (separation + params.linear_slop)).clamp(-MAX_CORRECTION, 0.0);
+            if correction == 0.0 {
+                continue;
+            }
+            let (ra, rb) = (a.dq * point.anchor_a, b.dq * point.anchor_b);
+            let (rna, rnb) = (cross(ra, c.normal), cross(rb, c.normal));
+            let k = c.inv_mass_a
+                + c.inv_mass_b
+                + c.inv_inertia_a * rna * rna
+                + c.inv_inertia_b * rnb * rnb;
+            if k <= 0.0 {
+                continue;
+            }
+            let push = c.normal * (-correction / k);
+            a.dp -= push * c.inv_mass_a;
+            a.dq = Rot::new(-c.inv_inertia_a * cross(ra, push)) * a.dq;
+            b.dp += push * c.inv_mass_b;
+            b.dq = Rot::new(c.inv_inertia_b * cross(rb, push)) * b.dq;
+        }
+    }
 }
