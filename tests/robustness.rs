@@ -225,3 +225,31 @@ fn stepping_a_world_of_extreme_but_valid_bodies_stays_finite() {
         assert!(body.aabb().min.iter().all(|x| x.is_finite()));
     }
 }
+
+#[test]
+fn shapes_beyond_100_km_or_with_hairline_edges_are_refused_or_repaired() {
+    // Found by the narrowphase fuzz targets: a radius of 3e38 overflowed a sum of radii to -inf,
+    // and coordinates of 1e19 left a zero normal.
+    for error in [
+        Shape::circle(3.4e38).unwrap_err(),
+        Shape::rect(2.0e5, 1.0).unwrap_err(),
+        Shape::regular(5, 1.0e6).unwrap_err(),
+        Shape::hull(&[vec2(0.0, 0.0), vec2(1.6e19, 0.0), vec2(0.0, 1.0)]).unwrap_err(),
+        Shape::polygon(&[vec2(0.0, 0.0), vec2(1.0e6, 0.0), vec2(0.0, 1.0)]).unwrap_err(),
+    ] {
+        assert!(error.to_string().contains("100 km"), "{error}");
+    }
+    // Two hull points 1e-13 m apart, far from the centroid, land on one another once the
+    // polygon is recentred: the edge between them had a NaN normal. They are merged now.
+    let hull = Shape::hull(&[
+        vec2(-4.7e-38, 0.12182904),
+        vec2(-7.534539e-14, -7.534539e-14),
+        vec2(0.04630438, 0.061093558),
+        vec2(1.6823371e-38, 0.0),
+    ]);
+    if let Ok(Shape::Polygon(polygon)) = hull {
+        for normal in polygon.normals() {
+            assert!((normal.norm() - 1.0).abs() < 1e-5, "{normal:?}");
+        }
+    }
+}

@@ -133,3 +133,52 @@ fn a_spun_frame_turns_rigidly_about_its_pivot() {
         assert!((body.angular_velocity() - 1.0).abs() < 1e-3);
     }
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: 300,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5ce4e),
+        failure_persistence: None,
+        ..proptest::prelude::ProptestConfig::default()
+    })]
+
+    /// The in-CI cousin of the `scene_parse` fuzz target: a shipped scene with a few bytes
+    /// deleted, replaced or inserted parses to a scene or to an error that names a line and
+    /// column inside the text, and a scene that parses builds or fails cleanly: never a panic.
+    #[test]
+    fn mangled_scenes_fail_cleanly(
+        scene in 0usize..64,
+        edits in proptest::collection::vec((0usize..100_000, 0u8..3, 32u8..127), 1..6),
+    ) {
+        let mut names: Vec<PathBuf> = std::fs::read_dir(path("../demos"))
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "ron"))
+            .collect();
+        names.sort();
+        let original = std::fs::read_to_string(&names[scene % names.len()]).unwrap();
+        let mut bytes = original.into_bytes();
+        for (at, kind, byte) in edits {
+            let at = at % (bytes.len() + 1);
+            match kind {
+                0 if at < bytes.len() => {
+                    bytes.remove(at);
+                }
+                1 if at < bytes.len() => bytes[at] = byte,
+                _ => bytes.insert(at, byte),
+            }
+        }
+        let text = String::from_utf8_lossy(&bytes).into_owned();
+        match carom_scene::parse(&text, "mangled.ron") {
+            Ok(parsed) => {
+                let _ = carom_scene::build(&parsed, "mangled.ron");
+            }
+            Err(SceneError::Syntax { line, column, .. }) => {
+                let lines = text.lines().count().max(1);
+                proptest::prop_assert!(line >= 1 && line <= lines + 1, "line {line} of {lines}");
+                proptest::prop_assert!(column >= 1);
+            }
+            Err(_) => {}
+        }
+    }
+}

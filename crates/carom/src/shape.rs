@@ -16,6 +16,30 @@ pub const CONTAINMENT_TOLERANCE: Real = 1.0e-5;
 /// Points of a polygon closer than this (relative to the polygon's size) are the same point.
 const WELD_TOLERANCE: Real = 1.0e-5;
 
+/// The largest coordinate or radius a shape may have, m (Box2D's `B2_HUGE`): beyond it an f32
+/// keeps too few digits below a millimetre for contacts, and sums of sizes can overflow.
+pub const MAX_SHAPE_EXTENT: Real = 1.0e5;
+
+/// Checks that a shape's coordinate or size is no larger than [`MAX_SHAPE_EXTENT`].
+fn check_extent(what: &'static str, value: Real) -> Result<(), CaromError> {
+    if value.abs() <= MAX_SHAPE_EXTENT {
+        Ok(())
+    } else {
+        Err(CaromError::OutOfRange {
+            name: what,
+            expected: "within 100 km (100000 m)",
+            value,
+        })
+    }
+}
+
+/// Checks a polygon point: finite and within [`MAX_SHAPE_EXTENT`].
+fn check_point(what: &str, point: Vec2) -> Result<(), CaromError> {
+    check_finite_vec(what, point)?;
+    check_extent("polygon coordinate", point.x)?;
+    check_extent("polygon coordinate", point.y)
+}
+
 /// A vertex whose turn has a sine below this is collinear with its neighbours.
 const COLLINEAR_SINE: f64 = 1.0e-6;
 
@@ -32,6 +56,7 @@ impl Circle {
         if radius <= 0.0 {
             return Err(CaromError::InvalidRadius { radius });
         }
+        check_extent("circle radius", radius)?;
         Ok(Circle { radius })
     }
 
@@ -80,7 +105,7 @@ impl Polygon {
             });
         }
         for (i, p) in points.iter().enumerate() {
-            check_finite_vec(&format!("polygon vertex {i}"), *p)?;
+            check_point(&format!("polygon vertex {i}"), *p)?;
         }
         let weld = weld_distance(points);
         for i in 0..points.len() {
@@ -121,7 +146,7 @@ impl Polygon {
     /// A NaN or infinite coordinate, or fewer than 3 points not all on one line.
     pub fn hull(points: &[Vec2]) -> Result<Self, CaromError> {
         for (i, p) in points.iter().enumerate() {
-            check_finite_vec(&format!("hull point {i}"), *p)?;
+            check_point(&format!("hull point {i}"), *p)?;
         }
         let mut sorted: Vec<Vec2> = points.to_vec();
         sorted.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
@@ -174,6 +199,7 @@ impl Polygon {
                     value,
                 });
             }
+            check_extent(name, value)?;
         }
         let (w, h) = (half_width, half_height);
         Self::from_convex_ccw(vec![
@@ -193,6 +219,7 @@ impl Polygon {
             return Err(CaromError::TooFewVertices { count: sides });
         }
         check_finite("regular polygon radius", radius)?;
+        check_extent("regular polygon radius", radius)?;
         if radius <= 0.0 {
             return Err(CaromError::OutOfRange {
                 name: "regular polygon radius",
@@ -220,11 +247,32 @@ impl Polygon {
         for v in &mut vertices {
             *v -= source_centroid;
         }
+        // Recentring rounds: points a hair apart far from the centroid can land on one
+        // another. Merge them, so no edge is too short to have a normal.
+        let weld = weld_distance(&vertices);
+        let mut i = 0;
+        while vertices.len() >= 3 && i < vertices.len() {
+            let next = (i + 1) % vertices.len();
+            if (vertices[next] - vertices[i]).norm() <= weld {
+                vertices.remove(next);
+            } else {
+                i += 1;
+            }
+        }
+        if vertices.len() < 3 {
+            return Err(CaromError::ZeroArea);
+        }
         let n = vertices.len();
         let edges: Vec<Vec2> = (0..n)
             .map(|i| vertices[(i + 1) % n] - vertices[i])
             .collect();
-        let normals = edges.iter().map(|e| perp_cw(*e).normalize()).collect();
+        let normals: Vec<Vec2> = edges.iter().map(|e| perp_cw(*e).normalize()).collect();
+        if normals
+            .iter()
+            .any(|n| !(n.x.is_finite() && n.y.is_finite()))
+        {
+            return Err(CaromError::ZeroArea);
+        }
         let radius = vertices.iter().map(|v| v.norm()).fold(0.0, Real::max);
         Ok(Polygon {
             vertices,
