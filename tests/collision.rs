@@ -515,3 +515,32 @@ fn world_contacts_track_brute_force_pairs_as_thousands_of_bodies_move() {
         expected_from_last_step = Some(expected);
     }
 }
+
+#[test]
+fn polygon_circle_survives_a_zero_length_edge_and_a_centre_on_a_vertex() {
+    // Found by the polygon_circle fuzz target: a hairline polygon 1 km from the origin rounds
+    // to world vertices that coincide, and a circle centred on one of them had a NaN normal.
+    let vertices = [
+        vec2(0.0, 0.0),
+        vec2(1.0, 0.0),
+        vec2(1.0, 0.0),
+        vec2(0.0, 1.0),
+    ];
+    let normals = [
+        vec2(0.0, -1.0),
+        vec2(1.0, 0.0),
+        vec2(
+            std::f32::consts::FRAC_1_SQRT_2,
+            std::f32::consts::FRAC_1_SQRT_2,
+        ),
+        vec2(-1.0, 0.0),
+    ];
+    // The last centre is outside by 1e-23 m: its squared distance to the vertex underflows
+    // to zero.
+    for center in [vec2(1.0, 0.0), vec2(2.0, -1.0), vec2(-1e-23, -1e-23)] {
+        let pc = carom::narrowphase::polygon_circle(&vertices, &normals, center, 1e-17);
+        let s = pc.separation;
+        assert!(s.separation.is_finite(), "{center:?}: {s:?}");
+        assert!((s.normal.norm() - 1.0).abs() < 1e-5, "{center:?}: {s:?}");
+    }
+}

@@ -155,7 +155,14 @@ pub fn polygon_circle(
     for i in 0..n {
         let (start, end) = (vertices[i], vertices[(i + 1) % n]);
         let edge = end - start;
-        let t = (center - start).dot(&edge) / edge.norm_squared();
+        let length_sq = edge.norm_squared();
+        // A zero-length edge (a hairline polygon far from the origin rounds to one) is its
+        // start vertex.
+        let t = if length_sq > 0.0 {
+            (center - start).dot(&edge) / length_sq
+        } else {
+            0.0
+        };
         let (point, feature) = if t <= 0.0 {
             (start, PolygonFeature::Vertex(i))
         } else if t >= 1.0 {
@@ -170,8 +177,12 @@ pub fn polygon_circle(
     }
     let (distance_sq, polygon_point, feature) = best;
     let normal = match feature {
+        PolygonFeature::Vertex(_) if distance_sq > 0.0 => {
+            (center - polygon_point) / distance_sq.sqrt()
+        }
+        // On the vertex itself (outside only by rounding): the edge it was outside of.
+        PolygonFeature::Vertex(_) => normals[best_edge],
         PolygonFeature::Edge(i) => normals[i],
-        PolygonFeature::Vertex(_) => (center - polygon_point) / distance_sq.sqrt(),
     };
     PolygonCircle {
         separation: Separation {
