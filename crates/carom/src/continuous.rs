@@ -115,7 +115,7 @@ fn time_of_impact(shape: &Shape, sweep: &Sweep, other: &WorldShape, target: Real
 }
 
 /// How much deeper than it started a shape that already touches another may sink within one
-/// step: a quarter of its smallest extent, and never less than the contact target.
+/// step: a quarter of its smallest extent, and never less than twice the contact target.
 fn sink_allowance(shape: &Shape, target: Real) -> Real {
     (0.25 * shape.min_extent()).max(2.0 * target)
 }
