@@ -10,6 +10,7 @@ use super::contact_constraint::pair_mut;
 use super::soft_step::{apply_restitution, forget_impulses, solve_friction, warm_start};
 use super::{BodyState, ContactConstraint, SolverContext, SolverParams};
 use crate::math::{Real, Rot, cross};
+use crate::stats::Work;
 
 /// Position passes after each step (Box2D v2.4's default).
 pub const POSITION_ITERATIONS: usize = 3;
@@ -17,7 +18,6 @@ pub const POSITION_ITERATIONS: usize = 3;
 /// The most overlap one position pass removes at a point, m (Box2D v2.4's
 /// `b2_maxLinearCorrection`): a deep overlap is taken apart over several steps, not flung.
 pub const MAX_CORRECTION: Real = 0.2;
-use crate::stats::Work;
 
 pub(super) fn solve(
     context: &SolverContext,
