@@ -6,6 +6,7 @@
 //! the bodies as energy and, in a pressed pile, feed on itself until it explodes.
 
 use super::body_state::{integrate_positions, integrate_velocities};
+use super::contact_constraint::ConstraintPoint;
 use super::contact_constraint::pair_mut;
 use super::soft_step::{apply_restitution, forget_impulses, solve_friction, warm_start};
 use super::{BodyState, ContactConstraint, SolverContext, SolverParams};
@@ -44,13 +45,14 @@ pub(super) fn solve(
             if environment.friction {
                 work.friction_impulses += solve_friction(c, a, b);
             }
+            if c.points().len() == 2 && solve_normal_pair(c, a, b, inv_dt) {
+                continue;
+            }
             for i in 0..c.points().len() {
                 let point = c.points()[i];
-                // The slowest normal velocity allowed: close a speculative gap exactly; an
-                // overlap is the position passes' business.
-                let target = -point.separation.max(0.0) * inv_dt;
                 let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
-                c.add_normal_impulse(i, point.normal_mass * (target - vn), a, b);
+                let impulse = point.normal_mass * (target_speed(&point, inv_dt) - vn);
+                c.add_normal_impulse(i, impulse, a, b);
             }
         }
     }
@@ -62,6 +64,84 @@ pub(super) fn solve(
         correct_positions(params, constraints, states);
     }
     work
+}
+
+/// The slowest normal velocity a point allows: close a speculative gap exactly; an overlap is
+/// the position passes' business.
+#[inline]
+fn target_speed(point: &ConstraintPoint, inv_dt: Real) -> Real {
+    -point.separation.max(0.0) * inv_dt
+}
+
+/// Above this condition number the two points of a face are too alike to solve as a block
+/// (Box2D v2.4's `k_maxConditionNumber`).
+const MAX_CONDITION: Real = 1000.0;
+
+/// Both normal impulses of a two-point manifold at once, as Box2D v2.4's block solver does:
+/// the 2x2 linear complementarity problem, by trying each case of which points push. Solved
+/// one after the other, the two points of a resting face fight, and the box rocks; the rocking
+/// kept sequential-impulse stacks from ever sleeping. Returns false (nothing applied) when the
+/// points are too alike or no case holds, and the caller solves them one by one.
+fn solve_normal_pair(
+    c: &mut ContactConstraint,
+    a: &mut BodyState,
+    b: &mut BodyState,
+    inv_dt: Real,
+) -> bool {
+    let n = c.normal;
+    let (ma, ia, mb, ib) = (c.inv_mass_a, c.inv_inertia_a, c.inv_mass_b, c.inv_inertia_b);
+    let [p1, p2] = [c.points()[0], c.points()[1]];
+    let (rn1a, rn1b) = (cross(p1.anchor_a, n), cross(p1.anchor_b, n));
+    let (rn2a, rn2b) = (cross(p2.anchor_a, n), cross(p2.anchor_b, n));
+    let k11 = ma + mb + ia * rn1a * rn1a + ib * rn1b * rn1b;
+    let k22 = ma + mb + ia * rn2a * rn2a + ib * rn2b * rn2b;
+    let k12 = ma + mb + ia * rn1a * rn2a + ib * rn1b * rn2b;
+    let det = k11 * k22 - k12 * k12;
+    // Written so a NaN also counts as ill-conditioned.
+    let well_conditioned = k11 * k11 < MAX_CONDITION * det;
+    if !well_conditioned {
+        return false;
+    }
+    let old = [p1.normal_impulse, p2.normal_impulse];
+    let vn1 = ContactConstraint::relative_velocity(&p1, a, b).dot(&n);
+    let vn2 = ContactConstraint::relative_velocity(&p2, a, b).dot(&n);
+    // b = vn - target - K·old: the velocities the impulses `x` must answer, K·x + b >= 0.
+    let b1 = vn1 - target_speed(&p1, inv_dt) - (k11 * old[0] + k12 * old[1]);
+    let b2 = vn2 - target_speed(&p2, inv_dt) - (k12 * old[0] + k22 * old[1]);
+    let inv_det = 1.0 / det;
+    let candidates = [
+        // Both push: x = -K⁻¹ b.
+        [
+            -(k22 * b1 - k12 * b2) * inv_det,
+            -(-k12 * b1 + k11 * b2) * inv_det,
+        ],
+        // Only the first pushes; the second separates.
+        [-b1 / k11, 0.0],
+        // Only the second.
+        [0.0, -b2 / k22],
+        // Neither.
+        [0.0, 0.0],
+    ];
+    let Some(x) = candidates.into_iter().find(|x| {
+        let vn1 = k11 * x[0] + k12 * x[1] + b1;
+        let vn2 = k12 * x[0] + k22 * x[1] + b2;
+        let tolerance = 1e-6 * (1.0 + b1.abs() + b2.abs());
+        // Pushing points end with vn = 0 by construction; the others must be separating.
+        x[0] >= 0.0 && x[1] >= 0.0 && vn1 >= -tolerance && vn2 >= -tolerance
+    }) else {
+        return false;
+    };
+    let (d1, d2) = (x[0] - old[0], x[1] - old[1]);
+    let (push1, push2) = (n * d1, n * d2);
+    a.v -= (push1 + push2) * ma;
+    a.w -= ia * (cross(p1.anchor_a, push1) + cross(p2.anchor_a, push2));
+    b.v += (push1 + push2) * mb;
+    b.w += ib * (cross(p1.anchor_b, push1) + cross(p2.anchor_b, push2));
+    for (point, (total, applied)) in c.points_mut().iter_mut().zip([(x[0], d1), (x[1], d2)]) {
+        point.normal_impulse = total;
+        point.max_normal_impulse = point.max_normal_impulse.max(applied);
+    }
+    true
 }
 
 /// One Gauss-Seidel pass on positions: each point's overlap beyond the slop, a Baumgarte
