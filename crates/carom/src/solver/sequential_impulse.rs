@@ -1,9 +1,10 @@
 //! Sequential impulses (Catto, GDC 2006) as Box2D v2.4 runs them: accumulated impulses clamped
 //! as a whole, so many iterations converge to the contact forces; warm started from the last
-//! step; restitution as a final pass. Overlap is removed on positions, not velocities: after
-//! the bodies move, a few Gauss-Seidel passes push overlap beyond the slop out directly
-//! (Baumgarte's fraction per pass, at most [`MAX_CORRECTION`]). A velocity bias would stay in
-//! the bodies as energy and, in a pressed pile, feed on itself until it explodes.
+//! step; the two points of a face solved as one 2x2 block; restitution as a final pass.
+//! Overlap is removed on positions, not velocities: after the bodies move, a few Gauss-Seidel
+//! passes push overlap beyond the slop out directly (Baumgarte's fraction per pass, at most
+//! [`MAX_CORRECTION`]). A velocity bias would stay in the bodies as energy and, in a pressed
+//! pile, feed on itself until it explodes.
 
 use super::body_state::{integrate_positions, integrate_velocities};
 use super::contact_constraint::ConstraintPoint;
