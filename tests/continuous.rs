@@ -3,6 +3,7 @@
 use carom::{
     BodyDef, Effect, Effects, Real, Shape, SolverParams, Vec2, World, WorldSettings, vec2,
 };
+use carom_tests::skinny_box;
 
 const DT: Real = 1.0 / 60.0;
 
@@ -66,25 +67,14 @@ fn with_continuous_collision_the_bullet_never_passes_the_wall() {
 /// through the post.
 fn drop_plank(continuous: bool, angle: Real, spin: Real, offset: Real) -> (Real, bool) {
     let mut world = world(continuous, vec2(0.0, -10.0));
-    // The "segment": a 0.02 m thick static floor with its top at y = 0, long enough that a
-    // plank thrown off the post at 50 m/s still lands on it within the second simulated.
-    world
-        .add_body(
-            BodyDef::static_body(Shape::rect(200.0, 0.01).unwrap()).position(vec2(0.0, -0.01)),
-        )
-        .unwrap();
-    // A 0.2 x 2 m post standing on it at x = 1.
-    world
-        .add_body(BodyDef::static_body(Shape::rect(0.1, 1.0).unwrap()).position(vec2(1.0, 1.0)))
-        .unwrap();
+    skinny_box::add_course(&mut world);
     let plank = world
         .add_body(
-            BodyDef::dynamic(Shape::rect(2.0, 0.05).unwrap())
+            skinny_box::plank()
                 .position(vec2(offset, 8.0))
                 .angle(angle)
                 .linear_velocity(vec2(0.0, -100.0))
-                .angular_velocity(spin)
-                .friction(0.9),
+                .angular_velocity(spin),
         )
         .unwrap();
     let mut lowest = Real::INFINITY;
@@ -94,16 +84,8 @@ fn drop_plank(continuous: bool, angle: Real, spin: Real, offset: Real) -> (Real,
         world.step(DT).unwrap();
         let body = world.body(plank).unwrap();
         lowest = lowest.min(body.aabb().min.y);
-        // The plank's centre may cross the post's centre line (x = 1) only above the post's
-        // top (y = 2): crossing it lower means the centre was inside the post. (Going over the
-        // top corner and sliding down the far side is fine.)
         let after = body.position();
-        if (before.x < 1.0) != (after.x < 1.0) {
-            let along = (1.0 - before.x) / (after.x - before.x);
-            if before.y + (after.y - before.y) * along < 2.0 {
-                crossed = true;
-            }
-        }
+        crossed |= skinny_box::through_post(before, after);
         before = after;
     }
     (lowest, crossed)

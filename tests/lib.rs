@@ -31,6 +31,50 @@ impl Rng {
     }
 }
 
+/// Box2D's Skinny Box course, shared by the continuous-collision and stability suites: a 4 x
+/// 0.1 m plank dropped fast and spinning onto a thin floor beside a thin post.
+pub mod skinny_box {
+    use carom::{BodyDef, Shape, Vec2, World, vec2};
+
+    /// The post's centre line, x (m).
+    pub const POST_X: f32 = 1.0;
+    /// The post's top, y (m).
+    pub const POST_TOP: f32 = 2.0;
+
+    /// Adds the course: the "segment", a 0.02 m thick static floor with its top at y = 0, long
+    /// enough that a plank thrown off the post at 50 m/s still lands on it within a second, and
+    /// a 0.2 x 2 m post standing on it at x = 1.
+    pub fn add_course(world: &mut World) {
+        world
+            .add_body(
+                BodyDef::static_body(Shape::rect(200.0, 0.01).unwrap()).position(vec2(0.0, -0.01)),
+            )
+            .unwrap();
+        world
+            .add_body(
+                BodyDef::static_body(Shape::rect(0.1, 1.0).unwrap())
+                    .position(vec2(POST_X, 0.5 * POST_TOP)),
+            )
+            .unwrap();
+    }
+
+    /// The plank (friction 0.9), still to be placed and launched.
+    pub fn plank() -> BodyDef {
+        BodyDef::dynamic(Shape::rect(2.0, 0.05).unwrap()).friction(0.9)
+    }
+
+    /// Whether the plank's centre, moving from `before` to `after` in one step, passed through
+    /// the post: it may cross the post's centre line only above the top (going over the top
+    /// corner and sliding down the far side is fine); lower, the centre was inside the post.
+    pub fn through_post(before: Vec2, after: Vec2) -> bool {
+        if (before.x < POST_X) == (after.x < POST_X) {
+            return false;
+        }
+        let along = (POST_X - before.x) / (after.x - before.x);
+        before.y + (after.y - before.y) * along < POST_TOP
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::Rng;

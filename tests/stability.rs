@@ -17,6 +17,7 @@ use carom::{
     BodyDef, BodyHandle, Effect, Real, Shape, SolverKind, SolverParams, Vec2, World, vec2,
 };
 use carom_scene::SceneWorld;
+use carom_tests::skinny_box;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -432,19 +433,8 @@ fn a_tiny_pyramid_stands() {
                 BodyDef::static_body(Shape::rect(5.0, 0.5).unwrap()).position(vec2(0.0, -0.5)),
             )
             .unwrap();
-        let (size, base) = (0.05, 30);
-        for row in 0..base {
-            for column in 0..base - row {
-                let x = (column as Real - (base - row - 1) as Real * 0.5) * size;
-                let y = (row as Real + 0.5) * size;
-                world
-                    .add_body(
-                        BodyDef::dynamic(Shape::rect(size * 0.5, size * 0.5).unwrap())
-                            .position(vec2(x, y)),
-                    )
-                    .unwrap();
-            }
-        }
+        let size = 0.05;
+        add_pyramid(&mut world, 30, size);
         let top = highest(&world);
         let start = position(&world, top);
         // Stands: once settled (the first second), the top box creeps less than a fifth of its
@@ -557,18 +547,8 @@ fn a_skinny_plank_relaunched_500_times_never_ends_on_the_wrong_side() {
             params,
             &[Effect::Gravity, Effect::Friction, Effect::Continuous],
         );
-        // The "segment": a 0.02 m thick floor with its top at y = 0; the post at x = 1.
-        world
-            .add_body(
-                BodyDef::static_body(Shape::rect(200.0, 0.01).unwrap()).position(vec2(0.0, -0.01)),
-            )
-            .unwrap();
-        world
-            .add_body(BodyDef::static_body(Shape::rect(0.1, 1.0).unwrap()).position(vec2(1.0, 1.0)))
-            .unwrap();
-        let plank = world
-            .add_body(BodyDef::dynamic(Shape::rect(2.0, 0.05).unwrap()).friction(0.9))
-            .unwrap();
+        skinny_box::add_course(&mut world);
+        let plank = world.add_body(skinny_box::plank()).unwrap();
         let mut rng = carom_tests::Rng::new(500);
         let (mut under_floor, mut through_post) = (0usize, 0usize);
         let mut lowest: f64 = 0.0;
@@ -587,12 +567,8 @@ fn a_skinny_plank_relaunched_500_times_never_ends_on_the_wrong_side() {
                 world.step(DT).unwrap();
                 let body = world.body(plank).unwrap();
                 lowest = lowest.max(-body.aabb().min.y as f64);
-                // Crossing the post's centre line below its top means passing through it.
                 let after = body.position();
-                if (before.x < 1.0) != (after.x < 1.0) {
-                    let along = (1.0 - before.x) / (after.x - before.x);
-                    crossed |= before.y + (after.y - before.y) * along < 2.0;
-                }
+                crossed |= skinny_box::through_post(before, after);
                 before = after;
             }
             under_floor += (world.body(plank).unwrap().position().y < 0.0) as usize;
@@ -656,19 +632,26 @@ fn pyramid_world(params: SolverParams, base: usize) -> World {
     world
         .add_body(BodyDef::static_body(Shape::rect(40.0, 1.0).unwrap()).position(vec2(0.0, -1.0)))
         .unwrap();
+    add_pyramid(&mut world, base, 1.0);
+    world
+}
+
+/// A pyramid of square boxes `size` across (friction 0.6), `base` in the bottom row, standing
+/// on y = 0 and centred on x = 0, boxes touching.
+fn add_pyramid(world: &mut World, base: usize, size: Real) {
     for row in 0..base {
         for column in 0..base - row {
-            let x = column as Real - (base - row - 1) as Real * 0.5;
+            let x = (column as Real - (base - row - 1) as Real * 0.5) * size;
+            let y = (row as Real + 0.5) * size;
             world
                 .add_body(
-                    BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
-                        .position(vec2(x, row as Real + 0.5))
+                    BodyDef::dynamic(Shape::rect(size * 0.5, size * 0.5).unwrap())
+                        .position(vec2(x, y))
                         .friction(0.6),
                 )
                 .unwrap();
         }
     }
-    world
 }
 
 #[test]

@@ -5,7 +5,7 @@ use crate::capture::copy_to_buffer;
 use crate::demo::{Button, Demo, Key};
 use crate::ui::{SIDEBAR_WIDTH, sidebar};
 use carom::{Color, DrawList, vec2};
-use carom_render::Renderer;
+use carom_render::{Renderer, clear_color};
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Instant;
@@ -495,25 +495,4 @@ fn digit(code: KeyCode) -> Option<u8> {
         KeyCode::Digit9 => 9,
         _ => return None,
     })
-}
-
-/// The clear colour: sRGB components as they are for a plain surface, decoded to linear for
-/// an sRGB one (which encodes them again on write).
-fn clear_color(color: Color, format: wgpu::TextureFormat) -> wgpu::Color {
-    let channel = |c: f32| {
-        let c = c as f64;
-        if !format.is_srgb() {
-            c
-        } else if c <= 0.04045 {
-            c / 12.92
-        } else {
-            ((c + 0.055) / 1.055).powf(2.4)
-        }
-    };
-    wgpu::Color {
-        r: channel(color.r),
-        g: channel(color.g),
-        b: channel(color.b),
-        a: 1.0,
-    }
 }

@@ -15,4 +15,4 @@ pub use camera::Camera;
 pub use error::RenderError;
 pub use gpu::Gpu;
 pub use offscreen::Offscreen;
-pub use renderer::Renderer;
+pub use renderer::{Renderer, clear_color};

@@ -3,7 +3,7 @@
 use crate::camera::Camera;
 use crate::error::RenderError;
 use crate::gpu::Gpu;
-use crate::renderer::Renderer;
+use crate::renderer::{Renderer, clear_color};
 use carom::{Color, DrawList};
 use image::RgbaImage;
 
@@ -77,7 +77,7 @@ impl Offscreen {
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(linear(background)),
+                        load: wgpu::LoadOp::Clear(clear_color(background, FORMAT)),
                         store: wgpu::StoreOp::Store,
                     },
                 })],
@@ -156,22 +156,4 @@ fn target(device: &wgpu::Device, width: u32, height: u32) -> (wgpu::Texture, wgp
         mapped_at_creation: false,
     });
     (texture, readback)
-}
-
-/// The clear colour for the sRGB target: the colour decoded to linear (the target encodes it).
-fn linear(color: Color) -> wgpu::Color {
-    let decode = |c: f32| {
-        let c = c as f64;
-        if c <= 0.04045 {
-            c / 12.92
-        } else {
-            ((c + 0.055) / 1.055).powf(2.4)
-        }
-    };
-    wgpu::Color {
-        r: decode(color.r),
-        g: decode(color.g),
-        b: decode(color.b),
-        a: color.a as f64,
-    }
 }

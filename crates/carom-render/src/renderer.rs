@@ -464,6 +464,27 @@ impl Renderer {
     }
 }
 
+/// The clear colour for a target of `format`: the sRGB colour as it is for a plain target,
+/// decoded to linear for an sRGB one (which encodes it again on write).
+pub fn clear_color(color: Color, format: wgpu::TextureFormat) -> wgpu::Color {
+    let channel = |c: f32| {
+        let c = c as f64;
+        if !format.is_srgb() {
+            c
+        } else if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    wgpu::Color {
+        r: channel(color.r),
+        g: channel(color.g),
+        b: channel(color.b),
+        a: color.a as f64,
+    }
+}
+
 /// Polygons up to this many vertices are drawn in one call per vertex count.
 const MAX_BATCHED_COUNT: usize = 16;
 
