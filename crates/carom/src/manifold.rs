@@ -410,37 +410,35 @@ fn collide_polygons(
         end: v22,
     });
 
+    // Behind the reference face a clipped end may lie outside the reference polygon: with a
+    // corner sharper than a right angle (a triangle's) the side planes leave it there. Slide it
+    // along the incident edge, toward `toward`, until it enters the polygon, so a face-to-face
+    // overlap keeps both of its points instead of losing one and rotating into the other shape.
+    // None when no part of the way is inside: in a deep overlap the incident point can poke out
+    // past the reference polygon's other faces, and then it marks no contact at all.
+    let into_reference = |end: Vec2, toward: Vec2| {
+        if normal.dot(&(end - v11)) >= 0.0
+            || distance_outside(ref_vertices, ref_normals, end) <= SPURIOUS_TOLERANCE
+        {
+            return Some(end);
+        }
+        let (enter, leave) = polygon_chord(ref_vertices, ref_normals, end, toward - end);
+        (enter <= leave && (0.0..=1.0).contains(&enter)).then(|| end + (toward - end) * enter)
+    };
     let candidates = if s_low > length || s_high < 0.0 {
         // The incident edge lies wholly beyond one end of the reference face (possible only
         // for shapes barely within the margin): keep its nearer end.
         if s_low > length {
-            [Some((low, i2, j_low)), None]
+            [into_reference(low, low).map(|p| (p, i2, j_low)), None]
         } else {
-            [Some((high, i1, j_high)), None]
+            [into_reference(high, high).map(|p| (p, i1, j_high)), None]
         }
     } else {
         let lower = if s_low < 0.0 { at(0.0) } else { low };
         let upper = if s_high > length { at(length) } else { high };
-        // Behind the reference face, the side planes can leave an end outside the reference
-        // polygon when its corner is sharper than a right angle (a triangle's): slide that end
-        // along the incident edge until it enters the polygon, so a face-to-face overlap keeps
-        // both of its points instead of losing one and rotating into the other shape.
-        let inside = |end: Vec2, other_end: Vec2| {
-            if normal.dot(&(end - v11)) >= 0.0
-                || distance_outside(ref_vertices, ref_normals, end) <= SPURIOUS_TOLERANCE
-            {
-                return end;
-            }
-            let (enter, leave) = polygon_chord(ref_vertices, ref_normals, end, other_end - end);
-            if enter <= leave && (0.0..=1.0).contains(&enter) {
-                end + (other_end - end) * enter
-            } else {
-                end
-            }
-        };
         [
-            Some((inside(lower, upper), i1, j_low)),
-            Some((inside(upper, lower), i2, j_high)),
+            into_reference(lower, upper).map(|p| (p, i1, j_low)),
+            into_reference(upper, lower).map(|p| (p, i2, j_high)),
         ]
     };
     for (point, reference_vertex, incident_vertex) in candidates.into_iter().flatten() {
@@ -449,11 +447,6 @@ fn collide_polygons(
             continue;
         }
         let u = if separation < 0.0 {
-            // In a deep overlap the incident point can poke out past the reference polygon's
-            // other faces, with no part of its edge inside: then it marks no contact at all.
-            if distance_outside(ref_vertices, ref_normals, point) > SPURIOUS_TOLERANCE {
-                continue;
-            }
             // Midway to the reference face, unless the incident polygon is thinner than that
             // along the normal (a small shape deep in a large one).
             let (_, incident_extent) = polygon_chord(inc_vertices, inc_normals, point, normal);
