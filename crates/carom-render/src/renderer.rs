@@ -133,7 +133,6 @@ pub struct Renderer {
     polygon_batches: Vec<PolygonBatch>,
     circle_range: Range<u32>,
     point_range: Range<u32>,
-    overlay_range: Range<u32>,
 }
 
 impl Renderer {
@@ -269,7 +268,6 @@ impl Renderer {
             polygon_batches: Vec::new(),
             circle_range: 0..0,
             point_range: 0..0,
-            overlay_range: 0..0,
         }
     }
 
@@ -345,7 +343,6 @@ impl Renderer {
                 outline_width: 0.0,
             });
         }
-        self.overlay_range = 0..self.segment_instances.len() as u32;
         self.circle_range = 0..circles;
         self.point_range = circles..self.disc_instances.len() as u32;
         if self
@@ -380,7 +377,8 @@ impl Renderer {
             }
         }
         self.draw_discs(pass, self.circle_range.clone());
-        self.draw_segments(pass, self.overlay_range.clone());
+        // Every segment is an overlay now that outlines are drawn with their polygons.
+        self.draw_segments(pass, 0..self.segment_instances.len() as u32);
         self.draw_discs(pass, self.point_range.clone());
     }
 
