@@ -86,6 +86,9 @@ fn time_of_impact(shape: &Shape, sweep: &Sweep, other: &WorldShape, target: Real
     let radius = outer_radius(shape);
     // The fastest any point of the shape moves, per unit of sweep time.
     let bound = sweep.translation.norm() + sweep.turn.abs() * radius;
+    if bound <= 0.0 {
+        return None;
+    }
     let tolerance = 0.25 * target;
     let mut placed = WorldShape::new(shape, &sweep.at(0.0));
     let start = separation(other, &placed).separation;
@@ -94,9 +97,6 @@ fn time_of_impact(shape: &Shape, sweep: &Sweep, other: &WorldShape, target: Real
     } else {
         start.min(target) - sink_allowance(shape, target)
     };
-    if bound <= 0.0 {
-        return None;
-    }
     let mut t: Real = 0.0;
     let mut distance = start;
     for _ in 0..MAX_ITERATIONS {
