@@ -60,6 +60,11 @@ fn semantic_errors_name_the_body_or_event_and_the_reason() {
             "event 0",
             "\"crate\" must be kinematic to spin",
         ),
+        (
+            "scenes/bad_accuracy.ron",
+            "accuracy",
+            "no body is named \"crate\"",
+        ),
     ] {
         let (error, message) = error_of(file);
         assert!(matches!(error, SceneError::Invalid { .. }), "{message}");

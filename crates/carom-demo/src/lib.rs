@@ -1,9 +1,11 @@
 //! The carom demo app's library. Most of it knows nothing of windows, so tests can drive it:
 //! [`run`] runs a scene headless and measures it; [`demo`] is the interactive demo's state
 //! (scene, camera, grab, fixed-step clock) and [`metrics`] what it measures live; [`snapshot`]
-//! renders a scene offscreen to an image. The window itself is [`window`], its egui sidebar
+//! renders a scene offscreen to an image; [`bench`] sweeps solver settings against
+//! their error. The window itself is [`window`], its egui sidebar
 //! [`ui`], and [`capture`] reads the window's pixels back for screenshots.
 
+pub mod bench;
 pub mod capture;
 pub mod demo;
 pub mod metrics;

@@ -2,9 +2,11 @@
 //!
 //! Plain `carom` opens the window: scenes from `demos/`, bodies grabbed and thrown with the
 //! mouse, solver, effect and drawing controls, and the live cost of accuracy. `carom run` runs a
-//! scene headless and reports what it measured; `carom snapshot` renders one to a PNG.
+//! scene headless and reports what it measured; `carom snapshot` renders one to a PNG;
+//! `carom bench` sweeps solver settings and shows what accuracy costs in time.
 
 use carom::{Effect, SolverKind};
+use carom_demo::bench::{SweepOptions, sweep_to_folder};
 use carom_demo::run::{RunOptions, run};
 use carom_demo::snapshot::{self, SnapshotOptions, parse_size};
 use carom_demo::window::{self, WindowOptions};
@@ -56,6 +58,30 @@ enum Command {
         /// Print one JSON object instead of a summary.
         #[arg(long)]
         json: bool,
+    },
+    /// Sweep solvers, iterations and substeps over scenes: ms/step against error, written as a
+    /// CSV, a markdown report and a chart.
+    Bench {
+        /// Scene files (default: the five accuracy scenes in demos/).
+        scenes: Vec<PathBuf>,
+        /// The folder the CSV, report and chart go to.
+        #[arg(long, default_value = "target/bench")]
+        out: PathBuf,
+        /// Runs per point (the time is their median).
+        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
+        runs: u32,
+        /// Solvers, comma separated (default: all).
+        #[arg(long, value_enum, value_delimiter = ',')]
+        solvers: Option<Vec<SolverArg>>,
+        /// Iteration counts, comma separated (default: 1,2,4,8,16,32,64).
+        #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=64))]
+        iterations: Option<Vec<u32>>,
+        /// Substep counts for soft step, comma separated (default: 1,2,4,8).
+        #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=16))]
+        substeps: Option<Vec<u32>>,
+        /// How long scenes without an accuracy measure run, s.
+        #[arg(long, default_value_t = 10.0)]
+        seconds: f32,
     },
     /// Render a scene after some steps to a PNG, offscreen (no window needed).
     Snapshot {
@@ -173,6 +199,46 @@ fn main() -> ExitCode {
                     } else {
                         println!("{}", report.summary(&scene.display().to_string()));
                     }
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
+                }
+            }
+        }
+        Some(Command::Bench {
+            scenes,
+            out,
+            runs,
+            solvers,
+            iterations,
+            substeps,
+            seconds,
+        }) => {
+            let defaults = SweepOptions::default();
+            let options = SweepOptions {
+                scenes: if scenes.is_empty() {
+                    defaults.scenes
+                } else {
+                    scenes
+                },
+                runs: runs as usize,
+                solvers: solvers.map_or(defaults.solvers, |s| {
+                    s.into_iter().map(SolverKind::from).collect()
+                }),
+                iterations: iterations.unwrap_or(defaults.iterations),
+                substeps: substeps.unwrap_or(defaults.substeps),
+                seconds,
+            };
+            let command: Vec<String> = std::env::args().collect();
+            match sweep_to_folder(&options, &out, &command.join(" ")) {
+                Ok(points) => {
+                    println!(
+                        "{} points -> {}",
+                        points.len(),
+                        out.join("README.md").display()
+                    );
                     ExitCode::SUCCESS
                 }
                 Err(e) => {

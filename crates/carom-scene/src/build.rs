@@ -3,8 +3,8 @@
 use crate::error::SceneError;
 use crate::events::Events;
 use crate::scene::{
-    BodySpec, Camera, EffectName, Generator, KindName, Material, Scene, ShapeSpec, SolverName,
-    WorldSpec,
+    Accuracy, BodySpec, Camera, EffectName, Generator, KindName, Material, Scene, ShapeSpec,
+    SolverName, WorldSpec,
 };
 use carom::{
     BodyDef, BodyHandle, BodyKind, CaromError, Color, DebugDraw, DrawFlags, DrawOptions, Effect,
@@ -28,6 +28,8 @@ pub struct SceneWorld {
     pub camera: Camera,
     /// What the scene asks to be drawn.
     pub draw: DrawFlags,
+    /// How `carom bench` measures the scene's error, its body names checked.
+    pub accuracy: Option<Accuracy>,
     events: Events,
 }
 
@@ -36,6 +38,12 @@ impl SceneWorld {
     pub fn step(&mut self) -> Result<(), CaromError> {
         self.events.fire(&mut self.world, self.time_step);
         self.world.step(self.time_step)
+    }
+
+    /// Fires the events due now without stepping (harmless: [`SceneWorld::step`] fires each
+    /// event once), so the state at time 0 includes the launches at time 0.
+    pub fn fire_events(&mut self) {
+        self.events.fire(&mut self.world, self.time_step);
     }
 
     /// Describes the world to `out` as `options` select, in the scene's colours.
@@ -107,6 +115,9 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
     }
     let events = Events::new(&scene.events, &names, initial, &world)
         .map_err(|(index, reason)| invalid(format!("event {index}"), reason))?;
+    if let Some(accuracy) = &scene.accuracy {
+        check_accuracy(accuracy, &names).map_err(|reason| invalid("accuracy".into(), reason))?;
+    }
     Ok(SceneWorld {
         world,
         time_step,
@@ -117,8 +128,38 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
             .draw
             .iter()
             .fold(DrawFlags::NONE, |flags, name| flags | name.flag()),
+        accuracy: scene.accuracy.clone(),
         events,
     })
+}
+
+/// The accuracy measure names bodies that exist and asks for a positive time.
+fn check_accuracy(accuracy: &Accuracy, names: &HashMap<String, BodyHandle>) -> Result<(), String> {
+    let (bodies, seconds): (&[String], f32) = match accuracy {
+        Accuracy::Rest { bodies, seconds } => (bodies, *seconds),
+        Accuracy::Conservation { seconds } => (&[], *seconds),
+        Accuracy::SlideAngle {
+            body,
+            friction,
+            seconds,
+        } => {
+            if !(friction.is_finite() && *friction > 0.0) {
+                return Err(format!(
+                    "friction must be finite and positive, got {friction}"
+                ));
+            }
+            (std::slice::from_ref(body), *seconds)
+        }
+    };
+    if !(seconds.is_finite() && seconds > 0.0) {
+        return Err(format!(
+            "seconds must be finite and positive, got {seconds}"
+        ));
+    }
+    match bodies.iter().find(|name| !names.contains_key(*name)) {
+        Some(name) => Err(format!("no body is named {name:?}")),
+        None => Ok(()),
+    }
 }
 
 fn world_settings(spec: &WorldSpec, effects: &[EffectName]) -> Result<WorldSettings, CaromError> {

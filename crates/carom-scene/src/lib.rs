@@ -28,7 +28,7 @@ pub mod scene;
 pub use build::{SceneWorld, build};
 pub use error::SceneError;
 pub use load::{parse, read};
-pub use scene::{Camera, Scene};
+pub use scene::{Accuracy, Camera, Scene};
 
 /// Reads, parses and builds a scene file.
 pub fn load(path: &std::path::Path) -> Result<SceneWorld, SceneError> {

@@ -35,6 +35,46 @@ pub struct Scene {
     /// What the demo and snapshots draw at first. Default: shapes, sleeping bodies dimmed.
     #[serde(default = "default_draw")]
     pub draw: Vec<DrawName>,
+    /// How `carom bench` measures this scene's error against the exact answer. Default: no
+    /// exact answer; the bench reports the deepest overlap.
+    #[serde(default)]
+    pub accuracy: Option<Accuracy>,
+}
+
+/// An error a scene can be measured by, each against an exact or ideal answer.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Accuracy {
+    /// The bodies start exactly at rest (touching, no overlap), so the exact answer is that
+    /// nothing moves: the error is how far the named bodies (default: the highest dynamic body)
+    /// are from where they started after `seconds`, sinking and drifting together.
+    Rest {
+        /// Bodies measured (their `name`s); empty means the highest dynamic body.
+        #[serde(default)]
+        bodies: Vec<String>,
+        /// How long to run, s.
+        seconds: f32,
+    },
+    /// No gravity, no friction, restitution 1: momentum and kinetic energy must stay what they
+    /// were once the scene's events at time 0 have fired. The error is the larger relative
+    /// change of the two after `seconds`.
+    Conservation {
+        /// How long to run, s.
+        seconds: f32,
+    },
+    /// A box on a slope with friction coefficient `friction` (the mixed one) starts to slide
+    /// when the slope is steeper than atan(μ). The bench tilts gravity instead of the slope,
+    /// finds the tilt at which the named body starts to slide (it moves more than 5 mm in
+    /// `seconds`) by bisection, and adds the body's own starting angle (it sits square on its
+    /// slope). The error is that angle less atan(μ), in degrees.
+    SlideAngle {
+        /// The body on the slope (its `name`).
+        body: String,
+        /// The friction coefficient between it and the slope.
+        friction: f32,
+        /// How long each trial runs, s.
+        seconds: f32,
+    },
 }
 
 fn default_draw() -> Vec<DrawName> {

@@ -1,0 +1,184 @@
+//! The sweep written down: a CSV of every point and a markdown report with one table per scene.
+
+use super::Point;
+use std::fmt::Write as _;
+use std::time::{SystemTime, UNIX_EPOCH};
+
+/// The CSV header, in the order [`csv`] writes the columns.
+pub const CSV_HEADER: &str =
+    "scene,error_kind,solver,iterations,substeps,ms_per_step,error,error_unit,max_penetration_m";
+
+/// Every point as one CSV line (NaN worlds have the error `inf`).
+pub fn csv(points: &[Point]) -> String {
+    let mut out = String::from(CSV_HEADER);
+    out.push('\n');
+    for p in points {
+        let _ = writeln!(
+            out,
+            "{},{:?},{},{},{},{:.6},{},{},{:.6}",
+            p.scene,
+            p.error_kind,
+            p.setting.solver.name(),
+            p.setting.iterations,
+            p.setting.substeps,
+            p.ms_per_step,
+            format_error(p.error),
+            p.error_kind.unit(),
+            p.max_penetration
+        );
+    }
+    out
+}
+
+/// Where and when the sweep ran.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Machine {
+    /// The processor's model name.
+    pub cpu: String,
+    /// Logical cores available.
+    pub cores: usize,
+    /// The date, YYYY-MM-DD (UTC).
+    pub date: String,
+}
+
+impl Machine {
+    /// This machine, today.
+    pub fn here() -> Self {
+        let cpu = std::fs::read_to_string("/proc/cpuinfo")
+            .ok()
+            .and_then(|info| {
+                info.lines()
+                    .find(|line| line.starts_with("model name"))
+                    .and_then(|line| line.split(':').nth(1))
+                    .map(|name| name.trim().to_string())
+            })
+            .unwrap_or_else(|| std::env::consts::ARCH.to_string());
+        let days = SystemTime::now()
+            .duration_since(UNIX_EPOCH)
+            .map_or(0, |d| d.as_secs() / 86_400) as i64;
+        Machine {
+            cpu,
+            cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            date: civil_date(days),
+        }
+    }
+}
+
+/// Days since 1970-01-01 as YYYY-MM-DD (Howard Hinnant's civil-from-days).
+fn civil_date(days: i64) -> String {
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let day_of_era = z - era * 146_097;
+    let year_of_era =
+        (day_of_era - day_of_era / 1460 + day_of_era / 36_524 - day_of_era / 146_096) / 365;
+    let day_of_year = day_of_era - (365 * year_of_era + year_of_era / 4 - year_of_era / 100);
+    let month_index = (5 * day_of_year + 2) / 153;
+    let day = day_of_year - (153 * month_index + 2) / 5 + 1;
+    let month = if month_index < 10 {
+        month_index + 3
+    } else {
+        month_index - 9
+    };
+    let year = year_of_era + era * 400 + i64::from(month <= 2);
+    format!("{year:04}-{month:02}-{day:02}")
+}
+
+/// The markdown report: the machine, then per scene a table with a row per solver (and
+/// substep count) and a column per iteration count, each cell "ms/step · error".
+pub fn markdown(points: &[Point], machine: &Machine, command: &str, runs: usize) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "# What accuracy costs in time\n");
+    let _ = writeln!(
+        out,
+        "Measured {} on {} ({} cores) with `{command}`: every cell is the median ms/step over \
+         {runs} runs and the error against the scene's exact answer. Release build, one thread. \
+         `inf` means the world went NaN.\n",
+        machine.date, machine.cpu, machine.cores
+    );
+    let _ = writeln!(out, "![error against time](accuracy.png)\n");
+    let mut scenes: Vec<&str> = points.iter().map(|p| p.scene.as_str()).collect();
+    scenes.dedup();
+    for scene in scenes {
+        let of_scene: Vec<&Point> = points.iter().filter(|p| p.scene == scene).collect();
+        let kind = of_scene[0].error_kind;
+        let _ = writeln!(
+            out,
+            "## {scene}\n\nError: {} ({}). Each cell: ms/step · error.\n",
+            kind.description(),
+            kind.unit()
+        );
+        let mut iterations: Vec<u32> = of_scene.iter().map(|p| p.setting.iterations).collect();
+        iterations.sort_unstable();
+        iterations.dedup();
+        let _ = write!(out, "| solver |");
+        for i in &iterations {
+            let _ = write!(out, " {i} it |");
+        }
+        let _ = write!(out, "\n|---|");
+        for _ in &iterations {
+            let _ = write!(out, "---|");
+        }
+        out.push('\n');
+        for series in series_of(&of_scene) {
+            let _ = write!(out, "| {} |", series.0);
+            for i in &iterations {
+                match series.1.iter().find(|p| p.setting.iterations == *i) {
+                    Some(p) => {
+                        let _ = write!(out, " {:.3} · {} |", p.ms_per_step, format_error(p.error));
+                    }
+                    None => out.push_str(" |"),
+                }
+            }
+            out.push('\n');
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// The points of one scene grouped into series: one per solver, and for solvers with substeps
+/// one per substep count, in sweep order.
+pub fn series_of<'a>(points: &[&'a Point]) -> Vec<(String, Vec<&'a Point>)> {
+    let mut series: Vec<(String, Vec<&Point>)> = Vec::new();
+    for &p in points {
+        let name = series_name(p);
+        match series.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, members)) => members.push(p),
+            None => series.push((name, vec![p])),
+        }
+    }
+    series
+}
+
+/// "soft step, 4 substeps", or just the solver's name.
+pub fn series_name(point: &Point) -> String {
+    let solver = point.setting.solver;
+    if solver.has_substeps() {
+        let substeps = point.setting.substeps;
+        let plural = if substeps == 1 { "" } else { "s" };
+        format!("{}, {substeps} substep{plural}", solver.name())
+    } else {
+        solver.name().to_string()
+    }
+}
+
+/// Three significant digits, or `inf`.
+fn format_error(error: f64) -> String {
+    if error.is_finite() {
+        format!("{error:.3e}")
+    } else {
+        "inf".into()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn civil_dates_are_right() {
+        assert_eq!(civil_date(0), "1970-01-01");
+        assert_eq!(civil_date(11_016), "2000-02-29");
+        assert_eq!(civil_date(20_780), "2026-11-23");
+    }
+}
