@@ -1,0 +1,53 @@
+//! # carom-bench
+//!
+//! Runs carom and [Rapier](https://rapier.rs) (`rapier2d` 0.36.1, single-threaded: features
+//! `dim2`, `f32`, `std`, `block-solver` — its defaults, spelled out, with no `parallel` and no
+//! `simd-*`) side by side on the same scene, in one process, the way Box2D's benchmark harness
+//! times engines: dt = 1/60, the first step untimed, the total wall time of the remaining steps,
+//! the minimum over runs. [`RapierWorld::from_carom`] rebuilds a carom [`carom::World`] in Rapier;
+//! [`compare`] times one run in either engine and measures how far the top body fell.
+//!
+//! ## Parameter mapping, carom → Rapier
+//!
+//! | carom | Rapier | exact? |
+//! |---|---|---|
+//! | `BodyKind::Static` / `Kinematic` / `Dynamic` | `Fixed` / `KinematicVelocityBased` / `Dynamic` | yes |
+//! | position, angle, linear and angular velocity | `translation`, `rotation`, `linvel`, `angvel` | yes (velocities not set on fixed bodies) |
+//! | `gravity_scale` | `gravity_scale` | yes |
+//! | linear / angular damping (the `Drag` effect with [`carom::DragModel::Exponential`]) | `linear_damping` / `angular_damping` | yes: both apply `v /= 1 + dt c`; with `Drag` off, or the tutorial drag model, no damping is set |
+//! | `Shape::Circle` | `ColliderBuilder::ball(radius)` | yes |
+//! | `Shape::Polygon`, an axis-aligned rectangle in body space | `ColliderBuilder::cuboid(hx, hy)` | yes |
+//! | any other `Shape::Polygon` (convex, CCW, centred on its centroid) | `convex_polyline` (no hull recomputed), `convex_hull` as a fallback | yes |
+//! | density | collider `density` (mass and inertia from the shape) | yes |
+//! | friction, mixed by geometric mean (`Friction` effect; 0 when off) | collider `friction` + `CoefficientCombineRule::GeometricMean` | yes |
+//! | restitution, mixed by max (`Restitution` effect; 0 when off) | collider `restitution` + `CoefficientCombineRule::Max` | rule yes; carom does not bounce below 1 m/s approach, Rapier has no such threshold |
+//! | gravity (zero when the `Gravity` effect is off) | `gravity` argument of `PhysicsPipeline::step` | yes |
+//! | `Sleeping` effect | `can_sleep(true)` on every body; off → `can_sleep(false)` | switch yes, thresholds close: both 0.05 m/s and 0.5 s, but carom measures the fastest point's speed (`|v| + r |ω|`) and sleeps islands, Rapier its own per-body linear (0.05) and angular (0.5 rad/s) thresholds |
+//! | `is_bullet` (with the `Continuous` effect) | `ccd_enabled(true)` | partly: carom also sweeps every fast dynamic body against static ones; Rapier's CCD is only switched on for bullets here |
+//! | soft step's `substeps` (default 4) | `num_solver_iterations` (Rapier's solver iterations are its substeps) | yes |
+//! | soft step's `iterations` (default 1) | `num_internal_pgs_iterations` (default 1) | yes; the classic solvers (no substeps) map to 1 substep of `iterations` PGS sweeps, which is not the same algorithm |
+//! | `warm_starting` | `warmstart_coefficient` 1 or 0 | yes |
+//! | `speculative_distance` (0.02 m = 4 × slop) | `normalized_prediction_distance` (default 0.02, `length_unit` 1) | yes; collider `contact_skin` stays at its default 0 |
+//! | `linear_slop` (0.005 m) | `normalized_allowed_linear_error` (default 0.005) | yes |
+//! | `max_push_speed` (3 m/s) | `normalized_max_corrective_velocity` (default 3) | yes |
+//! | `max_linear_speed` (400 m/s) | `normalized_max_linear_velocity` (default 400) | yes |
+//! | `contact_hertz` 30, `damping_ratio` 10, `static_stiffness` 2 | left at Rapier's defaults: `contact_softness` 30 Hz, ζ 10; `static_contact_softness` 60 Hz, ζ 10 | equal at carom's defaults (Box2D's); a scene that changes carom's softness is not followed |
+//!
+//! ## What does not map
+//!
+//! - Polygon radius: carom polygons have no rounding (radius 0); the Rapier shapes built here
+//!   have none either (no `round_*` builders), so both are sharp.
+//! - Rapier 0.36 uses Box2D-like soft contacts but has its own block solver for two-point
+//!   manifolds (`block-solver` feature, on by default), contact clustering and contact recycling;
+//!   carom solves the points one by one.
+//! - carom's `max_rotation` guard is π/4 per substep and settable; Rapier caps rotation at a
+//!   fixed π/4 per whole step. carom's restitution threshold (1 m/s) has no Rapier counterpart.
+//!   Rapier's `length_unit` is 1 m, as carom's units.
+//! - Scene events (timed spawns, pushes) in `carom-scene` files are not replayed: the Rapier copy
+//!   is of the world as built at time 0.
+
+pub mod compare;
+pub mod rapier_world;
+
+pub use compare::{RunResult, run_carom, run_rapier};
+pub use rapier_world::RapierWorld;
