@@ -133,6 +133,11 @@ fn solver_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>
         warm,
         egui::Checkbox::new(&mut params.warm_starting, "warm starting"),
     );
+    ui.add_enabled(
+        soft,
+        egui::Checkbox::new(&mut params.graph_coloring, "graph colouring (SIMD)"),
+    )
+    .on_hover_text("Solve contacts colour by colour, four at a time: faster, a little more jitter");
     if soft {
         ui.add(egui::Slider::new(&mut params.contact_hertz, 5.0..=120.0).text("contact Hz"));
         ui.add(egui::Slider::new(&mut params.damping_ratio, 0.1..=20.0).text("damping ratio"));

@@ -46,7 +46,8 @@ fn a_body_is_grabbed_dragged_against_a_wall_and_thrown() {
     // Drag far past the right wall (0.5 m thick, its inner face at x = 7): the box follows the
     // cursor but stops at the wall. Contacts are soft, as Box2D's: the box hits the wall at
     // about 10 m/s and is pressed into it by the spring, so its corner may sink a little into
-    // the wall, never far and never through.
+    // the wall, never far and never through (up to 0.12 m with soft step's graph-coloured
+    // order, under 0.1 m in contact order).
     let target = demo.camera.world_to_screen(vec2(12.0, 3.0), VIEWPORT);
     for i in 1..=90 {
         let t = (i as f32 / 60.0).min(1.0);
@@ -54,7 +55,7 @@ fn a_body_is_grabbed_dragged_against_a_wall_and_thrown() {
         frames(&mut demo, 1);
         let right = demo.scene.world.body(handle).unwrap().aabb().max.x;
         assert!(
-            right < 7.0 + 0.1,
+            right < 7.0 + 0.15,
             "frame {i}: the box's right side went {} m into the wall",
             right - 7.0
         );

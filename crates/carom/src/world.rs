@@ -44,6 +44,8 @@ pub struct World {
     /// Numbers islands as they fall asleep.
     sleep_groups: u32,
     stats: StepStats,
+    /// The solver's memory, reused from step to step.
+    solver_workspace: solver::Workspace,
 }
 
 fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {
@@ -387,6 +389,7 @@ impl World {
             self.contacts.as_mut_slice(),
             dense,
             dt,
+            &mut self.solver_workspace,
         )
     }
 

@@ -29,6 +29,16 @@ impl BodyState {
         }
     }
 
+    /// A state at rest that belongs to no body.
+    pub fn spare() -> Self {
+        BodyState {
+            v: Vec2::zeros(),
+            w: 0.0,
+            dp: Vec2::zeros(),
+            dq: Rot::identity(),
+        }
+    }
+
     /// Commits the step: the body moves by `dp` and `dq` and takes the new velocities.
     pub fn write_back(&self, body: &mut Body) {
         if !body.moves() {

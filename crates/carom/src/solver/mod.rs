@@ -12,10 +12,12 @@
 
 mod body_state;
 mod contact_constraint;
+mod contact_graph;
 mod push_out;
 mod sequential_impulse;
 mod soft_step;
 mod tutorial_impulse;
+mod wide_contacts;
 
 pub(crate) use body_state::BodyState;
 pub(crate) use contact_constraint::ContactConstraint;
@@ -87,6 +89,12 @@ pub struct SolverParams {
     pub substeps: u32,
     /// Start each step from last step's impulses (sequential impulse and soft step). Default on.
     pub warm_starting: bool,
+    /// Soft step: solve the contacts colour by colour (no two of a colour share a moving
+    /// body), four at a time in SIMD lanes, as Box2D v3 does. About twice as fast; the colour
+    /// order passes load through a pile more slowly than contact order, so resting piles keep
+    /// a little more jitter (see the soak in the stability suite). Off solves one by one in
+    /// contact order. Default on.
+    pub graph_coloring: bool,
     /// Soft step: contact stiffness in Hz, capped at a quarter of the substep rate. Default 30,
     /// as in Box2D. Soft contacts give a little under load (about 13 mm under 19 stacked 1 m
     /// boxes at 30 Hz), so a tall column of boxes can buckle: at 30 Hz a column of 10 stands and
@@ -120,6 +128,7 @@ impl Default for SolverParams {
             iterations: 1,
             substeps: 4,
             warm_starting: true,
+            graph_coloring: true,
             contact_hertz: 30.0,
             damping_ratio: 10.0,
             static_stiffness: 2.0,
@@ -244,9 +253,14 @@ pub(crate) struct SolverContext<'a> {
     pub dt: Real,
 }
 
-/// A solver: moves the body states through one step, resolving the constraints, and reports
-/// the work its optional effects did.
-type Solve = fn(&SolverContext, &mut [BodyState], &mut [ContactConstraint]) -> Work;
+/// The solver's memory, kept from step to step so a step in steady state allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Workspace {
+    states: Vec<BodyState>,
+    constraints: Vec<ContactConstraint>,
+    graph: contact_graph::ContactGraph,
+    wide: wide_contacts::WideContacts,
+}
 
 /// Runs one step of the chosen solver over the bodies (dense, in storage order) and the
 /// contacts; `dense[i]` gives the dense indices of contact `i`'s bodies. Returns how many
@@ -258,32 +272,45 @@ pub(crate) fn step(
     contacts: &mut [Contact],
     dense: &[(usize, usize)],
     dt: Real,
+    workspace: &mut Workspace,
 ) -> (usize, Work) {
-    let mut states: Vec<BodyState> = bodies.iter().map(BodyState::from_body).collect();
-    let mut constraints: Vec<ContactConstraint> = contacts
-        .iter()
-        .zip(dense)
-        .enumerate()
-        .filter(|(_, (c, (a, b)))| c.is_touching() && (bodies[*a].moves() || bodies[*b].moves()))
-        .map(|(i, (c, &(a, b)))| ContactConstraint::new(i, c, a, b, bodies))
-        .collect();
-    let solve: Solve = match params.effective_kind() {
-        SolverKind::PushOut => push_out::solve,
-        SolverKind::TutorialImpulse => tutorial_impulse::solve,
-        SolverKind::SequentialImpulse => sequential_impulse::solve,
-        SolverKind::SoftStep => soft_step::solve,
-    };
+    let Workspace {
+        states,
+        constraints,
+        graph,
+        wide,
+    } = workspace;
+    states.clear();
+    states.extend(bodies.iter().map(BodyState::from_body));
+    // A spare state past the bodies, for solvers that need a body that is not there.
+    states.push(BodyState::spare());
+    constraints.clear();
+    constraints.extend(
+        contacts
+            .iter()
+            .zip(dense)
+            .enumerate()
+            .filter(|(_, (c, (a, b)))| {
+                c.is_touching() && (bodies[*a].moves() || bodies[*b].moves())
+            })
+            .map(|(i, (c, &(a, b)))| ContactConstraint::new(i, c, a, b, bodies)),
+    );
     let context = SolverContext {
         params,
         environment,
         bodies,
         dt,
     };
-    let work = solve(&context, &mut states, &mut constraints);
-    for constraint in &constraints {
+    let work = match params.effective_kind() {
+        SolverKind::PushOut => push_out::solve(&context, states, constraints),
+        SolverKind::TutorialImpulse => tutorial_impulse::solve(&context, states, constraints),
+        SolverKind::SequentialImpulse => sequential_impulse::solve(&context, states, constraints),
+        SolverKind::SoftStep => soft_step::solve(&context, states, constraints, graph, wide),
+    };
+    for constraint in constraints.iter() {
         constraint.store_impulses(&mut contacts[constraint.contact_index]);
     }
-    for (body, state) in bodies.iter_mut().zip(&states) {
+    for (body, state) in bodies.iter_mut().zip(states.iter()) {
         state.write_back(body);
     }
     (constraints.iter().map(|c| c.points().len()).sum(), work)

@@ -7,6 +7,8 @@
 
 use super::body_state::{integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
+use super::contact_graph::ContactGraph;
+use super::wide_contacts::{PassBias, WideContacts};
 use super::{BodyState, ContactConstraint, Softness, SolverContext, SolverParams};
 use crate::math::Real;
 use crate::stats::Work;
@@ -15,6 +17,8 @@ pub(super) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
+    graph: &mut ContactGraph,
+    wide: &mut WideContacts,
 ) -> Work {
     let SolverContext {
         params,
@@ -36,19 +40,51 @@ pub(super) fn solve(
     if !params.warm_starting {
         forget_impulses(constraints);
     }
+    // The last state is a spare for the empty lanes of the last bundle of each colour.
+    let spare = states.len() - 1;
+    if params.graph_coloring {
+        graph.build(constraints, states.len());
+    } else {
+        graph.leave_uncolored(constraints.len());
+    }
+    wide.build(constraints, graph, bias.soft, bias.static_soft, spare);
+    let pass = |use_bias| PassBias {
+        use_bias,
+        inv_h,
+        max_push_speed: params.max_push_speed,
+    };
     let mut work = Work::default();
     for _ in 0..substeps {
         work += integrate_velocities(params, environment, bodies, states, h);
-        warm_start(constraints, states);
+        wide.warm_start(states);
+        for &index in &wide.overflow {
+            warm_start_one(&constraints[index], states);
+        }
         for _ in 0..params.iterations {
-            solve_contacts(constraints, states, &bias, true, false);
+            wide.solve(states, pass(true), false);
+            for &index in &wide.overflow {
+                solve_one(&mut constraints[index], states, &bias, true, false);
+            }
         }
         integrate_positions(bodies, states, h);
         for _ in 0..params.iterations {
-            work.friction_impulses +=
-                solve_contacts(constraints, states, &bias, false, environment.friction);
+            wide.solve(states, pass(false), environment.friction);
+            for &index in &wide.overflow {
+                solve_one(
+                    &mut constraints[index],
+                    states,
+                    &bias,
+                    false,
+                    environment.friction,
+                );
+            }
+            if environment.friction {
+                work.friction_impulses +=
+                    constraints.iter().map(|c| c.points().len()).sum::<usize>();
+            }
         }
     }
+    wide.store(constraints);
     if environment.restitution {
         work.restitution_impulses = apply_restitution(params, constraints, states);
     }
@@ -78,59 +114,60 @@ pub(super) fn forget_impulses(constraints: &mut [ContactConstraint]) {
 /// Applies the accumulated impulses, so the solve starts near last time's answer.
 pub(super) fn warm_start(constraints: &[ContactConstraint], states: &mut [BodyState]) {
     for c in constraints {
-        let (a, b) = pair_mut(states, c.a, c.b);
-        let tangent = c.tangent();
-        for point in c.points() {
-            let p = c.normal * point.normal_impulse + tangent * point.tangent_impulse;
-            c.apply(point, p, a, b);
-        }
+        warm_start_one(c, states);
     }
 }
 
-/// One pass over the contacts: non-penetration with the soft bias (or none when relaxing),
-/// then Coulomb friction if asked (soft step asks in the relax pass only: friction reacting to
-/// the push-out velocity makes stacks lean, as Box2D 3.2 and Rapier found). Returns how many
-/// friction impulses were computed.
-fn solve_contacts(
-    constraints: &mut [ContactConstraint],
+/// Applies one constraint's accumulated impulses.
+fn warm_start_one(c: &ContactConstraint, states: &mut [BodyState]) {
+    let (a, b) = pair_mut(states, c.a, c.b);
+    let tangent = c.tangent();
+    for point in c.points() {
+        let p = c.normal * point.normal_impulse + tangent * point.tangent_impulse;
+        c.apply(point, p, a, b);
+    }
+}
+
+/// One constraint: non-penetration with the soft bias (or none when relaxing), then Coulomb
+/// friction if asked (soft step asks in the relax pass only: friction reacting to the push-out
+/// velocity makes stacks lean, as Box2D 3.2 and Rapier found). The wide solver does the same
+/// four constraints at a time; this one serves the constraints no colour was free for.
+fn solve_one(
+    c: &mut ContactConstraint,
     states: &mut [BodyState],
     bias: &Bias,
     use_bias: bool,
     friction: bool,
-) -> usize {
-    let mut friction_impulses = 0;
-    for c in constraints.iter_mut() {
-        let (a, b) = pair_mut(states, c.a, c.b);
-        let softness = if c.touches_static {
-            bias.static_soft
+) {
+    let (a, b) = pair_mut(states, c.a, c.b);
+    let softness = if c.touches_static {
+        bias.static_soft
+    } else {
+        bias.soft
+    };
+    for i in 0..c.points().len() {
+        let point = c.points()[i];
+        let s = c.current_separation(&point, a, b);
+        let (velocity_bias, mass_scale, impulse_scale) = if s > 0.0 {
+            // Speculative: may close exactly the gap this substep.
+            (s * bias.inv_h, 1.0, 0.0)
+        } else if use_bias {
+            (
+                (softness.bias_rate * s).max(-bias.max_push_speed),
+                softness.mass_scale,
+                softness.impulse_scale,
+            )
         } else {
-            bias.soft
+            (0.0, 1.0, 0.0)
         };
-        for i in 0..c.points().len() {
-            let point = c.points()[i];
-            let s = c.current_separation(&point, a, b);
-            let (velocity_bias, mass_scale, impulse_scale) = if s > 0.0 {
-                // Speculative: may close exactly the gap this substep.
-                (s * bias.inv_h, 1.0, 0.0)
-            } else if use_bias {
-                (
-                    (softness.bias_rate * s).max(-bias.max_push_speed),
-                    softness.mass_scale,
-                    softness.impulse_scale,
-                )
-            } else {
-                (0.0, 1.0, 0.0)
-            };
-            let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
-            let impulse = -point.normal_mass * mass_scale * (vn + velocity_bias)
-                - impulse_scale * point.normal_impulse;
-            c.add_normal_impulse(i, impulse, a, b);
-        }
-        if friction {
-            friction_impulses += solve_friction(c, a, b);
-        }
+        let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
+        let impulse = -point.normal_mass * mass_scale * (vn + velocity_bias)
+            - impulse_scale * point.normal_impulse;
+        c.add_normal_impulse(i, impulse, a, b);
     }
-    friction_impulses
+    if friction {
+        solve_friction(c, a, b);
+    }
 }
 
 /// Coulomb friction at each point: the tangent impulse stays within `μ ×` the normal one.
