@@ -58,6 +58,9 @@ enum Command {
         /// Print one JSON object instead of a summary.
         #[arg(long)]
         json: bool,
+        /// Threads to step on (default: one per core).
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
+        threads: Option<u32>,
     },
     /// Sweep solvers, iterations and substeps over scenes: ms/step against error, written as a
     /// CSV, a markdown report and a chart.
@@ -184,6 +187,7 @@ fn main() -> ExitCode {
             substeps,
             effects,
             json,
+            threads,
         }) => {
             let options = RunOptions {
                 steps,
@@ -191,6 +195,7 @@ fn main() -> ExitCode {
                 iterations,
                 substeps,
                 effects: effects.map(|changes| changes.0).unwrap_or_default(),
+                threads: threads.map(|n| n as usize),
             };
             match run(&scene, &options) {
                 Ok(report) => {

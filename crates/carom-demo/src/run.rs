@@ -18,6 +18,8 @@ pub struct RunOptions {
     pub substeps: Option<u32>,
     /// Effects to add (`true`) or remove (`false`).
     pub effects: Vec<(Effect, bool)>,
+    /// Threads the world steps on (default: rayon's, one per core).
+    pub threads: Option<usize>,
 }
 
 /// What a run measured.
@@ -45,6 +47,9 @@ pub struct RunReport {
     pub asleep: usize,
     /// Fingerprint of the final positions and velocities.
     pub hash: u64,
+    /// Mean ms per step in each stage (broadphase, narrowphase, solve, continuous, sleep),
+    /// the first step left out.
+    pub stage_ms: [f64; 5],
 }
 
 impl RunReport {
@@ -74,7 +79,9 @@ impl RunReport {
             "{name}: {} steps, {} bodies, {} contacts\n\
              time      {:.4} ms/step (mean after the first), {:.4} ms/step (median)\n\
              accuracy  max penetration {:.5} m, max speed {:.3} m/s, kinetic energy {:.4} J\n\
-             state     {} asleep, nan: {}, hash {:016x}",
+             state     {} asleep, nan: {}, hash {:016x}\n\
+             stages    broadphase {:.3}, narrowphase {:.3}, solve {:.3}, continuous {:.3}, \
+             sleep {:.3} ms/step",
             self.steps,
             self.bodies,
             self.contacts,
@@ -85,7 +92,12 @@ impl RunReport {
             self.kinetic_energy,
             self.asleep,
             self.nan,
-            self.hash
+            self.hash,
+            self.stage_ms[0],
+            self.stage_ms[1],
+            self.stage_ms[2],
+            self.stage_ms[3],
+            self.stage_ms[4],
         )
     }
 }
@@ -99,16 +111,36 @@ fn json_number(value: f64) -> String {
     }
 }
 
-/// Loads a scene, applies the options, and runs it.
+/// Loads a scene, applies the options, and runs it, on `options.threads` threads.
 pub fn run(file: &Path, options: &RunOptions) -> Result<RunReport, String> {
+    match options.threads {
+        Some(threads) => rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| e.to_string())?
+            .install(|| run_here(file, options)),
+        None => run_here(file, options),
+    }
+}
+
+/// [`run`] on the calling thread's pool.
+fn run_here(file: &Path, options: &RunOptions) -> Result<RunReport, String> {
     let mut scene = carom_scene::load(file).map_err(|e| e.to_string())?;
     apply(&mut scene, options)?;
     let mut times = Vec::with_capacity(options.steps);
     let (mut max_penetration, mut max_speed, mut nan) = (0.0f32, 0.0f32, false);
-    for _ in 0..options.steps {
+    let mut stage_ms = [0.0; 5];
+    for step in 0..options.steps {
         let clock = Instant::now();
         scene.step().map_err(|e| e.to_string())?;
         times.push(clock.elapsed().as_secs_f64() * 1e3);
+        if step > 0 {
+            let t = scene.world.stats().times;
+            let stages = [t.broadphase, t.narrowphase, t.solve, t.continuous, t.sleep];
+            for (sum, stage) in stage_ms.iter_mut().zip(stages) {
+                *sum += stage.as_secs_f64() * 1e3 / (options.steps - 1) as f64;
+            }
+        }
         max_penetration = max_penetration.max(scene.world.stats().max_penetration);
         for body in scene.world.bodies() {
             let (p, v) = (body.position(), body.linear_velocity());
@@ -138,6 +170,7 @@ pub fn run(file: &Path, options: &RunOptions) -> Result<RunReport, String> {
         nan,
         asleep: stats.sleeping_bodies,
         hash: scene.world.state_hash(),
+        stage_ms,
     })
 }
 

@@ -43,6 +43,7 @@ pub mod mass;
 pub mod math;
 pub mod mouse_joint;
 pub mod narrowphase;
+mod parallel;
 pub mod ray;
 pub mod segment;
 pub mod settings;

@@ -319,7 +319,13 @@ fn collide_polygons(
     margin: Real,
     previous_reference: Option<PairSide>,
 ) -> Manifold {
-    let pp = narrowphase::polygon_polygon(a_vertices, a_normals, b_vertices, b_normals);
+    let pp = narrowphase::polygon_polygon_within(
+        a_vertices,
+        a_normals,
+        b_vertices,
+        b_normals,
+        0.1 * LINEAR_SLOP,
+    );
     let (edge_a, separation_a) = pp.edge_a;
     let (edge_b, separation_b) = pp.edge_b;
     if pp.separation.separation > margin {

@@ -1,9 +1,10 @@
 //! The solver's copy of a body: velocities and the motion accumulated over the step, stored
 //! contiguously so the inner loops touch little memory.
 
-use super::{Environment, SolverParams};
+use super::{Environment, ITEMS_PER_TASK, SolverParams};
 use crate::body::{Body, BodyKind};
 use crate::math::{Real, Rot, Vec2, clamp_magnitude};
+use crate::parallel::{for_each_with, sum_with};
 use crate::stats::Work;
 
 /// One body as the solver sees it.
@@ -57,12 +58,12 @@ pub(crate) fn integrate_velocities(
     states: &mut [BodyState],
     h: Real,
 ) -> Work {
-    let mut work = Work::default();
     // No body may turn more than `max_rotation` in one (sub)step.
     let max_angular_speed = params.max_rotation / h;
-    for (body, state) in bodies.iter().zip(states.iter_mut()) {
+    sum_with(bodies, states, ITEMS_PER_TASK, |body, state| {
+        let mut work = Work::default();
         if body.kind() != BodyKind::Dynamic || body.is_sleeping() {
-            continue;
+            return work;
         }
         let mut v = state.v + body.force() * (body.inv_mass() * h);
         let mut w = state.w + body.torque() * body.inv_inertia() * h;
@@ -79,17 +80,16 @@ pub(crate) fn integrate_velocities(
         }
         state.v = clamp_magnitude(v, params.max_linear_speed);
         state.w = w.clamp(-max_angular_speed, max_angular_speed);
-    }
-    work
+        work
+    })
 }
 
 /// Positions from velocities over `h` (accumulated in `dp` and `dq`).
 pub(crate) fn integrate_positions(bodies: &[Body], states: &mut [BodyState], h: Real) {
-    for (body, state) in bodies.iter().zip(states.iter_mut()) {
-        if !body.moves() {
-            continue;
+    for_each_with(bodies, states, ITEMS_PER_TASK, |body, state| {
+        if body.moves() {
+            state.dp += state.v * h;
+            state.dq = Rot::new(state.w * h) * state.dq;
         }
-        state.dp += state.v * h;
-        state.dq = Rot::new(state.w * h) * state.dq;
-    }
+    });
 }

@@ -11,6 +11,7 @@
 //! - [`SolverKind::SoftStep`]: Box2D v3's substepped soft-constraint solver (the default).
 
 mod body_state;
+mod color_passes;
 mod contact_constraint;
 mod contact_graph;
 mod push_out;
@@ -26,6 +27,7 @@ use crate::body::Body;
 use crate::contact::Contact;
 use crate::drag::DragModel;
 use crate::math::{Real, Vec2};
+use crate::parallel::{for_each_with, map_into};
 use crate::settings::LINEAR_SLOP;
 use crate::stats::Work;
 
@@ -260,7 +262,14 @@ pub(crate) struct Workspace {
     constraints: Vec<ContactConstraint>,
     graph: contact_graph::ContactGraph,
     wide: wide_contacts::WideContacts,
+    velocities: wide_contacts::SharedVelocities,
+    /// The contacts that become constraints this step.
+    touching: Vec<usize>,
 }
+
+/// Bodies or constraints per task when the solver's per-item work is shared among threads:
+/// each costs a few nanoseconds, and a fork several microseconds.
+pub(crate) const ITEMS_PER_TASK: usize = 2048;
 
 /// Runs one step of the chosen solver over the bodies (dense, in storage order) and the
 /// contacts; `dense[i]` gives the dense indices of contact `i`'s bodies. Returns how many
@@ -279,13 +288,14 @@ pub(crate) fn step(
         constraints,
         graph,
         wide,
+        velocities,
+        touching,
     } = workspace;
-    states.clear();
-    states.extend(bodies.iter().map(BodyState::from_body));
+    map_into(bodies, states, ITEMS_PER_TASK, BodyState::from_body);
     // A spare state past the bodies, for solvers that need a body that is not there.
     states.push(BodyState::spare());
-    constraints.clear();
-    constraints.extend(
+    touching.clear();
+    touching.extend(
         contacts
             .iter()
             .zip(dense)
@@ -293,8 +303,13 @@ pub(crate) fn step(
             .filter(|(_, (c, (a, b)))| {
                 c.is_touching() && (bodies[*a].moves() || bodies[*b].moves())
             })
-            .map(|(i, (c, &(a, b)))| ContactConstraint::new(i, c, a, b, bodies)),
+            .map(|(i, _)| i),
     );
+    let shared_bodies: &[Body] = bodies;
+    map_into(touching, constraints, ITEMS_PER_TASK, |&i| {
+        let (a, b) = dense[i];
+        ContactConstraint::new(i, &contacts[i], a, b, shared_bodies)
+    });
     let context = SolverContext {
         params,
         environment,
@@ -305,13 +320,15 @@ pub(crate) fn step(
         SolverKind::PushOut => push_out::solve(&context, states, constraints),
         SolverKind::TutorialImpulse => tutorial_impulse::solve(&context, states, constraints),
         SolverKind::SequentialImpulse => sequential_impulse::solve(&context, states, constraints),
-        SolverKind::SoftStep => soft_step::solve(&context, states, constraints, graph, wide),
+        SolverKind::SoftStep => {
+            soft_step::solve(&context, states, constraints, graph, wide, velocities)
+        }
     };
     for constraint in constraints.iter() {
         constraint.store_impulses(&mut contacts[constraint.contact_index]);
     }
-    for (body, state) in bodies.iter_mut().zip(states.iter()) {
-        state.write_back(body);
-    }
+    for_each_with(states, bodies, ITEMS_PER_TASK, |state, body| {
+        state.write_back(body)
+    });
     (constraints.iter().map(|c| c.points().len()).sum(), work)
 }

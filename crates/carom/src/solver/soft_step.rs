@@ -8,7 +8,7 @@
 use super::body_state::{integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
 use super::contact_graph::ContactGraph;
-use super::wide_contacts::{PassBias, WideContacts};
+use super::wide_contacts::{PassBias, SharedVelocities, WideContacts};
 use super::{BodyState, ContactConstraint, Softness, SolverContext, SolverParams};
 use crate::math::Real;
 use crate::stats::Work;
@@ -19,6 +19,7 @@ pub(super) fn solve(
     constraints: &mut [ContactConstraint],
     graph: &mut ContactGraph,
     wide: &mut WideContacts,
+    velocities: &mut SharedVelocities,
 ) -> Work {
     let SolverContext {
         params,
@@ -56,19 +57,25 @@ pub(super) fn solve(
     let mut work = Work::default();
     for _ in 0..substeps {
         work += integrate_velocities(params, environment, bodies, states, h);
-        wide.warm_start(states);
+        velocities.load(states);
+        wide.warm_start(states, velocities);
+        velocities.store(states);
         for &index in &wide.overflow {
             warm_start_one(&constraints[index], states);
         }
         for _ in 0..params.iterations {
-            wide.solve(states, pass(true), false);
+            velocities.load(states);
+            wide.solve(states, velocities, pass(true), false);
+            velocities.store(states);
             for &index in &wide.overflow {
                 solve_one(&mut constraints[index], states, &bias, true, false);
             }
         }
         integrate_positions(bodies, states, h);
         for _ in 0..params.iterations {
-            wide.solve(states, pass(false), environment.friction);
+            velocities.load(states);
+            wide.solve(states, velocities, pass(false), environment.friction);
+            velocities.store(states);
             for &index in &wide.overflow {
                 solve_one(
                     &mut constraints[index],

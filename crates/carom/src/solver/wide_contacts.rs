@@ -3,10 +3,16 @@
 //! arrays, and solved with `wide`'s 4-lane floats. The arithmetic per lane is exactly the scalar
 //! solver's ([`super::soft_step`]); only the order of constraints differs (colour by colour).
 
+use super::ITEMS_PER_TASK;
+use super::color_passes::for_each_by_color;
 use super::contact_constraint::ContactConstraint;
 use super::contact_graph::ContactGraph;
 use super::{BodyState, Softness};
 use crate::math::Real;
+use crate::parallel::{for_each_with, map_into};
+use std::ops::Range;
+use std::sync::atomic::AtomicU32;
+use std::sync::atomic::Ordering::Relaxed;
 use wide::f32x4;
 
 /// Lanes per bundle.
@@ -62,13 +68,26 @@ struct WideBody {
 }
 
 impl WideBody {
-    fn gather(states: &[BodyState], indices: &[usize; LANES]) -> Self {
-        let s = indices.map(|i| &states[i]);
+    /// Positions from the states, velocities from the shared copy.
+    #[inline(always)]
+    fn gather(
+        states: &[BodyState],
+        velocities: &SharedVelocities,
+        indices: &[usize; LANES],
+    ) -> Self {
+        let [i0, i1, i2, i3] = *indices;
+        let s = [&states[i0], &states[i1], &states[i2], &states[i3]];
+        let v = [
+            velocities.get(i0),
+            velocities.get(i1),
+            velocities.get(i2),
+            velocities.get(i3),
+        ];
         let lanes = |f: fn(&BodyState) -> Real| f32x4::new([f(s[0]), f(s[1]), f(s[2]), f(s[3])]);
         WideBody {
-            v_x: lanes(|s| s.v.x),
-            v_y: lanes(|s| s.v.y),
-            w: lanes(|s| s.w),
+            v_x: f32x4::new([v[0][0], v[1][0], v[2][0], v[3][0]]),
+            v_y: f32x4::new([v[0][1], v[1][1], v[2][1], v[3][1]]),
+            w: f32x4::new([v[0][2], v[1][2], v[2][2], v[3][2]]),
             dp_x: lanes(|s| s.dp.x),
             dp_y: lanes(|s| s.dp.y),
             cos: lanes(|s| s.dq.re),
@@ -77,13 +96,65 @@ impl WideBody {
     }
 
     /// Writes the velocities back (positions do not change in a solve).
-    fn scatter(&self, states: &mut [BodyState], indices: &[usize; LANES]) {
+    #[inline(always)]
+    fn scatter(&self, velocities: &SharedVelocities, indices: &[usize; LANES]) {
         let (v_x, v_y, w) = (self.v_x.to_array(), self.v_y.to_array(), self.w.to_array());
         for (lane, &i) in indices.iter().enumerate() {
-            let state = &mut states[i];
-            state.v.x = v_x[lane];
-            state.v.y = v_y[lane];
-            state.w = w[lane];
+            velocities.set(i, [v_x[lane], v_y[lane], w[lane]]);
+        }
+    }
+}
+
+/// The bodies' velocities while the colours are solved, readable and writable from several
+/// threads: no two bundles of a colour share a moving body, so each velocity has one writer
+/// at a time, and relaxed atomics (plain loads and stores on common hardware) are all the
+/// synchronisation needed; rayon orders one colour after the other. Static and kinematic bodies
+/// are written back unchanged (they take no impulse), whoever writes them.
+#[derive(Debug, Default)]
+pub(crate) struct SharedVelocities(Vec<[AtomicU32; 3]>);
+
+impl Clone for SharedVelocities {
+    /// Scratch memory: a copy starts empty.
+    fn clone(&self) -> Self {
+        SharedVelocities::default()
+    }
+}
+
+impl SharedVelocities {
+    /// Takes the states' velocities.
+    pub fn load(&mut self, states: &[BodyState]) {
+        self.0.resize_with(states.len(), Default::default);
+        for_each_with(states, &mut self.0, ITEMS_PER_TASK, |state, shared| {
+            let [x, y, w] = shared;
+            *x.get_mut() = state.v.x.to_bits();
+            *y.get_mut() = state.v.y.to_bits();
+            *w.get_mut() = state.w.to_bits();
+        });
+    }
+
+    /// Gives the velocities back to the states.
+    pub fn store(&self, states: &mut [BodyState]) {
+        for_each_with(&self.0, states, ITEMS_PER_TASK, |shared, state| {
+            let [x, y, w] = shared
+                .each_ref()
+                .map(|value| Real::from_bits(value.load(Relaxed)));
+            state.v.x = x;
+            state.v.y = y;
+            state.w = w;
+        });
+    }
+
+    #[inline(always)]
+    fn get(&self, index: usize) -> [Real; 3] {
+        self.0[index]
+            .each_ref()
+            .map(|x| Real::from_bits(x.load(Relaxed)))
+    }
+
+    #[inline(always)]
+    fn set(&self, index: usize, velocity: [Real; 3]) {
+        for (shared, value) in self.0[index].iter().zip(velocity) {
+            shared.store(value.to_bits(), Relaxed);
         }
     }
 }
@@ -92,6 +163,10 @@ impl WideBody {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct WideContacts {
     bundles: Vec<Bundle>,
+    /// Each colour's bundles, as a range of `bundles`.
+    colors: Vec<Range<usize>>,
+    /// Per bundle, its colour and where its constraints start in the colour.
+    slots: Vec<(usize, usize)>,
     /// Constraints solved one by one (no colour was free).
     pub overflow: Vec<usize>,
 }
@@ -116,109 +191,51 @@ impl WideContacts {
         static_soft: Softness,
         spare: usize,
     ) {
-        self.bundles.clear();
-        for color in &graph.colors {
-            for chunk in color.chunks(LANES) {
-                let softness = [soft, static_soft];
-                self.bundles
-                    .push(Bundle::pack(constraints, chunk, softness, spare));
+        // Where each bundle's constraints are, then every bundle packed (on all threads).
+        self.slots.clear();
+        self.colors.clear();
+        for (color, members) in graph.colors.iter().enumerate() {
+            if members.is_empty() {
+                continue;
             }
+            let start = self.slots.len();
+            self.slots.extend(
+                (0..members.len())
+                    .step_by(LANES)
+                    .map(|offset| (color, offset)),
+            );
+            self.colors.push(start..self.slots.len());
         }
+        let softness = [soft, static_soft];
+        let pack = |&(color, offset): &(usize, usize)| {
+            let members = &graph.colors[color];
+            let chunk = &members[offset..(offset + LANES).min(members.len())];
+            Bundle::pack(constraints, chunk, softness, spare)
+        };
+        map_into(&self.slots, &mut self.bundles, ITEMS_PER_TASK / LANES, pack);
         self.overflow.clear();
         self.overflow.extend_from_slice(&graph.overflow);
     }
 
     /// Applies the accumulated impulses (warm start).
-    pub fn warm_start(&self, states: &mut [BodyState]) {
-        for bundle in &self.bundles {
-            let mut a = WideBody::gather(states, &bundle.a);
-            let mut b = WideBody::gather(states, &bundle.b);
-            let (tangent_x, tangent_y) = (bundle.normal_y, -bundle.normal_x);
-            for point in &bundle.points {
-                let p_x =
-                    bundle.normal_x * point.normal_impulse + tangent_x * point.tangent_impulse;
-                let p_y =
-                    bundle.normal_y * point.normal_impulse + tangent_y * point.tangent_impulse;
-                bundle.apply(point, p_x, p_y, &mut a, &mut b);
-            }
-            a.scatter(states, &bundle.a);
-            b.scatter(states, &bundle.b);
-        }
+    pub fn warm_start(&mut self, states: &[BodyState], velocities: &SharedVelocities) {
+        self.each_color(|bundle| bundle.warm_start(states, velocities));
     }
 
     /// One pass: non-penetration (soft-biased or relaxed), then friction if asked.
-    pub fn solve(&mut self, states: &mut [BodyState], pass: PassBias, friction: bool) {
-        let zero = f32x4::splat(0.0);
-        let one = f32x4::splat(1.0);
-        let inv_h = f32x4::splat(pass.inv_h);
-        let max_push = f32x4::splat(-pass.max_push_speed);
-        for bundle in &mut self.bundles {
-            let mut a = WideBody::gather(states, &bundle.a);
-            let mut b = WideBody::gather(states, &bundle.b);
-            let (normal_x, normal_y) = (bundle.normal_x, bundle.normal_y);
-            for j in 0..2 {
-                let point = bundle.points[j];
-                // Separation now: the anchors turned by the rotation since the step began.
-                let ra_x = a.cos * point.anchor_a_x - a.sin * point.anchor_a_y;
-                let ra_y = a.sin * point.anchor_a_x + a.cos * point.anchor_a_y;
-                let rb_x = b.cos * point.anchor_b_x - b.sin * point.anchor_b_y;
-                let rb_y = b.sin * point.anchor_b_x + b.cos * point.anchor_b_y;
-                let d_x = (b.dp_x - a.dp_x) + rb_x - ra_x;
-                let d_y = (b.dp_y - a.dp_y) + rb_y - ra_y;
-                let s = point.base_separation + normal_x * d_x + normal_y * d_y;
-                let speculative = s.simd_gt(zero);
-                let (bias, mass_scale, impulse_scale) = if pass.use_bias {
-                    (
-                        (bundle.bias_rate * s).max(max_push),
-                        bundle.mass_scale,
-                        bundle.impulse_scale,
-                    )
-                } else {
-                    (zero, one, zero)
-                };
-                let bias = speculative.bitselect(s * inv_h, bias);
-                let mass_scale = speculative.bitselect(one, mass_scale);
-                let impulse_scale = speculative.bitselect(zero, impulse_scale);
-                let vn = bundle.relative_normal_velocity(&point, &a, &b, normal_x, normal_y);
-                let impulse = -point.normal_mass * mass_scale * (vn + bias)
-                    - impulse_scale * point.normal_impulse;
-                let total = (point.normal_impulse + impulse).max(zero);
-                let applied = total - point.normal_impulse;
-                let point = &mut bundle.points[j];
-                point.normal_impulse = total;
-                point.max_normal_impulse = point.max_normal_impulse.max(applied);
-                let point = *point;
-                bundle.apply(
-                    &point,
-                    normal_x * applied,
-                    normal_y * applied,
-                    &mut a,
-                    &mut b,
-                );
-            }
-            if friction {
-                let (tangent_x, tangent_y) = (normal_y, -normal_x);
-                for j in 0..2 {
-                    let point = bundle.points[j];
-                    let vt = bundle.relative_normal_velocity(&point, &a, &b, tangent_x, tangent_y);
-                    let limit = bundle.friction * point.normal_impulse;
-                    let total = (point.tangent_impulse - point.tangent_mass * vt)
-                        .max(-limit)
-                        .min(limit);
-                    let applied = total - point.tangent_impulse;
-                    bundle.points[j].tangent_impulse = total;
-                    bundle.apply(
-                        &point,
-                        tangent_x * applied,
-                        tangent_y * applied,
-                        &mut a,
-                        &mut b,
-                    );
-                }
-            }
-            a.scatter(states, &bundle.a);
-            b.scatter(states, &bundle.b);
-        }
+    pub fn solve(
+        &mut self,
+        states: &[BodyState],
+        velocities: &SharedVelocities,
+        pass: PassBias,
+        friction: bool,
+    ) {
+        self.each_color(|bundle| bundle.solve(states, velocities, pass, friction));
+    }
+
+    /// Runs `task` on every bundle, colour after colour, on as many threads as rayon gives.
+    fn each_color(&mut self, task: impl Fn(&mut Bundle) + Sync) {
+        for_each_by_color(&mut self.bundles, &self.colors, task);
     }
 
     /// Copies the impulses back into the constraints (for restitution and the next step's warm
@@ -241,6 +258,102 @@ impl WideContacts {
 }
 
 impl Bundle {
+    /// Applies the bundle's accumulated impulses.
+    #[inline(always)]
+    fn warm_start(&self, states: &[BodyState], velocities: &SharedVelocities) {
+        let mut a = WideBody::gather(states, velocities, &self.a);
+        let mut b = WideBody::gather(states, velocities, &self.b);
+        let (tangent_x, tangent_y) = (self.normal_y, -self.normal_x);
+        for point in &self.points {
+            let p_x = self.normal_x * point.normal_impulse + tangent_x * point.tangent_impulse;
+            let p_y = self.normal_y * point.normal_impulse + tangent_y * point.tangent_impulse;
+            self.apply(point, p_x, p_y, &mut a, &mut b);
+        }
+        a.scatter(velocities, &self.a);
+        b.scatter(velocities, &self.b);
+    }
+
+    /// Solves the bundle's four constraints once.
+    #[inline(always)]
+    fn solve(
+        &mut self,
+        states: &[BodyState],
+        velocities: &SharedVelocities,
+        pass: PassBias,
+        friction: bool,
+    ) {
+        let zero = f32x4::splat(0.0);
+        let one = f32x4::splat(1.0);
+        let inv_h = f32x4::splat(pass.inv_h);
+        let max_push = f32x4::splat(-pass.max_push_speed);
+        let bundle = self;
+        let mut a = WideBody::gather(states, velocities, &bundle.a);
+        let mut b = WideBody::gather(states, velocities, &bundle.b);
+        let (normal_x, normal_y) = (bundle.normal_x, bundle.normal_y);
+        for j in 0..2 {
+            let point = bundle.points[j];
+            // Separation now: the anchors turned by the rotation since the step began.
+            let ra_x = a.cos * point.anchor_a_x - a.sin * point.anchor_a_y;
+            let ra_y = a.sin * point.anchor_a_x + a.cos * point.anchor_a_y;
+            let rb_x = b.cos * point.anchor_b_x - b.sin * point.anchor_b_y;
+            let rb_y = b.sin * point.anchor_b_x + b.cos * point.anchor_b_y;
+            let d_x = (b.dp_x - a.dp_x) + rb_x - ra_x;
+            let d_y = (b.dp_y - a.dp_y) + rb_y - ra_y;
+            let s = point.base_separation + normal_x * d_x + normal_y * d_y;
+            let speculative = s.simd_gt(zero);
+            let (bias, mass_scale, impulse_scale) = if pass.use_bias {
+                (
+                    (bundle.bias_rate * s).max(max_push),
+                    bundle.mass_scale,
+                    bundle.impulse_scale,
+                )
+            } else {
+                (zero, one, zero)
+            };
+            let bias = speculative.bitselect(s * inv_h, bias);
+            let mass_scale = speculative.bitselect(one, mass_scale);
+            let impulse_scale = speculative.bitselect(zero, impulse_scale);
+            let vn = bundle.relative_normal_velocity(&point, &a, &b, normal_x, normal_y);
+            let impulse = -point.normal_mass * mass_scale * (vn + bias)
+                - impulse_scale * point.normal_impulse;
+            let total = (point.normal_impulse + impulse).max(zero);
+            let applied = total - point.normal_impulse;
+            let point = &mut bundle.points[j];
+            point.normal_impulse = total;
+            point.max_normal_impulse = point.max_normal_impulse.max(applied);
+            let point = *point;
+            bundle.apply(
+                &point,
+                normal_x * applied,
+                normal_y * applied,
+                &mut a,
+                &mut b,
+            );
+        }
+        if friction {
+            let (tangent_x, tangent_y) = (normal_y, -normal_x);
+            for j in 0..2 {
+                let point = bundle.points[j];
+                let vt = bundle.relative_normal_velocity(&point, &a, &b, tangent_x, tangent_y);
+                let limit = bundle.friction * point.normal_impulse;
+                let total = (point.tangent_impulse - point.tangent_mass * vt)
+                    .max(-limit)
+                    .min(limit);
+                let applied = total - point.tangent_impulse;
+                bundle.points[j].tangent_impulse = total;
+                bundle.apply(
+                    &point,
+                    tangent_x * applied,
+                    tangent_y * applied,
+                    &mut a,
+                    &mut b,
+                );
+            }
+        }
+        a.scatter(velocities, &bundle.a);
+        b.scatter(velocities, &bundle.b);
+    }
+
     /// Packs up to four constraints; `softness` is for moving and static partners.
     fn pack(
         constraints: &[ContactConstraint],
