@@ -1,5 +1,6 @@
 //! One timed run of a scene in either engine, measured the way Box2D's benchmark harness does.
 
+use stats_alloc::{INSTRUMENTED_SYSTEM, Region};
 use std::time::Instant;
 
 use carom::{BodyKind, World};
@@ -17,9 +18,21 @@ pub struct RunResult {
     pub top_drop: f32,
     /// True when any body's position became NaN or infinite.
     pub nan: bool,
+    /// Heap allocations during the timed steps (counted only where the program's global
+    /// allocator is [`stats_alloc::INSTRUMENTED_SYSTEM`], as in the `carom-bench` binary).
+    pub allocations: usize,
 }
 
 impl RunResult {
+    /// Heap allocations per timed step.
+    pub fn allocations_per_step(&self) -> f64 {
+        if self.timed_steps == 0 {
+            0.0
+        } else {
+            self.allocations as f64 / f64::from(self.timed_steps)
+        }
+    }
+
     /// Milliseconds per timed step.
     pub fn ms_per_step(&self) -> f64 {
         if self.timed_steps == 0 {
@@ -74,14 +87,16 @@ fn drop_of(top: Option<usize>, start: &[[f32; 2]], end: &[[f32; 2]]) -> f32 {
 pub fn run_carom(world: &mut World, dt: f32, steps: u32) -> Result<RunResult, String> {
     let start = carom_positions(world);
     let top = top_body(&start, &carom_dynamic_flags(world));
-    let mut total_ms = 0.0;
+    let (mut total_ms, mut allocations) = (0.0, 0);
     if steps > 0 {
         world.step(dt).map_err(|e| e.to_string())?;
+        let region = Region::new(&INSTRUMENTED_SYSTEM);
         let t0 = Instant::now();
         for _ in 1..steps {
             world.step(dt).map_err(|e| e.to_string())?;
         }
         total_ms = t0.elapsed().as_secs_f64() * 1e3;
+        allocations = region.change().allocations;
     }
     let end = carom_positions(world);
     Ok(RunResult {
@@ -89,6 +104,7 @@ pub fn run_carom(world: &mut World, dt: f32, steps: u32) -> Result<RunResult, St
         timed_steps: steps.saturating_sub(1),
         top_drop: drop_of(top, &start, &end),
         nan: any_nan(&end),
+        allocations,
     })
 }
 
@@ -96,14 +112,16 @@ pub fn run_carom(world: &mut World, dt: f32, steps: u32) -> Result<RunResult, St
 pub fn run_rapier(world: &mut RapierWorld, steps: u32) -> RunResult {
     let start = world.positions();
     let top = top_body(&start, &world.dynamic_flags());
-    let mut total_ms = 0.0;
+    let (mut total_ms, mut allocations) = (0.0, 0);
     if steps > 0 {
         world.step();
+        let region = Region::new(&INSTRUMENTED_SYSTEM);
         let t0 = Instant::now();
         for _ in 1..steps {
             world.step();
         }
         total_ms = t0.elapsed().as_secs_f64() * 1e3;
+        allocations = region.change().allocations;
     }
     let end = world.positions();
     RunResult {
@@ -111,5 +129,6 @@ pub fn run_rapier(world: &mut RapierWorld, steps: u32) -> RunResult {
         timed_steps: steps.saturating_sub(1),
         top_drop: drop_of(top, &start, &end),
         nan: any_nan(&end),
+        allocations,
     }
 }

@@ -1,10 +1,17 @@
-//! `carom-bench`: times carom and Rapier on the same scenes, in turn, in one process.
+//! `carom-bench`: times carom and Rapier on the same scenes, in turn, in one process: carom on
+//! one thread and on two, Rapier on one; counts heap allocations per step and memory per body.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use carom_bench::{RapierWorld, RunResult, run_carom, run_rapier};
 use clap::Parser;
+use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
+use std::alloc::System;
+
+/// Every allocation is counted, to report allocations per step and memory per body.
+#[global_allocator]
+static ALLOCATOR: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
 
 /// Time step of every run, s (Box2D's benchmark).
 const DT: f32 = 1.0 / 60.0;
@@ -33,14 +40,38 @@ struct Args {
     /// Also write the table as CSV to this file.
     #[arg(long)]
     csv: Option<PathBuf>,
+    /// Threads for carom's multi-threaded runs.
+    #[arg(long, default_value_t = 2)]
+    threads: usize,
 }
 
 /// One table row.
 struct Row {
     scene: String,
     bodies: usize,
+    /// carom on one thread.
     carom: RunResult,
+    /// carom on `--threads` threads.
+    carom_threads: RunResult,
     rapier: RunResult,
+    /// Heap bytes live after a run, per body.
+    carom_bytes_per_body: f64,
+    rapier_bytes_per_body: f64,
+}
+
+/// Live heap bytes that `build` leaves, per body, with what it built kept alive for `use_it`.
+fn bytes_per_body<T>(
+    bodies: usize,
+    build: impl FnOnce() -> Result<T, String>,
+    use_it: impl FnOnce(&mut T) -> Result<(), String>,
+) -> Result<(f64, T), String> {
+    let region = Region::new(&INSTRUMENTED_SYSTEM);
+    let mut built = build()?;
+    use_it(&mut built)?;
+    let change = region.change();
+    let live = change.bytes_allocated as f64 - change.bytes_deallocated as f64
+        + change.bytes_reallocated as f64;
+    Ok((live / bodies.max(1) as f64, built))
 }
 
 fn default_steps(path: &Path) -> u32 {
@@ -73,16 +104,27 @@ fn resolve(path: &Path) -> PathBuf {
     }
 }
 
-fn bench_scene(path: &Path, steps: u32, runs: u32) -> Result<Row, String> {
+fn bench_scene(
+    path: &Path,
+    steps: u32,
+    runs: u32,
+    one: &rayon::ThreadPool,
+    many: &rayon::ThreadPool,
+) -> Result<Row, String> {
     let path = &resolve(path);
     let load = || carom_scene::load(path).map_err(|e| format!("{}: {e}", path.display()));
-    let mut carom_best = None;
-    let mut rapier_best = None;
-    let mut bodies = 0;
+    let (mut carom_best, mut threads_best, mut rapier_best) = (None, None, None);
+    let (mut bodies, mut carom_bytes, mut rapier_bytes) = (0, 0.0, 0.0);
     for run in 1..=runs {
-        let mut scene = load()?;
+        // carom on one thread; its memory is what the world holds after the run.
+        let mut result = None;
+        let (bytes, scene) = bytes_per_body(1, load, |scene| {
+            result = Some(one.install(|| run_carom(&mut scene.world, DT, steps))?);
+            Ok(())
+        })?;
         bodies = scene.world.body_count();
-        let c = run_carom(&mut scene.world, DT, steps)?;
+        carom_bytes = bytes / bodies.max(1) as f64;
+        let c = result.ok_or("no carom run")?;
         eprintln!(
             "{} run {run}: carom {:.3} ms/step",
             path.display(),
@@ -91,10 +133,31 @@ fn bench_scene(path: &Path, steps: u32, runs: u32) -> Result<Row, String> {
         carom_best = Some(keep_min(carom_best, c));
         drop(scene);
 
-        let scene = load()?;
-        let mut rapier = RapierWorld::from_carom(&scene.world, DT)?;
+        let mut scene = load()?;
+        let t = many.install(|| run_carom(&mut scene.world, DT, steps))?;
+        eprintln!(
+            "{} run {run}: carom on {} threads {:.3} ms/step",
+            path.display(),
+            many.current_num_threads(),
+            t.ms_per_step()
+        );
+        threads_best = Some(keep_min(threads_best, t));
         drop(scene);
-        let r = run_rapier(&mut rapier, steps);
+
+        let scene = load()?;
+        let mut result = None;
+        let (bytes, rapier) = bytes_per_body(
+            bodies,
+            || RapierWorld::from_carom(&scene.world, DT),
+            |rapier| {
+                result = Some(run_rapier(rapier, steps));
+                Ok(())
+            },
+        )?;
+        rapier_bytes = bytes;
+        drop(rapier);
+        drop(scene);
+        let r = result.ok_or("no Rapier run")?;
         eprintln!(
             "{} run {run}: Rapier {:.3} ms/step",
             path.display(),
@@ -110,7 +173,10 @@ fn bench_scene(path: &Path, steps: u32, runs: u32) -> Result<Row, String> {
         scene: name,
         bodies,
         carom: carom_best.ok_or("no runs")?,
+        carom_threads: threads_best.ok_or("no runs")?,
         rapier: rapier_best.ok_or("no runs")?,
+        carom_bytes_per_body: carom_bytes,
+        rapier_bytes_per_body: rapier_bytes,
     })
 }
 
@@ -122,23 +188,44 @@ fn drop_cell(r: &RunResult) -> String {
     }
 }
 
-fn markdown(rows: &[Row]) -> String {
-    let mut s = String::from(
-        "| scene | bodies | carom ms/step | Rapier ms/step | carom/Rapier ratio | carom top drop m | Rapier top drop m |\n\
-         |---|---|---|---|---|---|---|\n",
+fn markdown(rows: &[Row], threads: usize) -> String {
+    let mut s = format!(
+        "| scene | bodies | carom ms/step | Rapier ms/step | carom / Rapier | carom on {threads} threads \
+         ms/step | speed-up on {threads} threads | carom top drop m | Rapier top drop m |\n\
+         |---|---|---|---|---|---|---|---|---|\n"
     );
     for r in rows {
-        let (c, p) = (r.carom.ms_per_step(), r.rapier.ms_per_step());
+        let (c, t, p) = (
+            r.carom.ms_per_step(),
+            r.carom_threads.ms_per_step(),
+            r.rapier.ms_per_step(),
+        );
         let _ = writeln!(
             s,
-            "| {} | {} | {:.3} | {:.3} | {:.2} | {} | {} |",
+            "| {} | {} | {c:.3} | {p:.3} | {:.2} | {t:.3} | {:.2} | {} | {} |",
             r.scene,
             r.bodies,
-            c,
-            p,
             c / p,
+            c / t,
             drop_cell(&r.carom),
             drop_cell(&r.rapier)
+        );
+    }
+    let _ = write!(
+        s,
+        "\n| scene | carom allocations/step | on {threads} threads | Rapier allocations/step | \
+         carom bytes/body | Rapier bytes/body |\n|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "| {} | {:.1} | {:.1} | {:.1} | {:.0} | {:.0} |",
+            r.scene,
+            r.carom.allocations_per_step(),
+            r.carom_threads.allocations_per_step(),
+            r.rapier.allocations_per_step(),
+            r.carom_bytes_per_body,
+            r.rapier_bytes_per_body
         );
     }
     s
@@ -146,22 +233,32 @@ fn markdown(rows: &[Row]) -> String {
 
 fn csv(rows: &[Row]) -> String {
     let mut s = String::from(
-        "scene,bodies,carom_ms_per_step,rapier_ms_per_step,carom_rapier_ratio,carom_top_drop_m,rapier_top_drop_m,carom_nan,rapier_nan\n",
+        "scene,bodies,carom_ms_per_step,rapier_ms_per_step,carom_rapier_ratio,\
+         carom_threads_ms_per_step,thread_speedup,carom_top_drop_m,rapier_top_drop_m,carom_nan,\
+         rapier_nan,carom_allocations_per_step,rapier_allocations_per_step,\
+         carom_bytes_per_body,rapier_bytes_per_body\n",
     );
     for r in rows {
-        let (c, p) = (r.carom.ms_per_step(), r.rapier.ms_per_step());
+        let (c, t, p) = (
+            r.carom.ms_per_step(),
+            r.carom_threads.ms_per_step(),
+            r.rapier.ms_per_step(),
+        );
         let _ = writeln!(
             s,
-            "{},{},{:.4},{:.4},{:.4},{:.4},{:.4},{},{}",
+            "{},{},{c:.4},{p:.4},{:.4},{t:.4},{:.4},{:.4},{:.4},{},{},{:.2},{:.2},{:.0},{:.0}",
             r.scene,
             r.bodies,
-            c,
-            p,
             c / p,
+            c / t,
             r.carom.top_drop,
             r.rapier.top_drop,
             r.carom.nan,
-            r.rapier.nan
+            r.rapier.nan,
+            r.carom.allocations_per_step(),
+            r.rapier.allocations_per_step(),
+            r.carom_bytes_per_body,
+            r.rapier_bytes_per_body
         );
     }
     s
@@ -183,9 +280,16 @@ fn main() -> Result<(), String> {
             .map(|p| (p.clone(), args.steps.unwrap_or_else(|| default_steps(p))))
             .collect()
     };
+    let pool = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| e.to_string())
+    };
+    let (one, many) = (pool(1)?, pool(args.threads.max(1))?);
     let mut rows = Vec::new();
     for (path, steps) in &scenes {
-        rows.push(bench_scene(path, *steps, args.runs)?);
+        rows.push(bench_scene(path, *steps, args.runs, &one, &many)?);
     }
     println!(
         "dt 1/60, steps {}, first step untimed, minimum of {} run(s)\n",
@@ -196,7 +300,7 @@ fn main() -> Result<(), String> {
             .join(", "),
         args.runs
     );
-    print!("{}", markdown(&rows));
+    print!("{}", markdown(&rows, args.threads));
     if let Some(path) = &args.csv {
         std::fs::write(path, csv(&rows)).map_err(|e| format!("{}: {e}", path.display()))?;
     }

@@ -164,7 +164,7 @@ impl DynamicTree {
         if self.root == NULL {
             return;
         }
-        let mut stack: Vec<u32> = Vec::with_capacity(64);
+        let mut stack = NodeStack::default();
         stack.push(self.root);
         while let Some(id) = stack.pop() {
             let node = &self.nodes[id as usize];
@@ -193,7 +193,7 @@ impl DynamicTree {
         if self.root == NULL {
             return;
         }
-        let mut stack: Vec<u32> = Vec::with_capacity(64);
+        let mut stack = NodeStack::default();
         stack.push(self.root);
         while let Some(id) = stack.pop() {
             let node = &self.nodes[id as usize];
@@ -554,6 +554,8 @@ pub struct BroadPhase {
     proxies: Vec<Option<Proxy>>,
     /// Slots whose fat box changed since the last pair update.
     move_buffer: Vec<u32>,
+    /// Candidate pairs of slots found by the last pair update (kept to reuse the memory).
+    candidates: Vec<(u32, u32)>,
 }
 
 impl BroadPhase {
@@ -653,9 +655,22 @@ impl BroadPhase {
     /// one body is dynamic. Pairs for which `exists` answers true are left out.
     pub fn update_pairs(
         &mut self,
-        mut exists: impl FnMut(BodyHandle, BodyHandle) -> bool,
+        exists: impl FnMut(BodyHandle, BodyHandle) -> bool,
     ) -> Vec<(BodyHandle, BodyHandle)> {
-        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        let mut pairs = Vec::new();
+        self.update_pairs_into(exists, &mut pairs);
+        pairs
+    }
+
+    /// [`BroadPhase::update_pairs`] into `out` (cleared first), allocating nothing once the
+    /// buffers have grown.
+    pub fn update_pairs_into(
+        &mut self,
+        mut exists: impl FnMut(BodyHandle, BodyHandle) -> bool,
+        out: &mut Vec<(BodyHandle, BodyHandle)>,
+    ) {
+        let mut pairs = std::mem::take(&mut self.candidates);
+        pairs.clear();
         for &slot in &self.move_buffer {
             let Some(proxy) = self.proxies[slot as usize] else {
                 continue;
@@ -690,16 +705,15 @@ impl BroadPhase {
         self.move_buffer.clear();
         pairs.sort_unstable();
         pairs.dedup();
-        pairs
-            .into_iter()
-            .filter_map(|(a, b)| {
-                let (a, b) = (
-                    self.proxies[a as usize]?.handle,
-                    self.proxies[b as usize]?.handle,
-                );
-                (!exists(a, b)).then_some((a, b))
-            })
-            .collect()
+        out.clear();
+        out.extend(pairs.iter().filter_map(|&(a, b)| {
+            let (a, b) = (
+                self.proxies[a as usize]?.handle,
+                self.proxies[b as usize]?.handle,
+            );
+            (!exists(a, b)).then_some((a, b))
+        }));
+        self.candidates = pairs;
     }
 
     /// Every pair whose fat boxes overlap now, as [`BroadPhase::update_pairs`] orders them:
@@ -800,6 +814,49 @@ pub fn brute_force_pairs(
     }
     pairs.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
     pairs
+}
+
+/// The nodes still to visit in a tree walk: on the stack for any tree of sane height, so a
+/// query allocates nothing; a spill vector only for pathologically deep trees.
+struct NodeStack {
+    inline: [u32; 128],
+    len: usize,
+    spill: Vec<u32>,
+}
+
+impl Default for NodeStack {
+    fn default() -> Self {
+        NodeStack {
+            inline: [0; 128],
+            len: 0,
+            spill: Vec::new(),
+        }
+    }
+}
+
+impl NodeStack {
+    #[inline]
+    fn push(&mut self, node: u32) {
+        if self.len < self.inline.len() {
+            self.inline[self.len] = node;
+            self.len += 1;
+        } else {
+            self.spill.push(node);
+        }
+    }
+
+    /// The last pushed node (the spill holds the newest once the array is full).
+    #[inline]
+    fn pop(&mut self) -> Option<u32> {
+        if let Some(node) = self.spill.pop() {
+            return Some(node);
+        }
+        if self.len == 0 {
+            return None;
+        }
+        self.len -= 1;
+        Some(self.inline[self.len])
+    }
 }
 
 #[cfg(test)]

@@ -25,6 +25,17 @@ fn find(parent: &mut [u32], mut i: u32) -> u32 {
     i
 }
 
+/// The memory island finding works in, kept from step to step so it allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Islands {
+    /// Union-find links between bodies (dense indices).
+    parent: Vec<u32>,
+    /// Per island root, the shortest time any of its bodies has rested.
+    island_rest: Vec<Real>,
+    /// Per island root, the sleep group it falls asleep as (0: not yet numbered).
+    group_of_root: Vec<u32>,
+}
+
 /// Advances sleep timers and puts resting islands to sleep. `touching` lists the dense indices
 /// of every touching contact's bodies; `next_group` numbers the islands that fall asleep.
 /// Returns how many sleep timers were advanced.
@@ -33,36 +44,45 @@ pub(crate) fn update_sleep(
     touching: &[(usize, usize)],
     dt: Real,
     next_group: &mut u32,
+    islands: &mut Islands,
 ) -> usize {
+    let Islands {
+        parent,
+        island_rest,
+        group_of_root,
+    } = islands;
     let awake_dynamic = |b: &Body| b.kind() == BodyKind::Dynamic && !b.is_sleeping();
     let mut checked = 0;
     for body in bodies.iter_mut().filter(|b| awake_dynamic(b)) {
         body.update_sleep_time(SLEEP_THRESHOLD, dt);
         checked += 1;
     }
-    let mut parent: Vec<u32> = (0..bodies.len() as u32).collect();
+    parent.clear();
+    parent.extend(0..bodies.len() as u32);
     for &(a, b) in touching {
         if awake_dynamic(&bodies[a]) && awake_dynamic(&bodies[b]) {
-            let (ra, rb) = (find(&mut parent, a as u32), find(&mut parent, b as u32));
+            let (ra, rb) = (find(parent, a as u32), find(parent, b as u32));
             if ra != rb {
                 parent[ra.max(rb) as usize] = ra.min(rb);
             }
         }
     }
     // The island rests as long as its most restless body.
-    let mut island_rest = vec![Real::INFINITY; bodies.len()];
+    island_rest.clear();
+    island_rest.resize(bodies.len(), Real::INFINITY);
     for (i, body) in bodies.iter().enumerate() {
         if awake_dynamic(body) {
-            let root = find(&mut parent, i as u32) as usize;
+            let root = find(parent, i as u32) as usize;
             island_rest[root] = island_rest[root].min(body.sleep_time());
         }
     }
-    let mut group_of_root: Vec<u32> = vec![0; bodies.len()];
+    group_of_root.clear();
+    group_of_root.resize(bodies.len(), 0);
     for (i, body) in bodies.iter_mut().enumerate() {
         if !awake_dynamic(body) {
             continue;
         }
-        let root = find(&mut parent, i as u32) as usize;
+        let root = find(parent, i as u32) as usize;
         if island_rest[root] >= TIME_TO_SLEEP {
             if group_of_root[root] == 0 {
                 *next_group += 1;

@@ -46,6 +46,28 @@ pub struct World {
     stats: StepStats,
     /// The solver's memory, reused from step to step.
     solver_workspace: solver::Workspace,
+    /// The other stages' memory, reused from step to step.
+    scratch: StepScratch,
+}
+
+/// What the stages of a step work in besides the solver, kept so a step in steady state
+/// allocates nothing.
+#[derive(Debug, Clone, Default)]
+struct StepScratch {
+    /// New pairs from the broadphase.
+    pairs: Vec<(BodyHandle, BodyHandle)>,
+    /// Dense indices of every contact's bodies.
+    dense: Vec<(usize, usize)>,
+    /// Bodies' poses at the start of the step (for continuous collision).
+    starts: Vec<Pose>,
+    /// Dense index of each body slot.
+    dense_of_slot: Vec<Option<usize>>,
+    /// Dense indices of the touching contacts' bodies (for sleeping).
+    touching: Vec<(usize, usize)>,
+    /// Sleeping islands a moving body touched.
+    wake: Vec<u32>,
+    /// Island finding's memory.
+    islands: sleep::Islands,
 }
 
 fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {
@@ -267,21 +289,34 @@ impl World {
         self.contacts.begin_step();
         self.catch_up_with_edits();
 
-        timed(&mut times.broadphase, || self.find_pairs());
-        stats.max_penetration = timed(&mut times.narrowphase, || self.build_manifolds());
-        let dense = self.contact_bodies();
+        let mut scratch = std::mem::take(&mut self.scratch);
+
+        timed(&mut times.broadphase, || {
+            self.find_pairs(&mut scratch.pairs)
+        });
+        stats.max_penetration = timed(&mut times.narrowphase, || {
+            self.build_manifolds(&mut scratch.wake)
+        });
+        self.contact_bodies(&mut scratch.dense);
         let effects = self.settings.effects;
-        let starts = effects.contains(Effect::Continuous).then(|| self.poses());
-        (stats.contact_points, stats.work) = timed(&mut times.solve, || self.solve(dt, &dense));
-        if let Some(starts) = starts {
-            (stats.continuous_impacts, stats.work.sweeps) =
-                timed(&mut times.continuous, || self.solve_continuous(&starts));
+        let continuous = effects.contains(Effect::Continuous);
+        if continuous {
+            self.poses(&mut scratch.starts);
+        }
+        (stats.contact_points, stats.work) =
+            timed(&mut times.solve, || self.solve(dt, &scratch.dense));
+        if continuous {
+            (stats.continuous_impacts, stats.work.sweeps) = timed(&mut times.continuous, || {
+                self.solve_continuous(&scratch.starts, &mut scratch.dense_of_slot)
+            });
         }
         timed(&mut times.broadphase, || self.refresh_broadphase());
         if effects.contains(Effect::Sleeping) {
-            stats.work.sleep_checks = timed(&mut times.sleep, || self.update_sleep(dt, &dense));
+            stats.work.sleep_checks =
+                timed(&mut times.sleep, || self.update_sleep(dt, &mut scratch));
         }
 
+        self.scratch = scratch;
         self.record(stats, started);
         self.time += dt as f64;
         self.step_count += 1;
@@ -290,32 +325,34 @@ impl World {
 
     /// Rebuilds the manifolds of every pair where something moves, and wakes the sleeping
     /// islands a moving body touched so they join this step; returns the deepest overlap.
-    fn build_manifolds(&mut self) -> Real {
-        let mut wake = Vec::new();
+    fn build_manifolds(&mut self, wake: &mut Vec<u32>) -> Real {
+        wake.clear();
         let deepest = self.contacts.update(
             &self.bodies,
             &self.broadphase,
             self.settings.speculative_distance,
-            &mut wake,
+            wake,
         );
-        sleep::wake_groups(self.bodies.as_mut_slice(), &wake);
+        sleep::wake_groups(self.bodies.as_mut_slice(), wake);
         deepest
     }
 
     /// Advances sleep timers and puts resting islands to sleep; returns the bodies checked.
-    fn update_sleep(&mut self, dt: Real, dense: &[(usize, usize)]) -> usize {
-        let touching: Vec<(usize, usize)> = self
-            .contacts
-            .iter()
-            .zip(dense)
-            .filter(|(c, _)| c.is_touching())
-            .map(|(_, pair)| *pair)
-            .collect();
+    fn update_sleep(&mut self, dt: Real, scratch: &mut StepScratch) -> usize {
+        scratch.touching.clear();
+        scratch.touching.extend(
+            self.contacts
+                .iter()
+                .zip(&scratch.dense)
+                .filter(|(c, _)| c.is_touching())
+                .map(|(_, pair)| *pair),
+        );
         sleep::update_sleep(
             self.bodies.as_mut_slice(),
-            &touching,
+            &scratch.touching,
             dt,
             &mut self.sleep_groups,
+            &mut scratch.islands,
         )
     }
 
@@ -335,18 +372,23 @@ impl World {
         self.stats = stats;
     }
 
-    /// Every body's pose, in storage order.
-    fn poses(&self) -> Vec<Pose> {
-        self.bodies.as_slice().iter().map(Pose::of).collect()
+    /// Every body's pose, in storage order, into `poses`.
+    fn poses(&self, poses: &mut Vec<Pose>) {
+        poses.clear();
+        poses.extend(self.bodies.as_slice().iter().map(Pose::of));
     }
 
     /// Moves fast bodies that would have passed through something back to the impact;
-    /// returns how many, and how many fast bodies were swept.
-    fn solve_continuous(&mut self, starts: &[Pose]) -> (usize, usize) {
+    /// returns how many, and how many fast bodies were swept. `dense` is memory for the
+    /// dense index of every slot.
+    fn solve_continuous(
+        &mut self,
+        starts: &[Pose],
+        dense: &mut Vec<Option<usize>>,
+    ) -> (usize, usize) {
         let slots = &self.bodies;
-        let dense: Vec<Option<usize>> = (0..slots.slot_count())
-            .map(|slot| slots.dense_index_of_slot(slot))
-            .collect();
+        dense.clear();
+        dense.extend((0..slots.slot_count()).map(|slot| slots.dense_index_of_slot(slot)));
         continuous::solve_continuous(
             self.bodies.as_mut_slice(),
             starts,
@@ -356,18 +398,20 @@ impl World {
         )
     }
 
-    /// The dense indices of every contact's two bodies, in contact order.
-    fn contact_bodies(&self) -> Vec<(usize, usize)> {
+    /// The dense indices of every contact's two bodies, in contact order, into `dense`.
+    fn contact_bodies(&self, dense: &mut Vec<(usize, usize)>) {
         let bodies = &self.bodies;
         let index = |h| {
             bodies
                 .dense_index(h)
                 .expect("contacts only join live bodies")
         };
-        self.contacts
-            .iter()
-            .map(|c| (index(c.body_a()), index(c.body_b())))
-            .collect()
+        dense.clear();
+        dense.extend(
+            self.contacts
+                .iter()
+                .map(|c| (index(c.body_a()), index(c.body_b()))),
+        );
     }
 
     /// Runs the configured solver over every moving body and touching contact; returns how
@@ -407,10 +451,11 @@ impl World {
     }
 
     /// Creates contacts for pairs whose enlarged boxes began to overlap.
-    fn find_pairs(&mut self) {
+    fn find_pairs(&mut self, pairs: &mut Vec<(BodyHandle, BodyHandle)>) {
         let contacts = &self.contacts;
-        let pairs = self.broadphase.update_pairs(|a, b| contacts.contains(a, b));
-        for (a, b) in pairs {
+        self.broadphase
+            .update_pairs_into(|a, b| contacts.contains(a, b), pairs);
+        for &(a, b) in pairs.iter() {
             self.contacts.add(a, b);
         }
     }

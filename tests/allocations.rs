@@ -1,0 +1,95 @@
+//! A world in steady state steps without touching the heap: every stage keeps its memory from
+//! step to step. Counted by an instrumented global allocator, so this file holds one test (the
+//! count is process-wide).
+
+use carom::{BodyDef, Effect, Effects, Shape, World, WorldSettings, vec2};
+use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
+use std::alloc::System;
+
+#[global_allocator]
+static ALLOCATOR: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
+
+/// A pyramid of `base` boxes with circles resting beside it, every effect in `effects`.
+fn pyramid(base: usize, effects: Effects) -> World {
+    let settings = WorldSettings {
+        effects,
+        ..WorldSettings::default()
+    };
+    let mut world = World::with_settings(settings).unwrap();
+    world
+        .add_body(BodyDef::static_body(Shape::rect(200.0, 1.0).unwrap()).position(vec2(0.0, -1.0)))
+        .unwrap();
+    for row in 0..base {
+        for column in 0..base - row {
+            let x = column as f32 - (base - row - 1) as f32 * 0.5;
+            world
+                .add_body(
+                    BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+                        .position(vec2(x, row as f32 + 0.5))
+                        .friction(0.6)
+                        .damping(0.1, 0.1),
+                )
+                .unwrap();
+        }
+    }
+    for i in 0..20 {
+        let x = base as f32 * 0.5 + 2.0 + i as f32;
+        world
+            .add_body(
+                BodyDef::dynamic(Shape::circle(0.4).unwrap())
+                    .position(vec2(x, 0.4))
+                    .restitution(0.5),
+            )
+            .unwrap();
+    }
+    world
+}
+
+/// Allocations over `steps` steps of `world` after `warm_up` steps, on `threads` threads.
+fn allocations(mut world: World, threads: usize, warm_up: usize, steps: usize) -> usize {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        for _ in 0..warm_up {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        let region = Region::new(&INSTRUMENTED_SYSTEM);
+        for _ in 0..steps {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        region.change().allocations
+    })
+}
+
+#[test]
+fn a_world_in_steady_state_allocates_nothing_per_step() {
+    let awake = Effects::ALL.without(Effect::Sleeping);
+    // Small (everything on the calling thread) and large (the parallel paths), one thread and
+    // two; then sleeping on, with the pyramid falling asleep during the counted steps.
+    let cases = [
+        ("pyramid of 20, awake, 1 thread", pyramid(20, awake), 1, 60),
+        ("pyramid of 20, awake, 2 threads", pyramid(20, awake), 2, 60),
+        (
+            "pyramid of 100, awake, 2 threads",
+            pyramid(100, awake),
+            2,
+            5,
+        ),
+        (
+            "pyramid of 20, sleeping on",
+            pyramid(20, Effects::ALL),
+            1,
+            30,
+        ),
+    ];
+    let mut failures = Vec::new();
+    for (name, world, threads, warm_up) in cases {
+        let count = allocations(world, threads, warm_up, 60);
+        if count > 0 {
+            failures.push(format!("{name}: {count} allocations in 60 steps"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
