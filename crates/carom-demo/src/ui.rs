@@ -138,6 +138,11 @@ fn solver_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>
         egui::Checkbox::new(&mut params.graph_coloring, "graph colouring (SIMD)"),
     )
     .on_hover_text("Solve contacts colour by colour, four at a time: faster, a little more jitter");
+    ui.add_enabled(
+        soft,
+        egui::Checkbox::new(&mut params.friction_in_bias_pass, "friction in biased pass"),
+    )
+    .on_hover_text("Solve friction in both passes (Box2D v3.1), not only when relaxing");
     if soft {
         ui.add(egui::Slider::new(&mut params.contact_hertz, 5.0..=120.0).text("contact Hz"));
         ui.add(egui::Slider::new(&mut params.damping_ratio, 0.1..=20.0).text("damping ratio"));

@@ -97,6 +97,12 @@ pub struct SolverParams {
     /// a little more jitter (see the soak in the stability suite). Off solves one by one in
     /// contact order. Default on.
     pub graph_coloring: bool,
+    /// Soft step: solve friction in the biased pass too, not only in the relaxation, as Box2D
+    /// v3.1 does. Friction then converges twice as often, so piles spread less (the top of
+    /// Box2D's 5050-box pyramid sinks 0.78 m in 500 steps instead of 0.89 m) and resting piles
+    /// jitter less; Box2D 3.2 and Rapier solve it in the relaxation only, saying friction that
+    /// reacts to push-out velocity pumps lean into tall stacks. Default on.
+    pub friction_in_bias_pass: bool,
     /// Soft step: contact stiffness in Hz, capped at a quarter of the substep rate. Default 30,
     /// as in Box2D. Soft contacts give a little under load (about 13 mm under 19 stacked 1 m
     /// boxes at 30 Hz), so a tall column of boxes can buckle: at 30 Hz a column of 10 stands and
@@ -131,6 +137,7 @@ impl Default for SolverParams {
             substeps: 4,
             warm_starting: true,
             graph_coloring: true,
+            friction_in_bias_pass: true,
             contact_hertz: 30.0,
             damping_ratio: 10.0,
             static_stiffness: 2.0,

@@ -54,6 +54,7 @@ pub(super) fn solve(
         inv_h,
         max_push_speed: params.max_push_speed,
     };
+    let bias_friction = environment.friction && params.friction_in_bias_pass;
     let mut work = Work::default();
     for _ in 0..substeps {
         work += integrate_velocities(params, environment, bodies, states, h);
@@ -65,10 +66,10 @@ pub(super) fn solve(
         }
         for _ in 0..params.iterations {
             velocities.load(states);
-            wide.solve(states, velocities, pass(true), false);
+            wide.solve(states, velocities, pass(true), bias_friction);
             velocities.store(states);
             for &index in &wide.overflow {
-                solve_one(&mut constraints[index], states, &bias, true, false);
+                solve_one(&mut constraints[index], states, &bias, true, bias_friction);
             }
         }
         integrate_positions(bodies, states, h);
@@ -136,9 +137,9 @@ fn warm_start_one(c: &ContactConstraint, states: &mut [BodyState]) {
 }
 
 /// One constraint: non-penetration with the soft bias (or none when relaxing), then Coulomb
-/// friction if asked (soft step asks in the relax pass only: friction reacting to the push-out
-/// velocity makes stacks lean, as Box2D 3.2 and Rapier found). The wide solver does the same
-/// four constraints at a time; this one serves the constraints no colour was free for.
+/// friction if asked (in both passes by default, as Box2D v3.1; in the relaxation only with
+/// `friction_in_bias_pass` off, as Box2D 3.2 and Rapier). The wide solver does the same four
+/// constraints at a time; this one serves the constraints no colour was free for.
 fn solve_one(
     c: &mut ContactConstraint,
     states: &mut [BodyState],
