@@ -12,6 +12,8 @@ use crate::broadphase::{BroadPhase, kinds_can_collide};
 use crate::manifold::{self, Manifold};
 use crate::math::Real;
 use crate::parallel::map_mut_into;
+use crate::recycle::ManifoldFrame;
+use crate::shape::Shape;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 
@@ -22,6 +24,8 @@ pub struct Contact {
     body_b: BodyHandle,
     manifold: Manifold,
     touching: bool,
+    /// What the manifold was built against, to carry it along while the bodies barely move.
+    frame: ManifoldFrame,
 }
 
 impl Contact {
@@ -143,6 +147,7 @@ impl ContactSet {
             body_b,
             manifold: Manifold::default(),
             touching: false,
+            frame: ManifoldFrame::default(),
         });
     }
 
@@ -196,6 +201,7 @@ impl ContactSet {
         bodies: &BodySet,
         broadphase: &BroadPhase,
         margin: Real,
+        recycling: bool,
         wake: &mut Vec<u32>,
     ) -> Real {
         // First every manifold, on as many threads as rayon gives (each contact on its own),
@@ -204,7 +210,7 @@ impl ContactSet {
             &mut self.contacts,
             &mut self.refresh,
             CONTACTS_PER_TASK,
-            |contact| refresh_manifold(contact, bodies, broadphase, margin),
+            |contact| refresh_manifold(contact, bodies, broadphase, margin, recycling),
         );
         let mut deepest: Real = 0.0;
         let mut index = self.contacts.len();
@@ -272,12 +278,14 @@ impl ContactSet {
     }
 }
 
-/// Rebuilds one contact's manifold if either body moves; says whether the contact lives on.
+/// Rebuilds one contact's manifold if either body moves (or, `recycling`, carries the last one
+/// along if they barely moved relative to each other); says whether the contact lives on.
 fn refresh_manifold(
     contact: &mut Contact,
     bodies: &BodySet,
     broadphase: &BroadPhase,
     margin: Real,
+    recycling: bool,
 ) -> Refresh {
     let (Some(a), Some(b)) = (bodies.get(contact.body_a), bodies.get(contact.body_b)) else {
         return Refresh::Gone;
@@ -290,7 +298,21 @@ fn refresh_manifold(
     {
         return Refresh::Gone;
     }
+    // Only polygon pairs: their manifold is the expensive one (SAT and clipping); a circle's
+    // is a few multiplications, and its normal follows the centres, not the body's turn.
+    let polygons = matches!(
+        (a.shape(), b.shape()),
+        (Shape::Polygon(_), Shape::Polygon(_))
+    );
+    if recycling
+        && polygons
+        && let Some(carried) = contact.frame.carry(&contact.manifold, a, b)
+    {
+        contact.manifold = carried;
+        return Refresh::Updated;
+    }
     contact.manifold =
         manifold::update(a.world_shape(), b.world_shape(), margin, &contact.manifold);
+    contact.frame = ManifoldFrame::of(&contact.manifold, &a.transform(), &b.transform());
     Refresh::Updated
 }

@@ -45,6 +45,7 @@ pub mod mouse_joint;
 pub mod narrowphase;
 mod parallel;
 pub mod ray;
+pub mod recycle;
 pub mod segment;
 pub mod settings;
 pub mod shape;

@@ -32,6 +32,9 @@ pub struct WorldSettings {
     pub solver: SolverParams,
     /// The effects simulated; what is not named costs nothing. Default: all of them.
     pub effects: Effects,
+    /// Carry a pair's manifold along with its bodies while they barely move relative to each
+    /// other ([`crate::recycle`]), instead of rebuilding it every step. Default on.
+    pub contact_recycling: bool,
 }
 
 impl Default for WorldSettings {
@@ -43,6 +46,7 @@ impl Default for WorldSettings {
             aabb_margin: AABB_MARGIN,
             solver: SolverParams::default(),
             effects: Effects::ALL,
+            contact_recycling: true,
         }
     }
 }

@@ -331,6 +331,7 @@ impl World {
             &self.bodies,
             &self.broadphase,
             self.settings.speculative_distance,
+            self.settings.contact_recycling,
             wake,
         );
         sleep::wake_groups(self.bodies.as_mut_slice(), wake);
