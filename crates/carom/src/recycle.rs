@@ -6,7 +6,7 @@
 
 use crate::body::Body;
 use crate::manifold::{ContactEdge, Manifold, PairSide};
-use crate::math::{Isometry, Real, Vec2};
+use crate::math::{Isometry, Real, Rot, Vec2};
 use crate::settings::LINEAR_SLOP;
 use crate::shape::WorldShape;
 
@@ -24,8 +24,8 @@ pub(crate) struct ManifoldFrame {
     valid: bool,
     /// B's translation in A's frame.
     relative_translation: Vec2,
-    /// B's angle relative to A.
-    relative_angle: Real,
+    /// B's rotation relative to A.
+    relative_rotation: Rot,
     /// The normal in A's frame.
     normal_in_a: Vec2,
     /// Per point: where it was in A's frame and in B's frame, and its separation then.
@@ -48,7 +48,7 @@ impl ManifoldFrame {
         ManifoldFrame {
             valid: true,
             relative_translation: relative.translation.vector,
-            relative_angle: relative.rotation.angle(),
+            relative_rotation: relative.rotation,
             normal_in_a: a.inverse_transform_vector(&manifold.normal),
             points,
         }
@@ -63,8 +63,9 @@ impl ManifoldFrame {
         let (pose_a, pose_b) = (a.transform(), b.transform());
         let relative = pose_a.inv_mul(&pose_b);
         let moved = (relative.translation.vector - self.relative_translation).norm();
-        let turned = (relative.rotation.angle() - self.relative_angle).abs();
-        if moved > RECYCLE_DISTANCE || turned > RECYCLE_ANGLE {
+        // The sine and cosine of the turn since, without an arctangent.
+        let turn = self.relative_rotation.rotation_to(&relative.rotation);
+        if moved > RECYCLE_DISTANCE || turn.re <= 0.0 || turn.im.abs() > RECYCLE_ANGLE.sin() {
             return None;
         }
         let mut manifold = *previous;

@@ -1,6 +1,6 @@
 //! `carom bench`: what accuracy costs in time. Every solver setting (solver × iterations ×
-//! substeps) runs each scene a few times; each point of the sweep is its median ms/step and its
-//! error against the scene's exact answer ([`carom_scene::Accuracy`]). The results go to a CSV,
+//! substeps) runs each scene a few times, sleeping off; each point of the sweep is its median
+//! ms/step and its error against the scene's exact answer ([`carom_scene::Accuracy`]). The results go to a CSV,
 //! a markdown report and a chart of error against time.
 
 pub mod chart;

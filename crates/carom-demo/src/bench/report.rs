@@ -91,8 +91,9 @@ pub fn markdown(points: &[Point], machine: &Machine, command: &str, runs: usize)
     let _ = writeln!(
         out,
         "Measured {} on {} ({} cores) with `{command}`: every cell is the median ms/step over \
-         {runs} runs and the error against the scene's exact answer. Release build, one thread. \
-         `inf` means the world went NaN.\n",
+         {runs} runs and the error against the scene's exact answer. Release build, sleeping \
+         off (every step is solved), scenes this size run on one thread. `inf` means the world \
+         went NaN.\n",
         machine.date, machine.cpu, machine.cores
     );
     let _ = writeln!(out, "![error against time](accuracy.png)\n");
