@@ -69,12 +69,13 @@ pub(crate) fn for_each_by_color<T: Send>(
                 if taken[color][index].swap(true, Ordering::Relaxed) {
                     continue;
                 }
+                // Counted when the block is done, even if `task` panics, so no thread spins
+                // forever and rayon can pass the panic on.
+                let _counted = CountOnDrop(&done[color]);
                 if let Some(block) = &blocks[color][index] {
                     let mut block = block.lock().unwrap_or_else(|e| e.into_inner());
                     block.iter_mut().for_each(&task);
                 }
-                // Release: whoever sees the count also sees what the block wrote.
-                done[color].fetch_add(1, Ordering::Release);
             }
             while done[color].load(Ordering::Acquire) < count {
                 std::hint::spin_loop();
@@ -82,6 +83,16 @@ pub(crate) fn for_each_by_color<T: Send>(
         }
     };
     (0..threads).into_par_iter().for_each(|_| work());
+}
+
+/// Adds one to a colour's count of finished blocks when dropped. Release: whoever sees the
+/// count also sees what the block wrote.
+struct CountOnDrop<'a>(&'a AtomicUsize);
+
+impl Drop for CountOnDrop<'_> {
+    fn drop(&mut self) {
+        self.0.fetch_add(1, Ordering::Release);
+    }
 }
 
 #[cfg(test)]
@@ -125,5 +136,26 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A task that panics ends the pass with that panic, not with threads spinning forever.
+    #[test]
+    fn a_panicking_task_is_passed_on() {
+        let colors: Vec<Range<usize>> = vec![0..1500, 1500..3000];
+        let mut items: Vec<usize> = (0..3000).collect();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            pool.install(|| {
+                for_each_by_color(&mut items, &colors, |item| {
+                    if *item == 700 {
+                        panic!("item 700");
+                    }
+                });
+            })
+        }));
+        assert!(result.is_err());
     }
 }
