@@ -55,6 +55,7 @@ pub(super) fn solve(
         max_push_speed: params.max_push_speed,
     };
     let bias_friction = environment.friction && params.friction_in_bias_pass;
+    let points: usize = constraints.iter().map(|c| c.points().len()).sum();
     let mut work = Work::default();
     for _ in 0..substeps {
         work += integrate_velocities(params, environment, bodies, states, h);
@@ -70,6 +71,9 @@ pub(super) fn solve(
             velocities.store(states);
             for &index in &wide.overflow {
                 solve_one(&mut constraints[index], states, &bias, true, bias_friction);
+            }
+            if bias_friction {
+                work.friction_impulses += points;
             }
         }
         integrate_positions(bodies, states, h);
@@ -87,8 +91,7 @@ pub(super) fn solve(
                 );
             }
             if environment.friction {
-                work.friction_impulses +=
-                    constraints.iter().map(|c| c.points().len()).sum::<usize>();
+                work.friction_impulses += points;
             }
         }
     }
