@@ -57,43 +57,56 @@ pub(super) fn solve(
     let bias_friction = environment.friction && params.friction_in_bias_pass;
     let points: usize = constraints.iter().map(|c| c.points().len()).sum();
     let mut work = Work::default();
+    // The wide passes work on the shared velocities, the rest on the states: the velocities
+    // cross over only where the other side needs them.
+    let overflow = !wide.overflow.is_empty();
     for _ in 0..substeps {
         work += integrate_velocities(params, environment, bodies, states, h);
         velocities.load(states);
         wide.warm_start(states, velocities);
-        velocities.store(states);
-        for &index in &wide.overflow {
-            warm_start_one(&constraints[index], states);
-        }
-        for _ in 0..params.iterations {
-            velocities.load(states);
-            wide.solve(states, velocities, pass(true), bias_friction);
+        if overflow {
             velocities.store(states);
             for &index in &wide.overflow {
-                solve_one(&mut constraints[index], states, &bias, true, bias_friction);
+                warm_start_one(&constraints[index], states);
+            }
+            velocities.load(states);
+        }
+        for _ in 0..params.iterations {
+            wide.solve(states, velocities, pass(true), bias_friction);
+            if overflow {
+                velocities.store(states);
+                for &index in &wide.overflow {
+                    solve_one(&mut constraints[index], states, &bias, true, bias_friction);
+                }
+                velocities.load(states);
             }
             if bias_friction {
                 work.friction_impulses += points;
             }
         }
+        velocities.store(states);
         integrate_positions(bodies, states, h);
+        velocities.load(states);
         for _ in 0..params.iterations {
-            velocities.load(states);
             wide.solve(states, velocities, pass(false), environment.friction);
-            velocities.store(states);
-            for &index in &wide.overflow {
-                solve_one(
-                    &mut constraints[index],
-                    states,
-                    &bias,
-                    false,
-                    environment.friction,
-                );
+            if overflow {
+                velocities.store(states);
+                for &index in &wide.overflow {
+                    solve_one(
+                        &mut constraints[index],
+                        states,
+                        &bias,
+                        false,
+                        environment.friction,
+                    );
+                }
+                velocities.load(states);
             }
             if environment.friction {
                 work.friction_impulses += points;
             }
         }
+        velocities.store(states);
     }
     wide.store(constraints);
     if environment.restitution {
