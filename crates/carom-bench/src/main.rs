@@ -59,6 +59,17 @@ struct Row {
     rapier_bytes_per_body: f64,
 }
 
+impl Row {
+    /// ms/step of carom on one thread, on several, and of Rapier.
+    fn ms_per_step(&self) -> (f64, f64, f64) {
+        (
+            self.carom.ms_per_step(),
+            self.carom_threads.ms_per_step(),
+            self.rapier.ms_per_step(),
+        )
+    }
+}
+
 /// Live heap bytes that `build` leaves, per body, with what it built kept alive for `use_it`.
 fn bytes_per_body<T>(
     bodies: usize,
@@ -195,11 +206,7 @@ fn markdown(rows: &[Row], threads: usize) -> String {
          |---|---|---|---|---|---|---|---|---|\n"
     );
     for r in rows {
-        let (c, t, p) = (
-            r.carom.ms_per_step(),
-            r.carom_threads.ms_per_step(),
-            r.rapier.ms_per_step(),
-        );
+        let (c, t, p) = r.ms_per_step();
         let _ = writeln!(
             s,
             "| {} | {} | {c:.3} | {p:.3} | {:.2} | {t:.3} | {:.2} | {} | {} |",
@@ -239,11 +246,7 @@ fn csv(rows: &[Row]) -> String {
          carom_bytes_per_body,rapier_bytes_per_body\n",
     );
     for r in rows {
-        let (c, t, p) = (
-            r.carom.ms_per_step(),
-            r.carom_threads.ms_per_step(),
-            r.rapier.ms_per_step(),
-        );
+        let (c, t, p) = r.ms_per_step();
         let _ = writeln!(
             s,
             "{},{},{c:.4},{p:.4},{:.4},{t:.4},{:.4},{:.4},{:.4},{},{},{:.2},{:.2},{:.0},{:.0}",
