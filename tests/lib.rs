@@ -1,5 +1,7 @@
 //! Helpers shared by carom's cross-crate test suites.
 
+pub mod hard_case_worlds;
+
 /// A small deterministic random number generator (xorshift64*), so every suite sees the same
 /// "random" worlds on every machine without pulling in a dependency.
 #[derive(Debug, Clone)]

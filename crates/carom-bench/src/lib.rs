@@ -7,6 +7,11 @@
 //! the minimum over runs. [`RapierWorld::from_carom`] rebuilds a carom [`carom::World`] in Rapier;
 //! [`compare`] times one run in either engine and measures how far the top body fell.
 //!
+//! It also runs every hard case of `tests/stability.rs` in carom and in
+//! [Box2D v3](https://box2d.org) (`boxdd` 0.6, the bindings of Box2D 3.2.0, compiled with AVX2):
+//! [`Box2dWorld::from_carom`] rebuilds a carom world in Box2D, and [`hard_cases`] measures each
+//! case the same way in both engines (`carom-bench hard-cases`).
+//!
 //! ## Parameter mapping, carom → Rapier
 //!
 //! | carom | Rapier | exact? |
@@ -41,14 +46,47 @@
 //! - Rapier 0.36 uses Box2D-like soft contacts but has its own block solver for two-point
 //!   manifolds (`block-solver` feature, on by default), contact clustering and contact recycling;
 //!   carom solves the points one by one.
-//! - carom's `max_rotation` guard is π/4 per substep and settable; Rapier caps rotation at a
-//!   fixed π/4 per whole step. carom's restitution threshold (1 m/s) has no Rapier counterpart.
+//! - carom's `max_rotation` guard is π/4 per step and settable; Rapier's is a fixed π/4 per
+//!   step. carom's restitution threshold (1 m/s) has no Rapier counterpart.
 //!   Rapier's `length_unit` is 1 m, as carom's units.
 //! - Scene events (timed spawns, pushes) in `carom-scene` files are not replayed: the Rapier copy
 //!   is of the world as built at time 0.
+//!
+//! ## Parameter mapping, carom → Box2D
+//!
+//! | carom | Box2D v3 | exact? |
+//! |---|---|---|
+//! | `BodyKind::Static` / `Kinematic` / `Dynamic` | `b2_staticBody` / `b2_kinematicBody` / `b2_dynamicBody` | yes |
+//! | position (centre of mass), angle, linear and angular velocity, `gravity_scale` | `position`, `rotation`, `linearVelocity`, `angularVelocity`, `gravityScale` | yes (velocities not set on static bodies) |
+//! | gravity (zero when the `Gravity` effect is off) | world `gravity` | yes |
+//! | linear / angular drag (`Drag` effect, exponential model) | `linearDamping` / `angularDamping` | yes; none set with `Drag` off or the tutorial model |
+//! | `Shape::Circle` | `b2Circle` | yes |
+//! | `Shape::Polygon` (convex, CCW, centred on its centroid) | `b2Polygon` from carom's vertices and normals, radius 0 | yes, up to Box2D's 8 vertices; no hull recomputed |
+//! | density | shape `density` | yes |
+//! | friction (geometric mean) / restitution (max); 0 when the effect is off | shape material `friction` / `restitution`, Box2D's default mixing (the same rules) | yes |
+//! | `restitution_threshold` (1 m/s) | world `restitutionThreshold` (1 m/s) | yes |
+//! | `Sleeping` effect | world `enableSleep` (0.05 m/s for 0.5 s in both) | yes |
+//! | `Continuous` effect / `is_bullet` | world `enableContinuous` / body `isBullet` | yes |
+//! | soft step's `substeps` (4) | `subStepCount` (4) | yes |
+//! | `contact_hertz` (30), `damping_ratio` (10), `max_push_speed` (3 m/s) | world `contactHertz`, `contactDampingRatio`, `contactSpeed` (3.1's `maxContactPushSpeed`) | yes |
+//! | `max_linear_speed` (400 m/s), `warm_starting` | world `maximumLinearSpeed`, `b2World_EnableWarmStarting` | yes |
+//!
+//! What does not map: Box2D has only its soft step (a carom world set to another solver still
+//! runs soft step in Box2D); one solve and one relax pass per substep (carom's default
+//! `iterations` 1); static contacts always twice as stiff (carom's default `static_stiffness`
+//! 2); friction in the relax pass only, where carom's default `friction_in_bias_pass` also solves
+//! it in the biased pass; always graph colouring; `linear_slop` and `speculative_distance` are
+//! Box2D constants with carom's default values; both cap rotation at π/4 per step, carom's
+//! settable; Box2D caps contact stiffness at an eighth of the substep rate, carom at a
+//! quarter (equal at the default 30 Hz with 4 substeps); contact recycling stays at
+//! Box2D's default (on); the tutorial drag model has no counterpart; scene events are not
+//! replayed. Details in [`box2d_world`].
 
+pub mod box2d_world;
 pub mod compare;
+pub mod hard_cases;
 pub mod rapier_world;
 
+pub use box2d_world::Box2dWorld;
 pub use compare::{RunResult, run_carom, run_rapier};
 pub use rapier_world::RapierWorld;

@@ -1,11 +1,13 @@
 //! `carom-bench`: times carom and Rapier on the same scenes, in turn, in one process: carom on
 //! one thread and on two, Rapier on one; counts heap allocations per step and memory per body.
+//! `carom-bench hard-cases` runs the hard cases of `tests/stability.rs` in carom and in Box2D.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use carom_bench::hard_cases::{self, Options};
 use carom_bench::{RapierWorld, RunResult, run_carom, run_rapier};
-use clap::Parser;
+use clap::{Parser, Subcommand};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 use std::alloc::System;
 
@@ -27,8 +29,10 @@ const FALLBACK_STEPS: u32 = 500;
 
 /// Times carom and Rapier on the same scenes: dt 1/60, first step untimed, minimum over runs.
 #[derive(Parser, Debug)]
-#[command(name = "carom-bench")]
+#[command(name = "carom-bench", args_conflicts_with_subcommands = true)]
 struct Args {
+    #[command(subcommand)]
+    command: Option<Command>,
     /// Scene files (default: demos/large_pyramid.ron, 500 steps; demos/many_pyramids.ron, 200).
     scenes: Vec<PathBuf>,
     /// Steps per run, overriding each scene's default.
@@ -43,6 +47,25 @@ struct Args {
     /// Threads for carom's multi-threaded runs.
     #[arg(long, default_value_t = 2)]
     threads: usize,
+}
+
+/// Other jobs than timing.
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Runs every hard case of tests/stability.rs in carom (soft step, its defaults) and in
+    /// Box2D v3 with the same geometry and settings, and prints a markdown table: case, measure,
+    /// bar, carom, Box2D (a figure that misses its bar is bold).
+    HardCases {
+        /// Only the cases whose name contains this (repeatable), e.g. `vertical_stack`.
+        #[arg(long)]
+        case: Vec<String>,
+        /// Also write the table to this file.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Soak one simulated minute instead of an hour (the table says so).
+        #[arg(long)]
+        quick: bool,
+    },
 }
 
 /// One table row.
@@ -267,8 +290,56 @@ fn csv(rows: &[Row]) -> String {
     s
 }
 
+/// Runs the hard cases `filter` names (all if empty) in both engines and prints the table.
+fn hard_cases(filter: &[String], out: Option<&Path>, options: Options) -> Result<(), String> {
+    let cases: Vec<_> = hard_cases::cases()
+        .into_iter()
+        .filter(|c| filter.is_empty() || filter.iter().any(|f| c.name.contains(f.as_str())))
+        .collect();
+    if cases.is_empty() {
+        let names: Vec<_> = hard_cases::cases().iter().map(|c| c.name).collect();
+        return Err(format!(
+            "no case matches {filter:?}; the cases: {}",
+            names.join(", ")
+        ));
+    }
+    let started = std::time::Instant::now();
+    let mut results = Vec::new();
+    for case in &cases {
+        let result = hard_cases::run_both(case, options);
+        let time = |r: &Result<hard_cases::Outcome, String>| {
+            r.as_ref().map_or_else(
+                |e| format!("error: {e}"),
+                |o| format!("{:.1} s", o.time.as_secs_f64()),
+            )
+        };
+        eprintln!(
+            "{}: carom {}, Box2D {}",
+            case.name,
+            time(&result.carom),
+            time(&result.box2d)
+        );
+        results.push(result);
+    }
+    let table = format!(
+        "dt 1/60; carom: soft step at its defaults; Box2D 3.2.0 (boxdd 0.6): 4 substeps (8 for \
+         the card house, as the scene sets), 30 Hz, damping ratio 10, push 3 m/s. A figure that \
+         misses its bar is bold. {:.0} s in all.\n\n{}",
+        started.elapsed().as_secs_f64(),
+        hard_cases::markdown(&results)
+    );
+    print!("{table}");
+    if let Some(path) = out {
+        std::fs::write(path, &table).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    Ok(())
+}
+
 fn main() -> Result<(), String> {
     let args = Args::parse();
+    if let Some(Command::HardCases { case, out, quick }) = &args.command {
+        return hard_cases(case, out.as_deref(), Options { quick: *quick });
+    }
     if args.runs == 0 {
         return Err("--runs must be at least 1".into());
     }

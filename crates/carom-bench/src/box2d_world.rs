@@ -1,0 +1,488 @@
+//! A carom world rebuilt in Box2D v3 (the `boxdd` 0.6 bindings, Box2D 3.2.0 at commit
+//! `56edae79`, compiled with AVX2) with matched parameters.
+//!
+//! Bodies keep carom's dense order (`World::bodies()`), so index `i` is the same body in both
+//! engines; [`Box2dWorld::index_of`] maps a carom [`BodyHandle`] to it.
+//!
+//! ## Parameter mapping, carom → Box2D
+//!
+//! | carom | Box2D | exact? |
+//! |---|---|---|
+//! | `BodyKind::Static` / `Kinematic` / `Dynamic` | `b2_staticBody` / `b2_kinematicBody` / `b2_dynamicBody` | yes |
+//! | position (the centre of mass), angle | body `position`, `rotation` | yes: carom shapes are centred on their centroid, so the body origin is the centre of mass in both |
+//! | linear and angular velocity | `linearVelocity`, `angularVelocity` | yes (not set on static bodies) |
+//! | `gravity_scale` | `gravityScale` | yes |
+//! | gravity (zero when the `Gravity` effect is off) | world `gravity` | yes |
+//! | linear / angular drag (the `Drag` effect with [`carom::DragModel::Exponential`]) | `linearDamping` / `angularDamping` | yes: the same law, `v /= 1 + h c`; with `Drag` off, or the tutorial drag model, no damping is set |
+//! | `Shape::Circle` | `b2Circle` at the body origin | yes |
+//! | `Shape::Polygon` (convex, CCW, centred on its centroid, radius 0) | `b2Polygon` with carom's own vertices and normals, centroid 0, radius 0 | yes, vertex for vertex: no hull is recomputed, as Box2D's would weld points closer than 4 slop (2 cm) and drop the 2 mm cards of the card house; at most 8 vertices (Box2D's limit) |
+//! | density | shape `density` (mass and inertia from the shape) | yes |
+//! | friction, mixed by geometric mean (`Friction` effect; 0 when off) | shape material `friction`, Box2D's default mixing `sqrt(a b)` | yes |
+//! | restitution, mixed by max (`Restitution` effect; 0 when off) | shape material `restitution`, Box2D's default mixing `max(a, b)` | yes |
+//! | `restitution_threshold` (1 m/s) | world `restitutionThreshold` (1 m/s) | yes |
+//! | `Sleeping` effect | world `enableSleep` | switch yes, thresholds the same: both 0.05 m/s for 0.5 s, islands sleep whole |
+//! | `Continuous` effect | world `enableContinuous` (dynamic against static) | yes |
+//! | `is_bullet` (with the `Continuous` effect) | body `isBullet` (dynamic against dynamic too) | yes; a bullet with `Continuous` off is not a bullet in either |
+//! | soft step's `substeps` (default 4) | `subStepCount` of `b2World_Step` (4 in Box2D's samples) | yes |
+//! | `contact_hertz` (30), `damping_ratio` (10) | world `contactHertz`, `contactDampingRatio` (30, 10) | yes at the defaults; Box2D caps the stiffness at an eighth of the substep rate (30 Hz at 4 substeps of 1/60 s), carom at a quarter (60 Hz), so carom's stiffer settings are capped in Box2D |
+//! | `max_push_speed` (3 m/s) | world `contactSpeed` (Box2D 3.1's `maxContactPushSpeed`, 3 m/s) | yes |
+//! | `max_linear_speed` (400 m/s) | world `maximumLinearSpeed` (400 m/s) | yes |
+//! | `warm_starting` | `b2World_EnableWarmStarting` | yes |
+//!
+//! ## What does not map
+//!
+//! - The solver: Box2D has only its soft step. A carom world set to another solver is still
+//!   run with Box2D's soft step (and its substeps), so compare soft step with soft step.
+//! - Soft step's `iterations`: Box2D runs one solve and one relax pass per substep, which is
+//!   carom's default (1); more carom iterations have no Box2D counterpart.
+//! - `static_stiffness`: Box2D's contacts against static bodies are always twice as stiff,
+//!   carom's default (2); another factor is not followed.
+//! - `friction_in_bias_pass` (carom's default on, as Box2D v3.1): this Box2D (3.2) solves
+//!   friction in the relax pass only, whatever carom does.
+//! - `graph_coloring`: Box2D always solves in graph colours, as carom's default does.
+//! - `linear_slop` (0.005 m) and `speculative_distance` (0.02 m) are compile-time constants in
+//!   Box2D with the same values; a carom world that changes them is not followed.
+//! - `max_rotation`: both turn a body at most π/4 per step (47 rad/s at 60 Hz); Box2D's is a
+//!   constant, so a carom world that changes it is not followed. Box2D's per-body
+//!   `allowFastRotation` is left off, as Box2D's default.
+//! - carom's `aabb_margin` (0.05 m) is Box2D's margin of a tenth of the shape's size, capped at
+//!   0.1 m: only the broadphase's work differs.
+//! - `contact_recycling`: Box2D recycles contacts too (on per body by default); the switch is
+//!   left at Box2D's default.
+//! - Box2D's extras are left off or at their defaults: rolling resistance 0, tangent speed 0,
+//!   contact softening (mass-ratio softening) off, one worker thread.
+//! - The tutorial drag model has no Box2D counterpart (no damping is set).
+//! - Scene events (timed spawns, pushes) in `carom-scene` files are not replayed: the Box2D copy
+//!   is of the world as built at time 0.
+
+use std::collections::HashMap;
+
+use boxdd::{
+    BodyBuilder, BodyId, BodyType, Foundation, Position, ShapeDef, SurfaceMaterial, Vec2,
+    WorldBuilder, shapes,
+};
+use boxdd_sys::ffi;
+use carom::{Body, BodyHandle, BodyKind, DragModel, Effect, Polygon, Shape, World};
+
+/// Box2D's limit on polygon vertices.
+const MAX_POLYGON_VERTICES: usize = 8;
+
+/// A body's shape in its own frame, kept to measure its bounding box exactly (Box2D's own body
+/// box is grown by the speculative distance, 2 cm, and carom's is not).
+#[derive(Debug, Clone)]
+enum LocalShape {
+    Circle(f32),
+    Polygon(Vec<[f32; 2]>),
+}
+
+/// A Box2D world holding one body and one shape per carom body, in carom's order.
+pub struct Box2dWorld {
+    world: boxdd::World,
+    substeps: i32,
+    ids: Vec<BodyId>,
+    index: HashMap<BodyHandle, usize>,
+    kinds: Vec<BodyKind>,
+    shapes: Vec<LocalShape>,
+    /// Box2D's mass and rotational inertia (about the centre of mass) of each body.
+    mass: Vec<(f32, f32)>,
+}
+
+impl std::fmt::Debug for Box2dWorld {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Box2dWorld")
+            .field("bodies", &self.ids.len())
+            .field("substeps", &self.substeps)
+            .finish_non_exhaustive()
+    }
+}
+
+fn err(e: boxdd::Error) -> String {
+    e.to_string()
+}
+
+impl Box2dWorld {
+    /// Rebuilds `world` in Box2D; see the module docs for the mapping.
+    ///
+    /// # Errors
+    /// A polygon Box2D cannot take (more than 8 vertices, or one its validation refuses), or a
+    /// setting out of Box2D's range.
+    pub fn from_carom(world: &World) -> Result<Box2dWorld, String> {
+        let foundation = Foundation::initialize_default().map_err(|e| e.to_string())?;
+        let effects = world.effects();
+        let settings = world.settings();
+        let solver = world.solver();
+        // carom keeps the gravity setting while the effect is off; Box2D has no switch.
+        let g = if effects.contains(Effect::Gravity) {
+            world.gravity()
+        } else {
+            carom::Vec2::zeros()
+        };
+        let def = WorldBuilder::from(foundation.world_def())
+            .gravity(Vec2::new(g.x, g.y))
+            .restitution_threshold(solver.restitution_threshold)
+            .contact_hertz(solver.contact_hertz)
+            .contact_damping_ratio(solver.damping_ratio)
+            .contact_speed(solver.max_push_speed)
+            .maximum_linear_speed(solver.max_linear_speed)
+            .enable_sleep(effects.contains(Effect::Sleeping))
+            .enable_continuous(effects.contains(Effect::Continuous))
+            .build()
+            .map_err(err)?;
+        let mut b2 = foundation.create_world(def).map_err(err)?;
+        b2.enable_warm_starting(solver.warm_starting).map_err(err)?;
+
+        let drag = effects.contains(Effect::Drag) && settings.drag == DragModel::Exponential;
+        let friction = effects.contains(Effect::Friction);
+        let restitution = effects.contains(Effect::Restitution);
+        let bullets = effects.contains(Effect::Continuous);
+        let mut out = Box2dWorld {
+            world: b2,
+            substeps: i32::try_from(solver.substeps.max(1)).map_err(|e| e.to_string())?,
+            ids: Vec::with_capacity(world.body_count()),
+            index: HashMap::with_capacity(world.body_count()),
+            kinds: Vec::with_capacity(world.body_count()),
+            shapes: Vec::with_capacity(world.body_count()),
+            mass: Vec::with_capacity(world.body_count()),
+        };
+        for body in world.bodies() {
+            let def = body_def(foundation, body, drag, bullets).map_err(err)?;
+            let id = out.world.create_body(def).map_err(err)?;
+            let material = SurfaceMaterial::new()
+                .with_friction(if friction { body.friction() } else { 0.0 })
+                .and_then(|m| {
+                    m.with_restitution(if restitution { body.restitution() } else { 0.0 })
+                })
+                .map_err(err)?;
+            let shape_def = ShapeDef::builder()
+                .density(body.density())
+                .material(material)
+                .build()
+                .map_err(err)?;
+            let mut handle = out.world.body(id).map_err(err)?;
+            let local = match body.shape() {
+                Shape::Circle(c) => {
+                    let circle = shapes::circle(Vec2::new(0.0, 0.0), c.radius()).map_err(err)?;
+                    handle.create_circle(&shape_def, &circle).map_err(err)?;
+                    LocalShape::Circle(c.radius())
+                }
+                Shape::Polygon(p) => {
+                    handle
+                        .create_polygon(&shape_def, &polygon(p)?)
+                        .map_err(err)?;
+                    LocalShape::Polygon(p.vertices().iter().map(|v| [v.x, v.y]).collect())
+                }
+            };
+            let mass = (
+                handle.mass().map_err(err)?,
+                handle.rotational_inertia().map_err(err)?,
+            );
+            out.index.insert(body.handle(), out.ids.len());
+            out.ids.push(id);
+            out.kinds.push(body.kind());
+            out.shapes.push(local);
+            out.mass.push(mass);
+        }
+        Ok(out)
+    }
+
+    /// Advances the world by `dt` seconds in the carom world's soft-step substeps.
+    ///
+    /// # Errors
+    /// A time step Box2D refuses, or a failure it reports after stepping.
+    pub fn step(&mut self, dt: f32) -> Result<(), String> {
+        let done = self.world.step(dt, self.substeps).map_err(err)?;
+        match done.post_step_error() {
+            Some(e) => Err(e.to_string()),
+            None => Ok(()),
+        }
+    }
+
+    /// Substeps per step (the carom world's soft-step substeps).
+    pub fn substeps(&self) -> i32 {
+        self.substeps
+    }
+
+    /// Number of bodies (static ones included).
+    pub fn body_count(&self) -> usize {
+        self.ids.len()
+    }
+
+    /// Number of bodies Box2D itself counts.
+    ///
+    /// # Errors
+    /// A world Box2D no longer holds.
+    pub fn native_body_count(&self) -> Result<usize, String> {
+        let counters = self.world.counters().map_err(err)?;
+        usize::try_from(counters.body_count).map_err(|e| e.to_string())
+    }
+
+    /// Index (carom's dense order) of the body built from the carom body `handle`.
+    pub fn index_of(&self, handle: BodyHandle) -> Option<usize> {
+        self.index.get(&handle).copied()
+    }
+
+    /// Box2D's id of the body built from the carom body `handle`.
+    pub fn body_id(&self, handle: BodyHandle) -> Option<BodyId> {
+        self.index_of(handle).map(|i| self.ids[i])
+    }
+
+    /// The carom kind of the `i`-th body.
+    pub fn kind(&self, i: usize) -> BodyKind {
+        self.kinds[i]
+    }
+
+    /// Box2D's mass of the `i`-th body, kg (0 for static and kinematic bodies).
+    pub fn mass(&self, i: usize) -> f32 {
+        self.mass[i].0
+    }
+
+    /// Box2D's rotational inertia of the `i`-th body about its centre of mass, kg m².
+    pub fn rotational_inertia(&self, i: usize) -> f32 {
+        self.mass[i].1
+    }
+
+    /// Friction of the `i`-th body's shape, as Box2D holds it.
+    ///
+    /// # Errors
+    /// A body or shape Box2D no longer holds.
+    pub fn friction(&mut self, i: usize) -> Result<f32, String> {
+        let shape = self.shape_id(i)?;
+        let shape = self.world.shape(shape).map_err(err)?;
+        shape.friction().map_err(err)
+    }
+
+    fn shape_id(&mut self, i: usize) -> Result<boxdd::ShapeId, String> {
+        let body = self.world.body(self.ids[i]).map_err(err)?;
+        body.shapes()
+            .map_err(err)?
+            .first()
+            .copied()
+            .ok_or_else(|| format!("body {i} has no shape"))
+    }
+
+    /// Position (centre of mass) of the `i`-th body.
+    ///
+    /// # Errors
+    /// A body Box2D no longer holds.
+    pub fn position(&mut self, i: usize) -> Result<[f32; 2], String> {
+        let p = self
+            .world
+            .body(self.ids[i])
+            .map_err(err)?
+            .position()
+            .map_err(err)?;
+        Ok([p.x, p.y])
+    }
+
+    /// Angle of the `i`-th body, rad.
+    ///
+    /// # Errors
+    /// A body Box2D no longer holds.
+    pub fn angle(&mut self, i: usize) -> Result<f32, String> {
+        let r = self
+            .world
+            .body(self.ids[i])
+            .map_err(err)?
+            .rotation()
+            .map_err(err)?;
+        Ok(r.angle())
+    }
+
+    /// Linear velocity of the `i`-th body (zero while it sleeps).
+    ///
+    /// # Errors
+    /// A body Box2D no longer holds.
+    pub fn linear_velocity(&mut self, i: usize) -> Result<[f32; 2], String> {
+        let v = self
+            .world
+            .body(self.ids[i])
+            .map_err(err)?
+            .linear_velocity()
+            .map_err(err)?;
+        Ok([v.x, v.y])
+    }
+
+    /// Angular velocity of the `i`-th body, rad/s (zero while it sleeps).
+    ///
+    /// # Errors
+    /// A body Box2D no longer holds.
+    pub fn angular_velocity(&mut self, i: usize) -> Result<f32, String> {
+        self.world
+            .body(self.ids[i])
+            .map_err(err)?
+            .angular_velocity()
+            .map_err(err)
+    }
+
+    /// Whether the `i`-th body is awake.
+    ///
+    /// # Errors
+    /// A body Box2D no longer holds.
+    pub fn is_awake(&mut self, i: usize) -> Result<bool, String> {
+        self.world
+            .body(self.ids[i])
+            .map_err(err)?
+            .is_awake()
+            .map_err(err)
+    }
+
+    /// The `i`-th body's tight bounding box `(min, max)`, from its shape at its current pose:
+    /// the measure carom's `Body::aabb` gives (Box2D's own is grown by 2 cm).
+    ///
+    /// # Errors
+    /// A body Box2D no longer holds.
+    pub fn aabb(&mut self, i: usize) -> Result<([f32; 2], [f32; 2]), String> {
+        let body = self.world.body(self.ids[i]).map_err(err)?;
+        let p = body.position().map_err(err)?;
+        let r = body.rotation().map_err(err)?;
+        let (c, s) = (r.cosine(), r.sine());
+        Ok(match &self.shapes[i] {
+            LocalShape::Circle(radius) => {
+                ([p.x - radius, p.y - radius], [p.x + radius, p.y + radius])
+            }
+            LocalShape::Polygon(vertices) => {
+                let mut lo = [f32::INFINITY; 2];
+                let mut hi = [f32::NEG_INFINITY; 2];
+                for v in vertices {
+                    let w = [p.x + c * v[0] - s * v[1], p.y + s * v[0] + c * v[1]];
+                    for k in 0..2 {
+                        lo[k] = lo[k].min(w[k]);
+                        hi[k] = hi[k].max(w[k]);
+                    }
+                }
+                (lo, hi)
+            }
+        })
+    }
+
+    /// Moves the `i`-th body to `position` at `angle` (for relaunches).
+    ///
+    /// # Errors
+    /// A non-finite pose, or a body Box2D no longer holds.
+    pub fn set_pose(&mut self, i: usize, position: [f32; 2], angle: f32) -> Result<(), String> {
+        self.world
+            .body(self.ids[i])
+            .map_err(err)?
+            .set_position_and_rotation(Position::new(position[0], position[1]), angle)
+            .map_err(err)
+    }
+
+    /// Sets the `i`-th body's linear and angular velocity (for relaunches).
+    ///
+    /// # Errors
+    /// A non-finite velocity, or a body Box2D no longer holds.
+    pub fn set_velocity(&mut self, i: usize, linear: [f32; 2], angular: f32) -> Result<(), String> {
+        let mut body = self.world.body(self.ids[i]).map_err(err)?;
+        body.set_linear_velocity(Vec2::new(linear[0], linear[1]))
+            .map_err(err)?;
+        body.set_angular_velocity(angular).map_err(err)
+    }
+
+    /// Kinetic energy of the awake dynamic bodies, J: what carom's `StepStats::kinetic_energy`
+    /// sums.
+    ///
+    /// # Errors
+    /// A body Box2D no longer holds.
+    pub fn kinetic_energy(&mut self) -> Result<f64, String> {
+        let mut energy = 0.0;
+        for i in 0..self.ids.len() {
+            if self.kinds[i] != BodyKind::Dynamic {
+                continue;
+            }
+            let v = self.linear_velocity(i)?;
+            let w = self.angular_velocity(i)?;
+            let (m, inertia) = self.mass[i];
+            energy += 0.5 * f64::from(m) * f64::from(v[0] * v[0] + v[1] * v[1])
+                + 0.5 * f64::from(inertia) * f64::from(w * w);
+        }
+        Ok(energy)
+    }
+
+    /// The deepest overlap among the touching contacts of awake bodies, m (0 if none), from the
+    /// manifolds the last step built: what carom's `StepStats::max_penetration` reports.
+    ///
+    /// # Errors
+    /// A body Box2D no longer holds.
+    pub fn max_penetration(&mut self) -> Result<f32, String> {
+        let mut deepest: f32 = 0.0;
+        for i in 0..self.ids.len() {
+            // Every contact has a dynamic body, and contacts of sleeping bodies are not rebuilt.
+            if self.kinds[i] != BodyKind::Dynamic {
+                continue;
+            }
+            let body = self.world.body(self.ids[i]).map_err(err)?;
+            if !body.is_awake().map_err(err)? {
+                continue;
+            }
+            for contact in body.contact_data().map_err(err)? {
+                for point in contact.manifold.points() {
+                    deepest = deepest.max(-point.separation);
+                }
+            }
+        }
+        Ok(deepest)
+    }
+
+    /// The Box2D world, for inspection.
+    pub fn native(&mut self) -> &mut boxdd::World {
+        &mut self.world
+    }
+}
+
+/// The Box2D body definition matching a carom body (its shape comes separately).
+fn body_def(
+    foundation: &Foundation,
+    body: &Body,
+    drag: bool,
+    bullets: bool,
+) -> boxdd::Result<boxdd::BodyDef> {
+    let kind = match body.kind() {
+        BodyKind::Static => BodyType::Static,
+        BodyKind::Kinematic => BodyType::Kinematic,
+        BodyKind::Dynamic => BodyType::Dynamic,
+    };
+    let p = body.position();
+    let mut def = BodyBuilder::from(foundation.body_def())
+        .body_type(kind)
+        .position(Position::new(p.x, p.y))
+        .angle(body.angle())
+        .gravity_scale(body.gravity_scale())
+        .bullet(bullets && body.is_bullet());
+    if body.kind() != BodyKind::Static {
+        let v = body.linear_velocity();
+        def = def
+            .linear_velocity(Vec2::new(v.x, v.y))
+            .angular_velocity(body.angular_velocity());
+    }
+    if drag {
+        def = def
+            .linear_damping(body.linear_damping())
+            .angular_damping(body.angular_damping());
+    }
+    def.build()
+}
+
+/// Box2D's polygon with carom's own vertices (counter-clockwise, centred on the centroid) and
+/// edge normals, radius 0.
+fn polygon(p: &Polygon) -> Result<shapes::Polygon, String> {
+    let v = p.vertices();
+    if v.len() > MAX_POLYGON_VERTICES {
+        return Err(format!(
+            "Box2D takes at most {MAX_POLYGON_VERTICES} polygon vertices, carom's has {}",
+            v.len()
+        ));
+    }
+    let zero = ffi::b2Vec2 { x: 0.0, y: 0.0 };
+    let mut raw = ffi::b2Polygon {
+        vertices: [zero; MAX_POLYGON_VERTICES],
+        normals: [zero; MAX_POLYGON_VERTICES],
+        centroid: zero,
+        radius: 0.0,
+        count: v.len() as i32,
+    };
+    for (i, (q, n)) in v.iter().zip(p.normals()).enumerate() {
+        raw.vertices[i] = ffi::b2Vec2 { x: q.x, y: q.y };
+        raw.normals[i] = ffi::b2Vec2 { x: n.x, y: n.y };
+    }
+    shapes::Polygon::from_raw(raw).map_err(|e| format!("{e}: carom polygon {v:?}"))
+}

@@ -1,0 +1,952 @@
+//! The hard cases of `tests/stability.rs`, run in carom and in Box2D and measured the same way.
+//!
+//! Each case builds its carom world with the builders of [`carom_tests::hard_case_worlds`] (the
+//! geometry the stability suite uses) and soft step at its defaults (4 substeps, 30 Hz contacts,
+//! damping ratio 10, push speed 3 m/s, which are Box2D's); Box2D runs the copy
+//! [`Box2dWorld::from_carom`] makes of it. Every measure is written once, against
+//! [`CaseWorld`], which both engines implement, so a figure means the same in both columns.
+//! Demo scenes (`demos/*.ron`) are loaded with `carom_scene::load` and stepped at 1/60 s; none
+//! of the scenes used has events, and scene events would not be replayed in Box2D anyway.
+
+use std::fmt::Write as _;
+use std::time::{Duration, Instant};
+
+use carom::{BodyHandle, BodyKind, Effect, Real, SolverKind, SolverParams, World, vec2};
+use carom_tests::hard_case_worlds as worlds;
+use carom_tests::skinny_box;
+
+use crate::box2d_world::Box2dWorld;
+
+/// Time step of every case, s.
+pub const DT: Real = 1.0 / 60.0;
+
+/// Steps of the full soak: one simulated hour.
+const SOAK_STEPS: usize = 216_000;
+
+/// Steps of the soak with `--quick`: one simulated minute.
+const QUICK_SOAK_STEPS: usize = 3_600;
+
+/// Random worlds measured (each 2000 steps).
+const RANDOM_WORLDS: usize = 4;
+
+type Res<T> = Result<T, String>;
+
+/// What the hard cases read from and do to an engine's world. Bodies are numbered in carom's
+/// dense order (`World::bodies()`), which [`Box2dWorld`] keeps.
+pub trait CaseWorld {
+    /// Advances the world by `dt` seconds.
+    ///
+    /// # Errors
+    /// The engine refused the step.
+    fn advance(&mut self, dt: Real) -> Res<()>;
+    /// Number of bodies, static ones included.
+    fn body_total(&self) -> usize;
+    /// Whether body `i` is dynamic.
+    fn is_dynamic(&self, i: usize) -> bool;
+    /// Position (centre of mass) of body `i`.
+    ///
+    /// # Errors
+    /// The engine no longer holds the body.
+    fn body_position(&mut self, i: usize) -> Res<[f32; 2]>;
+    /// Linear and angular velocity of body `i`.
+    ///
+    /// # Errors
+    /// The engine no longer holds the body.
+    fn body_velocity(&mut self, i: usize) -> Res<([f32; 2], f32)>;
+    /// Tight bounding box `(min, max)` of body `i`'s shape.
+    ///
+    /// # Errors
+    /// The engine no longer holds the body.
+    fn body_aabb(&mut self, i: usize) -> Res<([f32; 2], [f32; 2])>;
+    /// Whether body `i` is asleep.
+    ///
+    /// # Errors
+    /// The engine no longer holds the body.
+    fn is_asleep(&mut self, i: usize) -> Res<bool>;
+    /// Kinetic energy of the awake moving bodies, J.
+    ///
+    /// # Errors
+    /// The engine no longer holds a body.
+    fn total_kinetic_energy(&mut self) -> Res<f64>;
+    /// The deepest overlap among the contacts the last step built, m.
+    ///
+    /// # Errors
+    /// The engine no longer holds a body.
+    fn deepest_penetration(&mut self) -> Res<f64>;
+    /// Puts body `i` at `position` and `angle` with the velocities given.
+    ///
+    /// # Errors
+    /// A non-finite value, or the engine no longer holds the body.
+    fn relaunch(
+        &mut self,
+        i: usize,
+        position: [f32; 2],
+        angle: f32,
+        linear: [f32; 2],
+        angular: f32,
+    ) -> Res<()>;
+}
+
+fn nth(world: &World, i: usize) -> Res<&carom::Body> {
+    world.bodies().nth(i).ok_or_else(|| format!("no body {i}"))
+}
+
+impl CaseWorld for World {
+    fn advance(&mut self, dt: Real) -> Res<()> {
+        self.step(dt).map_err(|e| e.to_string())
+    }
+
+    fn body_total(&self) -> usize {
+        self.body_count()
+    }
+
+    fn is_dynamic(&self, i: usize) -> bool {
+        self.bodies().nth(i).is_some_and(|b| b.is_dynamic())
+    }
+
+    fn body_position(&mut self, i: usize) -> Res<[f32; 2]> {
+        let p = nth(self, i)?.position();
+        Ok([p.x, p.y])
+    }
+
+    fn body_velocity(&mut self, i: usize) -> Res<([f32; 2], f32)> {
+        let b = nth(self, i)?;
+        let v = b.linear_velocity();
+        Ok(([v.x, v.y], b.angular_velocity()))
+    }
+
+    fn body_aabb(&mut self, i: usize) -> Res<([f32; 2], [f32; 2])> {
+        let a = nth(self, i)?.aabb();
+        Ok(([a.min.x, a.min.y], [a.max.x, a.max.y]))
+    }
+
+    fn is_asleep(&mut self, i: usize) -> Res<bool> {
+        Ok(nth(self, i)?.is_sleeping())
+    }
+
+    fn total_kinetic_energy(&mut self) -> Res<f64> {
+        Ok(f64::from(self.stats().kinetic_energy))
+    }
+
+    fn deepest_penetration(&mut self) -> Res<f64> {
+        Ok(f64::from(self.stats().max_penetration))
+    }
+
+    fn relaunch(
+        &mut self,
+        i: usize,
+        position: [f32; 2],
+        angle: f32,
+        linear: [f32; 2],
+        angular: f32,
+    ) -> Res<()> {
+        let handle = nth(self, i)?.handle();
+        let body = self.body_mut(handle).ok_or("body vanished")?;
+        let e = |e: carom::CaromError| e.to_string();
+        body.set_position(vec2(position[0], position[1]))
+            .map_err(e)?;
+        body.set_angle(angle).map_err(e)?;
+        body.set_linear_velocity(vec2(linear[0], linear[1]))
+            .map_err(e)?;
+        body.set_angular_velocity(angular).map_err(e)
+    }
+}
+
+impl CaseWorld for Box2dWorld {
+    fn advance(&mut self, dt: Real) -> Res<()> {
+        self.step(dt)
+    }
+
+    fn body_total(&self) -> usize {
+        self.body_count()
+    }
+
+    fn is_dynamic(&self, i: usize) -> bool {
+        self.kind(i) == BodyKind::Dynamic
+    }
+
+    fn body_position(&mut self, i: usize) -> Res<[f32; 2]> {
+        self.position(i)
+    }
+
+    fn body_velocity(&mut self, i: usize) -> Res<([f32; 2], f32)> {
+        Ok((self.linear_velocity(i)?, self.angular_velocity(i)?))
+    }
+
+    fn body_aabb(&mut self, i: usize) -> Res<([f32; 2], [f32; 2])> {
+        self.aabb(i)
+    }
+
+    fn is_asleep(&mut self, i: usize) -> Res<bool> {
+        Ok(!self.is_awake(i)?)
+    }
+
+    fn total_kinetic_energy(&mut self) -> Res<f64> {
+        self.kinetic_energy()
+    }
+
+    fn deepest_penetration(&mut self) -> Res<f64> {
+        Ok(f64::from(self.max_penetration()?))
+    }
+
+    fn relaunch(
+        &mut self,
+        i: usize,
+        position: [f32; 2],
+        angle: f32,
+        linear: [f32; 2],
+        angular: f32,
+    ) -> Res<()> {
+        self.set_pose(i, position, angle)?;
+        self.set_velocity(i, linear, angular)
+    }
+}
+
+/// The engines a case runs in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Engine {
+    /// carom, soft step at its defaults.
+    Carom,
+    /// Box2D v3, through [`Box2dWorld::from_carom`].
+    Box2d,
+}
+
+/// A figure's bar.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Bar {
+    /// Recorded only.
+    None,
+    /// Met when the figure is below the limit.
+    Below(f64),
+    /// Met when the figure is at most the limit.
+    AtMost(f64),
+}
+
+impl Bar {
+    /// Whether `value` meets the bar (NaN never does).
+    pub fn met(self, value: f64) -> bool {
+        match self {
+            Bar::None => true,
+            Bar::Below(limit) => value < limit,
+            Bar::AtMost(limit) => value <= limit,
+        }
+    }
+
+    fn label(self) -> String {
+        // An f32 slop widened to f64 prints its rounding; show the limit as written.
+        let round = |x: f64| (x * 1e6).round() / 1e6;
+        match self {
+            Bar::None => "-".into(),
+            Bar::Below(limit) => format!("< {}", round(limit)),
+            Bar::AtMost(limit) => format!("≤ {}", round(limit)),
+        }
+    }
+}
+
+/// One measure of one case in one engine.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figure {
+    /// What is measured, with its unit.
+    pub measure: String,
+    /// Its bar.
+    pub bar: Bar,
+    /// The value (infinite for "never").
+    pub value: f64,
+}
+
+/// What one case measured in one engine.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Outcome {
+    /// The figures, in table order.
+    pub figures: Vec<Figure>,
+    /// True when a body's position or velocity stopped being finite.
+    pub nan: bool,
+    /// Wall time of the case.
+    pub time: Duration,
+}
+
+impl Outcome {
+    fn figure(&mut self, measure: &str, value: f64) {
+        self.bar(measure, Bar::None, value);
+    }
+
+    fn bar(&mut self, measure: &str, bar: Bar, value: f64) {
+        self.figures.push(Figure {
+            measure: measure.into(),
+            bar,
+            value,
+        });
+    }
+
+    /// Notes any body whose position or velocity is no longer finite.
+    fn check_finite(&mut self, w: &mut dyn CaseWorld) -> Res<()> {
+        for i in 0..w.body_total() {
+            let p = w.body_position(i)?;
+            let (v, omega) = w.body_velocity(i)?;
+            let finite = p.iter().chain(&v).all(|x| x.is_finite()) && omega.is_finite();
+            self.nan |= !finite;
+        }
+        Ok(())
+    }
+}
+
+/// Options of a run of the hard cases.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Options {
+    /// Soak one simulated minute instead of an hour.
+    pub quick: bool,
+}
+
+/// A hard case: its name (for `--case`), its title in the table, and how to run it.
+pub struct Case {
+    /// Short name, as `tests/stability.rs` writes its table (`target/stability/NAME.md`).
+    pub name: &'static str,
+    /// Title in the table.
+    pub title: &'static str,
+    run: fn(Engine, Options, &mut Outcome) -> Res<()>,
+}
+
+impl Case {
+    /// Runs the case in `engine`.
+    ///
+    /// # Errors
+    /// A world the engine could not build or step; the figures so far are lost.
+    pub fn run(&self, engine: Engine, options: Options) -> Res<Outcome> {
+        let mut outcome = Outcome::default();
+        let started = Instant::now();
+        (self.run)(engine, options, &mut outcome)?;
+        outcome.time = started.elapsed();
+        Ok(outcome)
+    }
+
+    /// The title, saying when `options` shortened the case.
+    pub fn title(&self, options: Options) -> String {
+        if options.quick && self.name == "soak_one_hour" {
+            "one minute of a base-10 pyramid (soak shortened by --quick)".into()
+        } else {
+            self.title.into()
+        }
+    }
+}
+
+impl std::fmt::Debug for Case {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Case").field("name", &self.name).finish()
+    }
+}
+
+/// Every hard case, in the order of `tests/stability.rs` (the 30-box column after the 20).
+pub fn cases() -> Vec<Case> {
+    vec![
+        Case {
+            name: "vertical_stack_12",
+            title: "vertical stack of 12",
+            run: |e, _, o| stack_stands(e, 12, o),
+        },
+        Case {
+            name: "vertical_stack_20",
+            title: "vertical stack of 20",
+            run: |e, _, o| stack_stands(e, 20, o),
+        },
+        Case {
+            name: "vertical_stack_30",
+            title: "vertical stack of 30",
+            run: |e, _, o| stack_stands(e, 30, o),
+        },
+        Case {
+            name: "vertical_stack_12_sleeps",
+            title: "stack of 12 asleep within 5 s",
+            run: |e, _, o| stack_sleeps(e, 12, o),
+        },
+        Case {
+            name: "vertical_stack_20_sleeps",
+            title: "stack of 20 asleep within 5 s",
+            run: |e, _, o| stack_sleeps(e, 20, o),
+        },
+        Case {
+            name: "pyramid_20",
+            title: "pyramid of 20 (demos/pyramid.ron, sleeping off)",
+            run: |e, _, o| pyramid_20(e, o),
+        },
+        Case {
+            name: "high_mass_ratio_pyramids",
+            title: "heavy tops on pyramids (demos/high_mass_ratio.ron, sleeping off)",
+            run: |e, _, o| heavy_tops(e, o),
+        },
+        Case {
+            name: "high_mass_ratio_boxes",
+            title: "20 m box on two 1 m boxes",
+            run: |e, _, o| {
+                let world = worlds::big_box_on(soft_step(), carom::Shape::rect(0.5, 0.5).unwrap());
+                on(e, world, |w| settles(w, 4.0, 2.0, o))
+            },
+        },
+        Case {
+            name: "high_mass_ratio_triangles",
+            title: "20 m box on two triangles",
+            run: |e, _, o| {
+                let world = worlds::big_box_on(soft_step(), worlds::small_triangle());
+                on(e, world, |w| settles(w, 4.0, 2.0, o))
+            },
+        },
+        Case {
+            name: "overlap_recovery",
+            title: "overlap recovery (demos/overlap_recovery.ron)",
+            run: |e, _, o| overlap_recovery(e, o),
+        },
+        Case {
+            name: "tiny_pyramid",
+            title: "tiny pyramid, 5 cm boxes, 30 in the base",
+            run: |e, _, o| tiny_pyramid(e, o),
+        },
+        Case {
+            name: "card_house",
+            title: "card house (demos/card_house.ron, 8 substeps)",
+            run: |e, _, o| card_house(e, o),
+        },
+        Case {
+            name: "confined",
+            title: "confined, 625 circles (demos/confined.ron)",
+            run: |e, _, o| confined(e, o),
+        },
+        Case {
+            name: "coincident_centres",
+            title: "ten circles at one point",
+            run: |e, _, o| coincident(e, o),
+        },
+        Case {
+            name: "skinny_box",
+            title: "skinny plank, 500 launches",
+            run: |e, _, o| skinny(e, o),
+        },
+        Case {
+            name: "bullets",
+            title: "bullets at 300 m/s into 12 boxes and a wall",
+            run: |e, _, o| bullets(e, o),
+        },
+        Case {
+            name: "soak_one_hour",
+            title: "one hour of a base-10 pyramid",
+            run: soak,
+        },
+        Case {
+            name: "random_worlds",
+            title: "random worlds, 4 seeds x 2000 steps",
+            run: |e, _, o| random_worlds(e, o),
+        },
+    ]
+}
+
+/// Soft step at its defaults: the carom column, and (through the mapping) Box2D's settings.
+fn soft_step() -> SolverParams {
+    SolverParams::for_kind(SolverKind::SoftStep)
+}
+
+/// Runs `f` on `world` in `engine`: carom's world as it is, or its Box2D copy.
+fn on<T>(engine: Engine, mut world: World, f: impl FnOnce(&mut dyn CaseWorld) -> Res<T>) -> Res<T> {
+    match engine {
+        Engine::Carom => f(&mut world),
+        Engine::Box2d => {
+            let mut copy = Box2dWorld::from_carom(&world)?;
+            drop(world);
+            f(&mut copy)
+        }
+    }
+}
+
+/// The dense index of `handle` in `world` (the same in its Box2D copy).
+fn index(world: &World, handle: BodyHandle) -> Res<usize> {
+    world
+        .bodies()
+        .position(|b| b.handle() == handle)
+        .ok_or_else(|| "handle not in world".to_string())
+}
+
+fn steps(w: &mut dyn CaseWorld, n: usize) -> Res<()> {
+    for _ in 0..n {
+        w.advance(DT)?;
+    }
+    Ok(())
+}
+
+/// The highest dynamic body.
+fn highest(w: &mut dyn CaseWorld) -> Res<usize> {
+    let mut best: Option<(usize, f32)> = None;
+    for i in 0..w.body_total() {
+        if w.is_dynamic(i) {
+            let y = w.body_position(i)?[1];
+            if best.is_none_or(|(_, b)| y > b) {
+                best = Some((i, y));
+            }
+        }
+    }
+    best.map(|(i, _)| i).ok_or_else(|| "no dynamic body".into())
+}
+
+fn distance(a: [f32; 2], b: [f32; 2]) -> f64 {
+    f64::from((a[0] - b[0]).hypot(a[1] - b[1]))
+}
+
+fn max_speed(w: &mut dyn CaseWorld) -> Res<f64> {
+    let mut fastest: f64 = 0.0;
+    for i in 0..w.body_total() {
+        if w.is_dynamic(i) {
+            let (v, _) = w.body_velocity(i)?;
+            fastest = fastest.max(f64::from(v[0].hypot(v[1])));
+        }
+    }
+    Ok(fastest)
+}
+
+/// Deepest any dynamic body reaches below the ground's top (y = 0), m.
+fn below_ground(w: &mut dyn CaseWorld) -> Res<f64> {
+    let mut deepest: f64 = 0.0;
+    for i in 0..w.body_total() {
+        if w.is_dynamic(i) {
+            deepest = deepest.max(-f64::from(w.body_aabb(i)?.0[1]));
+        }
+    }
+    Ok(deepest)
+}
+
+fn stack_stands(engine: Engine, count: usize, o: &mut Outcome) -> Res<()> {
+    let (world, boxes) = worlds::vertical_stack(soft_step(), count, false);
+    let top = index(&world, *boxes.last().ok_or("no boxes")?)?;
+    on(engine, world, |w| {
+        let start = w.body_position(top)?;
+        // Drift is what the top box creeps once the column has settled on its soft contacts
+        // (the first second); the settling itself is the column's compression.
+        steps(w, 60)?;
+        let settled = w.body_position(top)?;
+        o.figure("compression m", f64::from(start[1] - settled[1]));
+        steps(w, 1140)?;
+        o.bar(
+            "top drift m",
+            Bar::Below(0.05),
+            distance(w.body_position(top)?, settled),
+        );
+        o.check_finite(w)
+    })
+}
+
+fn stack_sleeps(engine: Engine, count: usize, o: &mut Outcome) -> Res<()> {
+    let (world, boxes) = worlds::vertical_stack(soft_step(), count, true);
+    let boxes = boxes
+        .iter()
+        .map(|b| index(&world, *b))
+        .collect::<Res<Vec<_>>>()?;
+    on(engine, world, |w| {
+        let mut asleep_at = f64::INFINITY;
+        'steps: for step in 0..600 {
+            w.advance(DT)?;
+            for &b in &boxes {
+                if !w.is_asleep(b)? {
+                    continue 'steps;
+                }
+            }
+            asleep_at = (step + 1) as f64 * f64::from(DT);
+            break;
+        }
+        o.bar("asleep after s", Bar::Below(5.0), asleep_at);
+        o.check_finite(w)
+    })
+}
+
+fn pyramid_20(engine: Engine, o: &mut Outcome) -> Res<()> {
+    let mut scene = worlds::scene("pyramid", soft_step());
+    scene.world.set_effect(Effect::Sleeping, false);
+    let slop = f64::from(scene.world.solver().linear_slop);
+    on(engine, scene.world, |w| {
+        let top = highest(w)?;
+        let start = w.body_position(top)?;
+        let mut deepest: f64 = 0.0;
+        for step in 0..1200 {
+            w.advance(DT)?;
+            // Past the first second, once the boxes have found their contacts.
+            if step >= 60 {
+                deepest = deepest.max(w.deepest_penetration()?);
+            }
+        }
+        o.bar(
+            "top drift m",
+            Bar::Below(0.05),
+            distance(w.body_position(top)?, start),
+        );
+        o.bar("max penetration m", Bar::Below(2.0 * slop), deepest);
+        o.check_finite(w)
+    })
+}
+
+/// Runs `seconds`, then `settle` more seconds in which nothing may move faster than 1 m/s.
+fn settles(w: &mut dyn CaseWorld, seconds: f64, settle: f64, o: &mut Outcome) -> Res<()> {
+    let mut sunk: f64 = 0.0;
+    for _ in 0..(seconds / f64::from(DT)) as usize {
+        w.advance(DT)?;
+        sunk = sunk.max(below_ground(w)?);
+    }
+    let mut fastest: f64 = 0.0;
+    for _ in 0..(settle / f64::from(DT)) as usize {
+        w.advance(DT)?;
+        sunk = sunk.max(below_ground(w)?);
+        fastest = fastest.max(max_speed(w)?);
+    }
+    o.bar("ground penetration m", Bar::Below(0.1), sunk);
+    o.bar("fastest once settled m/s", Bar::Below(1.0), fastest);
+    o.check_finite(w)
+}
+
+fn heavy_tops(engine: Engine, o: &mut Outcome) -> Res<()> {
+    let mut scene = worlds::scene("high_mass_ratio", soft_step());
+    scene.world.set_effect(Effect::Sleeping, false);
+    on(engine, scene.world, |w| settles(w, 4.0, 2.0, o))
+}
+
+fn overlap_recovery(engine: Engine, o: &mut Outcome) -> Res<()> {
+    let scene = worlds::scene("overlap_recovery", soft_step());
+    let cap = f64::from(scene.world.solver().max_push_speed);
+    let slop = f64::from(scene.world.solver().linear_slop);
+    on(engine, scene.world, |w| {
+        let mut fastest: f64 = 0.0;
+        for _ in 0..120 {
+            w.advance(DT)?;
+            fastest = fastest.max(max_speed(w)?);
+        }
+        o.bar(
+            "penetration at 2 s m",
+            Bar::Below(2.0 * slop),
+            w.deepest_penetration()?,
+        );
+        o.bar("fastest / push cap", Bar::Below(1.1), fastest / cap);
+        o.check_finite(w)
+    })
+}
+
+fn tiny_pyramid(engine: Engine, o: &mut Outcome) -> Res<()> {
+    let size = f64::from(worlds::TINY_BOX_SIZE);
+    on(engine, worlds::tiny_pyramid(soft_step()), |w| {
+        let top = highest(w)?;
+        let start = w.body_position(top)?;
+        // Stands: once settled (the first second), the top box creeps less than a fifth of its
+        // size in 10 s. The settling is the compression, in box sizes.
+        steps(w, 60)?;
+        let settled = w.body_position(top)?;
+        o.figure(
+            "compression / box size",
+            f64::from(start[1] - settled[1]) / size,
+        );
+        steps(w, 600)?;
+        o.bar(
+            "top drift / box size",
+            Bar::Below(0.2),
+            distance(w.body_position(top)?, settled) / size,
+        );
+        o.check_finite(w)
+    })
+}
+
+fn card_house(engine: Engine, o: &mut Outcome) -> Res<()> {
+    let scene = worlds::scene("card_house", soft_step());
+    on(engine, scene.world, |w| {
+        let mut cards = Vec::new();
+        for i in 0..w.body_total() {
+            if w.is_dynamic(i) {
+                cards.push((i, w.body_position(i)?[1]));
+            }
+        }
+        steps(w, 600)?;
+        // Standing: no card has dropped (a falling card loses tens of centimetres).
+        let mut dropped: f64 = 0.0;
+        for (card, y) in cards {
+            dropped = dropped.max(f64::from(y - w.body_position(card)?[1]));
+        }
+        o.bar("largest card drop m", Bar::Below(0.05), dropped);
+        o.check_finite(w)
+    })
+}
+
+fn confined(engine: Engine, o: &mut Outcome) -> Res<()> {
+    let scene = worlds::scene("confined", soft_step());
+    on(engine, scene.world, |w| {
+        // The circles start overlapped: the energy the push-apart gives them in the first
+        // second is the start; after it, the energy may only fall.
+        steps(w, 60)?;
+        let start = w.total_kinetic_energy()?;
+        let mut highest_energy = start;
+        for _ in 0..540 {
+            w.advance(DT)?;
+            highest_energy = highest_energy.max(w.total_kinetic_energy()?);
+        }
+        let mut escaped = 0usize;
+        for i in 0..w.body_total() {
+            let p = w.body_position(i)?;
+            if w.is_dynamic(i) && (p[0].abs() > 10.5 || p[1].abs() > 10.25) {
+                escaped += 1;
+            }
+        }
+        o.figure("energy at 1 s J", start);
+        o.bar(
+            "energy growth after 1 s J",
+            Bar::Below(1e-3),
+            highest_energy - start,
+        );
+        o.bar("escaped", Bar::Below(0.5), escaped as f64);
+        o.check_finite(w)
+    })
+}
+
+fn coincident(engine: Engine, o: &mut Outcome) -> Res<()> {
+    let (world, circles) = worlds::coincident_circles(soft_step());
+    let slop = f64::from(world.solver().linear_slop);
+    let circles = circles
+        .iter()
+        .map(|c| index(&world, *c))
+        .collect::<Res<Vec<_>>>()?;
+    on(engine, world, |w| {
+        steps(w, 180)?;
+        let mut closest = f64::INFINITY;
+        for (k, &a) in circles.iter().enumerate() {
+            for &b in &circles[k + 1..] {
+                let gap = distance(w.body_position(a)?, w.body_position(b)?) - 1.0;
+                closest = closest.min(gap);
+            }
+        }
+        o.bar(
+            "deepest overlap after 3 s m",
+            Bar::Below(2.0 * slop),
+            -closest,
+        );
+        o.check_finite(w)
+    })
+}
+
+fn skinny(engine: Engine, o: &mut Outcome) -> Res<()> {
+    // Box2D's Skinny Box: a 4 x 0.1 m plank falling at 100 m/s, spinning at ±50 rad/s, onto a
+    // thin floor beside a thin post, relaunched every 60 steps from a different angle and place.
+    let (world, plank) = worlds::skinny_plank(soft_step());
+    let plank = index(&world, plank)?;
+    on(engine, world, |w| {
+        let mut rng = carom_tests::Rng::new(500);
+        let (mut under_floor, mut through_post) = (0usize, 0usize);
+        let mut lowest: f64 = 0.0;
+        for _ in 0..500 {
+            let offset = rng.range(-2.0, 0.6);
+            let angle = rng.range(-std::f32::consts::PI, std::f32::consts::PI);
+            let spin = if rng.below(2) == 0 { 50.0 } else { -50.0 };
+            w.relaunch(plank, [offset, 8.0], angle, [0.0, -100.0], spin)?;
+            let mut before = vec2(offset, 8.0);
+            let mut crossed = false;
+            for _ in 0..60 {
+                w.advance(DT)?;
+                lowest = lowest.max(-f64::from(w.body_aabb(plank)?.0[1]));
+                let p = w.body_position(plank)?;
+                let after = vec2(p[0], p[1]);
+                crossed |= skinny_box::through_post(before, after);
+                before = after;
+            }
+            under_floor += usize::from(w.body_position(plank)?[1] < 0.0);
+            through_post += usize::from(crossed);
+        }
+        o.figure("deepest below the floor m", lowest);
+        o.bar(
+            "launches ending under the floor",
+            Bar::Below(0.5),
+            under_floor as f64,
+        );
+        o.bar(
+            "launches through the post",
+            Bar::Below(0.5),
+            through_post as f64,
+        );
+        o.check_finite(w)
+    })
+}
+
+fn bullets(engine: Engine, o: &mut Outcome) -> Res<()> {
+    // Each of ten bullets into a fresh stack (a hit stack falls, and a bullet through the gap a
+    // box left is no tunnel).
+    let (mut tunnels, mut past_wall) = (0usize, 0usize);
+    let mut nan = false;
+    for shot in 0..10 {
+        let (world, bullet) = worlds::bullet_shot(soft_step(), shot);
+        let bullet = index(&world, bullet)?;
+        on(engine, world, |w| {
+            let mut checked_stack = false;
+            for _ in 0..60 {
+                w.advance(DT)?;
+                let x = w.body_position(bullet)?[0];
+                let (v, _) = w.body_velocity(bullet)?;
+                let speed = v[0].hypot(v[1]);
+                // Past the stack's far face (0.51 + r) still at nearly full speed: it went
+                // through the boxes without hitting them.
+                if !checked_stack && x > 0.76 {
+                    checked_stack = true;
+                    tunnels += usize::from(speed > 270.0);
+                }
+                past_wall += usize::from(x > 10.05);
+            }
+            let mut shot_outcome = Outcome::default();
+            shot_outcome.check_finite(w)?;
+            nan |= shot_outcome.nan;
+            Ok(())
+        })?;
+    }
+    o.nan |= nan;
+    o.bar("bullets through the stack", Bar::Below(0.5), tunnels as f64);
+    o.bar(
+        "steps with a bullet past the wall",
+        Bar::Below(0.5),
+        past_wall as f64,
+    );
+    Ok(())
+}
+
+fn soak(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
+    // A base-10 pyramid at rest, sleeping off so every step is really solved.
+    let total = if options.quick {
+        QUICK_SOAK_STEPS
+    } else {
+        SOAK_STEPS
+    };
+    on(engine, worlds::pyramid_world(soft_step(), 10), |w| {
+        let top = highest(w)?;
+        steps(w, 120)?;
+        let settled = w.body_position(top)?;
+        let mut energy: f64 = 0.0;
+        for _ in 120..total {
+            w.advance(DT)?;
+            energy = energy.max(w.total_kinetic_energy()?);
+        }
+        // Rounded to the millisecond: the f32 step widened to f64 shows its rounding.
+        let simulated = (total as f64 * f64::from(DT) * 1e3).round() / 1e3;
+        o.figure("simulated s", simulated);
+        o.bar("kinetic energy after settling J", Bar::Below(1e-4), energy);
+        o.bar(
+            "top drift m",
+            Bar::Below(0.01),
+            distance(w.body_position(top)?, settled),
+        );
+        o.check_finite(w)
+    })
+}
+
+/// The seeds and body counts of the random worlds, fixed so both engines see the same ones.
+pub fn random_seeds() -> Vec<(u64, usize)> {
+    let mut rng = carom_tests::Rng::new(0x5eed);
+    (0..RANDOM_WORLDS)
+        .map(|_| (rng.next_u64().max(1), 5 + rng.below(35)))
+        .collect()
+}
+
+fn random_worlds(engine: Engine, o: &mut Outcome) -> Res<()> {
+    let (mut escaped, mut worst) = (0usize, 0.0f64);
+    let mut nan = false;
+    for (seed, count) in random_seeds() {
+        let world = worlds::random_world(soft_step(), seed, count);
+        let work = worlds::gravity_work(&world);
+        let (e, ratio, n) = on(engine, world, |w| {
+            let mut first_second: f64 = 0.0;
+            for _ in 0..60 {
+                w.advance(DT)?;
+                first_second = first_second.max(w.total_kinetic_energy()?);
+            }
+            let ceiling = first_second + work;
+            let mut highest_energy: f64 = 0.0;
+            for _ in 60..2000 {
+                w.advance(DT)?;
+                highest_energy = highest_energy.max(w.total_kinetic_energy()?);
+            }
+            let mut out = 0usize;
+            for i in 0..w.body_total() {
+                let p = w.body_position(i)?;
+                if w.is_dynamic(i) && (p[0].abs() > 10.0 || !(0.0..20.0).contains(&p[1])) {
+                    out += 1;
+                }
+            }
+            let mut finite = Outcome::default();
+            finite.check_finite(w)?;
+            Ok((out, highest_energy / ceiling, finite.nan))
+        })?;
+        escaped += e;
+        worst = worst.max(ratio);
+        nan |= n;
+    }
+    o.nan |= nan;
+    o.bar("bodies out of their box", Bar::Below(0.5), escaped as f64);
+    o.bar("highest energy / ceiling", Bar::AtMost(1.0), worst);
+    Ok(())
+}
+
+/// A figure as the table shows it: bold when it misses its bar.
+fn cell(figure: &Figure, nan: bool) -> String {
+    let value = figure.value;
+    let text = if value.is_infinite() {
+        "never".to_string()
+    } else if value == value.trunc() && value.abs() < 1e9 {
+        // Counts (escapes, launches, steps) and exact zeros.
+        format!("{value:.0}")
+    } else if value.abs() < 1e-3 {
+        format!("{value:.2e}")
+    } else {
+        format!("{value:.4}")
+    };
+    let text = if nan { format!("{text} (NaN)") } else { text };
+    if figure.bar.met(value) && !nan {
+        text
+    } else {
+        format!("**{text}**")
+    }
+}
+
+/// One case's result in both engines (an engine that failed has its error).
+#[derive(Debug)]
+pub struct CaseResult {
+    /// The case's title (as the run's options make it).
+    pub title: String,
+    /// carom's outcome.
+    pub carom: Res<Outcome>,
+    /// Box2D's outcome.
+    pub box2d: Res<Outcome>,
+}
+
+/// Runs `case` in both engines, carom first.
+pub fn run_both(case: &Case, options: Options) -> CaseResult {
+    CaseResult {
+        title: case.title(options),
+        carom: case.run(Engine::Carom, options),
+        box2d: case.run(Engine::Box2d, options),
+    }
+}
+
+/// The markdown table of `results`: case, measure, bar, carom, Box2D; one row per measure.
+/// A figure that misses its bar is bold.
+pub fn markdown(results: &[CaseResult]) -> String {
+    let mut s = String::from("| case | measure | bar | carom | Box2D |\n|---|---|---|---|---|\n");
+    for r in results {
+        let measures: Vec<(String, Bar)> = match (&r.carom, &r.box2d) {
+            (Ok(o), _) | (Err(_), Ok(o)) => o
+                .figures
+                .iter()
+                .map(|f| (f.measure.clone(), f.bar))
+                .collect(),
+            (Err(_), Err(_)) => vec![("-".into(), Bar::None)],
+        };
+        let value = |outcome: &Res<Outcome>, k: usize| match outcome {
+            Ok(o) => o
+                .figures
+                .get(k)
+                .map_or_else(|| "-".into(), |f| cell(f, o.nan)),
+            Err(e) => format!("error: {e}"),
+        };
+        for (k, (measure, bar)) in measures.iter().enumerate() {
+            let _ = writeln!(
+                s,
+                "| {} | {measure} | {} | {} | {} |",
+                r.title,
+                bar.label(),
+                value(&r.carom, k),
+                value(&r.box2d, k)
+            );
+        }
+    }
+    s
+}

@@ -1,0 +1,115 @@
+//! The Box2D copy of a carom world has the same bodies, masses and friction, and settles alike.
+
+use carom::{BodyDef, BodyKind, Effect, Shape, World, vec2};
+use carom_bench::Box2dWorld;
+
+const DT: f32 = 1.0 / 60.0;
+
+/// A 40 m static ground box with its top at y = 0 (friction 0.4) and a 1 m box (density 2,
+/// friction 0.9) with its bottom face 2 m above it.
+fn box_over_ground() -> World {
+    let mut world = World::new();
+    world
+        .add_body(
+            BodyDef::static_body(Shape::rect(20.0, 0.5).unwrap())
+                .position(vec2(0.0, -0.5))
+                .friction(0.4),
+        )
+        .unwrap();
+    world
+        .add_body(
+            BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+                .position(vec2(0.0, 2.5))
+                .density(2.0)
+                .friction(0.9),
+        )
+        .unwrap();
+    world
+}
+
+#[test]
+fn dropped_box_lands_at_the_same_height_in_both_engines() {
+    let mut world = box_over_ground();
+    let mut box2d = Box2dWorld::from_carom(&world).unwrap();
+    for _ in 0..120 {
+        world.step(DT).unwrap();
+        box2d.step(DT).unwrap();
+    }
+    let carom_y = world.bodies().nth(1).unwrap().position().y;
+    let box2d_y = box2d.position(1).unwrap()[1];
+    // Resting on soft contacts, both sink by less than the slop.
+    assert!((carom_y - 0.5).abs() < 0.005, "carom box at {carom_y}");
+    assert!(
+        (carom_y - box2d_y).abs() < 0.003,
+        "carom box at {carom_y}, Box2D box at {box2d_y}"
+    );
+    assert!(box2d.linear_velocity(1).unwrap()[1].abs() < 0.01);
+}
+
+#[test]
+fn mapping_keeps_bodies_masses_and_friction() {
+    let world = box_over_ground();
+    let mut box2d = Box2dWorld::from_carom(&world).unwrap();
+    assert_eq!(box2d.body_count(), 2);
+    assert_eq!(box2d.native_body_count().unwrap(), 2);
+    for (i, body) in world.bodies().enumerate() {
+        assert_eq!(box2d.kind(i), body.kind());
+        assert_eq!(box2d.index_of(body.handle()), Some(i));
+        let friction = box2d.friction(i).unwrap();
+        assert!(
+            (friction - body.friction()).abs() < 1e-6,
+            "body {i}: Box2D friction {friction}, carom {}",
+            body.friction()
+        );
+        let p = box2d.position(i).unwrap();
+        assert!((p[0] - body.position().x).abs() < 1e-6);
+        assert!((p[1] - body.position().y).abs() < 1e-6);
+    }
+    let dynamic = world.bodies().nth(1).unwrap();
+    assert_eq!(dynamic.kind(), BodyKind::Dynamic);
+    assert!((dynamic.mass() - 2.0).abs() < 1e-4);
+    assert!(
+        (box2d.mass(1) - dynamic.mass()).abs() < 1e-4,
+        "Box2D {} kg, carom {} kg",
+        box2d.mass(1),
+        dynamic.mass()
+    );
+    assert!(
+        (box2d.rotational_inertia(1) - dynamic.inertia()).abs() < 1e-4 * dynamic.inertia(),
+        "Box2D {} kg m², carom {} kg m²",
+        box2d.rotational_inertia(1),
+        dynamic.inertia()
+    );
+    assert_eq!(box2d.mass(0), 0.0);
+}
+
+#[test]
+fn friction_off_gives_frictionless_shapes_and_triangles_keep_their_vertices() {
+    let mut world = World::new();
+    world.set_effect(Effect::Friction, false);
+    let triangle = Shape::polygon(&[vec2(-0.5, -0.5), vec2(0.5, -0.5), vec2(0.0, 0.5)]).unwrap();
+    world
+        .add_body(
+            BodyDef::dynamic(triangle)
+                .position(vec2(1.0, 2.0))
+                .angle(0.3)
+                .friction(0.8),
+        )
+        .unwrap();
+    let mut box2d = Box2dWorld::from_carom(&world).unwrap();
+    assert_eq!(box2d.friction(0).unwrap(), 0.0);
+    let body = world.bodies().next().unwrap();
+    let (lo, hi) = box2d.aabb(0).unwrap();
+    let aabb = body.aabb();
+    for (a, b) in [lo, hi]
+        .iter()
+        .flatten()
+        .zip([aabb.min.x, aabb.min.y, aabb.max.x, aabb.max.y])
+    {
+        assert!(
+            (a - b).abs() < 1e-5,
+            "Box2D box {lo:?} {hi:?}, carom {aabb:?}"
+        );
+    }
+    assert!((box2d.mass(0) - body.mass()).abs() < 1e-4 * body.mass());
+}
