@@ -222,6 +222,11 @@ pub struct Body {
     aabb: Aabb,
     /// Borrowed mutably since the last step: the world must re-check its broadphase entry.
     touched: bool,
+    /// Continuous collision cut this step's motion short.
+    had_time_of_impact: bool,
+    /// How far the body's farthest point moved in the last step, m: the solver's position
+    /// correction moves bodies without leaving them a velocity, and sleep must see that.
+    last_motion: Real,
     /// How long the body has moved slower than the sleep threshold, s.
     sleep_time: Real,
     /// Asleep: skipped by every stage until something wakes it.
@@ -276,6 +281,8 @@ impl Body {
             world_shape,
             aabb,
             touched: false,
+            had_time_of_impact: false,
+            last_motion: 0.0,
             sleep_time: 0.0,
             sleeping: false,
             sleep_group: 0,
@@ -514,13 +521,15 @@ impl Body {
         self.sleep_group
     }
 
-    /// Advances or resets the sleep timer from the body's fastest point speed.
+    /// Advances or resets the sleep timer from the body's fastest point speed, or from half
+    /// the speed its last step's motion implies if that is more (Box2D's rule): a body still
+    /// being pushed out of an overlap, with no velocity left after relaxing, stays awake.
     pub(crate) fn update_sleep_time(&mut self, threshold: Real, dt: Real) {
-        let reach = match &self.shape {
-            Shape::Circle(c) => c.radius(),
-            Shape::Polygon(p) => p.radius(),
-        };
+        /// How much position correction counts beside true velocity (Box2D's 0.5).
+        const CORRECTION_WEIGHT: Real = 0.5;
+        let reach = self.shape.max_extent();
         let speed = self.linear_velocity.norm() + reach * self.angular_velocity.abs();
+        let speed = speed.max(CORRECTION_WEIGHT * self.last_motion / dt);
         if speed > threshold || self.kind != BodyKind::Dynamic {
             self.sleep_time = 0.0;
         } else {
@@ -769,7 +778,15 @@ impl Body {
     pub(crate) fn move_to_time_of_impact(&mut self, pose: Isometry) {
         self.position = pose.translation.vector;
         self.rotation = pose.rotation;
+        self.had_time_of_impact = true;
         self.sync_world_shape();
+    }
+
+    /// True when continuous collision put the body back along its path in the last step: it
+    /// ended near where it started although it moves fast, so how far it moved says nothing
+    /// about how much its contacts changed.
+    pub(crate) fn had_time_of_impact(&self) -> bool {
+        self.had_time_of_impact
     }
 
     /// Marks the body as possibly edited by the user; true the first time since the last step.
@@ -797,6 +814,8 @@ impl Body {
         self.rotation = dq * self.rotation;
         // Renormalise so thousands of small rotations do not drift off the unit circle.
         self.rotation.renormalize_fast();
+        self.had_time_of_impact = false;
+        self.last_motion = dp.norm() + dq.im.abs() * self.shape.max_extent();
         self.clear_forces();
         self.sync_world_shape();
     }
@@ -897,5 +916,23 @@ mod tests {
         let mut d = unit_box(BodyKind::Dynamic);
         d.move_kinematic_to(vec2(5.0, 5.0), 1.0, 0.1).unwrap();
         assert_eq!(d.linear_velocity(), Vec2::zeros());
+    }
+
+    #[test]
+    fn a_body_moved_by_position_correction_stays_awake() {
+        let mut body = unit_box(BodyKind::Dynamic);
+        let dt = 1.0 / 60.0;
+        // At rest and still: the timer runs.
+        body.finish_step(Vec2::zeros(), 0.0, Vec2::zeros(), Rot::identity());
+        body.update_sleep_time(0.05, dt);
+        assert_eq!(body.sleep_time(), dt);
+        // No velocity left, but pushed 1 cm this step (0.3 m/s, half counted): awake.
+        body.finish_step(Vec2::zeros(), 0.0, vec2(0.0, 0.01), Rot::identity());
+        body.update_sleep_time(0.05, dt);
+        assert_eq!(body.sleep_time(), 0.0);
+        // Turned 0.01 rad: its corners moved 7 mm. Awake too.
+        body.finish_step(Vec2::zeros(), 0.0, Vec2::zeros(), Rot::new(0.01));
+        body.update_sleep_time(0.05, dt);
+        assert_eq!(body.sleep_time(), 0.0);
     }
 }

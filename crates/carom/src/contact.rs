@@ -258,6 +258,12 @@ impl ContactSet {
         self.contacts.iter()
     }
 
+    /// Every contact.
+    #[cfg(test)]
+    pub(crate) fn as_slice(&self) -> &[Contact] {
+        &self.contacts
+    }
+
     /// Every contact, mutably, for the solver.
     pub(crate) fn as_mut_slice(&mut self) -> &mut [Contact] {
         &mut self.contacts
@@ -305,8 +311,12 @@ fn refresh_manifold(
         (a.shape(), b.shape()),
         (Shape::Polygon(_), Shape::Polygon(_))
     );
+    // A body stopped by continuous collision barely moved, but only because it was put back:
+    // its manifold may lack the points its motion was about to meet.
+    let stopped = a.had_time_of_impact() || b.had_time_of_impact();
     if recycling
         && polygons
+        && !stopped
         && let Some(carried) = contact.frame.carry(&contact.manifold, a, b)
     {
         contact.manifold = carried;
@@ -314,6 +324,7 @@ fn refresh_manifold(
     }
     contact.manifold =
         manifold::update(a.world_shape(), b.world_shape(), margin, &contact.manifold);
-    contact.frame = ManifoldFrame::of(&contact.manifold, &a.transform(), &b.transform());
+    contact.manifold.set_anchors(a.position(), b.position());
+    contact.frame = ManifoldFrame::of(&contact.manifold, a, b);
     Refresh::Updated
 }

@@ -62,14 +62,6 @@ impl Sweep {
     }
 }
 
-/// Distance from the centre of mass to the farthest point of the shape.
-fn outer_radius(shape: &Shape) -> Real {
-    match shape {
-        Shape::Circle(c) => c.radius(),
-        Shape::Polygon(p) => p.radius(),
-    }
-}
-
 /// The first time in `(0, 1)` at which `shape` on `sweep` would pass into `other`, by
 /// conservative advancement: with `distance` the signed gap (negative when overlapping) and
 /// `bound` the fastest any point of the shape can close it, advancing by `distance / bound`
@@ -83,7 +75,7 @@ fn outer_radius(shape: &Shape) -> Real {
 /// step; sweeping only a core around its centre (Box2D's fallback) lets a spinning plank's far
 /// end swing through a thin floor.
 fn time_of_impact(shape: &Shape, sweep: &Sweep, other: &WorldShape, target: Real) -> Option<Real> {
-    let radius = outer_radius(shape);
+    let radius = shape.max_extent();
     // The fastest any point of the shape moves, per unit of sweep time.
     let bound = sweep.translation.norm() + sweep.turn.abs() * radius;
     if bound <= 0.0 {
@@ -137,7 +129,7 @@ pub(crate) fn solve_continuous(
             continue;
         }
         let sweep = Sweep::new(starts[index], body);
-        let reach = sweep.translation.norm() + sweep.turn.abs() * outer_radius(body.shape());
+        let reach = sweep.translation.norm() + sweep.turn.abs() * body.shape().max_extent();
         if reach <= FAST_FRACTION * body.shape().min_extent() {
             continue;
         }

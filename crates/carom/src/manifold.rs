@@ -67,6 +67,13 @@ impl FeatureId {
 pub struct ManifoldPoint {
     /// World position, midway between the two surfaces.
     pub point: Vec2,
+    /// From A's centre of mass to the point, in world axes: the solver's lever arm on A. Set by
+    /// the world's contact update (zero from [`collide`] alone); a recycled manifold keeps it
+    /// as it was when built, as Box2D does, so resting contacts do not shift from step to step.
+    pub anchor_a: Vec2,
+    /// From B's centre of mass to the point, in world axes: the lever arm on B (see
+    /// [`ManifoldPoint::anchor_a`]).
+    pub anchor_b: Vec2,
     /// Distance between the surfaces along the normal: negative when they overlap.
     pub separation: Real,
     /// Which features touch here.
@@ -148,8 +155,7 @@ impl Manifold {
             point,
             separation,
             id,
-            normal_impulse: 0.0,
-            tangent_impulse: 0.0,
+            ..ManifoldPoint::default()
         };
         self.point_count += 1;
     }
@@ -169,6 +175,14 @@ impl Manifold {
         self.reference_edge = swap(self.reference_edge);
         self.incident_edge = swap(self.incident_edge);
         self
+    }
+
+    /// Measures each point's lever arms from the bodies' centres of mass.
+    pub(crate) fn set_anchors(&mut self, center_a: Vec2, center_b: Vec2) {
+        for point in self.points_mut() {
+            point.anchor_a = point.point - center_a;
+            point.anchor_b = point.point - center_b;
+        }
     }
 
     /// Copies accumulated impulses from last step's points with the same feature ids.

@@ -479,6 +479,15 @@ impl Shape {
         }
     }
 
+    /// The largest distance from the centre to the boundary: how far any point of the shape
+    /// moves when the body turns by a small angle, per radian.
+    pub fn max_extent(&self) -> Real {
+        match self {
+            Shape::Circle(c) => c.radius,
+            Shape::Polygon(p) => p.radius,
+        }
+    }
+
     /// The smallest distance from the centre to the boundary: the size below which a body
     /// could pass through a thin wall in one step.
     pub fn min_extent(&self) -> Real {
@@ -718,5 +727,12 @@ mod tests {
     fn min_extent_is_the_inradius_for_polygons() {
         assert!((Shape::rect(2.0, 0.1).unwrap().min_extent() - 0.1).abs() < 1e-6);
         assert_eq!(Shape::circle(0.3).unwrap().min_extent(), 0.3);
+    }
+
+    #[test]
+    fn max_extent_is_the_circumradius() {
+        let diagonal = (2.0f32 * 2.0 + 0.1 * 0.1).sqrt();
+        assert!((Shape::rect(2.0, 0.1).unwrap().max_extent() - diagonal).abs() < 1e-6);
+        assert_eq!(Shape::circle(0.3).unwrap().max_extent(), 0.3);
     }
 }

@@ -575,6 +575,16 @@ fn timed<T>(slot: &mut std::time::Duration, stage: impl FnOnce() -> T) -> T {
     result
 }
 
+/// What the solver starts a step from, for tests of the solver's parts.
+#[cfg(test)]
+impl World {
+    pub(crate) fn solver_inputs(&self) -> (&[Body], &[Contact], Vec<(usize, usize)>) {
+        let mut dense = Vec::new();
+        self.contact_bodies(&mut dense);
+        (self.bodies.as_slice(), self.contacts.as_slice(), dense)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -49,17 +49,37 @@ impl BodyState {
     }
 }
 
-/// Velocities from gravity, applied forces and drag over `h`, with the speed guard rails.
-/// Gravity and drag are skipped entirely when off.
+/// The guard rails on speed: how fast any dynamic body may move and turn.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SpeedCaps {
+    /// m/s.
+    pub linear: Real,
+    /// rad/s: `max_rotation` per whole step, as Box2D caps it, whatever the substeps. A cap
+    /// per substep would let a body turn more than half a turn in a step with 8 substeps, and
+    /// a turn rebuilt from the step's start and end rotations (the continuous sweep's) would
+    /// then alias to the short way round.
+    pub angular: Real,
+}
+
+impl SpeedCaps {
+    /// The caps for a step of `dt`.
+    pub fn new(params: &SolverParams, dt: Real) -> Self {
+        SpeedCaps {
+            linear: params.max_linear_speed,
+            angular: params.max_rotation / dt,
+        }
+    }
+}
+
+/// Velocities from gravity, applied forces and drag over `h`. Gravity and drag are skipped
+/// entirely when off.
 pub(crate) fn integrate_velocities(
-    params: &SolverParams,
     environment: Environment,
     bodies: &[Body],
     states: &mut [BodyState],
     h: Real,
+    caps: SpeedCaps,
 ) -> Work {
-    // No body may turn more than `max_rotation` in one (sub)step.
-    let max_angular_speed = params.max_rotation / h;
     sum_with(bodies, states, ITEMS_PER_TASK, |body, state| {
         let mut work = Work::default();
         if body.kind() != BodyKind::Dynamic || body.is_sleeping() {
@@ -78,18 +98,21 @@ pub(crate) fn integrate_velocities(
             w = model.apply_angular(w, body.angular_damping(), h);
             work.drag_terms += 1;
         }
-        state.v = clamp_magnitude(v, params.max_linear_speed);
-        state.w = w.clamp(-max_angular_speed, max_angular_speed);
+        state.v = clamp_magnitude(v, caps.linear);
+        state.w = w.clamp(-caps.angular, caps.angular);
         work
     })
 }
 
-/// Positions from velocities over `h` (accumulated in `dp` and `dq`).
+/// Positions from velocities over `h` (accumulated in `dp` and `dq`), dynamic bodies' velocities
+/// first held to the speed caps (after the contacts had their say, as Box2D 3.2 does, so the
+/// cap bounds the motion itself). Kinematic bodies move as they are told.
 pub(crate) fn integrate_positions(bodies: &[Body], states: &mut [BodyState], h: Real) {
     for_each_with(bodies, states, ITEMS_PER_TASK, |body, state| {
-        if body.moves() {
-            state.dp += state.v * h;
-            state.dq = Rot::new(state.w * h) * state.dq;
+        if !body.moves() {
+            return;
         }
+        state.dp += state.v * h;
+        state.dq = Rot::new(state.w * h) * state.dq;
     });
 }

@@ -26,8 +26,9 @@ pub(crate) struct ConstraintPoint {
     pub normal_impulse: Real,
     /// Accumulated friction impulse.
     pub tangent_impulse: Real,
-    /// The largest normal impulse this step: restitution only acts on points that pushed.
-    pub max_normal_impulse: Real,
+    /// The normal impulse applied over the step, warm start included (Box2D's
+    /// `totalNormalImpulse`): restitution only acts on points that pushed.
+    pub total_normal_impulse: Real,
     /// Normal velocity of B relative to A at the start of the step (for restitution).
     pub relative_velocity: Real,
 }
@@ -53,6 +54,10 @@ pub(crate) struct ContactConstraint {
     pub restitution: Real,
     /// True when one body is static (soft step makes such contacts stiffer).
     pub touches_static: bool,
+    /// Whether A is dynamic: only dynamic bodies take impulses.
+    pub dynamic_a: bool,
+    /// Whether B is dynamic.
+    pub dynamic_b: bool,
     points: [ConstraintPoint; 2],
     point_count: usize,
 }
@@ -75,8 +80,7 @@ impl ContactConstraint {
         let mut points = [ConstraintPoint::default(); 2];
         let point_count = manifold.points().len();
         for (point, mp) in points.iter_mut().zip(manifold.points()) {
-            let ra = mp.point - body_a.position();
-            let rb = mp.point - body_b.position();
+            let (ra, rb) = (mp.anchor_a, mp.anchor_b);
             let k_normal =
                 ma + mb + ia * cross(ra, normal).powi(2) + ib * cross(rb, normal).powi(2);
             let k_tangent =
@@ -97,7 +101,7 @@ impl ContactConstraint {
                 },
                 normal_impulse: mp.normal_impulse,
                 tangent_impulse: mp.tangent_impulse,
-                max_normal_impulse: 0.0,
+                total_normal_impulse: 0.0,
                 relative_velocity: normal.dot(&relative),
             };
         }
@@ -113,6 +117,8 @@ impl ContactConstraint {
             friction: (body_a.friction() * body_b.friction()).sqrt(),
             restitution: body_a.restitution().max(body_b.restitution()),
             touches_static: body_a.kind() == BodyKind::Static || body_b.kind() == BodyKind::Static,
+            dynamic_a: body_a.kind() == BodyKind::Dynamic,
+            dynamic_b: body_b.kind() == BodyKind::Dynamic,
             points,
             point_count,
         }
@@ -171,15 +177,16 @@ impl ContactConstraint {
         let total = (point.normal_impulse + impulse).max(0.0);
         let applied = total - point.normal_impulse;
         point.normal_impulse = total;
-        point.max_normal_impulse = point.max_normal_impulse.max(applied);
+        point.total_normal_impulse += applied;
         self.apply(&point, self.normal * applied, a, b);
         self.points[index] = point;
     }
 
-    /// Velocity of B relative to A at a point.
+    /// Velocity of B relative to A at a point (each body's point velocity first, summed as the
+    /// wide solver sums its lanes, so both give the same bits).
     #[inline]
     pub fn relative_velocity(point: &ConstraintPoint, a: &BodyState, b: &BodyState) -> Vec2 {
-        b.v + cross_sv(b.w, point.anchor_b) - a.v - cross_sv(a.w, point.anchor_a)
+        (b.v + cross_sv(b.w, point.anchor_b)) - (a.v + cross_sv(a.w, point.anchor_a))
     }
 
     /// Copies accumulated impulses back into the contact's manifold for warm starting.

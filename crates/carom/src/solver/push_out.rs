@@ -3,7 +3,7 @@
 //! is removed. No rotation, friction or bounce: it shows why impulses are needed. Bodies still
 //! apart (speculative points) may close the gap but not pass it.
 
-use super::body_state::{integrate_positions, integrate_velocities};
+use super::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
 use super::{BodyState, ContactConstraint, SolverContext};
 use crate::math::Real;
@@ -47,7 +47,7 @@ pub(super) fn solve(
             }
         }
     }
-    let work = integrate_velocities(params, environment, bodies, states, dt);
+    let work = integrate_velocities(environment, bodies, states, dt, SpeedCaps::new(params, dt));
     integrate_positions(bodies, states, dt);
     work
 }

@@ -6,7 +6,7 @@
 //! [`MAX_CORRECTION`]). A velocity bias would stay in the bodies as energy and, in a pressed
 //! pile, feed on itself until it explodes.
 
-use super::body_state::{integrate_positions, integrate_velocities};
+use super::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
 use super::contact_constraint::ConstraintPoint;
 use super::contact_constraint::pair_mut;
 use super::soft_step::{apply_restitution, forget_impulses, solve_friction, warm_start};
@@ -33,7 +33,8 @@ pub(super) fn solve(
         dt,
     } = *context;
     let inv_dt = 1.0 / dt;
-    let mut work = integrate_velocities(params, environment, bodies, states, dt);
+    let mut work =
+        integrate_velocities(environment, bodies, states, dt, SpeedCaps::new(params, dt));
     if params.warm_starting {
         warm_start(constraints, states);
     } else {
@@ -140,7 +141,7 @@ fn solve_normal_pair(
     b.w += ib * (cross(p1.anchor_b, push1) + cross(p2.anchor_b, push2));
     for (point, (total, applied)) in c.points_mut().iter_mut().zip([(x[0], d1), (x[1], d2)]) {
         point.normal_impulse = total;
-        point.max_normal_impulse = point.max_normal_impulse.max(applied);
+        point.total_normal_impulse += applied;
     }
     true
 }

@@ -5,7 +5,7 @@
 //! relax (solve again without bias, so the push-out leaves no energy behind). Anchors stay
 //! fixed for the step; each point's separation is updated from the bodies' motion.
 
-use super::body_state::{integrate_positions, integrate_velocities};
+use super::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
 use super::contact_graph::ContactGraph;
 use super::wide_contacts::{PassBias, SharedVelocities, WideContacts};
@@ -30,6 +30,7 @@ pub(super) fn solve(
     let substeps = params.substeps.max(1);
     let h = dt / substeps as Real;
     let inv_h = 1.0 / h;
+    let caps = SpeedCaps::new(params, dt);
     // Stiffer than a quarter of the substep rate would ring.
     let hertz = params.contact_hertz.min(0.25 * inv_h);
     let bias = Bias {
@@ -61,13 +62,13 @@ pub(super) fn solve(
     // cross over only where the other side needs them.
     let overflow = !wide.overflow.is_empty();
     for _ in 0..substeps {
-        work += integrate_velocities(params, environment, bodies, states, h);
+        work += integrate_velocities(environment, bodies, states, h, caps);
         velocities.load(states);
         wide.warm_start(states, velocities);
         if overflow {
             velocities.store(states);
             for &index in &wide.overflow {
-                warm_start_one(&constraints[index], states);
+                warm_start_one(&mut constraints[index], states);
             }
             velocities.load(states);
         }
@@ -136,19 +137,21 @@ pub(super) fn forget_impulses(constraints: &mut [ContactConstraint]) {
 }
 
 /// Applies the accumulated impulses, so the solve starts near last time's answer.
-pub(super) fn warm_start(constraints: &[ContactConstraint], states: &mut [BodyState]) {
+pub(super) fn warm_start(constraints: &mut [ContactConstraint], states: &mut [BodyState]) {
     for c in constraints {
         warm_start_one(c, states);
     }
 }
 
-/// Applies one constraint's accumulated impulses.
-fn warm_start_one(c: &ContactConstraint, states: &mut [BodyState]) {
+/// Applies one constraint's accumulated impulses (and counts them as pushed this step).
+fn warm_start_one(c: &mut ContactConstraint, states: &mut [BodyState]) {
     let (a, b) = pair_mut(states, c.a, c.b);
     let tangent = c.tangent();
-    for point in c.points() {
+    for i in 0..c.points().len() {
+        let point = c.points()[i];
         let p = c.normal * point.normal_impulse + tangent * point.tangent_impulse;
-        c.apply(point, p, a, b);
+        c.apply(&point, p, a, b);
+        c.points_mut()[i].total_normal_impulse += point.normal_impulse;
     }
 }
 
@@ -176,8 +179,9 @@ fn solve_one(
             // Speculative: may close exactly the gap this substep.
             (s * bias.inv_h, 1.0, 0.0)
         } else if use_bias {
+            // The push-out speed capped after softening, so the cap is the real speed.
             (
-                (softness.bias_rate * s).max(-bias.max_push_speed),
+                (softness.mass_scale * softness.bias_rate * s).max(-bias.max_push_speed),
                 softness.mass_scale,
                 softness.impulse_scale,
             )
@@ -185,7 +189,7 @@ fn solve_one(
             (0.0, 1.0, 0.0)
         };
         let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
-        let impulse = -point.normal_mass * mass_scale * (vn + velocity_bias)
+        let impulse = -point.normal_mass * (mass_scale * vn + velocity_bias)
             - impulse_scale * point.normal_impulse;
         c.add_normal_impulse(i, impulse, a, b);
     }
@@ -215,7 +219,8 @@ pub(super) fn solve_friction(
     c.points().len()
 }
 
-/// Bounces: points that approached faster than the threshold and pushed this step get a
+/// Bounces: points that approached faster than the threshold and pushed this step (warm start
+/// included, as Box2D) get a
 /// normal velocity of `-restitution ×` their approach speed. Returns how many impulses were
 /// computed.
 pub(super) fn apply_restitution(
@@ -229,7 +234,7 @@ pub(super) fn apply_restitution(
         for i in 0..c.points().len() {
             let point = c.points()[i];
             if point.relative_velocity > -params.restitution_threshold
-                || point.max_normal_impulse == 0.0
+                || point.total_normal_impulse == 0.0
             {
                 continue;
             }
@@ -240,4 +245,251 @@ pub(super) fn apply_restitution(
         }
     }
     impulses
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::body::BodyDef;
+    use crate::math::{Rot, vec2};
+    use crate::shape::Shape;
+    use crate::world::World;
+
+    /// A pile in motion: a pyramid with a kinematic paddle pushing into it and circles
+    /// dropped on it, a few steps in, so contacts carry impulses and bodies move.
+    fn pile() -> World {
+        let mut world = World::new();
+        world
+            .add_body(
+                BodyDef::static_body(Shape::rect(20.0, 0.5).unwrap()).position(vec2(0.0, -0.5)),
+            )
+            .unwrap();
+        for row in 0..6 {
+            for column in 0..6 - row {
+                let x = column as Real - 0.5 * (5 - row) as Real;
+                world
+                    .add_body(
+                        BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+                            .position(vec2(x, 0.5 + row as Real))
+                            .angle(0.01 * column as Real),
+                    )
+                    .unwrap();
+            }
+        }
+        for i in 0..4 {
+            world
+                .add_body(
+                    BodyDef::dynamic(Shape::circle(0.3).unwrap())
+                        .position(vec2(-1.0 + 0.7 * i as Real, 7.0))
+                        .density(3.0),
+                )
+                .unwrap();
+        }
+        world
+            .add_body(
+                BodyDef::kinematic(Shape::rect(0.2, 1.0).unwrap())
+                    .position(vec2(-3.6, 1.0))
+                    .linear_velocity(vec2(1.0, 0.0))
+                    .angular_velocity(0.3),
+            )
+            .unwrap();
+        for _ in 0..40 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        world
+    }
+
+    /// The inputs of one substep of `world`'s soft step, part-way through it (the bodies
+    /// have moved by one substep of their velocity): states, constraints, the biases, the
+    /// colouring.
+    fn substep(
+        world: &World,
+        h: Real,
+    ) -> (Vec<BodyState>, Vec<ContactConstraint>, Bias, ContactGraph) {
+        let (bodies, contacts, dense) = world.solver_inputs();
+        let mut states: Vec<BodyState> = bodies
+            .iter()
+            .map(|body| {
+                let mut state = BodyState::from_body(body);
+                if body.moves() {
+                    state.dp = state.v * h;
+                    state.dq = Rot::new(state.w * h);
+                }
+                state
+            })
+            .collect();
+        states.push(BodyState::spare());
+        let constraints: Vec<ContactConstraint> = contacts
+            .iter()
+            .zip(&dense)
+            .enumerate()
+            .filter(|(_, (c, (a, b)))| {
+                c.is_touching() && (bodies[*a].moves() || bodies[*b].moves())
+            })
+            .map(|(i, (c, &(a, b)))| ContactConstraint::new(i, c, a, b, bodies))
+            .collect();
+        let params = SolverParams::default();
+        let bias = Bias {
+            soft: Softness::new(params.contact_hertz, params.damping_ratio, h),
+            static_soft: Softness::new(
+                params.static_stiffness * params.contact_hertz,
+                params.damping_ratio,
+                h,
+            ),
+            inv_h: 1.0 / h,
+            max_push_speed: params.max_push_speed,
+        };
+        let mut graph = ContactGraph::default();
+        graph.build(&constraints, states.len());
+        (states, constraints, bias, graph)
+    }
+
+    /// The wide solver's warm start, biased pass and relaxation over `states`.
+    fn solve_wide(
+        states: &mut [BodyState],
+        constraints: &mut [ContactConstraint],
+        bias: &Bias,
+        graph: &ContactGraph,
+    ) {
+        let mut wide = WideContacts::default();
+        wide.build(
+            constraints,
+            graph,
+            bias.soft,
+            bias.static_soft,
+            states.len() - 1,
+        );
+        let mut velocities = SharedVelocities::default();
+        velocities.load(states);
+        wide.warm_start(states, &velocities);
+        for use_bias in [true, false] {
+            let pass = PassBias {
+                use_bias,
+                inv_h: bias.inv_h,
+                max_push_speed: bias.max_push_speed,
+            };
+            wide.solve(states, &velocities, pass, true);
+        }
+        velocities.store(states);
+        wide.store(constraints);
+    }
+
+    /// The wide solver, one lane per constraint, gives the scalar solver's results bit for bit
+    /// when both take the constraints in the same (colour) order: warm start, a biased pass
+    /// and a relaxation, with the bodies part-way through a substep.
+    #[test]
+    fn the_wide_solver_gives_the_scalar_solvers_bits() {
+        let world = pile();
+        let (mut states, mut constraints, bias, graph) = substep(&world, 1.0 / 240.0);
+        assert!(constraints.len() > 30, "a pile has many contacts");
+        assert!(
+            constraints.iter().any(|c| !c.dynamic_a || !c.dynamic_b),
+            "some touch the ground or the paddle"
+        );
+        assert!(graph.overflow.is_empty());
+        let mut wide_states = states.clone();
+        let mut wide_constraints = constraints.clone();
+        solve_wide(&mut wide_states, &mut wide_constraints, &bias, &graph);
+
+        let in_colour_order: Vec<usize> = graph.colors.iter().flatten().copied().collect();
+        for &i in &in_colour_order {
+            warm_start_one(&mut constraints[i], &mut states);
+        }
+        for use_bias in [true, false] {
+            for &i in &in_colour_order {
+                solve_one(&mut constraints[i], &mut states, &bias, use_bias, true);
+            }
+        }
+
+        for (i, (scalar, wide)) in states.iter().zip(&wide_states).enumerate() {
+            assert!(
+                scalar.v == wide.v && scalar.w == wide.w,
+                "body {i}: scalar {scalar:?}, wide {wide:?}"
+            );
+        }
+        for (scalar, wide) in constraints.iter().zip(&wide_constraints) {
+            for (p, q) in scalar.points().iter().zip(wide.points()) {
+                assert_eq!(
+                    (p.normal_impulse, p.tangent_impulse, p.total_normal_impulse),
+                    (q.normal_impulse, q.tangent_impulse, q.total_normal_impulse)
+                );
+            }
+        }
+    }
+
+    /// Static and kinematic bodies are only read by the wide solver: even an impulse gone bad
+    /// (NaN) in a lane with the ground or the paddle leaves their velocities as they were.
+    #[test]
+    fn the_wide_solver_never_writes_static_or_kinematic_velocities() {
+        let world = pile();
+        let (mut states, mut constraints, bias, graph) = substep(&world, 1.0 / 240.0);
+        let before = states.clone();
+        let mut poisoned = 0;
+        for c in constraints
+            .iter_mut()
+            .filter(|c| !c.dynamic_a || !c.dynamic_b)
+        {
+            c.points_mut()[0].normal_impulse = Real::NAN;
+            poisoned += 1;
+        }
+        assert!(poisoned >= 2);
+        solve_wide(&mut states, &mut constraints, &bias, &graph);
+        let (bodies, _, _) = world.solver_inputs();
+        let mut fixed = 0;
+        for ((body, after), before) in bodies.iter().zip(&states).zip(&before) {
+            if !body.is_dynamic() {
+                assert_eq!(
+                    (after.v, after.w),
+                    (before.v, before.w),
+                    "{:?}",
+                    body.kind()
+                );
+                fixed += 1;
+            }
+        }
+        assert_eq!(fixed, 2, "the ground and the paddle");
+    }
+
+    /// A deep overlap is pushed apart at exactly the push cap: the cap bounds the softened
+    /// bias, not the bias before softening (which would make it about 6 % slower).
+    #[test]
+    fn a_deep_overlap_rises_at_the_push_cap() {
+        let mut world = World::new();
+        world.set_effects(crate::Effects::NONE);
+        world
+            .add_body(
+                BodyDef::static_body(Shape::rect(5.0, 0.5).unwrap()).position(vec2(0.0, -0.5)),
+            )
+            .unwrap();
+        // A ball: one contact point, so one pass converges.
+        let block = world
+            .add_body(BodyDef::dynamic(Shape::circle(0.5).unwrap()).position(vec2(0.0, 0.0)))
+            .unwrap();
+        let dt = 1.0 / 60.0;
+        world.step(dt).unwrap();
+        let risen = world.body(block).unwrap().position().y;
+        let cap = world.solver().max_push_speed;
+        assert!(
+            (risen - cap * dt).abs() < 1e-5,
+            "rose {risen}, cap x dt = {}",
+            cap * dt
+        );
+    }
+
+    /// A point that pushed this step only through its warm start still bounces: restitution
+    /// looks at the whole step's normal impulse, not just what the passes added.
+    #[test]
+    fn a_warm_started_point_counts_as_pushed_for_restitution() {
+        let world = pile();
+        let (mut states, mut constraints, _, _) = substep(&world, 1.0 / 240.0);
+        let c = &mut constraints[0];
+        c.restitution = 0.5;
+        c.points_mut()[0].normal_impulse = 0.1;
+        c.points_mut()[0].relative_velocity = -5.0;
+        warm_start_one(c, &mut states);
+        assert_eq!(c.points()[0].total_normal_impulse, 0.1);
+        let params = SolverParams::default();
+        let bounced = apply_restitution(&params, &mut constraints[..1], &mut states);
+        assert_eq!(bounced, 1);
+    }
 }

@@ -6,7 +6,7 @@
 //! lacked) gets the bias `-s / dt`, so the bodies may close the gap but not pass it; without it
 //! continuous collision would leave fast bodies frozen just short of a surface.
 
-use super::body_state::{integrate_positions, integrate_velocities};
+use super::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
 use super::{BodyState, ContactConstraint, SolverContext};
 use crate::math::Real;
@@ -44,7 +44,7 @@ pub(super) fn solve(
             }
         }
     }
-    let work = integrate_velocities(params, environment, bodies, states, dt);
+    let work = integrate_velocities(environment, bodies, states, dt, SpeedCaps::new(params, dt));
     integrate_positions(bodies, states, dt);
     work
 }

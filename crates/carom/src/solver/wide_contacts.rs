@@ -1,7 +1,9 @@
 //! Soft step's contact solve four constraints at a time: the constraints of one graph colour
 //! (no shared moving body) are packed into bundles of four lanes, stored as structures of
-//! arrays, and solved with `wide`'s 4-lane floats. The arithmetic per lane is exactly the scalar
-//! solver's ([`super::soft_step`]); only the order of constraints differs (colour by colour).
+//! arrays, and solved with `wide`'s 4-lane floats. The arithmetic per lane is the scalar
+//! solver's ([`super::soft_step`]) operation for operation, summed in the same order, so a lane
+//! gives the scalar result bit for bit (tested); only the order of constraints differs (colour
+//! by colour).
 
 use super::ITEMS_PER_TASK;
 use super::color_passes::for_each_by_color;
@@ -30,7 +32,7 @@ struct WidePoint {
     tangent_mass: f32x4,
     normal_impulse: f32x4,
     tangent_impulse: f32x4,
-    max_normal_impulse: f32x4,
+    total_normal_impulse: f32x4,
 }
 
 /// Four constraints; lanes past the colour's end are empty (zero masses, no impulse).
@@ -41,6 +43,11 @@ struct Bundle {
     /// Dense body indices (the spare state for an empty lane).
     a: [usize; LANES],
     b: [usize; LANES],
+    /// Per lane, whether A and B take impulses (dynamic bodies): only those velocities are
+    /// written back, as Box2D skips static ones, so a static or kinematic body's velocity is
+    /// never touched (nor shared between threads' caches) whatever the lanes computed.
+    writes_a: [bool; LANES],
+    writes_b: [bool; LANES],
     inv_mass_a: f32x4,
     inv_inertia_a: f32x4,
     inv_mass_b: f32x4,
@@ -95,12 +102,20 @@ impl WideBody {
         }
     }
 
-    /// Writes the velocities back (positions do not change in a solve).
+    /// Writes back the velocities of the lanes that take impulses (positions do not change
+    /// in a solve).
     #[inline(always)]
-    fn scatter(&self, velocities: &SharedVelocities, indices: &[usize; LANES]) {
+    fn scatter(
+        &self,
+        velocities: &SharedVelocities,
+        indices: &[usize; LANES],
+        writes: &[bool; LANES],
+    ) {
         let (v_x, v_y, w) = (self.v_x.to_array(), self.v_y.to_array(), self.w.to_array());
-        for (lane, &i) in indices.iter().enumerate() {
-            velocities.set(i, [v_x[lane], v_y[lane], w[lane]]);
+        for (lane, (&i, &write)) in indices.iter().zip(writes).enumerate() {
+            if write {
+                velocities.set(i, [v_x[lane], v_y[lane], w[lane]]);
+            }
         }
     }
 }
@@ -109,7 +124,7 @@ impl WideBody {
 /// threads: no two bundles of a colour share a moving body, so each velocity has one writer
 /// at a time, and relaxed atomics (plain loads and stores on common hardware) are all the
 /// synchronisation needed; rayon orders one colour after the other. Static and kinematic bodies
-/// are written back unchanged (they take no impulse), whoever writes them.
+/// are only read.
 #[derive(Debug, Default)]
 pub(crate) struct SharedVelocities(Vec<[AtomicU32; 3]>);
 
@@ -250,7 +265,7 @@ impl WideContacts {
                     let wide = &bundle.points[j];
                     point.normal_impulse = wide.normal_impulse.to_array()[lane];
                     point.tangent_impulse = wide.tangent_impulse.to_array()[lane];
-                    point.max_normal_impulse = wide.max_normal_impulse.to_array()[lane];
+                    point.total_normal_impulse = wide.total_normal_impulse.to_array()[lane];
                 }
             }
         }
@@ -258,19 +273,21 @@ impl WideContacts {
 }
 
 impl Bundle {
-    /// Applies the bundle's accumulated impulses.
+    /// Applies the bundle's accumulated impulses (and counts them as pushed this step).
     #[inline(always)]
-    fn warm_start(&self, states: &[BodyState], velocities: &SharedVelocities) {
+    fn warm_start(&mut self, states: &[BodyState], velocities: &SharedVelocities) {
         let mut a = WideBody::gather(states, velocities, &self.a);
         let mut b = WideBody::gather(states, velocities, &self.b);
         let (tangent_x, tangent_y) = (self.normal_y, -self.normal_x);
-        for point in &self.points {
+        for j in 0..2 {
+            let point = self.points[j];
             let p_x = self.normal_x * point.normal_impulse + tangent_x * point.tangent_impulse;
             let p_y = self.normal_y * point.normal_impulse + tangent_y * point.tangent_impulse;
-            self.apply(point, p_x, p_y, &mut a, &mut b);
+            self.apply(&point, p_x, p_y, &mut a, &mut b);
+            self.points[j].total_normal_impulse += point.normal_impulse;
         }
-        a.scatter(velocities, &self.a);
-        b.scatter(velocities, &self.b);
+        a.scatter(velocities, &self.a, &self.writes_a);
+        b.scatter(velocities, &self.b, &self.writes_b);
     }
 
     /// Solves the bundle's four constraints once.
@@ -299,11 +316,11 @@ impl Bundle {
             let rb_y = b.sin * point.anchor_b_x + b.cos * point.anchor_b_y;
             let d_x = (b.dp_x - a.dp_x) + rb_x - ra_x;
             let d_y = (b.dp_y - a.dp_y) + rb_y - ra_y;
-            let s = point.base_separation + normal_x * d_x + normal_y * d_y;
+            let s = point.base_separation + (normal_x * d_x + normal_y * d_y);
             let speculative = s.simd_gt(zero);
             let (bias, mass_scale, impulse_scale) = if pass.use_bias {
                 (
-                    (bundle.bias_rate * s).max(max_push),
+                    (bundle.mass_scale * bundle.bias_rate * s).max(max_push),
                     bundle.mass_scale,
                     bundle.impulse_scale,
                 )
@@ -314,13 +331,13 @@ impl Bundle {
             let mass_scale = speculative.bitselect(one, mass_scale);
             let impulse_scale = speculative.bitselect(zero, impulse_scale);
             let vn = bundle.relative_normal_velocity(&point, &a, &b, normal_x, normal_y);
-            let impulse = -point.normal_mass * mass_scale * (vn + bias)
+            let impulse = -point.normal_mass * (mass_scale * vn + bias)
                 - impulse_scale * point.normal_impulse;
             let total = (point.normal_impulse + impulse).max(zero);
             let applied = total - point.normal_impulse;
             let point = &mut bundle.points[j];
             point.normal_impulse = total;
-            point.max_normal_impulse = point.max_normal_impulse.max(applied);
+            point.total_normal_impulse += applied;
             let point = *point;
             bundle.apply(
                 &point,
@@ -350,8 +367,8 @@ impl Bundle {
                 );
             }
         }
-        a.scatter(velocities, &bundle.a);
-        b.scatter(velocities, &bundle.b);
+        a.scatter(velocities, &bundle.a, &bundle.writes_a);
+        b.scatter(velocities, &bundle.b, &bundle.writes_b);
     }
 
     /// Packs up to four constraints; `softness` is for moving and static partners.
@@ -365,10 +382,12 @@ impl Bundle {
         let mut points = [[[0.0; LANES]; 10]; 2];
         let mut bundle_constraints = [usize::MAX; LANES];
         let (mut a, mut b) = ([spare; LANES], [spare; LANES]);
+        let (mut writes_a, mut writes_b) = ([false; LANES], [false; LANES]);
         for (lane, &index) in chunk.iter().enumerate() {
             let c = &constraints[index];
             bundle_constraints[lane] = index;
             (a[lane], b[lane]) = (c.a, c.b);
+            (writes_a[lane], writes_b[lane]) = (c.dynamic_a, c.dynamic_b);
             let soft = softness[usize::from(c.touches_static)];
             let values = [
                 c.inv_mass_a,
@@ -397,7 +416,7 @@ impl Bundle {
                     p.tangent_mass,
                     p.normal_impulse,
                     p.tangent_impulse,
-                    p.max_normal_impulse,
+                    p.total_normal_impulse,
                 ];
                 for (field, value) in points[j].iter_mut().zip(values) {
                     field[lane] = value;
@@ -414,12 +433,14 @@ impl Bundle {
             tangent_mass: f32x4::new(p[6]),
             normal_impulse: f32x4::new(p[7]),
             tangent_impulse: f32x4::new(p[8]),
-            max_normal_impulse: f32x4::new(p[9]),
+            total_normal_impulse: f32x4::new(p[9]),
         };
         Bundle {
             constraints: bundle_constraints,
             a,
             b,
+            writes_a,
+            writes_b,
             inv_mass_a: f32x4::new(lanes[0]),
             inv_inertia_a: f32x4::new(lanes[1]),
             inv_mass_b: f32x4::new(lanes[2]),
