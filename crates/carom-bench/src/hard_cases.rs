@@ -858,7 +858,7 @@ fn random_worlds(engine: Engine, o: &mut Outcome) -> Res<()> {
             let mut out = 0usize;
             for i in 0..w.body_total() {
                 let p = w.body_position(i)?;
-                if w.is_dynamic(i) && (p[0].abs() > 10.0 || !(0.0..20.0).contains(&p[1])) {
+                if w.is_dynamic(i) && worlds::outside_the_box(vec2(p[0], p[1])) {
                     out += 1;
                 }
             }

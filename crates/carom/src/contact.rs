@@ -6,10 +6,11 @@
 //! ones included, as in Box2D: the shapes are within the speculative margin. Changes of
 //! touching are reported as begin and end events, readable after the step.
 
+use crate::body::Body;
 use crate::body::BodyHandle;
 use crate::body_set::BodySet;
 use crate::broadphase::{BroadPhase, kinds_can_collide};
-use crate::manifold::{self, Manifold};
+use crate::manifold::{self, Manifold, Margins};
 use crate::math::Real;
 use crate::parallel::map_mut_into;
 use crate::recycle::ManifoldFrame;
@@ -196,11 +197,16 @@ impl ContactSet {
     /// boxes no longer overlap (or whose bodies can no longer collide). Pairs where neither
     /// body moves (static or asleep) are left as they are. Sleeping islands touched by a moving
     /// body are added to `wake`. Returns the deepest penetration seen.
+    ///
+    /// `prediction` is how far ahead, s, a face point may look: it is kept while the pair could
+    /// close its gap within that time at their present speeds (0 keeps points within `margin`
+    /// only).
     pub(crate) fn update(
         &mut self,
         bodies: &BodySet,
         broadphase: &BroadPhase,
         margin: Real,
+        prediction: Real,
         recycling: bool,
         wake: &mut Vec<u32>,
     ) -> Real {
@@ -210,7 +216,7 @@ impl ContactSet {
             &mut self.contacts,
             &mut self.refresh,
             CONTACTS_PER_TASK,
-            |contact| refresh_manifold(contact, bodies, broadphase, margin, recycling),
+            |contact| refresh_manifold(contact, bodies, broadphase, margin, prediction, recycling),
         );
         let mut deepest: Real = 0.0;
         let mut index = self.contacts.len();
@@ -285,6 +291,13 @@ impl ContactSet {
     }
 }
 
+/// The fastest two bodies' surfaces can close on each other: their relative speed, and each
+/// one's spin times its farthest point.
+fn closing_speed(a: &Body, b: &Body) -> Real {
+    let turning = |body: &Body| body.angular_velocity().abs() * body.shape().max_extent();
+    (b.linear_velocity() - a.linear_velocity()).norm() + turning(a) + turning(b)
+}
+
 /// Rebuilds one contact's manifold if either body moves (or, `recycling`, carries the last one
 /// along if they barely moved relative to each other); says whether the contact lives on.
 fn refresh_manifold(
@@ -292,6 +305,7 @@ fn refresh_manifold(
     bodies: &BodySet,
     broadphase: &BroadPhase,
     margin: Real,
+    prediction: Real,
     recycling: bool,
 ) -> Refresh {
     let (Some(a), Some(b)) = (bodies.get(contact.body_a), bodies.get(contact.body_b)) else {
@@ -322,8 +336,12 @@ fn refresh_manifold(
         contact.manifold = carried;
         return Refresh::Updated;
     }
+    let margins = Margins {
+        any: margin,
+        face: margin + closing_speed(a, b) * prediction,
+    };
     contact.manifold =
-        manifold::update(a.world_shape(), b.world_shape(), margin, &contact.manifold);
+        manifold::update(a.world_shape(), b.world_shape(), margins, &contact.manifold);
     contact.manifold.set_anchors(a.position(), b.position());
     contact.frame = ManifoldFrame::of(&contact.manifold, a, b);
     Refresh::Updated

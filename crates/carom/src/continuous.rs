@@ -6,6 +6,12 @@
 //! other body): with `d` the exact distance and `bound` the fastest any point of the body can
 //! close that distance, advancing by `d / bound` can never step past a contact. The body is
 //! left at that time of impact with its velocity; the next step's speculative contact stops it.
+//!
+//! The sweep is the second line. The first is in the contacts: with this effect on, a pair's
+//! face points are kept as far apart as the pair can close in a step (see
+//! [`crate::manifold::Margins`]) and moving bodies' broadphase boxes cover where they are going,
+//! so a body meeting a face, static or moving, at any speed has its contact before it gets
+//! there and the solver stops it at the surface.
 
 use crate::body::{Body, BodyKind};
 use crate::broadphase::BroadPhase;

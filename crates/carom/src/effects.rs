@@ -11,7 +11,9 @@ pub enum Effect {
     Friction,
     /// Bounces (no restitution pass without it).
     Restitution,
-    /// Sweeps of fast bodies so they cannot tunnel.
+    /// Impacts at any speed: contacts between faces are made a step ahead (as far as the pair
+    /// can close in a step) so the solver stops the approach at the surface, and fast bodies
+    /// are swept against static ones (bullets against every body) so they cannot tunnel.
     Continuous,
     /// Islands of resting bodies sleep.
     Sleeping,

@@ -10,6 +10,12 @@
 //!
 //! Points are kept up to a speculative margin *apart*: a pair about to touch already has
 //! points with positive separation, which lets the solver stop a fast body at the surface.
+//! Where a face meets a face (or a circle), the margin may reach further, by how far the pair
+//! can close this step: such a point's normal stays the normal while the bodies close, so
+//! stopping the approach along it stops a real impact. Facing corners, and an edge beyond the
+//! end of the face, keep the plain margin: their normal turns as the bodies pass, and a
+//! speculative point there would stop bodies that were only going to graze past (a ghost
+//! collision).
 
 use crate::math::{Real, Vec2};
 use crate::narrowphase::{self, PolygonFeature};
@@ -202,14 +208,33 @@ impl Manifold {
 /// The reference face is the better of the two polygons' best faces, so swapping the
 /// arguments gives the same points with the normal flipped.
 pub fn collide(a: &WorldShape, b: &WorldShape, margin: Real) -> Manifold {
-    collide_after(a, b, margin, None)
+    collide_after(a, b, Margins::plain(margin), None)
+}
+
+/// How far apart two shapes' points may be and still be kept.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Margins {
+    /// For every point, m.
+    pub any: Real,
+    /// For points where a face meets a face or a circle, m: at least `any`.
+    pub face: Real,
+}
+
+impl Margins {
+    /// The same margin for every point.
+    pub fn plain(margin: Real) -> Self {
+        Margins {
+            any: margin,
+            face: margin,
+        }
+    }
 }
 
 /// [`collide`] for a pair that touched last step: the side that held the reference face keeps
 /// it unless the other side's face is better by [`REFERENCE_TOLERANCE`], and impulses carry
-/// over to points with the same feature ids.
-pub fn update(a: &WorldShape, b: &WorldShape, margin: Real, previous: &Manifold) -> Manifold {
-    let mut manifold = collide_after(a, b, margin, previous.reference_edge.map(|e| e.side));
+/// over to points with the same feature ids. Face points are kept up to `margins.face` apart.
+pub fn update(a: &WorldShape, b: &WorldShape, margins: Margins, previous: &Manifold) -> Manifold {
+    let mut manifold = collide_after(a, b, margins, previous.reference_edge.map(|e| e.side));
     manifold.carry_impulses_from(previous);
     manifold
 }
@@ -217,9 +242,10 @@ pub fn update(a: &WorldShape, b: &WorldShape, margin: Real, previous: &Manifold)
 fn collide_after(
     a: &WorldShape,
     b: &WorldShape,
-    margin: Real,
+    margins: Margins,
     previous_reference: Option<PairSide>,
 ) -> Manifold {
+    let margin = margins.any;
     match (a, b) {
         (
             WorldShape::Circle {
@@ -232,10 +258,10 @@ fn collide_after(
             },
         ) => collide_circles(*ca, *ra, *cb, *rb, margin),
         (WorldShape::Polygon { vertices, normals }, WorldShape::Circle { center, radius }) => {
-            collide_polygon_circle(vertices, normals, *center, *radius, margin)
+            collide_polygon_circle(vertices, normals, *center, *radius, margins)
         }
         (WorldShape::Circle { center, radius }, WorldShape::Polygon { vertices, normals }) => {
-            collide_polygon_circle(vertices, normals, *center, *radius, margin).flipped()
+            collide_polygon_circle(vertices, normals, *center, *radius, margins).flipped()
         }
         (
             WorldShape::Polygon {
@@ -246,7 +272,7 @@ fn collide_after(
                 vertices: vb,
                 normals: nb,
             },
-        ) => collide_polygons(va, na, vb, nb, margin, previous_reference),
+        ) => collide_polygons(va, na, vb, nb, margins, previous_reference),
     }
 }
 
@@ -296,11 +322,15 @@ fn collide_polygon_circle(
     normals: &[Vec2],
     center: Vec2,
     radius: Real,
-    margin: Real,
+    margins: Margins,
 ) -> Manifold {
     let pc = narrowphase::polygon_circle(vertices, normals, center, radius);
     let s = pc.separation;
     let mut manifold = Manifold::with_normal(s.normal);
+    let margin = match pc.feature {
+        PolygonFeature::Edge(_) => margins.face,
+        PolygonFeature::Vertex(_) => margins.any,
+    };
     if s.separation > margin {
         return manifold;
     }
@@ -330,9 +360,10 @@ fn collide_polygons(
     a_normals: &[Vec2],
     b_vertices: &[Vec2],
     b_normals: &[Vec2],
-    margin: Real,
+    margins: Margins,
     previous_reference: Option<PairSide>,
 ) -> Manifold {
+    let margin = margins.any;
     let pp = narrowphase::polygon_polygon_within(
         a_vertices,
         a_normals,
@@ -342,7 +373,7 @@ fn collide_polygons(
     );
     let (edge_a, separation_a) = pp.edge_a;
     let (edge_b, separation_b) = pp.edge_b;
-    if pp.separation.separation > margin {
+    if pp.separation.separation > margins.face {
         return Manifold::with_normal(pp.separation.normal);
     }
     // Apart with two corners facing each other: one point on the line between them.
@@ -350,6 +381,9 @@ fn collide_polygons(
         && pp.separation.separation > separation_a.max(separation_b)
     {
         let mut manifold = Manifold::with_normal(pp.separation.normal);
+        if closest.distance > margin {
+            return manifold;
+        }
         let id =
             FeatureId::vertex_pair(closest.vertex_a.unwrap_or(0), closest.vertex_b.unwrap_or(0));
         manifold.push(
@@ -445,7 +479,15 @@ fn collide_polygons(
         let (enter, leave) = polygon_chord(ref_vertices, ref_normals, end, toward - end);
         (enter <= leave && (0.0..=1.0).contains(&enter)).then(|| end + (toward - end) * enter)
     };
-    let candidates = if s_low > length || s_high < 0.0 {
+    // Face to face, the points may reach as far as the pair can close; an edge beyond the end
+    // of the face only as far as the plain margin.
+    let beyond_the_face = s_low > length || s_high < 0.0;
+    let point_margin = if beyond_the_face {
+        margin
+    } else {
+        margins.face
+    };
+    let candidates = if beyond_the_face {
         // The incident edge lies wholly beyond one end of the reference face (possible only
         // for shapes barely within the margin): keep its nearer end.
         if s_low > length {
@@ -463,7 +505,7 @@ fn collide_polygons(
     };
     for (point, reference_vertex, incident_vertex) in candidates.into_iter().flatten() {
         let separation = normal.dot(&(point - v11));
-        if separation > margin {
+        if separation > point_margin {
             continue;
         }
         let u = if separation < 0.0 {
@@ -583,6 +625,37 @@ mod tests {
     }
 
     #[test]
+    fn only_facing_features_reach_past_the_plain_margin() {
+        let reach = Margins {
+            any: 0.02,
+            face: 0.5,
+        };
+        let ground = placed(Shape::rect(5.0, 0.5).unwrap(), 0.0, -0.5, 0.0);
+        // A face 30 cm above a face: kept with the reach, not without.
+        let above = placed(Shape::rect(0.5, 0.5).unwrap(), 0.0, 0.8, 0.0);
+        let no_reach = Margins::plain(0.02);
+        assert!(update(&ground, &above, no_reach, &Manifold::default()).is_empty());
+        let m = update(&ground, &above, reach, &Manifold::default());
+        assert_eq!(m.points().len(), 2);
+        assert!(m.points().iter().all(|p| (p.separation - 0.3).abs() < 1e-5));
+        // A box off to the side and 1 cm above the ground's top corner, 30 cm away: its face
+        // is beyond the end of the ground's side face and its corner faces the ground's
+        // corner, so nothing reaches past the plain margin (a box grazing by is no impact).
+        let beside = placed(Shape::rect(0.5, 0.5).unwrap(), 5.8, 0.51, 0.0);
+        assert!(update(&ground, &beside, reach, &Manifold::default()).is_empty());
+        // A ball 30 cm above a face reaches; off a corner it does not.
+        let ball = placed(Shape::circle(0.5).unwrap(), 0.0, 0.8, 0.0);
+        assert_eq!(
+            update(&ground, &ball, reach, &Manifold::default())
+                .points()
+                .len(),
+            1
+        );
+        let ball_by_corner = placed(Shape::circle(0.5).unwrap(), 5.6, 0.6, 0.0);
+        assert!(update(&ground, &ball_by_corner, reach, &Manifold::default()).is_empty());
+    }
+
+    #[test]
     fn circle_contacts_have_one_point_midway() {
         let a = placed(Shape::circle(1.0).unwrap(), 0.0, 0.0, 0.0);
         let b = placed(Shape::circle(0.5).unwrap(), 1.4, 0.0, 0.0);
@@ -612,7 +685,7 @@ mod tests {
         let tilted = tilt(-1e-4);
         let fresh = collide(&a, &tilted, 0.0);
         // ...but a contact that had A's face keeps it, and keeps its feature ids.
-        let held = update(&a, &tilted, 0.0, &first);
+        let held = update(&a, &tilted, Margins::plain(0.0), &first);
         assert_eq!(held.reference_edge.unwrap().side, PairSide::A);
         let ids = |m: &Manifold| m.points().iter().map(|p| p.id).collect::<Vec<_>>();
         assert_eq!(ids(&held), ids(&first));
@@ -621,7 +694,7 @@ mod tests {
         }
         // A clear win still takes over: A tilted, its corner poking into B's flat face.
         let tilted_a = placed(Shape::rect(0.5, 0.5).unwrap(), 0.0, 0.0, 0.3);
-        let clear = update(&tilted_a, &tilt(0.0), 0.0, &first);
+        let clear = update(&tilted_a, &tilt(0.0), Margins::plain(0.0), &first);
         assert_eq!(clear.reference_edge.unwrap().side, PairSide::B);
     }
 

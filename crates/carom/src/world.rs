@@ -294,12 +294,16 @@ impl World {
         timed(&mut times.broadphase, || {
             self.find_pairs(&mut scratch.pairs)
         });
-        stats.max_penetration = timed(&mut times.narrowphase, || {
-            self.build_manifolds(&mut scratch.wake)
-        });
-        self.contact_bodies(&mut scratch.dense);
         let effects = self.settings.effects;
         let continuous = effects.contains(Effect::Continuous);
+        // With continuous collision, contacts look a step ahead: a face points' margin reaches
+        // as far as the pair can close in a step, and moving bodies' boxes cover where they
+        // are going, so an impact at any speed has its contact before it happens.
+        let prediction = if continuous { dt } else { 0.0 };
+        stats.max_penetration = timed(&mut times.narrowphase, || {
+            self.build_manifolds(prediction, &mut scratch.wake)
+        });
+        self.contact_bodies(&mut scratch.dense);
         if continuous {
             self.poses(&mut scratch.starts);
         }
@@ -310,7 +314,9 @@ impl World {
                 self.solve_continuous(&scratch.starts, &mut scratch.dense_of_slot)
             });
         }
-        timed(&mut times.broadphase, || self.refresh_broadphase());
+        timed(&mut times.broadphase, || {
+            self.refresh_broadphase(prediction)
+        });
         if effects.contains(Effect::Sleeping) {
             stats.work.sleep_checks =
                 timed(&mut times.sleep, || self.update_sleep(dt, &mut scratch));
@@ -325,12 +331,13 @@ impl World {
 
     /// Rebuilds the manifolds of every pair where something moves, and wakes the sleeping
     /// islands a moving body touched so they join this step; returns the deepest overlap.
-    fn build_manifolds(&mut self, wake: &mut Vec<u32>) -> Real {
+    fn build_manifolds(&mut self, prediction: Real, wake: &mut Vec<u32>) -> Real {
         wake.clear();
         let deepest = self.contacts.update(
             &self.bodies,
             &self.broadphase,
             self.settings.speculative_distance,
+            prediction,
             self.settings.contact_recycling,
             wake,
         );
@@ -461,8 +468,9 @@ impl World {
         }
     }
 
-    /// Re-fits the broadphase entries of bodies that moved this step.
-    fn refresh_broadphase(&mut self) {
+    /// Re-fits the broadphase entries of bodies that moved this step, each box covering
+    /// where its body can get to in `prediction` seconds at its present velocity.
+    fn refresh_broadphase(&mut self, prediction: Real) {
         let margins = [
             self.margin_for(BodyKind::Kinematic),
             self.margin_for(BodyKind::Dynamic),
@@ -473,8 +481,9 @@ impl World {
                 BodyKind::Kinematic => margins[0],
                 BodyKind::Dynamic => margins[1],
             };
+            let aabb = predicted_aabb(body, prediction);
             self.broadphase
-                .update(body.handle(), body.kind(), body.aabb(), margin);
+                .update(body.handle(), body.kind(), aabb, margin);
         }
     }
 
@@ -568,6 +577,18 @@ impl World {
 }
 
 /// Runs a stage and adds its wall time to `slot`.
+/// A body's box, grown to cover where it can get to in `time` at its present velocity.
+fn predicted_aabb(body: &Body, time: Real) -> Aabb {
+    let aabb = body.aabb();
+    if time == 0.0 {
+        return aabb;
+    }
+    let shift = body.linear_velocity() * time;
+    let moved = Aabb::new(aabb.min + shift, aabb.max + shift);
+    let turn = body.angular_velocity().abs() * time * body.shape().max_extent();
+    aabb.union(&moved).fattened(turn)
+}
+
 fn timed<T>(slot: &mut std::time::Duration, stage: impl FnOnce() -> T) -> T {
     let clock = Instant::now();
     let result = stage();
