@@ -6,8 +6,7 @@
 //! ones included, as in Box2D: the shapes are within the speculative margin. Changes of
 //! touching are reported as begin and end events, readable after the step.
 
-use crate::body::Body;
-use crate::body::BodyHandle;
+use crate::body::{Body, BodyHandle};
 use crate::body_set::BodySet;
 use crate::broadphase::{BroadPhase, kinds_can_collide};
 use crate::manifold::{self, Manifold, Margins};

@@ -23,8 +23,8 @@ use crate::shape::WorldShape;
 /// cannot miss becoming speculative.
 pub const RECYCLE_DISTANCE: Real = 2.0 * LINEAR_SLOP;
 
-/// A small body may move no more than this fraction of its smallest extent: 10 slop is a
-/// fifth of a 0.5 m box but the whole of a 5 cm one, whose contacts change entirely over it.
+/// A small body may move no more than this fraction of its smallest extent: 1 cm is a fiftieth
+/// of a 1 m box but a fifth of a 5 cm one, whose contacts change a good deal over it.
 pub const RECYCLE_SIZE_FRACTION: Real = 0.1;
 
 /// Neither body may have turned more than this since the manifold was built (the cosine of
@@ -85,9 +85,12 @@ impl ManifoldFrame {
         // advancement's bound; a static body does not turn).
         let relative_turn = self.relative_rotation.rotation_to(&relative.rotation);
         let moving = |body: &Body| body.kind() != BodyKind::Static;
-        let extent = |body: &Body| match moving(body) {
-            true => body.shape().max_extent(),
-            false => 0.0,
+        let extent = |body: &Body| {
+            if moving(body) {
+                body.shape().max_extent()
+            } else {
+                0.0
+            }
         };
         let reach = moved + extent(a).max(extent(b)) * relative_turn.im.abs();
         let smallest = [a, b]

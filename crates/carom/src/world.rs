@@ -296,7 +296,7 @@ impl World {
         });
         let effects = self.settings.effects;
         let continuous = effects.contains(Effect::Continuous);
-        // With continuous collision, contacts look a step ahead: a face points' margin reaches
+        // With continuous collision, contacts look a step ahead: a face point's margin reaches
         // as far as the pair can close in a step, and moving bodies' boxes cover where they
         // are going, so an impact at any speed has its contact before it happens.
         let prediction = if continuous { dt } else { 0.0 };
@@ -576,7 +576,6 @@ impl World {
     }
 }
 
-/// Runs a stage and adds its wall time to `slot`.
 /// A body's box, grown to cover where it can get to in `time` at its present velocity.
 fn predicted_aabb(body: &Body, time: Real) -> Aabb {
     let aabb = body.aabb();
@@ -589,6 +588,7 @@ fn predicted_aabb(body: &Body, time: Real) -> Aabb {
     aabb.union(&moved).fattened(turn)
 }
 
+/// Runs a stage and adds its wall time to `slot`.
 fn timed<T>(slot: &mut std::time::Duration, stage: impl FnOnce() -> T) -> T {
     let clock = Instant::now();
     let result = stage();
