@@ -32,8 +32,7 @@ impl ContactGraph {
         self.colors.iter_mut().for_each(Vec::clear);
         self.overflow.clear();
         for (index, c) in constraints.iter().enumerate() {
-            let moves_a = c.inv_mass_a > 0.0 || c.inv_inertia_a > 0.0;
-            let moves_b = c.inv_mass_b > 0.0 || c.inv_inertia_b > 0.0;
+            let (moves_a, moves_b) = (c.dynamic_a, c.dynamic_b);
             let mut taken =
                 if moves_a { used[c.a] } else { 0 } | if moves_b { used[c.b] } else { 0 };
             if !(moves_a && moves_b) {

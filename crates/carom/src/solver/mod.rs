@@ -278,6 +278,32 @@ pub(crate) struct Workspace {
 /// each costs a few nanoseconds, and a fork several microseconds.
 pub(crate) const ITEMS_PER_TASK: usize = 2048;
 
+/// The touching contacts with a body that moves, as constraints (their contact indices in
+/// `touching`); `dense[i]` gives the dense indices of contact `i`'s bodies.
+fn prepare_constraints(
+    bodies: &[Body],
+    contacts: &[Contact],
+    dense: &[(usize, usize)],
+    touching: &mut Vec<usize>,
+    constraints: &mut Vec<ContactConstraint>,
+) {
+    touching.clear();
+    touching.extend(
+        contacts
+            .iter()
+            .zip(dense)
+            .enumerate()
+            .filter(|(_, (c, (a, b)))| {
+                c.is_touching() && (bodies[*a].moves() || bodies[*b].moves())
+            })
+            .map(|(i, _)| i),
+    );
+    map_into(touching, constraints, ITEMS_PER_TASK, |&i| {
+        let (a, b) = dense[i];
+        ContactConstraint::new(i, &contacts[i], a, b, bodies)
+    });
+}
+
 /// Runs one step of the chosen solver over the bodies (dense, in storage order) and the
 /// contacts; `dense[i]` gives the dense indices of contact `i`'s bodies. Returns how many
 /// contact points were solved and the work the optional effects did.
@@ -301,22 +327,7 @@ pub(crate) fn step(
     map_into(bodies, states, ITEMS_PER_TASK, BodyState::from_body);
     // A spare state past the bodies, for solvers that need a body that is not there.
     states.push(BodyState::spare());
-    touching.clear();
-    touching.extend(
-        contacts
-            .iter()
-            .zip(dense)
-            .enumerate()
-            .filter(|(_, (c, (a, b)))| {
-                c.is_touching() && (bodies[*a].moves() || bodies[*b].moves())
-            })
-            .map(|(i, _)| i),
-    );
-    let shared_bodies: &[Body] = bodies;
-    map_into(touching, constraints, ITEMS_PER_TASK, |&i| {
-        let (a, b) = dense[i];
-        ContactConstraint::new(i, &contacts[i], a, b, shared_bodies)
-    });
+    prepare_constraints(bodies, contacts, dense, touching, constraints);
     let context = SolverContext {
         params,
         environment,

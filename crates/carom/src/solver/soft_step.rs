@@ -29,16 +29,8 @@ pub(super) fn solve(
     } = *context;
     let substeps = params.substeps.max(1);
     let h = dt / substeps as Real;
-    let inv_h = 1.0 / h;
     let caps = SpeedCaps::new(params, dt);
-    // Stiffer than a quarter of the substep rate would ring.
-    let hertz = params.contact_hertz.min(0.25 * inv_h);
-    let bias = Bias {
-        soft: Softness::new(hertz, params.damping_ratio, h),
-        static_soft: Softness::new(params.static_stiffness * hertz, params.damping_ratio, h),
-        inv_h,
-        max_push_speed: params.max_push_speed,
-    };
+    let bias = Bias::new(params, h);
     if !params.warm_starting {
         forget_impulses(constraints);
     }
@@ -50,11 +42,6 @@ pub(super) fn solve(
         graph.leave_uncolored(constraints.len());
     }
     wide.build(constraints, graph, bias.soft, bias.static_soft, spare);
-    let pass = |use_bias| PassBias {
-        use_bias,
-        inv_h,
-        max_push_speed: params.max_push_speed,
-    };
     let bias_friction = environment.friction && params.friction_in_bias_pass;
     let points: usize = constraints.iter().map(|c| c.points().len()).sum();
     let mut work = Work::default();
@@ -73,7 +60,7 @@ pub(super) fn solve(
             velocities.load(states);
         }
         for _ in 0..params.iterations {
-            wide.solve(states, velocities, pass(true), bias_friction);
+            wide.solve(states, velocities, bias.pass(true), bias_friction);
             if overflow {
                 velocities.store(states);
                 for &index in &wide.overflow {
@@ -89,7 +76,7 @@ pub(super) fn solve(
         integrate_positions(bodies, states, h);
         velocities.load(states);
         for _ in 0..params.iterations {
-            wide.solve(states, velocities, pass(false), environment.friction);
+            wide.solve(states, velocities, bias.pass(false), environment.friction);
             if overflow {
                 velocities.store(states);
                 for &index in &wide.overflow {
@@ -126,6 +113,30 @@ struct Bias {
     inv_h: Real,
     /// The fastest push-out, m/s.
     max_push_speed: Real,
+}
+
+impl Bias {
+    /// The biases of `params` for substeps of `h`.
+    fn new(params: &SolverParams, h: Real) -> Self {
+        let inv_h = 1.0 / h;
+        // Stiffer than a quarter of the substep rate would ring.
+        let hertz = params.contact_hertz.min(0.25 * inv_h);
+        Bias {
+            soft: Softness::new(hertz, params.damping_ratio, h),
+            static_soft: Softness::new(params.static_stiffness * hertz, params.damping_ratio, h),
+            inv_h,
+            max_push_speed: params.max_push_speed,
+        }
+    }
+
+    /// What the wide solver needs of it for one pass, biased or relaxing.
+    fn pass(&self, use_bias: bool) -> PassBias {
+        PassBias {
+            use_bias,
+            inv_h: self.inv_h,
+            max_push_speed: self.max_push_speed,
+        }
+    }
 }
 
 /// Starts from zero impulses (warm starting off).
@@ -319,26 +330,15 @@ mod tests {
             })
             .collect();
         states.push(BodyState::spare());
-        let constraints: Vec<ContactConstraint> = contacts
-            .iter()
-            .zip(&dense)
-            .enumerate()
-            .filter(|(_, (c, (a, b)))| {
-                c.is_touching() && (bodies[*a].moves() || bodies[*b].moves())
-            })
-            .map(|(i, (c, &(a, b)))| ContactConstraint::new(i, c, a, b, bodies))
-            .collect();
-        let params = SolverParams::default();
-        let bias = Bias {
-            soft: Softness::new(params.contact_hertz, params.damping_ratio, h),
-            static_soft: Softness::new(
-                params.static_stiffness * params.contact_hertz,
-                params.damping_ratio,
-                h,
-            ),
-            inv_h: 1.0 / h,
-            max_push_speed: params.max_push_speed,
-        };
+        let (mut touching, mut constraints) = (Vec::new(), Vec::new());
+        crate::solver::prepare_constraints(
+            bodies,
+            contacts,
+            &dense,
+            &mut touching,
+            &mut constraints,
+        );
+        let bias = Bias::new(&SolverParams::default(), h);
         let mut graph = ContactGraph::default();
         graph.build(&constraints, states.len());
         (states, constraints, bias, graph)
@@ -363,12 +363,7 @@ mod tests {
         velocities.load(states);
         wide.warm_start(states, &velocities);
         for use_bias in [true, false] {
-            let pass = PassBias {
-                use_bias,
-                inv_h: bias.inv_h,
-                max_push_speed: bias.max_push_speed,
-            };
-            wide.solve(states, &velocities, pass, true);
+            wide.solve(states, &velocities, bias.pass(use_bias), true);
         }
         velocities.store(states);
         wide.store(constraints);
