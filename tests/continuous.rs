@@ -1,7 +1,8 @@
 //! Continuous collision: the tutorial's tunnelling case, and Box2D's hardest sweeps.
 
 use carom::{
-    BodyDef, Effect, Effects, Real, Shape, SolverParams, Vec2, World, WorldSettings, vec2,
+    BodyDef, BodyHandle, Effect, Effects, Real, Shape, SolverParams, Vec2, World, WorldSettings,
+    vec2,
 };
 use carom_tests::skinny_box;
 
@@ -120,21 +121,29 @@ fn a_fast_spinning_plank_never_passes_the_floor_or_the_post() {
     }
 }
 
-/// Fires a 0.25 m circle at 300 m/s at a free-floating 0.1 m thick dynamic plank; returns how
-/// far past the plank's starting plane the circle got in 5 steps.
-fn fire_at_dynamic_plank(bullet: bool) -> Real {
+/// A free-floating 4 m x 0.1 m dynamic plank (density 50) at the origin and a 0.25 m circle
+/// 10 m before it at `height`, flying at it at 300 m/s; returns the world, the plank and the
+/// circle.
+fn shot_at_free_plank(bullet: bool, height: Real) -> (World, BodyHandle, BodyHandle) {
     let mut world = world(true, Vec2::zeros());
-    world
+    let plank = world
         .add_body(BodyDef::dynamic(Shape::rect(0.05, 2.0).unwrap()).density(50.0))
         .unwrap();
     let shot = world
         .add_body(
             BodyDef::dynamic(Shape::circle(0.25).unwrap())
-                .position(vec2(-10.0, 0.0))
+                .position(vec2(-10.0, height))
                 .linear_velocity(vec2(300.0, 0.0))
                 .bullet(bullet),
         )
         .unwrap();
+    (world, plank, shot)
+}
+
+/// Fires a 0.25 m circle at 300 m/s at a free-floating 0.1 m thick dynamic plank; returns how
+/// far past the plank's starting plane the circle got in 5 steps.
+fn fire_at_dynamic_plank(bullet: bool) -> Real {
+    let (mut world, _, shot) = shot_at_free_plank(bullet, 0.0);
     for _ in 0..5 {
         world.step(DT).unwrap();
     }
@@ -215,10 +224,15 @@ fn impact(speed: Real, spin: Real, target_moves: bool, start_x: Real, predicted:
                 .angular_velocity(spin),
         )
         .unwrap();
+    deepest_overlap(&mut world, target, thrown, 40)
+}
+
+/// Steps `world` `steps` times; returns the deepest `a` and `b` overlapped after any step.
+fn deepest_overlap(world: &mut World, a: BodyHandle, b: BodyHandle, steps: usize) -> Real {
     let mut deepest: Real = 0.0;
-    for _ in 0..40 {
+    for _ in 0..steps {
         world.step(DT).unwrap();
-        let (a, b) = (world.body(target).unwrap(), world.body(thrown).unwrap());
+        let (a, b) = (world.body(a).unwrap(), world.body(b).unwrap());
         let gap = carom::narrowphase::separation(a.world_shape(), b.world_shape()).separation;
         deepest = deepest.max(-gap);
     }
@@ -306,25 +320,8 @@ fn a_shot_stopped_at_a_free_plank_stays_on_its_side() {
     // contact made a step ahead), it must then stay on its side, pushing the plank along, not
     // drift through it over the next four seconds.
     for bullet in [true, false] {
-        let mut world = world(true, Vec2::zeros());
-        let plank = world
-            .add_body(BodyDef::dynamic(Shape::rect(0.05, 2.0).unwrap()).density(50.0))
-            .unwrap();
-        let shot = world
-            .add_body(
-                BodyDef::dynamic(Shape::circle(0.25).unwrap())
-                    .position(vec2(-10.0, 0.3))
-                    .linear_velocity(vec2(300.0, 0.0))
-                    .bullet(bullet),
-            )
-            .unwrap();
-        let mut deepest: Real = 0.0;
-        for _ in 0..240 {
-            world.step(DT).unwrap();
-            let (a, b) = (world.body(plank).unwrap(), world.body(shot).unwrap());
-            let gap = carom::narrowphase::separation(a.world_shape(), b.world_shape()).separation;
-            deepest = deepest.max(-gap);
-        }
+        let (mut world, plank, shot) = shot_at_free_plank(bullet, 0.3);
+        let deepest = deepest_overlap(&mut world, plank, shot, 240);
         let plank_speed = world.body(plank).unwrap().linear_velocity().x;
         assert!(
             deepest < 0.01,

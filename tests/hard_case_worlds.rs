@@ -55,6 +55,19 @@ pub fn world(params: SolverParams, effects: &[Effect]) -> World {
     world
 }
 
+/// The effects of the cases where bodies rest under gravity.
+const RESTING: [Effect; 3] = [Effect::Gravity, Effect::Friction, Effect::Continuous];
+
+/// A static box `2 half_width` wide and `2 half_height` deep with its top at y = 0.
+fn add_ground(world: &mut World, half_width: Real, half_height: Real) {
+    world
+        .add_body(
+            BodyDef::static_body(Shape::rect(half_width, half_height).unwrap())
+                .position(vec2(0.0, -half_height)),
+        )
+        .unwrap();
+}
+
 /// Box2D's vertical stack: a column of `count` 1 m boxes, friction 0.3, rows shifted
 /// alternately by ±0.01 m, on a ground with a wall beside it.
 ///
@@ -65,15 +78,13 @@ pub fn vertical_stack(
     count: usize,
     sleeping: bool,
 ) -> (World, Vec<BodyHandle>) {
-    let mut effects = vec![Effect::Gravity, Effect::Friction, Effect::Continuous];
+    let mut effects = RESTING.to_vec();
     if sleeping {
         effects.push(Effect::Sleeping);
     }
     let mut world = world(params, &effects);
     // The segment (-30, 0)-(30, 0) as a thin box with its top at y = 0, and the wall at x = 10.
-    world
-        .add_body(BodyDef::static_body(Shape::rect(30.0, 0.05).unwrap()).position(vec2(0.0, -0.05)))
-        .unwrap();
+    add_ground(&mut world, 30.0, 0.05);
     world
         .add_body(BodyDef::static_body(Shape::rect(0.05, 10.0).unwrap()).position(vec2(10.0, 10.0)))
         .unwrap();
@@ -103,13 +114,8 @@ pub fn column_of_30(params: SolverParams, sleeping: bool) -> (World, Vec<BodyHan
 /// # Panics
 /// A solver the world refuses.
 pub fn big_box_on(params: SolverParams, small: Shape) -> World {
-    let mut world = world(
-        params,
-        &[Effect::Gravity, Effect::Friction, Effect::Continuous],
-    );
-    world
-        .add_body(BodyDef::static_body(Shape::rect(50.0, 0.5).unwrap()).position(vec2(0.0, -0.5)))
-        .unwrap();
+    let mut world = world(params, &RESTING);
+    add_ground(&mut world, 50.0, 0.5);
     for x in [-5.0, 5.0] {
         world
             .add_body(BodyDef::dynamic(small.clone()).position(vec2(x, 0.5)))
@@ -134,13 +140,8 @@ pub fn small_triangle() -> Shape {
 /// # Panics
 /// A solver the world refuses.
 pub fn pyramid_world(params: SolverParams, base: usize) -> World {
-    let mut world = world(
-        params,
-        &[Effect::Gravity, Effect::Friction, Effect::Continuous],
-    );
-    world
-        .add_body(BodyDef::static_body(Shape::rect(40.0, 1.0).unwrap()).position(vec2(0.0, -1.0)))
-        .unwrap();
+    let mut world = world(params, &RESTING);
+    add_ground(&mut world, 40.0, 1.0);
     add_pyramid(&mut world, base, 1.0);
     world
 }
@@ -172,13 +173,8 @@ pub fn add_pyramid(world: &mut World, base: usize, size: Real) {
 /// # Panics
 /// A solver the world refuses.
 pub fn tiny_pyramid(params: SolverParams) -> World {
-    let mut world = world(
-        params,
-        &[Effect::Gravity, Effect::Friction, Effect::Continuous],
-    );
-    world
-        .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5).unwrap()).position(vec2(0.0, -0.5)))
-        .unwrap();
+    let mut world = world(params, &RESTING);
+    add_ground(&mut world, 5.0, 0.5);
     add_pyramid(&mut world, TINY_PYRAMID_BASE, TINY_BOX_SIZE);
     world
 }
@@ -204,10 +200,7 @@ pub fn coincident_circles(params: SolverParams) -> (World, Vec<BodyHandle>) {
 /// # Panics
 /// A solver the world refuses.
 pub fn skinny_plank(params: SolverParams) -> (World, BodyHandle) {
-    let mut world = world(
-        params,
-        &[Effect::Gravity, Effect::Friction, Effect::Continuous],
-    );
+    let mut world = world(params, &RESTING);
     crate::skinny_box::add_course(&mut world);
     let plank = world.add_body(crate::skinny_box::plank()).unwrap();
     (world, plank)

@@ -251,8 +251,13 @@ impl Box2dWorld {
         shape.friction().map_err(err)
     }
 
+    /// The `i`-th body, as Box2D holds it.
+    fn body(&mut self, i: usize) -> Result<boxdd::Body<'_>, String> {
+        self.world.body(self.ids[i]).map_err(err)
+    }
+
     fn shape_id(&mut self, i: usize) -> Result<boxdd::ShapeId, String> {
-        let body = self.world.body(self.ids[i]).map_err(err)?;
+        let body = self.body(i)?;
         body.shapes()
             .map_err(err)?
             .first()
@@ -265,12 +270,7 @@ impl Box2dWorld {
     /// # Errors
     /// A body Box2D no longer holds.
     pub fn position(&mut self, i: usize) -> Result<[f32; 2], String> {
-        let p = self
-            .world
-            .body(self.ids[i])
-            .map_err(err)?
-            .position()
-            .map_err(err)?;
+        let p = self.body(i)?.position().map_err(err)?;
         Ok([p.x, p.y])
     }
 
@@ -279,12 +279,7 @@ impl Box2dWorld {
     /// # Errors
     /// A body Box2D no longer holds.
     pub fn angle(&mut self, i: usize) -> Result<f32, String> {
-        let r = self
-            .world
-            .body(self.ids[i])
-            .map_err(err)?
-            .rotation()
-            .map_err(err)?;
+        let r = self.body(i)?.rotation().map_err(err)?;
         Ok(r.angle())
     }
 
@@ -293,12 +288,7 @@ impl Box2dWorld {
     /// # Errors
     /// A body Box2D no longer holds.
     pub fn linear_velocity(&mut self, i: usize) -> Result<[f32; 2], String> {
-        let v = self
-            .world
-            .body(self.ids[i])
-            .map_err(err)?
-            .linear_velocity()
-            .map_err(err)?;
+        let v = self.body(i)?.linear_velocity().map_err(err)?;
         Ok([v.x, v.y])
     }
 
@@ -307,11 +297,7 @@ impl Box2dWorld {
     /// # Errors
     /// A body Box2D no longer holds.
     pub fn angular_velocity(&mut self, i: usize) -> Result<f32, String> {
-        self.world
-            .body(self.ids[i])
-            .map_err(err)?
-            .angular_velocity()
-            .map_err(err)
+        self.body(i)?.angular_velocity().map_err(err)
     }
 
     /// Whether the `i`-th body is awake.
@@ -319,11 +305,7 @@ impl Box2dWorld {
     /// # Errors
     /// A body Box2D no longer holds.
     pub fn is_awake(&mut self, i: usize) -> Result<bool, String> {
-        self.world
-            .body(self.ids[i])
-            .map_err(err)?
-            .is_awake()
-            .map_err(err)
+        self.body(i)?.is_awake().map_err(err)
     }
 
     /// The `i`-th body's tight bounding box `(min, max)`, from its shape at its current pose:
@@ -332,7 +314,7 @@ impl Box2dWorld {
     /// # Errors
     /// A body Box2D no longer holds.
     pub fn aabb(&mut self, i: usize) -> Result<([f32; 2], [f32; 2]), String> {
-        let body = self.world.body(self.ids[i]).map_err(err)?;
+        let body = self.body(i)?;
         let p = body.position().map_err(err)?;
         let r = body.rotation().map_err(err)?;
         let (c, s) = (r.cosine(), r.sine());
@@ -360,9 +342,7 @@ impl Box2dWorld {
     /// # Errors
     /// A non-finite pose, or a body Box2D no longer holds.
     pub fn set_pose(&mut self, i: usize, position: [f32; 2], angle: f32) -> Result<(), String> {
-        self.world
-            .body(self.ids[i])
-            .map_err(err)?
+        self.body(i)?
             .set_position_and_rotation(Position::new(position[0], position[1]), angle)
             .map_err(err)
     }
@@ -372,7 +352,7 @@ impl Box2dWorld {
     /// # Errors
     /// A non-finite velocity, or a body Box2D no longer holds.
     pub fn set_velocity(&mut self, i: usize, linear: [f32; 2], angular: f32) -> Result<(), String> {
-        let mut body = self.world.body(self.ids[i]).map_err(err)?;
+        let mut body = self.body(i)?;
         body.set_linear_velocity(Vec2::new(linear[0], linear[1]))
             .map_err(err)?;
         body.set_angular_velocity(angular).map_err(err)
@@ -410,7 +390,7 @@ impl Box2dWorld {
             if self.kinds[i] != BodyKind::Dynamic {
                 continue;
             }
-            let body = self.world.body(self.ids[i]).map_err(err)?;
+            let body = self.body(i)?;
             if !body.is_awake().map_err(err)? {
                 continue;
             }
