@@ -289,20 +289,23 @@ fn below_ground(world: &World) -> f64 {
 }
 
 /// Runs `seconds`, then `settle` more seconds in which nothing may move faster than 1 m/s.
+/// Besides the ground, no pair may overlap by half a metre (the supports are 1 m tall): a heavy
+/// body kept off the ground by passing through what it stands on has not stayed up.
 fn settles(world: &mut World, seconds: f64, settle: f64, run: &mut Run) {
-    let mut sunk: f64 = 0.0;
-    for _ in 0..(seconds / DT as f64) as usize {
-        world.step(DT).unwrap();
-        sunk = sunk.max(below_ground(world));
-    }
+    let (mut sunk, mut overlap): (f64, f64) = (0.0, 0.0);
     let mut fastest: f64 = 0.0;
-    for _ in 0..(settle / DT as f64) as usize {
+    let settling = (seconds / DT as f64) as usize;
+    for step in 0..settling + (settle / DT as f64) as usize {
         world.step(DT).unwrap();
         sunk = sunk.max(below_ground(world));
-        fastest = fastest.max(max_speed(world));
+        overlap = overlap.max(world.stats().max_penetration as f64);
+        if step >= settling {
+            fastest = fastest.max(max_speed(world));
+        }
     }
     run.check_finite(world);
     run.below("ground penetration m", sunk, 0.1);
+    run.below("deepest overlap m", overlap, 0.5);
     run.below("fastest once settled m/s", fastest, 1.0);
 }
 
@@ -338,6 +341,8 @@ fn a_20_m_box_on_two_small_triangles_stays_up() {
     let known = [
         (SolverKind::SoftStep, "ground penetration"),
         (SolverKind::SequentialImpulse, "ground penetration"),
+        // The same miss: it is a triangle half a metre into the ground.
+        (SolverKind::SequentialImpulse, "deepest overlap"),
     ];
     check_known("high_mass_ratio_triangles", &known, |params| {
         big_box_settles(params, small_triangle())
