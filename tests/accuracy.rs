@@ -182,7 +182,7 @@ fn impulses_conserve_momentum_between_two_bodies() {
     // Angular momentum about the contact point is conserved too.
     let angular = |body: &carom::Body| {
         body.inertia() * body.angular_velocity()
-            + carom::math::cross(
+            + carom::testing::cross(
                 body.position() - point,
                 body.linear_velocity() * body.mass(),
             )

@@ -1,8 +1,9 @@
 //! Collision detection against the tutorial's worked example, brute-force references, and
 //! degenerate input.
 
-use carom::manifold::{PairSide, collide};
-use carom::narrowphase::separation;
+use carom::collide;
+use carom::separation;
+use carom::testing::PairSide;
 use carom::{BodyDef, Polygon, Real, Shape, Vec2, World, WorldSettings, WorldShape, vec2};
 use carom_tests::Rng;
 use proptest::prelude::*;
@@ -289,7 +290,7 @@ proptest! {
             // No point is deeper than the penetration depth.
             prop_assert!(p.separation as f64 >= brute - 2e-5, "{} deeper than {}", p.separation, brute);
             // Inside both, within the tolerance the clipper itself allows for rounding.
-            let tolerance = carom::manifold::SPURIOUS_TOLERANCE + 1e-5;
+            let tolerance = carom::testing::SPURIOUS_TOLERANCE + 1e-5;
             prop_assert!(depth_outside(&a, p.point) <= tolerance);
             prop_assert!(depth_outside(&b, p.point) <= tolerance);
         }
@@ -439,7 +440,7 @@ fn coincident_circle_centres() {
     let b = WorldShape::at(&Shape::circle(0.25).unwrap(), vec2(3.0, -1.0), 2.0);
     let s = assert_finite(&a, &b);
     assert_eq!(s.separation, -0.75);
-    assert_eq!(s.normal, carom::narrowphase::COINCIDENT_NORMAL);
+    assert_eq!(s.normal, carom::testing::COINCIDENT_NORMAL);
     let moved = translated(&b, s.mtv());
     assert!(separation(&a, &moved).separation.abs() < 1e-6);
 }
@@ -505,7 +506,7 @@ fn world_contacts_track_brute_force_pairs_as_thousands_of_bodies_move() {
                 (b.handle(), b.kind(), fat)
             })
             .collect();
-        let expected = carom::broadphase::brute_force_pairs(&entries);
+        let expected = carom::testing::brute_force_pairs(&entries);
         assert_eq!(
             world.broadphase().overlapping_pairs(),
             expected,
@@ -538,7 +539,7 @@ fn polygon_circle_survives_a_zero_length_edge_and_a_centre_on_a_vertex() {
     // The last centre is outside by 1e-23 m: its squared distance to the vertex underflows
     // to zero.
     for center in [vec2(1.0, 0.0), vec2(2.0, -1.0), vec2(-1e-23, -1e-23)] {
-        let pc = carom::narrowphase::polygon_circle(&vertices, &normals, center, 1e-17);
+        let pc = carom::testing::polygon_circle(&vertices, &normals, center, 1e-17);
         let s = pc.separation;
         assert!(s.separation.is_finite(), "{center:?}: {s:?}");
         assert!((s.normal.norm() - 1.0).abs() < 1e-5, "{center:?}: {s:?}");

@@ -233,7 +233,7 @@ fn deepest_overlap(world: &mut World, a: BodyHandle, b: BodyHandle, steps: usize
     for _ in 0..steps {
         world.step(DT).unwrap();
         let (a, b) = (world.body(a).unwrap(), world.body(b).unwrap());
-        let gap = carom::narrowphase::separation(a.world_shape(), b.world_shape()).separation;
+        let gap = carom::separation(a.world_shape(), b.world_shape()).separation;
         deepest = deepest.max(-gap);
     }
     deepest

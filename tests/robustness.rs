@@ -13,7 +13,7 @@ fn assert_well_formed(polygon: &Polygon) {
     for i in 0..n {
         let (a, b, c) = (vertices[i], vertices[(i + 1) % n], vertices[(i + 2) % n]);
         assert!(
-            carom::math::cross(b - a, c - b) > 0.0,
+            carom::testing::cross(b - a, c - b) > 0.0,
             "not strictly convex at {i}"
         );
         assert!((normals[i].norm() - 1.0).abs() < 1e-5);
@@ -21,7 +21,7 @@ fn assert_well_formed(polygon: &Polygon) {
         // The centroid (origin) is behind every edge.
         assert!(normals[i].dot(&a) > 0.0);
     }
-    let centroid = carom::mass::polygon_centroid(vertices).unwrap();
+    let centroid = carom::testing::polygon_centroid(vertices).unwrap();
     assert!(centroid.norm() < 1e-4 * polygon.radius().max(1.0));
 }
 

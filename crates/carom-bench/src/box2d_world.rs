@@ -40,7 +40,7 @@
 //! - `friction_in_bias_pass` (carom's default on, as Box2D v3.1): this Box2D (3.2) solves
 //!   friction in the relax pass only, whatever carom does.
 //! - `graph_coloring`: Box2D always solves in graph colours, as carom's default does.
-//! - `linear_slop` (0.005 m) and `speculative_distance` (0.02 m) are compile-time constants in
+//! - `LINEAR_SLOP` (0.005 m) and `speculative_distance` (0.02 m) are compile-time constants in
 //!   Box2D with the same values; a carom world that changes them is not followed.
 //! - `max_rotation`: both turn a body at most π/4 per step (47 rad/s at 60 Hz); Box2D's is a
 //!   constant, so a carom world that changes it is not followed. Box2D's per-body

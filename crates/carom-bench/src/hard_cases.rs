@@ -555,7 +555,7 @@ fn stack_sleeps(engine: Engine, count: usize, o: &mut Outcome) -> Res<()> {
 fn pyramid_20(engine: Engine, o: &mut Outcome) -> Res<()> {
     let mut scene = worlds::scene("pyramid", soft_step());
     scene.world.set_effect(Effect::Sleeping, false);
-    let slop = f64::from(scene.world.solver().linear_slop);
+    let slop = f64::from(carom::LINEAR_SLOP);
     on(engine, scene.world, |w| {
         let top = highest(w)?;
         let start = w.body_position(top)?;
@@ -606,7 +606,7 @@ fn heavy_tops(engine: Engine, o: &mut Outcome) -> Res<()> {
 fn overlap_recovery(engine: Engine, o: &mut Outcome) -> Res<()> {
     let scene = worlds::scene("overlap_recovery", soft_step());
     let cap = f64::from(scene.world.solver().max_push_speed);
-    let slop = f64::from(scene.world.solver().linear_slop);
+    let slop = f64::from(carom::LINEAR_SLOP);
     on(engine, scene.world, |w| {
         let mut fastest: f64 = 0.0;
         for _ in 0..120 {
@@ -698,7 +698,7 @@ fn confined(engine: Engine, o: &mut Outcome) -> Res<()> {
 
 fn coincident(engine: Engine, o: &mut Outcome) -> Res<()> {
     let (world, circles) = worlds::coincident_circles(soft_step());
-    let slop = f64::from(world.solver().linear_slop);
+    let slop = f64::from(carom::LINEAR_SLOP);
     let circles = circles
         .iter()
         .map(|c| index(&world, *c))

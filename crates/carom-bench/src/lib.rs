@@ -34,7 +34,7 @@
 //! | `warm_starting` | `warmstart_coefficient` 1 or 0 | yes |
 //! | `friction_in_bias_pass` (default on, as Box2D v3.1) | `friction_in_bias_pass` left at Rapier's default, off | no: Rapier's 5050-box pyramid collapses with it on (top box 34 m down in 500 steps), so Rapier keeps its own setting |
 //! | `speculative_distance` (0.02 m = 4 × slop) | `normalized_prediction_distance` (default 0.02, `length_unit` 1) | yes; collider `contact_skin` stays at its default 0 |
-//! | `linear_slop` (0.005 m) | `normalized_allowed_linear_error` (default 0.005) | yes |
+//! | `LINEAR_SLOP` (0.005 m) | `normalized_allowed_linear_error` (default 0.005) | yes |
 //! | `max_push_speed` (3 m/s) | `normalized_max_corrective_velocity` (default 3) | yes |
 //! | `max_linear_speed` (400 m/s) | `normalized_max_linear_velocity` (default 400) | yes |
 //! | `contact_hertz` 30, `damping_ratio` 10, `static_stiffness` 2 | left at Rapier's defaults: `contact_softness` 30 Hz, ζ 10; `static_contact_softness` 60 Hz, ζ 10 | equal at carom's defaults (Box2D's); a scene that changes carom's softness is not followed |
@@ -75,7 +75,7 @@
 //! runs soft step in Box2D); one solve and one relax pass per substep (carom's default
 //! `iterations` 1); static contacts always twice as stiff (carom's default `static_stiffness`
 //! 2); friction in the relax pass only, where carom's default `friction_in_bias_pass` also solves
-//! it in the biased pass; always graph colouring; `linear_slop` and `speculative_distance` are
+//! it in the biased pass; always graph colouring; `LINEAR_SLOP` and `speculative_distance` are
 //! Box2D constants with carom's default values; both cap rotation at π/4 per step, carom's
 //! settable; Box2D caps contact stiffness at an eighth of the substep rate, carom at a
 //! quarter (equal at the default 30 Hz with 4 substeps); contact recycling stays at

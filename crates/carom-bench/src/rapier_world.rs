@@ -70,7 +70,7 @@ impl RapierWorld {
         // falls 34 m in 500 steps), so matching carom there would not be Rapier at its best.
         // Same meaning, same (Box2D) defaults in both engines; `length_unit` stays 1 m.
         params.normalized_prediction_distance = settings.speculative_distance;
-        params.normalized_allowed_linear_error = solver.linear_slop;
+        params.normalized_allowed_linear_error = carom::LINEAR_SLOP;
         params.normalized_max_corrective_velocity = solver.max_push_speed;
         params.normalized_max_linear_velocity = solver.max_linear_speed;
         // Contact softness is left at Rapier's defaults: 30 Hz, damping ratio 10, and twice

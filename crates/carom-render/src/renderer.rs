@@ -6,7 +6,7 @@ use crate::camera::Camera;
 use crate::error::RenderError;
 use crate::shaders;
 use bytemuck::{Pod, Zeroable};
-use carom::debug_draw::{ARROW_WIDTH, OUTLINE_WIDTH};
+use carom::{ARROW_WIDTH, OUTLINE_WIDTH};
 use carom::{Color, DrawList, Vec2};
 use std::ops::Range;
 

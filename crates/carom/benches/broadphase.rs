@@ -3,7 +3,8 @@
 //!
 //! Run with `cargo bench -p carom --bench broadphase`. Time per box should grow like log n.
 
-use carom::{Aabb, BodyHandle, BodyKind, BroadPhase, Real, vec2};
+use carom::testing::BroadPhase;
+use carom::{Aabb, BodyHandle, BodyKind, Real, vec2};
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 

@@ -4,8 +4,8 @@
 //!
 //! Run with `cargo bench -p carom --bench narrowphase`.
 
-use carom::manifold::collide;
-use carom::narrowphase::separation;
+use carom::collide;
+use carom::separation;
 use carom::{Shape, WorldShape, vec2};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;

@@ -8,9 +8,9 @@
 //! Positions and lengths of shapes are in metres. Line widths and point sizes are in screen
 //! pixels, so overlays stay readable at any zoom.
 
-use crate::body::{Body, BodyKind};
+use crate::dynamics::body::{Body, BodyKind};
+use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Vec2, vec2};
-use crate::shape::WorldShape;
 use crate::world::World;
 
 /// A colour with straight (not premultiplied) alpha, components in `0..=1`, sRGB-encoded as
@@ -377,7 +377,7 @@ pub fn default_color(body: &Body) -> Color {
 
 impl World {
     /// Describes the parts of the world `options` selects to `out`. `color_of` may give a body
-    /// its own colour (a scene's choice); otherwise [`default_color`] picks one.
+    /// its own colour (a scene's choice); otherwise it is drawn in its kind's colour.
     pub fn debug_draw(
         &self,
         options: &DrawOptions,

@@ -28,49 +28,51 @@
 //! # Ok::<(), carom::CaromError>(())
 //! ```
 
-pub mod aabb;
-pub mod body;
-mod body_set;
-pub mod broadphase;
-pub mod contact;
-mod continuous;
-pub mod debug_draw;
-pub mod drag;
-pub mod effects;
-pub mod error;
-pub mod manifold;
-pub mod mass;
-pub mod math;
-pub mod mouse_joint;
-pub mod narrowphase;
+mod collision;
+mod constants;
+mod debug_draw;
+mod dynamics;
+mod error;
+mod geometry;
+mod math;
 mod parallel;
-pub mod ray;
-pub mod recycle;
-pub mod segment;
-pub mod settings;
-pub mod shape;
-pub mod sleep;
-pub mod solver;
-pub mod stats;
-pub mod world;
+mod solver;
+mod stats;
+mod world;
 
-pub use aabb::Aabb;
-pub use body::{Body, BodyDef, BodyHandle, BodyKind};
-pub use broadphase::{BroadPhase, DynamicTree};
-pub use contact::{Contact, ContactEvent};
-pub use debug_draw::{Color, DebugDraw, DrawFlags, DrawList, DrawOptions};
-pub use drag::DragModel;
-pub use effects::{Effect, Effects};
+pub use collision::contact::{Contact, ContactEvent};
+pub use collision::manifold::{FeatureId, Manifold, ManifoldPoint, collide};
+pub use collision::narrowphase::{Separation, separation};
+pub use constants::{LINEAR_SLOP, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_TO_SLEEP};
+pub use debug_draw::{
+    ARROW_WIDTH, Color, DebugDraw, DrawFlags, DrawList, DrawOptions, OUTLINE_WIDTH,
+};
+pub use dynamics::body::{Body, BodyDef, BodyHandle, BodyKind};
+pub use dynamics::drag::DragModel;
 pub use error::CaromError;
-pub use manifold::{FeatureId, Manifold, ManifoldPoint};
-pub use mass::MassProperties;
+pub use geometry::aabb::Aabb;
+pub use geometry::mass::MassProperties;
+pub use geometry::ray::{Ray, RayHit};
+pub use geometry::shape::{Circle, Polygon, Shape, WorldShape};
 pub use math::{Isometry, Mat3, Real, Rot, Vec2, vec2};
-pub use mouse_joint::MouseJoint;
-pub use narrowphase::Separation;
-pub use ray::{Ray, RayHit};
-pub use segment::{SegmentIntersection, intersect_segments};
-pub use settings::WorldSettings;
-pub use shape::{Circle, Polygon, Shape, WorldShape};
 pub use solver::{SolverKind, SolverParams};
 pub use stats::{StageTimes, StepStats, Work};
+pub use world::effects::{Effect, Effects};
+pub use world::mouse_joint::MouseJoint;
+pub use world::settings::WorldSettings;
 pub use world::{World, WorldRayHit};
+
+/// Internals for carom's own tests, benchmarks and fuzz targets: reference implementations
+/// and the narrowphase's parts. Not part of the supported interface.
+#[cfg(feature = "testing")]
+pub mod testing {
+    pub use crate::collision::broadphase::{BroadPhase, brute_force_pairs};
+    pub use crate::collision::dynamic_tree::DynamicTree;
+    pub use crate::collision::manifold::PairSide;
+    pub use crate::collision::narrowphase::polygon_circle;
+    pub use crate::constants::{COINCIDENT_NORMAL, SPURIOUS_TOLERANCE};
+    pub use crate::geometry::mass::{
+        polygon_area, polygon_centroid, polygon_inertia_about_origin, polygon_mass,
+    };
+    pub use crate::math::cross;
+}

@@ -35,12 +35,6 @@ pub fn cross_sv(s: Real, v: Vec2) -> Vec2 {
     Vec2::new(-s * v.y, s * v.x)
 }
 
-/// The counter-clockwise perpendicular `(-v.y, v.x)`.
-#[inline]
-pub fn perp_ccw(v: Vec2) -> Vec2 {
-    Vec2::new(-v.y, v.x)
-}
-
 /// The clockwise perpendicular `(v.y, -v.x)`: the outward normal of a counter-clockwise edge.
 #[inline]
 pub fn perp_cw(v: Vec2) -> Vec2 {
@@ -73,7 +67,6 @@ mod tests {
         let a = vec2(2.0, 1.0);
         let b = vec2(-0.5, 3.0);
         assert_eq!(cross(a, b), 6.5);
-        assert_eq!(perp_ccw(a).dot(&a), 0.0);
         // The clockwise perpendicular of a CCW edge points to its right, i.e. outward.
         assert_eq!(perp_cw(vec2(1.0, 0.0)), vec2(0.0, -1.0));
         assert_eq!(cross_sv(2.0, vec2(1.0, 0.0)), vec2(0.0, 2.0));

@@ -1,6 +1,6 @@
 //! The seed tutorial's worked numbers and experiments, reproduced against the public API.
 
-use carom::mass::{polygon_area, polygon_centroid, polygon_inertia_about_origin, polygon_mass};
+use carom::testing::{polygon_area, polygon_centroid, polygon_inertia_about_origin, polygon_mass};
 use carom::{BodyDef, Polygon, Ray, Real, Shape, Vec2, World, vec2};
 
 fn pts(coords: &[(Real, Real)]) -> Vec<Vec2> {

@@ -1,8 +1,9 @@
 //! The solver's copy of a body: velocities and the motion accumulated over the step, stored
 //! contiguously so the inner loops touch little memory.
 
-use super::{Environment, ITEMS_PER_TASK, SolverParams};
-use crate::body::{Body, BodyKind};
+use super::{Environment, SolverParams};
+use crate::constants::ITEMS_PER_TASK;
+use crate::dynamics::body::{Body, BodyKind};
 use crate::math::{Real, Rot, Vec2, clamp_magnitude};
 use crate::parallel::{for_each_with, sum_with};
 use crate::stats::Work;

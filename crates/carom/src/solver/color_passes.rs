@@ -8,23 +8,11 @@
 //! it takes whatever is left. A thread that starts late only finds fewer blocks left, so no
 //! thread ever waits for one that has not started.
 
+use crate::constants::{COLOR_COUNT, MAX_BLOCKS, MIN_BLOCK, MIN_SHARED};
 use rayon::prelude::*;
 use std::ops::Range;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-
-/// Colours a pass can have (the graph's colours).
-const MAX_COLORS: usize = super::contact_graph::COLOR_COUNT;
-
-/// Blocks a colour is cut into, at most.
-const MAX_BLOCKS: usize = 8;
-
-/// Items per block, at least: a block's work must dwarf the cost of claiming it.
-const MIN_BLOCK: usize = 16;
-
-/// Items a pass must have to be shared: a bundle takes about 60 ns, and starting the threads
-/// on a pass some 10 µs.
-const MIN_SHARED: usize = 1024;
 
 /// Runs `task` on every item, colour by colour (`colors` are consecutive ranges of `items`),
 /// on the threads of the current rayon pool when there is enough to share.
@@ -34,15 +22,15 @@ pub(crate) fn for_each_by_color<T: Send>(
     task: impl Fn(&mut T) + Sync,
 ) {
     let threads = rayon::current_num_threads();
-    if threads < 2 || items.len() < MIN_SHARED || colors.len() > MAX_COLORS {
+    if threads < 2 || items.len() < MIN_SHARED || colors.len() > COLOR_COUNT {
         items.iter_mut().for_each(task);
         return;
     }
     // Cut every colour into blocks, each behind a lock that is never contended (a block is
     // claimed once), which is how a claimed block is lent mutably to whichever thread claims it.
-    let mut blocks: [[Option<Mutex<&mut [T]>>; MAX_BLOCKS]; MAX_COLORS] =
+    let mut blocks: [[Option<Mutex<&mut [T]>>; MAX_BLOCKS]; COLOR_COUNT] =
         std::array::from_fn(|_| std::array::from_fn(|_| None));
-    let mut block_counts = [0usize; MAX_COLORS];
+    let mut block_counts = [0usize; COLOR_COUNT];
     let mut rest = items;
     for (color, range) in colors.iter().enumerate() {
         let (mut of_color, after) = rest.split_at_mut(range.len());
@@ -56,9 +44,9 @@ pub(crate) fn for_each_by_color<T: Send>(
         }
         block_counts[color] = count;
     }
-    let taken: [[AtomicBool; MAX_BLOCKS]; MAX_COLORS] =
+    let taken: [[AtomicBool; MAX_BLOCKS]; COLOR_COUNT] =
         std::array::from_fn(|_| std::array::from_fn(|_| AtomicBool::new(false)));
-    let done: [AtomicUsize; MAX_COLORS] = std::array::from_fn(|_| AtomicUsize::new(0));
+    let done: [AtomicUsize; COLOR_COUNT] = std::array::from_fn(|_| AtomicUsize::new(0));
     let work = || {
         let me = rayon::current_thread_index().unwrap_or(0) % threads;
         for color in 0..colors.len() {

@@ -1,8 +1,8 @@
 //! A touching contact as the solver sees it: fixed anchors, effective masses, impulses.
 
 use super::BodyState;
-use crate::body::{Body, BodyKind};
-use crate::contact::Contact;
+use crate::collision::contact::Contact;
+use crate::dynamics::body::{Body, BodyKind};
 use crate::math::{Real, Vec2, cross, cross_sv, perp_cw};
 
 /// One point of a contact constraint.

@@ -3,9 +3,7 @@
 //! in SIMD lanes (or on several threads) with the same result as one by one.
 
 use super::ContactConstraint;
-
-/// Colours tried before a constraint goes to the overflow (Box2D uses 24).
-pub(crate) const COLOR_COUNT: usize = 32;
+use crate::constants::COLOR_COUNT;
 
 /// The constraints (indices into the solver's array) of each colour, and those that found no
 /// colour free, solved one by one after the colours.

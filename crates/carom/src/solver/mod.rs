@@ -23,12 +23,12 @@ mod wide_contacts;
 pub(crate) use body_state::BodyState;
 pub(crate) use contact_constraint::ContactConstraint;
 
-use crate::body::Body;
-use crate::contact::Contact;
-use crate::drag::DragModel;
+use crate::collision::contact::Contact;
+use crate::constants::ITEMS_PER_TASK;
+use crate::dynamics::body::Body;
+use crate::dynamics::drag::DragModel;
 use crate::math::{Real, Vec2};
 use crate::parallel::{for_each_with, map_into};
-use crate::settings::LINEAR_SLOP;
 use crate::stats::Work;
 
 /// Which contact solver runs.
@@ -117,8 +117,6 @@ pub struct SolverParams {
     /// position pass (sequential impulse) or per step by a velocity bias (tutorial impulse), in
     /// `[0, 1]` (0 turns it off). Default 0.2.
     pub baumgarte: Real,
-    /// Overlap left alone, so resting contacts stay in touch, m. Default 0.005.
-    pub linear_slop: Real,
     /// Approach speeds below this do not bounce, m/s. Default 1.
     pub restitution_threshold: Real,
     /// Guard rail: no body moves faster, m/s. Default 400.
@@ -143,7 +141,6 @@ impl Default for SolverParams {
             static_stiffness: 2.0,
             max_push_speed: 3.0,
             baumgarte: 0.2,
-            linear_slop: LINEAR_SLOP,
             restitution_threshold: 1.0,
             max_linear_speed: 400.0,
             max_rotation: 0.25 * std::f32::consts::PI,
@@ -205,7 +202,6 @@ impl SolverParams {
                 value: self.baumgarte,
             });
         }
-        positive("linear slop", self.linear_slop)?;
         positive("restitution threshold", self.restitution_threshold)?;
         positive("max linear speed", self.max_linear_speed)?;
         positive("max rotation", self.max_rotation)
@@ -273,10 +269,6 @@ pub(crate) struct Workspace {
     /// The contacts that become constraints this step.
     touching: Vec<usize>,
 }
-
-/// Bodies or constraints per task when the solver's per-item work is shared among threads:
-/// each costs a few nanoseconds, and a fork several microseconds.
-pub(crate) const ITEMS_PER_TASK: usize = 2048;
 
 /// The touching contacts with a body that moves, as constraints (their contact indices in
 /// `touching`); `dense[i]` gives the dense indices of contact `i`'s bodies.

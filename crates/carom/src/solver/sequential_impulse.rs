@@ -11,15 +11,9 @@ use super::contact_constraint::ConstraintPoint;
 use super::contact_constraint::pair_mut;
 use super::soft_step::{apply_restitution, forget_impulses, solve_friction, warm_start};
 use super::{BodyState, ContactConstraint, SolverContext, SolverParams};
+use crate::constants::{LINEAR_SLOP, MAX_CONDITION, MAX_CORRECTION, POSITION_ITERATIONS};
 use crate::math::{Real, Rot, cross};
 use crate::stats::Work;
-
-/// Position passes after each step (Box2D v2.4's default).
-pub const POSITION_ITERATIONS: usize = 3;
-
-/// The most overlap one position pass removes at a point, m (Box2D v2.4's
-/// `b2_maxLinearCorrection`): a deep overlap is taken apart over several steps, not flung.
-pub const MAX_CORRECTION: Real = 0.2;
 
 pub(super) fn solve(
     context: &SolverContext,
@@ -74,10 +68,6 @@ pub(super) fn solve(
 fn target_speed(point: &ConstraintPoint, inv_dt: Real) -> Real {
     -point.separation.max(0.0) * inv_dt
 }
-
-/// Above this condition number the two points of a face are too alike to solve as a block
-/// (Box2D v2.4's `k_maxConditionNumber`).
-const MAX_CONDITION: Real = 1000.0;
 
 /// Both normal impulses of a two-point manifold at once, as Box2D v2.4's block solver does:
 /// the 2x2 linear complementarity problem, by trying each case of which points push. Solved
@@ -159,7 +149,7 @@ fn correct_positions(
         for point in c.points() {
             let separation = c.current_separation(point, a, b);
             let correction =
-                (params.baumgarte * (separation + params.linear_slop)).clamp(-MAX_CORRECTION, 0.0);
+                (params.baumgarte * (separation + LINEAR_SLOP)).clamp(-MAX_CORRECTION, 0.0);
             if correction == 0.0 {
                 continue;
             }

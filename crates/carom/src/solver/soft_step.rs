@@ -261,9 +261,9 @@ pub(super) fn apply_restitution(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::body::BodyDef;
+    use crate::dynamics::body::BodyDef;
+    use crate::geometry::shape::Shape;
     use crate::math::{Rot, vec2};
-    use crate::shape::Shape;
     use crate::world::World;
 
     /// A pile in motion: a pyramid with a kinematic paddle pushing into it and circles

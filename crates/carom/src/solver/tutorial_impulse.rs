@@ -9,11 +9,8 @@
 use super::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
 use super::{BodyState, ContactConstraint, SolverContext};
-use crate::math::Real;
+use crate::constants::TUTORIAL_SLOP;
 use crate::stats::Work;
-
-/// The overlap the tutorial leaves alone, m.
-pub const TUTORIAL_SLOP: Real = 0.01;
 
 pub(super) fn solve(
     context: &SolverContext,

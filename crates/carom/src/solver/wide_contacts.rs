@@ -5,11 +5,11 @@
 //! gives the scalar result bit for bit (tested); only the order of constraints differs (colour
 //! by colour).
 
-use super::ITEMS_PER_TASK;
 use super::color_passes::for_each_by_color;
 use super::contact_constraint::ContactConstraint;
 use super::contact_graph::ContactGraph;
 use super::{BodyState, Softness};
+use crate::constants::ITEMS_PER_TASK;
 use crate::math::Real;
 use crate::parallel::{for_each_with, map_into};
 use std::ops::Range;

@@ -118,6 +118,7 @@ pub fn polygon_centroid(points: &[Vec2]) -> Option<Vec2> {
 /// Rotational inertia of a polygon of uniform `density` about the origin of its coordinates.
 ///
 /// The outline may be given in either winding; the result is the physical (positive) inertia.
+#[cfg(any(test, feature = "testing"))]
 pub fn polygon_inertia_about_origin(points: &[Vec2], density: Real) -> Real {
     moments(points).map_or(0.0, |m| {
         // Reversing the winding flips the sign of every term, so the sign of the area fixes it.

@@ -3,7 +3,7 @@
 //! Bodies live in one dense `Vec` so the hot loops walk memory in order; a slot table maps
 //! each handle to its body's current place. Removal swaps the last body into the hole.
 
-use crate::body::{Body, BodyDef, BodyHandle};
+use crate::dynamics::body::{Body, BodyDef, BodyHandle};
 use crate::error::CaromError;
 
 #[derive(Debug, Clone, Copy)]
@@ -128,8 +128,8 @@ impl BodySet {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::shape::Shape;
     use crate::math::vec2;
-    use crate::shape::Shape;
 
     fn ball_at(x: f32) -> BodyDef {
         BodyDef::dynamic(Shape::circle(0.5).unwrap()).position(vec2(x, 0.0))

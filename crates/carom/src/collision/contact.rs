@@ -6,14 +6,15 @@
 //! ones included, as in Box2D: the shapes are within the speculative margin. Changes of
 //! touching are reported as begin and end events, readable after the step.
 
-use crate::body::{Body, BodyHandle};
-use crate::body_set::BodySet;
-use crate::broadphase::{BroadPhase, kinds_can_collide};
-use crate::manifold::{self, Manifold, Margins};
+use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
+use crate::collision::manifold::{self, Manifold, Margins};
+use crate::collision::recycle::ManifoldFrame;
+use crate::constants::CONTACTS_PER_TASK;
+use crate::dynamics::body::{Body, BodyHandle};
+use crate::dynamics::body_set::BodySet;
+use crate::geometry::shape::Shape;
 use crate::math::Real;
 use crate::parallel::map_mut_into;
-use crate::recycle::ManifoldFrame;
-use crate::shape::Shape;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 
@@ -124,10 +125,6 @@ enum Refresh {
     /// The manifold was rebuilt.
     Updated,
 }
-
-/// Contacts per task when manifolds are rebuilt on several threads (a manifold costs about
-/// a tenth of a microsecond, a fork several microseconds).
-const CONTACTS_PER_TASK: usize = 256;
 
 impl ContactSet {
     /// True when the pair already has a contact.
@@ -277,11 +274,6 @@ impl ContactSet {
     /// How many contacts there are.
     pub fn len(&self) -> usize {
         self.contacts.len()
-    }
-
-    /// True when there are no contacts.
-    pub fn is_empty(&self) -> bool {
-        self.contacts.is_empty()
     }
 
     /// The begin and end events of the last step, in the order they happened.

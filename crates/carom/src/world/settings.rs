@@ -1,19 +1,10 @@
 //! World settings and the engine's tuning constants, each named once.
 
-use crate::drag::DragModel;
-use crate::effects::Effects;
+use crate::constants::{AABB_MARGIN, SPECULATIVE_DISTANCE};
+use crate::dynamics::drag::DragModel;
 use crate::math::{Real, Vec2};
 use crate::solver::SolverParams;
-
-/// Penetration the solver tolerates, and the scale of "touching", in metres (Box2D's 0.5 cm).
-pub const LINEAR_SLOP: Real = 0.005;
-
-/// Shapes closer than this get speculative contact points, in metres (4 × slop, as Box2D).
-pub const SPECULATIVE_DISTANCE: Real = 4.0 * LINEAR_SLOP;
-
-/// How much moving bodies' bounding boxes are enlarged in the broadphase, in metres, so a
-/// body can move a little without its tree entry changing.
-pub const AABB_MARGIN: Real = 0.05;
+use crate::world::effects::Effects;
 
 /// World-wide settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -25,15 +16,16 @@ pub struct WorldSettings {
     /// Shapes closer than this get contact points with positive separation, so the solver
     /// can stop fast bodies before they overlap. Default [`SPECULATIVE_DISTANCE`].
     pub speculative_distance: Real,
-    /// Broadphase enlargement of moving bodies' boxes. Default [`AABB_MARGIN`]; static
+    /// Broadphase enlargement of moving bodies' boxes. Default 5 cm; static
     /// bodies use the speculative distance, which keeps every speculative pair visible.
     pub aabb_margin: Real,
     /// Which contact solver runs, and how hard it works. Default: soft step, 4 substeps.
     pub solver: SolverParams,
     /// The effects simulated; what is not named costs nothing. Default: all of them.
     pub effects: Effects,
-    /// Carry a pair's manifold along with its bodies while they barely move relative to each
-    /// other ([`crate::recycle`]), instead of rebuilding it every step. Default on.
+    /// Keep a pair's manifold while its bodies barely move relative to each other, updating
+    /// only each point's separation, instead of rebuilding it every step (as Box2D does).
+    /// Default on.
     pub contact_recycling: bool,
 }
 

@@ -6,7 +6,7 @@
 //! step, so the body still collides on the way and a wall stops it: the grab never teleports
 //! anything. Letting go leaves the body with the velocity it had: a throw.
 
-use crate::body::BodyHandle;
+use crate::dynamics::body::BodyHandle;
 use crate::error::CaromError;
 use crate::math::{Real, Vec2};
 use crate::world::World;

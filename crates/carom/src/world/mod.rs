@@ -1,20 +1,25 @@
 //! The world: bodies, global settings, the step, and queries.
 
-use crate::aabb::Aabb;
-use crate::body::{Body, BodyDef, BodyHandle, BodyKind};
-use crate::body_set::BodySet;
-use crate::broadphase::BroadPhase;
-use crate::contact::{Contact, ContactEvent, ContactSet};
-use crate::continuous::{self, Pose};
-use crate::drag::DragModel;
-use crate::effects::{Effect, Effects};
+pub(crate) mod effects;
+pub(crate) mod mouse_joint;
+pub(crate) mod settings;
+
+use crate::collision::broadphase::BroadPhase;
+use crate::collision::contact::{Contact, ContactEvent, ContactSet};
+use crate::collision::continuous::{self, Pose};
+use crate::constants::LINEAR_SLOP;
+use crate::dynamics::body::{Body, BodyDef, BodyHandle, BodyKind};
+use crate::dynamics::body_set::BodySet;
+use crate::dynamics::drag::DragModel;
+use crate::dynamics::sleep;
 use crate::error::{CaromError, check_finite_vec};
+use crate::geometry::aabb::Aabb;
+use crate::geometry::ray::Ray;
 use crate::math::{Real, Vec2};
-use crate::ray::Ray;
-use crate::settings::WorldSettings;
-use crate::sleep;
 use crate::solver::{self, Environment, SolverParams};
 use crate::stats::StepStats;
+use crate::world::effects::{Effect, Effects};
+use crate::world::settings::WorldSettings;
 use std::time::Instant;
 
 /// The closest body a ray enters.
@@ -239,7 +244,8 @@ impl World {
         self.contacts.events()
     }
 
-    /// The broadphase, for inspection (fat boxes, tree shape).
+    /// The broadphase, for inspection (fat boxes, tree shape) by carom's own tests.
+    #[cfg(any(test, feature = "testing"))]
     pub fn broadphase(&self) -> &BroadPhase {
         &self.broadphase
     }
@@ -402,7 +408,7 @@ impl World {
             starts,
             &self.broadphase,
             |h| dense.get(h.index() as usize).copied().flatten(),
-            self.settings.solver.linear_slop,
+            LINEAR_SLOP,
         )
     }
 
@@ -609,8 +615,8 @@ impl World {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::shape::Shape;
     use crate::math::vec2;
-    use crate::shape::Shape;
 
     #[test]
     fn bad_time_steps_and_settings_are_refused() {

@@ -1,24 +1,12 @@
 //! Collision shapes: circles and convex polygons, in their local frame and in the world.
 
-use crate::aabb::Aabb;
+use crate::constants::{COLLINEAR_SINE, CONTAINMENT_TOLERANCE, MAX_SHAPE_EXTENT, WELD_TOLERANCE};
 use crate::error::{CaromError, check_finite, check_finite_vec};
-use crate::mass::{self, MassProperties};
+use crate::geometry::aabb::Aabb;
+use crate::geometry::mass::{self, MassProperties};
+use crate::geometry::ray::{Ray, RayHit};
 use crate::math::{Isometry, Real, Vec2, cross, perp_cw};
-use crate::ray::{Ray, RayHit};
 use std::f64::consts::TAU;
-
-/// How far outside a shape's boundary a point may lie and still count as inside, in metres.
-///
-/// Points exactly on an edge are inside; this absorbs the rounding of moving a point into the
-/// shape's local frame, so a point on the boundary does not flicker in and out.
-pub const CONTAINMENT_TOLERANCE: Real = 1.0e-5;
-
-/// Points of a polygon closer than this (relative to the polygon's size) are the same point.
-const WELD_TOLERANCE: Real = 1.0e-5;
-
-/// The largest coordinate or radius a shape may have, m (Box2D's `B2_HUGE`): beyond it an f32
-/// keeps too few digits below a millimetre for contacts, and sums of sizes can overflow.
-pub const MAX_SHAPE_EXTENT: Real = 1.0e5;
 
 /// Checks that a shape's coordinate or size is no larger than [`MAX_SHAPE_EXTENT`].
 fn check_extent(what: &'static str, value: Real) -> Result<(), CaromError> {
@@ -39,9 +27,6 @@ fn check_point(what: &str, point: Vec2) -> Result<(), CaromError> {
     check_extent("polygon coordinate", point.x)?;
     check_extent("polygon coordinate", point.y)
 }
-
-/// A vertex whose turn has a sine below this is collinear with its neighbours.
-const COLLINEAR_SINE: f64 = 1.0e-6;
 
 /// A circle centred on its body's centre of mass.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -471,11 +456,13 @@ impl Shape {
         }
     }
 
-    /// Casts a ray given in the shape's local frame; see [`crate::ray`].
+    /// Casts a ray given in the shape's local frame; see [`Ray`].
     pub fn ray_cast_local(&self, ray: &Ray) -> Option<RayHit> {
         match self {
-            Shape::Circle(c) => crate::ray::ray_cast_circle(Vec2::zeros(), c.radius, ray),
-            Shape::Polygon(p) => crate::ray::ray_cast_polygon(&p.vertices, &p.normals, ray),
+            Shape::Circle(c) => crate::geometry::ray::ray_cast_circle(Vec2::zeros(), c.radius, ray),
+            Shape::Polygon(p) => {
+                crate::geometry::ray::ray_cast_polygon(&p.vertices, &p.normals, ray)
+            }
         }
     }
 

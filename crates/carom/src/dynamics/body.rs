@@ -1,9 +1,9 @@
 //! Rigid bodies: kind, placement, velocity, mass, material and accumulated forces.
 
-use crate::aabb::Aabb;
 use crate::error::{CaromError, check_finite, check_finite_vec};
+use crate::geometry::aabb::Aabb;
+use crate::geometry::shape::{Shape, WorldShape};
 use crate::math::{Isometry, Mat3, Real, Rot, Vec2, cross, cross_sv};
-use crate::shape::{Shape, WorldShape};
 
 /// How a body moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -28,8 +28,8 @@ pub struct BodyHandle {
 }
 
 impl BodyHandle {
-    /// A handle from its parts, for tools that drive a [`crate::BroadPhase`] directly or
-    /// store handles elsewhere. A world only answers to handles it issued.
+    /// A handle from its parts, for tools that store handles elsewhere. A world only answers
+    /// to handles it issued.
     pub fn from_raw_parts(index: u32, generation: u32) -> Self {
         BodyHandle { index, generation }
     }
@@ -558,7 +558,7 @@ impl Body {
     /// True when the world point lies inside or on the body's shape.
     pub fn contains_point(&self, world_point: Vec2) -> bool {
         self.aabb
-            .fattened(crate::shape::CONTAINMENT_TOLERANCE)
+            .fattened(crate::constants::CONTAINMENT_TOLERANCE)
             .contains_point(world_point)
             && self.shape.contains_local(self.local_point(world_point))
     }

@@ -11,8 +11,9 @@
 //! computed too. Polygon–circle is exact in every Voronoi region: inside, across an edge, or
 //! off a corner.
 
+use crate::constants::COINCIDENT_NORMAL;
+use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Vec2};
-use crate::shape::WorldShape;
 
 /// Where B stands relative to A along the direction that separates them best.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -45,9 +46,6 @@ impl Separation {
         }
     }
 }
-
-/// The direction used when two circle centres coincide: pushing B up, by convention.
-pub const COINCIDENT_NORMAL: Vec2 = Vec2::new(0.0, 1.0);
 
 /// Signed separation of two placed shapes; see the module documentation.
 pub fn separation(a: &WorldShape, b: &WorldShape) -> Separation {
@@ -369,8 +367,8 @@ pub fn polygon_polygon_within(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::shape::Shape;
     use crate::math::vec2;
-    use crate::shape::Shape;
 
     fn placed(shape: Shape, x: Real, y: Real, angle: Real) -> WorldShape {
         WorldShape::at(&shape, vec2(x, y), angle)

@@ -4,8 +4,8 @@
 //! A cast reports where the ray *enters* a shape; a ray that starts inside a shape does not hit
 //! it (as in Box2D), so a query from inside a body looks past that body.
 
+use crate::constants::CONTAINMENT_TOLERANCE;
 use crate::math::{Real, Vec2};
-use crate::shape::CONTAINMENT_TOLERANCE;
 
 /// A ray: from `origin` along `translation` (its length is the ray's reach).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -129,8 +129,8 @@ pub fn ray_cast_polygon(vertices: &[Vec2], normals: &[Vec2], ray: &Ray) -> Optio
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::shape::Polygon;
     use crate::math::vec2;
-    use crate::shape::Polygon;
 
     #[test]
     fn circle_hit_miss_and_inside() {

@@ -9,21 +9,16 @@
 //!
 //! The sweep is the second line. The first is in the contacts: with this effect on, a pair's
 //! face points are kept as far apart as the pair can close in a step (see
-//! [`crate::manifold::Margins`]) and moving bodies' broadphase boxes cover where they are going,
+//! [`crate::collision::manifold::Margins`]) and moving bodies' broadphase boxes cover where they are going,
 //! so a body meeting a face, static or moving, at any speed has its contact before it gets
 //! there and the solver stops it at the surface.
 
-use crate::body::{Body, BodyKind};
-use crate::broadphase::BroadPhase;
+use crate::collision::broadphase::BroadPhase;
+use crate::collision::narrowphase::separation;
+use crate::constants::{FAST_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS};
+use crate::dynamics::body::{Body, BodyKind};
+use crate::geometry::shape::{Shape, WorldShape};
 use crate::math::{Isometry, Real, Rot, Vec2};
-use crate::narrowphase::separation;
-use crate::shape::{Shape, WorldShape};
-
-/// A body faster than this fraction of its smallest extent per step is swept.
-pub const FAST_FRACTION: Real = 0.5;
-
-/// The most conservative-advancement iterations per pair (Box2D uses 20 for its root finder).
-const MAX_ITERATIONS: usize = 30;
 
 /// Where a body was at the start of the step.
 #[derive(Debug, Clone, Copy)]
@@ -97,7 +92,7 @@ fn time_of_impact(shape: &Shape, sweep: &Sweep, other: &WorldShape, target: Real
     };
     let mut t: Real = 0.0;
     let mut distance = start;
-    for _ in 0..MAX_ITERATIONS {
+    for _ in 0..MAX_TIME_OF_IMPACT_ITERATIONS {
         if distance < goal + tolerance {
             return Some(t);
         }

@@ -17,15 +17,11 @@
 //! speculative point there would stop bodies that were only going to graze past (a ghost
 //! collision).
 
+use super::narrowphase::{self, PolygonFeature};
+use crate::constants::LINEAR_SLOP;
+use crate::constants::{REFERENCE_TOLERANCE, SPURIOUS_TOLERANCE};
+use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Vec2};
-use crate::narrowphase::{self, PolygonFeature};
-use crate::settings::LINEAR_SLOP;
-use crate::shape::WorldShape;
-
-/// Once a contact has a reference face, the other shape's best face must beat it by this much
-/// to take over, so nearly equal faces do not take turns from one step to the next (Box2D's
-/// 0.1 × slop).
-pub const REFERENCE_TOLERANCE: Real = 0.1 * LINEAR_SLOP;
 
 /// Which features of the two shapes produced a contact point.
 ///
@@ -536,10 +532,6 @@ fn collide_polygons(
     manifold
 }
 
-/// How far outside the reference polygon a clipped point may lie and still count: rounding,
-/// not geometry, at the scale of the slop.
-pub const SPURIOUS_TOLERANCE: Real = 0.1 * LINEAR_SLOP;
-
 /// How far a point lies outside a convex polygon (negative inside).
 fn distance_outside(vertices: &[Vec2], normals: &[Vec2], point: Vec2) -> Real {
     vertices
@@ -577,8 +569,8 @@ fn overlap_center(a_vertices: &[Vec2], a_normals: &[Vec2], b_vertices: &[Vec2]) 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::shape::Shape;
     use crate::math::vec2;
-    use crate::shape::Shape;
 
     fn placed(shape: Shape, x: Real, y: Real, angle: Real) -> WorldShape {
         WorldShape::at(&shape, vec2(x, y), angle)

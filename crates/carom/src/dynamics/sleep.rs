@@ -7,14 +7,9 @@
 //! are skipped by integration, the solver, the narrowphase and the broadphase. It wakes as one
 //! when a moving body touches it, or when the user moves or pushes one of its bodies.
 
-use crate::body::{Body, BodyKind};
+use crate::constants::{SLEEP_THRESHOLD, TIME_TO_SLEEP};
+use crate::dynamics::body::{Body, BodyKind};
 use crate::math::Real;
-
-/// Bodies whose fastest point moves slower than this may sleep, m/s (Box2D's 5 cm/s).
-pub const SLEEP_THRESHOLD: Real = 0.05;
-
-/// How long a whole island must rest before it sleeps, s (Box2D's 0.5 s).
-pub const TIME_TO_SLEEP: Real = 0.5;
 
 fn find(parent: &mut [u32], mut i: u32) -> u32 {
     while parent[i as usize] != i {

@@ -9,27 +9,13 @@
 //! back and forth and feed the rocking until the column falls. Resting piles also cost next
 //! to nothing in the narrowphase.
 
-use crate::body::{Body, BodyKind};
-use crate::manifold::{ContactEdge, Manifold, PairSide};
+use crate::collision::manifold::{ContactEdge, Manifold, PairSide};
+use crate::constants::{
+    RECYCLE_COS_ANGLE, RECYCLE_DISTANCE, RECYCLE_SIZE_FRACTION, SPECULATIVE_DISTANCE,
+};
+use crate::dynamics::body::{Body, BodyKind};
+use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Rot, Vec2};
-use crate::settings::{LINEAR_SLOP, SPECULATIVE_DISTANCE};
-use crate::shape::WorldShape;
-
-/// How far B may have moved relative to A since a touching manifold was built, counting the
-/// farthest point of a turning body, m (less for small bodies, see [`RECYCLE_SIZE_FRACTION`]).
-/// Box2D allows 10 × slop; at that, and at 1 × slop, sequential impulse pressed a thin sliver
-/// through the floor in one of the stability suite's random piles, so carom holds to 2 × slop.
-/// A pair that was not touching may move no more than the speculative distance, so that it
-/// cannot miss becoming speculative.
-pub const RECYCLE_DISTANCE: Real = 2.0 * LINEAR_SLOP;
-
-/// A small body may move no more than this fraction of its smallest extent: 1 cm is a fiftieth
-/// of a 1 m box but a fifth of a 5 cm one, whose contacts change a good deal over it.
-pub const RECYCLE_SIZE_FRACTION: Real = 0.1;
-
-/// Neither body may have turned more than this since the manifold was built (the cosine of
-/// the turn, Box2D's 0.98: about 11°), so the held normal and anchors stay close to the truth.
-pub const RECYCLE_COS_ANGLE: Real = 0.98;
 
 /// What a manifold was built against: the bodies' poses and each point's separation then.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -141,10 +127,10 @@ fn move_edge(edge: &mut ContactEdge, shape: &WorldShape) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::body::BodyDef;
-    use crate::manifold;
+    use crate::collision::manifold;
+    use crate::dynamics::body::BodyDef;
+    use crate::geometry::shape::Shape;
     use crate::math::vec2;
-    use crate::shape::Shape;
     use crate::world::World;
 
     /// A box resting on a wider box, and the manifold between them.

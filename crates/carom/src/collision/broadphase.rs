@@ -1,0 +1,427 @@
+//! The broadphase: which pairs of bodies are close enough to need a closer look.
+//!
+//! A dynamic AABB tree (as in Box2D) holds one enlarged ("fat") box per body. A body that moves
+//! within its fat box costs nothing; one that leaves it is re-inserted and queued, and at the
+//! next pair update only queued bodies query the trees, so the cost per step follows motion,
+//! not the body count. Static bodies live in a tree of their own that is never queried by
+//! static bodies, so static-static pairs are never even looked at.
+
+use super::dynamic_tree::DynamicTree;
+use crate::dynamics::body::{BodyHandle, BodyKind};
+use crate::geometry::aabb::Aabb;
+use crate::math::{Real, Vec2};
+
+/// True when a pair of bodies of these kinds can ever produce a contact response: at least
+/// one of them must be dynamic.
+#[inline]
+pub fn kinds_can_collide(a: BodyKind, b: BodyKind) -> bool {
+    a == BodyKind::Dynamic || b == BodyKind::Dynamic
+}
+
+const STATIC_TREE: usize = 0;
+const MOVING_TREE: usize = 1;
+
+#[derive(Debug, Clone, Copy)]
+struct Proxy {
+    handle: BodyHandle,
+    kind: BodyKind,
+    node: u32,
+    queued: bool,
+}
+
+impl Proxy {
+    fn tree(&self) -> usize {
+        tree_for(self.kind)
+    }
+}
+
+fn tree_for(kind: BodyKind) -> usize {
+    if kind == BodyKind::Static {
+        STATIC_TREE
+    } else {
+        MOVING_TREE
+    }
+}
+
+/// The broadphase of a world: one proxy per body, keyed by the body's handle.
+#[derive(Debug, Clone, Default)]
+pub struct BroadPhase {
+    trees: [DynamicTree; 2],
+    /// Indexed by body slot index.
+    proxies: Vec<Option<Proxy>>,
+    /// Slots whose fat box changed since the last pair update.
+    move_buffer: Vec<u32>,
+    /// Candidate pairs of slots found by the last pair update (kept to reuse the memory).
+    candidates: Vec<(u32, u32)>,
+}
+
+impl BroadPhase {
+    /// An empty broadphase.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    fn slot(handle: BodyHandle) -> usize {
+        handle.index() as usize
+    }
+
+    fn proxy(&self, handle: BodyHandle) -> Option<&Proxy> {
+        self.proxies
+            .get(Self::slot(handle))
+            .and_then(Option::as_ref)
+            .filter(|p| p.handle == handle)
+    }
+
+    /// Adds a body with its tight box, enlarged by `margin`.
+    pub fn insert(&mut self, handle: BodyHandle, kind: BodyKind, aabb: Aabb, margin: Real) {
+        let slot = Self::slot(handle);
+        if self.proxies.len() <= slot {
+            self.proxies.resize(slot + 1, None);
+        }
+        debug_assert!(self.proxies[slot].is_none(), "slot already has a proxy");
+        let node = self.trees[tree_for(kind)].create_proxy(aabb.fattened(margin), slot as u32);
+        self.proxies[slot] = Some(Proxy {
+            handle,
+            kind,
+            node,
+            queued: false,
+        });
+        self.enqueue(slot);
+    }
+
+    /// Removes a body's proxy.
+    pub fn remove(&mut self, handle: BodyHandle) {
+        if let Some(proxy) = self.proxy(handle).copied() {
+            self.trees[proxy.tree()].destroy_proxy(proxy.node);
+            self.proxies[Self::slot(handle)] = None;
+            // A queued slot is skipped at the next pair update.
+        }
+    }
+
+    /// Follows a body that may have moved or changed kind. Its fat box is replaced only when
+    /// the tight box has left it; then the body is queued to look for new pairs.
+    pub fn update(&mut self, handle: BodyHandle, kind: BodyKind, aabb: Aabb, margin: Real) {
+        let Some(proxy) = self.proxy(handle).copied() else {
+            return;
+        };
+        if tree_for(kind) != proxy.tree() {
+            self.remove(handle);
+            self.insert(handle, kind, aabb, margin);
+            return;
+        }
+        let slot = Self::slot(handle);
+        if let Some(p) = self.proxies[slot].as_mut() {
+            p.kind = kind;
+        }
+        let tree = &mut self.trees[proxy.tree()];
+        let left_fat_box = !tree.fat_aabb(proxy.node).contains(&aabb);
+        if left_fat_box {
+            tree.move_proxy(proxy.node, aabb.fattened(margin));
+        }
+        // A new kind can pair with bodies the old one ignored (kinematic turned dynamic).
+        if left_fat_box || kind != proxy.kind {
+            self.enqueue(slot);
+        }
+    }
+
+    fn enqueue(&mut self, slot: usize) {
+        if let Some(p) = self.proxies[slot].as_mut()
+            && !p.queued
+        {
+            p.queued = true;
+            self.move_buffer.push(slot as u32);
+        }
+    }
+
+    /// The fat box of a body, if it has a proxy.
+    pub fn fat_aabb(&self, handle: BodyHandle) -> Option<Aabb> {
+        self.proxy(handle)
+            .map(|p| self.trees[p.tree()].fat_aabb(p.node))
+    }
+
+    /// True when the fat boxes of two bodies overlap.
+    pub fn fat_aabbs_overlap(&self, a: BodyHandle, b: BodyHandle) -> bool {
+        match (self.fat_aabb(a), self.fat_aabb(b)) {
+            (Some(a), Some(b)) => a.overlaps(&b),
+            _ => false,
+        }
+    }
+
+    /// Pairs whose fat boxes began to overlap because one of them moved since the last call,
+    /// each ordered `(lower slot, higher slot)`, sorted, without duplicates, and only where
+    /// one body is dynamic. Pairs for which `exists` answers true are left out.
+    pub fn update_pairs(
+        &mut self,
+        exists: impl FnMut(BodyHandle, BodyHandle) -> bool,
+    ) -> Vec<(BodyHandle, BodyHandle)> {
+        let mut pairs = Vec::new();
+        self.update_pairs_into(exists, &mut pairs);
+        pairs
+    }
+
+    /// [`BroadPhase::update_pairs`] into `out` (cleared first), allocating nothing once the
+    /// buffers have grown.
+    pub fn update_pairs_into(
+        &mut self,
+        mut exists: impl FnMut(BodyHandle, BodyHandle) -> bool,
+        out: &mut Vec<(BodyHandle, BodyHandle)>,
+    ) {
+        let mut pairs = std::mem::take(&mut self.candidates);
+        pairs.clear();
+        for &slot in &self.move_buffer {
+            let Some(proxy) = self.proxies[slot as usize] else {
+                continue;
+            };
+            let fat = self.trees[proxy.tree()].fat_aabb(proxy.node);
+            // Only dynamic bodies need the static tree; everything needs the moving one.
+            let trees: &[usize] = if proxy.kind == BodyKind::Dynamic {
+                &[STATIC_TREE, MOVING_TREE]
+            } else {
+                &[MOVING_TREE]
+            };
+            for &tree in trees {
+                self.trees[tree].query(&fat, |node| {
+                    let other_slot = self.trees[tree].payload(node);
+                    if other_slot == slot {
+                        return;
+                    }
+                    let Some(other) = self.proxies[other_slot as usize] else {
+                        return;
+                    };
+                    if kinds_can_collide(proxy.kind, other.kind) {
+                        pairs.push((slot.min(other_slot), slot.max(other_slot)));
+                    }
+                });
+            }
+        }
+        for &slot in &self.move_buffer {
+            if let Some(p) = self.proxies[slot as usize].as_mut() {
+                p.queued = false;
+            }
+        }
+        self.move_buffer.clear();
+        pairs.sort_unstable();
+        pairs.dedup();
+        out.clear();
+        out.extend(pairs.iter().filter_map(|&(a, b)| {
+            let (a, b) = (
+                self.proxies[a as usize]?.handle,
+                self.proxies[b as usize]?.handle,
+            );
+            (!exists(a, b)).then_some((a, b))
+        }));
+        self.candidates = pairs;
+    }
+
+    /// Every pair whose fat boxes overlap now, as [`BroadPhase::update_pairs`] orders them:
+    /// the full answer the incremental one must agree with.
+    pub fn overlapping_pairs(&self) -> Vec<(BodyHandle, BodyHandle)> {
+        let mut pairs = Vec::new();
+        for proxy in self.proxies.iter().flatten() {
+            if proxy.kind != BodyKind::Dynamic {
+                continue;
+            }
+            let fat = self.trees[proxy.tree()].fat_aabb(proxy.node);
+            let slot = proxy.handle.index();
+            for tree in &self.trees {
+                tree.query(&fat, |node| {
+                    let other_slot = tree.payload(node);
+                    if other_slot == slot {
+                        return;
+                    }
+                    let other =
+                        self.proxies[other_slot as usize].expect("tree leaves have proxies");
+                    // A dynamic-dynamic pair is seen from both sides: keep one.
+                    if other.kind == BodyKind::Dynamic && other_slot < slot {
+                        return;
+                    }
+                    let (a, b) = if slot < other_slot {
+                        (proxy.handle, other.handle)
+                    } else {
+                        (other.handle, proxy.handle)
+                    };
+                    pairs.push((a, b));
+                });
+            }
+        }
+        pairs.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
+        pairs
+    }
+
+    /// Calls `visit(handle)` for every body whose fat box overlaps `aabb`.
+    pub fn query(&self, aabb: &Aabb, mut visit: impl FnMut(BodyHandle)) {
+        for tree in &self.trees {
+            tree.query(aabb, |node| {
+                if let Some(p) = self.proxies[tree.payload(node) as usize] {
+                    visit(p.handle);
+                }
+            });
+        }
+    }
+
+    /// Walks the bodies whose fat boxes the segment passes through, clipping the walk to the
+    /// fraction `visit` returns (see [`DynamicTree::ray_cast`]).
+    pub fn ray_cast(
+        &self,
+        origin: Vec2,
+        translation: Vec2,
+        mut visit: impl FnMut(BodyHandle, Real) -> Real,
+    ) {
+        let mut max_fraction = 1.0;
+        for tree in &self.trees {
+            tree.ray_cast(
+                origin,
+                translation,
+                max_fraction,
+                |node, current| match self.proxies[tree.payload(node) as usize] {
+                    Some(p) => {
+                        let clipped = visit(p.handle, current);
+                        max_fraction = max_fraction.min(clipped);
+                        clipped
+                    }
+                    None => current,
+                },
+            );
+        }
+    }
+
+    /// The two trees, static first, for inspection and tests.
+    pub fn trees(&self) -> [&DynamicTree; 2] {
+        [&self.trees[STATIC_TREE], &self.trees[MOVING_TREE]]
+    }
+}
+
+/// The O(n²) reference: every pair of `(handle, kind, fat box)` entries whose boxes overlap
+/// and of which one is dynamic, ordered as the broadphase orders them.
+#[cfg(any(test, feature = "testing"))]
+pub fn brute_force_pairs(
+    entries: &[(BodyHandle, BodyKind, Aabb)],
+) -> Vec<(BodyHandle, BodyHandle)> {
+    let mut pairs = Vec::new();
+    for (i, (ha, ka, aa)) in entries.iter().enumerate() {
+        for (hb, kb, ab) in &entries[i + 1..] {
+            if kinds_can_collide(*ka, *kb) && aa.overlaps(ab) {
+                let (a, b) = if ha.index() < hb.index() {
+                    (*ha, *hb)
+                } else {
+                    (*hb, *ha)
+                };
+                pairs.push((a, b));
+            }
+        }
+    }
+    pairs.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
+    pairs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::vec2;
+
+    /// A tiny deterministic generator for the randomised tests.
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> Real {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1);
+            (self.0 >> 40) as Real / (1u64 << 24) as Real
+        }
+        fn range(&mut self, lo: Real, hi: Real) -> Real {
+            lo + (hi - lo) * self.next()
+        }
+    }
+
+    fn random_box(rng: &mut Lcg, extent: Real) -> Aabb {
+        let c = vec2(rng.range(-extent, extent), rng.range(-extent, extent));
+        let h = vec2(rng.range(0.05, 1.0), rng.range(0.05, 1.0));
+        Aabb::new(c - h, c + h)
+    }
+
+    fn handle(index: u32) -> BodyHandle {
+        BodyHandle {
+            index,
+            generation: 0,
+        }
+    }
+
+    #[test]
+    fn incremental_pairs_match_brute_force_as_bodies_move() {
+        let mut rng = Lcg(9);
+        let mut broadphase = BroadPhase::new();
+        let kinds = [
+            BodyKind::Static,
+            BodyKind::Kinematic,
+            BodyKind::Dynamic,
+            BodyKind::Dynamic,
+        ];
+        let mut bodies: Vec<(BodyHandle, BodyKind, Aabb)> = (0..2000)
+            .map(|i| {
+                let kind = kinds[i % kinds.len()];
+                (handle(i as u32), kind, random_box(&mut rng, 60.0))
+            })
+            .collect();
+        let margin = 0.1;
+        for (h, kind, aabb) in &bodies {
+            broadphase.insert(*h, *kind, *aabb, margin);
+        }
+        // The pairs a world would hold: created by `update_pairs`, dropped when fat boxes part.
+        let mut held: Vec<(BodyHandle, BodyHandle)> = Vec::new();
+        for round in 0..6 {
+            let new = broadphase.update_pairs(|a, b| held.contains(&(a, b)));
+            let mut sorted_new = new.clone();
+            sorted_new.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
+            assert_eq!(new, sorted_new, "pairs come out in a deterministic order");
+            held.extend(new);
+            held.retain(|&(a, b)| broadphase.fat_aabbs_overlap(a, b));
+            held.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
+
+            let fat: Vec<(BodyHandle, BodyKind, Aabb)> = bodies
+                .iter()
+                .map(|(h, k, _)| (*h, *k, broadphase.fat_aabb(*h).unwrap()))
+                .collect();
+            let expected = brute_force_pairs(&fat);
+            assert_eq!(held, expected, "round {round}");
+            assert_eq!(broadphase.overlapping_pairs(), expected, "round {round}");
+            assert!(expected.len() > 100, "the test world must have pairs");
+            assert!(held.iter().all(|(a, b)| a.index() < b.index()));
+
+            // Move the non-static bodies: small drifts and a few long jumps.
+            for (h, kind, aabb) in bodies.iter_mut() {
+                if *kind == BodyKind::Static {
+                    continue;
+                }
+                let jump = if rng.next() < 0.05 { 20.0 } else { 0.3 };
+                let d = vec2(rng.range(-jump, jump), rng.range(-jump, jump));
+                *aabb = Aabb::new(aabb.min + d, aabb.max + d);
+                broadphase.update(*h, *kind, *aabb, margin);
+            }
+        }
+        for tree in broadphase.trees() {
+            tree.validate().unwrap();
+        }
+    }
+
+    #[test]
+    fn static_pairs_are_never_reported_and_kind_changes_move_trees() {
+        let mut broadphase = BroadPhase::new();
+        let unit = Aabb::new(vec2(0.0, 0.0), vec2(1.0, 1.0));
+        broadphase.insert(handle(0), BodyKind::Static, unit, 0.0);
+        broadphase.insert(handle(1), BodyKind::Static, unit, 0.0);
+        broadphase.insert(handle(2), BodyKind::Kinematic, unit, 0.0);
+        assert!(broadphase.update_pairs(|_, _| false).is_empty());
+        // A body that becomes dynamic pairs with everything it overlaps.
+        broadphase.update(handle(2), BodyKind::Dynamic, unit, 0.0);
+        assert_eq!(
+            broadphase.update_pairs(|_, _| false),
+            vec![(handle(0), handle(2)), (handle(1), handle(2))]
+        );
+        assert_eq!(broadphase.trees()[STATIC_TREE].proxy_count(), 2);
+        assert_eq!(broadphase.trees()[MOVING_TREE].proxy_count(), 1);
+        broadphase.remove(handle(0));
+        assert_eq!(broadphase.overlapping_pairs(), vec![(handle(1), handle(2))]);
+        assert!(broadphase.fat_aabb(handle(0)).is_none());
+    }
+}

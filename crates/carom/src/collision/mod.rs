@@ -1,0 +1,11 @@
+//! Collision: which pairs are near (broadphase), how near (narrowphase), where they touch
+//! (manifolds), the persistent contacts that carry it from step to step, and continuous
+//! collision for fast bodies.
+
+pub(crate) mod broadphase;
+pub(crate) mod contact;
+pub(crate) mod continuous;
+pub(crate) mod dynamic_tree;
+pub(crate) mod manifold;
+pub(crate) mod narrowphase;
+pub(crate) mod recycle;

@@ -1,0 +1,125 @@
+//! The engine's tuning constants and tolerances, each named once.
+//!
+//! A leaf: it depends on nothing but the scalar type, so any module may use it. Only values
+//! that are part of an algorithm's structure (the SIMD lane count, a tree's null index) live
+//! beside their code.
+
+use crate::math::{Real, Vec2};
+
+// Scale of contact.
+
+/// Penetration the solver tolerates, and the scale of "touching", in metres (Box2D's 0.5 cm).
+pub const LINEAR_SLOP: Real = 0.005;
+
+/// Shapes closer than this get speculative contact points, in metres (4 × slop, as Box2D).
+pub const SPECULATIVE_DISTANCE: Real = 4.0 * LINEAR_SLOP;
+
+/// How much moving bodies' bounding boxes are enlarged in the broadphase, in metres, so a
+/// body can move a little without its tree entry changing.
+pub const AABB_MARGIN: Real = 0.05;
+
+// Shapes.
+
+/// The largest coordinate or radius a shape may have, m (Box2D's `B2_HUGE`): beyond it an f32
+/// keeps too few digits below a millimetre for contacts, and sums of sizes can overflow.
+pub const MAX_SHAPE_EXTENT: Real = 1.0e5;
+
+/// How far outside a shape's boundary a point may lie and still count as inside, in metres.
+///
+/// Points exactly on an edge are inside; this absorbs the rounding of moving a point into the
+/// shape's local frame, so a point on the boundary does not flicker in and out.
+pub const CONTAINMENT_TOLERANCE: Real = 1.0e-5;
+
+/// Points of a polygon closer than this (relative to the polygon's size) are the same point.
+pub(crate) const WELD_TOLERANCE: Real = 1.0e-5;
+
+/// A polygon vertex whose turn has a sine below this is collinear with its neighbours.
+pub(crate) const COLLINEAR_SINE: f64 = 1.0e-6;
+
+// Narrowphase.
+
+/// The direction used when two circle centres coincide: pushing B up, by convention.
+pub const COINCIDENT_NORMAL: Vec2 = Vec2::new(0.0, 1.0);
+
+/// Once a contact has a reference face, the other shape's best face must beat it by this much
+/// to take over, so nearly equal faces do not take turns from one step to the next (Box2D's
+/// 0.1 × slop).
+pub(crate) const REFERENCE_TOLERANCE: Real = 0.1 * LINEAR_SLOP;
+
+/// How far outside the reference polygon a clipped point may lie and still count: rounding,
+/// not geometry, at the scale of the slop.
+pub const SPURIOUS_TOLERANCE: Real = 0.1 * LINEAR_SLOP;
+
+// Contact recycling.
+
+/// A kept manifold's pair may have moved relative to each other by no more than this at the
+/// farthest point of a turning body, m (less for small bodies, see [`RECYCLE_SIZE_FRACTION`]).
+///
+/// Box2D allows 10 × slop; at that, and at 1 × slop, sequential impulse pressed a thin sliver
+/// through the floor in one of the stability suite's random piles, so carom holds to 2 × slop.
+/// A pair that was not touching may move no more than the speculative distance, so that it
+/// cannot miss becoming speculative.
+pub(crate) const RECYCLE_DISTANCE: Real = 2.0 * LINEAR_SLOP;
+
+/// A small body may move no more than this fraction of its smallest extent: 1 cm is a fiftieth
+/// of a 1 m box but a fifth of a 5 cm one, whose contacts change a good deal over it.
+pub(crate) const RECYCLE_SIZE_FRACTION: Real = 0.1;
+
+/// Neither body may have turned more than this since the manifold was built (the cosine of
+/// the turn, Box2D's 0.98: about 11°), so the held normal and anchors stay close to the truth.
+pub(crate) const RECYCLE_COS_ANGLE: Real = 0.98;
+
+// Continuous collision.
+
+/// A body faster than this fraction of its smallest extent per step is swept.
+pub(crate) const FAST_FRACTION: Real = 0.5;
+
+/// The most conservative-advancement iterations per pair (Box2D uses 20 for its root finder).
+pub(crate) const MAX_TIME_OF_IMPACT_ITERATIONS: usize = 30;
+
+// Sleeping.
+
+/// Bodies whose fastest point moves slower than this may sleep, m/s (Box2D's 5 cm/s).
+pub const SLEEP_THRESHOLD: Real = 0.05;
+
+/// How long a whole island must rest before it sleeps, s (Box2D's 0.5 s).
+pub const TIME_TO_SLEEP: Real = 0.5;
+
+// Solvers.
+
+/// Colours tried before a constraint goes to the overflow (Box2D uses 24).
+pub(crate) const COLOR_COUNT: usize = 32;
+
+/// Sequential impulse: position passes after each step (Box2D v2.4's default).
+pub(crate) const POSITION_ITERATIONS: usize = 3;
+
+/// Sequential impulse: the most overlap one position pass removes at a point, m (Box2D v2.4's
+/// `b2_maxLinearCorrection`): a deep overlap is taken apart over several steps, not flung.
+pub(crate) const MAX_CORRECTION: Real = 0.2;
+
+/// Sequential impulse: above this condition number the two points of a face are too alike to
+/// solve as a block (Box2D v2.4's `k_maxConditionNumber`).
+pub(crate) const MAX_CONDITION: Real = 1000.0;
+
+/// The tutorial's impulse solver: the overlap it leaves alone, m.
+pub(crate) const TUTORIAL_SLOP: Real = 0.01;
+
+// Threads.
+
+/// Bodies or constraints per task when the solver's per-item work is shared among threads:
+/// each costs a few nanoseconds, and a fork several microseconds.
+pub(crate) const ITEMS_PER_TASK: usize = 2048;
+
+/// Contacts per task when manifolds are rebuilt on several threads (a manifold costs about
+/// a tenth of a microsecond, a fork several microseconds).
+pub(crate) const CONTACTS_PER_TASK: usize = 256;
+
+/// Blocks a colour is cut into, at most, when a solver pass is shared among threads.
+pub(crate) const MAX_BLOCKS: usize = 8;
+
+/// Items per block, at least: a block's work must dwarf the cost of claiming it.
+pub(crate) const MIN_BLOCK: usize = 16;
+
+/// Items a pass must have to be shared: a bundle takes about 60 ns, and starting the threads
+/// on a pass some 10 µs.
+pub(crate) const MIN_SHARED: usize = 1024;
