@@ -17,7 +17,7 @@ fn world_with(gravity: Vec2, drag: DragModel) -> World {
 fn free_fall_matches_semi_implicit_euler_exactly_and_physics_closely() {
     let mut world = World::new();
     let ball = world
-        .add_body(BodyDef::dynamic(Shape::circle(0.5).unwrap()).position(vec2(0.0, 100.0)))
+        .add_body(BodyDef::dynamic(Shape::circle(0.5)).position(vec2(0.0, 100.0)))
         .unwrap();
     let steps = 180;
     for _ in 0..steps {
@@ -45,9 +45,7 @@ fn projectile_range_converges_to_the_analytic_range() {
         let mut world = World::new();
         let speed = 20.0 / std::f32::consts::SQRT_2;
         let ball = world
-            .add_body(
-                BodyDef::dynamic(Shape::circle(0.1).unwrap()).linear_velocity(vec2(speed, speed)),
-            )
+            .add_body(BodyDef::dynamic(Shape::circle(0.1)).linear_velocity(vec2(speed, speed)))
             .unwrap();
         let mut last = Vec2::zeros();
         loop {
@@ -75,7 +73,7 @@ fn exponential_damping_follows_its_closed_form() {
     let c = 0.8;
     let ball = world
         .add_body(
-            BodyDef::dynamic(Shape::circle(0.5).unwrap())
+            BodyDef::dynamic(Shape::circle(0.5))
                 .linear_velocity(vec2(6.0, -3.0))
                 .angular_velocity(4.0)
                 .damping(c, 2.0 * c),
@@ -106,7 +104,7 @@ fn tutorial_drag_decelerates_linearly_then_settles() {
     let drag = 3.0;
     let ball = world
         .add_body(
-            BodyDef::dynamic(Shape::circle(0.5).unwrap())
+            BodyDef::dynamic(Shape::circle(0.5))
                 .linear_velocity(vec2(0.0, 10.0))
                 .damping(drag, 0.0),
         )
@@ -129,7 +127,7 @@ fn tutorial_drag_decelerates_linearly_then_settles() {
 fn torque_spins_up_by_alpha_equals_tau_over_inertia() {
     let mut world = world_with(Vec2::zeros(), DragModel::Exponential);
     let wheel = world
-        .add_body(BodyDef::dynamic(Shape::circle(2.0).unwrap()).density(0.5))
+        .add_body(BodyDef::dynamic(Shape::circle(2.0)).density(0.5))
         .unwrap();
     let inertia = world.body(wheel).unwrap().inertia();
     for _ in 0..60 {
@@ -155,7 +153,7 @@ fn torque_spins_up_by_alpha_equals_tau_over_inertia() {
 fn impulses_conserve_momentum_between_two_bodies() {
     let mut world = world_with(Vec2::zeros(), DragModel::Exponential);
     let a = world
-        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.25).unwrap()).position(vec2(-1.0, 0.0)))
+        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.25)).position(vec2(-1.0, 0.0)))
         .unwrap();
     let b = world
         .add_body(
@@ -201,7 +199,7 @@ fn impulses_conserve_momentum_between_two_bodies() {
 fn rotation_integrates_without_drift_over_many_turns() {
     let mut world = world_with(Vec2::zeros(), DragModel::Exponential);
     let spinner = world
-        .add_body(BodyDef::dynamic(Shape::rect(1.0, 0.2).unwrap()).angular_velocity(10.0))
+        .add_body(BodyDef::dynamic(Shape::rect(1.0, 0.2)).angular_velocity(10.0))
         .unwrap();
     let steps = 6000; // 100 s, about 159 turns
     for _ in 0..steps {

@@ -17,14 +17,14 @@ fn pyramid(base: usize, effects: Effects) -> World {
     };
     let mut world = World::with_settings(settings).unwrap();
     world
-        .add_body(BodyDef::static_body(Shape::rect(200.0, 1.0).unwrap()).position(vec2(0.0, -1.0)))
+        .add_body(BodyDef::static_body(Shape::rect(200.0, 1.0)).position(vec2(0.0, -1.0)))
         .unwrap();
     for row in 0..base {
         for column in 0..base - row {
             let x = column as f32 - (base - row - 1) as f32 * 0.5;
             world
                 .add_body(
-                    BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+                    BodyDef::dynamic(Shape::rect(0.5, 0.5))
                         .position(vec2(x, row as f32 + 0.5))
                         .friction(0.6)
                         .damping(0.1, 0.1),
@@ -36,7 +36,7 @@ fn pyramid(base: usize, effects: Effects) -> World {
         let x = base as f32 * 0.5 + 2.0 + i as f32;
         world
             .add_body(
-                BodyDef::dynamic(Shape::circle(0.4).unwrap())
+                BodyDef::dynamic(Shape::circle(0.4))
                     .position(vec2(x, 0.4))
                     .restitution(0.5),
             )

@@ -191,7 +191,7 @@ fn translated(shape: &WorldShape, by: Vec2) -> WorldShape {
 
 fn shape_strategy() -> impl Strategy<Value = Shape> {
     prop_oneof![
-        (0.05f32..1.5).prop_map(|r| Shape::circle(r).unwrap()),
+        (0.05f32..1.5).prop_map(Shape::circle),
         prop::collection::vec((-1.5f32..1.5, -1.5f32..1.5), 3..10).prop_filter_map(
             "degenerate hull",
             |points| {
@@ -359,19 +359,19 @@ fn assert_finite(a: &WorldShape, b: &WorldShape) -> carom::Separation {
 
 #[test]
 fn tiny_and_huge_shapes() {
-    let mm = Shape::rect(0.0005, 0.0005).unwrap();
+    let mm = Shape::rect(0.0005, 0.0005);
     let s = assert_finite(
         &WorldShape::at(&mm, vec2(0.0, 0.0), 0.0),
         &WorldShape::at(&mm, vec2(0.0008, 0.0), 0.0),
     );
     assert!((s.separation + 0.0002).abs() < 1e-7);
-    let km = Shape::rect(5000.0, 5000.0).unwrap();
+    let km = Shape::rect(5000.0, 5000.0);
     let s = assert_finite(
         &WorldShape::at(&km, vec2(0.0, 0.0), 0.0),
         &WorldShape::at(&km, vec2(0.0, 9999.0), 0.0),
     );
     assert!((s.separation + 1.0).abs() < 1e-2);
-    let ball = Shape::circle(5000.0).unwrap();
+    let ball = Shape::circle(5000.0);
     assert_finite(
         &WorldShape::at(&km, vec2(0.0, 0.0), 0.0),
         &WorldShape::at(&ball, vec2(3.0, 9990.0), 0.0),
@@ -386,7 +386,7 @@ fn tiny_and_huge_shapes() {
 
 #[test]
 fn slivers_one_to_a_thousand() {
-    let sliver = Shape::rect(1.0, 0.001).unwrap();
+    let sliver = Shape::rect(1.0, 0.001);
     let quarter = std::f32::consts::FRAC_PI_2;
     for angle in [0.0, 0.001, 0.7, quarter - 1e-4, quarter] {
         let s = assert_finite(
@@ -405,10 +405,7 @@ fn slivers_one_to_a_thousand() {
 
 #[test]
 fn identical_polygons_on_top_of_each_other() {
-    for shape in [
-        Shape::rect(0.5, 0.5).unwrap(),
-        Shape::regular(7, 1.0).unwrap(),
-    ] {
+    for shape in [Shape::rect(0.5, 0.5), Shape::regular(7, 1.0).unwrap()] {
         let a = WorldShape::at(&shape, vec2(1.0, 2.0), 0.3);
         let s = assert_finite(&a, &a.clone());
         // The cheapest way out is the polygon's own narrowest width.
@@ -436,8 +433,8 @@ fn identical_polygons_on_top_of_each_other() {
 
 #[test]
 fn coincident_circle_centres() {
-    let a = WorldShape::at(&Shape::circle(0.5).unwrap(), vec2(3.0, -1.0), 0.0);
-    let b = WorldShape::at(&Shape::circle(0.25).unwrap(), vec2(3.0, -1.0), 2.0);
+    let a = WorldShape::at(&Shape::circle(0.5), vec2(3.0, -1.0), 0.0);
+    let b = WorldShape::at(&Shape::circle(0.25), vec2(3.0, -1.0), 2.0);
     let s = assert_finite(&a, &b);
     assert_eq!(s.separation, -0.75);
     assert_eq!(s.normal, carom::testing::COINCIDENT_NORMAL);
@@ -447,8 +444,8 @@ fn coincident_circle_centres() {
 
 #[test]
 fn circle_centred_on_a_polygon_vertex_or_edge() {
-    let square = WorldShape::at(&Shape::rect(1.0, 1.0).unwrap(), vec2(0.0, 0.0), 0.0);
-    let ball = Shape::circle(0.3).unwrap();
+    let square = WorldShape::at(&Shape::rect(1.0, 1.0), vec2(0.0, 0.0), 0.0);
+    let ball = Shape::circle(0.3);
     // On a vertex: the way out is through either adjacent face, 0.3 deep.
     let s = assert_finite(&square, &WorldShape::at(&ball, vec2(1.0, 1.0), 0.0));
     assert!((s.separation + 0.3).abs() < 1e-6);
@@ -474,7 +471,7 @@ fn world_contacts_track_brute_force_pairs_as_thousands_of_bodies_move() {
     let mut rng = Rng::new(11);
     for i in 0..2500 {
         let shape = if i % 3 == 0 {
-            Shape::circle(rng.range(0.1, 0.6)).unwrap()
+            Shape::circle(rng.range(0.1, 0.6))
         } else {
             Shape::regular(3 + rng.below(5), rng.range(0.1, 0.7)).unwrap()
         };

@@ -25,11 +25,11 @@ fn fire_at_wall(continuous: bool, direction: Real) -> Real {
     let mut world = world(continuous, Vec2::zeros());
     let along = vec2(direction.cos(), direction.sin());
     world
-        .add_body(BodyDef::static_body(Shape::rect(0.05, 4.0).unwrap()).angle(direction))
+        .add_body(BodyDef::static_body(Shape::rect(0.05, 4.0)).angle(direction))
         .unwrap();
     let bullet = world
         .add_body(
-            BodyDef::dynamic(Shape::circle(0.25).unwrap())
+            BodyDef::dynamic(Shape::circle(0.25))
                 .position(-along * 10.0)
                 .linear_velocity(along * 300.0)
                 .density(4.0),
@@ -127,11 +127,11 @@ fn a_fast_spinning_plank_never_passes_the_floor_or_the_post() {
 fn shot_at_free_plank(bullet: bool, height: Real) -> (World, BodyHandle, BodyHandle) {
     let mut world = world(true, Vec2::zeros());
     let plank = world
-        .add_body(BodyDef::dynamic(Shape::rect(0.05, 2.0).unwrap()).density(50.0))
+        .add_body(BodyDef::dynamic(Shape::rect(0.05, 2.0)).density(50.0))
         .unwrap();
     let shot = world
         .add_body(
-            BodyDef::dynamic(Shape::circle(0.25).unwrap())
+            BodyDef::dynamic(Shape::circle(0.25))
                 .position(vec2(-10.0, height))
                 .linear_velocity(vec2(300.0, 0.0))
                 .bullet(bullet),
@@ -176,11 +176,11 @@ fn a_fast_body_sliding_on_the_ground_is_not_held_back() {
     })
     .unwrap();
     world
-        .add_body(BodyDef::static_body(Shape::rect(100.0, 0.5).unwrap()).position(vec2(0.0, -0.5)))
+        .add_body(BodyDef::static_body(Shape::rect(100.0, 0.5)).position(vec2(0.0, -0.5)))
         .unwrap();
     let slider = world
         .add_body(
-            BodyDef::dynamic(Shape::rect(0.5, 0.25).unwrap())
+            BodyDef::dynamic(Shape::rect(0.5, 0.25))
                 .position(vec2(-20.0, 0.25))
                 .linear_velocity(vec2(20.0, 0.0)),
         )
@@ -207,17 +207,17 @@ fn a_fast_body_sliding_on_the_ground_is_not_held_back() {
 fn impact(speed: Real, spin: Real, target_moves: bool, start_x: Real, predicted: bool) -> Real {
     let mut world = world(predicted, Vec2::zeros());
     world
-        .add_body(BodyDef::static_body(Shape::rect(50.0, 0.5).unwrap()).position(vec2(0.0, -0.5)))
+        .add_body(BodyDef::static_body(Shape::rect(50.0, 0.5)).position(vec2(0.0, -0.5)))
         .unwrap();
     let target = if target_moves {
-        BodyDef::dynamic(Shape::rect(1.0, 1.0).unwrap()).density(10.0)
+        BodyDef::dynamic(Shape::rect(1.0, 1.0)).density(10.0)
     } else {
-        BodyDef::static_body(Shape::rect(1.0, 1.0).unwrap())
+        BodyDef::static_body(Shape::rect(1.0, 1.0))
     };
     let target = world.add_body(target.position(vec2(0.0, 1.0))).unwrap();
     let thrown = world
         .add_body(
-            BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+            BodyDef::dynamic(Shape::rect(0.5, 0.5))
                 .position(vec2(start_x, 1.2))
                 .angle(0.6)
                 .linear_velocity(vec2(speed, 0.0))
@@ -278,7 +278,7 @@ fn impacts_up_to_30_m_s_overlap_at_most_a_centimetre() {
 fn graze(shape: Shape, half_height: Real, clearance: Real, start_x: Real) -> Real {
     let mut world = world(true, Vec2::zeros());
     world
-        .add_body(BodyDef::static_body(Shape::rect(1.0, 1.0).unwrap()).position(vec2(0.0, -1.0)))
+        .add_body(BodyDef::static_body(Shape::rect(1.0, 1.0)).position(vec2(0.0, -1.0)))
         .unwrap();
     let slider = world
         .add_body(
@@ -303,8 +303,8 @@ fn a_body_grazing_past_a_corner_at_30_m_s_is_not_deflected() {
     for k in 0..50 {
         let start = -3.0 - 0.0123 * k as Real;
         for clearance in [0.025, 0.05, 0.2] {
-            let boxed = graze(Shape::rect(0.5, 0.5).unwrap(), 0.5, clearance, start);
-            let ball = graze(Shape::circle(0.5).unwrap(), 0.5, clearance, start);
+            let boxed = graze(Shape::rect(0.5, 0.5), 0.5, clearance, start);
+            let ball = graze(Shape::circle(0.5), 0.5, clearance, start);
             assert!(
                 boxed < 1e-3 && ball < 1e-3,
                 "start {start}, clearance {clearance}: box {boxed}, ball {ball}"

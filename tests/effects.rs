@@ -13,12 +13,12 @@ fn busy_world(effects: Effects) -> World {
     })
     .unwrap();
     world
-        .add_body(BodyDef::static_body(Shape::rect(50.0, 1.0).unwrap()).position(vec2(0.0, -1.0)))
+        .add_body(BodyDef::static_body(Shape::rect(50.0, 1.0)).position(vec2(0.0, -1.0)))
         .unwrap();
     for i in 0..6 {
         world
             .add_body(
-                BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+                BodyDef::dynamic(Shape::rect(0.5, 0.5))
                     .position(vec2(i as Real * 2.0 - 20.0, 0.5))
                     .damping(0.1, 0.1),
             )
@@ -27,7 +27,7 @@ fn busy_world(effects: Effects) -> World {
     // A bouncy ball dropping from high up, fast enough to be swept.
     world
         .add_body(
-            BodyDef::dynamic(Shape::circle(0.2).unwrap())
+            BodyDef::dynamic(Shape::circle(0.2))
                 .position(vec2(5.0, 8.0))
                 .linear_velocity(vec2(1.0, -30.0))
                 .restitution(0.8),
@@ -36,7 +36,7 @@ fn busy_world(effects: Effects) -> World {
     // A box sliding along the floor (friction).
     world
         .add_body(
-            BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+            BodyDef::dynamic(Shape::rect(0.5, 0.5))
                 .position(vec2(10.0, 0.5))
                 .linear_velocity(vec2(4.0, 0.0)),
         )

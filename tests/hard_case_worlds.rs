@@ -62,7 +62,7 @@ const RESTING: [Effect; 3] = [Effect::Gravity, Effect::Friction, Effect::Continu
 fn add_ground(world: &mut World, half_width: Real, half_height: Real) {
     world
         .add_body(
-            BodyDef::static_body(Shape::rect(half_width, half_height).unwrap())
+            BodyDef::static_body(Shape::rect(half_width, half_height))
                 .position(vec2(0.0, -half_height)),
         )
         .unwrap();
@@ -86,14 +86,14 @@ pub fn vertical_stack(
     // The segment (-30, 0)-(30, 0) as a thin box with its top at y = 0, and the wall at x = 10.
     add_ground(&mut world, 30.0, 0.05);
     world
-        .add_body(BodyDef::static_body(Shape::rect(0.05, 10.0).unwrap()).position(vec2(10.0, 10.0)))
+        .add_body(BodyDef::static_body(Shape::rect(0.05, 10.0)).position(vec2(10.0, 10.0)))
         .unwrap();
     let boxes = (0..count)
         .map(|i| {
             let shift = if i % 2 == 0 { -0.01 } else { 0.01 };
             world
                 .add_body(
-                    BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+                    BodyDef::dynamic(Shape::rect(0.5, 0.5))
                         .position(vec2(shift, 0.5 + i as Real))
                         .friction(0.3),
                 )
@@ -122,7 +122,7 @@ pub fn big_box_on(params: SolverParams, small: Shape) -> World {
             .unwrap();
     }
     world
-        .add_body(BodyDef::dynamic(Shape::rect(10.0, 10.0).unwrap()).position(vec2(0.0, 12.0)))
+        .add_body(BodyDef::dynamic(Shape::rect(10.0, 10.0)).position(vec2(0.0, 12.0)))
         .unwrap();
     world
 }
@@ -158,7 +158,7 @@ pub fn add_pyramid(world: &mut World, base: usize, size: Real) {
             let y = (row as Real + 0.5) * size;
             world
                 .add_body(
-                    BodyDef::dynamic(Shape::rect(size * 0.5, size * 0.5).unwrap())
+                    BodyDef::dynamic(Shape::rect(size * 0.5, size * 0.5))
                         .position(vec2(x, y))
                         .friction(0.6),
                 )
@@ -188,7 +188,7 @@ pub fn coincident_circles(params: SolverParams) -> (World, Vec<BodyHandle>) {
     let circles = (0..10)
         .map(|_| {
             world
-                .add_body(BodyDef::dynamic(Shape::circle(0.5).unwrap()))
+                .add_body(BodyDef::dynamic(Shape::circle(0.5)))
                 .unwrap()
         })
         .collect();
@@ -216,7 +216,7 @@ pub fn bullet_shot(params: SolverParams, shot: usize) -> (World, BodyHandle) {
     let height = 0.5 + shot as Real * 1.15;
     let bullet = world
         .add_body(
-            BodyDef::dynamic(Shape::circle(0.25).unwrap())
+            BodyDef::dynamic(Shape::circle(0.25))
                 .position(vec2(-26.7, height))
                 .linear_velocity(vec2(300.0, 0.0))
                 .density(4.0)
@@ -249,18 +249,18 @@ pub fn random_world(params: SolverParams, seed: u64, count: usize) -> World {
         (vec2(10.5, 10.0), vec2(0.5, 11.0)),
     ] {
         world
-            .add_body(BodyDef::static_body(Shape::rect(half.x, half.y).unwrap()).position(center))
+            .add_body(BodyDef::static_body(Shape::rect(half.x, half.y)).position(center))
             .unwrap();
     }
     for _ in 0..count {
         let size = rng.range(0.05, 5.0);
         let shape = if rng.below(3) == 0 {
-            Shape::circle(0.5 * size).unwrap()
+            Shape::circle(0.5 * size)
         } else {
             let points: Vec<Vec2> = (0..3 + rng.below(6))
                 .map(|_| vec2(rng.range(-0.5, 0.5), rng.range(-0.5, 0.5)) * size)
                 .collect();
-            Shape::hull(&points).unwrap_or_else(|_| Shape::rect(0.5 * size, 0.25 * size).unwrap())
+            Shape::hull(&points).unwrap_or_else(|_| Shape::rect(0.5 * size, 0.25 * size))
         };
         let reach = 0.5 * size.min(9.0);
         world

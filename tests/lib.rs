@@ -48,21 +48,18 @@ pub mod skinny_box {
     /// a 0.2 x 2 m post standing on it at x = 1.
     pub fn add_course(world: &mut World) {
         world
-            .add_body(
-                BodyDef::static_body(Shape::rect(200.0, 0.01).unwrap()).position(vec2(0.0, -0.01)),
-            )
+            .add_body(BodyDef::static_body(Shape::rect(200.0, 0.01)).position(vec2(0.0, -0.01)))
             .unwrap();
         world
             .add_body(
-                BodyDef::static_body(Shape::rect(0.1, 1.0).unwrap())
-                    .position(vec2(POST_X, 0.5 * POST_TOP)),
+                BodyDef::static_body(Shape::rect(0.1, 1.0)).position(vec2(POST_X, 0.5 * POST_TOP)),
             )
             .unwrap();
     }
 
     /// The plank (friction 0.9), still to be placed and launched.
     pub fn plank() -> BodyDef {
-        BodyDef::dynamic(Shape::rect(2.0, 0.05).unwrap()).friction(0.9)
+        BodyDef::dynamic(Shape::rect(2.0, 0.05)).friction(0.9)
     }
 
     /// Whether the plank's centre, moving from `before` to `after` in one step, passed through

@@ -152,12 +152,14 @@ fn degenerate_input_is_an_error_with_a_message() {
     }
     assert!(
         Shape::circle(0.0)
+            .validate()
             .unwrap_err()
             .to_string()
             .contains("positive")
     );
     assert!(
         Shape::circle(Real::NAN)
+            .validate()
             .unwrap_err()
             .to_string()
             .contains("finite")
@@ -167,8 +169,11 @@ fn degenerate_input_is_an_error_with_a_message() {
 #[test]
 fn bodies_with_bad_values_are_refused_at_the_door() {
     let mut world = World::new();
-    let square = || Shape::rect(0.5, 0.5).unwrap();
+    let square = || Shape::rect(0.5, 0.5);
     let bad = [
+        BodyDef::dynamic(Shape::circle(-1.0)),
+        BodyDef::static_body(Shape::rect(0.0, 1.0)),
+        BodyDef::kinematic(Shape::rect(1.0, Real::INFINITY)),
         BodyDef::dynamic(square()).density(0.0),
         BodyDef::dynamic(square()).density(-2.0),
         BodyDef::dynamic(square()).density(Real::NAN),
@@ -185,11 +190,13 @@ fn bodies_with_bad_values_are_refused_at_the_door() {
     }
     assert_eq!(world.body_count(), 0);
     // A static body needs no positive density: it has no mass.
-    assert!(
-        world
-            .add_body(BodyDef::static_body(square()).density(0.0))
-            .is_ok()
-    );
+    let floor = world
+        .add_body(BodyDef::static_body(square()).density(0.0))
+        .unwrap();
+    // Nor can a body take a bad shape later; it keeps the one it had.
+    let body = world.body_mut(floor).unwrap();
+    assert!(body.set_shape(Shape::circle(Real::NAN)).is_err());
+    assert_eq!(body.shape(), &square());
     assert!(world.set_gravity(vec2(0.0, Real::NAN)).is_err());
     assert_eq!(world.gravity(), vec2(0.0, -10.0));
 }
@@ -200,7 +207,7 @@ fn stepping_a_world_of_extreme_but_valid_bodies_stays_finite() {
     let mut rng = Rng::new(3);
     for _ in 0..200 {
         let shape = if rng.below(2) == 0 {
-            Shape::circle(rng.range(1e-3, 50.0)).unwrap()
+            Shape::circle(rng.range(1e-3, 50.0))
         } else {
             Shape::regular(3 + rng.below(10), rng.range(1e-3, 50.0)).unwrap()
         };
@@ -231,8 +238,8 @@ fn shapes_beyond_100_km_or_with_hairline_edges_are_refused_or_repaired() {
     // Found by the narrowphase fuzz targets: a radius of 3e38 overflowed a sum of radii to -inf,
     // and coordinates of 1e19 left a zero normal.
     for error in [
-        Shape::circle(3.4e38).unwrap_err(),
-        Shape::rect(2.0e5, 1.0).unwrap_err(),
+        Shape::circle(3.4e38).validate().unwrap_err(),
+        Shape::rect(2.0e5, 1.0).validate().unwrap_err(),
         Shape::regular(5, 1.0e6).unwrap_err(),
         Shape::hull(&[vec2(0.0, 0.0), vec2(1.6e19, 0.0), vec2(0.0, 1.0)]).unwrap_err(),
         Shape::polygon(&[vec2(0.0, 0.0), vec2(1.0e6, 0.0), vec2(0.0, 1.0)]).unwrap_err(),

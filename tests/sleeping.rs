@@ -18,8 +18,7 @@ fn column(world: &mut World, x: Real, count: usize) -> Vec<BodyHandle> {
         .map(|i| {
             world
                 .add_body(
-                    BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
-                        .position(vec2(x, 0.5 + i as Real)),
+                    BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x, 0.5 + i as Real)),
                 )
                 .unwrap()
         })
@@ -28,7 +27,7 @@ fn column(world: &mut World, x: Real, count: usize) -> Vec<BodyHandle> {
 
 fn add_ground(world: &mut World) {
     world
-        .add_body(BodyDef::static_body(Shape::rect(50.0, 1.0).unwrap()).position(vec2(0.0, -1.0)))
+        .add_body(BodyDef::static_body(Shape::rect(50.0, 1.0)).position(vec2(0.0, -1.0)))
         .unwrap();
 }
 
@@ -89,7 +88,7 @@ fn an_impact_wakes_the_whole_island() {
     // A ball dropped on top of the first column.
     world
         .add_body(
-            BodyDef::dynamic(Shape::circle(0.3).unwrap())
+            BodyDef::dynamic(Shape::circle(0.3))
                 .position(vec2(0.1, 6.0))
                 .density(5.0),
         )

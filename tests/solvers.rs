@@ -19,7 +19,7 @@ fn world(params: SolverParams, gravity: Vec2) -> World {
 /// A ground whose top surface is y = 0.
 fn add_ground(world: &mut World) -> BodyHandle {
     world
-        .add_body(BodyDef::static_body(Shape::rect(50.0, 1.0).unwrap()).position(vec2(0.0, -1.0)))
+        .add_body(BodyDef::static_body(Shape::rect(50.0, 1.0)).position(vec2(0.0, -1.0)))
         .unwrap()
 }
 
@@ -35,7 +35,7 @@ fn a_box_rests_on_the_ground() {
         let mut world = world(SolverParams::for_kind(kind), vec2(0.0, -10.0));
         add_ground(&mut world);
         let crate_box = world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap()).position(vec2(0.0, 0.5)))
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 0.5)))
             .unwrap();
         for _ in 0..120 {
             world.step(DT).unwrap();
@@ -58,7 +58,7 @@ fn equal_circles_swap_velocities_in_an_elastic_head_on_collision() {
     for kind in [SolverKind::SequentialImpulse, SolverKind::SoftStep] {
         let mut world = world(SolverParams::for_kind(kind), Vec2::zeros());
         let ball = |x: Real, vx: Real| {
-            BodyDef::dynamic(Shape::circle(0.5).unwrap())
+            BodyDef::dynamic(Shape::circle(0.5))
                 .position(vec2(x, 0.0))
                 .linear_velocity(vec2(vx, 0.0))
                 .restitution(1.0)
@@ -111,7 +111,7 @@ fn slide_on_incline(kind: SolverKind, mu: Real, angle: Real) -> Real {
     );
     world
         .add_body(
-            BodyDef::static_body(Shape::rect(20.0, 0.5).unwrap())
+            BodyDef::static_body(Shape::rect(20.0, 0.5))
                 .position(-up_normal * 0.5)
                 .angle(angle)
                 .friction(mu),
@@ -120,7 +120,7 @@ fn slide_on_incline(kind: SolverKind, mu: Real, angle: Real) -> Real {
     let start = up_normal * 0.25;
     let crate_box = world
         .add_body(
-            BodyDef::dynamic(Shape::rect(0.25, 0.25).unwrap())
+            BodyDef::dynamic(Shape::rect(0.25, 0.25))
                 .position(start)
                 .angle(angle)
                 .friction(mu),
@@ -159,7 +159,7 @@ fn stack(params: SolverParams, count: usize) -> (World, BodyHandle) {
         top = Some(
             world
                 .add_body(
-                    BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+                    BodyDef::dynamic(Shape::rect(0.5, 0.5))
                         .position(vec2(0.0, 0.5 + i as Real))
                         .friction(0.6),
                 )
@@ -248,7 +248,7 @@ fn tutorial_impulse_sinks_without_bias_and_holds_with_it() {
         let mut world = world(params, vec2(0.0, -10.0));
         add_ground(&mut world);
         let crate_box = world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap()).position(vec2(0.0, 0.5)))
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 0.5)))
             .unwrap();
         let mut depths = [0.0; 2];
         for depth in &mut depths {
@@ -280,7 +280,7 @@ fn push_out_separates_but_rests_worse_than_impulses() {
         let mut world = world(params, vec2(0.0, -10.0));
         add_ground(&mut world);
         let ball = world
-            .add_body(BodyDef::dynamic(Shape::circle(0.5).unwrap()).position(vec2(0.0, 3.0)))
+            .add_body(BodyDef::dynamic(Shape::circle(0.5)).position(vec2(0.0, 3.0)))
             .unwrap();
         for _ in 0..180 {
             world.step(DT).unwrap();
@@ -308,7 +308,7 @@ fn every_solver_survives_a_falling_pile() {
         add_ground(&mut world);
         for i in 0..60 {
             let shape = if i % 2 == 0 {
-                Shape::circle(0.3).unwrap()
+                Shape::circle(0.3)
             } else {
                 Shape::regular(3 + i % 5, 0.4).unwrap()
             };
@@ -347,7 +347,7 @@ fn guard_rails_cap_speed_and_spin() {
     let mut world = world(SolverParams::default(), Vec2::zeros());
     let rocket = world
         .add_body(
-            BodyDef::dynamic(Shape::circle(0.1).unwrap())
+            BodyDef::dynamic(Shape::circle(0.1))
                 .linear_velocity(vec2(1.0e6, 0.0))
                 .angular_velocity(1.0e6),
         )
@@ -371,7 +371,7 @@ fn the_spin_cap_holds_per_step_whatever_the_substeps() {
         };
         let mut world = world(params, Vec2::zeros());
         let spinner = world
-            .add_body(BodyDef::dynamic(Shape::rect(1.0, 0.1).unwrap()).angular_velocity(1.0e3))
+            .add_body(BodyDef::dynamic(Shape::rect(1.0, 0.1)).angular_velocity(1.0e3))
             .unwrap();
         world.step(DT).unwrap();
         let turned = world.body(spinner).unwrap().angle();

@@ -16,14 +16,14 @@ fn busy_world(solver: SolverKind) -> World {
     };
     let mut world = World::with_settings(settings).unwrap();
     world
-        .add_body(BodyDef::static_body(Shape::rect(120.0, 1.0).unwrap()).position(vec2(0.0, -1.0)))
+        .add_body(BodyDef::static_body(Shape::rect(120.0, 1.0)).position(vec2(0.0, -1.0)))
         .unwrap();
     for row in 0..92 {
         for column in 0..92 - row {
             let x = column as f32 - (91 - row) as f32 * 0.5;
             world
                 .add_body(
-                    BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+                    BodyDef::dynamic(Shape::rect(0.5, 0.5))
                         .position(vec2(x, row as f32 + 0.5))
                         .friction(0.6),
                 )
@@ -33,7 +33,7 @@ fn busy_world(solver: SolverKind) -> World {
     let mut rng = carom_tests::Rng::new(7);
     for i in 0..200 {
         let shape = if i % 2 == 0 {
-            Shape::circle(rng.range(0.1, 0.4)).unwrap()
+            Shape::circle(rng.range(0.1, 0.4))
         } else {
             Shape::regular(3, rng.range(0.2, 0.5)).unwrap()
         };

@@ -32,9 +32,10 @@ impl Place {
     }
 }
 
-/// A circle from any radius the constructor accepts.
+/// A circle from any radius a world accepts.
 pub fn circle(radius: f32) -> Option<Shape> {
-    Shape::circle(radius).ok()
+    let circle = Shape::circle(radius);
+    circle.validate().ok().map(|()| circle)
 }
 
 /// A convex polygon from any points the hull accepts (the constructor refuses the rest with an

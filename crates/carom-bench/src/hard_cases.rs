@@ -377,7 +377,7 @@ pub fn cases() -> Vec<Case> {
             name: "high_mass_ratio_boxes",
             title: "20 m box on two 1 m boxes",
             run: |e, _, o| {
-                let world = worlds::big_box_on(soft_step(), carom::Shape::rect(0.5, 0.5).unwrap());
+                let world = worlds::big_box_on(soft_step(), carom::Shape::rect(0.5, 0.5));
                 on(e, world, |w| settles(w, 4.0, 2.0, o))
             },
         },

@@ -11,14 +11,14 @@ fn box_over_ground() -> World {
     let mut world = World::new();
     world
         .add_body(
-            BodyDef::static_body(Shape::rect(20.0, 0.5).unwrap())
+            BodyDef::static_body(Shape::rect(20.0, 0.5))
                 .position(vec2(0.0, -0.5))
                 .friction(0.4),
         )
         .unwrap();
     world
         .add_body(
-            BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+            BodyDef::dynamic(Shape::rect(0.5, 0.5))
                 .position(vec2(0.0, 2.5))
                 .density(2.0)
                 .friction(0.9),

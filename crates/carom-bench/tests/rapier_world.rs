@@ -8,7 +8,7 @@ const DT: f32 = 1.0 / 60.0;
 /// A 40 m static ground box with its top at y = 0.
 fn ground(world: &mut World) {
     world
-        .add_body(BodyDef::static_body(Shape::rect(20.0, 0.5).unwrap()).position(vec2(0.0, -0.5)))
+        .add_body(BodyDef::static_body(Shape::rect(20.0, 0.5)).position(vec2(0.0, -0.5)))
         .unwrap();
 }
 
@@ -22,7 +22,7 @@ fn pyramid(rows: usize) -> World {
             let y = i as f32 + 0.5;
             world
                 .add_body(
-                    BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+                    BodyDef::dynamic(Shape::rect(0.5, 0.5))
                         .position(vec2(x, y))
                         .density(2.0)
                         .friction(0.6),
@@ -86,7 +86,7 @@ fn dropped_box_rests_at_the_same_height_in_both_engines() {
     ground(&mut world);
     // Bottom face 2 m above the ground.
     world
-        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap()).position(vec2(0.0, 2.5)))
+        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 2.5)))
         .unwrap();
     let mut rapier = RapierWorld::from_carom(&world, DT).unwrap();
     for _ in 0..120 {
@@ -107,7 +107,7 @@ fn circle_converts_to_a_ball_of_same_radius_and_mass() {
     let mut world = World::new();
     world
         .add_body(
-            BodyDef::dynamic(Shape::circle(0.75).unwrap())
+            BodyDef::dynamic(Shape::circle(0.75))
                 .position(vec2(1.0, 3.0))
                 .density(3.0),
         )
@@ -132,7 +132,7 @@ fn rotated_box_and_triangle_become_convex_polygons() {
     let tri = Shape::polygon(&[vec2(0.0, 0.0), vec2(2.0, 0.0), vec2(0.0, 1.0)]).unwrap();
     world.add_body(BodyDef::dynamic(tri)).unwrap();
     world
-        .add_body(BodyDef::dynamic(Shape::rect(1.0, 0.25).unwrap()).angle(0.3))
+        .add_body(BodyDef::dynamic(Shape::rect(1.0, 0.25)).angle(0.3))
         .unwrap();
     let rapier = RapierWorld::from_carom(&world, DT).unwrap();
     let shape_of = |i: usize| {

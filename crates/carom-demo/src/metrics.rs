@@ -135,12 +135,10 @@ mod tests {
     fn free_fall_keeps_its_energy_and_a_resting_box_does_not_drift() {
         let mut world = World::new();
         world
-            .add_body(
-                BodyDef::static_body(Shape::rect(5.0, 0.5).unwrap()).position(vec2(0.0, -0.5)),
-            )
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)).position(vec2(0.0, -0.5)))
             .unwrap();
         world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap()).position(vec2(0.0, 20.0)))
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 20.0)))
             .unwrap();
         let mut metrics = Metrics::default();
         for _ in 0..30 {

@@ -207,12 +207,18 @@ fn shape(spec: &ShapeSpec) -> Result<Shape, CaromError> {
     let points =
         |points: &[(f32, f32)]| points.iter().map(|&(x, y)| vec2(x, y)).collect::<Vec<_>>();
     match spec {
-        ShapeSpec::Circle { radius } => Shape::circle(*radius),
-        ShapeSpec::Box { width, height } => Shape::rect(0.5 * width, 0.5 * height),
+        ShapeSpec::Circle { radius } => checked(Shape::circle(*radius)),
+        ShapeSpec::Box { width, height } => checked(Shape::rect(0.5 * width, 0.5 * height)),
         ShapeSpec::Regular { sides, radius } => Shape::regular(*sides as usize, *radius),
         ShapeSpec::Polygon { points: p } => Shape::polygon(&points(p)),
         ShapeSpec::Hull { points: p } => Shape::hull(&points(p)),
     }
+}
+
+/// The shape, if it is valid: checked here so the error can name its place in the file.
+fn checked(shape: Shape) -> Result<Shape, CaromError> {
+    shape.validate()?;
+    Ok(shape)
 }
 
 fn with_material(def: BodyDef, material: &Material) -> BodyDef {
@@ -245,7 +251,8 @@ fn generator_name(generator: &Generator) -> &'static str {
 
 /// The bodies a generator makes, and their material.
 fn generate(generator: &Generator) -> Result<(Vec<BodyDef>, Material), String> {
-    let square = |size: f32| Shape::rect(0.5 * size, 0.5 * size).map_err(|e| e.to_string());
+    let square =
+        |size: f32| checked(Shape::rect(0.5 * size, 0.5 * size)).map_err(|e| e.to_string());
     Ok(match generator {
         Generator::Stack {
             base,
@@ -377,7 +384,7 @@ fn generate(generator: &Generator) -> Result<(Vec<BodyDef>, Material), String> {
         } => {
             let (c, w, h, t) = (vec2(center.0, center.1), *width, *height, *thickness);
             let wall = |half_w: f32, half_h: f32, dx: f32, dy: f32| {
-                Shape::rect(half_w, half_h)
+                checked(Shape::rect(half_w, half_h))
                     .map(|s| {
                         with_material(BodyDef::static_body(s).position(c + vec2(dx, dy)), material)
                     })

@@ -12,8 +12,8 @@ use std::hint::black_box;
 
 /// Pairs by name: two placed shapes.
 fn pairs() -> Vec<(&'static str, WorldShape, WorldShape)> {
-    let circle = Shape::circle(0.5).unwrap();
-    let square = Shape::rect(0.5, 0.5).unwrap();
+    let circle = Shape::circle(0.5);
+    let square = Shape::rect(0.5, 0.5);
     let hexagon = Shape::regular(6, 0.6).unwrap();
     let pentagon = Shape::regular(5, 0.6).unwrap();
     let at = |shape: &Shape, x: f32, y: f32, angle: f32| WorldShape::at(shape, vec2(x, y), angle);

@@ -11,12 +11,12 @@ fn resting_boxes(sleeping: bool) -> World {
     })
     .unwrap();
     world
-        .add_body(BodyDef::static_body(Shape::rect(2100.0, 1.0).unwrap()).position(vec2(0.0, -1.0)))
+        .add_body(BodyDef::static_body(Shape::rect(2100.0, 1.0)).position(vec2(0.0, -1.0)))
         .unwrap();
     for i in 0..2000 {
         let x = i as Real * 2.0 - 2000.0;
         world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap()).position(vec2(x, 0.5)))
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x, 0.5)))
             .unwrap();
     }
     // Settle (and, with sleeping on, fall asleep).

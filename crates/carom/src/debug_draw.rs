@@ -487,15 +487,13 @@ mod tests {
     fn scene() -> World {
         let mut world = World::new();
         world
-            .add_body(
-                BodyDef::static_body(Shape::rect(5.0, 0.5).unwrap()).position(vec2(0.0, -0.5)),
-            )
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)).position(vec2(0.0, -0.5)))
             .unwrap();
         world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap()).position(vec2(0.0, 0.5)))
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 0.5)))
             .unwrap();
         world
-            .add_body(BodyDef::dynamic(Shape::circle(0.25).unwrap()).position(vec2(2.0, 3.0)))
+            .add_body(BodyDef::dynamic(Shape::circle(0.25)).position(vec2(2.0, 3.0)))
             .unwrap();
         for _ in 0..5 {
             world.step(1.0 / 60.0).unwrap();

@@ -15,7 +15,7 @@
 //!
 //! let mut world = World::new(); // gravity (0, -10)
 //! let falling_box = world.add_body(
-//!     BodyDef::dynamic(Shape::rect(0.5, 0.5)?).position(vec2(0.0, 10.0)),
+//!     BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 10.0)),
 //! )?;
 //! for _ in 0..60 {
 //!     world.step(1.0 / 60.0)?;

@@ -57,6 +57,7 @@ pub struct BroadPhase {
 
 impl BroadPhase {
     /// An empty broadphase.
+    #[cfg(any(test, feature = "testing"))]
     pub fn new() -> Self {
         Self::default()
     }
@@ -150,6 +151,7 @@ impl BroadPhase {
     /// Pairs whose fat boxes began to overlap because one of them moved since the last call,
     /// each ordered `(lower slot, higher slot)`, sorted, without duplicates, and only where
     /// one body is dynamic. Pairs for which `exists` answers true are left out.
+    #[cfg(any(test, feature = "testing"))]
     pub fn update_pairs(
         &mut self,
         exists: impl FnMut(BodyHandle, BodyHandle) -> bool,
@@ -215,6 +217,7 @@ impl BroadPhase {
 
     /// Every pair whose fat boxes overlap now, as [`BroadPhase::update_pairs`] orders them:
     /// the full answer the incremental one must agree with.
+    #[cfg(any(test, feature = "testing"))]
     pub fn overlapping_pairs(&self) -> Vec<(BodyHandle, BodyHandle)> {
         let mut pairs = Vec::new();
         for proxy in self.proxies.iter().flatten() {
@@ -286,6 +289,7 @@ impl BroadPhase {
     }
 
     /// The two trees, static first, for inspection and tests.
+    #[cfg(any(test, feature = "testing"))]
     pub fn trees(&self) -> [&DynamicTree; 2] {
         [&self.trees[STATIC_TREE], &self.trees[MOVING_TREE]]
     }

@@ -54,6 +54,7 @@ impl Default for DynamicTree {
 
 impl DynamicTree {
     /// An empty tree.
+    #[cfg(any(test, feature = "testing"))]
     pub fn new() -> Self {
         Self::default()
     }
@@ -124,11 +125,13 @@ impl DynamicTree {
     }
 
     /// How many leaves the tree holds.
+    #[cfg(any(test, feature = "testing"))]
     pub fn proxy_count(&self) -> usize {
         self.proxy_count
     }
 
     /// The height of the tree (0 for a single leaf, -1 when empty).
+    #[cfg(any(test, feature = "testing"))]
     pub fn height(&self) -> i32 {
         if self.root == NULL {
             -1
@@ -139,6 +142,7 @@ impl DynamicTree {
 
     /// The sum of internal nodes' perimeters over the root's: the tree's quality, lower is
     /// better (queries visit fewer nodes). 0 for a tree of at most one leaf.
+    #[cfg(any(test, feature = "testing"))]
     pub fn area_ratio(&self) -> Real {
         if self.root == NULL {
             return 0.0;
@@ -463,6 +467,7 @@ impl DynamicTree {
 
     /// Checks every structural invariant: parent links, heights, boxes containing their
     /// children, and the leaf count. For tests.
+    #[cfg(any(test, feature = "testing"))]
     pub fn validate(&self) -> Result<(), String> {
         if self.root == NULL {
             return if self.proxy_count == 0 {

@@ -578,8 +578,8 @@ mod tests {
 
     #[test]
     fn box_resting_on_ground_gets_two_points() {
-        let ground = placed(Shape::rect(5.0, 0.5).unwrap(), 0.0, -0.5, 0.0);
-        let crate_box = placed(Shape::rect(0.5, 0.5).unwrap(), 1.0, 0.49, 0.0);
+        let ground = placed(Shape::rect(5.0, 0.5), 0.0, -0.5, 0.0);
+        let crate_box = placed(Shape::rect(0.5, 0.5), 1.0, 0.49, 0.0);
         let m = collide(&ground, &crate_box, 0.0);
         assert_eq!(m.points().len(), 2);
         assert_eq!(m.normal, vec2(0.0, 1.0));
@@ -595,7 +595,7 @@ mod tests {
         // Ids differ and survive a small move.
         let ids: Vec<FeatureId> = m.points().iter().map(|p| p.id).collect();
         assert_ne!(ids[0], ids[1]);
-        let moved = placed(Shape::rect(0.5, 0.5).unwrap(), 1.02, 0.495, 0.001);
+        let moved = placed(Shape::rect(0.5, 0.5), 1.02, 0.495, 0.001);
         let m2 = collide(&ground, &moved, 0.0);
         let ids2: Vec<FeatureId> = m2.points().iter().map(|p| p.id).collect();
         assert_eq!(ids, ids2);
@@ -603,8 +603,8 @@ mod tests {
 
     #[test]
     fn speculative_points_only_within_the_margin() {
-        let ground = placed(Shape::rect(5.0, 0.5).unwrap(), 0.0, -0.5, 0.0);
-        let hovering = placed(Shape::rect(0.5, 0.5).unwrap(), 0.0, 0.51, 0.0);
+        let ground = placed(Shape::rect(5.0, 0.5), 0.0, -0.5, 0.0);
+        let hovering = placed(Shape::rect(0.5, 0.5), 0.0, 0.51, 0.0);
         assert!(collide(&ground, &hovering, 0.0).is_empty());
         let m = collide(&ground, &hovering, 0.02);
         assert_eq!(m.points().len(), 2);
@@ -622,9 +622,9 @@ mod tests {
             any: 0.02,
             face: 0.5,
         };
-        let ground = placed(Shape::rect(5.0, 0.5).unwrap(), 0.0, -0.5, 0.0);
+        let ground = placed(Shape::rect(5.0, 0.5), 0.0, -0.5, 0.0);
         // A face 30 cm above a face: kept with the reach, not without.
-        let above = placed(Shape::rect(0.5, 0.5).unwrap(), 0.0, 0.8, 0.0);
+        let above = placed(Shape::rect(0.5, 0.5), 0.0, 0.8, 0.0);
         let no_reach = Margins::plain(0.02);
         assert!(update(&ground, &above, no_reach, &Manifold::default()).is_empty());
         let m = update(&ground, &above, reach, &Manifold::default());
@@ -633,31 +633,31 @@ mod tests {
         // A box off to the side and 1 cm above the ground's top corner, 30 cm away: its face
         // is beyond the end of the ground's side face and its corner faces the ground's
         // corner, so nothing reaches past the plain margin (a box grazing by is no impact).
-        let beside = placed(Shape::rect(0.5, 0.5).unwrap(), 5.8, 0.51, 0.0);
+        let beside = placed(Shape::rect(0.5, 0.5), 5.8, 0.51, 0.0);
         assert!(update(&ground, &beside, reach, &Manifold::default()).is_empty());
         // A ball 30 cm above a face reaches; off a corner it does not.
-        let ball = placed(Shape::circle(0.5).unwrap(), 0.0, 0.8, 0.0);
+        let ball = placed(Shape::circle(0.5), 0.0, 0.8, 0.0);
         assert_eq!(
             update(&ground, &ball, reach, &Manifold::default())
                 .points()
                 .len(),
             1
         );
-        let ball_by_corner = placed(Shape::circle(0.5).unwrap(), 5.6, 0.6, 0.0);
+        let ball_by_corner = placed(Shape::circle(0.5), 5.6, 0.6, 0.0);
         assert!(update(&ground, &ball_by_corner, reach, &Manifold::default()).is_empty());
     }
 
     #[test]
     fn circle_contacts_have_one_point_midway() {
-        let a = placed(Shape::circle(1.0).unwrap(), 0.0, 0.0, 0.0);
-        let b = placed(Shape::circle(0.5).unwrap(), 1.4, 0.0, 0.0);
+        let a = placed(Shape::circle(1.0), 0.0, 0.0, 0.0);
+        let b = placed(Shape::circle(0.5), 1.4, 0.0, 0.0);
         let m = collide(&a, &b, 0.0);
         assert_eq!(m.points().len(), 1);
         assert!((m.points()[0].point - vec2(0.95, 0.0)).norm() < 1e-6);
         assert!((m.points()[0].separation + 0.1).abs() < 1e-6);
         // Circle against a polygon, both orders: normals opposite, same point.
-        let square = placed(Shape::rect(1.0, 1.0).unwrap(), 0.0, 0.0, 0.0);
-        let ball = placed(Shape::circle(0.5).unwrap(), 0.0, 1.4, 0.0);
+        let square = placed(Shape::rect(1.0, 1.0), 0.0, 0.0, 0.0);
+        let ball = placed(Shape::circle(0.5), 0.0, 1.4, 0.0);
         let ab = collide(&square, &ball, 0.0);
         let ba = collide(&ball, &square, 0.0);
         assert_eq!(ab.normal, -ba.normal);
@@ -669,8 +669,8 @@ mod tests {
     #[test]
     fn the_reference_face_holds_through_near_ties() {
         // Two equal boxes, B tilted a hair: B's bottom face is barely better than A's top.
-        let a = placed(Shape::rect(0.5, 0.5).unwrap(), 0.0, 0.0, 0.0);
-        let tilt = |angle: Real| placed(Shape::rect(0.5, 0.5).unwrap(), 0.1, 0.99, angle);
+        let a = placed(Shape::rect(0.5, 0.5), 0.0, 0.0, 0.0);
+        let tilt = |angle: Real| placed(Shape::rect(0.5, 0.5), 0.1, 0.99, angle);
         let first = collide(&a, &tilt(0.0), 0.0);
         assert_eq!(first.reference_edge.unwrap().side, PairSide::A);
         // Stateless, the tiniest tilt hands the reference to whichever face is better...
@@ -685,15 +685,15 @@ mod tests {
             assert_ne!(ids(&fresh), ids(&first));
         }
         // A clear win still takes over: A tilted, its corner poking into B's flat face.
-        let tilted_a = placed(Shape::rect(0.5, 0.5).unwrap(), 0.0, 0.0, 0.3);
+        let tilted_a = placed(Shape::rect(0.5, 0.5), 0.0, 0.0, 0.3);
         let clear = update(&tilted_a, &tilt(0.0), Margins::plain(0.0), &first);
         assert_eq!(clear.reference_edge.unwrap().side, PairSide::B);
     }
 
     #[test]
     fn impulses_follow_feature_ids() {
-        let ground = placed(Shape::rect(5.0, 0.5).unwrap(), 0.0, -0.5, 0.0);
-        let crate_box = placed(Shape::rect(0.5, 0.5).unwrap(), 0.0, 0.49, 0.0);
+        let ground = placed(Shape::rect(5.0, 0.5), 0.0, -0.5, 0.0);
+        let crate_box = placed(Shape::rect(0.5, 0.5), 0.0, 0.49, 0.0);
         let mut old = collide(&ground, &crate_box, 0.0);
         old.points_mut()[0].normal_impulse = 3.0;
         old.points_mut()[1].normal_impulse = 5.0;

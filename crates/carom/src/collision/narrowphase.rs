@@ -388,7 +388,7 @@ mod tests {
 
     #[test]
     fn polygon_circle_in_every_region() {
-        let square = placed(Shape::rect(1.0, 1.0).unwrap(), 0.0, 0.0, 0.0);
+        let square = placed(Shape::rect(1.0, 1.0), 0.0, 0.0, 0.0);
         let WorldShape::Polygon { vertices, normals } = &square else {
             unreachable!()
         };
@@ -413,14 +413,14 @@ mod tests {
 
     #[test]
     fn corner_to_corner_distance_is_exact() {
-        let a = placed(Shape::rect(0.5, 0.5).unwrap(), 0.0, 0.0, 0.0);
-        let b = placed(Shape::rect(0.5, 0.5).unwrap(), 1.3, 1.4, 0.0);
+        let a = placed(Shape::rect(0.5, 0.5), 0.0, 0.0, 0.0);
+        let b = placed(Shape::rect(0.5, 0.5), 1.3, 1.4, 0.0);
         let s = separation(&a, &b);
         // SAT alone would say 0.4; the corners are sqrt(0.3² + 0.4²) = 0.5 apart.
         assert!((s.separation - 0.5).abs() < 1e-6);
         assert!((s.normal - vec2(0.6, 0.8)).norm() < 1e-5);
         // Facing: the face distance.
-        let c = placed(Shape::rect(0.5, 0.5).unwrap(), 0.2, 1.25, 0.0);
+        let c = placed(Shape::rect(0.5, 0.5), 0.2, 1.25, 0.0);
         let s = separation(&a, &c);
         assert!((s.separation - 0.25).abs() < 1e-6);
         assert_eq!(s.normal, vec2(0.0, 1.0));

@@ -137,12 +137,10 @@ mod tests {
     fn resting_pair(gap: Real) -> (World, crate::BodyHandle, crate::BodyHandle) {
         let mut world = World::new();
         let ground = world
-            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5).unwrap()))
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)))
             .unwrap();
         let block = world
-            .add_body(
-                BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap()).position(vec2(0.3, 1.0 + gap)),
-            )
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.3, 1.0 + gap)))
             .unwrap();
         (world, ground, block)
     }

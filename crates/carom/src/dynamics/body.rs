@@ -251,6 +251,7 @@ fn check_non_negative(name: &'static str, value: Real) -> Result<Real, CaromErro
 impl Body {
     /// Validates a definition and builds the body, with its world shape placed.
     pub(crate) fn new(handle: BodyHandle, def: BodyDef) -> Result<Self, CaromError> {
+        def.shape.validate()?;
         check_finite_vec("body position", def.position)?;
         check_finite("body angle", def.angle)?;
         check_finite_vec("body linear velocity", def.linear_velocity)?;
@@ -659,6 +660,7 @@ impl Body {
 
     /// Changes the shape; mass, inertia and the world shape are recomputed.
     pub fn set_shape(&mut self, shape: Shape) -> Result<(), CaromError> {
+        shape.validate()?;
         let previous = std::mem::replace(&mut self.shape, shape);
         if let Err(e) = self.update_mass() {
             self.shape = previous;
@@ -831,7 +833,7 @@ mod tests {
             index: 0,
             generation: 0,
         };
-        Body::new(handle, BodyDef::new(kind, Shape::rect(0.5, 0.5).unwrap())).unwrap()
+        Body::new(handle, BodyDef::new(kind, Shape::rect(0.5, 0.5))).unwrap()
     }
 
     #[test]

@@ -132,7 +132,7 @@ mod tests {
     use crate::math::vec2;
 
     fn ball_at(x: f32) -> BodyDef {
-        BodyDef::dynamic(Shape::circle(0.5).unwrap()).position(vec2(x, 0.0))
+        BodyDef::dynamic(Shape::circle(0.5)).position(vec2(x, 0.0))
     }
 
     #[test]

@@ -173,7 +173,7 @@ mod tests {
 
     #[test]
     fn polygon_hit_from_each_side() {
-        let square = Polygon::rect(1.0, 1.0).unwrap();
+        let square = Polygon::rect(1.0, 1.0);
         let cast = |o: Vec2, d: Vec2| {
             ray_cast_polygon(square.vertices(), square.normals(), &Ray::new(o, d))
         };

@@ -35,14 +35,24 @@ pub struct Circle {
 }
 
 impl Circle {
-    /// A circle of the given radius, which must be finite and positive.
-    pub fn new(radius: Real) -> Result<Self, CaromError> {
-        check_finite("circle radius", radius)?;
-        if radius <= 0.0 {
-            return Err(CaromError::InvalidRadius { radius });
+    /// A circle of the given radius. The radius must be finite and positive, which
+    /// [`Circle::validate`] checks (a world checks it when the circle is added).
+    pub fn new(radius: Real) -> Self {
+        Circle { radius }
+    }
+
+    /// Checks the radius: finite, positive, within 100 km.
+    ///
+    /// # Errors
+    /// A radius that is not all three.
+    pub fn validate(&self) -> Result<(), CaromError> {
+        check_finite("circle radius", self.radius)?;
+        if self.radius <= 0.0 {
+            return Err(CaromError::InvalidRadius {
+                radius: self.radius,
+            });
         }
-        check_extent("circle radius", radius)?;
-        Ok(Circle { radius })
+        check_extent("circle radius", self.radius)
     }
 
     /// The radius.
@@ -72,6 +82,9 @@ pub struct Polygon {
     source_centroid: Vec2,
     /// Distance from the centroid to the farthest vertex.
     radius: Real,
+    /// Why the arguments of an infallible constructor ([`Polygon::rect`]) made no polygon;
+    /// [`Polygon::validate`] reports it. The vertices are then a unit square's.
+    problem: Option<Box<CaromError>>,
 }
 
 impl Polygon {
@@ -174,25 +187,52 @@ impl Polygon {
     }
 
     /// An axis-aligned rectangle `2 half_width` by `2 half_height`, centred on the origin.
-    pub fn rect(half_width: Real, half_height: Real) -> Result<Self, CaromError> {
-        for (name, value) in [("half_width", half_width), ("half_height", half_height)] {
-            check_finite(name, value)?;
-            if value <= 0.0 {
-                return Err(CaromError::OutOfRange {
-                    name,
-                    expected: "positive",
-                    value,
-                });
+    /// The half sizes must be finite,
+    /// positive and within 100 km, which [`Polygon::validate`] checks (a world checks it
+    /// when the rectangle is added).
+    pub fn rect(half_width: Real, half_height: Real) -> Self {
+        let check = || {
+            for (name, value) in [("half_width", half_width), ("half_height", half_height)] {
+                check_finite(name, value)?;
+                if value <= 0.0 {
+                    return Err(CaromError::OutOfRange {
+                        name,
+                        expected: "positive",
+                        value,
+                    });
+                }
+                check_extent(name, value)?;
             }
-            check_extent(name, value)?;
-        }
-        let (w, h) = (half_width, half_height);
-        Self::from_convex_ccw(vec![
+            Ok(())
+        };
+        let (w, h, problem) = match check() {
+            Ok(()) => (half_width, half_height, None),
+            Err(e) => (0.5, 0.5, Some(Box::new(e))),
+        };
+        let corners = vec![
             Vec2::new(-w, -h),
             Vec2::new(w, -h),
             Vec2::new(w, h),
             Vec2::new(-w, h),
-        ])
+        ];
+        let mut rect = Self::from_convex_ccw(corners).unwrap_or_else(|e| Polygon {
+            problem: Some(Box::new(e)),
+            ..Self::rect(0.5, 0.5)
+        });
+        rect.problem = rect.problem.take().or(problem);
+        rect
+    }
+
+    /// Checks a polygon made by an infallible constructor ([`Polygon::rect`]); the others
+    /// check their input as they build and always pass.
+    ///
+    /// # Errors
+    /// What was wrong with the constructor's arguments.
+    pub fn validate(&self) -> Result<(), CaromError> {
+        match &self.problem {
+            Some(problem) => Err((**problem).clone()),
+            None => Ok(()),
+        }
     }
 
     /// A regular polygon with `sides` vertices on a circle of `radius`.
@@ -265,6 +305,7 @@ impl Polygon {
             normals,
             source_centroid,
             radius,
+            problem: None,
         })
     }
 
@@ -405,14 +446,28 @@ pub enum Shape {
 }
 
 impl Shape {
-    /// A circle shape; see [`Circle::new`].
-    pub fn circle(radius: Real) -> Result<Self, CaromError> {
-        Circle::new(radius).map(Shape::Circle)
+    /// A circle shape; see [`Circle::new`]. The radius is checked when the shape is added to
+    /// a world, or by [`Shape::validate`].
+    pub fn circle(radius: Real) -> Self {
+        Shape::Circle(Circle::new(radius))
     }
 
-    /// A rectangle shape; see [`Polygon::rect`].
-    pub fn rect(half_width: Real, half_height: Real) -> Result<Self, CaromError> {
-        Polygon::rect(half_width, half_height).map(Shape::Polygon)
+    /// A rectangle shape; see [`Polygon::rect`]. The sizes are checked when the shape is
+    /// added to a world, or by [`Shape::validate`].
+    pub fn rect(half_width: Real, half_height: Real) -> Self {
+        Shape::Polygon(Polygon::rect(half_width, half_height))
+    }
+
+    /// Checks the shape: a circle's radius, or the arguments a rectangle was made from
+    /// (polygons from points are checked as they are built).
+    ///
+    /// # Errors
+    /// The first thing wrong with the shape.
+    pub fn validate(&self) -> Result<(), CaromError> {
+        match self {
+            Shape::Circle(c) => c.validate(),
+            Shape::Polygon(p) => p.validate(),
+        }
     }
 
     /// A convex polygon shape; see [`Polygon::new`].
@@ -433,8 +488,9 @@ impl Shape {
     /// Mass properties at uniform `density`, about the local origin (the centroid).
     ///
     /// # Errors
-    /// A density that is not finite and positive.
+    /// An invalid shape ([`Shape::validate`]), or a density that is not finite and positive.
     pub fn mass_properties(&self, density: Real) -> Result<MassProperties, CaromError> {
+        self.validate()?;
         mass::check_density(density)?;
         Ok(match self {
             Shape::Circle(c) => mass::circle_mass(c.radius, density),
@@ -681,11 +737,22 @@ mod tests {
 
     #[test]
     fn rect_and_regular() {
-        let r = Polygon::rect(2.0, 1.0).unwrap();
+        let r = Polygon::rect(2.0, 1.0);
         assert_eq!(r.vertices()[0], vec2(-2.0, -1.0));
         assert_eq!(r.normals()[0], vec2(0.0, -1.0));
-        assert!(Polygon::rect(0.0, 1.0).is_err());
-        assert!(Polygon::rect(1.0, Real::INFINITY).is_err());
+        assert!(r.validate().is_ok());
+        assert!(Polygon::rect(0.0, 1.0).validate().is_err());
+        assert!(Polygon::rect(1.0, Real::INFINITY).validate().is_err());
+        assert!(Polygon::rect(-1.0, 1.0).validate().is_err());
+        assert!(Polygon::rect(1.0e-30, 1.0e-30).validate().is_err());
+        // A bad rectangle is still a sane polygon until it is refused.
+        let bad = Polygon::rect(Real::NAN, 1.0);
+        assert!(
+            bad.vertices()
+                .iter()
+                .all(|v| v.x.is_finite() && v.y.is_finite())
+        );
+        assert!(Shape::Polygon(bad).mass_properties(1.0).is_err());
         let hex = Polygon::regular(6, 1.0).unwrap();
         assert_eq!(hex.len(), 6);
         // Flat bottom edge.
@@ -697,7 +764,7 @@ mod tests {
 
     #[test]
     fn world_shape_follows_the_transform() {
-        let shape = Shape::rect(1.0, 0.5).unwrap();
+        let shape = Shape::rect(1.0, 0.5);
         let iso = Isometry::new(vec2(3.0, 4.0), std::f32::consts::FRAC_PI_2);
         let world = WorldShape::new(&shape, &iso);
         let aabb = world.aabb();
@@ -712,14 +779,14 @@ mod tests {
 
     #[test]
     fn min_extent_is_the_inradius_for_polygons() {
-        assert!((Shape::rect(2.0, 0.1).unwrap().min_extent() - 0.1).abs() < 1e-6);
-        assert_eq!(Shape::circle(0.3).unwrap().min_extent(), 0.3);
+        assert!((Shape::rect(2.0, 0.1).min_extent() - 0.1).abs() < 1e-6);
+        assert_eq!(Shape::circle(0.3).min_extent(), 0.3);
     }
 
     #[test]
     fn max_extent_is_the_circumradius() {
         let diagonal = (2.0f32 * 2.0 + 0.1 * 0.1).sqrt();
-        assert!((Shape::rect(2.0, 0.1).unwrap().max_extent() - diagonal).abs() < 1e-6);
-        assert_eq!(Shape::circle(0.3).unwrap().max_extent(), 0.3);
+        assert!((Shape::rect(2.0, 0.1).max_extent() - diagonal).abs() < 1e-6);
+        assert_eq!(Shape::circle(0.3).max_extent(), 0.3);
     }
 }

@@ -271,16 +271,14 @@ mod tests {
     fn pile() -> World {
         let mut world = World::new();
         world
-            .add_body(
-                BodyDef::static_body(Shape::rect(20.0, 0.5).unwrap()).position(vec2(0.0, -0.5)),
-            )
+            .add_body(BodyDef::static_body(Shape::rect(20.0, 0.5)).position(vec2(0.0, -0.5)))
             .unwrap();
         for row in 0..6 {
             for column in 0..6 - row {
                 let x = column as Real - 0.5 * (5 - row) as Real;
                 world
                     .add_body(
-                        BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap())
+                        BodyDef::dynamic(Shape::rect(0.5, 0.5))
                             .position(vec2(x, 0.5 + row as Real))
                             .angle(0.01 * column as Real),
                     )
@@ -290,7 +288,7 @@ mod tests {
         for i in 0..4 {
             world
                 .add_body(
-                    BodyDef::dynamic(Shape::circle(0.3).unwrap())
+                    BodyDef::dynamic(Shape::circle(0.3))
                         .position(vec2(-1.0 + 0.7 * i as Real, 7.0))
                         .density(3.0),
                 )
@@ -298,7 +296,7 @@ mod tests {
         }
         world
             .add_body(
-                BodyDef::kinematic(Shape::rect(0.2, 1.0).unwrap())
+                BodyDef::kinematic(Shape::rect(0.2, 1.0))
                     .position(vec2(-3.6, 1.0))
                     .linear_velocity(vec2(1.0, 0.0))
                     .angular_velocity(0.3),
@@ -452,13 +450,11 @@ mod tests {
         let mut world = World::new();
         world.set_effects(crate::Effects::NONE);
         world
-            .add_body(
-                BodyDef::static_body(Shape::rect(5.0, 0.5).unwrap()).position(vec2(0.0, -0.5)),
-            )
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)).position(vec2(0.0, -0.5)))
             .unwrap();
         // A ball: one contact point, so one pass converges.
         let block = world
-            .add_body(BodyDef::dynamic(Shape::circle(0.5).unwrap()).position(vec2(0.0, 0.0)))
+            .add_body(BodyDef::dynamic(Shape::circle(0.5)).position(vec2(0.0, 0.0)))
             .unwrap();
         let dt = 1.0 / 60.0;
         world.step(dt).unwrap();

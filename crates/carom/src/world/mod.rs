@@ -637,11 +637,11 @@ mod tests {
     fn static_bodies_do_not_fall_and_kinematic_ones_keep_their_velocity() {
         let mut world = World::new();
         let ground = world
-            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5).unwrap()))
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)))
             .unwrap();
         let platform = world
             .add_body(
-                BodyDef::kinematic(Shape::rect(1.0, 0.1).unwrap())
+                BodyDef::kinematic(Shape::rect(1.0, 0.1))
                     .linear_velocity(vec2(1.0, 0.0))
                     .angular_velocity(0.5),
             )
@@ -662,13 +662,13 @@ mod tests {
     fn body_at_prefers_dynamic_and_topmost() {
         let mut world = World::new();
         let floor = world
-            .add_body(BodyDef::static_body(Shape::rect(5.0, 5.0).unwrap()))
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 5.0)))
             .unwrap();
         let low = world
-            .add_body(BodyDef::dynamic(Shape::circle(1.0).unwrap()))
+            .add_body(BodyDef::dynamic(Shape::circle(1.0)))
             .unwrap();
         let high = world
-            .add_body(BodyDef::dynamic(Shape::circle(0.5).unwrap()))
+            .add_body(BodyDef::dynamic(Shape::circle(0.5)))
             .unwrap();
         assert_eq!(world.body_at(vec2(0.0, 0.0)), Some(high));
         assert_eq!(world.body_at(vec2(0.8, 0.0)), Some(low));
@@ -681,7 +681,7 @@ mod tests {
     fn queries_see_bodies_moved_since_the_last_step() {
         let mut world = World::new();
         let ball = world
-            .add_body(BodyDef::dynamic(Shape::circle(0.5).unwrap()))
+            .add_body(BodyDef::dynamic(Shape::circle(0.5)))
             .unwrap();
         world
             .body_mut(ball)
@@ -709,11 +709,11 @@ mod tests {
     fn cast_ray_finds_the_closest_body() {
         let mut world = World::new();
         let near = world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap()).position(vec2(2.0, 0.0)))
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(2.0, 0.0)))
             .unwrap();
         let far = world
             .add_body(
-                BodyDef::dynamic(Shape::circle(0.5).unwrap())
+                BodyDef::dynamic(Shape::circle(0.5))
                     .position(vec2(5.0, 0.0))
                     .angle(1.0),
             )
@@ -751,12 +751,12 @@ mod tests {
         })
         .unwrap();
         let wall = world
-            .add_body(BodyDef::static_body(Shape::rect(0.1, 2.0).unwrap()))
+            .add_body(BodyDef::static_body(Shape::rect(0.1, 2.0)))
             .unwrap();
         // Bounces off the wall: one begin, one end.
         let ball = world
             .add_body(
-                BodyDef::dynamic(Shape::circle(0.25).unwrap())
+                BodyDef::dynamic(Shape::circle(0.25))
                     .position(vec2(-2.0, 0.0))
                     .linear_velocity(vec2(3.0, 0.0))
                     .restitution(1.0),
@@ -788,15 +788,13 @@ mod tests {
     fn removing_a_touching_body_ends_its_contact_after_the_next_step() {
         let mut world = World::new();
         let ground = world
-            .add_body(
-                BodyDef::static_body(Shape::rect(5.0, 0.5).unwrap()).position(vec2(0.0, -0.5)),
-            )
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)).position(vec2(0.0, -0.5)))
             .unwrap();
         let crate_box = world
-            .add_body(BodyDef::kinematic(Shape::rect(0.5, 0.5).unwrap()).position(vec2(0.0, 0.5)))
+            .add_body(BodyDef::kinematic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 0.5)))
             .unwrap();
         let ball = world
-            .add_body(BodyDef::dynamic(Shape::circle(0.5).unwrap()).position(vec2(3.0, 0.49)))
+            .add_body(BodyDef::dynamic(Shape::circle(0.5)).position(vec2(3.0, 0.49)))
             .unwrap();
         world.step(1.0 / 60.0).unwrap();
         assert!(world.contact_events().contains(&ContactEvent::Begin {

@@ -122,7 +122,7 @@ mod tests {
     fn the_grabbed_point_follows_the_target_and_settles_on_it() {
         let mut world = world_without_gravity();
         let plank = world
-            .add_body(BodyDef::dynamic(Shape::rect(2.0, 0.1).unwrap()))
+            .add_body(BodyDef::dynamic(Shape::rect(2.0, 0.1)))
             .unwrap();
         // Grab the plank at its tip, pull the tip 3 m up and right.
         let mut joint = MouseJoint::new(&world, plank, vec2(2.0, 0.0)).unwrap();
@@ -146,10 +146,10 @@ mod tests {
     fn a_wall_stops_a_dragged_body() {
         let mut world = world_without_gravity();
         world
-            .add_body(BodyDef::static_body(Shape::rect(0.1, 5.0).unwrap()).position(vec2(2.0, 0.0)))
+            .add_body(BodyDef::static_body(Shape::rect(0.1, 5.0)).position(vec2(2.0, 0.0)))
             .unwrap();
         let crate_box = world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5).unwrap()))
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)))
             .unwrap();
         let mut joint = MouseJoint::new(&world, crate_box, vec2(0.0, 0.0)).unwrap();
         joint.set_target(vec2(10.0, 0.0)).unwrap();
@@ -170,11 +170,11 @@ mod tests {
     fn only_dynamic_bodies_can_be_grabbed() {
         let mut world = world_without_gravity();
         let wall = world
-            .add_body(BodyDef::static_body(Shape::rect(1.0, 1.0).unwrap()))
+            .add_body(BodyDef::static_body(Shape::rect(1.0, 1.0)))
             .unwrap();
         assert!(MouseJoint::new(&world, wall, vec2(0.0, 0.0)).is_none());
         let ball = world
-            .add_body(BodyDef::dynamic(Shape::circle(0.5).unwrap()).position(vec2(5.0, 0.0)))
+            .add_body(BodyDef::dynamic(Shape::circle(0.5)).position(vec2(5.0, 0.0)))
             .unwrap();
         let mut joint = MouseJoint::new(&world, ball, vec2(5.0, 0.0)).unwrap();
         assert!(joint.set_target(vec2(Real::NAN, 0.0)).is_err());
