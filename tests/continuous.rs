@@ -4,7 +4,7 @@ use carom::{
     BodyDef, BodyHandle, Effect, Effects, Real, Shape, SolverParams, Vec2, World, WorldSettings,
     vec2,
 };
-use carom_tests::skinny_box;
+use carom_tests::{skinny_box, world_shape};
 
 const DT: Real = 1.0 / 60.0;
 
@@ -232,8 +232,8 @@ fn deepest_overlap(world: &mut World, a: BodyHandle, b: BodyHandle, steps: usize
     let mut deepest: Real = 0.0;
     for _ in 0..steps {
         world.step(DT).unwrap();
-        let (a, b) = (world.body(a).unwrap(), world.body(b).unwrap());
-        let gap = carom::separation(a.world_shape(), b.world_shape()).separation;
+        let (a, b) = (world_shape(world, a), world_shape(world, b));
+        let gap = carom::separation(a, b).separation;
         deepest = deepest.max(-gap);
     }
     deepest

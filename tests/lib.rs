@@ -2,6 +2,8 @@
 
 pub mod hard_case_worlds;
 
+use carom::{BodyHandle, World, WorldShape};
+
 /// A small deterministic random number generator (xorshift64*), so every suite sees the same
 /// "random" worlds on every machine without pulling in a dependency.
 #[derive(Debug, Clone)]
@@ -72,6 +74,18 @@ pub mod skinny_box {
         let along = (POST_X - before.x) / (after.x - before.x);
         before.y + (after.y - before.y) * along < POST_TOP
     }
+}
+
+/// The world shape of a body made of one collider.
+///
+/// # Panics
+/// A stale handle.
+pub fn world_shape(world: &World, body: BodyHandle) -> &WorldShape {
+    let body = world.body(body).expect("a live body");
+    world
+        .collider(body.colliders()[0])
+        .expect("a body's collider is live")
+        .world_shape()
 }
 
 #[cfg(test)]

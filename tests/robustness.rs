@@ -1,7 +1,7 @@
 //! Degenerate and random input: constructors answer with a value or an error, never a panic,
 //! and what they accept is a well-formed shape.
 
-use carom::{BodyDef, CaromError, Polygon, Real, Shape, Vec2, World, vec2};
+use carom::{BodyDef, CaromError, ColliderDef, Polygon, Real, Shape, Vec2, World, vec2};
 use carom_tests::Rng;
 
 /// A polygon carom accepted must be convex, counter-clockwise, centred, with unit outward
@@ -193,10 +193,17 @@ fn bodies_with_bad_values_are_refused_at_the_door() {
     let floor = world
         .add_body(BodyDef::static_body(square()).density(0.0))
         .unwrap();
-    // Nor can a body take a bad shape later; it keeps the one it had.
-    let body = world.body_mut(floor).unwrap();
-    assert!(body.set_shape(Shape::circle(Real::NAN)).is_err());
-    assert_eq!(body.shape(), &square());
+    // Nor can a body take a bad collider later, or lose its last one.
+    let bad_collider = ColliderDef::new(Shape::circle(Real::NAN));
+    assert!(world.add_collider(floor, bad_collider).is_err());
+    let only = world.body(floor).unwrap().colliders()[0];
+    assert!(world.set_collider_density(only, -1.0).is_err());
+    assert!(matches!(
+        world.remove_collider(only),
+        Err(CaromError::NoCollider)
+    ));
+    assert_eq!(world.body(floor).unwrap().colliders(), &[only]);
+    assert_eq!(world.collider(only).unwrap().shape(), &square());
     assert!(world.set_gravity(vec2(0.0, Real::NAN)).is_err());
     assert_eq!(world.gravity(), vec2(0.0, -10.0));
 }

@@ -491,13 +491,15 @@ fn a_skinny_plank_relaunched_500_times_never_ends_on_the_wrong_side() {
         let mut lowest: f64 = 0.0;
         for _ in 0..500 {
             let offset = rng.range(-2.0, 0.6);
-            let body = world.body_mut(plank).unwrap();
-            body.set_position(vec2(offset, 8.0)).unwrap();
-            body.set_angle(rng.range(-std::f32::consts::PI, std::f32::consts::PI))
-                .unwrap();
-            body.set_linear_velocity(vec2(0.0, -100.0)).unwrap();
-            let spin = if rng.below(2) == 0 { 50.0 } else { -50.0 };
-            body.set_angular_velocity(spin).unwrap();
+            {
+                let mut body = world.body_mut(plank).unwrap();
+                body.set_position(vec2(offset, 8.0)).unwrap();
+                body.set_angle(rng.range(-std::f32::consts::PI, std::f32::consts::PI))
+                    .unwrap();
+                body.set_linear_velocity(vec2(0.0, -100.0)).unwrap();
+                let spin = if rng.below(2) == 0 { 50.0 } else { -50.0 };
+                body.set_angular_velocity(spin).unwrap();
+            }
             let mut before = vec2(offset, 8.0);
             let mut crossed = false;
             for _ in 0..60 {

@@ -62,27 +62,27 @@ use boxdd::{
     WorldBuilder, shapes,
 };
 use boxdd_sys::ffi;
-use carom::{Body, BodyHandle, BodyKind, DragModel, Effect, Polygon, Shape, World};
+use carom::{Body, BodyHandle, BodyKind, Collider, DragModel, Effect, Polygon, Shape, World};
 
 /// Box2D's limit on polygon vertices.
 const MAX_POLYGON_VERTICES: usize = 8;
 
-/// A body's shape in its own frame, kept to measure its bounding box exactly (Box2D's own body
-/// box is grown by the speculative distance, 2 cm, and carom's is not).
+/// A collider's shape in its body's frame, kept to measure the body's bounding box exactly
+/// (Box2D's own body box is grown by the speculative distance, 2 cm, and carom's is not).
 #[derive(Debug, Clone)]
 enum LocalShape {
-    Circle(f32),
+    Circle([f32; 2], f32),
     Polygon(Vec<[f32; 2]>),
 }
 
-/// A Box2D world holding one body and one shape per carom body, in carom's order.
+/// A Box2D world holding one body per carom body, in carom's order, and one shape per collider.
 pub struct Box2dWorld {
     world: boxdd::World,
     substeps: i32,
     ids: Vec<BodyId>,
     index: HashMap<BodyHandle, usize>,
     kinds: Vec<BodyKind>,
-    shapes: Vec<LocalShape>,
+    shapes: Vec<Vec<LocalShape>>,
     /// Box2D's mass and rotational inertia (about the centre of mass) of each body.
     mass: Vec<(f32, f32)>,
 }
@@ -147,31 +147,46 @@ impl Box2dWorld {
         for body in world.bodies() {
             let def = body_def(foundation, body, drag, bullets).map_err(err)?;
             let id = out.world.create_body(def).map_err(err)?;
-            let material = SurfaceMaterial::new()
-                .with_friction(if friction { body.friction() } else { 0.0 })
-                .and_then(|m| {
-                    m.with_restitution(if restitution { body.restitution() } else { 0.0 })
-                })
-                .map_err(err)?;
-            let shape_def = ShapeDef::builder()
-                .density(body.density())
-                .material(material)
-                .build()
-                .map_err(err)?;
             let mut handle = out.world.body(id).map_err(err)?;
-            let local = match body.shape() {
-                Shape::Circle(c) => {
-                    let circle = shapes::circle(Vec2::new(0.0, 0.0), c.radius()).map_err(err)?;
-                    handle.create_circle(&shape_def, &circle).map_err(err)?;
-                    LocalShape::Circle(c.radius())
-                }
-                Shape::Polygon(p) => {
-                    handle
-                        .create_polygon(&shape_def, &polygon(p)?)
-                        .map_err(err)?;
-                    LocalShape::Polygon(p.vertices().iter().map(|v| [v.x, v.y]).collect())
-                }
-            };
+            let mut locals = Vec::with_capacity(body.colliders().len());
+            for collider in body.colliders().iter().filter_map(|&c| world.collider(c)) {
+                let material = SurfaceMaterial::new()
+                    .with_friction(if friction { collider.friction() } else { 0.0 })
+                    .and_then(|m| {
+                        m.with_restitution(if restitution {
+                            collider.restitution()
+                        } else {
+                            0.0
+                        })
+                    })
+                    .map_err(err)?;
+                let shape_def = ShapeDef::builder()
+                    .density(collider.density())
+                    .material(material)
+                    .build()
+                    .map_err(err)?;
+                let place = collider.local_transform();
+                let local = match collider.shape() {
+                    Shape::Circle(c) => {
+                        let o = place.translation.vector;
+                        let circle =
+                            shapes::circle(Vec2::new(o.x, o.y), c.radius()).map_err(err)?;
+                        handle.create_circle(&shape_def, &circle).map_err(err)?;
+                        LocalShape::Circle([o.x, o.y], c.radius())
+                    }
+                    Shape::Polygon(p) => {
+                        handle
+                            .create_polygon(&shape_def, &polygon(p, collider)?)
+                            .map_err(err)?;
+                        let placed = p
+                            .vertices()
+                            .iter()
+                            .map(|v| place.rotation * v + place.translation.vector);
+                        LocalShape::Polygon(placed.map(|v| [v.x, v.y]).collect())
+                    }
+                };
+                locals.push(local);
+            }
             let mass = (
                 handle.mass().map_err(err)?,
                 handle.rotational_inertia().map_err(err)?,
@@ -179,7 +194,7 @@ impl Box2dWorld {
             out.index.insert(body.handle(), out.ids.len());
             out.ids.push(id);
             out.kinds.push(body.kind());
-            out.shapes.push(local);
+            out.shapes.push(locals);
             out.mass.push(mass);
         }
         Ok(out)
@@ -318,23 +333,26 @@ impl Box2dWorld {
         let p = body.position().map_err(err)?;
         let r = body.rotation().map_err(err)?;
         let (c, s) = (r.cosine(), r.sine());
-        Ok(match &self.shapes[i] {
-            LocalShape::Circle(radius) => {
-                ([p.x - radius, p.y - radius], [p.x + radius, p.y + radius])
+        let place = |v: &[f32; 2]| [p.x + c * v[0] - s * v[1], p.y + s * v[0] + c * v[1]];
+        let mut lo = [f32::INFINITY; 2];
+        let mut hi = [f32::NEG_INFINITY; 2];
+        let mut cover = |point: [f32; 2], radius: f32| {
+            for k in 0..2 {
+                lo[k] = lo[k].min(point[k] - radius);
+                hi[k] = hi[k].max(point[k] + radius);
             }
-            LocalShape::Polygon(vertices) => {
-                let mut lo = [f32::INFINITY; 2];
-                let mut hi = [f32::NEG_INFINITY; 2];
-                for v in vertices {
-                    let w = [p.x + c * v[0] - s * v[1], p.y + s * v[0] + c * v[1]];
-                    for k in 0..2 {
-                        lo[k] = lo[k].min(w[k]);
-                        hi[k] = hi[k].max(w[k]);
+        };
+        for shape in &self.shapes[i] {
+            match shape {
+                LocalShape::Circle(center, radius) => cover(place(center), *radius),
+                LocalShape::Polygon(vertices) => {
+                    for v in vertices {
+                        cover(place(v), 0.0);
                     }
                 }
-                (lo, hi)
             }
-        })
+        }
+        Ok((lo, hi))
     }
 
     /// Moves the `i`-th body to `position` at `angle` (for relaunches).
@@ -443,8 +461,9 @@ fn body_def(
 }
 
 /// Box2D's polygon with carom's own vertices (counter-clockwise, centred on the centroid) and
-/// edge normals, radius 0.
-fn polygon(p: &Polygon) -> Result<shapes::Polygon, String> {
+/// edge normals, radius 0, placed in the body's frame as `collider` places it.
+fn polygon(p: &Polygon, collider: &Collider) -> Result<shapes::Polygon, String> {
+    let place = collider.local_transform();
     let v = p.vertices();
     if v.len() > MAX_POLYGON_VERTICES {
         return Err(format!(
@@ -461,8 +480,14 @@ fn polygon(p: &Polygon) -> Result<shapes::Polygon, String> {
         count: v.len() as i32,
     };
     for (i, (q, n)) in v.iter().zip(p.normals()).enumerate() {
+        let (q, n) = (
+            place.rotation * q + place.translation.vector,
+            place.rotation * n,
+        );
         raw.vertices[i] = ffi::b2Vec2 { x: q.x, y: q.y };
         raw.normals[i] = ffi::b2Vec2 { x: n.x, y: n.y };
     }
+    let c = place.translation.vector;
+    raw.centroid = ffi::b2Vec2 { x: c.x, y: c.y };
     shapes::Polygon::from_raw(raw).map_err(|e| format!("{e}: carom polygon {v:?}"))
 }

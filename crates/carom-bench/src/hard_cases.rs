@@ -141,7 +141,7 @@ impl CaseWorld for World {
         angular: f32,
     ) -> Res<()> {
         let handle = nth(self, i)?.handle();
-        let body = self.body_mut(handle).ok_or("body vanished")?;
+        let mut body = self.body_mut(handle).ok_or("body vanished")?;
         let e = |e: carom::CaromError| e.to_string();
         body.set_position(vec2(position[0], position[1]))
             .map_err(e)?;

@@ -1,6 +1,7 @@
 //! A carom world rebuilt in Rapier with matched parameters; see the crate docs for the mapping.
 
 use carom::{Body, BodyKind, DragModel, Effect, Polygon, Shape, World};
+use rapier2d::math::Pose;
 use rapier2d::prelude::{
     CCDSolver, CoefficientCombineRule, ColliderBuilder, ColliderSet, DefaultBroadPhase,
     ImpulseJointSet, IntegrationParameters, IslandManager, MultibodyJointSet, NarrowPhase,
@@ -99,14 +100,21 @@ impl RapierWorld {
         for body in world.bodies() {
             let rb = rigid_body(body, drag, can_sleep, ccd);
             let handle = out.bodies.insert(rb);
-            let collider = collider(body.shape())?
-                .density(body.density())
-                .friction(if friction { body.friction() } else { 0.0 })
-                .friction_combine_rule(CoefficientCombineRule::GeometricMean)
-                .restitution(if restitution { body.restitution() } else { 0.0 })
-                .restitution_combine_rule(CoefficientCombineRule::Max);
-            out.colliders
-                .insert_with_parent(collider, handle, &mut out.bodies);
+            for part in body.colliders().iter().filter_map(|&c| world.collider(c)) {
+                let place = part.local_transform();
+                let collider = collider(part.shape())?
+                    .position(Pose::new(
+                        Vector::new(place.translation.x, place.translation.y),
+                        place.rotation.angle(),
+                    ))
+                    .density(part.density())
+                    .friction(if friction { part.friction() } else { 0.0 })
+                    .friction_combine_rule(CoefficientCombineRule::GeometricMean)
+                    .restitution(if restitution { part.restitution() } else { 0.0 })
+                    .restitution_combine_rule(CoefficientCombineRule::Max);
+                out.colliders
+                    .insert_with_parent(collider, handle, &mut out.bodies);
+            }
             out.handles.push(handle);
         }
         Ok(out)

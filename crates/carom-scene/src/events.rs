@@ -129,7 +129,7 @@ impl Events {
                 } => {
                     if !*done && now >= *at {
                         *done = true;
-                        if let Some(b) = world.body_mut(*body) {
+                        if let Some(mut b) = world.body_mut(*body) {
                             // Values were checked when the scene was built.
                             let _ = b.set_linear_velocity(*velocity);
                             let _ = b.set_angular_velocity(*angular_velocity);
@@ -144,7 +144,7 @@ impl Events {
                 } => {
                     if now >= *next {
                         *next += *every;
-                        if let Some(b) = world.body_mut(*body) {
+                        if let Some(mut b) = world.body_mut(*body) {
                             let _ = b.set_position(start.position);
                             let _ = b.set_angle(start.angle);
                             let _ = b.set_linear_velocity(start.linear_velocity);
@@ -162,7 +162,7 @@ impl Events {
                     let turn = (*angular_velocity * (world.time() + dt as f64)) as f32;
                     let rotation = carom::Rot::new(turn);
                     for (handle, offset, angle) in bodies.iter() {
-                        if let Some(b) = world.body_mut(*handle) {
+                        if let Some(mut b) = world.body_mut(*handle) {
                             let _ =
                                 b.move_kinematic_to(*pivot + rotation * offset, angle + turn, dt);
                         }

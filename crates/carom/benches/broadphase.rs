@@ -1,10 +1,10 @@
-//! Broadphase cost against body count: building the tree for n boxes and finding their pairs,
+//! Broadphase cost against collider count (one per body here): building the tree for n boxes and finding their pairs,
 //! then one step of motion (every box drifts, some leave their fat boxes) and the pair update.
 //!
 //! Run with `cargo bench -p carom --bench broadphase`. Time per box should grow like log n.
 
 use carom::testing::BroadPhase;
-use carom::{Aabb, BodyHandle, BodyKind, Real, vec2};
+use carom::{Aabb, BodyHandle, BodyKind, ColliderHandle, Real, vec2};
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
@@ -12,7 +12,7 @@ const MARGIN: Real = 0.05;
 
 /// `n` unit boxes scattered at random over a square field with about four square metres
 /// each, so every box has a few neighbours, as in a pile. One in ten is static.
-fn scene(n: usize) -> Vec<(BodyHandle, BodyKind, Aabb)> {
+fn scene(n: usize) -> Vec<(ColliderHandle, BodyKind, Aabb)> {
     let side = (4.0 * n as f64).sqrt() as Real;
     let mut state = 0x2545_f491_4f6c_dd1d_u64;
     let mut next = move || {
@@ -31,7 +31,7 @@ fn scene(n: usize) -> Vec<(BodyHandle, BodyKind, Aabb)> {
                 BodyKind::Dynamic
             };
             (
-                BodyHandle::from_raw_parts(i as u32, 0),
+                ColliderHandle::from_raw_parts(i as u32, 0),
                 kind,
                 Aabb::new(center - half, center + half),
             )
@@ -39,10 +39,12 @@ fn scene(n: usize) -> Vec<(BodyHandle, BodyKind, Aabb)> {
         .collect()
 }
 
-fn build(bodies: &[(BodyHandle, BodyKind, Aabb)]) -> BroadPhase {
+fn build(bodies: &[(ColliderHandle, BodyKind, Aabb)]) -> BroadPhase {
     let mut broadphase = BroadPhase::new();
     for (handle, kind, aabb) in bodies {
-        broadphase.insert(*handle, *kind, *aabb, MARGIN);
+        // One collider per body, which shares its index.
+        let body = BodyHandle::from_raw_parts(handle.index(), 0);
+        broadphase.insert(*handle, body, *kind, *aabb, MARGIN);
     }
     black_box(broadphase.update_pairs(|_, _| false));
     broadphase

@@ -9,6 +9,7 @@
 //! pixels, so overlays stay readable at any zoom.
 
 use crate::dynamics::body::{Body, BodyKind};
+use crate::dynamics::collider::Collider;
 use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Vec2, vec2};
 use crate::world::World;
@@ -390,42 +391,41 @@ impl World {
             if flags.contains(DrawFlags::SLEEPING) && body.is_sleeping() {
                 color = color.mix(palette::ASLEEP, 0.6);
             }
-            if flags.contains(DrawFlags::SHAPES) {
-                draw_shape(body, color, out);
-            }
-            if flags.contains(DrawFlags::EDGE_NORMALS)
-                && let WorldShape::Polygon { vertices, normals } = body.world_shape()
-            {
-                for (i, normal) in normals.iter().enumerate() {
-                    let middle = (vertices[i] + vertices[(i + 1) % vertices.len()]) * 0.5;
-                    let end = middle + normal * options.normal_length;
-                    out.arrow(middle, end, palette::EDGE_NORMAL);
+            for collider in body.colliders().iter().filter_map(|&c| self.collider(c)) {
+                if flags.contains(DrawFlags::SHAPES) {
+                    draw_shape(body, collider, color, out);
                 }
-            }
-            if flags.contains(DrawFlags::AABBS) {
-                let aabb = body.aabb();
-                let corners = [
-                    aabb.min,
-                    vec2(aabb.max.x, aabb.min.y),
-                    aabb.max,
-                    vec2(aabb.min.x, aabb.max.y),
-                ];
-                for i in 0..4 {
-                    out.segment(corners[i], corners[(i + 1) % 4], 1.0, palette::AABB);
+                if flags.contains(DrawFlags::EDGE_NORMALS)
+                    && let WorldShape::Polygon { vertices, normals } = collider.world_shape()
+                {
+                    for (i, normal) in normals.iter().enumerate() {
+                        let middle = (vertices[i] + vertices[(i + 1) % vertices.len()]) * 0.5;
+                        let end = middle + normal * options.normal_length;
+                        out.arrow(middle, end, palette::EDGE_NORMAL);
+                    }
+                }
+                if flags.contains(DrawFlags::AABBS) {
+                    let aabb = collider.aabb();
+                    let corners = [
+                        aabb.min,
+                        vec2(aabb.max.x, aabb.min.y),
+                        aabb.max,
+                        vec2(aabb.min.x, aabb.max.y),
+                    ];
+                    for i in 0..4 {
+                        out.segment(corners[i], corners[(i + 1) % 4], 1.0, palette::AABB);
+                    }
                 }
             }
             if flags.contains(DrawFlags::VELOCITIES) && body.kind() != BodyKind::Static {
                 let velocity = body.linear_velocity() * options.velocity_scale;
                 if velocity.norm_squared() > 1e-8 {
-                    out.arrow(
-                        body.position(),
-                        body.position() + velocity,
-                        palette::VELOCITY,
-                    );
+                    let center = body.center_of_mass();
+                    out.arrow(center, center + velocity, palette::VELOCITY);
                 }
             }
             if flags.contains(DrawFlags::CENTERS_OF_MASS) {
-                out.point(body.position(), 5.0, palette::CENTER_OF_MASS);
+                out.point(body.center_of_mass(), 5.0, palette::CENTER_OF_MASS);
             }
         }
         let contact_flags =
@@ -462,17 +462,19 @@ impl World {
     }
 }
 
-/// A body's shape: polygons filled and outlined, circles with a radius line at their angle.
-fn draw_shape(body: &Body, color: Color, out: &mut impl DebugDraw) {
+/// A collider's shape: polygons filled and outlined, circles with a radius line at their
+/// angle.
+fn draw_shape(body: &Body, collider: &Collider, color: Color, out: &mut impl DebugDraw) {
     let outline = color.mix(Color::rgb(1.0, 1.0, 1.0), 0.45);
     let fill = color.mix(Color::BACKGROUND, 0.35);
-    match body.world_shape() {
+    match collider.world_shape() {
         WorldShape::Polygon { vertices, .. } => {
             out.polygon(vertices, fill, outline);
         }
         WorldShape::Circle { center, radius } => {
             out.circle(*center, *radius, fill, outline);
-            let rim = center + body.rotation() * vec2(*radius, 0.0);
+            let turn = body.rotation() * collider.local_transform().rotation;
+            let rim = center + turn * vec2(*radius, 0.0);
             out.segment(*center, rim, OUTLINE_WIDTH, outline);
         }
     }
@@ -578,7 +580,7 @@ mod tests {
         let awake_fill = list.circles[0].fill;
         assert_eq!(awake_fill, red.mix(Color::BACKGROUND, 0.35));
         let ball = world.bodies().nth(2).unwrap().handle();
-        world.body_mut(ball).unwrap().fall_asleep(0);
+        world.body_raw_mut(ball).unwrap().fall_asleep(0);
         list.clear();
         world.debug_draw(&options, |_| Some(red), &mut list);
         assert_ne!(list.circles[0].fill, awake_fill);

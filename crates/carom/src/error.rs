@@ -79,14 +79,22 @@ pub enum CaromError {
         /// The rejected value.
         value: Real,
     },
-    /// A handle refers to a body that was removed (or never belonged to this world).
-    #[error("no body for handle {index}v{generation}: it was removed or belongs to another world")]
+    /// A handle refers to a body or collider that was removed (or never belonged to this
+    /// world).
+    #[error(
+        "no {what} for handle {index}v{generation}: it was removed or belongs to another world"
+    )]
     StaleHandle {
+        /// What the handle was for: "body" or "collider".
+        what: &'static str,
         /// The handle's slot index.
         index: u32,
         /// The handle's generation.
         generation: u32,
     },
+    /// A body needs a collider to have a shape and a mass.
+    #[error("a body needs at least one collider (a shape)")]
+    NoCollider,
 }
 
 impl CaromError {

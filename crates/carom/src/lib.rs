@@ -1,12 +1,14 @@
 //! # carom
 //!
-//! A 2D rigid-body physics engine: circles and convex polygons, bodies with mass from density,
-//! forces, drag, queries, a dynamic-tree broadphase, SAT narrowphase with clipped contact
-//! manifolds, and contact solvers from the tutorial's push-out to Box2D v3's soft step; continuous
-//! collision and sleeping are on their way. It has no graphics dependency.
+//! A 2D rigid-body physics engine: bodies made of circles and convex polygons (colliders) with
+//! mass from density, forces, drag, queries, a dynamic-tree broadphase, SAT narrowphase with
+//! clipped contact manifolds, contact solvers from the tutorial's push-out to Box2D v3's soft
+//! step, continuous collision and sleeping. It has no graphics dependency.
 //!
-//! Units are SI: metres, kilograms, seconds, radians. Angles are counter-clockwise. Every body's
-//! origin is its centre of mass: shapes are recentred on their centroid when built.
+//! Units are SI: metres, kilograms, seconds, radians. Angles are counter-clockwise. Shapes are
+//! centred on their centroid when built; a body's colliders place them in its frame, whose
+//! origin is the body's position. A body of one shape at its origin has its centre of mass
+//! there; with more, the centre of mass is found from them all ([`Body::center_of_mass`]).
 //!
 //! Drop a box under gravity:
 //!
@@ -34,13 +36,14 @@ mod debug_draw;
 mod dynamics;
 mod error;
 mod geometry;
+mod handle_map;
 mod math;
 mod parallel;
 mod solver;
 mod stats;
 mod world;
 
-pub use collision::contact::{Contact, ContactEvent};
+pub use collision::contact::{Contact, ContactEvent, ContactPair};
 pub use collision::manifold::{FeatureId, Manifold, ManifoldPoint, collide};
 pub use collision::narrowphase::{Separation, separation};
 pub use constants::{LINEAR_SLOP, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_TO_SLEEP};
@@ -48,6 +51,7 @@ pub use debug_draw::{
     ARROW_WIDTH, Color, DebugDraw, DrawFlags, DrawList, DrawOptions, OUTLINE_WIDTH,
 };
 pub use dynamics::body::{Body, BodyDef, BodyHandle, BodyKind};
+pub use dynamics::collider::{Collider, ColliderDef, ColliderHandle};
 pub use dynamics::drag::DragModel;
 pub use error::CaromError;
 pub use geometry::aabb::Aabb;
@@ -57,6 +61,7 @@ pub use geometry::shape::{Circle, Polygon, Shape, WorldShape};
 pub use math::{Isometry, Mat3, Real, Rot, Vec2, vec2};
 pub use solver::{SolverKind, SolverParams};
 pub use stats::{StageTimes, StepStats, Work};
+pub use world::body_mut::BodyMut;
 pub use world::effects::{Effect, Effects};
 pub use world::mouse_joint::MouseJoint;
 pub use world::settings::WorldSettings;

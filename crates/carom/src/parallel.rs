@@ -50,6 +50,19 @@ pub(crate) fn map_mut_into<T: Send, U: Send>(
     }
 }
 
+/// `f` on every item, which it may change.
+pub(crate) fn for_each_mut<T: Send>(
+    items: &mut [T],
+    per_task: usize,
+    f: impl Fn(&mut T) + Sync + Send,
+) {
+    if worth_sharing(items.len(), per_task) {
+        items.par_iter_mut().with_min_len(per_task).for_each(f);
+    } else {
+        items.iter_mut().for_each(f);
+    }
+}
+
 /// `f` on every pair of `inputs[i]` and `outputs[i]`.
 pub(crate) fn for_each_with<A: Sync, B: Send>(
     inputs: &[A],

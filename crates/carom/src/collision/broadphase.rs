@@ -1,13 +1,15 @@
-//! The broadphase: which pairs of bodies are close enough to need a closer look.
+//! The broadphase: which pairs of colliders are close enough to need a closer look.
 //!
-//! A dynamic AABB tree (as in Box2D) holds one enlarged ("fat") box per body. A body that moves
-//! within its fat box costs nothing; one that leaves it is re-inserted and queued, and at the
-//! next pair update only queued bodies query the trees, so the cost per step follows motion,
-//! not the body count. Static bodies live in a tree of their own that is never queried by
-//! static bodies, so static-static pairs are never even looked at.
+//! A dynamic AABB tree (as in Box2D) holds one enlarged ("fat") box per collider. A collider
+//! that moves within its fat box costs nothing; one that leaves it is re-inserted and queued,
+//! and at the next pair update only queued colliders query the trees, so the cost per step
+//! follows motion, not the collider count. Static bodies' colliders live in a tree of their
+//! own that is never queried by static colliders, so static-static pairs are never even looked
+//! at; two colliders of one body never pair.
 
 use super::dynamic_tree::DynamicTree;
 use crate::dynamics::body::{BodyHandle, BodyKind};
+use crate::dynamics::collider::ColliderHandle;
 use crate::geometry::aabb::Aabb;
 use crate::math::{Real, Vec2};
 
@@ -23,7 +25,9 @@ const MOVING_TREE: usize = 1;
 
 #[derive(Debug, Clone, Copy)]
 struct Proxy {
-    handle: BodyHandle,
+    handle: ColliderHandle,
+    /// The slot of the collider's body.
+    body: u32,
     kind: BodyKind,
     node: u32,
     queued: bool,
@@ -43,11 +47,11 @@ fn tree_for(kind: BodyKind) -> usize {
     }
 }
 
-/// The broadphase of a world: one proxy per body, keyed by the body's handle.
+/// The broadphase of a world: one proxy per collider, keyed by the collider's handle.
 #[derive(Debug, Clone, Default)]
 pub struct BroadPhase {
     trees: [DynamicTree; 2],
-    /// Indexed by body slot index.
+    /// Indexed by collider slot index.
     proxies: Vec<Option<Proxy>>,
     /// Slots whose fat box changed since the last pair update.
     move_buffer: Vec<u32>,
@@ -62,11 +66,11 @@ impl BroadPhase {
         Self::default()
     }
 
-    fn slot(handle: BodyHandle) -> usize {
+    fn slot(handle: ColliderHandle) -> usize {
         handle.index() as usize
     }
 
-    fn proxy(&self, handle: BodyHandle) -> Option<&Proxy> {
+    fn proxy(&self, handle: ColliderHandle) -> Option<&Proxy> {
         self.proxies
             .get(Self::slot(handle))
             .and_then(Option::as_ref)
@@ -74,7 +78,16 @@ impl BroadPhase {
     }
 
     /// Adds a body with its tight box, enlarged by `margin`.
-    pub fn insert(&mut self, handle: BodyHandle, kind: BodyKind, aabb: Aabb, margin: Real) {
+    /// Adds a proxy for a collider of `body`, a body of `kind`, with a fat box `margin` wider
+    /// than `aabb`.
+    pub fn insert(
+        &mut self,
+        handle: ColliderHandle,
+        body: BodyHandle,
+        kind: BodyKind,
+        aabb: Aabb,
+        margin: Real,
+    ) {
         let slot = Self::slot(handle);
         if self.proxies.len() <= slot {
             self.proxies.resize(slot + 1, None);
@@ -83,6 +96,7 @@ impl BroadPhase {
         let node = self.trees[tree_for(kind)].create_proxy(aabb.fattened(margin), slot as u32);
         self.proxies[slot] = Some(Proxy {
             handle,
+            body: body.index(),
             kind,
             node,
             queued: false,
@@ -90,8 +104,8 @@ impl BroadPhase {
         self.enqueue(slot);
     }
 
-    /// Removes a body's proxy.
-    pub fn remove(&mut self, handle: BodyHandle) {
+    /// Removes a collider's proxy.
+    pub fn remove(&mut self, handle: ColliderHandle) {
         if let Some(proxy) = self.proxy(handle).copied() {
             self.trees[proxy.tree()].destroy_proxy(proxy.node);
             self.proxies[Self::slot(handle)] = None;
@@ -99,15 +113,16 @@ impl BroadPhase {
         }
     }
 
-    /// Follows a body that may have moved or changed kind. Its fat box is replaced only when
+    /// Follows a collider whose body may have moved or changed kind. Its fat box is replaced only when
     /// the tight box has left it; then the body is queued to look for new pairs.
-    pub fn update(&mut self, handle: BodyHandle, kind: BodyKind, aabb: Aabb, margin: Real) {
+    pub fn update(&mut self, handle: ColliderHandle, kind: BodyKind, aabb: Aabb, margin: Real) {
         let Some(proxy) = self.proxy(handle).copied() else {
             return;
         };
         if tree_for(kind) != proxy.tree() {
+            let body = BodyHandle::from_raw_parts(proxy.body, 0);
             self.remove(handle);
-            self.insert(handle, kind, aabb, margin);
+            self.insert(handle, body, kind, aabb, margin);
             return;
         }
         let slot = Self::slot(handle);
@@ -134,14 +149,14 @@ impl BroadPhase {
         }
     }
 
-    /// The fat box of a body, if it has a proxy.
-    pub fn fat_aabb(&self, handle: BodyHandle) -> Option<Aabb> {
+    /// The fat box of a collider, if it has a proxy.
+    pub fn fat_aabb(&self, handle: ColliderHandle) -> Option<Aabb> {
         self.proxy(handle)
             .map(|p| self.trees[p.tree()].fat_aabb(p.node))
     }
 
-    /// True when the fat boxes of two bodies overlap.
-    pub fn fat_aabbs_overlap(&self, a: BodyHandle, b: BodyHandle) -> bool {
+    /// True when the fat boxes of two colliders overlap.
+    pub fn fat_aabbs_overlap(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
         match (self.fat_aabb(a), self.fat_aabb(b)) {
             (Some(a), Some(b)) => a.overlaps(&b),
             _ => false,
@@ -154,8 +169,8 @@ impl BroadPhase {
     #[cfg(any(test, feature = "testing"))]
     pub fn update_pairs(
         &mut self,
-        exists: impl FnMut(BodyHandle, BodyHandle) -> bool,
-    ) -> Vec<(BodyHandle, BodyHandle)> {
+        exists: impl FnMut(ColliderHandle, ColliderHandle) -> bool,
+    ) -> Vec<(ColliderHandle, ColliderHandle)> {
         let mut pairs = Vec::new();
         self.update_pairs_into(exists, &mut pairs);
         pairs
@@ -165,8 +180,8 @@ impl BroadPhase {
     /// buffers have grown.
     pub fn update_pairs_into(
         &mut self,
-        mut exists: impl FnMut(BodyHandle, BodyHandle) -> bool,
-        out: &mut Vec<(BodyHandle, BodyHandle)>,
+        mut exists: impl FnMut(ColliderHandle, ColliderHandle) -> bool,
+        out: &mut Vec<(ColliderHandle, ColliderHandle)>,
     ) {
         let mut pairs = std::mem::take(&mut self.candidates);
         pairs.clear();
@@ -190,7 +205,7 @@ impl BroadPhase {
                     let Some(other) = self.proxies[other_slot as usize] else {
                         return;
                     };
-                    if kinds_can_collide(proxy.kind, other.kind) {
+                    if other.body != proxy.body && kinds_can_collide(proxy.kind, other.kind) {
                         pairs.push((slot.min(other_slot), slot.max(other_slot)));
                     }
                 });
@@ -218,7 +233,7 @@ impl BroadPhase {
     /// Every pair whose fat boxes overlap now, as [`BroadPhase::update_pairs`] orders them:
     /// the full answer the incremental one must agree with.
     #[cfg(any(test, feature = "testing"))]
-    pub fn overlapping_pairs(&self) -> Vec<(BodyHandle, BodyHandle)> {
+    pub fn overlapping_pairs(&self) -> Vec<(ColliderHandle, ColliderHandle)> {
         let mut pairs = Vec::new();
         for proxy in self.proxies.iter().flatten() {
             if proxy.kind != BodyKind::Dynamic {
@@ -234,6 +249,9 @@ impl BroadPhase {
                     }
                     let other =
                         self.proxies[other_slot as usize].expect("tree leaves have proxies");
+                    if other.body == proxy.body {
+                        return;
+                    }
                     // A dynamic-dynamic pair is seen from both sides: keep one.
                     if other.kind == BodyKind::Dynamic && other_slot < slot {
                         return;
@@ -251,8 +269,8 @@ impl BroadPhase {
         pairs
     }
 
-    /// Calls `visit(handle)` for every body whose fat box overlaps `aabb`.
-    pub fn query(&self, aabb: &Aabb, mut visit: impl FnMut(BodyHandle)) {
+    /// Calls `visit(handle)` for every collider whose fat box overlaps `aabb`.
+    pub fn query(&self, aabb: &Aabb, mut visit: impl FnMut(ColliderHandle)) {
         for tree in &self.trees {
             tree.query(aabb, |node| {
                 if let Some(p) = self.proxies[tree.payload(node) as usize] {
@@ -262,13 +280,13 @@ impl BroadPhase {
         }
     }
 
-    /// Walks the bodies whose fat boxes the segment passes through, clipping the walk to the
+    /// Walks the colliders whose fat boxes the segment passes through, clipping the walk to the
     /// fraction `visit` returns (see [`DynamicTree::ray_cast`]).
     pub fn ray_cast(
         &self,
         origin: Vec2,
         translation: Vec2,
-        mut visit: impl FnMut(BodyHandle, Real) -> Real,
+        mut visit: impl FnMut(ColliderHandle, Real) -> Real,
     ) {
         let mut max_fraction = 1.0;
         for tree in &self.trees {
@@ -299,8 +317,8 @@ impl BroadPhase {
 /// and of which one is dynamic, ordered as the broadphase orders them.
 #[cfg(any(test, feature = "testing"))]
 pub fn brute_force_pairs(
-    entries: &[(BodyHandle, BodyKind, Aabb)],
-) -> Vec<(BodyHandle, BodyHandle)> {
+    entries: &[(ColliderHandle, BodyKind, Aabb)],
+) -> Vec<(ColliderHandle, ColliderHandle)> {
     let mut pairs = Vec::new();
     for (i, (ha, ka, aa)) in entries.iter().enumerate() {
         for (hb, kb, ab) in &entries[i + 1..] {
@@ -344,11 +362,13 @@ mod tests {
         Aabb::new(c - h, c + h)
     }
 
-    fn handle(index: u32) -> BodyHandle {
-        BodyHandle {
-            index,
-            generation: 0,
-        }
+    /// Each collider of the tests has a body of its own, with the collider's index.
+    fn body_of(collider: ColliderHandle) -> BodyHandle {
+        BodyHandle::from_raw_parts(collider.index(), 0)
+    }
+
+    fn handle(index: u32) -> ColliderHandle {
+        ColliderHandle::from_raw_parts(index, 0)
     }
 
     #[test]
@@ -361,7 +381,7 @@ mod tests {
             BodyKind::Dynamic,
             BodyKind::Dynamic,
         ];
-        let mut bodies: Vec<(BodyHandle, BodyKind, Aabb)> = (0..2000)
+        let mut bodies: Vec<(ColliderHandle, BodyKind, Aabb)> = (0..2000)
             .map(|i| {
                 let kind = kinds[i % kinds.len()];
                 (handle(i as u32), kind, random_box(&mut rng, 60.0))
@@ -369,10 +389,10 @@ mod tests {
             .collect();
         let margin = 0.1;
         for (h, kind, aabb) in &bodies {
-            broadphase.insert(*h, *kind, *aabb, margin);
+            broadphase.insert(*h, body_of(*h), *kind, *aabb, margin);
         }
         // The pairs a world would hold: created by `update_pairs`, dropped when fat boxes part.
-        let mut held: Vec<(BodyHandle, BodyHandle)> = Vec::new();
+        let mut held: Vec<(ColliderHandle, ColliderHandle)> = Vec::new();
         for round in 0..6 {
             let new = broadphase.update_pairs(|a, b| held.contains(&(a, b)));
             let mut sorted_new = new.clone();
@@ -382,7 +402,7 @@ mod tests {
             held.retain(|&(a, b)| broadphase.fat_aabbs_overlap(a, b));
             held.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
 
-            let fat: Vec<(BodyHandle, BodyKind, Aabb)> = bodies
+            let fat: Vec<(ColliderHandle, BodyKind, Aabb)> = bodies
                 .iter()
                 .map(|(h, k, _)| (*h, *k, broadphase.fat_aabb(*h).unwrap()))
                 .collect();
@@ -412,9 +432,15 @@ mod tests {
     fn static_pairs_are_never_reported_and_kind_changes_move_trees() {
         let mut broadphase = BroadPhase::new();
         let unit = Aabb::new(vec2(0.0, 0.0), vec2(1.0, 1.0));
-        broadphase.insert(handle(0), BodyKind::Static, unit, 0.0);
-        broadphase.insert(handle(1), BodyKind::Static, unit, 0.0);
-        broadphase.insert(handle(2), BodyKind::Kinematic, unit, 0.0);
+        broadphase.insert(handle(0), body_of(handle(0)), BodyKind::Static, unit, 0.0);
+        broadphase.insert(handle(1), body_of(handle(1)), BodyKind::Static, unit, 0.0);
+        broadphase.insert(
+            handle(2),
+            body_of(handle(2)),
+            BodyKind::Kinematic,
+            unit,
+            0.0,
+        );
         assert!(broadphase.update_pairs(|_, _| false).is_empty());
         // A body that becomes dynamic pairs with everything it overlaps.
         broadphase.update(handle(2), BodyKind::Dynamic, unit, 0.0);

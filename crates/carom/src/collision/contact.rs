@@ -1,6 +1,6 @@
-//! Persistent contacts: one per pair of bodies whose fat boxes overlap, kept across steps.
+//! Persistent contacts: one per pair of colliders whose fat boxes overlap, kept across steps.
 //!
-//! The broadphase creates a contact when two bodies' fat boxes begin to overlap; each step the
+//! The broadphase creates a contact when two colliders' fat boxes begin to overlap; each step the
 //! narrowphase rebuilds its manifold (carrying impulses over by feature id) and destroys it
 //! once the boxes part. A contact is *touching* while its manifold has points, speculative
 //! ones included, as in Box2D: the shapes are within the speculative margin. Changes of
@@ -11,33 +11,70 @@ use crate::collision::manifold::{self, Manifold, Margins};
 use crate::collision::recycle::ManifoldFrame;
 use crate::constants::CONTACTS_PER_TASK;
 use crate::dynamics::body::{Body, BodyHandle};
-use crate::dynamics::body_set::BodySet;
+use crate::dynamics::collider::{Collider, ColliderHandle};
 use crate::geometry::shape::Shape;
+use crate::handle_map::HandleMap;
 use crate::math::Real;
 use crate::parallel::map_mut_into;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 
-/// A pair of bodies the narrowphase watches.
+/// A pair of colliders the narrowphase watches.
 #[derive(Debug, Clone)]
 pub struct Contact {
+    collider_a: ColliderHandle,
+    collider_b: ColliderHandle,
     body_a: BodyHandle,
     body_b: BodyHandle,
     manifold: Manifold,
     touching: bool,
+    /// The colliders' friction mixed: their geometric mean.
+    friction: Real,
+    /// The colliders' restitution mixed: the larger.
+    restitution: Real,
     /// What the manifold was built against, to carry it along while the bodies barely move.
     frame: ManifoldFrame,
 }
 
 impl Contact {
-    /// The first body (the manifold normal points away from it).
+    /// The first collider (the manifold normal points away from it).
+    pub fn collider_a(&self) -> ColliderHandle {
+        self.collider_a
+    }
+
+    /// The second collider.
+    pub fn collider_b(&self) -> ColliderHandle {
+        self.collider_b
+    }
+
+    /// The first collider's body.
     pub fn body_a(&self) -> BodyHandle {
         self.body_a
     }
 
-    /// The second body.
+    /// The second collider's body.
     pub fn body_b(&self) -> BodyHandle {
         self.body_b
+    }
+
+    /// Which colliders and bodies the contact joins.
+    pub fn pair(&self) -> ContactPair {
+        ContactPair {
+            collider_a: self.collider_a,
+            collider_b: self.collider_b,
+            body_a: self.body_a,
+            body_b: self.body_b,
+        }
+    }
+
+    /// Friction coefficient of the pair: the geometric mean of the colliders'.
+    pub fn friction(&self) -> Real {
+        self.friction
+    }
+
+    /// Restitution of the pair: the larger of the colliders'.
+    pub fn restitution(&self) -> Real {
+        self.restitution
     }
 
     /// Where the bodies touch, as of the last step.
@@ -56,23 +93,35 @@ impl Contact {
     }
 }
 
-/// A change in whether two bodies touch.
+/// Which colliders, of which bodies, a contact event is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ContactPair {
+    /// First collider of the pair.
+    pub collider_a: ColliderHandle,
+    /// Second collider of the pair.
+    pub collider_b: ColliderHandle,
+    /// The first collider's body.
+    pub body_a: BodyHandle,
+    /// The second collider's body.
+    pub body_b: BodyHandle,
+}
+
+/// A change in whether two colliders touch.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ContactEvent {
-    /// The bodies began to touch.
-    Begin {
-        /// First body of the pair.
-        body_a: BodyHandle,
-        /// Second body of the pair.
-        body_b: BodyHandle,
-    },
-    /// The bodies stopped touching (or one of them was removed).
-    End {
-        /// First body of the pair.
-        body_a: BodyHandle,
-        /// Second body of the pair.
-        body_b: BodyHandle,
-    },
+    /// The colliders began to touch.
+    Begin(ContactPair),
+    /// The colliders stopped touching (or one of them, or its body, was removed).
+    End(ContactPair),
+}
+
+impl ContactEvent {
+    /// The pair the event is about.
+    pub fn pair(&self) -> ContactPair {
+        match *self {
+            ContactEvent::Begin(pair) | ContactEvent::End(pair) => pair,
+        }
+    }
 }
 
 /// A cheap hasher for pair keys (two slot indices packed in a `u64`), which need no
@@ -94,7 +143,7 @@ impl Hasher for PairHasher {
     }
 }
 
-fn pair_key(a: BodyHandle, b: BodyHandle) -> u64 {
+fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
     let (low, high) = if a.index() < b.index() {
         (a, b)
     } else {
@@ -126,24 +175,40 @@ enum Refresh {
     Updated,
 }
 
+/// How the narrowphase builds manifolds this step.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ManifoldOptions {
+    /// Points are kept up to this far apart, m (the speculative distance).
+    pub margin: Real,
+    /// How far ahead, s, a face point may look: it is kept while the pair could close its gap
+    /// within that time at their present speeds (0 keeps points within `margin` only).
+    pub prediction: Real,
+    /// Carry a manifold along while its pair barely moves, instead of building it again.
+    pub recycling: bool,
+}
+
 impl ContactSet {
     /// True when the pair already has a contact.
-    pub fn contains(&self, a: BodyHandle, b: BodyHandle) -> bool {
+    pub fn contains(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
         self.lookup.contains_key(&pair_key(a, b))
     }
 
-    /// Starts watching a pair.
-    pub(crate) fn add(&mut self, body_a: BodyHandle, body_b: BodyHandle) {
-        let key = pair_key(body_a, body_b);
+    /// Starts watching a pair of colliders (of two bodies).
+    pub(crate) fn add(&mut self, a: (ColliderHandle, &Collider), b: (ColliderHandle, &Collider)) {
+        let key = pair_key(a.0, b.0);
         if self.lookup.contains_key(&key) {
             return;
         }
         self.lookup.insert(key, self.contacts.len());
         self.contacts.push(Contact {
-            body_a,
-            body_b,
+            collider_a: a.0,
+            collider_b: b.0,
+            body_a: a.1.body(),
+            body_b: b.1.body(),
             manifold: Manifold::default(),
             touching: false,
+            friction: (a.1.friction() * b.1.friction()).sqrt(),
+            restitution: a.1.restitution().max(b.1.restitution()),
             frame: ManifoldFrame::default(),
         });
     }
@@ -152,20 +217,29 @@ impl ContactSet {
     fn destroy(&mut self, index: usize, events_now: bool) {
         let contact = self.contacts.swap_remove(index);
         self.lookup
-            .remove(&pair_key(contact.body_a, contact.body_b));
+            .remove(&pair_key(contact.collider_a, contact.collider_b));
         if let Some(moved) = self.contacts.get(index) {
             self.lookup
-                .insert(pair_key(moved.body_a, moved.body_b), index);
+                .insert(pair_key(moved.collider_a, moved.collider_b), index);
         }
         if contact.touching {
-            let event = ContactEvent::End {
-                body_a: contact.body_a,
-                body_b: contact.body_b,
-            };
+            let event = ContactEvent::End(contact.pair());
             if events_now {
                 self.events.push(event);
             } else {
                 self.pending.push(event);
+            }
+        }
+    }
+
+    /// Drops every contact of a collider that is being removed.
+    pub(crate) fn remove_collider(&mut self, handle: ColliderHandle) {
+        let mut index = self.contacts.len();
+        while index > 0 {
+            index -= 1;
+            let c = &self.contacts[index];
+            if c.collider_a == handle || c.collider_b == handle {
+                self.destroy(index, false);
             }
         }
     }
@@ -193,17 +267,12 @@ impl ContactSet {
     /// boxes no longer overlap (or whose bodies can no longer collide). Pairs where neither
     /// body moves (static or asleep) are left as they are. Sleeping islands touched by a moving
     /// body are added to `wake`. Returns the deepest penetration seen.
-    ///
-    /// `prediction` is how far ahead, s, a face point may look: it is kept while the pair could
-    /// close its gap within that time at their present speeds (0 keeps points within `margin`
-    /// only).
     pub(crate) fn update(
         &mut self,
-        bodies: &BodySet,
+        bodies: &HandleMap<BodyHandle, Body>,
+        colliders: &HandleMap<ColliderHandle, Collider>,
         broadphase: &BroadPhase,
-        margin: Real,
-        prediction: Real,
-        recycling: bool,
+        options: ManifoldOptions,
         wake: &mut Vec<u32>,
     ) -> Real {
         // First every manifold, on as many threads as rayon gives (each contact on its own),
@@ -212,7 +281,7 @@ impl ContactSet {
             &mut self.contacts,
             &mut self.refresh,
             CONTACTS_PER_TASK,
-            |contact| refresh_manifold(contact, bodies, broadphase, margin, prediction, recycling),
+            |contact| refresh_manifold(contact, bodies, colliders, broadphase, options),
         );
         let mut deepest: Real = 0.0;
         let mut index = self.contacts.len();
@@ -228,11 +297,15 @@ impl ContactSet {
                 Refresh::Updated => {}
             }
             let contact = &mut self.contacts[index];
-            // Both bodies were there a moment ago (else the contact would be gone).
-            let (Some(a), Some(b)) = (bodies.get(contact.body_a), bodies.get(contact.body_b))
-            else {
+            // Both colliders were there a moment ago (else the contact would be gone).
+            let (Some(a), Some(b)) = (
+                colliders.get(contact.collider_a),
+                colliders.get(contact.collider_b),
+            ) else {
                 continue;
             };
+            let all = bodies.as_slice();
+            let (a, b) = (&all[a.body_index()], &all[b.body_index()]);
             let touching = !contact.manifold.is_empty();
             if touching {
                 deepest = deepest.max(-contact.manifold.min_separation().unwrap_or(0.0));
@@ -244,11 +317,11 @@ impl ContactSet {
             }
             if touching != contact.touching {
                 contact.touching = touching;
-                let (body_a, body_b) = (contact.body_a, contact.body_b);
+                let pair = contact.pair();
                 self.events.push(if touching {
-                    ContactEvent::Begin { body_a, body_b }
+                    ContactEvent::Begin(pair)
                 } else {
-                    ContactEvent::End { body_a, body_b }
+                    ContactEvent::End(pair)
                 });
             }
         }
@@ -285,7 +358,7 @@ impl ContactSet {
 /// The fastest two bodies' surfaces can close on each other: their relative speed, and each
 /// one's spin times its farthest point.
 fn closing_speed(a: &Body, b: &Body) -> Real {
-    let turning = |body: &Body| body.angular_velocity().abs() * body.shape().max_extent();
+    let turning = |body: &Body| body.angular_velocity().abs() * body.reach();
     (b.linear_velocity() - a.linear_velocity()).norm() + turning(a) + turning(b)
 }
 
@@ -293,27 +366,36 @@ fn closing_speed(a: &Body, b: &Body) -> Real {
 /// along if they barely moved relative to each other); says whether the contact lives on.
 fn refresh_manifold(
     contact: &mut Contact,
-    bodies: &BodySet,
+    bodies: &HandleMap<BodyHandle, Body>,
+    colliders: &HandleMap<ColliderHandle, Collider>,
     broadphase: &BroadPhase,
-    margin: Real,
-    prediction: Real,
-    recycling: bool,
+    options: ManifoldOptions,
 ) -> Refresh {
-    let (Some(a), Some(b)) = (bodies.get(contact.body_a), bodies.get(contact.body_b)) else {
+    let ManifoldOptions {
+        margin,
+        prediction,
+        recycling,
+    } = options;
+    let (Some(shape_a), Some(shape_b)) = (
+        colliders.get(contact.collider_a),
+        colliders.get(contact.collider_b),
+    ) else {
         return Refresh::Gone;
     };
+    let all = bodies.as_slice();
+    let (a, b) = (&all[shape_a.body_index()], &all[shape_b.body_index()]);
     if !a.moves() && !b.moves() {
         return Refresh::Unchanged;
     }
     if !kinds_can_collide(a.kind(), b.kind())
-        || !broadphase.fat_aabbs_overlap(contact.body_a, contact.body_b)
+        || !broadphase.fat_aabbs_overlap(contact.collider_a, contact.collider_b)
     {
         return Refresh::Gone;
     }
     // Only polygon pairs: their manifold is the expensive one (SAT and clipping); a circle's
     // is a few multiplications, and its normal follows the centres, not the body's turn.
     let polygons = matches!(
-        (a.shape(), b.shape()),
+        (shape_a.shape(), shape_b.shape()),
         (Shape::Polygon(_), Shape::Polygon(_))
     );
     // A body stopped by continuous collision barely moved, but only because it was put back:
@@ -322,7 +404,9 @@ fn refresh_manifold(
     if recycling
         && polygons
         && !stopped
-        && let Some(carried) = contact.frame.carry(&contact.manifold, a, b)
+        && let Some(carried) = contact
+            .frame
+            .carry(&contact.manifold, (a, shape_a), (b, shape_b))
     {
         contact.manifold = carried;
         return Refresh::Updated;
@@ -331,9 +415,15 @@ fn refresh_manifold(
         any: margin,
         face: margin + closing_speed(a, b) * prediction,
     };
-    contact.manifold =
-        manifold::update(a.world_shape(), b.world_shape(), margins, &contact.manifold);
-    contact.manifold.set_anchors(a.position(), b.position());
+    contact.manifold = manifold::update(
+        shape_a.world_shape(),
+        shape_b.world_shape(),
+        margins,
+        &contact.manifold,
+    );
+    contact
+        .manifold
+        .set_anchors(a.center_of_mass(), b.center_of_mass());
     contact.frame = ManifoldFrame::of(&contact.manifold, a, b);
     Refresh::Updated
 }

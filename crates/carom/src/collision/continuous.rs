@@ -16,50 +16,63 @@
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::narrowphase::separation;
 use crate::constants::{FAST_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS};
-use crate::dynamics::body::{Body, BodyKind};
-use crate::geometry::shape::{Shape, WorldShape};
+use crate::dynamics::body::{Body, BodyHandle, BodyKind};
+use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};
+use crate::geometry::shape::WorldShape;
+use crate::handle_map::HandleMap;
 use crate::math::{Isometry, Real, Rot, Vec2};
 
-/// Where a body was at the start of the step.
+/// Where a body's centre of mass was at the start of the step, and how it was turned.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Pose {
-    pub position: Vec2,
+    pub center: Vec2,
     pub rotation: Rot,
 }
 
 impl Pose {
     pub fn of(body: &Body) -> Self {
         Pose {
-            position: body.position(),
+            center: body.center_of_mass(),
             rotation: body.rotation(),
         }
     }
 }
 
-/// A straight sweep in position and angle over the step, `t` in `[0, 1]`.
+/// A straight sweep of the centre of mass, and a steady turn about it, over the step, `t`
+/// in `[0, 1]`.
 #[derive(Debug, Clone, Copy)]
 struct Sweep {
     start: Vec2,
     translation: Vec2,
     start_rotation: Rot,
     turn: Real,
+    /// The centre of mass in the body's frame.
+    local_center: Vec2,
 }
 
 impl Sweep {
     fn new(from: Pose, body: &Body) -> Self {
         Sweep {
-            start: from.position,
-            translation: body.position() - from.position,
+            start: from.center,
+            translation: body.center_of_mass() - from.center,
             start_rotation: from.rotation,
             turn: (body.rotation() * from.rotation.inverse()).angle(),
+            local_center: body.local_center(),
         }
     }
 
-    fn at(&self, t: Real) -> Isometry {
-        Isometry::from_parts(
-            (self.start + self.translation * t).into(),
+    /// The centre of mass and the rotation at `t`.
+    fn pose_at(&self, t: Real) -> (Vec2, Rot) {
+        (
+            self.start + self.translation * t,
             Rot::new(self.turn * t) * self.start_rotation,
         )
+    }
+
+    /// The body's transform (of its origin) at `t`.
+    fn at(&self, t: Real) -> Isometry {
+        let (center, rotation) = self.pose_at(t);
+        Isometry::from_parts((center - rotation * self.local_center).into(), rotation)
     }
 }
 
@@ -75,20 +88,26 @@ impl Sweep {
 /// Stopping it at the first touch instead would freeze a sliding body where it started, every
 /// step; sweeping only a core around its centre (Box2D's fallback) lets a spinning plank's far
 /// end swing through a thin floor.
-fn time_of_impact(shape: &Shape, sweep: &Sweep, other: &WorldShape, target: Real) -> Option<Real> {
-    let radius = shape.max_extent();
+fn time_of_impact(
+    collider: &Collider,
+    sweep: &Sweep,
+    other: &WorldShape,
+    target: Real,
+) -> Option<Real> {
+    let radius = collider.reach_from(sweep.local_center);
     // The fastest any point of the shape moves, per unit of sweep time.
     let bound = sweep.translation.norm() + sweep.turn.abs() * radius;
     if bound <= 0.0 {
         return None;
     }
     let tolerance = 0.25 * target;
-    let mut placed = WorldShape::new(shape, &sweep.at(0.0));
+    let mut placed = collider.world_shape().clone();
+    collider.place_shape(&mut placed, &sweep.at(0.0));
     let start = separation(other, &placed).separation;
     let goal = if start >= target + tolerance {
         target
     } else {
-        start.min(target) - sink_allowance(shape, target)
+        start.min(target) - sink_allowance(collider.shape().min_extent(), target)
     };
     let mut t: Real = 0.0;
     let mut distance = start;
@@ -100,7 +119,7 @@ fn time_of_impact(shape: &Shape, sweep: &Sweep, other: &WorldShape, target: Real
         if t >= 1.0 {
             return None;
         }
-        placed.update(shape, &sweep.at(t));
+        collider.place_shape(&mut placed, &sweep.at(t));
         distance = separation(other, &placed).separation;
     }
     // Still approaching after many small advances: stop here, short of the goal.
@@ -109,57 +128,64 @@ fn time_of_impact(shape: &Shape, sweep: &Sweep, other: &WorldShape, target: Real
 
 /// How much deeper than it started a shape that already touches another may sink within one
 /// step: a quarter of its smallest extent, and never less than twice the contact target.
-fn sink_allowance(shape: &Shape, target: Real) -> Real {
-    (0.25 * shape.min_extent()).max(2.0 * target)
+fn sink_allowance(min_extent: Real, target: Real) -> Real {
+    (0.25 * min_extent).max(2.0 * target)
 }
 
 /// Sweeps every fast body and moves the ones that would have tunnelled back to their time of
 /// impact. `starts` holds each body's pose at the start of the step, in storage order.
 /// Returns the number of impacts and the number of bodies swept.
 pub(crate) fn solve_continuous(
-    bodies: &mut [Body],
+    bodies: &mut HandleMap<BodyHandle, Body>,
+    colliders: &mut HandleMap<ColliderHandle, Collider>,
     starts: &[Pose],
     broadphase: &BroadPhase,
-    dense_index: impl Fn(crate::BodyHandle) -> Option<usize>,
     target: Real,
 ) -> (usize, usize) {
-    let mut impacts: Vec<(usize, Isometry)> = Vec::new();
+    let mut impacts: Vec<(usize, Vec2, Rot)> = Vec::new();
     let mut sweeps = 0;
-    for (index, body) in bodies.iter().enumerate() {
+    for (index, body) in bodies.as_slice().iter().enumerate() {
         if body.kind() != BodyKind::Dynamic {
             continue;
         }
         let sweep = Sweep::new(starts[index], body);
-        let reach = sweep.translation.norm() + sweep.turn.abs() * body.shape().max_extent();
-        if reach <= FAST_FRACTION * body.shape().min_extent() {
+        let reach = sweep.translation.norm() + sweep.turn.abs() * body.reach();
+        if reach <= FAST_FRACTION * body.min_extent() {
             continue;
         }
         sweeps += 1;
-        let start_box = WorldShape::new(body.shape(), &sweep.at(0.0)).aabb();
-        let swept = start_box.union(&body.aabb());
         let mut first: Option<Real> = None;
-        broadphase.query(&swept, |handle| {
-            let Some(other_index) = dense_index(handle) else {
-                return;
-            };
-            let other = &bodies[other_index];
-            let eligible =
-                other_index != index && (other.kind() == BodyKind::Static || body.is_bullet());
-            if !eligible {
-                return;
-            }
-            if let Some(t) = time_of_impact(body.shape(), &sweep, other.world_shape(), target)
-                && first.is_none_or(|f| t < f)
-            {
-                first = Some(t);
-            }
-        });
+        for collider in body.colliders().iter().filter_map(|&c| colliders.get(c)) {
+            let mut start_shape = collider.world_shape().clone();
+            collider.place_shape(&mut start_shape, &sweep.at(0.0));
+            let swept = start_shape.aabb().union(&collider.aabb());
+            broadphase.query(&swept, |handle| {
+                let Some(other) = colliders.get(handle) else {
+                    return;
+                };
+                let other_body = &bodies.as_slice()[other.body_index()];
+                let eligible = other.body() != body.handle()
+                    && (other_body.kind() == BodyKind::Static || body.is_bullet());
+                if !eligible {
+                    return;
+                }
+                if let Some(t) = time_of_impact(collider, &sweep, other.world_shape(), target)
+                    && first.is_none_or(|f| t < f)
+                {
+                    first = Some(t);
+                }
+            });
+        }
         if let Some(t) = first.filter(|&t| t < 1.0) {
-            impacts.push((index, sweep.at(t)));
+            let (center, rotation) = sweep.pose_at(t);
+            impacts.push((index, center, rotation));
         }
     }
-    for &(index, pose) in &impacts {
-        bodies[index].move_to_time_of_impact(pose);
+    let moved = bodies.as_mut_slice();
+    for &(index, center, rotation) in &impacts {
+        let body = &mut moved[index];
+        body.move_to_time_of_impact(center, rotation);
+        body.set_aabb(place_colliders(body, colliders));
     }
     (impacts.len(), sweeps)
 }

@@ -14,6 +14,7 @@ use crate::constants::{
     RECYCLE_COS_ANGLE, RECYCLE_DISTANCE, RECYCLE_SIZE_FRACTION, SPECULATIVE_DISTANCE,
 };
 use crate::dynamics::body::{Body, BodyKind};
+use crate::dynamics::collider::Collider;
 use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Rot, Vec2};
 
@@ -54,7 +55,12 @@ impl ManifoldFrame {
 
     /// `previous` carried along with bodies `a` and `b`, if they have moved little enough
     /// since it was built; `None` if it must be built again.
-    pub fn carry(&self, previous: &Manifold, a: &Body, b: &Body) -> Option<Manifold> {
+    pub fn carry(
+        &self,
+        previous: &Manifold,
+        (a, collider_a): (&Body, &Collider),
+        (b, collider_b): (&Body, &Collider),
+    ) -> Option<Manifold> {
         if !self.valid {
             return None;
         }
@@ -71,18 +77,12 @@ impl ManifoldFrame {
         // advancement's bound; a static body does not turn).
         let relative_turn = self.relative_rotation.rotation_to(&relative.rotation);
         let moving = |body: &Body| body.kind() != BodyKind::Static;
-        let extent = |body: &Body| {
-            if moving(body) {
-                body.shape().max_extent()
-            } else {
-                0.0
-            }
-        };
+        let extent = |body: &Body| if moving(body) { body.reach() } else { 0.0 };
         let reach = moved + extent(a).max(extent(b)) * relative_turn.im.abs();
-        let smallest = [a, b]
+        let smallest = [(a, collider_a), (b, collider_b)]
             .into_iter()
-            .filter(|body| moving(body))
-            .map(|body| body.shape().min_extent())
+            .filter(|(body, _)| moving(body))
+            .map(|(_, collider)| collider.shape().min_extent())
             .fold(Real::INFINITY, Real::min);
         let mut tolerance = RECYCLE_DISTANCE.min(RECYCLE_SIZE_FRACTION * smallest);
         if previous.is_empty() {
@@ -93,7 +93,7 @@ impl ManifoldFrame {
         }
         let mut manifold = *previous;
         let normal = manifold.normal;
-        let (center_a, center_b) = (a.position(), b.position());
+        let (center_a, center_b) = (a.center_of_mass(), b.center_of_mass());
         for (point, &base) in manifold.points_mut().iter_mut().zip(&self.base_separations) {
             let on_a = center_a + turn_a * point.anchor_a;
             let on_b = center_b + turn_b * point.anchor_b;
@@ -105,8 +105,8 @@ impl ManifoldFrame {
             .flatten()
         {
             let shape = match edge.side {
-                PairSide::A => a.world_shape(),
-                PairSide::B => b.world_shape(),
+                PairSide::A => collider_a.world_shape(),
+                PairSide::B => collider_b.world_shape(),
             };
             move_edge(edge, shape);
         }
@@ -145,15 +145,21 @@ mod tests {
         (world, ground, block)
     }
 
+    /// A body and its (only) collider.
+    fn parts(world: &World, body: crate::BodyHandle) -> (&Body, &Collider) {
+        let body = world.body(body).unwrap();
+        (body, world.collider(body.colliders()[0]).unwrap())
+    }
+
     /// The manifold between the two, built as the world builds it, and its frame.
     fn built(
         world: &World,
         a: crate::BodyHandle,
         b: crate::BodyHandle,
     ) -> (Manifold, ManifoldFrame) {
-        let (a, b) = (world.body(a).unwrap(), world.body(b).unwrap());
-        let mut built = manifold::collide(a.world_shape(), b.world_shape(), SPECULATIVE_DISTANCE);
-        built.set_anchors(a.position(), b.position());
+        let ((a, ca), (b, cb)) = (parts(world, a), parts(world, b));
+        let mut built = manifold::collide(ca.world_shape(), cb.world_shape(), SPECULATIVE_DISTANCE);
+        built.set_anchors(a.center_of_mass(), b.center_of_mass());
         let frame = ManifoldFrame::of(&built, a, b);
         (built, frame)
     }
@@ -164,13 +170,13 @@ mod tests {
         let (built, frame) = built(&world, ground, block);
         // Lift the block 1 mm, shift it 0.5 mm and turn it a little: within the limits.
         {
-            let body = world.body_mut(block).unwrap();
+            let mut body = world.body_mut(block).unwrap();
             body.set_position(vec2(0.3005, 1.0 - 0.001)).unwrap();
             body.set_angle(0.002).unwrap();
         }
-        let (a, b) = (world.body(ground).unwrap(), world.body(block).unwrap());
+        let (a, b) = (parts(&world, ground), parts(&world, block));
         let carried = frame.carry(&built, a, b).expect("small motion recycles");
-        let rebuilt = manifold::collide(a.world_shape(), b.world_shape(), SPECULATIVE_DISTANCE);
+        let rebuilt = manifold::collide(a.1.world_shape(), b.1.world_shape(), SPECULATIVE_DISTANCE);
         assert_eq!(carried.points().len(), rebuilt.points().len());
         for (c, r) in carried.points().iter().zip(rebuilt.points()) {
             assert!((c.separation - r.separation).abs() < 1e-4, "{c:?} vs {r:?}");
@@ -188,13 +194,13 @@ mod tests {
     fn a_larger_motion_or_a_new_contact_is_built_again() {
         let (mut world, ground, block) = resting_pair(0.0);
         let (built, frame) = built(&world, ground, block);
-        let (a, b) = (world.body(ground).unwrap(), world.body(block).unwrap());
+        let (a, b) = (parts(&world, ground), parts(&world, block));
         assert!(ManifoldFrame::default().carry(&built, a, b).is_none());
         let mut moved = |position, angle| {
-            let body = world.body_mut(block).unwrap();
+            let mut body = world.body_mut(block).unwrap();
             body.set_position(position).unwrap();
             body.set_angle(angle).unwrap();
-            let (a, b) = (world.body(ground).unwrap(), world.body(block).unwrap());
+            let (a, b) = (parts(&world, ground), parts(&world, block));
             frame.carry(&built, a, b).is_some()
         };
         assert!(moved(vec2(0.3, 1.008), 0.0), "8 mm is within 2 slop");
@@ -211,9 +217,12 @@ mod tests {
         let (built, frame) = built(&world, ground, block);
         assert!(built.is_empty());
         let mut closer = |by: Real| {
-            let body = world.body_mut(block).unwrap();
-            body.set_position(vec2(0.3, 1.05 - by)).unwrap();
-            let (a, b) = (world.body(ground).unwrap(), world.body(block).unwrap());
+            world
+                .body_mut(block)
+                .unwrap()
+                .set_position(vec2(0.3, 1.05 - by))
+                .unwrap();
+            let (a, b) = (parts(&world, ground), parts(&world, block));
             frame.carry(&built, a, b).is_some()
         };
         // 8 mm closer, still 4 cm apart: nothing can have come within the margin.

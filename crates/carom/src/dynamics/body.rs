@@ -1,8 +1,17 @@
-//! Rigid bodies: kind, placement, velocity, mass, material and accumulated forces.
+//! Rigid bodies: kind, placement, velocity, mass and accumulated forces. What a body is made
+//! of, its shapes and their material, are its colliders ([`crate::dynamics::collider`]).
+//!
+//! A body's frame has its origin where the user put it; its centre of mass sits at
+//! `local_center` in that frame, summed over its colliders. A body of one shape at the origin
+//! (the common case) has its centre of mass at its origin, as shapes are centred on their
+//! centroid. The solver moves centres of mass; the origin follows.
 
+use crate::dynamics::collider::{Collider, ColliderDef, ColliderHandle, check_non_negative};
 use crate::error::{CaromError, check_finite, check_finite_vec};
 use crate::geometry::aabb::Aabb;
-use crate::geometry::shape::{Shape, WorldShape};
+use crate::geometry::mass::MassProperties;
+use crate::geometry::shape::Shape;
+use crate::handle_map::Handle;
 use crate::math::{Isometry, Mat3, Real, Rot, Vec2, cross, cross_sv};
 
 /// How a body moves.
@@ -47,6 +56,19 @@ impl BodyHandle {
     }
 }
 
+impl Handle for BodyHandle {
+    const WHAT: &'static str = "body";
+    fn from_parts(index: u32, generation: u32) -> Self {
+        BodyHandle { index, generation }
+    }
+    fn index(self) -> u32 {
+        self.index
+    }
+    fn generation(self) -> u32 {
+        self.generation
+    }
+}
+
 /// Everything needed to create a body; build one with [`BodyDef::dynamic`],
 /// [`BodyDef::static_body`] or [`BodyDef::kinematic`] and the chained setters.
 ///
@@ -55,9 +77,9 @@ impl BodyHandle {
 pub struct BodyDef {
     /// How the body moves.
     pub kind: BodyKind,
-    /// Its shape, centred on the centre of mass.
-    pub shape: Shape,
-    /// World position of the centre of mass.
+    /// What it is made of: one collider or more, each a shape with its placement and material.
+    pub colliders: Vec<ColliderDef>,
+    /// World position of the body's origin.
     pub position: Vec2,
     /// Rotation in radians, counter-clockwise.
     pub angle: Real,
@@ -65,12 +87,6 @@ pub struct BodyDef {
     pub linear_velocity: Vec2,
     /// Angular velocity in rad/s, counter-clockwise.
     pub angular_velocity: Real,
-    /// Mass per unit area, kg/m². Must be positive for dynamic bodies.
-    pub density: Real,
-    /// Coulomb friction coefficient (0 is ice).
-    pub friction: Real,
-    /// Bounciness: 0 does not bounce, 1 bounces back at the speed it came.
-    pub restitution: Real,
     /// Multiplies the world's gravity for this body.
     pub gravity_scale: Real,
     /// Linear drag coefficient, 1/s.
@@ -84,19 +100,16 @@ pub struct BodyDef {
 }
 
 impl BodyDef {
-    /// A body of the given kind with default material: density 1, friction 0.6, no restitution,
-    /// no drag, at the origin at rest.
+    /// A body of the given kind made of one shape at its origin, with default material
+    /// (density 1, friction 0.6, no restitution), no drag, at the world origin at rest.
     pub fn new(kind: BodyKind, shape: Shape) -> Self {
         BodyDef {
             kind,
-            shape,
+            colliders: vec![ColliderDef::new(shape)],
             position: Vec2::zeros(),
             angle: 0.0,
             linear_velocity: Vec2::zeros(),
             angular_velocity: 0.0,
-            density: 1.0,
-            friction: 0.6,
-            restitution: 0.0,
             gravity_scale: 1.0,
             linear_damping: 0.0,
             angular_damping: 0.0,
@@ -120,7 +133,13 @@ impl BodyDef {
         Self::new(BodyKind::Kinematic, shape)
     }
 
-    /// Sets the position of the centre of mass.
+    /// Adds another collider.
+    pub fn collider(mut self, collider: ColliderDef) -> Self {
+        self.colliders.push(collider);
+        self
+    }
+
+    /// Sets the position of the body's origin.
     pub fn position(mut self, position: Vec2) -> Self {
         self.position = position;
         self
@@ -144,21 +163,27 @@ impl BodyDef {
         self
     }
 
-    /// Sets the density.
+    /// Sets the density of every collider so far.
     pub fn density(mut self, density: Real) -> Self {
-        self.density = density;
+        for collider in &mut self.colliders {
+            collider.density = density;
+        }
         self
     }
 
-    /// Sets the friction coefficient.
+    /// Sets the friction coefficient of every collider so far.
     pub fn friction(mut self, friction: Real) -> Self {
-        self.friction = friction;
+        for collider in &mut self.colliders {
+            collider.friction = friction;
+        }
         self
     }
 
-    /// Sets the restitution.
+    /// Sets the restitution of every collider so far.
     pub fn restitution(mut self, restitution: Real) -> Self {
-        self.restitution = restitution;
+        for collider in &mut self.colliders {
+            collider.restitution = restitution;
+        }
         self
     }
 
@@ -197,31 +222,36 @@ struct MassData {
     inv_inertia: Real,
 }
 
-/// A rigid body. Its origin is its centre of mass: shapes are centred on their centroid.
+/// A rigid body: where it is, how it moves, its mass; its shapes are its colliders.
 #[derive(Debug, Clone)]
 pub struct Body {
     handle: BodyHandle,
     kind: BodyKind,
-    shape: Shape,
+    colliders: Vec<ColliderHandle>,
+    /// The origin of the body's frame, in the world.
     position: Vec2,
     rotation: Rot,
+    /// The centre of mass in the world: `position + rotation * local_center`.
+    center: Vec2,
+    /// The centre of mass in the body's frame (zero for static and kinematic bodies).
+    local_center: Vec2,
+    /// The farthest any collider point lies from the centre of mass, m.
+    reach: Real,
+    /// The smallest collider's smallest extent, m: below it a body could pass through a thin
+    /// wall in one step.
+    min_extent: Real,
     linear_velocity: Vec2,
     angular_velocity: Real,
     force: Vec2,
     torque: Real,
     mass: MassData,
-    density: Real,
-    friction: Real,
-    restitution: Real,
     gravity_scale: Real,
     linear_damping: Real,
     angular_damping: Real,
     bullet: bool,
     user_tag: u64,
-    world_shape: WorldShape,
+    /// The union of the colliders' boxes, as of the last step or edit.
     aabb: Aabb,
-    /// Borrowed mutably since the last step: the world must re-check its broadphase entry.
-    touched: bool,
     /// Continuous collision cut this step's motion short.
     had_time_of_impact: bool,
     /// How far the body's farthest point moved in the last step, m: the solver's position
@@ -235,85 +265,116 @@ pub struct Body {
     sleep_group: u32,
 }
 
-/// Checks that a coefficient is finite and not negative.
-fn check_non_negative(name: &'static str, value: Real) -> Result<Real, CaromError> {
-    check_finite(name, value)?;
-    if value < 0.0 {
-        return Err(CaromError::OutOfRange {
-            name,
-            expected: "zero or positive",
-            value,
-        });
-    }
-    Ok(value)
-}
-
 impl Body {
-    /// Validates a definition and builds the body, with its world shape placed.
-    pub(crate) fn new(handle: BodyHandle, def: BodyDef) -> Result<Self, CaromError> {
-        def.shape.validate()?;
+    /// Checks the body's own values in a definition (and each collider's) and builds the
+    /// body, still without its colliders or mass: the world attaches the colliders, then calls
+    /// [`Body::rebuild_mass`].
+    pub(crate) fn new(handle: BodyHandle, def: &BodyDef) -> Result<Self, CaromError> {
+        if def.colliders.is_empty() {
+            return Err(CaromError::NoCollider);
+        }
+        for collider in &def.colliders {
+            collider.validate()?;
+        }
         check_finite_vec("body position", def.position)?;
         check_finite("body angle", def.angle)?;
         check_finite_vec("body linear velocity", def.linear_velocity)?;
         check_finite("body angular velocity", def.angular_velocity)?;
         check_finite("gravity scale", def.gravity_scale)?;
-        let transform = Isometry::new(def.position, def.angle);
-        let world_shape = WorldShape::new(&def.shape, &transform);
-        let aabb = world_shape.aabb();
-        let mut body = Body {
+        let moves = def.kind != BodyKind::Static;
+        Ok(Body {
             handle,
             kind: def.kind,
-            shape: def.shape,
+            colliders: Vec::with_capacity(def.colliders.len()),
             position: def.position,
-            rotation: transform.rotation,
-            linear_velocity: Vec2::zeros(),
-            angular_velocity: 0.0,
+            rotation: Rot::new(def.angle),
+            center: def.position,
+            local_center: Vec2::zeros(),
+            reach: 0.0,
+            min_extent: Real::INFINITY,
+            linear_velocity: if moves {
+                def.linear_velocity
+            } else {
+                Vec2::zeros()
+            },
+            angular_velocity: if moves { def.angular_velocity } else { 0.0 },
             force: Vec2::zeros(),
             torque: 0.0,
             mass: MassData::default(),
-            density: def.density,
-            friction: check_non_negative("friction", def.friction)?,
-            restitution: check_non_negative("restitution", def.restitution)?,
             gravity_scale: def.gravity_scale,
             linear_damping: check_non_negative("linear damping", def.linear_damping)?,
             angular_damping: check_non_negative("angular damping", def.angular_damping)?,
             bullet: def.bullet,
             user_tag: def.user_tag,
-            world_shape,
-            aabb,
-            touched: false,
+            aabb: Aabb::new(def.position, def.position),
             had_time_of_impact: false,
             last_motion: 0.0,
             sleep_time: 0.0,
             sleeping: false,
             sleep_group: 0,
-        };
-        body.update_mass()?;
-        if body.kind != BodyKind::Static {
-            body.linear_velocity = def.linear_velocity;
-            body.angular_velocity = def.angular_velocity;
-        }
-        Ok(body)
+        })
     }
 
-    /// Recomputes mass and inertia from shape, density and kind.
-    fn update_mass(&mut self) -> Result<(), CaromError> {
-        self.mass = match self.kind {
-            BodyKind::Dynamic => {
-                let props = self.shape.mass_properties(self.density)?;
-                MassData {
-                    mass: props.mass,
-                    inv_mass: props.inv_mass(),
-                    inertia: props.inertia,
-                    inv_inertia: props.inv_inertia(),
-                }
-            }
-            // Static and kinematic bodies ignore density, but a bad value is still a bug.
-            BodyKind::Static | BodyKind::Kinematic => {
-                check_finite("density", self.density)?;
-                MassData::default()
-            }
+    /// Recomputes mass, inertia and centre of mass from the colliders (the body's own, in its
+    /// order) and the kind: summed over the colliders with the parallel-axis theorem for a
+    /// dynamic body, none for static and kinematic ones. Also how far the colliders reach.
+    ///
+    /// # Errors
+    /// A dynamic body whose colliders have no mass; the body is left as it was.
+    pub(crate) fn rebuild_mass<'c>(
+        &mut self,
+        colliders: impl Iterator<Item = &'c Collider> + Clone,
+    ) -> Result<(), CaromError> {
+        let mut mass: Real = 0.0;
+        let mut weighted = Vec2::zeros();
+        let mut parts = Vec::new();
+        for collider in colliders.clone() {
+            let props = collider.mass_properties()?;
+            mass += props.mass;
+            weighted += props.center * props.mass;
+            parts.push(props);
+        }
+        let center = if mass > 0.0 {
+            weighted / mass
+        } else {
+            Vec2::zeros()
         };
+        let inertia = parts.iter().map(|p| p.inertia_about(center)).sum();
+        let total = MassProperties {
+            mass,
+            center,
+            inertia,
+        };
+        let (data, local_center) = match self.kind {
+            BodyKind::Dynamic => {
+                if mass <= 0.0 {
+                    return Err(CaromError::OutOfRange {
+                        name: "density",
+                        expected: "positive for some collider of a dynamic body",
+                        value: 0.0,
+                    });
+                }
+                let data = MassData {
+                    mass,
+                    inv_mass: total.inv_mass(),
+                    inertia,
+                    inv_inertia: total.inv_inertia(),
+                };
+                (data, center)
+            }
+            // Static and kinematic bodies have no mass; they turn about their origin.
+            BodyKind::Static | BodyKind::Kinematic => (MassData::default(), Vec2::zeros()),
+        };
+        self.mass = data;
+        self.local_center = local_center;
+        self.center = self.position + self.rotation * local_center;
+        self.reach = colliders
+            .clone()
+            .map(|c| c.reach_from(local_center))
+            .fold(0.0, Real::max);
+        self.min_extent = colliders
+            .map(|c| c.shape().min_extent())
+            .fold(Real::INFINITY, Real::min);
         Ok(())
     }
 
@@ -335,16 +396,29 @@ impl Body {
         self.kind == BodyKind::Dynamic
     }
 
-    /// The shape, in the body's local frame.
+    /// Its colliders, in the order they were added.
     #[inline]
-    pub fn shape(&self) -> &Shape {
-        &self.shape
+    pub fn colliders(&self) -> &[ColliderHandle] {
+        &self.colliders
     }
 
-    /// World position of the centre of mass (the body's origin).
+    /// World position of the body's origin (its centre of mass too, for a body of one shape
+    /// at its origin).
     #[inline]
     pub fn position(&self) -> Vec2 {
         self.position
+    }
+
+    /// World position of the centre of mass.
+    #[inline]
+    pub fn center_of_mass(&self) -> Vec2 {
+        self.center
+    }
+
+    /// The centre of mass in the body's frame (zero for static and kinematic bodies).
+    #[inline]
+    pub fn local_center(&self) -> Vec2 {
+        self.local_center
     }
 
     /// The rotation.
@@ -385,7 +459,7 @@ impl Body {
     /// The velocity of the material point at `world_point`: `v + ω × r`.
     #[inline]
     pub fn velocity_at(&self, world_point: Vec2) -> Vec2 {
-        self.linear_velocity + cross_sv(self.angular_velocity, world_point - self.position)
+        self.linear_velocity + cross_sv(self.angular_velocity, world_point - self.center)
     }
 
     /// The force accumulated since the last step.
@@ -424,24 +498,6 @@ impl Body {
         self.mass.inv_inertia
     }
 
-    /// Density, kg/m².
-    #[inline]
-    pub fn density(&self) -> Real {
-        self.density
-    }
-
-    /// Friction coefficient.
-    #[inline]
-    pub fn friction(&self) -> Real {
-        self.friction
-    }
-
-    /// Restitution.
-    #[inline]
-    pub fn restitution(&self) -> Real {
-        self.restitution
-    }
-
     /// Gravity scale.
     #[inline]
     pub fn gravity_scale(&self) -> Real {
@@ -472,13 +528,7 @@ impl Body {
         self.user_tag
     }
 
-    /// The shape in world coordinates, as of the last step or placement.
-    #[inline]
-    pub fn world_shape(&self) -> &WorldShape {
-        &self.world_shape
-    }
-
-    /// The tight world bounding box, as of the last step or placement.
+    /// The tight world bounding box of all its colliders, as of the last step or edit.
     #[inline]
     pub fn aabb(&self) -> Aabb {
         self.aabb
@@ -504,7 +554,7 @@ impl Body {
     }
 
     /// Wakes the body (its island follows at the next step, through their contacts).
-    pub fn wake_up(&mut self) {
+    pub(crate) fn wake_up(&mut self) {
         self.sleeping = false;
         self.sleep_time = 0.0;
     }
@@ -528,8 +578,7 @@ impl Body {
     pub(crate) fn update_sleep_time(&mut self, threshold: Real, dt: Real) {
         /// How much position correction counts beside true velocity (Box2D's 0.5).
         const CORRECTION_WEIGHT: Real = 0.5;
-        let reach = self.shape.max_extent();
-        let speed = self.linear_velocity.norm() + reach * self.angular_velocity.abs();
+        let speed = self.linear_velocity.norm() + self.reach * self.angular_velocity.abs();
         let speed = speed.max(CORRECTION_WEIGHT * self.last_motion / dt);
         if speed > threshold || self.kind != BodyKind::Dynamic {
             self.sleep_time = 0.0;
@@ -556,32 +605,24 @@ impl Body {
         self.rotation * local_point + self.position
     }
 
-    /// True when the world point lies inside or on the body's shape.
-    pub fn contains_point(&self, world_point: Vec2) -> bool {
-        self.aabb
-            .fattened(crate::constants::CONTAINMENT_TOLERANCE)
-            .contains_point(world_point)
-            && self.shape.contains_local(self.local_point(world_point))
-    }
-
-    /// Moves the body (teleports it: no velocity change).
-    pub fn set_position(&mut self, position: Vec2) -> Result<(), CaromError> {
+    /// Moves the body's origin (teleports it: no velocity change).
+    pub(crate) fn set_position(&mut self, position: Vec2) -> Result<(), CaromError> {
         self.position = check_finite_vec("body position", position)?;
+        self.center = self.position + self.rotation * self.local_center;
         self.wake_up();
-        self.sync_world_shape();
         Ok(())
     }
 
-    /// Turns the body to `angle` radians.
-    pub fn set_angle(&mut self, angle: Real) -> Result<(), CaromError> {
+    /// Turns the body about its origin to `angle` radians.
+    pub(crate) fn set_angle(&mut self, angle: Real) -> Result<(), CaromError> {
         self.rotation = Rot::new(check_finite("body angle", angle)?);
+        self.center = self.position + self.rotation * self.local_center;
         self.wake_up();
-        self.sync_world_shape();
         Ok(())
     }
 
     /// Sets the linear velocity (ignored by static bodies, which never move).
-    pub fn set_linear_velocity(&mut self, velocity: Vec2) -> Result<(), CaromError> {
+    pub(crate) fn set_linear_velocity(&mut self, velocity: Vec2) -> Result<(), CaromError> {
         check_finite_vec("linear velocity", velocity)?;
         if self.kind != BodyKind::Static {
             self.linear_velocity = velocity;
@@ -591,7 +632,7 @@ impl Body {
     }
 
     /// Sets the angular velocity (ignored by static bodies).
-    pub fn set_angular_velocity(&mut self, velocity: Real) -> Result<(), CaromError> {
+    pub(crate) fn set_angular_velocity(&mut self, velocity: Real) -> Result<(), CaromError> {
         check_finite("angular velocity", velocity)?;
         if self.kind != BodyKind::Static {
             self.angular_velocity = velocity;
@@ -604,7 +645,7 @@ impl Body {
     /// exactly `dt` seconds, so a scripted path (a rotating drum, a lift) is followed
     /// without drift while contacts still see a velocity to push with. Other kinds are
     /// left alone: dynamic bodies move by forces and static ones never move.
-    pub fn move_kinematic_to(
+    pub(crate) fn move_kinematic_to(
         &mut self,
         position: Vec2,
         angle: Real,
@@ -623,74 +664,23 @@ impl Body {
             return Ok(());
         }
         // The shortest turn: the body's angle is kept as a rotation, not a winding count.
-        let turn = (Rot::new(angle) * self.rotation.inverse()).angle();
-        self.linear_velocity = (position - self.position) / dt;
+        let rotation = Rot::new(angle);
+        let turn = (rotation * self.rotation.inverse()).angle();
+        let center = position + rotation * self.local_center;
+        self.linear_velocity = (center - self.center) / dt;
         self.angular_velocity = turn / dt;
         self.wake_up();
         Ok(())
     }
 
-    /// Changes how the body moves; mass is recomputed and a static body stops.
-    pub fn set_kind(&mut self, kind: BodyKind) -> Result<(), CaromError> {
-        let previous = self.kind;
-        self.kind = kind;
-        if let Err(e) = self.update_mass() {
-            self.kind = previous;
-            return Err(e);
-        }
-        if kind == BodyKind::Static {
-            self.linear_velocity = Vec2::zeros();
-            self.angular_velocity = 0.0;
-        }
-        self.clear_forces();
-        self.wake_up();
-        Ok(())
-    }
-
-    /// Changes the density; mass and inertia are recomputed.
-    pub fn set_density(&mut self, density: Real) -> Result<(), CaromError> {
-        let previous = self.density;
-        self.density = density;
-        if let Err(e) = self.update_mass() {
-            self.density = previous;
-            return Err(e);
-        }
-        Ok(())
-    }
-
-    /// Changes the shape; mass, inertia and the world shape are recomputed.
-    pub fn set_shape(&mut self, shape: Shape) -> Result<(), CaromError> {
-        shape.validate()?;
-        let previous = std::mem::replace(&mut self.shape, shape);
-        if let Err(e) = self.update_mass() {
-            self.shape = previous;
-            return Err(e);
-        }
-        self.wake_up();
-        self.sync_world_shape();
-        Ok(())
-    }
-
-    /// Sets the friction coefficient (finite, not negative).
-    pub fn set_friction(&mut self, friction: Real) -> Result<(), CaromError> {
-        self.friction = check_non_negative("friction", friction)?;
-        Ok(())
-    }
-
-    /// Sets the restitution (finite, not negative).
-    pub fn set_restitution(&mut self, restitution: Real) -> Result<(), CaromError> {
-        self.restitution = check_non_negative("restitution", restitution)?;
-        Ok(())
-    }
-
     /// Sets the gravity scale (finite; negative makes the body rise).
-    pub fn set_gravity_scale(&mut self, scale: Real) -> Result<(), CaromError> {
+    pub(crate) fn set_gravity_scale(&mut self, scale: Real) -> Result<(), CaromError> {
         self.gravity_scale = check_finite("gravity scale", scale)?;
         Ok(())
     }
 
     /// Sets the linear and angular drag coefficients (finite, not negative).
-    pub fn set_damping(&mut self, linear: Real, angular: Real) -> Result<(), CaromError> {
+    pub(crate) fn set_damping(&mut self, linear: Real, angular: Real) -> Result<(), CaromError> {
         let linear = check_non_negative("linear damping", linear)?;
         self.angular_damping = check_non_negative("angular damping", angular)?;
         self.linear_damping = linear;
@@ -698,30 +688,30 @@ impl Body {
     }
 
     /// Marks or unmarks the body as a bullet.
-    pub fn set_bullet(&mut self, bullet: bool) {
+    pub(crate) fn set_bullet(&mut self, bullet: bool) {
         self.bullet = bullet;
     }
 
     /// Sets the user tag.
-    pub fn set_user_tag(&mut self, tag: u64) {
+    pub(crate) fn set_user_tag(&mut self, tag: u64) {
         self.user_tag = tag;
     }
 
     /// Adds a force at a world point: it also adds the torque `r × F`, with `r` from the
     /// centre of mass. Forces last until the end of the next step. Only dynamic bodies feel it.
-    pub fn apply_force(&mut self, force: Vec2, world_point: Vec2) -> Result<(), CaromError> {
+    pub(crate) fn apply_force(&mut self, force: Vec2, world_point: Vec2) -> Result<(), CaromError> {
         check_finite_vec("force", force)?;
         check_finite_vec("force application point", world_point)?;
         if self.is_dynamic() {
             self.force += force;
-            self.torque += cross(world_point - self.position, force);
+            self.torque += cross(world_point - self.center, force);
             self.wake_up();
         }
         Ok(())
     }
 
     /// Adds a force through the centre of mass (no torque).
-    pub fn apply_force_at_center(&mut self, force: Vec2) -> Result<(), CaromError> {
+    pub(crate) fn apply_force_at_center(&mut self, force: Vec2) -> Result<(), CaromError> {
         check_finite_vec("force", force)?;
         if self.is_dynamic() {
             self.force += force;
@@ -731,7 +721,7 @@ impl Body {
     }
 
     /// Adds a torque, N·m, counter-clockwise.
-    pub fn apply_torque(&mut self, torque: Real) -> Result<(), CaromError> {
+    pub(crate) fn apply_torque(&mut self, torque: Real) -> Result<(), CaromError> {
         check_finite("torque", torque)?;
         if self.is_dynamic() {
             self.torque += torque;
@@ -742,18 +732,21 @@ impl Body {
 
     /// Applies an impulse at a world point: it changes the velocities at once,
     /// `Δv = J / m`, `Δω = (r × J) / I`.
-    pub fn apply_impulse(&mut self, impulse: Vec2, world_point: Vec2) -> Result<(), CaromError> {
+    pub(crate) fn apply_impulse(
+        &mut self,
+        impulse: Vec2,
+        world_point: Vec2,
+    ) -> Result<(), CaromError> {
         check_finite_vec("impulse", impulse)?;
         check_finite_vec("impulse application point", world_point)?;
         self.wake_up();
         self.linear_velocity += impulse * self.mass.inv_mass;
-        self.angular_velocity +=
-            self.mass.inv_inertia * cross(world_point - self.position, impulse);
+        self.angular_velocity += self.mass.inv_inertia * cross(world_point - self.center, impulse);
         Ok(())
     }
 
     /// Applies an impulse through the centre of mass.
-    pub fn apply_impulse_at_center(&mut self, impulse: Vec2) -> Result<(), CaromError> {
+    pub(crate) fn apply_impulse_at_center(&mut self, impulse: Vec2) -> Result<(), CaromError> {
         check_finite_vec("impulse", impulse)?;
         self.wake_up();
         self.linear_velocity += impulse * self.mass.inv_mass;
@@ -761,7 +754,7 @@ impl Body {
     }
 
     /// Applies an angular impulse, N·m·s.
-    pub fn apply_angular_impulse(&mut self, impulse: Real) -> Result<(), CaromError> {
+    pub(crate) fn apply_angular_impulse(&mut self, impulse: Real) -> Result<(), CaromError> {
         check_finite("angular impulse", impulse)?;
         self.wake_up();
         self.angular_velocity += self.mass.inv_inertia * impulse;
@@ -770,18 +763,18 @@ impl Body {
 
     /// Forgets the accumulated force and torque.
     #[inline]
-    pub fn clear_forces(&mut self) {
+    pub(crate) fn clear_forces(&mut self) {
         self.force = Vec2::zeros();
         self.torque = 0.0;
     }
 
-    /// Puts the body back along its path to where continuous collision found the impact; it
-    /// keeps its velocity.
-    pub(crate) fn move_to_time_of_impact(&mut self, pose: Isometry) {
-        self.position = pose.translation.vector;
-        self.rotation = pose.rotation;
+    /// Puts the body back along its path to where continuous collision found the impact
+    /// (`center` is the centre of mass there); it keeps its velocity.
+    pub(crate) fn move_to_time_of_impact(&mut self, center: Vec2, rotation: Rot) {
+        self.center = center;
+        self.rotation = rotation;
+        self.position = center - rotation * self.local_center;
         self.had_time_of_impact = true;
-        self.sync_world_shape();
     }
 
     /// True when continuous collision put the body back along its path in the last step: it
@@ -791,35 +784,57 @@ impl Body {
         self.had_time_of_impact
     }
 
-    /// Marks the body as possibly edited by the user; true the first time since the last step.
-    pub(crate) fn mark_touched(&mut self) -> bool {
-        !std::mem::replace(&mut self.touched, true)
-    }
-
-    /// Clears the mark once the world has caught up with the edits.
-    pub(crate) fn clear_touched(&mut self) {
-        self.touched = false;
-    }
-
-    /// Re-places the world shape and bounding box after the body moved.
-    pub(crate) fn sync_world_shape(&mut self) {
-        self.world_shape.update(&self.shape, &self.transform());
-        self.aabb = self.world_shape.aabb();
-    }
-
-    /// Commits a solved step: velocities, and the motion accumulated over it. Forces are
-    /// cleared and the world shape re-placed.
+    /// Commits a solved step: velocities, and the motion of the centre of mass accumulated
+    /// over it; the origin follows. Forces are cleared; the world re-places the colliders.
     pub(crate) fn finish_step(&mut self, v: Vec2, w: Real, dp: Vec2, dq: Rot) {
         self.linear_velocity = v;
         self.angular_velocity = w;
-        self.position += dp;
+        self.center += dp;
         self.rotation = dq * self.rotation;
         // Renormalise so thousands of small rotations do not drift off the unit circle.
         self.rotation.renormalize_fast();
+        self.position = self.center - self.rotation * self.local_center;
         self.had_time_of_impact = false;
-        self.last_motion = dp.norm() + dq.im.abs() * self.shape.max_extent();
+        self.last_motion = dp.norm() + dq.im.abs() * self.reach;
         self.clear_forces();
-        self.sync_world_shape();
+    }
+
+    /// How far its colliders reach from the centre of mass, m.
+    #[inline]
+    pub(crate) fn reach(&self) -> Real {
+        self.reach
+    }
+
+    /// The smallest collider's smallest extent, m.
+    #[inline]
+    pub(crate) fn min_extent(&self) -> Real {
+        self.min_extent
+    }
+
+    /// Attaches a collider (the world stores it).
+    pub(crate) fn attach(&mut self, collider: ColliderHandle) {
+        self.colliders.push(collider);
+    }
+
+    /// Detaches a collider.
+    pub(crate) fn detach(&mut self, collider: ColliderHandle) {
+        self.colliders.retain(|&c| c != collider);
+    }
+
+    /// Sets the box around all its colliders.
+    pub(crate) fn set_aabb(&mut self, aabb: Aabb) {
+        self.aabb = aabb;
+    }
+
+    /// Changes the kind; the world rebuilds the mass and stops a static body.
+    pub(crate) fn set_kind_unchecked(&mut self, kind: BodyKind) {
+        self.kind = kind;
+        if kind == BodyKind::Static {
+            self.linear_velocity = Vec2::zeros();
+            self.angular_velocity = 0.0;
+        }
+        self.clear_forces();
+        self.wake_up();
     }
 }
 
@@ -828,12 +843,17 @@ mod tests {
     use super::*;
     use crate::math::vec2;
 
+    /// A unit box of density 1 on its own, its collider attached as a world would.
     fn unit_box(kind: BodyKind) -> Body {
         let handle = BodyHandle {
             index: 0,
             generation: 0,
         };
-        Body::new(handle, BodyDef::new(kind, Shape::rect(0.5, 0.5))).unwrap()
+        let def = BodyDef::new(kind, Shape::rect(0.5, 0.5));
+        let mut body = Body::new(handle, &def).unwrap();
+        let collider = Collider::new(handle, 0, def.colliders[0].clone(), &body.transform());
+        body.rebuild_mass(std::iter::once(&collider)).unwrap();
+        body
     }
 
     #[test]
@@ -872,12 +892,9 @@ mod tests {
         let mut b = unit_box(BodyKind::Dynamic);
         assert!(b.apply_force(vec2(Real::NAN, 0.0), vec2(0.0, 0.0)).is_err());
         assert!(b.set_position(vec2(0.0, Real::INFINITY)).is_err());
-        assert!(b.set_density(-1.0).is_err());
-        assert!(b.set_friction(-0.1).is_err());
         assert!(b.set_angle(Real::NAN).is_err());
         assert_eq!(b.position(), Vec2::zeros());
         assert_eq!(b.force(), Vec2::zeros());
-        assert_eq!(b.density(), 1.0);
         assert_eq!(b.mass(), 1.0);
     }
 
@@ -892,8 +909,6 @@ mod tests {
         assert!((world.x - 3.0).abs() < 1e-6 && (world.y - 2.0).abs() < 1e-6);
         assert!((b.world_point(vec2(1.0, 0.0)) - vec2(3.0, 2.0)).norm() < 1e-6);
         assert!((b.local_point(vec2(3.0, 2.0)) - vec2(1.0, 0.0)).norm() < 1e-6);
-        // The cached AABB followed the move.
-        assert!((b.aabb().center() - vec2(3.0, 1.0)).norm() < 1e-6);
     }
 
     #[test]

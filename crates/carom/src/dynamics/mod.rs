@@ -1,7 +1,7 @@
-//! Dynamics: bodies and their storage, drag, and sleeping.
+//! Dynamics: bodies, the colliders they are made of, drag, and sleeping.
 
 pub(crate) mod body;
-pub(crate) mod body_set;
+pub(crate) mod collider;
 pub(crate) mod drag;
 
 pub(crate) mod sleep;

@@ -12,7 +12,7 @@ use crate::math::{Real, Vec2};
 use std::f64::consts::PI;
 
 /// Mass, centre of mass and rotational inertia of a shape.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct MassProperties {
     /// Mass in kilograms (density times area).
     pub mass: Real,

@@ -48,9 +48,9 @@ pub(crate) struct ContactConstraint {
     pub inv_inertia_b: Real,
     /// Unit normal from A to B.
     pub normal: Vec2,
-    /// Friction coefficient: the geometric mean of the bodies'.
+    /// Friction coefficient: the geometric mean of the colliders'.
     pub friction: Real,
-    /// Restitution: the larger of the bodies'.
+    /// Restitution: the larger of the colliders'.
     pub restitution: Real,
     /// True when one body is static (soft step makes such contacts stiffer).
     pub touches_static: bool,
@@ -114,8 +114,8 @@ impl ContactConstraint {
             inv_mass_b: mb,
             inv_inertia_b: ib,
             normal,
-            friction: (body_a.friction() * body_b.friction()).sqrt(),
-            restitution: body_a.restitution().max(body_b.restitution()),
+            friction: contact.friction(),
+            restitution: contact.restitution(),
             touches_static: body_a.kind() == BodyKind::Static || body_b.kind() == BodyKind::Static,
             dynamic_a: body_a.kind() == BodyKind::Dynamic,
             dynamic_b: body_b.kind() == BodyKind::Dynamic,

@@ -1,35 +1,43 @@
-//! The world: bodies, global settings, the step, and queries.
+//! The world: bodies and their colliders, global settings, the step, and queries.
 
+pub(crate) mod body_mut;
 pub(crate) mod effects;
 pub(crate) mod mouse_joint;
 pub(crate) mod settings;
 
 use crate::collision::broadphase::BroadPhase;
-use crate::collision::contact::{Contact, ContactEvent, ContactSet};
+use crate::collision::contact::{Contact, ContactEvent, ContactSet, ManifoldOptions};
 use crate::collision::continuous::{self, Pose};
-use crate::constants::LINEAR_SLOP;
+use crate::constants::{CONTACTS_PER_TASK, ITEMS_PER_TASK, LINEAR_SLOP};
 use crate::dynamics::body::{Body, BodyDef, BodyHandle, BodyKind};
-use crate::dynamics::body_set::BodySet;
+use crate::dynamics::collider::{
+    Collider, ColliderDef, ColliderHandle, colliders_aabb, place_colliders,
+};
 use crate::dynamics::drag::DragModel;
 use crate::dynamics::sleep;
 use crate::error::{CaromError, check_finite_vec};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::ray::Ray;
+use crate::handle_map::HandleMap;
 use crate::math::{Real, Vec2};
+use crate::parallel::for_each_mut;
 use crate::solver::{self, Environment, SolverParams};
 use crate::stats::StepStats;
+use crate::world::body_mut::BodyMut;
 use crate::world::effects::{Effect, Effects};
 use crate::world::settings::WorldSettings;
 use std::time::Instant;
 
-/// The closest body a ray enters.
+/// The closest collider a ray enters.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WorldRayHit {
     /// The body hit.
     pub body: BodyHandle,
+    /// Its collider the ray entered.
+    pub collider: ColliderHandle,
     /// The entry point, in world coordinates.
     pub point: Vec2,
-    /// The body's outward unit normal there.
+    /// The collider's outward unit normal there.
     pub normal: Vec2,
     /// How far along the ray, in `[0, 1]`.
     pub fraction: Real,
@@ -38,11 +46,10 @@ pub struct WorldRayHit {
 /// A physics world: create bodies in it, step it, query it.
 #[derive(Debug, Clone, Default)]
 pub struct World {
-    bodies: BodySet,
+    bodies: HandleMap<BodyHandle, Body>,
+    colliders: HandleMap<ColliderHandle, Collider>,
     broadphase: BroadPhase,
     contacts: ContactSet,
-    /// Bodies lent out by `body_mut` since the last step; their broadphase entries may lag.
-    touched: Vec<BodyHandle>,
     settings: WorldSettings,
     time: f64,
     step_count: u64,
@@ -60,13 +67,11 @@ pub struct World {
 #[derive(Debug, Clone, Default)]
 struct StepScratch {
     /// New pairs from the broadphase.
-    pairs: Vec<(BodyHandle, BodyHandle)>,
+    pairs: Vec<(ColliderHandle, ColliderHandle)>,
     /// Dense indices of every contact's bodies.
     dense: Vec<(usize, usize)>,
     /// Bodies' poses at the start of the step (for continuous collision).
     starts: Vec<Pose>,
-    /// Dense index of each body slot.
-    dense_of_slot: Vec<Option<usize>>,
     /// Dense indices of the touching contacts' bodies (for sleeping).
     touching: Vec<(usize, usize)>,
     /// Sleeping islands a moving body touched.
@@ -91,6 +96,16 @@ fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {
         }
     }
     Ok(())
+}
+
+/// How much the broadphase enlarges the box of a collider of a body of this kind.
+pub(crate) fn margin_for(settings: &WorldSettings, kind: BodyKind) -> Real {
+    match kind {
+        BodyKind::Static => settings.speculative_distance,
+        BodyKind::Kinematic | BodyKind::Dynamic => {
+            settings.aabb_margin.max(settings.speculative_distance)
+        }
+    }
 }
 
 impl World {
@@ -170,37 +185,200 @@ impl World {
         self.settings.drag = model;
     }
 
-    /// How much the broadphase enlarges a body of this kind's box.
-    fn margin_for(&self, kind: BodyKind) -> Real {
-        match kind {
-            BodyKind::Static => self.settings.speculative_distance,
-            BodyKind::Kinematic | BodyKind::Dynamic => self
-                .settings
-                .aabb_margin
-                .max(self.settings.speculative_distance),
-        }
-    }
-
-    /// Adds a body; its definition is checked first.
+    /// Adds a body with its colliders; the definition is checked first, and nothing is added
+    /// if any of it is wrong.
     ///
     /// # Errors
-    /// Non-finite placement or velocity, a non-positive density for a dynamic body, or a
-    /// negative friction, restitution or drag coefficient.
+    /// No collider, a bad shape, non-finite placement or velocity, a dynamic body without mass
+    /// (no collider with a positive density), or a negative density, friction, restitution or
+    /// drag coefficient.
     pub fn add_body(&mut self, def: BodyDef) -> Result<BodyHandle, CaromError> {
-        let handle = self.bodies.insert(def)?;
+        let handle = self.bodies.next_handle();
+        let mut body = Body::new(handle, &def)?;
+        let transform = body.transform();
+        let index = self.bodies.len();
+        let parts: Vec<Collider> = def
+            .colliders
+            .into_iter()
+            .map(|collider| Collider::new(handle, index, collider, &transform))
+            .collect();
+        body.rebuild_mass(parts.iter())?;
+        let handle = self.bodies.insert(body);
+        for collider in parts {
+            let collider = self.colliders.insert(collider);
+            self.bodies
+                .get_mut(handle)
+                .expect("just inserted")
+                .attach(collider);
+        }
+        self.place_colliders_of(handle);
         let body = self.bodies.get(handle).expect("just inserted");
-        let (kind, aabb) = (body.kind(), body.aabb());
-        self.broadphase
-            .insert(handle, kind, aabb, self.margin_for(kind));
+        let margin = margin_for(&self.settings, body.kind());
+        for &collider in body.colliders() {
+            let aabb = self.colliders.get(collider).expect("attached").aabb();
+            self.broadphase
+                .insert(collider, handle, body.kind(), aabb, margin);
+        }
         Ok(handle)
     }
 
-    /// Removes a body and returns it. Its contacts end (reported after the next step).
+    /// Removes a body with its colliders and returns it. Its contacts end (reported after the
+    /// next step).
     pub fn remove_body(&mut self, handle: BodyHandle) -> Result<Body, CaromError> {
-        let body = self.bodies.remove(handle)?;
+        let index = self.bodies.checked_index(handle)?;
+        let body = self.bodies.remove(handle).expect("checked");
         self.contacts.remove_body(handle);
-        self.broadphase.remove(handle);
+        for &collider in body.colliders() {
+            self.colliders.remove(collider);
+            self.broadphase.remove(collider);
+        }
+        // The last body moved into the hole: its colliders follow it.
+        if let Some(moved) = self.bodies.as_slice().get(index) {
+            for &collider in moved.colliders() {
+                if let Some(c) = self.colliders.get_mut(collider) {
+                    c.set_body_index(index);
+                }
+            }
+        }
         Ok(body)
+    }
+
+    /// Attaches another collider to a body; its mass, centre of mass and inertia follow.
+    ///
+    /// # Errors
+    /// A stale body handle, a bad definition, or a dynamic body left without mass.
+    pub fn add_collider(
+        &mut self,
+        body: BodyHandle,
+        def: ColliderDef,
+    ) -> Result<ColliderHandle, CaromError> {
+        let index = self.bodies.checked_index(body)?;
+        def.validate()?;
+        let owner = &self.bodies.as_slice()[index];
+        let collider = Collider::new(body, index, def, &owner.transform());
+        let mut updated = owner.clone();
+        let existing: Vec<&Collider> = owner
+            .colliders()
+            .iter()
+            .filter_map(|&c| self.colliders.get(c))
+            .collect();
+        updated.rebuild_mass(existing.into_iter().chain(std::iter::once(&collider)))?;
+        let handle = self.colliders.insert(collider);
+        updated.attach(handle);
+        updated.wake_up();
+        let kind = updated.kind();
+        self.bodies.as_mut_slice()[index] = updated;
+        self.place_colliders_of(body);
+        let aabb = self.colliders.get(handle).expect("just inserted").aabb();
+        self.broadphase
+            .insert(handle, body, kind, aabb, margin_for(&self.settings, kind));
+        Ok(handle)
+    }
+
+    /// Detaches a collider from its body and returns it; the body's mass follows. Its contacts
+    /// end (reported after the next step).
+    ///
+    /// # Errors
+    /// A stale handle, the body's last collider (remove the body instead), or a dynamic body
+    /// left without mass.
+    pub fn remove_collider(&mut self, handle: ColliderHandle) -> Result<Collider, CaromError> {
+        let collider = self.colliders.get(handle).ok_or(CaromError::StaleHandle {
+            what: "collider",
+            index: handle.index(),
+            generation: handle.generation(),
+        })?;
+        let body = collider.body();
+        let owner = self.bodies.get(body).expect("a collider's body is live");
+        if owner.colliders().len() == 1 {
+            return Err(CaromError::NoCollider);
+        }
+        let mut updated = owner.clone();
+        updated.detach(handle);
+        let remaining: Vec<&Collider> = updated
+            .colliders()
+            .iter()
+            .filter_map(|&c| self.colliders.get(c))
+            .collect();
+        updated.rebuild_mass(remaining.into_iter())?;
+        updated.wake_up();
+        *self.bodies.get_mut(body).expect("live") = updated;
+        self.contacts.remove_collider(handle);
+        self.broadphase.remove(handle);
+        let removed = self.colliders.remove(handle).expect("checked");
+        self.place_colliders_of(body);
+        Ok(removed)
+    }
+
+    /// Changes a collider's density; its body's mass, centre of mass and inertia follow.
+    ///
+    /// # Errors
+    /// A stale handle, a density that is negative or not finite, or a dynamic body left
+    /// without mass; the density is then left as it was.
+    pub fn set_collider_density(
+        &mut self,
+        handle: ColliderHandle,
+        density: Real,
+    ) -> Result<(), CaromError> {
+        crate::dynamics::collider::check_non_negative("density", density)?;
+        let collider = self
+            .colliders
+            .get_mut(handle)
+            .ok_or(CaromError::StaleHandle {
+                what: "collider",
+                index: handle.index(),
+                generation: handle.generation(),
+            })?;
+        let previous = collider.density();
+        collider.set_density(density);
+        let body = collider.body();
+        if let Err(e) = self.rebuild_mass_of(body) {
+            self.colliders
+                .get_mut(handle)
+                .expect("live")
+                .set_density(previous);
+            return Err(e);
+        }
+        Ok(())
+    }
+
+    /// Changes how a body moves: its mass is rebuilt, a static body stops, and its colliders
+    /// move to the broadphase tree of the new kind.
+    ///
+    /// # Errors
+    /// A stale handle, or a dynamic body without mass; the kind is then left as it was.
+    pub fn set_body_kind(&mut self, handle: BodyHandle, kind: BodyKind) -> Result<(), CaromError> {
+        let index = self.bodies.checked_index(handle)?;
+        let previous = self.bodies.as_slice()[index].clone();
+        self.bodies.as_mut_slice()[index].set_kind_unchecked(kind);
+        if let Err(e) = self.rebuild_mass_of(handle) {
+            self.bodies.as_mut_slice()[index] = previous;
+            return Err(e);
+        }
+        self.place_colliders_of(handle);
+        let body = &self.bodies.as_slice()[index];
+        let margin = margin_for(&self.settings, kind);
+        for &collider in body.colliders() {
+            let aabb = self.colliders.get(collider).expect("attached").aabb();
+            self.broadphase.update(collider, kind, aabb, margin);
+        }
+        Ok(())
+    }
+
+    /// Rebuilds a body's mass from its colliders.
+    fn rebuild_mass_of(&mut self, handle: BodyHandle) -> Result<(), CaromError> {
+        let index = self.bodies.checked_index(handle)?;
+        let colliders = &self.colliders;
+        let body = &mut self.bodies.as_mut_slice()[index];
+        let attached: Vec<ColliderHandle> = body.colliders().to_vec();
+        body.rebuild_mass(attached.iter().filter_map(|&c| colliders.get(c)))
+    }
+
+    /// Places a body's colliders where the body is, and its box around them.
+    fn place_colliders_of(&mut self, handle: BodyHandle) {
+        let Some(body) = self.bodies.get_mut(handle) else {
+            return;
+        };
+        body.set_aabb(place_colliders(body, &mut self.colliders));
     }
 
     /// The body behind a handle, unless it was removed.
@@ -208,15 +386,33 @@ impl World {
         self.bodies.get(handle)
     }
 
-    /// The body behind a handle, mutably, unless it was removed. The world notes the loan,
-    /// so moving the body or changing its shape or kind is seen by the next step and by
-    /// queries.
-    pub fn body_mut(&mut self, handle: BodyHandle) -> Option<&mut Body> {
+    /// The body behind a handle, to change, unless it was removed. When the borrow ends, its
+    /// colliders follow wherever it was moved, so the next step and queries see it there.
+    pub fn body_mut(&mut self, handle: BodyHandle) -> Option<BodyMut<'_>> {
         let body = self.bodies.get_mut(handle)?;
-        if body.mark_touched() {
-            self.touched.push(handle);
-        }
-        Some(body)
+        let margin = margin_for(&self.settings, body.kind());
+        Some(BodyMut::new(
+            body,
+            &mut self.colliders,
+            &mut self.broadphase,
+            margin,
+        ))
+    }
+
+    /// The collider behind a handle, unless it was removed.
+    pub fn collider(&self, handle: ColliderHandle) -> Option<&Collider> {
+        self.colliders.get(handle)
+    }
+
+    /// The collider behind a handle, to change its friction or restitution (its density
+    /// through [`World::set_collider_density`], as the body's mass depends on it).
+    pub fn collider_mut(&mut self, handle: ColliderHandle) -> Option<&mut Collider> {
+        self.colliders.get_mut(handle)
+    }
+
+    /// Every collider, in storage order.
+    pub fn colliders(&self) -> impl ExactSizeIterator<Item = &Collider> {
+        self.colliders.as_slice().iter()
     }
 
     /// True when the handle refers to a body of this world.
@@ -234,7 +430,7 @@ impl World {
         self.bodies.len()
     }
 
-    /// Every contact: pairs whose enlarged boxes overlap, touching or not.
+    /// Every contact: pairs of colliders whose enlarged boxes overlap, touching or not.
     pub fn contacts(&self) -> impl ExactSizeIterator<Item = &Contact> {
         self.contacts.iter()
     }
@@ -276,8 +472,8 @@ impl World {
     ///
     /// The stages, in order: find new pairs in the broadphase; build contact manifolds in the
     /// narrowphase; solve (integrate forces into velocities, resolve contacts, integrate
-    /// positions, in substeps for soft step); continuous collision for fast bodies; refresh the
-    /// broadphase from the new positions.
+    /// positions, in substeps for soft step); continuous collision for fast bodies; place the
+    /// moved colliders and refresh the broadphase from them; sleep.
     ///
     /// # Errors
     /// A time step that is not finite and positive; the world is left untouched.
@@ -293,7 +489,6 @@ impl World {
         let mut stats = StepStats::default();
         let times = &mut stats.times;
         self.contacts.begin_step();
-        self.catch_up_with_edits();
 
         let mut scratch = std::mem::take(&mut self.scratch);
 
@@ -313,11 +508,20 @@ impl World {
         if continuous {
             self.poses(&mut scratch.starts);
         }
-        (stats.contact_points, stats.work) =
-            timed(&mut times.solve, || self.solve(dt, &scratch.dense));
+        (stats.contact_points, stats.work) = timed(&mut times.solve, || {
+            let done = self.solve(dt, &scratch.dense);
+            self.place_moved_colliders();
+            done
+        });
         if continuous {
             (stats.continuous_impacts, stats.work.sweeps) = timed(&mut times.continuous, || {
-                self.solve_continuous(&scratch.starts, &mut scratch.dense_of_slot)
+                continuous::solve_continuous(
+                    &mut self.bodies,
+                    &mut self.colliders,
+                    &scratch.starts,
+                    &self.broadphase,
+                    LINEAR_SLOP,
+                )
             });
         }
         timed(&mut times.broadphase, || {
@@ -341,10 +545,13 @@ impl World {
         wake.clear();
         let deepest = self.contacts.update(
             &self.bodies,
+            &self.colliders,
             &self.broadphase,
-            self.settings.speculative_distance,
-            prediction,
-            self.settings.contact_recycling,
+            ManifoldOptions {
+                margin: self.settings.speculative_distance,
+                prediction,
+                recycling: self.settings.contact_recycling,
+            },
             wake,
         );
         sleep::wake_groups(self.bodies.as_mut_slice(), wake);
@@ -392,26 +599,6 @@ impl World {
         poses.extend(self.bodies.as_slice().iter().map(Pose::of));
     }
 
-    /// Moves fast bodies that would have passed through something back to the impact;
-    /// returns how many, and how many fast bodies were swept. `dense` is memory for the
-    /// dense index of every slot.
-    fn solve_continuous(
-        &mut self,
-        starts: &[Pose],
-        dense: &mut Vec<Option<usize>>,
-    ) -> (usize, usize) {
-        let slots = &self.bodies;
-        dense.clear();
-        dense.extend((0..slots.slot_count()).map(|slot| slots.dense_index_of_slot(slot)));
-        continuous::solve_continuous(
-            self.bodies.as_mut_slice(),
-            starts,
-            &self.broadphase,
-            |h| dense.get(h.index() as usize).copied().flatten(),
-            LINEAR_SLOP,
-        )
-    }
-
     /// The dense indices of every contact's two bodies, in contact order, into `dense`.
     fn contact_bodies(&self, dense: &mut Vec<(usize, usize)>) {
         let bodies = &self.bodies;
@@ -451,51 +638,66 @@ impl World {
         )
     }
 
-    /// Brings the broadphase up to date with bodies the user edited since the last step.
-    fn catch_up_with_edits(&mut self) {
-        for handle in std::mem::take(&mut self.touched) {
-            let Some(body) = self.bodies.get_mut(handle) else {
-                continue;
-            };
-            body.clear_touched();
-            let (kind, aabb) = (body.kind(), body.aabb());
-            let margin = self.margin_for(kind);
-            self.broadphase.update(handle, kind, aabb, margin);
-        }
-    }
-
-    /// Creates contacts for pairs whose enlarged boxes began to overlap.
-    fn find_pairs(&mut self, pairs: &mut Vec<(BodyHandle, BodyHandle)>) {
+    /// Creates contacts for pairs of colliders whose enlarged boxes began to overlap.
+    fn find_pairs(&mut self, pairs: &mut Vec<(ColliderHandle, ColliderHandle)>) {
         let contacts = &self.contacts;
         self.broadphase
             .update_pairs_into(|a, b| contacts.contains(a, b), pairs);
         for &(a, b) in pairs.iter() {
-            self.contacts.add(a, b);
+            let (Some(collider_a), Some(collider_b)) =
+                (self.colliders.get(a), self.colliders.get(b))
+            else {
+                continue;
+            };
+            self.contacts.add((a, collider_a), (b, collider_b));
         }
     }
 
-    /// Re-fits the broadphase entries of bodies that moved this step, each box covering
-    /// where its body can get to in `prediction` seconds at its present velocity.
+    /// Places the colliders of every body that moved this step, and the bodies' boxes.
+    fn place_moved_colliders(&mut self) {
+        let bodies = self.bodies.as_slice();
+        for_each_mut(
+            self.colliders.as_mut_slice(),
+            CONTACTS_PER_TASK,
+            |collider| {
+                let body = &bodies[collider.body_index()];
+                if body.moves() {
+                    collider.place(&body.transform());
+                }
+            },
+        );
+        let colliders = &self.colliders;
+        for_each_mut(self.bodies.as_mut_slice(), ITEMS_PER_TASK, |body| {
+            if body.moves() {
+                body.set_aabb(colliders_aabb(body, colliders));
+            }
+        });
+    }
+
+    /// Re-fits the broadphase entries of colliders that moved this step, each box covering
+    /// where its collider can get to in `prediction` seconds at its body's present velocity.
     fn refresh_broadphase(&mut self, prediction: Real) {
         let margins = [
-            self.margin_for(BodyKind::Kinematic),
-            self.margin_for(BodyKind::Dynamic),
+            margin_for(&self.settings, BodyKind::Kinematic),
+            margin_for(&self.settings, BodyKind::Dynamic),
         ];
-        for body in self.bodies.as_slice().iter().filter(|b| b.moves()) {
+        let bodies = self.bodies.as_slice();
+        let colliders = self
+            .colliders
+            .handles()
+            .iter()
+            .zip(self.colliders.as_slice());
+        for (&handle, collider) in colliders {
+            let body = &bodies[collider.body_index()];
             let margin = match body.kind() {
+                _ if !body.moves() => continue,
                 BodyKind::Static => continue,
                 BodyKind::Kinematic => margins[0],
                 BodyKind::Dynamic => margins[1],
             };
-            let aabb = predicted_aabb(body, prediction);
-            self.broadphase
-                .update(body.handle(), body.kind(), aabb, margin);
+            let aabb = predicted_aabb(body, collider.aabb(), prediction);
+            self.broadphase.update(handle, body.kind(), aabb, margin);
         }
-    }
-
-    /// Handles of bodies whose tree entries may not cover them yet (edited since the step).
-    fn lagging(&self) -> impl Iterator<Item = &Body> {
-        self.touched.iter().filter_map(|h| self.bodies.get(*h))
     }
 
     /// A fingerprint of the simulation state: FNV-1a over every body's position, rotation and
@@ -528,69 +730,77 @@ impl World {
         };
         self.bodies_at(point)
             .into_iter()
-            .filter_map(|h| Some((self.bodies.dense_index(h).ok()?, h)))
+            .filter_map(|h| Some((self.bodies.dense_index(h)?, h)))
             .max_by_key(|&(order, _)| (rank(self.bodies.as_slice()[order].kind()), order))
             .map(|(_, h)| h)
     }
 
-    /// Every body containing the point, in storage order.
+    /// Every body with a collider containing the point, in storage order.
     pub fn bodies_at(&self, point: Vec2) -> Vec<BodyHandle> {
         let probe = Aabb::new(point, point);
         let mut found = Vec::new();
-        self.broadphase.query(&probe, |handle| found.push(handle));
-        found.extend(self.lagging().map(Body::handle));
-        found.retain(|h| self.bodies.get(*h).is_some_and(|b| b.contains_point(point)));
+        self.broadphase.query(&probe, |handle| {
+            let Some(collider) = self.colliders.get(handle) else {
+                return;
+            };
+            let Some(body) = self.bodies.get(collider.body()) else {
+                return;
+            };
+            if collider.contains(point, body.local_point(point)) {
+                found.push(collider.body());
+            }
+        });
         found.sort_unstable_by_key(|h| self.bodies.dense_index(*h).unwrap_or(usize::MAX));
         found.dedup();
         found
     }
 
-    /// The first body the ray enters, if any.
+    /// The first collider the ray enters, if any.
     pub fn cast_ray(&self, ray: &Ray) -> Option<WorldRayHit> {
         if !(crate::math::is_finite_vec(ray.origin) && crate::math::is_finite_vec(ray.translation))
         {
             return None;
         }
         let mut best: Option<WorldRayHit> = None;
-        let mut try_body = |body: &Body, reach: Real| {
-            let inverse = body.rotation().inverse();
-            let local = Ray::new(body.local_point(ray.origin), inverse * ray.translation);
-            if let Some(hit) = body.shape().ray_cast_local(&local)
-                && hit.fraction <= reach
-                && best.is_none_or(|b| hit.fraction < b.fraction)
-            {
-                best = Some(WorldRayHit {
-                    body: body.handle(),
-                    point: ray.at(hit.fraction),
-                    normal: body.rotation() * hit.normal,
-                    fraction: hit.fraction,
-                });
-            }
-            best.map_or(reach, |b| b.fraction)
-        };
         self.broadphase
             .ray_cast(ray.origin, ray.translation, |handle, reach| {
-                match self.bodies.get(handle) {
-                    Some(body) => try_body(body, reach),
-                    None => reach,
+                let (Some(collider), Some(body)) = (
+                    self.colliders.get(handle),
+                    self.colliders
+                        .get(handle)
+                        .and_then(|c| self.bodies.get(c.body())),
+                ) else {
+                    return reach;
+                };
+                let inverse = body.rotation().inverse();
+                let local = Ray::new(body.local_point(ray.origin), inverse * ray.translation);
+                if let Some(hit) = collider.ray_cast_body_frame(&local)
+                    && hit.fraction <= reach
+                    && best.is_none_or(|b| hit.fraction < b.fraction)
+                {
+                    best = Some(WorldRayHit {
+                        body: body.handle(),
+                        collider: handle,
+                        point: ray.at(hit.fraction),
+                        normal: body.rotation() * hit.normal,
+                        fraction: hit.fraction,
+                    });
                 }
+                best.map_or(reach, |b| b.fraction)
             });
-        for body in self.lagging() {
-            try_body(body, 1.0);
-        }
         best
     }
 }
 
-/// A body's box, grown to cover where it can get to in `time` at its present velocity.
-fn predicted_aabb(body: &Body, time: Real) -> Aabb {
-    let aabb = body.aabb();
+/// A collider's box, grown to cover where its body can take it in `time` at its present
+/// velocity.
+fn predicted_aabb(body: &Body, aabb: Aabb, time: Real) -> Aabb {
     if time == 0.0 {
         return aabb;
     }
     let shift = body.linear_velocity() * time;
     let moved = Aabb::new(aabb.min + shift, aabb.max + shift);
-    let turn = body.angular_velocity().abs() * time * body.shape().max_extent();
+    let turn = body.angular_velocity().abs() * time * body.reach();
     aabb.union(&moved).fattened(turn)
 }
 
@@ -605,6 +815,11 @@ fn timed<T>(slot: &mut std::time::Duration, stage: impl FnOnce() -> T) -> T {
 /// What the solver starts a step from, for tests of the solver's parts.
 #[cfg(test)]
 impl World {
+    /// The body itself, to put it in states tests need (asleep, say).
+    pub(crate) fn body_raw_mut(&mut self, handle: BodyHandle) -> Option<&mut Body> {
+        self.bodies.get_mut(handle)
+    }
+
     pub(crate) fn solver_inputs(&self) -> (&[Body], &[Contact], Vec<(usize, usize)>) {
         let mut dense = Vec::new();
         self.contact_bodies(&mut dense);
@@ -699,7 +914,7 @@ mod tests {
         assert!(
             world
                 .broadphase()
-                .fat_aabb(ball)
+                .fat_aabb(world.body(ball).unwrap().colliders()[0])
                 .unwrap()
                 .contains_point(vec2(20.0, 0.0))
         );
@@ -767,8 +982,8 @@ mod tests {
             world.step(1.0 / 60.0).unwrap();
             for event in world.contact_events() {
                 match *event {
-                    ContactEvent::Begin { body_a, body_b } => {
-                        assert_eq!((body_a, body_b), (wall, ball));
+                    ContactEvent::Begin(pair) => {
+                        assert_eq!((pair.body_a, pair.body_b), (wall, ball));
                         begins += 1;
                     }
                     ContactEvent::End { .. } => ends += 1,
@@ -797,19 +1012,15 @@ mod tests {
             .add_body(BodyDef::dynamic(Shape::circle(0.5)).position(vec2(3.0, 0.49)))
             .unwrap();
         world.step(1.0 / 60.0).unwrap();
-        assert!(world.contact_events().contains(&ContactEvent::Begin {
-            body_a: ground,
-            body_b: ball
-        }));
+        let began = world
+            .contact_events()
+            .iter()
+            .find(|e| matches!(e, ContactEvent::Begin(p) if (p.body_a, p.body_b) == (ground, ball)))
+            .copied()
+            .expect("the ball touches the ground");
         world.remove_body(ball).unwrap();
         world.step(1.0 / 60.0).unwrap();
-        assert_eq!(
-            world.contact_events(),
-            &[ContactEvent::End {
-                body_a: ground,
-                body_b: ball
-            }]
-        );
+        assert_eq!(world.contact_events(), &[ContactEvent::End(began.pair())]);
         assert!(world.contains(crate_box));
         assert_eq!(world.contacts().len(), 0);
     }

@@ -75,11 +75,11 @@ impl MouseJoint {
     /// Adds this step's spring force and spin damping to the body; call before each step.
     /// Returns the force applied (zero if the body is gone).
     pub fn apply(&self, world: &mut World) -> Result<Vec2, CaromError> {
-        let Some(body) = world.body_mut(self.body) else {
+        let Some(mut body) = world.body_mut(self.body) else {
             return Ok(Vec2::zeros());
         };
         let anchor = body.world_point(self.local_anchor);
-        let arm = anchor - body.position();
+        let arm = anchor - body.center_of_mass();
         // The mass the point feels, taken at its lightest (pushing across the arm), so the
         // spring is never stiffer than intended and stays stable at any step.
         let inv_mass = body.inv_mass() + body.inv_inertia() * arm.norm_squared();

@@ -1,0 +1,375 @@
+//! Colliders: the shapes a body is made of, each placed in the body's frame with its own
+//! material.
+//!
+//! A body has one or more colliders. Each holds a [`Shape`] (centred on its own centroid), where
+//! it sits in the body's frame (an offset and an angle), and its material: density (its share
+//! of the body's mass), friction and restitution. Collision works collider by collider: the
+//! broadphase holds one box per collider and contacts join pairs of colliders; the body's
+//! mass, centre of mass and inertia are summed over its colliders.
+
+use crate::dynamics::body::{Body, BodyHandle};
+use crate::error::{CaromError, check_finite, check_finite_vec};
+use crate::geometry::aabb::Aabb;
+use crate::geometry::mass::MassProperties;
+use crate::geometry::ray::{Ray, RayHit};
+use crate::geometry::shape::{Shape, WorldShape};
+use crate::handle_map::{Handle, HandleMap};
+use crate::math::{Isometry, Real, Vec2};
+
+/// A stable reference to a collider in a [`crate::World`]; generational, as [`BodyHandle`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ColliderHandle {
+    index: u32,
+    generation: u32,
+}
+
+impl ColliderHandle {
+    /// A handle from its parts, for tools that store handles elsewhere. A world only answers
+    /// to handles it issued.
+    pub fn from_raw_parts(index: u32, generation: u32) -> Self {
+        ColliderHandle { index, generation }
+    }
+
+    /// The slot index (reused after removal, with a new generation).
+    #[inline]
+    pub fn index(&self) -> u32 {
+        self.index
+    }
+
+    /// The generation of the slot this handle was issued for.
+    #[inline]
+    pub fn generation(&self) -> u32 {
+        self.generation
+    }
+}
+
+impl Handle for ColliderHandle {
+    const WHAT: &'static str = "collider";
+    fn from_parts(index: u32, generation: u32) -> Self {
+        ColliderHandle { index, generation }
+    }
+    fn index(self) -> u32 {
+        self.index
+    }
+    fn generation(self) -> u32 {
+        self.generation
+    }
+}
+
+/// Everything needed to attach a collider to a body; build one with [`ColliderDef::new`] and
+/// the chained setters. Values are checked when it is added to a world.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColliderDef {
+    /// The shape, centred on its own centroid.
+    pub shape: Shape,
+    /// Where the shape's centre sits in the body's frame.
+    pub offset: Vec2,
+    /// How the shape is turned in the body's frame, radians.
+    pub angle: Real,
+    /// Mass per unit area, kg/m² (zero adds no mass). A dynamic body needs some mass.
+    pub density: Real,
+    /// Coulomb friction coefficient (0 is ice).
+    pub friction: Real,
+    /// Bounciness: 0 does not bounce, 1 bounces back at the speed it came.
+    pub restitution: Real,
+}
+
+impl ColliderDef {
+    /// A collider with default material (density 1, friction 0.6, no restitution) at the
+    /// body's origin.
+    pub fn new(shape: Shape) -> Self {
+        ColliderDef {
+            shape,
+            offset: Vec2::zeros(),
+            angle: 0.0,
+            density: 1.0,
+            friction: 0.6,
+            restitution: 0.0,
+        }
+    }
+
+    /// Places the shape's centre at `offset` in the body's frame.
+    pub fn offset(mut self, offset: Vec2) -> Self {
+        self.offset = offset;
+        self
+    }
+
+    /// Turns the shape by `angle` radians in the body's frame.
+    pub fn angle(mut self, angle: Real) -> Self {
+        self.angle = angle;
+        self
+    }
+
+    /// Sets the density.
+    pub fn density(mut self, density: Real) -> Self {
+        self.density = density;
+        self
+    }
+
+    /// Sets the friction coefficient.
+    pub fn friction(mut self, friction: Real) -> Self {
+        self.friction = friction;
+        self
+    }
+
+    /// Sets the restitution.
+    pub fn restitution(mut self, restitution: Real) -> Self {
+        self.restitution = restitution;
+        self
+    }
+
+    /// Checks every value.
+    ///
+    /// # Errors
+    /// A bad shape, a non-finite placement, or a density, friction or restitution that is
+    /// not finite or is negative.
+    pub fn validate(&self) -> Result<(), CaromError> {
+        self.shape.validate()?;
+        check_finite_vec("collider offset", self.offset)?;
+        check_finite("collider angle", self.angle)?;
+        check_non_negative("density", self.density)?;
+        check_non_negative("friction", self.friction)?;
+        check_non_negative("restitution", self.restitution)?;
+        Ok(())
+    }
+}
+
+/// Checks that a coefficient is finite and not negative.
+pub(crate) fn check_non_negative(name: &'static str, value: Real) -> Result<Real, CaromError> {
+    check_finite(name, value)?;
+    if value < 0.0 {
+        return Err(CaromError::OutOfRange {
+            name,
+            expected: "zero or positive",
+            value,
+        });
+    }
+    Ok(value)
+}
+
+/// A shape attached to a body: its geometry, placement in the body's frame and material, and
+/// where it is in the world as of the last step or edit.
+#[derive(Debug, Clone)]
+pub struct Collider {
+    body: BodyHandle,
+    /// Where the body sits in the world's body storage, kept current by the world, so the hot
+    /// loops reach the body without a handle lookup.
+    body_index: u32,
+    shape: Shape,
+    /// Placement in the body's frame; `None` at the origin, unturned (the common case, which
+    /// then costs no transform product).
+    local: Option<Isometry>,
+    density: Real,
+    friction: Real,
+    restitution: Real,
+    world_shape: WorldShape,
+    aabb: Aabb,
+}
+
+impl Collider {
+    /// A collider of `body` (placed by `body_transform`) from a checked definition.
+    pub(crate) fn new(
+        body: BodyHandle,
+        body_index: usize,
+        def: ColliderDef,
+        body_transform: &Isometry,
+    ) -> Self {
+        let local = (def.offset != Vec2::zeros() || def.angle != 0.0)
+            .then(|| Isometry::new(def.offset, def.angle));
+        let world_shape = WorldShape::new(&def.shape, body_transform);
+        let mut collider = Collider {
+            body,
+            body_index: body_index as u32,
+            shape: def.shape,
+            local,
+            density: def.density,
+            friction: def.friction,
+            restitution: def.restitution,
+            aabb: world_shape.aabb(),
+            world_shape,
+        };
+        collider.place(body_transform);
+        collider
+    }
+
+    /// The body it belongs to.
+    #[inline]
+    pub fn body(&self) -> BodyHandle {
+        self.body
+    }
+
+    /// Where its body sits in the world's body storage.
+    #[inline]
+    pub(crate) fn body_index(&self) -> usize {
+        self.body_index as usize
+    }
+
+    /// Notes that its body moved in the world's storage.
+    pub(crate) fn set_body_index(&mut self, index: usize) {
+        self.body_index = index as u32;
+    }
+
+    /// The shape, in its own frame.
+    #[inline]
+    pub fn shape(&self) -> &Shape {
+        &self.shape
+    }
+
+    /// Where the shape sits in the body's frame.
+    pub fn local_transform(&self) -> Isometry {
+        self.local.unwrap_or_else(Isometry::identity)
+    }
+
+    /// Mass per unit area, kg/m².
+    #[inline]
+    pub fn density(&self) -> Real {
+        self.density
+    }
+
+    /// Coulomb friction coefficient.
+    #[inline]
+    pub fn friction(&self) -> Real {
+        self.friction
+    }
+
+    /// Restitution.
+    #[inline]
+    pub fn restitution(&self) -> Real {
+        self.restitution
+    }
+
+    /// The shape in world coordinates, as of the last step or edit.
+    #[inline]
+    pub fn world_shape(&self) -> &WorldShape {
+        &self.world_shape
+    }
+
+    /// The tight world bounding box, as of the last step or edit.
+    #[inline]
+    pub fn aabb(&self) -> Aabb {
+        self.aabb
+    }
+
+    /// Sets the friction coefficient (finite, not negative).
+    pub fn set_friction(&mut self, friction: Real) -> Result<(), CaromError> {
+        self.friction = check_non_negative("friction", friction)?;
+        Ok(())
+    }
+
+    /// Sets the restitution (finite, not negative).
+    pub fn set_restitution(&mut self, restitution: Real) -> Result<(), CaromError> {
+        self.restitution = check_non_negative("restitution", restitution)?;
+        Ok(())
+    }
+
+    /// Sets the density; the world recomputes the body's mass.
+    pub(crate) fn set_density(&mut self, density: Real) {
+        self.density = density;
+    }
+
+    /// True when `world_point`, which is `body_point` in the body's frame, lies inside or on
+    /// the shape.
+    pub(crate) fn contains(&self, world_point: Vec2, body_point: Vec2) -> bool {
+        if !self
+            .aabb
+            .fattened(crate::constants::CONTAINMENT_TOLERANCE)
+            .contains_point(world_point)
+        {
+            return false;
+        }
+        let local = match &self.local {
+            None => body_point,
+            Some(local) => local.inverse_transform_vector(&(body_point - local.translation.vector)),
+        };
+        self.shape.contains_local(local)
+    }
+
+    /// A ray given in the body's frame, cast at the shape.
+    pub(crate) fn ray_cast_body_frame(&self, ray: &Ray) -> Option<RayHit> {
+        match &self.local {
+            None => self.shape.ray_cast_local(ray),
+            Some(local) => {
+                let origin =
+                    local.inverse_transform_vector(&(ray.origin - local.translation.vector));
+                let shape_ray = Ray::new(origin, local.inverse_transform_vector(&ray.translation));
+                let mut hit = self.shape.ray_cast_local(&shape_ray)?;
+                hit.point = local.rotation * hit.point + local.translation.vector;
+                hit.normal = local.rotation * hit.normal;
+                Some(hit)
+            }
+        }
+    }
+
+    /// Mass, centroid (in the body's frame) and inertia about that centroid.
+    pub(crate) fn mass_properties(&self) -> Result<MassProperties, CaromError> {
+        if self.density == 0.0 {
+            self.shape.validate()?;
+            return Ok(MassProperties {
+                mass: 0.0,
+                center: self.local_transform().translation.vector,
+                inertia: 0.0,
+            });
+        }
+        let mut props = self.shape.mass_properties(self.density)?;
+        if let Some(local) = &self.local {
+            props.center = (local * nalgebra::Point2::from(props.center)).coords;
+        }
+        Ok(props)
+    }
+
+    /// The farthest any point of the shape lies from `center` (a point of the body's frame).
+    pub(crate) fn reach_from(&self, center: Vec2) -> Real {
+        let offset = self.local.map_or(Vec2::zeros(), |l| l.translation.vector);
+        if offset == center {
+            self.shape.max_extent()
+        } else {
+            (offset - center).norm() + self.shape.max_extent()
+        }
+    }
+
+    /// Re-places the world shape and box for a body at `body_transform`.
+    pub(crate) fn place(&mut self, body_transform: &Isometry) {
+        match &self.local {
+            None => self.world_shape.update(&self.shape, body_transform),
+            Some(local) => self
+                .world_shape
+                .update(&self.shape, &(body_transform * local)),
+        }
+        self.aabb = self.world_shape.aabb();
+    }
+
+    /// Places the shape into `world_shape` (reusing its memory) for a body at `body_transform`.
+    pub(crate) fn place_shape(&self, world_shape: &mut WorldShape, body_transform: &Isometry) {
+        match &self.local {
+            None => world_shape.update(&self.shape, body_transform),
+            Some(local) => world_shape.update(&self.shape, &(body_transform * local)),
+        }
+    }
+}
+
+/// Places `body`'s colliders where it is; returns the box around them all.
+pub(crate) fn place_colliders(
+    body: &Body,
+    colliders: &mut HandleMap<ColliderHandle, Collider>,
+) -> Aabb {
+    let transform = body.transform();
+    for &handle in body.colliders() {
+        if let Some(collider) = colliders.get_mut(handle) {
+            collider.place(&transform);
+        }
+    }
+    colliders_aabb(body, colliders)
+}
+
+/// The box around all of `body`'s colliders, as placed.
+pub(crate) fn colliders_aabb(body: &Body, colliders: &HandleMap<ColliderHandle, Collider>) -> Aabb {
+    let mut boxes = body
+        .colliders()
+        .iter()
+        .filter_map(|&handle| colliders.get(handle))
+        .map(Collider::aabb);
+    let first = boxes
+        .next()
+        .unwrap_or_else(|| Aabb::new(body.position(), body.position()));
+    boxes.fold(first, |all, aabb| all.union(&aabb))
+}

@@ -1,0 +1,209 @@
+//! Items stored contiguously, addressed by generational handles: bodies, colliders.
+//!
+//! Items live in one dense `Vec` so the hot loops walk memory in order; a slot table maps each
+//! handle to its item's current place. Removal swaps the last item into the hole. A removed
+//! handle never answers again: its slot comes back with a new generation, and a slot whose
+//! generation would wrap is retired.
+
+use crate::error::CaromError;
+
+/// A generational handle: a slot index and the generation the slot had when it was issued.
+pub(crate) trait Handle: Copy + Eq {
+    /// What the handles are for, for error messages ("body").
+    const WHAT: &'static str;
+    /// The handle of `index` at `generation`.
+    fn from_parts(index: u32, generation: u32) -> Self;
+    /// The slot index.
+    fn index(self) -> u32;
+    /// The slot's generation when this handle was issued.
+    fn generation(self) -> u32;
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Slot {
+    generation: u32,
+    /// Index into `items`, or `None` while the slot is free.
+    dense: Option<u32>,
+}
+
+/// Items of type `T` behind handles of type `H`.
+#[derive(Debug, Clone)]
+pub(crate) struct HandleMap<H, T> {
+    items: Vec<T>,
+    /// The handle of each item, in the same order.
+    handles: Vec<H>,
+    slots: Vec<Slot>,
+    free_slots: Vec<u32>,
+}
+
+impl<H, T> Default for HandleMap<H, T> {
+    fn default() -> Self {
+        HandleMap {
+            items: Vec::new(),
+            handles: Vec::new(),
+            slots: Vec::new(),
+            free_slots: Vec::new(),
+        }
+    }
+}
+
+impl<H: Handle, T> HandleMap<H, T> {
+    /// The handle the next insertion will get.
+    pub fn next_handle(&self) -> H {
+        match self.free_slots.last() {
+            Some(&index) => H::from_parts(index, self.slots[index as usize].generation),
+            None => H::from_parts(self.slots.len() as u32, 0),
+        }
+    }
+
+    /// Stores an item made for the handle [`HandleMap::next_handle`] gave; returns the handle.
+    pub fn insert(&mut self, item: T) -> H {
+        let handle = self.next_handle();
+        if handle.index() as usize == self.slots.len() {
+            self.slots.push(Slot {
+                generation: 0,
+                dense: None,
+            });
+        } else {
+            self.free_slots.pop();
+        }
+        self.slots[handle.index() as usize].dense = Some(self.items.len() as u32);
+        self.items.push(item);
+        self.handles.push(handle);
+        handle
+    }
+
+    /// Removes an item and returns it; its handle never refers to anything again. The last
+    /// item moves into its place (see [`HandleMap::dense_index`]).
+    pub fn remove(&mut self, handle: H) -> Option<T> {
+        let dense = self.dense_index(handle)?;
+        let slot = &mut self.slots[handle.index() as usize];
+        slot.dense = None;
+        if let Some(next) = slot.generation.checked_add(1) {
+            slot.generation = next;
+            self.free_slots.push(handle.index());
+        }
+        let item = self.items.swap_remove(dense);
+        self.handles.swap_remove(dense);
+        if let Some(&moved) = self.handles.get(dense) {
+            self.slots[moved.index() as usize].dense = Some(dense as u32);
+        }
+        Some(item)
+    }
+
+    /// Where the handle's item sits in the dense array, if the handle is live.
+    #[inline]
+    pub fn dense_index(&self, handle: H) -> Option<usize> {
+        self.slots
+            .get(handle.index() as usize)
+            .filter(|slot| slot.generation == handle.generation())
+            .and_then(|slot| slot.dense)
+            .map(|dense| dense as usize)
+    }
+
+    /// The dense index, or the error that names a stale handle.
+    pub fn checked_index(&self, handle: H) -> Result<usize, CaromError> {
+        self.dense_index(handle).ok_or(CaromError::StaleHandle {
+            what: H::WHAT,
+            index: handle.index(),
+            generation: handle.generation(),
+        })
+    }
+
+    /// True when the handle refers to a live item.
+    pub fn contains(&self, handle: H) -> bool {
+        self.dense_index(handle).is_some()
+    }
+
+    /// The item, if the handle is live.
+    #[inline]
+    pub fn get(&self, handle: H) -> Option<&T> {
+        self.dense_index(handle).map(|i| &self.items[i])
+    }
+
+    /// The item, mutably, if the handle is live.
+    #[inline]
+    pub fn get_mut(&mut self, handle: H) -> Option<&mut T> {
+        self.dense_index(handle).map(|i| &mut self.items[i])
+    }
+
+    /// Every item, in storage order.
+    #[inline]
+    pub fn as_slice(&self) -> &[T] {
+        &self.items
+    }
+
+    /// Every item, mutably, in storage order.
+    #[inline]
+    pub fn as_mut_slice(&mut self) -> &mut [T] {
+        &mut self.items
+    }
+
+    /// Every item's handle, in storage order.
+    pub fn handles(&self) -> &[H] {
+        &self.handles
+    }
+
+    /// How many items there are.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.items.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    struct Key(u32, u32);
+
+    impl Handle for Key {
+        const WHAT: &'static str = "key";
+        fn from_parts(index: u32, generation: u32) -> Self {
+            Key(index, generation)
+        }
+        fn index(self) -> u32 {
+            self.0
+        }
+        fn generation(self) -> u32 {
+            self.1
+        }
+    }
+
+    #[test]
+    fn removed_handles_never_alias() {
+        let mut map: HandleMap<Key, f32> = HandleMap::default();
+        let a = map.insert(1.0);
+        let b = map.insert(2.0);
+        let c = map.insert(3.0);
+        assert_eq!(map.remove(a), Some(1.0));
+        // `c` was swapped into `a`'s place and is still found.
+        assert_eq!(map.get(c), Some(&3.0));
+        let d = map.insert(4.0);
+        assert_eq!(d.index(), a.index(), "the slot is reused");
+        assert_ne!(d, a, "with a new generation");
+        assert!(map.get(a).is_none());
+        assert!(map.remove(a).is_none());
+        assert!(matches!(
+            map.checked_index(a),
+            Err(CaromError::StaleHandle { .. })
+        ));
+        assert_eq!(map.get(d), Some(&4.0));
+        assert_eq!(map.get(b), Some(&2.0));
+        assert_eq!(map.len(), 3);
+        for (&handle, item) in map.handles().iter().zip(map.as_slice()) {
+            assert_eq!(map.get(handle), Some(item));
+        }
+    }
+
+    #[test]
+    fn exhausted_slots_are_retired() {
+        let mut map: HandleMap<Key, f32> = HandleMap::default();
+        let a = map.insert(0.0);
+        map.slots[0].generation = u32::MAX;
+        map.remove(Key(a.0, u32::MAX)).unwrap();
+        let b = map.insert(1.0);
+        assert_ne!(b.index(), a.index());
+    }
+}
