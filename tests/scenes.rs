@@ -51,6 +51,11 @@ fn semantic_errors_name_the_body_or_event_and_the_reason() {
         ),
         ("scenes/bad_nan.ron", "body 0 (\"lost\")", "finite"),
         (
+            "scenes/bad_no_shape.ron",
+            "body 0 (\"ghost\")",
+            "needs at least one collider",
+        ),
+        (
             "scenes/bad_event.ron",
             "event 0",
             "no body is named \"bal\"",
@@ -91,8 +96,12 @@ fn the_documented_example_is_a_valid_scene() {
     let scene = carom_scene::parse(&readme[start..end], "demos/README.md")
         .unwrap_or_else(|e| panic!("{e}"));
     let mut built = carom_scene::build(&scene, "demos/README.md").unwrap_or_else(|e| panic!("{e}"));
-    // 6 bodies, a stack of 10, a pyramid of 15, a grid of 8, 4 walls, 20 drops, 2 stacks of 3.
-    assert_eq!(built.world.body_count(), 6 + 10 + 15 + 8 + 4 + 20 + 6);
+    // 7 bodies, a stack of 10, a pyramid of 15, a grid of 8, 4 walls, 20 drops, 2 stacks of 3.
+    assert_eq!(built.world.body_count(), 7 + 10 + 15 + 8 + 4 + 20 + 6);
+    // The hammer is one body of two colliders, its head heavier than its handle.
+    let hammer = built.world.body(built.names["hammer"]).unwrap();
+    assert_eq!(hammer.colliders().len(), 2);
+    assert!(hammer.local_center().x > 0.4, "{:?}", hammer.local_center());
     let ball = built.names["ball"];
     for _ in 0..16 {
         built.step().unwrap();

@@ -7,8 +7,9 @@ use crate::scene::{
     SolverName, WorldSpec,
 };
 use carom::{
-    BodyDef, BodyHandle, BodyKind, CaromError, Color, DebugDraw, DrawFlags, DrawOptions, Effect,
-    Effects, Real, Shape, SolverKind, SolverParams, World, WorldSettings, vec2,
+    BodyDef, BodyHandle, BodyKind, CaromError, ColliderDef, Color, DebugDraw, DrawFlags,
+    DrawOptions, Effect, Effects, Real, Shape, SolverKind, SolverParams, World, WorldSettings,
+    vec2,
 };
 use std::collections::HashMap;
 
@@ -229,13 +230,38 @@ fn with_material(def: BodyDef, material: &Material) -> BodyDef {
 }
 
 fn body_def(spec: &BodySpec) -> Result<BodyDef, CaromError> {
-    let def = BodyDef::new(kind(spec.kind), shape(&spec.shape)?)
+    let material = &spec.material;
+    let mut colliders = Vec::with_capacity(spec.colliders.len() + 1);
+    if let Some(first) = &spec.shape {
+        colliders.push(
+            ColliderDef::new(shape(first)?)
+                .density(material.density)
+                .friction(material.friction)
+                .restitution(material.restitution),
+        );
+    }
+    for part in &spec.colliders {
+        colliders.push(
+            ColliderDef::new(shape(&part.shape)?)
+                .offset(vec2(part.offset.0, part.offset.1))
+                .angle(part.angle)
+                .density(part.density.unwrap_or(material.density))
+                .friction(part.friction.unwrap_or(material.friction))
+                .restitution(part.restitution.unwrap_or(material.restitution)),
+        );
+    }
+    let Some(first) = colliders.first() else {
+        return Err(CaromError::NoCollider);
+    };
+    let mut def = BodyDef::new(kind(spec.kind), first.shape.clone())
         .position(vec2(spec.position.0, spec.position.1))
         .angle(spec.angle)
         .linear_velocity(vec2(spec.linear_velocity.0, spec.linear_velocity.1))
         .angular_velocity(spec.angular_velocity)
+        .damping(material.damping.0, material.damping.1)
         .bullet(spec.bullet);
-    Ok(with_material(def, &spec.material))
+    def.colliders = colliders;
+    Ok(def)
 }
 
 fn generator_name(generator: &Generator) -> &'static str {

@@ -4,9 +4,12 @@ use crate::error::SceneError;
 use crate::scene::Scene;
 use std::path::Path;
 
-/// Parses a scene from text; `file` names it in error messages.
+/// Parses a scene from text; `file` names it in error messages. Optional values may be written
+/// bare (`shape: Circle(radius: 0.5)`) or as `Some(...)`.
 pub fn parse(text: &str, file: &str) -> Result<Scene, SceneError> {
-    ron::from_str(text).map_err(|e| SceneError::Syntax {
+    let options =
+        ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+    options.from_str(text).map_err(|e| SceneError::Syntax {
         file: file.to_string(),
         line: e.span.start.line,
         column: e.span.start.col,

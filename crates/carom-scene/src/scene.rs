@@ -330,8 +330,12 @@ pub struct BodySpec {
     /// How it moves.
     #[serde(default)]
     pub kind: KindName,
-    /// Its shape.
-    pub shape: ShapeSpec,
+    /// Its shape, at its origin. A body needs a `shape`, `colliders`, or both.
+    #[serde(default)]
+    pub shape: Option<ShapeSpec>,
+    /// More shapes, each placed in the body's frame.
+    #[serde(default)]
+    pub colliders: Vec<ColliderSpec>,
     /// Where its centroid starts, m.
     #[serde(default)]
     pub position: Pair,
@@ -350,6 +354,29 @@ pub struct BodySpec {
     /// Swept against moving bodies too.
     #[serde(default)]
     pub bullet: bool,
+}
+
+/// One more shape of a body, placed in its frame; its material is the body's unless given.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ColliderSpec {
+    /// The shape.
+    pub shape: ShapeSpec,
+    /// Where its centroid sits in the body's frame, m.
+    #[serde(default)]
+    pub offset: Pair,
+    /// How it is turned in the body's frame, rad.
+    #[serde(default)]
+    pub angle: f32,
+    /// kg/m²; the body's if not given.
+    #[serde(default)]
+    pub density: Option<f32>,
+    /// Coulomb coefficient; the body's if not given.
+    #[serde(default)]
+    pub friction: Option<f32>,
+    /// Bounciness; the body's if not given.
+    #[serde(default)]
+    pub restitution: Option<f32>,
 }
 
 /// Bodies made in bulk.
