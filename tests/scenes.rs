@@ -196,3 +196,53 @@ proptest::proptest! {
         }
     }
 }
+
+#[test]
+fn definitions_and_settings_survive_a_round_trip_through_ron() {
+    use carom::{BodyDef, ColliderDef, Effect, Effects, Shape, SolverKind, SolverParams, vec2};
+    let body = BodyDef::dynamic(Shape::rect(1.0, 0.25))
+        .position(vec2(1.0, 2.0))
+        .angle(0.5)
+        .collider(
+            ColliderDef::new(
+                Shape::polygon(&[vec2(0.0, 0.0), vec2(1.0, 0.0), vec2(0.0, 1.0)]).unwrap(),
+            )
+            .offset(vec2(-0.75, 1.0))
+            .friction(0.2),
+        )
+        .collider(ColliderDef::new(Shape::circle(0.3)).density(4.0));
+    let text = ron::to_string(&body).unwrap();
+    let back: BodyDef = ron::from_str(&text).unwrap();
+    // Everything comes back; a polygon is centred on its centroid again, to rounding.
+    assert_eq!(ron::to_string(&back).unwrap(), text);
+    assert_eq!(back.colliders.len(), 3);
+    for (read, written) in back.colliders.iter().zip(&body.colliders) {
+        let (Shape::Polygon(a), Shape::Polygon(b)) = (&read.shape, &written.shape) else {
+            assert_eq!(read, written);
+            continue;
+        };
+        for (p, q) in a.vertices().iter().zip(b.vertices()) {
+            assert!((p - q).norm() < 1e-6, "{p:?} vs {q:?}");
+        }
+        assert_eq!(
+            (read.offset, read.friction),
+            (written.offset, written.friction)
+        );
+    }
+    assert_eq!((back.position, back.angle), (body.position, body.angle));
+    let settings = carom::WorldSettings {
+        solver: SolverParams::for_kind(SolverKind::SequentialImpulse),
+        effects: Effects::ALL.switched(Effect::Sleeping, false),
+        ..carom::WorldSettings::default()
+    };
+    let text = ron::to_string(&settings).unwrap();
+    let back: carom::WorldSettings = ron::from_str(&text).unwrap();
+    assert_eq!(back, settings, "{text}");
+    // Written by hand, with defaults left out; a bad shape is refused when read.
+    let minimal: BodyDef =
+        ron::from_str("(kind: kinematic, colliders: [(shape: circle(radius: 0.5))])").unwrap();
+    assert_eq!(minimal, BodyDef::kinematic(Shape::circle(0.5)));
+    let bad =
+        ron::from_str::<BodyDef>("(kind: dynamic, colliders: [(shape: circle(radius: -1.0))])");
+    assert!(bad.unwrap_err().to_string().contains("radius"));
+}

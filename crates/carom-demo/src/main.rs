@@ -10,7 +10,7 @@ use carom_demo::bench::{SweepOptions, sweep_to_folder};
 use carom_demo::run::{RunOptions, run};
 use carom_demo::snapshot::{self, SnapshotOptions, parse_size};
 use carom_demo::window::{self, WindowOptions};
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -43,9 +43,10 @@ enum Command {
         /// How many steps.
         #[arg(long, default_value_t = 600)]
         steps: usize,
-        /// Replace the scene's solver.
-        #[arg(long, value_enum)]
-        solver: Option<SolverArg>,
+        /// Replace the scene's solver: push-out, tutorial-impulse, sequential-impulse or
+        /// soft-step.
+        #[arg(long, value_parser = solver_kind)]
+        solver: Option<SolverKind>,
         /// Velocity iterations (1 to 64).
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..=64))]
         iterations: Option<u32>,
@@ -74,8 +75,8 @@ enum Command {
         #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
         runs: u32,
         /// Solvers, comma separated (default: all).
-        #[arg(long, value_enum, value_delimiter = ',')]
-        solvers: Option<Vec<SolverArg>>,
+        #[arg(long, value_delimiter = ',', value_parser = solver_kind)]
+        solvers: Option<Vec<SolverKind>>,
         /// Iteration counts, comma separated (default: 1,2,4,8,16,32,64).
         #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=64))]
         iterations: Option<Vec<u32>>,
@@ -116,24 +117,15 @@ fn parse_draw_changes(text: &str) -> Result<DrawChanges, String> {
     snapshot::parse_draw_changes(text).map(DrawChanges)
 }
 
-/// The solvers, as the command line names them.
-#[derive(Debug, Clone, Copy, ValueEnum)]
-enum SolverArg {
-    PushOut,
-    TutorialImpulse,
-    SequentialImpulse,
-    SoftStep,
-}
-
-impl From<SolverArg> for SolverKind {
-    fn from(arg: SolverArg) -> Self {
-        match arg {
-            SolverArg::PushOut => SolverKind::PushOut,
-            SolverArg::TutorialImpulse => SolverKind::TutorialImpulse,
-            SolverArg::SequentialImpulse => SolverKind::SequentialImpulse,
-            SolverArg::SoftStep => SolverKind::SoftStep,
-        }
-    }
+/// A solver from its name on the command line (`soft-step` or `soft_step`).
+fn solver_kind(text: &str) -> Result<SolverKind, String> {
+    SolverKind::from_id(&text.replace('-', "_")).ok_or_else(|| {
+        let names: Vec<String> = SolverKind::ALL
+            .iter()
+            .map(|kind| kind.id().replace('_', "-"))
+            .collect();
+        format!("unknown solver {text:?}; one of {}", names.join(", "))
+    })
 }
 
 /// Effects to switch on (`true`) and off, in order.
@@ -191,7 +183,7 @@ fn main() -> ExitCode {
         }) => {
             let options = RunOptions {
                 steps,
-                solver: solver.map(SolverKind::from),
+                solver,
                 iterations,
                 substeps,
                 effects: effects.map(|changes| changes.0).unwrap_or_default(),
@@ -229,9 +221,7 @@ fn main() -> ExitCode {
                     scenes
                 },
                 runs: runs as usize,
-                solvers: solvers.map_or(defaults.solvers, |s| {
-                    s.into_iter().map(SolverKind::from).collect()
-                }),
+                solvers: solvers.unwrap_or(defaults.solvers),
                 iterations: iterations.unwrap_or(defaults.iterations),
                 substeps: substeps.unwrap_or(defaults.substeps),
                 seconds,

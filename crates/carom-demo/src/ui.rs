@@ -8,14 +8,6 @@ use egui_plot::{Legend, Line, Plot, PlotPoints};
 /// Sidebar width, points.
 pub const SIDEBAR_WIDTH: f32 = 300.0;
 
-/// The solvers in menu order, with their labels.
-const SOLVERS: [(SolverKind, &str); 4] = [
-    (SolverKind::PushOut, "Push-out (tutorial, no impulses)"),
-    (SolverKind::TutorialImpulse, "Tutorial impulse"),
-    (SolverKind::SequentialImpulse, "Sequential impulse"),
-    (SolverKind::SoftStep, "Soft step (Box2D v3)"),
-];
-
 /// Draws the sidebar and applies what the user changed. Errors (a scene that fails to load)
 /// come back as text for the sidebar to show.
 pub fn sidebar(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>) {
@@ -106,8 +98,10 @@ fn solver_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>
             .selected_text(label_of(params.kind))
             .width(SIDEBAR_WIDTH - 30.0)
             .show_ui(ui, |ui| {
-                for (kind, label) in SOLVERS {
-                    if ui.selectable_label(params.kind == kind, label).clicked()
+                for kind in SolverKind::ALL {
+                    if ui
+                        .selectable_label(params.kind == kind, label_of(kind))
+                        .clicked()
                         && kind != params.kind
                     {
                         // Each solver starts from its own defaults (iterations differ).
@@ -154,11 +148,12 @@ fn solver_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>
     }
 }
 
-fn label_of(kind: SolverKind) -> &'static str {
-    SOLVERS
-        .iter()
-        .find(|(k, _)| *k == kind)
-        .map_or("?", |(_, label)| label)
+/// A solver's name as a menu shows it: capitalised.
+fn label_of(kind: SolverKind) -> String {
+    let name = kind.name();
+    let mut label = name[..1].to_uppercase();
+    label.push_str(&name[1..]);
+    label
 }
 
 fn effects_section(ui: &mut egui::Ui, demo: &mut Demo) {

@@ -2,14 +2,10 @@
 
 use crate::error::SceneError;
 use crate::events::Events;
-use crate::scene::{
-    Accuracy, BodySpec, Camera, EffectName, Generator, KindName, Material, Scene, ShapeSpec,
-    SolverName, WorldSpec,
-};
+use crate::scene::{Accuracy, BodySpec, Camera, Generator, Material, Scene, ShapeSpec, WorldSpec};
 use carom::{
-    BodyDef, BodyHandle, BodyKind, CaromError, ColliderDef, Color, DebugDraw, DrawFlags,
-    DrawOptions, Effect, Effects, Real, Shape, SolverKind, SolverParams, World, WorldSettings,
-    vec2,
+    BodyDef, BodyHandle, CaromError, ColliderDef, Color, DebugDraw, DrawFlags, DrawOptions,
+    Effects, Real, Shape, SolverParams, World, WorldSettings, vec2,
 };
 use std::collections::HashMap;
 
@@ -68,7 +64,7 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
         what,
         reason,
     };
-    let settings = world_settings(&scene.world, &scene.effects)
+    let settings = world_settings(&scene.world, scene.effects)
         .map_err(|e| invalid("world".into(), e.to_string()))?;
     let time_step = scene.world.time_step;
     if !(time_step.is_finite() && time_step > 0.0) {
@@ -125,10 +121,7 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
         names,
         colors,
         camera: scene.camera,
-        draw: scene
-            .draw
-            .iter()
-            .fold(DrawFlags::NONE, |flags, name| flags | name.flag()),
+        draw: scene.draw,
         accuracy: scene.accuracy.clone(),
         events,
     })
@@ -163,14 +156,8 @@ fn check_accuracy(accuracy: &Accuracy, names: &HashMap<String, BodyHandle>) -> R
     }
 }
 
-fn world_settings(spec: &WorldSpec, effects: &[EffectName]) -> Result<WorldSettings, CaromError> {
-    let kind = match spec.solver {
-        SolverName::PushOut => SolverKind::PushOut,
-        SolverName::TutorialImpulse => SolverKind::TutorialImpulse,
-        SolverName::SequentialImpulse => SolverKind::SequentialImpulse,
-        SolverName::SoftStep => SolverKind::SoftStep,
-    };
-    let mut solver = SolverParams::for_kind(kind);
+fn world_settings(spec: &WorldSpec, effects: Effects) -> Result<WorldSettings, CaromError> {
+    let mut solver = SolverParams::for_kind(spec.solver);
     solver.iterations = spec.iterations.unwrap_or(solver.iterations);
     solver.substeps = spec.substeps.unwrap_or(solver.substeps);
     solver.warm_starting = spec.warm_starting.unwrap_or(solver.warm_starting);
@@ -178,30 +165,12 @@ fn world_settings(spec: &WorldSpec, effects: &[EffectName]) -> Result<WorldSetti
     solver.damping_ratio = spec.damping_ratio.unwrap_or(solver.damping_ratio);
     solver.max_push_speed = spec.max_push_speed.unwrap_or(solver.max_push_speed);
     solver.validate()?;
-    let effects = effects.iter().fold(Effects::NONE, |set, name| {
-        set.with(match name {
-            EffectName::Gravity => Effect::Gravity,
-            EffectName::Drag => Effect::Drag,
-            EffectName::Friction => Effect::Friction,
-            EffectName::Restitution => Effect::Restitution,
-            EffectName::Continuous => Effect::Continuous,
-            EffectName::Sleeping => Effect::Sleeping,
-        })
-    });
     Ok(WorldSettings {
         gravity: vec2(spec.gravity.0, spec.gravity.1),
         solver,
         effects,
         ..WorldSettings::default()
     })
-}
-
-fn kind(name: KindName) -> BodyKind {
-    match name {
-        KindName::Static => BodyKind::Static,
-        KindName::Kinematic => BodyKind::Kinematic,
-        KindName::Dynamic => BodyKind::Dynamic,
-    }
 }
 
 fn shape(spec: &ShapeSpec) -> Result<Shape, CaromError> {
@@ -253,7 +222,7 @@ fn body_def(spec: &BodySpec) -> Result<BodyDef, CaromError> {
     let Some(first) = colliders.first() else {
         return Err(CaromError::NoCollider);
     };
-    let mut def = BodyDef::new(kind(spec.kind), first.shape.clone())
+    let mut def = BodyDef::new(spec.kind, first.shape.clone())
         .position(vec2(spec.position.0, spec.position.1))
         .angle(spec.angle)
         .linear_velocity(vec2(spec.linear_velocity.0, spec.linear_velocity.1))
@@ -343,7 +312,7 @@ fn generate(generator: &Generator) -> Result<(Vec<BodyDef>, Material), String> {
                         origin.1 + row as f32 * spacing.1,
                     );
                     defs.push(with_material(
-                        BodyDef::new(kind(*kind_name), shape.clone()).position(at),
+                        BodyDef::new(*kind_name, shape.clone()).position(at),
                         material,
                     ));
                 }

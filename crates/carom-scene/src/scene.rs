@@ -1,5 +1,6 @@
 //! The scene format: what a RON file in `demos/` holds. Every field but `name` has a default.
 
+use carom::{BodyKind, DrawFlags, Effects, SolverKind};
 use serde::{Deserialize, Serialize};
 
 /// A 2D vector written `(x, y)`.
@@ -22,7 +23,7 @@ pub struct Scene {
     pub world: WorldSpec,
     /// The effects simulated; anything not named is not computed. Default: all.
     #[serde(default = "all_effects")]
-    pub effects: Vec<EffectName>,
+    pub effects: Effects,
     /// Bodies listed one by one.
     #[serde(default)]
     pub bodies: Vec<BodySpec>,
@@ -34,7 +35,7 @@ pub struct Scene {
     pub events: Vec<EventSpec>,
     /// What the demo and snapshots draw at first. Default: shapes, sleeping bodies dimmed.
     #[serde(default = "default_draw")]
-    pub draw: Vec<DrawName>,
+    pub draw: DrawFlags,
     /// How `carom bench` measures this scene's error against the exact answer. Default: no
     /// exact answer; the bench reports the deepest overlap.
     #[serde(default)]
@@ -77,61 +78,17 @@ pub enum Accuracy {
     },
 }
 
-fn default_draw() -> Vec<DrawName> {
-    vec![DrawName::Shapes, DrawName::Sleeping]
+/// Bodies are dynamic unless a scene says otherwise.
+fn dynamic() -> BodyKind {
+    BodyKind::Dynamic
 }
 
-/// The debug-draw layers, as scene files name them (see `carom::DrawFlags`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum DrawName {
-    /// Bodies' shapes.
-    Shapes,
-    /// Polygon edge normals.
-    EdgeNormals,
-    /// Bounding boxes.
-    Aabbs,
-    /// Contact points.
-    ContactPoints,
-    /// Contact normals.
-    ContactNormals,
-    /// Reference and incident edges.
-    ContactEdges,
-    /// Centres of mass.
-    CentersOfMass,
-    /// Velocity arrows.
-    Velocities,
-    /// Sleeping bodies dimmed.
-    Sleeping,
+fn default_draw() -> DrawFlags {
+    DrawFlags::SHAPES | DrawFlags::SLEEPING
 }
 
-impl DrawName {
-    /// The core's flag for this layer.
-    pub fn flag(self) -> carom::DrawFlags {
-        use carom::DrawFlags as F;
-        match self {
-            DrawName::Shapes => F::SHAPES,
-            DrawName::EdgeNormals => F::EDGE_NORMALS,
-            DrawName::Aabbs => F::AABBS,
-            DrawName::ContactPoints => F::CONTACT_POINTS,
-            DrawName::ContactNormals => F::CONTACT_NORMALS,
-            DrawName::ContactEdges => F::CONTACT_EDGES,
-            DrawName::CentersOfMass => F::CENTERS_OF_MASS,
-            DrawName::Velocities => F::VELOCITIES,
-            DrawName::Sleeping => F::SLEEPING,
-        }
-    }
-}
-
-fn all_effects() -> Vec<EffectName> {
-    vec![
-        EffectName::Gravity,
-        EffectName::Drag,
-        EffectName::Friction,
-        EffectName::Restitution,
-        EffectName::Continuous,
-        EffectName::Sleeping,
-    ]
+fn all_effects() -> Effects {
+    Effects::ALL
 }
 
 /// Where the camera looks and how close.
@@ -171,39 +128,6 @@ impl Default for Camera {
     }
 }
 
-/// The solvers, as scene files name them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum SolverName {
-    /// The tutorial without impulses.
-    PushOut,
-    /// The tutorial's impulses.
-    TutorialImpulse,
-    /// Catto's sequential impulses.
-    SequentialImpulse,
-    /// Box2D v3's soft step.
-    #[default]
-    SoftStep,
-}
-
-/// The effects, as scene files name them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum EffectName {
-    /// Gravity.
-    Gravity,
-    /// Air drag.
-    Drag,
-    /// Coulomb friction.
-    Friction,
-    /// Bounces.
-    Restitution,
-    /// No tunnelling.
-    Continuous,
-    /// Resting islands sleep.
-    Sleeping,
-}
-
 /// World settings; unset solver fields take the solver's defaults.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -213,7 +137,7 @@ pub struct WorldSpec {
     /// Seconds per step.
     pub time_step: f32,
     /// The contact solver.
-    pub solver: SolverName,
+    pub solver: SolverKind,
     /// Velocity iterations.
     pub iterations: Option<u32>,
     /// Substeps (soft step).
@@ -233,7 +157,7 @@ impl Default for WorldSpec {
         WorldSpec {
             gravity: (0.0, -10.0),
             time_step: 1.0 / 60.0,
-            solver: SolverName::default(),
+            solver: SolverKind::default(),
             iterations: None,
             substeps: None,
             warm_starting: None,
@@ -242,19 +166,6 @@ impl Default for WorldSpec {
             max_push_speed: None,
         }
     }
-}
-
-/// How a body moves.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum KindName {
-    /// Never moves.
-    Static,
-    /// Moves at its given velocity.
-    Kinematic,
-    /// Moves under forces and contacts.
-    #[default]
-    Dynamic,
 }
 
 /// A shape, in the body's frame.
@@ -328,8 +239,8 @@ pub struct BodySpec {
     #[serde(default)]
     pub name: Option<String>,
     /// How it moves.
-    #[serde(default)]
-    pub kind: KindName,
+    #[serde(default = "dynamic")]
+    pub kind: BodyKind,
     /// Its shape, at its origin. A body needs a `shape`, `colliders`, or both.
     #[serde(default)]
     pub shape: Option<ShapeSpec>,
@@ -433,8 +344,8 @@ pub enum Generator {
         /// The shape of each.
         shape: ShapeSpec,
         /// Their kind.
-        #[serde(default)]
-        kind: KindName,
+        #[serde(default = "dynamic")]
+        kind: BodyKind,
         /// Their material.
         #[serde(default)]
         material: Material,

@@ -39,6 +39,8 @@ mod geometry;
 mod handle_map;
 mod math;
 mod parallel;
+#[cfg(feature = "serde")]
+mod serde_impls;
 mod solver;
 mod stats;
 mod world;

@@ -16,6 +16,8 @@ use crate::math::{Isometry, Mat3, Real, Rot, Vec2, cross, cross_sv};
 
 /// How a body moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum BodyKind {
     /// Never moves; infinite mass. Floors and walls.
     Static,
@@ -74,28 +76,39 @@ impl Handle for BodyHandle {
 ///
 /// Values are checked when the body is added to a world.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct BodyDef {
     /// How the body moves.
     pub kind: BodyKind,
     /// What it is made of: one collider or more, each a shape with its placement and material.
     pub colliders: Vec<ColliderDef>,
     /// World position of the body's origin.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub position: Vec2,
     /// Rotation in radians, counter-clockwise.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub angle: Real,
     /// Linear velocity in m/s.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub linear_velocity: Vec2,
     /// Angular velocity in rad/s, counter-clockwise.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub angular_velocity: Real,
     /// Multiplies the world's gravity for this body.
+    #[cfg_attr(feature = "serde", serde(default = "crate::dynamics::collider::one"))]
     pub gravity_scale: Real,
     /// Linear drag coefficient, 1/s.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub linear_damping: Real,
     /// Angular drag coefficient, 1/s.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub angular_damping: Real,
     /// Fast body that must not pass through other moving bodies either.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub bullet: bool,
     /// Free for the user (an id into game data, a colour...).
+    #[cfg_attr(feature = "serde", serde(default))]
     pub user_tag: u64,
 }
 

@@ -59,19 +59,41 @@ impl Handle for ColliderHandle {
 /// Everything needed to attach a collider to a body; build one with [`ColliderDef::new`] and
 /// the chained setters. Values are checked when it is added to a world.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct ColliderDef {
     /// The shape, centred on its own centroid.
     pub shape: Shape,
     /// Where the shape's centre sits in the body's frame.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub offset: Vec2,
     /// How the shape is turned in the body's frame, radians.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub angle: Real,
     /// Mass per unit area, kg/m² (zero adds no mass). A dynamic body needs some mass.
+    #[cfg_attr(feature = "serde", serde(default = "one"))]
     pub density: Real,
     /// Coulomb friction coefficient (0 is ice).
+    #[cfg_attr(feature = "serde", serde(default = "default_friction"))]
     pub friction: Real,
     /// Bounciness: 0 does not bounce, 1 bounces back at the speed it came.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub restitution: Real,
+}
+
+/// The default friction coefficient.
+pub(crate) const DEFAULT_FRICTION: Real = 0.6;
+
+/// 1, the default density and gravity scale (for serde's defaults).
+#[cfg(feature = "serde")]
+pub(crate) fn one() -> Real {
+    1.0
+}
+
+/// [`DEFAULT_FRICTION`], for serde's defaults.
+#[cfg(feature = "serde")]
+fn default_friction() -> Real {
+    DEFAULT_FRICTION
 }
 
 impl ColliderDef {
@@ -83,7 +105,7 @@ impl ColliderDef {
             offset: Vec2::zeros(),
             angle: 0.0,
             density: 1.0,
-            friction: 0.6,
+            friction: DEFAULT_FRICTION,
             restitution: 0.0,
         }
     }

@@ -4,6 +4,8 @@ use crate::math::{Real, Vec2, clamp_magnitude};
 
 /// Which law slows bodies down, using each body's linear and angular drag coefficients.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum DragModel {
     /// Exponential damping, `v *= 1 / (1 + dt c)`: unconditionally stable for any step and
     /// coefficient, and the same law Box2D uses. The default.

@@ -31,8 +31,11 @@ use crate::math::{Real, Vec2};
 use crate::parallel::{for_each_with, map_into};
 use crate::stats::Work;
 
-/// Which contact solver runs.
+/// Which contact solver runs. Scene files and the command line name it in snake case
+/// ([`SolverKind::id`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum SolverKind {
     /// Moves overlapping bodies apart along the contact normal in proportion to their inverse
     /// masses and removes their approaching velocity. No impulses: stacks sink and jitter,
@@ -69,6 +72,22 @@ impl SolverKind {
         }
     }
 
+    /// Its name in scene files and on the command line: `push_out`, `tutorial_impulse`,
+    /// `sequential_impulse`, `soft_step`.
+    pub fn id(self) -> &'static str {
+        match self {
+            SolverKind::PushOut => "push_out",
+            SolverKind::TutorialImpulse => "tutorial_impulse",
+            SolverKind::SequentialImpulse => "sequential_impulse",
+            SolverKind::SoftStep => "soft_step",
+        }
+    }
+
+    /// The solver with this [`SolverKind::id`], if there is one.
+    pub fn from_id(id: &str) -> Option<SolverKind> {
+        SolverKind::ALL.into_iter().find(|kind| kind.id() == id)
+    }
+
     /// True for the solvers that divide the step into substeps.
     pub fn has_substeps(self) -> bool {
         self == SolverKind::SoftStep
@@ -77,6 +96,8 @@ impl SolverKind {
 
 /// Solver settings. The defaults are Box2D v3's.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct SolverParams {
     /// The impulse solver used while [`SolverParams::impulse_resolution`] is on.
     pub kind: SolverKind,

@@ -2,6 +2,8 @@
 
 /// One optional part of the simulation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Effect {
     /// Gravity accelerates dynamic bodies.
     Gravity,

@@ -8,6 +8,8 @@ use crate::world::effects::Effects;
 
 /// World-wide settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct WorldSettings {
     /// Gravitational acceleration, m/s². Default `(0, -10)`, as in Box2D.
     pub gravity: Vec2,
