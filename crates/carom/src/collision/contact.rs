@@ -152,11 +152,14 @@ fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
     (low.index() as u64) << 32 | high.index() as u64
 }
 
-/// The contacts of a world, stored contiguously, with a lookup by pair.
+/// The contacts of a world, stored contiguously, with a lookup by pair and each body's list.
 #[derive(Debug, Clone, Default)]
 pub struct ContactSet {
     contacts: Vec<Contact>,
     lookup: HashMap<u64, usize, BuildHasherDefault<PairHasher>>,
+    /// Each body's contacts, by the body's slot index, as pair keys: removing a body or a
+    /// collider visits its own contacts only.
+    edges: Vec<Vec<u64>>,
     events: Vec<ContactEvent>,
     /// Events raised between steps (removing a body), reported after the next step.
     pending: Vec<ContactEvent>,
@@ -200,6 +203,13 @@ impl ContactSet {
             return;
         }
         self.lookup.insert(key, self.contacts.len());
+        for body in [a.1.body(), b.1.body()] {
+            let slot = body.index() as usize;
+            if self.edges.len() <= slot {
+                self.edges.resize_with(slot + 1, Vec::new);
+            }
+            self.edges[slot].push(key);
+        }
         self.contacts.push(Contact {
             collider_a: a.0,
             collider_b: b.0,
@@ -216,8 +226,14 @@ impl ContactSet {
     /// Drops the contact at `index`, ending it if it touched.
     fn destroy(&mut self, index: usize, events_now: bool) {
         let contact = self.contacts.swap_remove(index);
-        self.lookup
-            .remove(&pair_key(contact.collider_a, contact.collider_b));
+        let key = pair_key(contact.collider_a, contact.collider_b);
+        self.lookup.remove(&key);
+        for body in [contact.body_a, contact.body_b] {
+            let edges = &mut self.edges[body.index() as usize];
+            if let Some(at) = edges.iter().position(|&k| k == key) {
+                edges.swap_remove(at);
+            }
+        }
         if let Some(moved) = self.contacts.get(index) {
             self.lookup
                 .insert(pair_key(moved.collider_a, moved.collider_b), index);
@@ -232,27 +248,30 @@ impl ContactSet {
         }
     }
 
-    /// Drops every contact of a collider that is being removed.
-    pub(crate) fn remove_collider(&mut self, handle: ColliderHandle) {
-        let mut index = self.contacts.len();
-        while index > 0 {
-            index -= 1;
-            let c = &self.contacts[index];
-            if c.collider_a == handle || c.collider_b == handle {
-                self.destroy(index, false);
-            }
-        }
+    /// Drops every contact of a collider (of `body`) that is being removed.
+    pub(crate) fn remove_collider(&mut self, body: BodyHandle, handle: ColliderHandle) {
+        self.destroy_where(body, |c| c.collider_a == handle || c.collider_b == handle);
     }
 
     /// Drops every contact of a body that is being removed.
     pub(crate) fn remove_body(&mut self, handle: BodyHandle) {
-        let mut index = self.contacts.len();
-        while index > 0 {
-            index -= 1;
-            let c = &self.contacts[index];
-            if c.body_a == handle || c.body_b == handle {
-                self.destroy(index, false);
-            }
+        self.destroy_where(handle, |_| true);
+    }
+
+    /// Drops the contacts of `body` that `doomed` picks, from the last stored to the first
+    /// (each removal moves the last contact into the hole, so no other index changes).
+    fn destroy_where(&mut self, body: BodyHandle, doomed: impl Fn(&Contact) -> bool) {
+        let Some(edges) = self.edges.get(body.index() as usize) else {
+            return;
+        };
+        let mut indices: Vec<usize> = edges
+            .iter()
+            .map(|key| self.lookup[key])
+            .filter(|&index| doomed(&self.contacts[index]))
+            .collect();
+        indices.sort_unstable_by(|a, b| b.cmp(a));
+        for index in indices {
+            self.destroy(index, false);
         }
     }
 

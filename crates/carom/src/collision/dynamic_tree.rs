@@ -264,7 +264,7 @@ impl DynamicTree {
         } else {
             self.replace_child(grandparent, parent, sibling);
             self.nodes[sibling as usize].parent = grandparent;
-            self.refit_upwards(grandparent);
+            self.shrink_upwards(grandparent);
         }
     }
 
@@ -358,6 +358,28 @@ impl DynamicTree {
             node.aabb = aabb;
             self.rotate(index);
             index = self.nodes[index as usize].parent;
+        }
+    }
+
+    /// Refits the ancestors of a removed leaf, from `index` up, until one keeps its box and
+    /// height (then so do all above it). No rotations, as Box2D v3 removes: the tree is
+    /// rebalanced where leaves go in, and a removal then costs a few nodes, not the path to the
+    /// root.
+    fn shrink_upwards(&mut self, mut index: u32) {
+        while index != NULL {
+            let node = &self.nodes[index as usize];
+            let (c1, c2) = (
+                &self.nodes[node.child1 as usize],
+                &self.nodes[node.child2 as usize],
+            );
+            let (height, aabb) = (1 + c1.height.max(c2.height), c1.aabb.union(&c2.aabb));
+            let node = &mut self.nodes[index as usize];
+            if node.height == height && node.aabb == aabb {
+                return;
+            }
+            node.height = height;
+            node.aabb = aabb;
+            index = node.parent;
         }
     }
 

@@ -302,7 +302,7 @@ impl World {
         updated.rebuild_mass(remaining.into_iter())?;
         updated.wake_up();
         *self.bodies.get_mut(body).expect("live") = updated;
-        self.contacts.remove_collider(handle);
+        self.contacts.remove_collider(body, handle);
         self.broadphase.remove(handle);
         let removed = self.colliders.remove(handle).expect("checked");
         self.place_colliders_of(body);
@@ -997,6 +997,55 @@ mod tests {
         let v = world.body(ball).unwrap().linear_velocity();
         assert!((v.x + 3.0).abs() < 0.05, "bounced back at {v:?}");
         assert_eq!(world.contacts().len(), 0, "the pair is dropped once apart");
+    }
+
+    #[test]
+    fn removing_bodies_drops_exactly_their_contacts() {
+        let mut world = World::new();
+        world
+            .add_body(BodyDef::static_body(Shape::rect(10.0, 0.5)).position(vec2(0.0, -0.5)))
+            .unwrap();
+        let mut bodies = Vec::new();
+        for i in 0..120 {
+            let (x, y) = ((i % 12) as Real * 0.9 - 5.0, (i / 12) as Real * 0.9 + 0.5);
+            let shape = if i % 2 == 0 {
+                Shape::circle(0.45)
+            } else {
+                Shape::rect(0.4, 0.4)
+            };
+            bodies.push(
+                world
+                    .add_body(BodyDef::dynamic(shape).position(vec2(x, y)))
+                    .unwrap(),
+            );
+        }
+        for _ in 0..30 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        let doomed: Vec<BodyHandle> = bodies.iter().copied().step_by(3).collect();
+        let of_doomed = |c: &Contact| doomed.contains(&c.body_a()) || doomed.contains(&c.body_b());
+        let kept = world.contacts().filter(|c| !of_doomed(c)).count();
+        assert!(
+            world.contacts().len() > kept + 40,
+            "the doomed bodies have contacts"
+        );
+        for &handle in &doomed {
+            world.remove_body(handle).unwrap();
+        }
+        assert_eq!(world.contacts().len(), kept);
+        assert!(
+            world
+                .contacts()
+                .all(|c| world.contains(c.body_a()) && world.contains(c.body_b()))
+        );
+        for _ in 0..30 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        assert!(
+            world
+                .contacts()
+                .all(|c| world.contains(c.body_a()) && world.contains(c.body_b()))
+        );
     }
 
     #[test]
