@@ -9,7 +9,8 @@
 //! | carom | Box2D | exact? |
 //! |---|---|---|
 //! | `BodyKind::Static` / `Kinematic` / `Dynamic` | `b2_staticBody` / `b2_kinematicBody` / `b2_dynamicBody` | yes |
-//! | position (the centre of mass), angle | body `position`, `rotation` | yes: carom shapes are centred on their centroid, so the body origin is the centre of mass in both |
+//! | position (the body's origin), angle | body `position`, `rotation` | yes: both place a body by its origin and find the centre of mass from its shapes |
+//! | each collider: shape, offset and angle, density, friction, restitution | one shape per collider, its vertices (or centre) moved into the body's frame | yes |
 //! | linear and angular velocity | `linearVelocity`, `angularVelocity` | yes (not set on static bodies) |
 //! | `gravity_scale` | `gravityScale` | yes |
 //! | gravity (zero when the `Gravity` effect is off) | world `gravity` | yes |

@@ -23,7 +23,7 @@
 //! | `Shape::Circle` | `ColliderBuilder::ball(radius)` | yes |
 //! | `Shape::Polygon`, an axis-aligned rectangle in body space | `ColliderBuilder::cuboid(hx, hy)` | yes |
 //! | any other `Shape::Polygon` (convex, CCW, centred on its centroid) | `convex_polyline` (no hull recomputed), `convex_hull` as a fallback | yes |
-//! | density | collider `density` (mass and inertia from the shape) | yes |
+//! | each collider: density, offset and angle | a collider with `density` and `position` relative to its body (mass and inertia from the shapes) | yes |
 //! | friction, mixed by geometric mean (`Friction` effect; 0 when off) | collider `friction` + `CoefficientCombineRule::GeometricMean` | yes |
 //! | restitution, mixed by max (`Restitution` effect; 0 when off) | collider `restitution` + `CoefficientCombineRule::Max` | rule yes; carom does not bounce below 1 m/s approach, Rapier has no such threshold |
 //! | gravity (zero when the `Gravity` effect is off) | `gravity` argument of `PhysicsPipeline::step` | yes |
@@ -57,7 +57,8 @@
 //! | carom | Box2D v3 | exact? |
 //! |---|---|---|
 //! | `BodyKind::Static` / `Kinematic` / `Dynamic` | `b2_staticBody` / `b2_kinematicBody` / `b2_dynamicBody` | yes |
-//! | position (centre of mass), angle, linear and angular velocity, `gravity_scale` | `position`, `rotation`, `linearVelocity`, `angularVelocity`, `gravityScale` | yes (velocities not set on static bodies) |
+//! | position (the body's origin), angle, linear and angular velocity, `gravity_scale` | `position`, `rotation`, `linearVelocity`, `angularVelocity`, `gravityScale` | yes (velocities not set on static bodies) |
+//! | each collider (shape, offset, angle, material) | one shape, placed in the body's frame | yes |
 //! | gravity (zero when the `Gravity` effect is off) | world `gravity` | yes |
 //! | linear / angular drag (`Drag` effect, exponential model) | `linearDamping` / `angularDamping` | yes; none set with `Drag` off or the tutorial model |
 //! | `Shape::Circle` | `b2Circle` | yes |

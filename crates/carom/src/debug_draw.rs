@@ -78,7 +78,7 @@ impl DrawFlags {
     pub const CONTACT_NORMALS: DrawFlags = DrawFlags(1 << 4);
     /// The reference (red) and incident (blue) edges of polygon contacts.
     pub const CONTACT_EDGES: DrawFlags = DrawFlags(1 << 5);
-    /// Centres of mass (every body's origin).
+    /// Centres of mass.
     pub const CENTERS_OF_MASS: DrawFlags = DrawFlags(1 << 6);
     /// Linear velocities, as arrows from the centre of mass.
     pub const VELOCITIES: DrawFlags = DrawFlags(1 << 7);
