@@ -253,3 +253,25 @@ fn removing_a_body_keeps_the_others_colliders_with_them() {
     let collider = world.collider(moved.colliders()[0]).unwrap();
     assert!((collider.aabb().center() - moved.position()).norm() < 1e-5);
 }
+
+#[test]
+fn a_collider_added_to_a_spinning_body_keeps_every_point_moving_as_it_was() {
+    let mut world = World::new();
+    world.set_effect(Effect::Gravity, false);
+    let body = world
+        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).angular_velocity(2.0))
+        .unwrap();
+    let probe = vec2(0.3, -0.2);
+    let before = world.body(body).unwrap().velocity_at(probe);
+    world
+        .add_collider(
+            body,
+            ColliderDef::new(Shape::rect(0.5, 0.5)).offset(vec2(1.0, 0.0)),
+        )
+        .unwrap();
+    let spinning = world.body(body).unwrap();
+    assert!((spinning.local_center().x - 0.5).abs() < 1e-6);
+    // The origin, no longer the centre of mass, still stands still; the probe keeps its speed.
+    assert!(spinning.velocity_at(Vec2::zeros()).norm() < 1e-6);
+    assert!((spinning.velocity_at(probe) - before).norm() < 1e-6);
+}

@@ -380,7 +380,11 @@ impl Body {
         };
         self.mass = data;
         self.local_center = local_center;
+        // The centre of mass may have moved in the body: its velocity is now that of the
+        // material point there, so every point keeps its velocity (as Box2D does).
+        let old_center = self.center;
         self.center = self.position + self.rotation * local_center;
+        self.linear_velocity += cross_sv(self.angular_velocity, self.center - old_center);
         self.reach = colliders
             .clone()
             .map(|c| c.reach_from(local_center))
