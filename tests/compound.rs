@@ -275,3 +275,36 @@ fn a_collider_added_to_a_spinning_body_keeps_every_point_moving_as_it_was() {
     assert!(spinning.velocity_at(Vec2::zeros()).norm() < 1e-6);
     assert!((spinning.velocity_at(probe) - before).norm() < 1e-6);
 }
+
+#[test]
+fn a_friction_changed_on_a_collider_applies_to_its_contacts() {
+    // A box sliding on a floor (friction 0.6 both): once the floor is made frictionless, the
+    // box keeps its speed.
+    let mut world = World::new();
+    let floor = world
+        .add_body(BodyDef::static_body(Shape::rect(50.0, 0.5)).position(vec2(0.0, -0.5)))
+        .unwrap();
+    let slider = world
+        .add_body(
+            BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                .position(vec2(0.0, 0.5))
+                .linear_velocity(vec2(3.0, 0.0)),
+        )
+        .unwrap();
+    for _ in 0..5 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    let floor_collider = world.body(floor).unwrap().colliders()[0];
+    world
+        .collider_mut(floor_collider)
+        .unwrap()
+        .set_friction(0.0)
+        .unwrap();
+    let before = world.body(slider).unwrap().linear_velocity().x;
+    for _ in 0..30 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    let after = world.body(slider).unwrap().linear_velocity().x;
+    assert!((after - before).abs() < 1e-3, "{before} -> {after}");
+    assert!(world.contacts().all(|c| c.friction() == 0.0));
+}

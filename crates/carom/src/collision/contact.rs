@@ -406,6 +406,9 @@ fn refresh_manifold(
     if !a.moves() && !b.moves() {
         return Refresh::Unchanged;
     }
+    // Mixed each step, so a collider's friction or restitution changed by the user applies.
+    contact.friction = (shape_a.friction() * shape_b.friction()).sqrt();
+    contact.restitution = shape_a.restitution().max(shape_b.restitution());
     if !kinds_can_collide(a.kind(), b.kind())
         || !broadphase.fat_aabbs_overlap(contact.collider_a, contact.collider_b)
     {
