@@ -19,6 +19,52 @@ pub(crate) trait Handle: Copy + Eq {
     fn generation(self) -> u32;
 }
 
+/// Declares a public generational handle type: its parts, their accessors, and [`Handle`].
+macro_rules! generational_handle {
+    ($(#[$doc:meta])* $name:ident, $what:literal) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub struct $name {
+            index: u32,
+            generation: u32,
+        }
+
+        impl $name {
+            /// A handle from its parts, for tools that store handles elsewhere. A world only
+            /// answers to handles it issued.
+            pub fn from_raw_parts(index: u32, generation: u32) -> Self {
+                $name { index, generation }
+            }
+
+            /// The slot index (reused after removal, with a new generation).
+            #[inline]
+            pub fn index(&self) -> u32 {
+                self.index
+            }
+
+            /// The generation of the slot this handle was issued for.
+            #[inline]
+            pub fn generation(&self) -> u32 {
+                self.generation
+            }
+        }
+
+        impl $crate::handle_map::Handle for $name {
+            const WHAT: &'static str = $what;
+            fn from_parts(index: u32, generation: u32) -> Self {
+                $name { index, generation }
+            }
+            fn index(self) -> u32 {
+                self.index
+            }
+            fn generation(self) -> u32 {
+                self.generation
+            }
+        }
+    };
+}
+pub(crate) use generational_handle;
+
 #[derive(Debug, Clone, Copy)]
 struct Slot {
     generation: u32,

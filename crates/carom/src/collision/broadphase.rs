@@ -339,28 +339,8 @@ pub fn brute_force_pairs(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::collision::dynamic_tree::tests::{Lcg, random_box};
     use crate::math::vec2;
-
-    /// A tiny deterministic generator for the randomised tests.
-    struct Lcg(u64);
-    impl Lcg {
-        fn next(&mut self) -> Real {
-            self.0 = self
-                .0
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1);
-            (self.0 >> 40) as Real / (1u64 << 24) as Real
-        }
-        fn range(&mut self, lo: Real, hi: Real) -> Real {
-            lo + (hi - lo) * self.next()
-        }
-    }
-
-    fn random_box(rng: &mut Lcg, extent: Real) -> Aabb {
-        let c = vec2(rng.range(-extent, extent), rng.range(-extent, extent));
-        let h = vec2(rng.range(0.05, 1.0), rng.range(0.05, 1.0));
-        Aabb::new(c - h, c + h)
-    }
 
     /// Each collider of the tests has a body of its own, with the collider's index.
     fn body_of(collider: ColliderHandle) -> BodyHandle {

@@ -347,12 +347,7 @@ impl DynamicTree {
     /// Refits boxes and heights from `index` to the root, rotating where that shrinks the tree.
     fn refit_upwards(&mut self, mut index: u32) {
         while index != NULL {
-            let node = &self.nodes[index as usize];
-            let (c1, c2) = (
-                &self.nodes[node.child1 as usize],
-                &self.nodes[node.child2 as usize],
-            );
-            let (height, aabb) = (1 + c1.height.max(c2.height), c1.aabb.union(&c2.aabb));
+            let (height, aabb) = self.children_fit(index);
             let node = &mut self.nodes[index as usize];
             node.height = height;
             node.aabb = aabb;
@@ -367,12 +362,7 @@ impl DynamicTree {
     /// root.
     fn shrink_upwards(&mut self, mut index: u32) {
         while index != NULL {
-            let node = &self.nodes[index as usize];
-            let (c1, c2) = (
-                &self.nodes[node.child1 as usize],
-                &self.nodes[node.child2 as usize],
-            );
-            let (height, aabb) = (1 + c1.height.max(c2.height), c1.aabb.union(&c2.aabb));
+            let (height, aabb) = self.children_fit(index);
             let node = &mut self.nodes[index as usize];
             if node.height == height && node.aabb == aabb {
                 return;
@@ -383,12 +373,18 @@ impl DynamicTree {
         }
     }
 
-    fn aabb(&self, id: u32) -> Aabb {
-        self.nodes[id as usize].aabb
+    /// The height and box an inner node takes from its children.
+    fn children_fit(&self, index: u32) -> (i32, Aabb) {
+        let node = &self.nodes[index as usize];
+        let (c1, c2) = (
+            &self.nodes[node.child1 as usize],
+            &self.nodes[node.child2 as usize],
+        );
+        (1 + c1.height.max(c2.height), c1.aabb.union(&c2.aabb))
     }
 
-    fn node_height(&self, id: u32) -> i32 {
-        self.nodes[id as usize].height
+    fn aabb(&self, id: u32) -> Aabb {
+        self.nodes[id as usize].aabb
     }
 
     /// Points `child`'s parent link at `parent`.
@@ -398,12 +394,7 @@ impl DynamicTree {
 
     /// Makes `parent`'s box and height those of its children.
     fn refit(&mut self, parent: u32) {
-        let (c1, c2) = (
-            self.nodes[parent as usize].child1,
-            self.nodes[parent as usize].child2,
-        );
-        let aabb = self.aabb(c1).union(&self.aabb(c2));
-        let height = 1 + self.node_height(c1).max(self.node_height(c2));
+        let (height, aabb) = self.children_fit(parent);
         let node = &mut self.nodes[parent as usize];
         node.aabb = aabb;
         node.height = height;
@@ -577,27 +568,29 @@ impl NodeStack {
         Some(self.inline[self.len])
     }
 }
+
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::math::vec2;
 
-    /// A tiny deterministic generator for the randomised tests.
-    struct Lcg(u64);
+    /// A tiny deterministic generator for the randomised tests (the broadphase's too).
+    pub(crate) struct Lcg(pub(crate) u64);
     impl Lcg {
-        fn next(&mut self) -> Real {
+        pub(crate) fn next(&mut self) -> Real {
             self.0 = self
                 .0
                 .wrapping_mul(6_364_136_223_846_793_005)
                 .wrapping_add(1);
             (self.0 >> 40) as Real / (1u64 << 24) as Real
         }
-        fn range(&mut self, lo: Real, hi: Real) -> Real {
+        pub(crate) fn range(&mut self, lo: Real, hi: Real) -> Real {
             lo + (hi - lo) * self.next()
         }
     }
 
-    fn random_box(rng: &mut Lcg, extent: Real) -> Aabb {
+    /// A box of half sizes 0.05 to 1 centred anywhere within `extent` of the origin.
+    pub(crate) fn random_box(rng: &mut Lcg, extent: Real) -> Aabb {
         let c = vec2(rng.range(-extent, extent), rng.range(-extent, extent));
         let h = vec2(rng.range(0.05, 1.0), rng.range(0.05, 1.0));
         Aabb::new(c - h, c + h)

@@ -11,7 +11,7 @@ use crate::error::{CaromError, check_finite, check_finite_vec};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::MassProperties;
 use crate::geometry::shape::Shape;
-use crate::handle_map::Handle;
+use crate::handle_map::generational_handle;
 use crate::math::{Isometry, Mat3, Real, Rot, Vec2, cross, cross_sv};
 
 /// How a body moves.
@@ -28,48 +28,14 @@ pub enum BodyKind {
     Dynamic,
 }
 
-/// A stable reference to a body in a [`crate::World`].
-///
-/// Handles are generational: once a body is removed its handle stays dead, and a body added
-/// later never answers to it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct BodyHandle {
-    pub(crate) index: u32,
-    pub(crate) generation: u32,
-}
-
-impl BodyHandle {
-    /// A handle from its parts, for tools that store handles elsewhere. A world only answers
-    /// to handles it issued.
-    pub fn from_raw_parts(index: u32, generation: u32) -> Self {
-        BodyHandle { index, generation }
-    }
-
-    /// The slot index (reused after removal, with a new generation).
-    #[inline]
-    pub fn index(&self) -> u32 {
-        self.index
-    }
-
-    /// The generation of the slot this handle was issued for.
-    #[inline]
-    pub fn generation(&self) -> u32 {
-        self.generation
-    }
-}
-
-impl Handle for BodyHandle {
-    const WHAT: &'static str = "body";
-    fn from_parts(index: u32, generation: u32) -> Self {
-        BodyHandle { index, generation }
-    }
-    fn index(self) -> u32 {
-        self.index
-    }
-    fn generation(self) -> u32 {
-        self.generation
-    }
-}
+generational_handle!(
+    /// A stable reference to a body in a [`crate::World`].
+    ///
+    /// Handles are generational: once a body is removed its handle stays dead, and a body added
+    /// later never answers to it.
+    BodyHandle,
+    "body"
+);
 
 /// Everything needed to create a body; build one with [`BodyDef::dynamic`],
 /// [`BodyDef::static_body`] or [`BodyDef::kinematic`] and the chained setters.

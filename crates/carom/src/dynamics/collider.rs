@@ -13,48 +13,14 @@ use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::MassProperties;
 use crate::geometry::ray::{Ray, RayHit};
 use crate::geometry::shape::{Shape, WorldShape};
-use crate::handle_map::{Handle, HandleMap};
+use crate::handle_map::{HandleMap, generational_handle};
 use crate::math::{Isometry, Real, Vec2};
 
-/// A stable reference to a collider in a [`crate::World`]; generational, as [`BodyHandle`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct ColliderHandle {
-    index: u32,
-    generation: u32,
-}
-
-impl ColliderHandle {
-    /// A handle from its parts, for tools that store handles elsewhere. A world only answers
-    /// to handles it issued.
-    pub fn from_raw_parts(index: u32, generation: u32) -> Self {
-        ColliderHandle { index, generation }
-    }
-
-    /// The slot index (reused after removal, with a new generation).
-    #[inline]
-    pub fn index(&self) -> u32 {
-        self.index
-    }
-
-    /// The generation of the slot this handle was issued for.
-    #[inline]
-    pub fn generation(&self) -> u32 {
-        self.generation
-    }
-}
-
-impl Handle for ColliderHandle {
-    const WHAT: &'static str = "collider";
-    fn from_parts(index: u32, generation: u32) -> Self {
-        ColliderHandle { index, generation }
-    }
-    fn index(self) -> u32 {
-        self.index
-    }
-    fn generation(self) -> u32 {
-        self.generation
-    }
-}
+generational_handle!(
+    /// A stable reference to a collider in a [`crate::World`]; generational, as [`BodyHandle`].
+    ColliderHandle,
+    "collider"
+);
 
 /// Everything needed to attach a collider to a body; build one with [`ColliderDef::new`] and
 /// the chained setters. Values are checked when it is added to a world.
