@@ -580,7 +580,7 @@ mod tests {
         let awake_fill = list.circles[0].fill;
         assert_eq!(awake_fill, red.mix(Color::BACKGROUND, 0.35));
         let ball = world.bodies().nth(2).unwrap().handle();
-        world.body_raw_mut(ball).unwrap().fall_asleep(0);
+        world.body_raw_mut(ball).unwrap().fall_asleep();
         list.clear();
         world.debug_draw(&options, |_| Some(red), &mut list);
         assert_ne!(list.circles[0].fill, awake_fill);

@@ -137,6 +137,19 @@ impl<H: Handle, T> HandleMap<H, T> {
         Some(item)
     }
 
+    /// Swaps the places of two items in the dense array; their handles follow them.
+    pub fn swap(&mut self, i: usize, j: usize) {
+        if i == j {
+            return;
+        }
+        self.items.swap(i, j);
+        self.handles.swap(i, j);
+        for k in [i, j] {
+            let slot = self.handles[k].index() as usize;
+            self.slots[slot].dense = Some(k as u32);
+        }
+    }
+
     /// Where the handle's item sits in the dense array, if the handle is live.
     #[inline]
     pub fn dense_index(&self, handle: H) -> Option<usize> {
@@ -185,6 +198,16 @@ impl<H: Handle, T> HandleMap<H, T> {
         &mut self.items
     }
 
+    /// Every item in handle order (by slot index: creation order, except that a slot freed by
+    /// a removal is reused), which, unlike storage order, does not change as items move.
+    pub fn iter_by_handle(&self) -> ByHandle<'_, T> {
+        ByHandle {
+            slots: self.slots.iter(),
+            items: &self.items,
+            remaining: self.items.len(),
+        }
+    }
+
     /// Every item's handle, in storage order.
     pub fn handles(&self) -> &[H] {
         &self.handles
@@ -196,6 +219,30 @@ impl<H: Handle, T> HandleMap<H, T> {
         self.items.len()
     }
 }
+
+/// The items of a [`HandleMap`] in handle order.
+#[derive(Debug, Clone)]
+pub(crate) struct ByHandle<'a, T> {
+    slots: std::slice::Iter<'a, Slot>,
+    items: &'a [T],
+    remaining: usize,
+}
+
+impl<'a, T> Iterator for ByHandle<'a, T> {
+    type Item = &'a T;
+
+    fn next(&mut self) -> Option<&'a T> {
+        let dense = self.slots.by_ref().find_map(|slot| slot.dense)?;
+        self.remaining -= 1;
+        Some(&self.items[dense as usize])
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        (self.remaining, Some(self.remaining))
+    }
+}
+
+impl<T> ExactSizeIterator for ByHandle<'_, T> {}
 
 #[cfg(test)]
 mod tests {

@@ -16,6 +16,7 @@ use crate::geometry::shape::Shape;
 use crate::handle_map::HandleMap;
 use crate::math::Real;
 use crate::parallel::map_mut_into;
+use crate::world::solver_sets::{SetBounds, SolverSet};
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 
@@ -152,10 +153,15 @@ fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
     (low.index() as u64) << 32 | high.index() as u64
 }
 
-/// The contacts of a world, stored contiguously, with a lookup by pair and each body's list.
+/// The contacts of a world, stored contiguously in two solver sets (awake first, then
+/// asleep), with a lookup by pair and each body's list.
 #[derive(Debug, Clone, Default)]
 pub struct ContactSet {
     contacts: Vec<Contact>,
+    /// Where the awake contacts (a body of the pair is awake) end and the sleeping ones begin.
+    sets: SetBounds,
+    /// How many sleeping contacts touch (they cannot change while asleep).
+    asleep_touching: usize,
     lookup: HashMap<u64, usize, BuildHasherDefault<PairHasher>>,
     /// Each body's contacts, by the body's slot index, as pair keys: removing a body or a
     /// collider visits its own contacts only.
@@ -196,8 +202,14 @@ impl ContactSet {
         self.lookup.contains_key(&pair_key(a, b))
     }
 
-    /// Starts watching a pair of colliders (of two bodies).
-    pub(crate) fn add(&mut self, a: (ColliderHandle, &Collider), b: (ColliderHandle, &Collider)) {
+    /// Starts watching a pair of colliders (of two bodies), in the awake set if `awake` (a
+    /// body of the pair is awake).
+    pub(crate) fn add(
+        &mut self,
+        a: (ColliderHandle, &Collider),
+        b: (ColliderHandle, &Collider),
+        awake: bool,
+    ) {
         let key = pair_key(a.0, b.0);
         if self.lookup.contains_key(&key) {
             return;
@@ -221,11 +233,86 @@ impl ContactSet {
             restitution: a.1.restitution().max(b.1.restitution()),
             frame: ManifoldFrame::default(),
         });
+        // New contacts arrive in the sleeping set, the last.
+        if awake {
+            self.move_to(self.contacts.len() - 1, SolverSet::Awake);
+        }
+    }
+
+    /// Swaps two contacts' places.
+    fn swap(&mut self, i: usize, j: usize) {
+        if i == j {
+            return;
+        }
+        self.contacts.swap(i, j);
+        for k in [i, j] {
+            let c = &self.contacts[k];
+            self.lookup.insert(pair_key(c.collider_a, c.collider_b), k);
+        }
+    }
+
+    /// Moves the contact at `index` into `set`; returns its new index.
+    fn move_to(&mut self, index: usize, set: SolverSet) -> usize {
+        let from = self.sets.set_of(index);
+        if from == set {
+            return index;
+        }
+        if self.contacts[index].touching {
+            if set == SolverSet::Asleep {
+                self.asleep_touching += 1;
+            } else {
+                self.asleep_touching -= 1;
+            }
+        }
+        let mut sets = self.sets;
+        let index = sets.move_item(index, set, |i, j| self.swap(i, j));
+        self.sets = sets;
+        index
+    }
+
+    /// Files each contact of `body` in the awake set if `awake` says one of its bodies is
+    /// awake, else in the sleeping set.
+    pub(crate) fn refile(&mut self, body: BodyHandle, awake: impl Fn(BodyHandle) -> bool) {
+        let slot = body.index() as usize;
+        let count = self.edges.get(slot).map_or(0, Vec::len);
+        for k in 0..count {
+            let index = self.lookup[&self.edges[slot][k]];
+            let contact = &self.contacts[index];
+            let set = if awake(contact.body_a) || awake(contact.body_b) {
+                SolverSet::Awake
+            } else {
+                SolverSet::Asleep
+            };
+            self.move_to(index, set);
+        }
+    }
+
+    /// The other body of every touching contact of `body`.
+    pub(crate) fn touching_partners(&self, body: BodyHandle, into: &mut Vec<BodyHandle>) {
+        into.clear();
+        let Some(edges) = self.edges.get(body.index() as usize) else {
+            return;
+        };
+        for key in edges {
+            let contact = &self.contacts[self.lookup[key]];
+            if contact.touching {
+                into.push(if contact.body_a == body {
+                    contact.body_b
+                } else {
+                    contact.body_a
+                });
+            }
+        }
     }
 
     /// Drops the contact at `index`, ending it if it touched.
     fn destroy(&mut self, index: usize, events_now: bool) {
+        // From the sleeping set, the last, a removal moves only another sleeper.
+        let index = self.move_to(index, SolverSet::Asleep);
         let contact = self.contacts.swap_remove(index);
+        if contact.touching {
+            self.asleep_touching -= 1;
+        }
         let key = pair_key(contact.collider_a, contact.collider_b);
         self.lookup.remove(&key);
         for body in [contact.body_a, contact.body_b] {
@@ -259,7 +346,7 @@ impl ContactSet {
     }
 
     /// Drops the contacts of `body` that `doomed` picks, from the last stored to the first
-    /// (each removal moves the last contact into the hole, so no other index changes).
+    /// (each removal moves only contacts stored after it, so no other doomed index changes).
     fn destroy_where(&mut self, body: BodyHandle, doomed: impl Fn(&Contact) -> bool) {
         let Some(edges) = self.edges.get(body.index() as usize) else {
             return;
@@ -281,33 +368,35 @@ impl ContactSet {
         self.events.append(&mut self.pending);
     }
 
-    /// The narrowphase stage: rebuilds every manifold from the bodies' world shapes, carries
-    /// impulses over by feature id, reports touching changes, and drops contacts whose fat
-    /// boxes no longer overlap (or whose bodies can no longer collide). Pairs where neither
-    /// body moves (static or asleep) are left as they are. Sleeping islands touched by a moving
-    /// body are added to `wake`. Returns the deepest penetration seen.
+    /// The narrowphase stage, over the awake set: rebuilds every manifold from the bodies'
+    /// world shapes, carries impulses over by feature id, reports touching changes, and drops
+    /// contacts whose fat boxes no longer overlap (or whose bodies can no longer collide).
+    /// Sleeping contacts are not visited. Sleeping islands touched by a moving body are added
+    /// to `wake`. Returns the deepest penetration seen.
     pub(crate) fn update(
         &mut self,
         bodies: &HandleMap<BodyHandle, Body>,
         colliders: &HandleMap<ColliderHandle, Collider>,
         broadphase: &BroadPhase,
         options: ManifoldOptions,
-        wake: &mut Vec<u32>,
+        wake: &mut Vec<BodyHandle>,
     ) -> Real {
         // First every manifold, on as many threads as rayon gives (each contact on its own),
         // then the bookkeeping that touches the whole set, in order.
+        let awake = self.sets.awake();
         map_mut_into(
-            &mut self.contacts,
+            &mut self.contacts[awake.clone()],
             &mut self.refresh,
             CONTACTS_PER_TASK,
             |contact| refresh_manifold(contact, bodies, colliders, broadphase, options),
         );
         let mut deepest: Real = 0.0;
-        let mut index = self.contacts.len();
-        // Backwards, so destroying (swap-remove) never skips a contact.
-        while index > 0 {
+        let mut index = awake.end;
+        // Backwards, so destroying (which moves the last awake contact into the hole) never
+        // skips a contact.
+        while index > awake.start {
             index -= 1;
-            match self.refresh[index] {
+            match self.refresh[index - awake.start] {
                 Refresh::Unchanged => continue,
                 Refresh::Gone => {
                     self.destroy(index, true);
@@ -330,7 +419,7 @@ impl ContactSet {
                 deepest = deepest.max(-contact.manifold.min_separation().unwrap_or(0.0));
                 for (sleeper, other) in [(a, b), (b, a)] {
                     if sleeper.is_sleeping() && other.moves() {
-                        wake.push(sleeper.sleep_group());
+                        wake.extend(sleeper.island_link().0);
                     }
                 }
             }
@@ -352,15 +441,31 @@ impl ContactSet {
         self.contacts.iter()
     }
 
-    /// Every contact.
+    /// How many contacts are in the awake set, for tests of the sets.
     #[cfg(test)]
-    pub(crate) fn as_slice(&self) -> &[Contact] {
-        &self.contacts
+    pub(crate) fn awake_len(&self) -> usize {
+        self.sets.awake().end
     }
 
-    /// Every contact, mutably, for the solver.
-    pub(crate) fn as_mut_slice(&mut self) -> &mut [Contact] {
-        &mut self.contacts
+    /// How many sleeping contacts touch, as counted while filing them.
+    #[cfg(test)]
+    pub(crate) fn asleep_touching(&self) -> usize {
+        self.asleep_touching
+    }
+
+    /// The awake contacts (a body of the pair is awake): the ones a step visits.
+    pub(crate) fn awake(&self) -> &[Contact] {
+        &self.contacts[self.sets.awake()]
+    }
+
+    /// The awake contacts, mutably, for the solver.
+    pub(crate) fn awake_mut(&mut self) -> &mut [Contact] {
+        &mut self.contacts[self.sets.awake()]
+    }
+
+    /// How many contacts touch: the awake ones counted, the sleeping ones remembered.
+    pub(crate) fn touching_count(&self) -> usize {
+        self.awake().iter().filter(|c| c.touching).count() + self.asleep_touching
     }
 
     /// How many contacts there are.

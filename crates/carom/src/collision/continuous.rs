@@ -21,6 +21,7 @@ use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};
 use crate::geometry::shape::WorldShape;
 use crate::handle_map::HandleMap;
 use crate::math::{Isometry, Real, Rot, Vec2};
+use std::ops::Range;
 
 /// Where a body's centre of mass was at the start of the step, and how it was turned.
 #[derive(Debug, Clone, Copy)]
@@ -132,11 +133,13 @@ fn sink_allowance(min_extent: Real, target: Real) -> Real {
     (0.25 * min_extent).max(2.0 * target)
 }
 
-/// Sweeps every fast body and moves the ones that would have tunnelled back to their time of
-/// impact. `starts` holds each body's pose at the start of the step, in storage order.
-/// Returns the number of impacts and the number of bodies swept.
+/// Sweeps every fast body of the awake set (`bodies[awake]`) and moves the ones that would
+/// have tunnelled back to their time of impact. `starts` holds each awake body's pose at the
+/// start of the step, in storage order. Returns the number of impacts and the number of bodies
+/// swept.
 pub(crate) fn solve_continuous(
     bodies: &mut HandleMap<BodyHandle, Body>,
+    awake: Range<usize>,
     colliders: &mut HandleMap<ColliderHandle, Collider>,
     starts: &[Pose],
     broadphase: &BroadPhase,
@@ -144,11 +147,12 @@ pub(crate) fn solve_continuous(
 ) -> (usize, usize) {
     let mut impacts: Vec<(usize, Vec2, Rot)> = Vec::new();
     let mut sweeps = 0;
-    for (index, body) in bodies.as_slice().iter().enumerate() {
+    let awake_bodies = &bodies.as_slice()[awake.clone()];
+    for ((index, body), &start) in awake.clone().zip(awake_bodies).zip(starts) {
         if body.kind() != BodyKind::Dynamic {
             continue;
         }
-        let sweep = Sweep::new(starts[index], body);
+        let sweep = Sweep::new(start, body);
         let reach = sweep.translation.norm() + sweep.turn.abs() * body.reach();
         if reach <= FAST_FRACTION * body.min_extent() {
             continue;

@@ -240,8 +240,10 @@ pub struct Body {
     sleep_time: Real,
     /// Asleep: skipped by every stage until something wakes it.
     sleeping: bool,
-    /// The island the body fell asleep with; its whole island wakes together.
-    sleep_group: u32,
+    /// While asleep: the first body of its sleeping island (the island's name), and the next
+    /// body of the island, a list through its bodies. The whole island wakes together.
+    island_head: Option<BodyHandle>,
+    island_next: Option<BodyHandle>,
 }
 
 impl Body {
@@ -290,7 +292,8 @@ impl Body {
             last_motion: 0.0,
             sleep_time: 0.0,
             sleeping: false,
-            sleep_group: 0,
+            island_head: None,
+            island_next: None,
         })
     }
 
@@ -543,16 +546,22 @@ impl Body {
     }
 
     /// Puts the body to sleep with its island: it stops until woken.
-    pub(crate) fn fall_asleep(&mut self, group: u32) {
+    pub(crate) fn fall_asleep(&mut self) {
         self.sleeping = true;
-        self.sleep_group = group;
         self.linear_velocity = Vec2::zeros();
         self.angular_velocity = 0.0;
     }
 
-    /// The island the body fell asleep with.
-    pub(crate) fn sleep_group(&self) -> u32 {
-        self.sleep_group
+    /// While asleep, the first body of its island and the next one: see
+    /// `world::solver_sets`.
+    pub(crate) fn island_link(&self) -> (Option<BodyHandle>, Option<BodyHandle>) {
+        (self.island_head, self.island_next)
+    }
+
+    /// Links the body into a sleeping island's list (`None`s unlink it).
+    pub(crate) fn set_island_link(&mut self, head: Option<BodyHandle>, next: Option<BodyHandle>) {
+        self.island_head = head;
+        self.island_next = next;
     }
 
     /// Advances or resets the sleep timer from the body's fastest point speed, or from half

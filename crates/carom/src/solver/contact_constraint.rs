@@ -2,7 +2,7 @@
 
 use super::BodyState;
 use crate::collision::contact::Contact;
-use crate::dynamics::body::{Body, BodyKind};
+use crate::dynamics::body::Body;
 use crate::math::{Real, Vec2, cross, cross_sv, perp_cw};
 
 /// One point of a contact constraint.
@@ -38,9 +38,9 @@ pub(crate) struct ConstraintPoint {
 pub(crate) struct ContactConstraint {
     /// Where the contact lives in the contact set.
     pub contact_index: usize,
-    /// Dense index of body A.
+    /// Body A's index among the solver's states (the spare state if A is not in the awake set).
     pub a: usize,
-    /// Dense index of body B.
+    /// Body B's index among the solver's states.
     pub b: usize,
     pub inv_mass_a: Real,
     pub inv_inertia_a: Real,
@@ -62,21 +62,31 @@ pub(crate) struct ContactConstraint {
     point_count: usize,
 }
 
+/// One body of a contact as the solver takes it: its state's index, and the body if it is in
+/// the awake set (`None` for a static body, which the solver sees as at rest and immovable).
+pub(crate) type SolverBody<'a> = (usize, Option<&'a Body>);
+
 impl ContactConstraint {
-    /// Prepares a contact whose bodies sit at dense indices `a` and `b`.
+    /// Prepares a contact between two bodies.
     pub fn new(
         contact_index: usize,
         contact: &Contact,
-        a: usize,
-        b: usize,
-        bodies: &[Body],
+        (a, body_a): SolverBody,
+        (b, body_b): SolverBody,
     ) -> Self {
-        let (body_a, body_b) = (&bodies[a], &bodies[b]);
         let manifold = contact.manifold();
         let normal = manifold.normal;
         let tangent = perp_cw(normal);
-        let (ma, ia) = (body_a.inv_mass(), body_a.inv_inertia());
-        let (mb, ib) = (body_b.inv_mass(), body_b.inv_inertia());
+        let masses =
+            |body: Option<&Body>| body.map_or((0.0, 0.0), |b| (b.inv_mass(), b.inv_inertia()));
+        let velocities = |body: Option<&Body>| {
+            body.map_or((Vec2::zeros(), 0.0), |b| {
+                (b.linear_velocity(), b.angular_velocity())
+            })
+        };
+        let ((va, wa), (vb, wb)) = (velocities(body_a), velocities(body_b));
+        let (ma, ia) = masses(body_a);
+        let (mb, ib) = masses(body_b);
         let mut points = [ConstraintPoint::default(); 2];
         let point_count = manifold.points().len();
         for (point, mp) in points.iter_mut().zip(manifold.points()) {
@@ -85,9 +95,7 @@ impl ContactConstraint {
                 ma + mb + ia * cross(ra, normal).powi(2) + ib * cross(rb, normal).powi(2);
             let k_tangent =
                 ma + mb + ia * cross(ra, tangent).powi(2) + ib * cross(rb, tangent).powi(2);
-            let relative = body_b.linear_velocity() + cross_sv(body_b.angular_velocity(), rb)
-                - body_a.linear_velocity()
-                - cross_sv(body_a.angular_velocity(), ra);
+            let relative = vb + cross_sv(wb, rb) - va - cross_sv(wa, ra);
             *point = ConstraintPoint {
                 anchor_a: ra,
                 anchor_b: rb,
@@ -116,9 +124,9 @@ impl ContactConstraint {
             normal,
             friction: contact.friction(),
             restitution: contact.restitution(),
-            touches_static: body_a.kind() == BodyKind::Static || body_b.kind() == BodyKind::Static,
-            dynamic_a: body_a.kind() == BodyKind::Dynamic,
-            dynamic_b: body_b.kind() == BodyKind::Dynamic,
+            touches_static: body_a.is_none() || body_b.is_none(),
+            dynamic_a: body_a.is_some_and(Body::is_dynamic),
+            dynamic_b: body_b.is_some_and(Body::is_dynamic),
             points,
             point_count,
         }

@@ -30,6 +30,7 @@ use crate::dynamics::drag::DragModel;
 use crate::math::{Real, Vec2};
 use crate::parallel::{for_each_with, map_into};
 use crate::stats::Work;
+use std::ops::Range;
 
 /// Which contact solver runs. Scene files and the command line name it in snake case
 /// ([`SolverKind::id`]).
@@ -291,39 +292,49 @@ pub(crate) struct Workspace {
     touching: Vec<usize>,
 }
 
-/// The touching contacts with a body that moves, as constraints (their contact indices in
-/// `touching`); `dense[i]` gives the dense indices of contact `i`'s bodies.
+/// The touching contacts with a body in the awake set, as constraints (their contact indices
+/// in `touching`); `dense[i]` gives the dense indices of contact `i`'s bodies. A body outside
+/// the awake set gets the spare state, just past the awake set's.
 fn prepare_constraints(
     bodies: &[Body],
+    awake: Range<usize>,
     contacts: &[Contact],
     dense: &[(usize, usize)],
     touching: &mut Vec<usize>,
     constraints: &mut Vec<ContactConstraint>,
 ) {
+    let spare = awake.len();
+    let solver_body = |index: usize| {
+        if awake.contains(&index) {
+            (index - awake.start, Some(&bodies[index]))
+        } else {
+            (spare, None)
+        }
+    };
     touching.clear();
     touching.extend(
         contacts
             .iter()
             .zip(dense)
             .enumerate()
-            .filter(|(_, (c, (a, b)))| {
-                c.is_touching() && (bodies[*a].moves() || bodies[*b].moves())
-            })
+            .filter(|(_, (c, (a, b)))| c.is_touching() && (awake.contains(a) || awake.contains(b)))
             .map(|(i, _)| i),
     );
     map_into(touching, constraints, ITEMS_PER_TASK, |&i| {
         let (a, b) = dense[i];
-        ContactConstraint::new(i, &contacts[i], a, b, bodies)
+        ContactConstraint::new(i, &contacts[i], solver_body(a), solver_body(b))
     });
 }
 
-/// Runs one step of the chosen solver over the bodies (dense, in storage order) and the
-/// contacts; `dense[i]` gives the dense indices of contact `i`'s bodies. Returns how many
-/// contact points were solved and the work the optional effects did.
+/// Runs one step of the chosen solver over the awake set (`bodies[awake]`, in storage order)
+/// and the awake contacts; `dense[i]` gives the dense indices of contact `i`'s bodies. Returns
+/// how many contact points were solved and the work the optional effects did.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn step(
     params: &SolverParams,
     environment: Environment,
     bodies: &mut [Body],
+    awake: Range<usize>,
     contacts: &mut [Contact],
     dense: &[(usize, usize)],
     dt: Real,
@@ -337,10 +348,18 @@ pub(crate) fn step(
         velocities,
         touching,
     } = workspace;
+    prepare_constraints(
+        bodies,
+        awake.clone(),
+        contacts,
+        dense,
+        touching,
+        constraints,
+    );
+    let bodies = &mut bodies[awake];
     map_into(bodies, states, ITEMS_PER_TASK, BodyState::from_body);
-    // A spare state past the bodies, for solvers that need a body that is not there.
+    // A spare state past the awake bodies: static bodies' (at rest), and empty SIMD lanes'.
     states.push(BodyState::spare());
-    prepare_constraints(bodies, contacts, dense, touching, constraints);
     let context = SolverContext {
         params,
         environment,

@@ -9,7 +9,7 @@ use super::color_passes::for_each_by_color;
 use super::contact_constraint::ContactConstraint;
 use super::contact_graph::ContactGraph;
 use super::{BodyState, Softness};
-use crate::constants::ITEMS_PER_TASK;
+use crate::constants::{COLOR_COUNT, ITEMS_PER_TASK};
 use crate::math::Real;
 use crate::parallel::{for_each_with, map_into};
 use std::ops::Range;
@@ -209,7 +209,8 @@ impl WideContacts {
         // Where each bundle's constraints are, then every bundle packed (on all threads).
         self.slots.clear();
         self.colors.clear();
-        for (color, members) in graph.colors.iter().enumerate() {
+        self.colors.reserve(COLOR_COUNT);
+        for (color, members) in graph.colors().enumerate() {
             if members.is_empty() {
                 continue;
             }
@@ -223,7 +224,7 @@ impl WideContacts {
         }
         let softness = [soft, static_soft];
         let pack = |&(color, offset): &(usize, usize)| {
-            let members = &graph.colors[color];
+            let members = graph.color(color);
             let chunk = &members[offset..(offset + LANES).min(members.len())];
             Bundle::pack(constraints, chunk, softness, spare)
         };

@@ -1,80 +1,86 @@
 //! A body lent out to be changed, so that moving it takes its colliders along.
 
-use crate::collision::broadphase::BroadPhase;
 use crate::dynamics::body::Body;
-use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};
+use crate::dynamics::collider::place_colliders;
 use crate::error::CaromError;
-use crate::handle_map::HandleMap;
 use crate::math::{Real, Vec2};
+use crate::world::{World, margin_for};
 use std::ops::Deref;
 
 /// A body borrowed from its world to be changed ([`crate::World::body_mut`]). It reads as a
 /// [`Body`] and has the body's setters; moving or turning it takes its colliders and their
-/// broadphase boxes along at once, so queries and the next step see it where it now is.
+/// broadphase boxes along at once, so queries and the next step see it where it now is. A
+/// change that wakes the body wakes its whole island when the borrow ends.
 #[derive(Debug)]
 pub struct BodyMut<'w> {
-    body: &'w mut Body,
-    colliders: &'w mut HandleMap<ColliderHandle, Collider>,
-    broadphase: &'w mut BroadPhase,
-    /// The broadphase margin of the body's kind.
-    margin: Real,
+    world: &'w mut World,
+    /// The body's dense index (fixed while the world is borrowed).
+    index: usize,
 }
 
 impl<'w> BodyMut<'w> {
-    pub(crate) fn new(
-        body: &'w mut Body,
-        colliders: &'w mut HandleMap<ColliderHandle, Collider>,
-        broadphase: &'w mut BroadPhase,
-        margin: Real,
-    ) -> Self {
-        BodyMut {
-            body,
-            colliders,
-            broadphase,
-            margin,
+    pub(crate) fn new(world: &'w mut World, index: usize) -> Self {
+        BodyMut { world, index }
+    }
+
+    /// Applies a change to the body; if the change woke it (a push, a move), its island wakes
+    /// with it at once.
+    fn edit<T>(&mut self, change: impl FnOnce(&mut Body) -> T) -> T {
+        let body = &mut self.world.bodies.as_mut_slice()[self.index];
+        let result = change(body);
+        if !body.is_sleeping() {
+            let handle = body.handle();
+            self.world.wake_body(self.index);
+            // Waking moved the island's bodies into the awake set.
+            self.index = self.world.bodies.dense_index(handle).expect("live");
         }
+        result
     }
 
     /// Places the colliders and their broadphase boxes where the body now is.
     fn follow(&mut self) {
-        let aabb = place_colliders(self.body, self.colliders);
-        self.body.set_aabb(aabb);
-        let kind = self.body.kind();
-        for &collider in self.body.colliders() {
-            if let Some(placed) = self.colliders.get(collider) {
-                self.broadphase
-                    .update(collider, kind, placed.aabb(), self.margin);
+        let world = &mut *self.world;
+        let body = &mut world.bodies.as_mut_slice()[self.index];
+        let aabb = place_colliders(body, &mut world.colliders);
+        body.set_aabb(aabb);
+        let kind = body.kind();
+        let margin = margin_for(&world.settings, kind);
+        for &collider in body.colliders() {
+            if let Some(placed) = world.colliders.get(collider) {
+                world
+                    .broadphase
+                    .update(collider, kind, placed.aabb(), margin);
             }
         }
     }
 
-    /// Wakes the body (its island follows at the next step, through their contacts).
+    /// Wakes the body and its island.
     pub fn wake_up(&mut self) {
-        self.body.wake_up()
+        self.edit(|body| body.wake_up())
     }
 
     /// Moves the body's origin (teleports it: no velocity change).
     pub fn set_position(&mut self, position: Vec2) -> Result<(), CaromError> {
-        let result = self.body.set_position(position);
+        let result = self.edit(|body| body.set_position(position));
         self.follow();
         result
     }
 
     /// Turns the body about its origin to `angle` radians.
     pub fn set_angle(&mut self, angle: Real) -> Result<(), CaromError> {
-        let result = self.body.set_angle(angle);
+        let result = self.edit(|body| body.set_angle(angle));
         self.follow();
         result
     }
 
     /// Sets the linear velocity (ignored by static bodies, which never move).
     pub fn set_linear_velocity(&mut self, velocity: Vec2) -> Result<(), CaromError> {
-        self.body.set_linear_velocity(velocity)
+        self.edit(|body| body.set_linear_velocity(velocity))
     }
 
     /// Sets the angular velocity (ignored by static bodies).
     pub fn set_angular_velocity(&mut self, velocity: Real) -> Result<(), CaromError> {
-        self.body.set_angular_velocity(velocity)
+        self.edit(|body| body.set_angular_velocity(velocity))
     }
 
     /// Gives a kinematic body the velocities that carry it to `position` and `angle` in
@@ -87,64 +93,64 @@ impl<'w> BodyMut<'w> {
         angle: Real,
         dt: Real,
     ) -> Result<(), CaromError> {
-        self.body.move_kinematic_to(position, angle, dt)
+        self.edit(|body| body.move_kinematic_to(position, angle, dt))
     }
 
     /// Sets the gravity scale (finite; negative makes the body rise).
     pub fn set_gravity_scale(&mut self, scale: Real) -> Result<(), CaromError> {
-        self.body.set_gravity_scale(scale)
+        self.edit(|body| body.set_gravity_scale(scale))
     }
 
     /// Sets the linear and angular drag coefficients (finite, not negative).
     pub fn set_damping(&mut self, linear: Real, angular: Real) -> Result<(), CaromError> {
-        self.body.set_damping(linear, angular)
+        self.edit(|body| body.set_damping(linear, angular))
     }
 
     /// Marks or unmarks the body as a bullet.
     pub fn set_bullet(&mut self, bullet: bool) {
-        self.body.set_bullet(bullet)
+        self.edit(|body| body.set_bullet(bullet))
     }
 
     /// Sets the user tag.
     pub fn set_user_tag(&mut self, tag: u64) {
-        self.body.set_user_tag(tag)
+        self.edit(|body| body.set_user_tag(tag))
     }
 
     /// Adds a force at a world point: it also adds the torque `r × F`, with `r` from the
     /// centre of mass. Forces last until the end of the next step. Only dynamic bodies feel it.
     pub fn apply_force(&mut self, force: Vec2, world_point: Vec2) -> Result<(), CaromError> {
-        self.body.apply_force(force, world_point)
+        self.edit(|body| body.apply_force(force, world_point))
     }
 
     /// Adds a force through the centre of mass (no torque).
     pub fn apply_force_at_center(&mut self, force: Vec2) -> Result<(), CaromError> {
-        self.body.apply_force_at_center(force)
+        self.edit(|body| body.apply_force_at_center(force))
     }
 
     /// Adds a torque, N·m, counter-clockwise.
     pub fn apply_torque(&mut self, torque: Real) -> Result<(), CaromError> {
-        self.body.apply_torque(torque)
+        self.edit(|body| body.apply_torque(torque))
     }
 
     /// Applies an impulse at a world point: it changes the velocities at once,
     /// `Δv = J / m`, `Δω = (r × J) / I`.
     pub fn apply_impulse(&mut self, impulse: Vec2, world_point: Vec2) -> Result<(), CaromError> {
-        self.body.apply_impulse(impulse, world_point)
+        self.edit(|body| body.apply_impulse(impulse, world_point))
     }
 
     /// Applies an impulse through the centre of mass.
     pub fn apply_impulse_at_center(&mut self, impulse: Vec2) -> Result<(), CaromError> {
-        self.body.apply_impulse_at_center(impulse)
+        self.edit(|body| body.apply_impulse_at_center(impulse))
     }
 
     /// Applies an angular impulse, N·m·s.
     pub fn apply_angular_impulse(&mut self, impulse: Real) -> Result<(), CaromError> {
-        self.body.apply_angular_impulse(impulse)
+        self.edit(|body| body.apply_angular_impulse(impulse))
     }
 
     /// Forgets the accumulated force and torque.
     pub fn clear_forces(&mut self) {
-        self.body.clear_forces()
+        self.edit(|body| body.clear_forces())
     }
 }
 
@@ -152,6 +158,6 @@ impl Deref for BodyMut<'_> {
     type Target = Body;
 
     fn deref(&self) -> &Body {
-        self.body
+        &self.world.bodies.as_slice()[self.index]
     }
 }

@@ -4,6 +4,7 @@ pub(crate) mod body_mut;
 pub(crate) mod effects;
 pub(crate) mod mouse_joint;
 pub(crate) mod settings;
+pub(crate) mod solver_sets;
 
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::contact::{Contact, ContactEvent, ContactSet, ManifoldOptions};
@@ -26,6 +27,7 @@ use crate::stats::StepStats;
 use crate::world::body_mut::BodyMut;
 use crate::world::effects::{Effect, Effects};
 use crate::world::settings::WorldSettings;
+use crate::world::solver_sets::{SetBounds, SolverSet};
 use std::time::Instant;
 
 /// The closest collider a ray enters.
@@ -46,15 +48,17 @@ pub struct WorldRayHit {
 /// A physics world: create bodies in it, step it, query it.
 #[derive(Debug, Clone, Default)]
 pub struct World {
+    /// Stored in solver sets: static, awake, asleep (see [`solver_sets`]).
     bodies: HandleMap<BodyHandle, Body>,
+    /// Stored in the same sets as their bodies.
     colliders: HandleMap<ColliderHandle, Collider>,
+    body_sets: SetBounds,
+    collider_sets: SetBounds,
     broadphase: BroadPhase,
     contacts: ContactSet,
     settings: WorldSettings,
     time: f64,
     step_count: u64,
-    /// Numbers islands as they fall asleep.
-    sleep_groups: u32,
     stats: StepStats,
     /// The solver's memory, reused from step to step.
     solver_workspace: solver::Workspace,
@@ -68,16 +72,18 @@ pub struct World {
 struct StepScratch {
     /// New pairs from the broadphase.
     pairs: Vec<(ColliderHandle, ColliderHandle)>,
-    /// Dense indices of every contact's bodies.
+    /// Dense indices of every awake contact's bodies.
     dense: Vec<(usize, usize)>,
-    /// Bodies' poses at the start of the step (for continuous collision).
+    /// Awake bodies' poses at the start of the step (for continuous collision).
     starts: Vec<Pose>,
-    /// Dense indices of the touching contacts' bodies (for sleeping).
+    /// Indices in the awake set of the bodies of touching contacts (for sleeping).
     touching: Vec<(usize, usize)>,
     /// Sleeping islands a moving body touched.
-    wake: Vec<u32>,
+    wake: Vec<BodyHandle>,
     /// Island finding's memory.
     islands: sleep::Islands,
+    /// The bodies touching one being removed (to wake them).
+    partners: Vec<BodyHandle>,
 }
 
 fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {
@@ -159,9 +165,7 @@ impl World {
 
     /// Wakes every sleeping body.
     pub fn wake_all(&mut self) {
-        for body in self.bodies.as_mut_slice() {
-            body.wake_up();
-        }
+        self.wake_all_islands();
     }
 
     /// What the last step did and what each stage cost.
@@ -211,6 +215,8 @@ impl World {
                 .expect("just inserted")
                 .attach(collider);
         }
+        // Stored last, in the sleeping set; then moved into its own.
+        self.settle_body(index);
         self.place_colliders_of(handle);
         let body = self.bodies.get(handle).expect("just inserted");
         let margin = margin_for(&self.settings, body.kind());
@@ -223,9 +229,12 @@ impl World {
     }
 
     /// Removes a body with its colliders and returns it. Its contacts end (reported after the
-    /// next step).
+    /// next step), and the sleeping bodies it touched wake.
     pub fn remove_body(&mut self, handle: BodyHandle) -> Result<Body, CaromError> {
-        let index = self.bodies.checked_index(handle)?;
+        self.bodies.checked_index(handle)?;
+        self.wake_touching(handle);
+        let index = self.bodies.checked_index(handle).expect("checked");
+        let index = self.prepare_removal(index);
         let body = self.bodies.remove(handle).expect("checked");
         self.contacts.remove_body(handle);
         for &collider in body.colliders() {
@@ -268,6 +277,9 @@ impl World {
         updated.wake_up();
         let kind = updated.kind();
         self.bodies.as_mut_slice()[index] = updated;
+        self.wake_body(index);
+        let index = self.bodies.checked_index(body).expect("live");
+        self.settle_body(index);
         self.place_colliders_of(body);
         let aabb = self.colliders.get(handle).expect("just inserted").aabb();
         self.broadphase
@@ -302,8 +314,10 @@ impl World {
         updated.rebuild_mass(remaining.into_iter())?;
         updated.wake_up();
         *self.bodies.get_mut(body).expect("live") = updated;
+        self.wake_touching(body);
         self.contacts.remove_collider(body, handle);
         self.broadphase.remove(handle);
+        self.prepare_collider_removal(handle);
         let removed = self.colliders.remove(handle).expect("checked");
         self.place_colliders_of(body);
         Ok(removed)
@@ -338,6 +352,8 @@ impl World {
                 .set_density(previous);
             return Err(e);
         }
+        let index = self.bodies.checked_index(body).expect("live");
+        self.wake_body(index);
         Ok(())
     }
 
@@ -354,8 +370,12 @@ impl World {
             self.bodies.as_mut_slice()[index] = previous;
             return Err(e);
         }
+        // Its island wakes (it may leave it), and the body goes to its new kind's set.
+        self.wake_body(index);
+        let index = self.bodies.checked_index(handle).expect("live");
+        self.settle_body(index);
         self.place_colliders_of(handle);
-        let body = &self.bodies.as_slice()[index];
+        let body = self.bodies.get(handle).expect("live");
         let margin = margin_for(&self.settings, kind);
         for &collider in body.colliders() {
             let aabb = self.colliders.get(collider).expect("attached").aabb();
@@ -389,14 +409,8 @@ impl World {
     /// The body behind a handle, to change, unless it was removed. When the borrow ends, its
     /// colliders follow wherever it was moved, so the next step and queries see it there.
     pub fn body_mut(&mut self, handle: BodyHandle) -> Option<BodyMut<'_>> {
-        let body = self.bodies.get_mut(handle)?;
-        let margin = margin_for(&self.settings, body.kind());
-        Some(BodyMut::new(
-            body,
-            &mut self.colliders,
-            &mut self.broadphase,
-            margin,
-        ))
+        let index = self.bodies.dense_index(handle)?;
+        Some(BodyMut::new(self, index))
     }
 
     /// The collider behind a handle, unless it was removed.
@@ -410,9 +424,10 @@ impl World {
         self.colliders.get_mut(handle)
     }
 
-    /// Every collider, in storage order.
+    /// Every collider, in handle order: the order they were added, a removed collider's
+    /// place taken by a later one. The order does not change as bodies sleep and wake.
     pub fn colliders(&self) -> impl ExactSizeIterator<Item = &Collider> {
-        self.colliders.as_slice().iter()
+        self.colliders.iter_by_handle()
     }
 
     /// True when the handle refers to a body of this world.
@@ -420,9 +435,11 @@ impl World {
         self.bodies.contains(handle)
     }
 
-    /// Every body, in storage order (which is also draw order: later is on top).
+    /// Every body, in handle order: the order they were added, a removed body's place taken
+    /// by a later one. The order does not change as bodies sleep and wake (it is also draw
+    /// order: later is on top).
     pub fn bodies(&self) -> impl ExactSizeIterator<Item = &Body> {
-        self.bodies.as_slice().iter()
+        self.bodies.iter_by_handle()
     }
 
     /// How many bodies there are.
@@ -517,6 +534,7 @@ impl World {
             (stats.continuous_impacts, stats.work.sweeps) = timed(&mut times.continuous, || {
                 continuous::solve_continuous(
                     &mut self.bodies,
+                    self.body_sets.awake(),
                     &mut self.colliders,
                     &scratch.starts,
                     &self.broadphase,
@@ -541,7 +559,7 @@ impl World {
 
     /// Rebuilds the manifolds of every pair where something moves, and wakes the sleeping
     /// islands a moving body touched so they join this step; returns the deepest overlap.
-    fn build_manifolds(&mut self, prediction: Real, wake: &mut Vec<u32>) -> Real {
+    fn build_manifolds(&mut self, prediction: Real, wake: &mut Vec<BodyHandle>) -> Real {
         wake.clear();
         let deepest = self.contacts.update(
             &self.bodies,
@@ -554,52 +572,64 @@ impl World {
             },
             wake,
         );
-        sleep::wake_groups(self.bodies.as_mut_slice(), wake);
+        wake.sort_unstable();
+        wake.dedup();
+        for &head in wake.iter() {
+            self.wake_island(head);
+        }
         deepest
     }
 
-    /// Advances sleep timers and puts resting islands to sleep; returns the bodies checked.
+    /// Advances the awake bodies' sleep timers and puts resting islands to sleep; returns the
+    /// bodies checked.
     fn update_sleep(&mut self, dt: Real, scratch: &mut StepScratch) -> usize {
+        let awake = self.body_sets.awake();
+        let local = |dense: usize| awake.contains(&dense).then(|| dense - awake.start);
         scratch.touching.clear();
+        // The dense indices were taken before the solve; nothing has moved in the sets since.
         scratch.touching.extend(
             self.contacts
+                .awake()
                 .iter()
                 .zip(&scratch.dense)
                 .filter(|(c, _)| c.is_touching())
-                .map(|(_, pair)| *pair),
+                .filter_map(|(_, &(a, b))| Some((local(a)?, local(b)?))),
         );
-        sleep::update_sleep(
-            self.bodies.as_mut_slice(),
+        let checked = sleep::update_sleep(
+            &mut self.bodies.as_mut_slice()[awake.clone()],
             &scratch.touching,
             dt,
-            &mut self.sleep_groups,
             &mut scratch.islands,
-        )
+        );
+        let islands = std::mem::take(&mut scratch.islands);
+        self.put_to_sleep(&islands.falling, &islands.falling_ends);
+        scratch.islands = islands;
+        checked
     }
 
     /// Completes a step's statistics with counts taken after it, and keeps them.
     fn record(&mut self, mut stats: StepStats, started: Instant) {
         stats.bodies = self.bodies.len();
         stats.contacts = self.contacts.len();
-        stats.touching_contacts = self.contacts.iter().filter(|c| c.is_touching()).count();
-        for body in self.bodies.as_slice() {
-            if body.is_sleeping() {
-                stats.sleeping_bodies += 1;
-            } else if body.moves() {
-                stats.kinetic_energy += body.kinetic_energy();
-            }
-        }
+        stats.touching_contacts = self.contacts.touching_count();
+        stats.sleeping_bodies = self.bodies.len() - self.body_sets.asleep_start();
+        stats.kinetic_energy = self.awake_bodies().iter().map(Body::kinetic_energy).sum();
         stats.times.total = started.elapsed();
         self.stats = stats;
     }
 
-    /// Every body's pose, in storage order, into `poses`.
-    fn poses(&self, poses: &mut Vec<Pose>) {
-        poses.clear();
-        poses.extend(self.bodies.as_slice().iter().map(Pose::of));
+    /// The awake set of bodies: what a step moves.
+    fn awake_bodies(&self) -> &[Body] {
+        &self.bodies.as_slice()[self.body_sets.awake()]
     }
 
-    /// The dense indices of every contact's two bodies, in contact order, into `dense`.
+    /// Every awake body's pose, in storage order, into `poses`.
+    fn poses(&self, poses: &mut Vec<Pose>) {
+        poses.clear();
+        poses.extend(self.awake_bodies().iter().map(Pose::of));
+    }
+
+    /// The dense indices of every awake contact's two bodies, in contact order, into `dense`.
     fn contact_bodies(&self, dense: &mut Vec<(usize, usize)>) {
         let bodies = &self.bodies;
         let index = |h| {
@@ -610,6 +640,7 @@ impl World {
         dense.clear();
         dense.extend(
             self.contacts
+                .awake()
                 .iter()
                 .map(|c| (index(c.body_a()), index(c.body_b()))),
         );
@@ -631,7 +662,8 @@ impl World {
             &self.settings.solver,
             environment,
             self.bodies.as_mut_slice(),
-            self.contacts.as_mut_slice(),
+            self.body_sets.awake(),
+            self.contacts.awake_mut(),
             dense,
             dt,
             &mut self.solver_workspace,
@@ -649,29 +681,28 @@ impl World {
             else {
                 continue;
             };
-            self.contacts.add((a, collider_a), (b, collider_b));
+            let sets = self.body_sets;
+            let awake = [collider_a, collider_b]
+                .iter()
+                .any(|c| sets.set_of(c.body_index()) == SolverSet::Awake);
+            self.contacts.add((a, collider_a), (b, collider_b), awake);
         }
     }
 
-    /// Places the colliders of every body that moved this step, and the bodies' boxes.
+    /// Places the colliders of the awake set, which moved this step, and their bodies' boxes.
     fn place_moved_colliders(&mut self) {
         let bodies = self.bodies.as_slice();
         for_each_mut(
-            self.colliders.as_mut_slice(),
+            &mut self.colliders.as_mut_slice()[self.collider_sets.awake()],
             CONTACTS_PER_TASK,
-            |collider| {
-                let body = &bodies[collider.body_index()];
-                if body.moves() {
-                    collider.place(&body.transform());
-                }
-            },
+            |collider| collider.place(&bodies[collider.body_index()].transform()),
         );
         let colliders = &self.colliders;
-        for_each_mut(self.bodies.as_mut_slice(), ITEMS_PER_TASK, |body| {
-            if body.moves() {
-                body.set_aabb(colliders_aabb(body, colliders));
-            }
-        });
+        for_each_mut(
+            &mut self.bodies.as_mut_slice()[self.body_sets.awake()],
+            ITEMS_PER_TASK,
+            |body| body.set_aabb(colliders_aabb(body, colliders)),
+        );
     }
 
     /// Re-fits the broadphase entries of colliders that moved this step, each box covering
@@ -682,15 +713,13 @@ impl World {
             margin_for(&self.settings, BodyKind::Dynamic),
         ];
         let bodies = self.bodies.as_slice();
-        let colliders = self
-            .colliders
-            .handles()
+        let awake = self.collider_sets.awake();
+        let colliders = self.colliders.handles()[awake.clone()]
             .iter()
-            .zip(self.colliders.as_slice());
+            .zip(&self.colliders.as_slice()[awake]);
         for (&handle, collider) in colliders {
             let body = &bodies[collider.body_index()];
             let margin = match body.kind() {
-                _ if !body.moves() => continue,
                 BodyKind::Static => continue,
                 BodyKind::Kinematic => margins[0],
                 BodyKind::Dynamic => margins[1],
@@ -701,7 +730,7 @@ impl World {
     }
 
     /// A fingerprint of the simulation state: FNV-1a over every body's position, rotation and
-    /// velocities, bit for bit, in storage order. Equal runs give equal hashes.
+    /// velocities, bit for bit, in handle order. Equal runs give equal hashes.
     pub fn state_hash(&self) -> u64 {
         let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
         let mut mix = |value: Real| {
@@ -721,7 +750,7 @@ impl World {
     /// The body under a world point, for grabbing with the mouse.
     ///
     /// Dynamic bodies win over kinematic ones and those over static ones; among equals the one
-    /// latest in storage order (drawn on top) wins.
+    /// latest in handle order (drawn on top) wins.
     pub fn body_at(&self, point: Vec2) -> Option<BodyHandle> {
         let rank = |kind: BodyKind| match kind {
             BodyKind::Static => 0,
@@ -730,12 +759,12 @@ impl World {
         };
         self.bodies_at(point)
             .into_iter()
-            .filter_map(|h| Some((self.bodies.dense_index(h)?, h)))
-            .max_by_key(|&(order, _)| (rank(self.bodies.as_slice()[order].kind()), order))
+            .filter_map(|h| Some((self.bodies.get(h)?.kind(), h)))
+            .max_by_key(|&(kind, h)| (rank(kind), h.index()))
             .map(|(_, h)| h)
     }
 
-    /// Every body with a collider containing the point, in storage order.
+    /// Every body with a collider containing the point, in handle order.
     pub fn bodies_at(&self, point: Vec2) -> Vec<BodyHandle> {
         let probe = Aabb::new(point, point);
         let mut found = Vec::new();
@@ -750,7 +779,7 @@ impl World {
                 found.push(collider.body());
             }
         });
-        found.sort_unstable_by_key(|h| self.bodies.dense_index(*h).unwrap_or(usize::MAX));
+        found.sort_unstable_by_key(|h| h.index());
         found.dedup();
         found
     }
@@ -812,6 +841,16 @@ fn timed<T>(slot: &mut std::time::Duration, stage: impl FnOnce() -> T) -> T {
     result
 }
 
+/// What the solver starts a step from: every body, the awake set's range, the awake contacts
+/// and their bodies' dense indices.
+#[cfg(test)]
+pub(crate) type SolverInputs<'a> = (
+    &'a [Body],
+    std::ops::Range<usize>,
+    &'a [Contact],
+    Vec<(usize, usize)>,
+);
+
 /// What the solver starts a step from, for tests of the solver's parts.
 #[cfg(test)]
 impl World {
@@ -820,10 +859,12 @@ impl World {
         self.bodies.get_mut(handle)
     }
 
-    pub(crate) fn solver_inputs(&self) -> (&[Body], &[Contact], Vec<(usize, usize)>) {
+    /// Every body, the awake set's range, the awake contacts and their bodies' dense indices.
+    pub(crate) fn solver_inputs(&self) -> SolverInputs<'_> {
         let mut dense = Vec::new();
         self.contact_bodies(&mut dense);
-        (self.bodies.as_slice(), self.contacts.as_slice(), dense)
+        let awake = self.body_sets.awake();
+        (self.bodies.as_slice(), awake, self.contacts.awake(), dense)
     }
 }
 

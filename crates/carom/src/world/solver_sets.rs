@@ -1,0 +1,518 @@
+//! Solver sets, as in Box2D v3: bodies are stored by what the step does with them, so the step
+//! walks only what moves.
+//!
+//! Bodies live in one dense array in three contiguous sets: static bodies first, then the
+//! awake set (dynamic and kinematic bodies the step moves), then the sleeping bodies. A
+//! body's colliders are stored in the same three sets in the colliders' array, and contacts in
+//! two: awake (a body of the pair is awake) and asleep. Each stage of a step takes the awake
+//! set as one slice; a static or sleeping body is never visited.
+//!
+//! A sleeping island is a list threaded through its bodies: each knows the island's first body
+//! (which names the island) and the next, so sleeping needs no memory of its own. Falling
+//! asleep moves an island's bodies (and their colliders and contacts) out of the awake set;
+//! waking moves them back. Each move is a swap at a set boundary, so it costs the island's own
+//! bodies and contacts, whatever the size of the world.
+
+use crate::dynamics::body::{BodyHandle, BodyKind};
+use crate::dynamics::collider::ColliderHandle;
+use crate::world::World;
+use std::ops::Range;
+
+/// Which set an item is stored in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) enum SolverSet {
+    /// Static bodies and their colliders: never visited by a step.
+    Static = 0,
+    /// What the step moves, and the contacts it solves.
+    Awake = 1,
+    /// Sleeping islands: never visited until woken.
+    Asleep = 2,
+}
+
+/// Where the sets of one dense array begin and end: `[0, ends[0])` static, `[ends[0], ends[1])`
+/// awake, `[ends[1], len)` asleep.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub(crate) struct SetBounds {
+    ends: [usize; 2],
+}
+
+impl SetBounds {
+    /// The set of the item at `index`.
+    #[inline]
+    pub fn set_of(&self, index: usize) -> SolverSet {
+        if index < self.ends[0] {
+            SolverSet::Static
+        } else if index < self.ends[1] {
+            SolverSet::Awake
+        } else {
+            SolverSet::Asleep
+        }
+    }
+
+    /// The dense indices of the awake set.
+    #[inline]
+    pub fn awake(&self) -> Range<usize> {
+        self.ends[0]..self.ends[1]
+    }
+
+    /// Where the sleeping set begins (everything past it sleeps).
+    #[inline]
+    pub fn asleep_start(&self) -> usize {
+        self.ends[1]
+    }
+
+    /// Moves the item at `index` into set `to` by swapping it across each boundary on the way
+    /// (`swap(i, j)` swaps two items of the array); returns its new index. Only the items at
+    /// the boundaries it crosses move.
+    pub fn move_item(
+        &mut self,
+        mut index: usize,
+        to: SolverSet,
+        mut swap: impl FnMut(usize, usize),
+    ) -> usize {
+        let mut set = self.set_of(index) as usize;
+        let target = to as usize;
+        while set < target {
+            // Down: trade places with the last of this set, which then ends before it.
+            let last = self.ends[set] - 1;
+            swap(index, last);
+            self.ends[set] -= 1;
+            index = last;
+            set += 1;
+        }
+        while set > target {
+            // Up: trade places with the first of this set, which then begins after it.
+            let first = self.ends[set - 1];
+            swap(index, first);
+            self.ends[set - 1] += 1;
+            index = first;
+            set -= 1;
+        }
+        index
+    }
+}
+
+impl World {
+    /// The set a body belongs in, by its kind and state.
+    pub(crate) fn set_for(&self, index: usize) -> SolverSet {
+        let body = &self.bodies.as_slice()[index];
+        if body.kind() == BodyKind::Static {
+            SolverSet::Static
+        } else if body.is_sleeping() {
+            SolverSet::Asleep
+        } else {
+            SolverSet::Awake
+        }
+    }
+
+    /// Moves the body at dense `index`, its colliders and its contacts, into set `to`; returns
+    /// the body's new index. The colliders of every body that changes place follow it.
+    pub(crate) fn move_body(&mut self, index: usize, to: SolverSet) -> usize {
+        let index = self.move_body_and_colliders(index, to);
+        let handle = self.bodies.handles()[index];
+        self.refile_contacts(handle);
+        index
+    }
+
+    /// [`World::move_body`] without refiling the contacts (for a body whose contacts are about
+    /// to be destroyed).
+    fn move_body_and_colliders(&mut self, index: usize, to: SolverSet) -> usize {
+        // The colliders first, each on its own: one just attached may not be in its body's
+        // set yet.
+        for k in 0..self.bodies.as_slice()[index].colliders().len() {
+            let collider = self.bodies.as_slice()[index].colliders()[k];
+            let at = self.colliders.checked_index(collider).expect("attached");
+            let colliders = &mut self.colliders;
+            self.collider_sets
+                .move_item(at, to, |i, j| colliders.swap(i, j));
+        }
+        if self.body_sets.set_of(index) == to {
+            return index;
+        }
+        let (bodies, colliders) = (&mut self.bodies, &mut self.colliders);
+        self.body_sets.move_item(index, to, |i, j| {
+            bodies.swap(i, j);
+            for k in [i, j] {
+                for &collider in bodies.as_slice()[k].colliders() {
+                    if let Some(c) = colliders.get_mut(collider) {
+                        c.set_body_index(k);
+                    }
+                }
+            }
+        })
+    }
+
+    /// Puts each of a body's contacts in the awake set if either of its bodies is awake, else
+    /// in the sleeping set.
+    fn refile_contacts(&mut self, body: BodyHandle) {
+        let (bodies, sets) = (&self.bodies, self.body_sets);
+        self.contacts.refile(body, |handle| {
+            bodies
+                .dense_index(handle)
+                .is_some_and(|i| sets.set_of(i) == SolverSet::Awake)
+        });
+    }
+
+    /// Moves the body at `index` to the set its kind and state call for (after a change of
+    /// kind); returns its new index.
+    pub(crate) fn settle_body(&mut self, index: usize) -> usize {
+        let to = self.set_for(index);
+        self.move_body(index, to)
+    }
+
+    /// Wakes the island of the body at `index` if it sleeps (or was just woken by an edit but
+    /// still stands in the sleeping set).
+    pub(crate) fn wake_body(&mut self, index: usize) {
+        if self.body_sets.set_of(index) == SolverSet::Asleep {
+            match self.bodies.as_slice()[index].island_link() {
+                (Some(head), _) => self.wake_island(head),
+                (None, _) => {
+                    // Not in an island's list (it cannot happen, but a lone body still wakes).
+                    self.bodies.as_mut_slice()[index].wake_up();
+                    self.move_body(index, SolverSet::Awake);
+                }
+            }
+        }
+    }
+
+    /// Wakes the islands of the sleeping bodies that touch `body` (about to be removed or to
+    /// lose a collider: what rested on it must be free to fall).
+    pub(crate) fn wake_touching(&mut self, body: BodyHandle) {
+        let mut partners = std::mem::take(&mut self.scratch.partners);
+        self.contacts.touching_partners(body, &mut partners);
+        for &partner in &partners {
+            if let Some(index) = self.bodies.dense_index(partner) {
+                self.wake_body(index);
+            }
+        }
+        self.scratch.partners = partners;
+    }
+
+    /// Wakes every body of the sleeping island that `head` begins: they, their colliders and
+    /// contacts go back to the awake set. An island already woken is left alone.
+    pub(crate) fn wake_island(&mut self, head: BodyHandle) {
+        let mut next = Some(head);
+        while let Some(handle) = next {
+            let Some(index) = self.bodies.dense_index(handle) else {
+                break;
+            };
+            let body = &mut self.bodies.as_mut_slice()[index];
+            if body.island_link().0 != Some(head) {
+                break;
+            }
+            next = body.island_link().1;
+            body.set_island_link(None, None);
+            body.wake_up();
+            self.move_body(index, SolverSet::Awake);
+        }
+    }
+
+    /// Puts islands to sleep: `bodies[ends[k - 1]..ends[k]]` is island `k`'s.
+    pub(crate) fn put_to_sleep(&mut self, bodies: &[BodyHandle], ends: &[usize]) {
+        let mut start = 0;
+        for &end in ends {
+            let island = &bodies[start..end];
+            for (k, &handle) in island.iter().enumerate() {
+                let index = self
+                    .bodies
+                    .checked_index(handle)
+                    .expect("awake bodies live");
+                let body = &mut self.bodies.as_mut_slice()[index];
+                body.fall_asleep();
+                body.set_island_link(Some(island[0]), island.get(k + 1).copied());
+                self.move_body(index, SolverSet::Asleep);
+            }
+            start = end;
+        }
+    }
+
+    /// Wakes every sleeping island.
+    pub(crate) fn wake_all_islands(&mut self) {
+        while self.body_sets.asleep_start() < self.bodies.len() {
+            self.wake_body(self.body_sets.asleep_start());
+        }
+    }
+
+    /// Takes the body at `index` out of its sleeping island and moves it, with its
+    /// colliders, into the sleeping set, the last of each array: removing it from there moves
+    /// only another sleeper into its place, so every set stays contiguous. Its contacts are
+    /// left where they are, for the caller to destroy. Returns its index.
+    pub(crate) fn prepare_removal(&mut self, index: usize) -> usize {
+        self.unlink_from_island(index);
+        self.move_body_and_colliders(index, SolverSet::Asleep)
+    }
+
+    /// Takes a sleeping body out of its island's list (the island sleeps on without it).
+    fn unlink_from_island(&mut self, index: usize) {
+        let handle = self.bodies.handles()[index];
+        let (Some(head), next) = self.bodies.as_slice()[index].island_link() else {
+            return;
+        };
+        self.bodies.as_mut_slice()[index].set_island_link(None, None);
+        let member =
+            |world: &World, h: BodyHandle| world.bodies.dense_index(h).expect("island bodies live");
+        if head == handle {
+            // The next body heads the island now: every member learns it.
+            let mut at = next;
+            while let Some(h) = at {
+                let i = member(self, h);
+                let (_, after) = self.bodies.as_slice()[i].island_link();
+                self.bodies.as_mut_slice()[i].set_island_link(next, after);
+                at = after;
+            }
+        } else {
+            let mut at = head;
+            loop {
+                let i = member(self, at);
+                let (_, after) = self.bodies.as_slice()[i].island_link();
+                if after == Some(handle) {
+                    self.bodies.as_mut_slice()[i].set_island_link(Some(head), next);
+                    break;
+                }
+                at = after.expect("a member is in its island's list");
+            }
+        }
+    }
+
+    /// Moves a collider into the sleeping set, the last of the array, so removing it keeps
+    /// every set contiguous.
+    pub(crate) fn prepare_collider_removal(&mut self, collider: ColliderHandle) {
+        let at = self.colliders.checked_index(collider).expect("attached");
+        let colliders = &mut self.colliders;
+        self.collider_sets
+            .move_item(at, SolverSet::Asleep, |i, j| colliders.swap(i, j));
+    }
+}
+
+#[cfg(test)]
+impl World {
+    /// Checks every invariant of the sets, panicking on the first broken one: each body is in
+    /// the set its kind and state call for, its colliders in the same set and pointing at it,
+    /// each contact awake exactly when one of its bodies is, and each sleeping island's list
+    /// holds exactly the bodies that name it.
+    pub(crate) fn check_sets(&self) {
+        let bodies = self.bodies.as_slice();
+        for (index, body) in bodies.iter().enumerate() {
+            let set = self.body_sets.set_of(index);
+            assert_eq!(set, self.set_for(index), "body {index} ({:?})", body.kind());
+            for &c in body.colliders() {
+                let at = self
+                    .colliders
+                    .dense_index(c)
+                    .expect("attached colliders live");
+                assert_eq!(
+                    self.collider_sets.set_of(at),
+                    set,
+                    "collider of body {index}"
+                );
+                assert_eq!(self.colliders.as_slice()[at].body_index(), index);
+            }
+            let (head, _) = body.island_link();
+            assert_eq!(
+                head.is_some(),
+                body.is_sleeping(),
+                "body {index} island link"
+            );
+        }
+        assert_eq!(
+            self.colliders.len(),
+            bodies.iter().map(|b| b.colliders().len()).sum::<usize>()
+        );
+        let awake_body = |h: BodyHandle| {
+            let i = self
+                .bodies
+                .dense_index(h)
+                .expect("contacts join live bodies");
+            self.body_sets.set_of(i) == SolverSet::Awake
+        };
+        let mut asleep_touching = 0;
+        for (i, contact) in self.contacts.iter().enumerate() {
+            let awake = awake_body(contact.body_a()) || awake_body(contact.body_b());
+            assert_eq!(awake, i < self.contacts.awake_len(), "contact {i}");
+            if !awake && contact.is_touching() {
+                asleep_touching += 1;
+            }
+        }
+        assert_eq!(asleep_touching, self.contacts.asleep_touching());
+        // Each island's list, walked from its head, is exactly its members.
+        for body in bodies.iter().filter(|b| b.is_sleeping()) {
+            let (Some(head), _) = body.island_link() else {
+                unreachable!("checked above");
+            };
+            let mut walked = 0;
+            let mut next = Some(head);
+            while let Some(h) = next {
+                let member = self.bodies.get(h).expect("island members live");
+                assert_eq!(member.island_link().0, Some(head));
+                next = member.island_link().1;
+                walked += 1;
+                assert!(walked <= bodies.len(), "island list loops");
+            }
+            let members = bodies
+                .iter()
+                .filter(|b| b.island_link().0 == Some(head))
+                .count();
+            assert_eq!(walked, members, "island of {head:?}");
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::body::BodyDef;
+    use crate::dynamics::collider::ColliderDef;
+    use crate::geometry::shape::Shape;
+    use crate::math::{Real, vec2};
+
+    /// Items labelled by their set, moved around at random: the sets stay contiguous, each
+    /// item lands in the set asked for, and nothing is lost.
+    #[test]
+    fn moves_keep_the_sets_contiguous() {
+        let mut items: Vec<(u32, SolverSet)> = Vec::new();
+        let mut bounds = SetBounds::default();
+        let sets = [SolverSet::Static, SolverSet::Awake, SolverSet::Asleep];
+        let mut seed: u32 = 12345;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            seed >> 8
+        };
+        for label in 0..200 {
+            // New items arrive at the end (asleep), then go where they belong.
+            let to = sets[next() as usize % 3];
+            items.push((label, SolverSet::Asleep));
+            let at = bounds.move_item(items.len() - 1, to, |i, j| items.swap(i, j));
+            items[at].1 = to;
+            // And some item changes set.
+            let pick = next() as usize % items.len();
+            let to = sets[next() as usize % 3];
+            let at = bounds.move_item(pick, to, |i, j| items.swap(i, j));
+            items[at].1 = to;
+            for (i, &(_, set)) in items.iter().enumerate() {
+                assert_eq!(bounds.set_of(i), set, "item {i} after {label} inserts");
+            }
+        }
+        let mut labels: Vec<u32> = items.iter().map(|&(l, _)| l).collect();
+        labels.sort_unstable();
+        assert_eq!(labels, (0..200).collect::<Vec<_>>());
+    }
+
+    /// A small linear congruential generator, so the test is the same every run.
+    struct Lcg(u32);
+
+    impl Lcg {
+        fn next(&mut self) -> u32 {
+            self.0 = self.0.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            self.0 >> 8
+        }
+
+        fn below(&mut self, n: usize) -> usize {
+            self.next() as usize % n
+        }
+    }
+
+    /// Piles that fall asleep, interrupted at random by every edit a user can make (add and
+    /// remove bodies and colliders, change kinds, push, move, wake all): after every edit and
+    /// every step, each body, collider and contact is in the set it belongs in.
+    #[test]
+    fn random_edits_keep_every_item_in_its_set() {
+        let mut world = World::new();
+        world
+            .add_body(BodyDef::static_body(Shape::rect(30.0, 0.5)).position(vec2(0.0, -0.5)))
+            .unwrap();
+        let mut rng = Lcg(7);
+        let mut handles = Vec::new();
+        let mut slept = 0;
+        for round in 0..400 {
+            let edit = rng.below(12);
+            let pick = (!handles.is_empty()).then(|| handles[rng.below(handles.len())]);
+            match (edit, pick) {
+                (0..=2, _) | (_, None) => {
+                    let x = rng.below(40) as Real - 20.0;
+                    let y = 0.5 + rng.below(6) as Real;
+                    let def = if rng.below(8) == 0 {
+                        BodyDef::static_body(Shape::rect(0.5, 0.5))
+                    } else {
+                        BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                    };
+                    handles.push(world.add_body(def.position(vec2(x, y))).unwrap());
+                }
+                (3, Some(h)) => {
+                    world.remove_body(h).unwrap();
+                    handles.retain(|&k| k != h);
+                }
+                (4, Some(h)) => {
+                    world
+                        .add_collider(
+                            h,
+                            ColliderDef::new(Shape::circle(0.3)).offset(vec2(0.0, 0.5)),
+                        )
+                        .unwrap();
+                }
+                (5, Some(h)) => {
+                    let colliders = world.body(h).unwrap().colliders().to_vec();
+                    if colliders.len() > 1 {
+                        world.remove_collider(colliders[1]).unwrap();
+                    }
+                }
+                (6, Some(h)) => {
+                    let kinds = [BodyKind::Static, BodyKind::Kinematic, BodyKind::Dynamic];
+                    world.set_body_kind(h, kinds[rng.below(3)]).unwrap();
+                }
+                (7, Some(h)) => {
+                    world
+                        .body_mut(h)
+                        .unwrap()
+                        .apply_impulse_at_center(vec2(0.0, 1.0))
+                        .unwrap();
+                }
+                (8, Some(h)) => {
+                    let mut body = world.body_mut(h).unwrap();
+                    let p = body.position();
+                    body.set_position(p + vec2(0.1, 0.0)).unwrap();
+                }
+                (9, _) if round % 50 == 0 => world.wake_all(),
+                _ => {
+                    for _ in 0..40 {
+                        world.step(1.0 / 60.0).unwrap();
+                        world.check_sets();
+                    }
+                }
+            }
+            world.check_sets();
+            slept = slept.max(world.stats().sleeping_bodies);
+        }
+        assert!(
+            slept > 10,
+            "piles fell asleep along the way ({slept} at most)"
+        );
+    }
+
+    /// Removing what a sleeping stack rests on wakes the stack, so it falls.
+    #[test]
+    fn removing_a_support_wakes_what_slept_on_it() {
+        let mut world = World::new();
+        world
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)).position(vec2(0.0, -0.5)))
+            .unwrap();
+        let base = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 0.5)))
+            .unwrap();
+        let top = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 1.5)))
+            .unwrap();
+        for _ in 0..120 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        assert!(world.body(top).unwrap().is_sleeping());
+        world.remove_body(base).unwrap();
+        world.check_sets();
+        assert!(!world.body(top).unwrap().is_sleeping());
+        let before = world.body(top).unwrap().position().y;
+        for _ in 0..30 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        let fell = before - world.body(top).unwrap().position().y;
+        assert!(fell > 0.5, "fell {fell} m");
+    }
+}
