@@ -87,8 +87,13 @@ pub const TIME_TO_SLEEP: Real = 0.5;
 
 // Solvers.
 
-/// Colours tried before a constraint goes to the overflow (Box2D uses 24).
-pub(crate) const COLOR_COUNT: usize = 32;
+/// Graph colours a touching contact may take before it goes to the overflow (Box2D's 24,
+/// less its overflow).
+pub(crate) const COLOR_COUNT: usize = 23;
+
+/// The colours open to contacts between two dynamic bodies (the first ones); contacts with a
+/// static or kinematic body take colours from the last down (Box2D's split).
+pub(crate) const DYNAMIC_COLOR_COUNT: usize = 20;
 
 /// Sequential impulse: position passes after each step (Box2D v2.4's default).
 pub(crate) const POSITION_ITERATIONS: usize = 3;

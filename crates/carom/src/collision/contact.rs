@@ -7,10 +7,11 @@
 //! touching are reported as begin and end events, readable after the step.
 
 use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
+use crate::collision::coloring::{ColorBody, ContactColors, NO_COLOR};
 use crate::collision::manifold::{self, Manifold, Margins};
 use crate::collision::recycle::ManifoldFrame;
 use crate::constants::CONTACTS_PER_TASK;
-use crate::dynamics::body::{Body, BodyHandle};
+use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
 use crate::geometry::shape::Shape;
 use crate::handle_map::HandleMap;
@@ -35,6 +36,12 @@ pub struct Contact {
     restitution: Real,
     /// What the manifold was built against, to carry it along while the bodies barely move.
     frame: ManifoldFrame,
+    /// Its graph colour while touching in the awake set ([`NO_COLOR`] otherwise), and its place
+    /// among the colour's contacts.
+    color: u8,
+    color_place: u32,
+    /// Which of its bodies the colour holds (the dynamic ones when it was coloured).
+    color_holds: [bool; 2],
 }
 
 impl Contact {
@@ -91,6 +98,12 @@ impl Contact {
     /// True while the manifold has points.
     pub fn is_touching(&self) -> bool {
         self.touching
+    }
+
+    /// Its colour, its place in it, and which bodies the colour holds, for tests.
+    #[cfg(test)]
+    pub(crate) fn color(&self) -> (u8, u32, [bool; 2]) {
+        (self.color, self.color_place, self.color_holds)
     }
 }
 
@@ -162,6 +175,8 @@ pub struct ContactSet {
     sets: SetBounds,
     /// How many sleeping contacts touch (they cannot change while asleep).
     asleep_touching: usize,
+    /// The graph colours of the awake touching contacts.
+    colors: ContactColors,
     lookup: HashMap<u64, usize, BuildHasherDefault<PairHasher>>,
     /// Each body's contacts, by the body's slot index, as pair keys: removing a body or a
     /// collider visits its own contacts only.
@@ -203,7 +218,7 @@ impl ContactSet {
     }
 
     /// Starts watching a pair of colliders (of two bodies), in the awake set if `awake` (a
-    /// body of the pair is awake).
+    /// body of the pair is awake). It does not touch yet, so it has no colour.
     pub(crate) fn add(
         &mut self,
         a: (ColliderHandle, &Collider),
@@ -232,14 +247,19 @@ impl ContactSet {
             friction: (a.1.friction() * b.1.friction()).sqrt(),
             restitution: a.1.restitution().max(b.1.restitution()),
             frame: ManifoldFrame::default(),
+            color: NO_COLOR,
+            color_place: 0,
+            color_holds: [false; 2],
         });
         // New contacts arrive in the sleeping set, the last.
         if awake {
-            self.move_to(self.contacts.len() - 1, SolverSet::Awake);
+            // Not touching yet: no colour, so no kinds needed.
+            let last = self.contacts.len() - 1;
+            self.move_to(last, SolverSet::Awake, &|_| BodyKind::Static);
         }
     }
 
-    /// Swaps two contacts' places.
+    /// Swaps two contacts' places; their colours learn where they went.
     fn swap(&mut self, i: usize, j: usize) {
         if i == j {
             return;
@@ -248,16 +268,64 @@ impl ContactSet {
         for k in [i, j] {
             let c = &self.contacts[k];
             self.lookup.insert(pair_key(c.collider_a, c.collider_b), k);
+            if c.color != NO_COLOR {
+                self.colors.relocate(c.color, c.color_place, k as u32);
+            }
         }
     }
 
-    /// Moves the contact at `index` into `set`; returns its new index.
-    fn move_to(&mut self, index: usize, set: SolverSet) -> usize {
+    /// Gives the touching contact at `index` a colour.
+    fn paint(&mut self, index: usize, kinds: &impl Fn(BodyHandle) -> BodyKind) {
+        let contact = &self.contacts[index];
+        debug_assert!(contact.touching && contact.color == NO_COLOR);
+        let side = |body: BodyHandle| ColorBody {
+            slot: body.index(),
+            dynamic: kinds(body) == BodyKind::Dynamic,
+        };
+        let (a, b) = (side(contact.body_a), side(contact.body_b));
+        let (color, place) = self.colors.add(index as u32, a, b);
+        let contact = &mut self.contacts[index];
+        (contact.color, contact.color_place) = (color, place);
+        contact.color_holds = [a.dynamic, b.dynamic];
+    }
+
+    /// Takes the contact at `index` out of its colour, if it has one, freeing there the
+    /// bodies it held (whatever their kind is now).
+    fn unpaint(&mut self, index: usize) {
+        let contact = &mut self.contacts[index];
+        if contact.color == NO_COLOR {
+            return;
+        }
+        let (color, place) = (contact.color, contact.color_place);
+        contact.color = NO_COLOR;
+        let side = |body: BodyHandle, held: bool| ColorBody {
+            slot: body.index(),
+            dynamic: held,
+        };
+        let [held_a, held_b] = contact.color_holds;
+        let (a, b) = (side(contact.body_a, held_a), side(contact.body_b, held_b));
+        if let Some(moved) = self.colors.remove(color, place, a, b) {
+            self.contacts[moved as usize].color_place = place;
+        }
+    }
+
+    /// Moves the contact at `index` into `set`; returns its new index. A touching contact
+    /// takes a colour in the awake set and gives it back in the sleeping one.
+    fn move_to(
+        &mut self,
+        index: usize,
+        set: SolverSet,
+        kinds: &impl Fn(BodyHandle) -> BodyKind,
+    ) -> usize {
         let from = self.sets.set_of(index);
         if from == set {
             return index;
         }
-        if self.contacts[index].touching {
+        let touching = self.contacts[index].touching;
+        if set == SolverSet::Asleep {
+            self.unpaint(index);
+        }
+        if touching {
             if set == SolverSet::Asleep {
                 self.asleep_touching += 1;
             } else {
@@ -267,23 +335,46 @@ impl ContactSet {
         let mut sets = self.sets;
         let index = sets.move_item(index, set, |i, j| self.swap(i, j));
         self.sets = sets;
+        if set == SolverSet::Awake && touching {
+            self.paint(index, kinds);
+        }
         index
     }
 
-    /// Files each contact of `body` in the awake set if `awake` says one of its bodies is
-    /// awake, else in the sleeping set.
-    pub(crate) fn refile(&mut self, body: BodyHandle, awake: impl Fn(BodyHandle) -> bool) {
+    /// Files each contact of `body` in the awake set if one of its bodies is awake, else in
+    /// the sleeping set; `bodies` tells each body's set and kind.
+    pub(crate) fn refile(
+        &mut self,
+        body: BodyHandle,
+        bodies: impl Fn(BodyHandle) -> (SolverSet, BodyKind),
+    ) {
+        let kinds = |b: BodyHandle| bodies(b).1;
         let slot = body.index() as usize;
         let count = self.edges.get(slot).map_or(0, Vec::len);
         for k in 0..count {
             let index = self.lookup[&self.edges[slot][k]];
             let contact = &self.contacts[index];
+            let awake = |b: BodyHandle| bodies(b).0 == SolverSet::Awake;
             let set = if awake(contact.body_a) || awake(contact.body_b) {
                 SolverSet::Awake
             } else {
                 SolverSet::Asleep
             };
-            self.move_to(index, set);
+            self.move_to(index, set, &kinds);
+        }
+    }
+
+    /// Colours each of a body's awake touching contacts again, after its kind changed (a body
+    /// that became static frees its colours, one that became dynamic takes its own).
+    pub(crate) fn repaint(&mut self, body: BodyHandle, kinds: impl Fn(BodyHandle) -> BodyKind) {
+        let slot = body.index() as usize;
+        let count = self.edges.get(slot).map_or(0, Vec::len);
+        for k in 0..count {
+            let index = self.lookup[&self.edges[slot][k]];
+            if self.contacts[index].color != NO_COLOR {
+                self.unpaint(index);
+                self.paint(index, &kinds);
+            }
         }
     }
 
@@ -308,7 +399,7 @@ impl ContactSet {
     /// Drops the contact at `index`, ending it if it touched.
     fn destroy(&mut self, index: usize, events_now: bool) {
         // From the sleeping set, the last, a removal moves only another sleeper.
-        let index = self.move_to(index, SolverSet::Asleep);
+        let index = self.move_to(index, SolverSet::Asleep, &|_| BodyKind::Static);
         let contact = self.contacts.swap_remove(index);
         if contact.touching {
             self.asleep_touching -= 1;
@@ -431,6 +522,17 @@ impl ContactSet {
                 } else {
                     ContactEvent::End(pair)
                 });
+                let kinds = [(a.handle(), a.kind()), (b.handle(), b.kind())];
+                if touching {
+                    self.paint(index, &|body| {
+                        kinds
+                            .iter()
+                            .find(|k| k.0 == body)
+                            .map_or(BodyKind::Static, |k| k.1)
+                    });
+                } else {
+                    self.unpaint(index);
+                }
             }
         }
         deepest
@@ -458,9 +560,15 @@ impl ContactSet {
         &self.contacts[self.sets.awake()]
     }
 
-    /// The awake contacts, mutably, for the solver.
-    pub(crate) fn awake_mut(&mut self) -> &mut [Contact] {
-        &mut self.contacts[self.sets.awake()]
+    /// The awake contacts, mutably, for the solver, and their graph colours.
+    pub(crate) fn awake_mut_and_colors(&mut self) -> (&mut [Contact], &ContactColors) {
+        (&mut self.contacts[self.sets.awake()], &self.colors)
+    }
+
+    /// The graph colours of the awake touching contacts.
+    #[cfg(test)]
+    pub(crate) fn colors(&self) -> &ContactColors {
+        &self.colors
     }
 
     /// How many contacts touch: the awake ones counted, the sleeping ones remembered.

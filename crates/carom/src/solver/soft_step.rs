@@ -17,7 +17,7 @@ pub(super) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
-    graph: &mut ContactGraph,
+    graph: &ContactGraph,
     wide: &mut WideContacts,
     velocities: &mut SharedVelocities,
 ) -> Work {
@@ -36,11 +36,6 @@ pub(super) fn solve(
     }
     // The last state is a spare for the empty lanes of the last bundle of each colour.
     let spare = states.len() - 1;
-    if params.graph_coloring {
-        graph.build(constraints, states.len());
-    } else {
-        graph.leave_uncolored(constraints.len());
-    }
     wide.build(constraints, graph, bias.soft, bias.static_soft, spare);
     let bias_friction = environment.friction && params.friction_in_bias_pass;
     let points: usize = constraints.iter().map(|c| c.points().len()).sum();
@@ -315,7 +310,7 @@ mod tests {
         world: &World,
         h: Real,
     ) -> (Vec<BodyState>, Vec<ContactConstraint>, Bias, ContactGraph) {
-        let (bodies, awake, contacts, dense) = world.solver_inputs();
+        let (bodies, awake, contacts, dense, colors) = world.solver_inputs();
         let mut states: Vec<BodyState> = bodies[awake.clone()]
             .iter()
             .map(|body| {
@@ -329,17 +324,17 @@ mod tests {
             .collect();
         states.push(BodyState::spare());
         let (mut touching, mut constraints) = (Vec::new(), Vec::new());
+        let mut graph = ContactGraph::default();
+        crate::solver::order_constraints(contacts, Some(colors), &mut touching, &mut graph);
         crate::solver::prepare_constraints(
             bodies,
             awake,
             contacts,
             &dense,
-            &mut touching,
+            &touching,
             &mut constraints,
         );
         let bias = Bias::new(&SolverParams::default(), h);
-        let mut graph = ContactGraph::default();
-        graph.build(&constraints, states.len());
         (states, constraints, bias, graph)
     }
 
@@ -385,7 +380,7 @@ mod tests {
         let mut wide_constraints = constraints.clone();
         solve_wide(&mut wide_states, &mut wide_constraints, &bias, &graph);
 
-        let in_colour_order: Vec<usize> = graph.colors().flatten().copied().collect();
+        let in_colour_order: Vec<usize> = graph.colors().flatten().collect();
         for &i in &in_colour_order {
             warm_start_one(&mut constraints[i], &mut states);
         }
@@ -428,7 +423,7 @@ mod tests {
         }
         assert!(poisoned >= 2);
         solve_wide(&mut states, &mut constraints, &bias, &graph);
-        let (bodies, awake, _, _) = world.solver_inputs();
+        let (bodies, awake, _, _, _) = world.solver_inputs();
         // The awake set's kinematic paddle, and the spare state the static ground reads.
         let kinds = bodies[awake].iter().map(|b| Some(b.kind())).chain([None]);
         let mut fixed = 0;

@@ -225,7 +225,8 @@ impl WideContacts {
         let softness = [soft, static_soft];
         let pack = |&(color, offset): &(usize, usize)| {
             let members = graph.color(color);
-            let chunk = &members[offset..(offset + LANES).min(members.len())];
+            let start = members.start + offset;
+            let chunk = start..(start + LANES).min(members.end);
             Bundle::pack(constraints, chunk, softness, spare)
         };
         map_into(&self.slots, &mut self.bundles, ITEMS_PER_TASK / LANES, pack);
@@ -375,7 +376,7 @@ impl Bundle {
     /// Packs up to four constraints; `softness` is for moving and static partners.
     fn pack(
         constraints: &[ContactConstraint],
-        chunk: &[usize],
+        chunk: Range<usize>,
         softness: [Softness; 2],
         spare: usize,
     ) -> Self {
@@ -384,7 +385,7 @@ impl Bundle {
         let mut bundle_constraints = [usize::MAX; LANES];
         let (mut a, mut b) = ([spare; LANES], [spare; LANES]);
         let (mut writes_a, mut writes_b) = ([false; LANES], [false; LANES]);
-        for (lane, &index) in chunk.iter().enumerate() {
+        for (lane, index) in chunk.enumerate() {
             let c = &constraints[index];
             bundle_constraints[lane] = index;
             (a[lane], b[lane]) = (c.a, c.b);

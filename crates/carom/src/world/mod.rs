@@ -374,6 +374,7 @@ impl World {
         self.wake_body(index);
         let index = self.bodies.checked_index(handle).expect("live");
         self.settle_body(index);
+        self.repaint_contacts(handle);
         self.place_colliders_of(handle);
         let body = self.bodies.get(handle).expect("live");
         let margin = margin_for(&self.settings, kind);
@@ -658,13 +659,18 @@ impl World {
             friction: effects.contains(Effect::Friction),
             restitution: effects.contains(Effect::Restitution),
         };
+        let (contacts, colors) = self.contacts.awake_mut_and_colors();
+        let set = solver::AwakeSet {
+            bodies: self.bodies.as_mut_slice(),
+            awake: self.body_sets.awake(),
+            contacts,
+            dense,
+            colors,
+        };
         solver::step(
             &self.settings.solver,
             environment,
-            self.bodies.as_mut_slice(),
-            self.body_sets.awake(),
-            self.contacts.awake_mut(),
-            dense,
+            set,
             dt,
             &mut self.solver_workspace,
         )
@@ -841,14 +847,15 @@ fn timed<T>(slot: &mut std::time::Duration, stage: impl FnOnce() -> T) -> T {
     result
 }
 
-/// What the solver starts a step from: every body, the awake set's range, the awake contacts
-/// and their bodies' dense indices.
+/// What the solver starts a step from: every body, the awake set's range, the awake contacts,
+/// their bodies' dense indices and their colours.
 #[cfg(test)]
 pub(crate) type SolverInputs<'a> = (
     &'a [Body],
     std::ops::Range<usize>,
     &'a [Contact],
     Vec<(usize, usize)>,
+    &'a crate::collision::coloring::ContactColors,
 );
 
 /// What the solver starts a step from, for tests of the solver's parts.
@@ -859,12 +866,19 @@ impl World {
         self.bodies.get_mut(handle)
     }
 
-    /// Every body, the awake set's range, the awake contacts and their bodies' dense indices.
+    /// What the solver starts a step from.
     pub(crate) fn solver_inputs(&self) -> SolverInputs<'_> {
         let mut dense = Vec::new();
         self.contact_bodies(&mut dense);
         let awake = self.body_sets.awake();
-        (self.bodies.as_slice(), awake, self.contacts.awake(), dense)
+        let contacts = self.contacts.awake();
+        (
+            self.bodies.as_slice(),
+            awake,
+            contacts,
+            dense,
+            self.contacts.colors(),
+        )
     }
 }
 

@@ -147,9 +147,10 @@ impl World {
     fn refile_contacts(&mut self, body: BodyHandle) {
         let (bodies, sets) = (&self.bodies, self.body_sets);
         self.contacts.refile(body, |handle| {
-            bodies
+            let index = bodies
                 .dense_index(handle)
-                .is_some_and(|i| sets.set_of(i) == SolverSet::Awake)
+                .expect("contacts join live bodies");
+            (sets.set_of(index), bodies.as_slice()[index].kind())
         });
     }
 
@@ -158,6 +159,17 @@ impl World {
     pub(crate) fn settle_body(&mut self, index: usize) -> usize {
         let to = self.set_for(index);
         self.move_body(index, to)
+    }
+
+    /// Colours a body's touching contacts again after its kind changed.
+    pub(crate) fn repaint_contacts(&mut self, body: BodyHandle) {
+        let bodies = &self.bodies;
+        self.contacts.repaint(body, |handle| {
+            bodies
+                .get(handle)
+                .expect("contacts join live bodies")
+                .kind()
+        });
     }
 
     /// Wakes the island of the body at `index` if it sleeps (or was just woken by an edit but
@@ -334,6 +346,7 @@ impl World {
             }
         }
         assert_eq!(asleep_touching, self.contacts.asleep_touching());
+        self.check_colors();
         // Each island's list, walked from its head, is exactly its members.
         for body in bodies.iter().filter(|b| b.is_sleeping()) {
             let (Some(head), _) = body.island_link() else {
@@ -353,6 +366,57 @@ impl World {
                 .filter(|b| b.island_link().0 == Some(head))
                 .count();
             assert_eq!(walked, members, "island of {head:?}");
+        }
+    }
+}
+
+#[cfg(test)]
+impl World {
+    /// Checks the graph colouring: exactly the awake touching contacts have colours, each
+    /// colour's list and its contacts agree, no dynamic body is twice in a colour, and each
+    /// colour holds exactly the bodies of its contacts.
+    fn check_colors(&self) {
+        use crate::collision::coloring::{NO_COLOR, OVERFLOW};
+        use crate::constants::COLOR_COUNT;
+        let contacts: Vec<_> = self.contacts.iter().collect();
+        let colors = self.contacts.colors();
+        for (i, contact) in contacts.iter().enumerate() {
+            let (color, place, _) = contact.color();
+            let should = contact.is_touching() && i < self.contacts.awake_len();
+            assert_eq!(color != NO_COLOR, should, "contact {i}");
+            if color != NO_COLOR {
+                assert_eq!(colors.lists()[color as usize][place as usize], i as u32);
+            }
+        }
+        for (color, list) in colors.lists().iter().enumerate() {
+            let mut held = std::collections::HashSet::new();
+            for (place, &i) in list.iter().enumerate() {
+                let contact = contacts[i as usize];
+                let (c, p, holds) = contact.color();
+                assert_eq!((c as usize, p as usize), (color, place));
+                if c == OVERFLOW {
+                    continue;
+                }
+                for (body, holds) in [(contact.body_a(), holds[0]), (contact.body_b(), holds[1])] {
+                    let dynamic = self.bodies.get(body).unwrap().is_dynamic();
+                    assert_eq!(holds, dynamic, "contact {i} holds its dynamic bodies");
+                    if holds {
+                        assert!(held.insert(body.index()), "body twice in colour {color}");
+                    }
+                }
+            }
+            if color < COLOR_COUNT {
+                for slot in 0..self
+                    .bodies
+                    .handles()
+                    .iter()
+                    .map(|h| h.index() + 1)
+                    .max()
+                    .unwrap_or(0)
+                {
+                    assert_eq!(colors.holds(color as u8, slot), held.contains(&slot));
+                }
+            }
         }
     }
 }
