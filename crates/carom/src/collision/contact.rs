@@ -177,6 +177,10 @@ pub struct ContactSet {
     asleep_touching: usize,
     /// The graph colours of the awake touching contacts.
     colors: ContactColors,
+    /// The bodies of contacts that started touching, and of those that stopped (or were
+    /// destroyed while touching), since the world last took them (to link islands).
+    began: Vec<(BodyHandle, BodyHandle)>,
+    ended: Vec<(BodyHandle, BodyHandle)>,
     lookup: HashMap<u64, usize, BuildHasherDefault<PairHasher>>,
     /// Each body's contacts, by the body's slot index, as pair keys: removing a body or a
     /// collider visits its own contacts only.
@@ -198,6 +202,9 @@ enum Refresh {
     /// The manifold was rebuilt.
     Updated,
 }
+
+/// The bodies of the contacts that started touching, and of those that stopped.
+pub(crate) type TouchChanges = (Vec<(BodyHandle, BodyHandle)>, Vec<(BodyHandle, BodyHandle)>);
 
 /// How the narrowphase builds manifolds this step.
 #[derive(Debug, Clone, Copy)]
@@ -403,6 +410,7 @@ impl ContactSet {
         let contact = self.contacts.swap_remove(index);
         if contact.touching {
             self.asleep_touching -= 1;
+            self.ended.push((contact.body_a, contact.body_b));
         }
         let key = pair_key(contact.collider_a, contact.collider_b);
         self.lookup.remove(&key);
@@ -470,7 +478,7 @@ impl ContactSet {
         colliders: &HandleMap<ColliderHandle, Collider>,
         broadphase: &BroadPhase,
         options: ManifoldOptions,
-        wake: &mut Vec<BodyHandle>,
+        wake: &mut Vec<u32>,
     ) -> Real {
         // First every manifold, on as many threads as rayon gives (each contact on its own),
         // then the bookkeeping that touches the whole set, in order.
@@ -510,7 +518,7 @@ impl ContactSet {
                 deepest = deepest.max(-contact.manifold.min_separation().unwrap_or(0.0));
                 for (sleeper, other) in [(a, b), (b, a)] {
                     if sleeper.is_sleeping() && other.moves() {
-                        wake.extend(sleeper.island_link().0);
+                        wake.extend(sleeper.island());
                     }
                 }
             }
@@ -523,7 +531,9 @@ impl ContactSet {
                     ContactEvent::End(pair)
                 });
                 let kinds = [(a.handle(), a.kind()), (b.handle(), b.kind())];
+                let bodies = (a.handle(), b.handle());
                 if touching {
+                    self.began.push(bodies);
                     self.paint(index, &|body| {
                         kinds
                             .iter()
@@ -531,6 +541,7 @@ impl ContactSet {
                             .map_or(BodyKind::Static, |k| k.1)
                     });
                 } else {
+                    self.ended.push(bodies);
                     self.unpaint(index);
                 }
             }
@@ -558,6 +569,25 @@ impl ContactSet {
     /// The awake contacts (a body of the pair is awake): the ones a step visits.
     pub(crate) fn awake(&self) -> &[Contact] {
         &self.contacts[self.sets.awake()]
+    }
+
+    /// Takes the bodies of the contacts that started and stopped touching since the last call;
+    /// give the lists back (emptied) with [`ContactSet::give_back_touch_changes`] to keep their
+    /// memory.
+    pub(crate) fn take_touch_changes(&mut self) -> TouchChanges {
+        (
+            std::mem::take(&mut self.began),
+            std::mem::take(&mut self.ended),
+        )
+    }
+
+    /// Returns the lists [`ContactSet::take_touch_changes`] lent.
+    pub(crate) fn give_back_touch_changes(
+        &mut self,
+        began: Vec<(BodyHandle, BodyHandle)>,
+        ended: Vec<(BodyHandle, BodyHandle)>,
+    ) {
+        (self.began, self.ended) = (began, ended);
     }
 
     /// The awake contacts, mutably, for the solver, and their graph colours.

@@ -240,9 +240,10 @@ pub struct Body {
     sleep_time: Real,
     /// Asleep: skipped by every stage until something wakes it.
     sleeping: bool,
-    /// While asleep: the first body of its sleeping island (the island's name), and the next
-    /// body of the island, a list through its bodies. The whole island wakes together.
-    island_head: Option<BodyHandle>,
+    /// A dynamic body's island (see [`crate::dynamics::island`]), and its neighbours in the
+    /// island's list.
+    island: Option<u32>,
+    island_prev: Option<BodyHandle>,
     island_next: Option<BodyHandle>,
 }
 
@@ -292,7 +293,8 @@ impl Body {
             last_motion: 0.0,
             sleep_time: 0.0,
             sleeping: false,
-            island_head: None,
+            island: None,
+            island_prev: None,
             island_next: None,
         })
     }
@@ -552,16 +554,43 @@ impl Body {
         self.angular_velocity = 0.0;
     }
 
-    /// While asleep, the first body of its island and the next one: see
-    /// `world::solver_sets`.
-    pub(crate) fn island_link(&self) -> (Option<BodyHandle>, Option<BodyHandle>) {
-        (self.island_head, self.island_next)
+    /// The island of a dynamic body.
+    #[inline]
+    pub(crate) fn island(&self) -> Option<u32> {
+        self.island
     }
 
-    /// Links the body into a sleeping island's list (`None`s unlink it).
-    pub(crate) fn set_island_link(&mut self, head: Option<BodyHandle>, next: Option<BodyHandle>) {
-        self.island_head = head;
+    /// The bodies before and after it in its island's list.
+    #[inline]
+    pub(crate) fn island_neighbours(&self) -> (Option<BodyHandle>, Option<BodyHandle>) {
+        (self.island_prev, self.island_next)
+    }
+
+    /// Puts the body in an island's list, between `prev` and `next` (`None`s take it out).
+    pub(crate) fn set_island(
+        &mut self,
+        island: Option<u32>,
+        prev: Option<BodyHandle>,
+        next: Option<BodyHandle>,
+    ) {
+        self.island = island;
+        self.island_prev = prev;
         self.island_next = next;
+    }
+
+    /// Moves the body to another island, keeping its place in the list.
+    pub(crate) fn set_island_id(&mut self, island: Option<u32>) {
+        self.island = island;
+    }
+
+    /// Sets the body after it in its island's list.
+    pub(crate) fn set_island_next(&mut self, next: Option<BodyHandle>) {
+        self.island_next = next;
+    }
+
+    /// Sets the body before it in its island's list.
+    pub(crate) fn set_island_prev(&mut self, prev: Option<BodyHandle>) {
+        self.island_prev = prev;
     }
 
     /// Advances or resets the sleep timer from the body's fastest point speed, or from half

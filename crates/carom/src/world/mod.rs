@@ -2,6 +2,7 @@
 
 pub(crate) mod body_mut;
 pub(crate) mod effects;
+pub(crate) mod islands;
 pub(crate) mod mouse_joint;
 pub(crate) mod settings;
 pub(crate) mod solver_sets;
@@ -15,7 +16,7 @@ use crate::dynamics::collider::{
     Collider, ColliderDef, ColliderHandle, colliders_aabb, place_colliders,
 };
 use crate::dynamics::drag::DragModel;
-use crate::dynamics::sleep;
+use crate::dynamics::island::Islands;
 use crate::error::{CaromError, check_finite_vec};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::ray::Ray;
@@ -26,6 +27,7 @@ use crate::solver::{self, Environment, SolverParams};
 use crate::stats::StepStats;
 use crate::world::body_mut::BodyMut;
 use crate::world::effects::{Effect, Effects};
+use crate::world::islands::IslandScratch;
 use crate::world::settings::WorldSettings;
 use crate::world::solver_sets::{SetBounds, SolverSet};
 use std::time::Instant;
@@ -52,6 +54,9 @@ pub struct World {
     bodies: HandleMap<BodyHandle, Body>,
     /// Stored in the same sets as their bodies.
     colliders: HandleMap<ColliderHandle, Collider>,
+    /// The dynamic bodies' islands.
+    islands: Islands,
+    island_scratch: IslandScratch,
     body_sets: SetBounds,
     collider_sets: SetBounds,
     broadphase: BroadPhase,
@@ -76,14 +81,8 @@ struct StepScratch {
     dense: Vec<(usize, usize)>,
     /// Awake bodies' poses at the start of the step (for continuous collision).
     starts: Vec<Pose>,
-    /// Indices in the awake set of the bodies of touching contacts (for sleeping).
-    touching: Vec<(usize, usize)>,
     /// Sleeping islands a moving body touched.
-    wake: Vec<BodyHandle>,
-    /// Island finding's memory.
-    islands: sleep::Islands,
-    /// The bodies touching one being removed (to wake them).
-    partners: Vec<BodyHandle>,
+    wake: Vec<u32>,
 }
 
 fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {
@@ -216,7 +215,10 @@ impl World {
                 .attach(collider);
         }
         // Stored last, in the sleeping set; then moved into its own.
-        self.settle_body(index);
+        let index = self.settle_body(index);
+        if self.bodies.as_slice()[index].is_dynamic() {
+            self.create_island_for(index);
+        }
         self.place_colliders_of(handle);
         let body = self.bodies.get(handle).expect("just inserted");
         let margin = margin_for(&self.settings, body.kind());
@@ -237,6 +239,7 @@ impl World {
         let index = self.prepare_removal(index);
         let body = self.bodies.remove(handle).expect("checked");
         self.contacts.remove_body(handle);
+        self.apply_touch_changes();
         for &collider in body.colliders() {
             self.colliders.remove(collider);
             self.broadphase.remove(collider);
@@ -316,6 +319,7 @@ impl World {
         *self.bodies.get_mut(body).expect("live") = updated;
         self.wake_touching(body);
         self.contacts.remove_collider(body, handle);
+        self.apply_touch_changes();
         self.broadphase.remove(handle);
         self.prepare_collider_removal(handle);
         let removed = self.colliders.remove(handle).expect("checked");
@@ -370,11 +374,18 @@ impl World {
             self.bodies.as_mut_slice()[index] = previous;
             return Err(e);
         }
-        // Its island wakes (it may leave it), and the body goes to its new kind's set.
+        // Its island wakes, and the body goes to its new kind's set and island.
         self.wake_body(index);
         let index = self.bodies.checked_index(handle).expect("live");
-        self.settle_body(index);
+        let (was, is) = (previous.is_dynamic(), kind == BodyKind::Dynamic);
+        if was && !is {
+            self.leave_island(index);
+        }
+        let index = self.settle_body(index);
         self.repaint_contacts(handle);
+        if is && !was {
+            self.join_touching_islands(index);
+        }
         self.place_colliders_of(handle);
         let body = self.bodies.get(handle).expect("live");
         let margin = margin_for(&self.settings, kind);
@@ -547,8 +558,7 @@ impl World {
             self.refresh_broadphase(prediction)
         });
         if effects.contains(Effect::Sleeping) {
-            stats.work.sleep_checks =
-                timed(&mut times.sleep, || self.update_sleep(dt, &mut scratch));
+            stats.work.sleep_checks = timed(&mut times.sleep, || self.update_sleep(dt));
         }
 
         self.scratch = scratch;
@@ -560,7 +570,7 @@ impl World {
 
     /// Rebuilds the manifolds of every pair where something moves, and wakes the sleeping
     /// islands a moving body touched so they join this step; returns the deepest overlap.
-    fn build_manifolds(&mut self, prediction: Real, wake: &mut Vec<BodyHandle>) -> Real {
+    fn build_manifolds(&mut self, prediction: Real, wake: &mut Vec<u32>) -> Real {
         wake.clear();
         let deepest = self.contacts.update(
             &self.bodies,
@@ -575,37 +585,13 @@ impl World {
         );
         wake.sort_unstable();
         wake.dedup();
-        for &head in wake.iter() {
-            self.wake_island(head);
+        for &island in wake.iter() {
+            self.wake_island(island);
         }
+        // Islands join as their contacts start touching (after the waking, so a sleeping
+        // island that is touched joins awake).
+        self.apply_touch_changes();
         deepest
-    }
-
-    /// Advances the awake bodies' sleep timers and puts resting islands to sleep; returns the
-    /// bodies checked.
-    fn update_sleep(&mut self, dt: Real, scratch: &mut StepScratch) -> usize {
-        let awake = self.body_sets.awake();
-        let local = |dense: usize| awake.contains(&dense).then(|| dense - awake.start);
-        scratch.touching.clear();
-        // The dense indices were taken before the solve; nothing has moved in the sets since.
-        scratch.touching.extend(
-            self.contacts
-                .awake()
-                .iter()
-                .zip(&scratch.dense)
-                .filter(|(c, _)| c.is_touching())
-                .filter_map(|(_, &(a, b))| Some((local(a)?, local(b)?))),
-        );
-        let checked = sleep::update_sleep(
-            &mut self.bodies.as_mut_slice()[awake.clone()],
-            &scratch.touching,
-            dt,
-            &mut scratch.islands,
-        );
-        let islands = std::mem::take(&mut scratch.islands);
-        self.put_to_sleep(&islands.falling, &islands.falling_ends);
-        scratch.islands = islands;
-        checked
     }
 
     /// Completes a step's statistics with counts taken after it, and keeps them.

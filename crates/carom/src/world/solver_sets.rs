@@ -7,11 +7,9 @@
 //! two: awake (a body of the pair is awake) and asleep. Each stage of a step takes the awake
 //! set as one slice; a static or sleeping body is never visited.
 //!
-//! A sleeping island is a list threaded through its bodies: each knows the island's first body
-//! (which names the island) and the next, so sleeping needs no memory of its own. Falling
-//! asleep moves an island's bodies (and their colliders and contacts) out of the awake set;
-//! waking moves them back. Each move is a swap at a set boundary, so it costs the island's own
-//! bodies and contacts, whatever the size of the world.
+//! Falling asleep moves an island's bodies (and their colliders and contacts) out of the awake
+//! set; waking moves them back (see `world::islands`). Each move is a swap at a set boundary,
+//! so it costs the island's own bodies and contacts, whatever the size of the world.
 
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
@@ -19,7 +17,7 @@ use crate::world::World;
 use std::ops::Range;
 
 /// Which set an item is stored in.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub(crate) enum SolverSet {
     /// Static bodies and their colliders: never visited by a step.
     Static = 0,
@@ -176,66 +174,22 @@ impl World {
     /// still stands in the sleeping set).
     pub(crate) fn wake_body(&mut self, index: usize) {
         if self.body_sets.set_of(index) == SolverSet::Asleep {
-            match self.bodies.as_slice()[index].island_link() {
-                (Some(head), _) => self.wake_island(head),
-                (None, _) => {
-                    // Not in an island's list (it cannot happen, but a lone body still wakes).
-                    self.bodies.as_mut_slice()[index].wake_up();
-                    self.move_body(index, SolverSet::Awake);
-                }
-            }
+            let island = self.bodies.as_slice()[index].island();
+            self.wake_island(island.expect("sleeping bodies have islands"));
         }
     }
 
     /// Wakes the islands of the sleeping bodies that touch `body` (about to be removed or to
     /// lose a collider: what rested on it must be free to fall).
     pub(crate) fn wake_touching(&mut self, body: BodyHandle) {
-        let mut partners = std::mem::take(&mut self.scratch.partners);
+        let mut partners = std::mem::take(&mut self.island_scratch.partners);
         self.contacts.touching_partners(body, &mut partners);
         for &partner in &partners {
             if let Some(index) = self.bodies.dense_index(partner) {
                 self.wake_body(index);
             }
         }
-        self.scratch.partners = partners;
-    }
-
-    /// Wakes every body of the sleeping island that `head` begins: they, their colliders and
-    /// contacts go back to the awake set. An island already woken is left alone.
-    pub(crate) fn wake_island(&mut self, head: BodyHandle) {
-        let mut next = Some(head);
-        while let Some(handle) = next {
-            let Some(index) = self.bodies.dense_index(handle) else {
-                break;
-            };
-            let body = &mut self.bodies.as_mut_slice()[index];
-            if body.island_link().0 != Some(head) {
-                break;
-            }
-            next = body.island_link().1;
-            body.set_island_link(None, None);
-            body.wake_up();
-            self.move_body(index, SolverSet::Awake);
-        }
-    }
-
-    /// Puts islands to sleep: `bodies[ends[k - 1]..ends[k]]` is island `k`'s.
-    pub(crate) fn put_to_sleep(&mut self, bodies: &[BodyHandle], ends: &[usize]) {
-        let mut start = 0;
-        for &end in ends {
-            let island = &bodies[start..end];
-            for (k, &handle) in island.iter().enumerate() {
-                let index = self
-                    .bodies
-                    .checked_index(handle)
-                    .expect("awake bodies live");
-                let body = &mut self.bodies.as_mut_slice()[index];
-                body.fall_asleep();
-                body.set_island_link(Some(island[0]), island.get(k + 1).copied());
-                self.move_body(index, SolverSet::Asleep);
-            }
-            start = end;
-        }
+        self.island_scratch.partners = partners;
     }
 
     /// Wakes every sleeping island.
@@ -245,45 +199,13 @@ impl World {
         }
     }
 
-    /// Takes the body at `index` out of its sleeping island and moves it, with its
-    /// colliders, into the sleeping set, the last of each array: removing it from there moves
-    /// only another sleeper into its place, so every set stays contiguous. Its contacts are
-    /// left where they are, for the caller to destroy. Returns its index.
+    /// Takes the body at `index` out of its island and moves it, with its colliders, into the
+    /// sleeping set, the last of each array: removing it from there moves only another sleeper
+    /// into its place, so every set stays contiguous. Its contacts are left where they are,
+    /// for the caller to destroy. Returns its index.
     pub(crate) fn prepare_removal(&mut self, index: usize) -> usize {
-        self.unlink_from_island(index);
+        self.leave_island(index);
         self.move_body_and_colliders(index, SolverSet::Asleep)
-    }
-
-    /// Takes a sleeping body out of its island's list (the island sleeps on without it).
-    fn unlink_from_island(&mut self, index: usize) {
-        let handle = self.bodies.handles()[index];
-        let (Some(head), next) = self.bodies.as_slice()[index].island_link() else {
-            return;
-        };
-        self.bodies.as_mut_slice()[index].set_island_link(None, None);
-        let member =
-            |world: &World, h: BodyHandle| world.bodies.dense_index(h).expect("island bodies live");
-        if head == handle {
-            // The next body heads the island now: every member learns it.
-            let mut at = next;
-            while let Some(h) = at {
-                let i = member(self, h);
-                let (_, after) = self.bodies.as_slice()[i].island_link();
-                self.bodies.as_mut_slice()[i].set_island_link(next, after);
-                at = after;
-            }
-        } else {
-            let mut at = head;
-            loop {
-                let i = member(self, at);
-                let (_, after) = self.bodies.as_slice()[i].island_link();
-                if after == Some(handle) {
-                    self.bodies.as_mut_slice()[i].set_island_link(Some(head), next);
-                    break;
-                }
-                at = after.expect("a member is in its island's list");
-            }
-        }
     }
 
     /// Moves a collider into the sleeping set, the last of the array, so removing it keeps
@@ -319,12 +241,8 @@ impl World {
                 );
                 assert_eq!(self.colliders.as_slice()[at].body_index(), index);
             }
-            let (head, _) = body.island_link();
-            assert_eq!(
-                head.is_some(),
-                body.is_sleeping(),
-                "body {index} island link"
-            );
+            let dynamic = body.kind() == BodyKind::Dynamic;
+            assert_eq!(body.island().is_some(), dynamic, "body {index} island");
         }
         assert_eq!(
             self.colliders.len(),
@@ -347,25 +265,45 @@ impl World {
         }
         assert_eq!(asleep_touching, self.contacts.asleep_touching());
         self.check_colors();
-        // Each island's list, walked from its head, is exactly its members.
-        for body in bodies.iter().filter(|b| b.is_sleeping()) {
-            let (Some(head), _) = body.island_link() else {
-                unreachable!("checked above");
-            };
-            let mut walked = 0;
-            let mut next = Some(head);
-            while let Some(h) = next {
-                let member = self.bodies.get(h).expect("island members live");
-                assert_eq!(member.island_link().0, Some(head));
-                next = member.island_link().1;
-                walked += 1;
-                assert!(walked <= bodies.len(), "island list loops");
+        self.check_islands();
+    }
+
+    /// Checks the islands: each live island's list, walked both ways, is exactly the bodies
+    /// that name it, all in one set; every touching contact between dynamic bodies joins two
+    /// bodies of one island.
+    fn check_islands(&self) {
+        for id in self.islands.live_ids() {
+            let island = self.islands.get(id);
+            let mut walked = Vec::new();
+            let mut prev = None;
+            let mut next = island.head;
+            while let Some(handle) = next {
+                let body = self.bodies.get(handle).expect("island members live");
+                assert_eq!(body.island(), Some(id));
+                assert_eq!(body.island_neighbours().0, prev, "island {id} back link");
+                walked.push(handle);
+                assert!(walked.len() <= self.bodies.len(), "island {id} list loops");
+                prev = Some(handle);
+                next = body.island_neighbours().1;
             }
-            let members = bodies
+            assert_eq!(island.tail, prev, "island {id} tail");
+            assert_eq!(walked.len(), island.len as usize, "island {id} length");
+            let named = self.bodies().filter(|b| b.island() == Some(id)).count();
+            assert_eq!(walked.len(), named, "island {id} members");
+            let sets: std::collections::HashSet<SolverSet> = walked
                 .iter()
-                .filter(|b| b.island_link().0 == Some(head))
-                .count();
-            assert_eq!(walked, members, "island of {head:?}");
+                .map(|&h| self.body_sets.set_of(self.bodies.dense_index(h).unwrap()))
+                .collect();
+            assert_eq!(sets.len(), 1, "island {id} in one set");
+        }
+        for contact in self.contacts.iter().filter(|c| c.is_touching()) {
+            let (a, b) = (
+                self.bodies.get(contact.body_a()).unwrap(),
+                self.bodies.get(contact.body_b()).unwrap(),
+            );
+            if a.is_dynamic() && b.is_dynamic() {
+                assert_eq!(a.island(), b.island(), "touching bodies share an island");
+            }
         }
     }
 }
