@@ -1,5 +1,6 @@
 //! Stepping on several threads changes nothing but the time: a world stepped on one, two or
-//! three threads ends in exactly the same state, bit for bit.
+//! three threads ends in exactly the same state, bit for bit, also while islands fall asleep
+//! and wake.
 
 use carom::{
     BodyDef, Effect, Effects, Shape, SolverKind, SolverParams, World, WorldSettings, vec2,
@@ -61,6 +62,50 @@ fn final_hash(solver: SolverKind, threads: usize) -> u64 {
     })
 }
 
+/// With sleeping on, 60 small pyramids (2160 boxes) fall asleep island by island (out of the
+/// awake set, their contacts out of the colours); then a ball dropped on one wakes it.
+fn final_hash_with_sleep(threads: usize) -> (u64, usize, usize) {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let mut world = World::new();
+        world
+            .add_body(BodyDef::static_body(Shape::rect(400.0, 1.0)).position(vec2(0.0, -1.0)))
+            .unwrap();
+        for pyramid in 0..60 {
+            let left = pyramid as f32 * 12.0 - 360.0;
+            for row in 0..8 {
+                for column in 0..8 - row {
+                    let x = left + column as f32 + 0.5 * row as f32;
+                    world
+                        .add_body(
+                            BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                                .position(vec2(x, row as f32 + 0.5)),
+                        )
+                        .unwrap();
+                }
+            }
+        }
+        let (mut slept, mut after_drop) = (0, usize::MAX);
+        for step in 0..300 {
+            if step == 180 {
+                let ball = BodyDef::dynamic(Shape::circle(0.5))
+                    .position(vec2(3.5, 12.0))
+                    .linear_velocity(vec2(0.0, -10.0));
+                world.add_body(ball).unwrap();
+            }
+            world.step(1.0 / 60.0).unwrap();
+            slept = slept.max(world.stats().sleeping_bodies);
+            if step > 180 {
+                after_drop = after_drop.min(world.stats().sleeping_bodies);
+            }
+        }
+        (world.state_hash(), slept, after_drop)
+    })
+}
+
 #[test]
 fn every_thread_count_gives_the_same_world() {
     for solver in [SolverKind::SoftStep, SolverKind::SequentialImpulse] {
@@ -73,5 +118,18 @@ fn every_thread_count_gives_the_same_world() {
                 solver.name()
             );
         }
+    }
+}
+
+#[test]
+fn sleeping_and_waking_give_the_same_world_on_every_thread_count() {
+    let (one, slept, after_drop) = final_hash_with_sleep(1);
+    assert!(slept >= 2160, "every pyramid fell asleep ({slept} bodies)");
+    assert!(
+        after_drop < 2160,
+        "the ball woke a pyramid ({after_drop} still asleep)"
+    );
+    for threads in [2, 3] {
+        assert_eq!(final_hash_with_sleep(threads).0, one, "{threads} threads");
     }
 }

@@ -10,11 +10,11 @@ use std::ops::Deref;
 /// A body borrowed from its world to be changed ([`crate::World::body_mut`]). It reads as a
 /// [`Body`] and has the body's setters; moving or turning it takes its colliders and their
 /// broadphase boxes along at once, so queries and the next step see it where it now is. A
-/// change that wakes the body wakes its whole island when the borrow ends.
+/// change that wakes the body (a push, a move) wakes its whole island at once.
 #[derive(Debug)]
 pub struct BodyMut<'w> {
     world: &'w mut World,
-    /// The body's dense index (fixed while the world is borrowed).
+    /// The body's dense index, kept current as waking moves it.
     index: usize,
 }
 

@@ -317,6 +317,8 @@ impl World {
         updated.rebuild_mass(remaining.into_iter())?;
         updated.wake_up();
         *self.bodies.get_mut(body).expect("live") = updated;
+        let index = self.bodies.checked_index(body).expect("live");
+        self.wake_body(index);
         self.wake_touching(body);
         self.contacts.remove_collider(body, handle);
         self.apply_touch_changes();

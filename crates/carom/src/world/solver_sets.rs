@@ -490,6 +490,44 @@ mod tests {
         );
     }
 
+    /// Editing a sleeping body's colliders (adding one, removing one, changing a density)
+    /// wakes it with its island, even when it rests on nothing but the ground.
+    #[test]
+    fn editing_a_sleeping_body_wakes_it() {
+        let mut world = World::new();
+        world
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)).position(vec2(0.0, -0.5)))
+            .unwrap();
+        let body = world
+            .add_body(
+                BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                    .collider(ColliderDef::new(Shape::circle(0.25)).offset(vec2(0.0, 0.5)))
+                    .position(vec2(0.0, 0.5)),
+            )
+            .unwrap();
+        let settle = |world: &mut World| {
+            for _ in 0..120 {
+                world.step(1.0 / 60.0).unwrap();
+            }
+            assert!(world.body(body).unwrap().is_sleeping());
+        };
+        settle(&mut world);
+        let circle = world.body(body).unwrap().colliders()[1];
+        world.remove_collider(circle).unwrap();
+        world.check_sets();
+        assert!(!world.body(body).unwrap().is_sleeping());
+        settle(&mut world);
+        let added = world
+            .add_collider(body, ColliderDef::new(Shape::circle(0.25)))
+            .unwrap();
+        world.check_sets();
+        assert!(!world.body(body).unwrap().is_sleeping());
+        settle(&mut world);
+        world.set_collider_density(added, 2.0).unwrap();
+        world.check_sets();
+        assert!(!world.body(body).unwrap().is_sleeping());
+    }
+
     /// Removing what a sleeping stack rests on wakes the stack, so it falls.
     #[test]
     fn removing_a_support_wakes_what_slept_on_it() {
