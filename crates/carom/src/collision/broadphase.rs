@@ -163,9 +163,7 @@ impl BroadPhase {
         }
     }
 
-    /// Pairs whose fat boxes began to overlap because one of them moved since the last call,
-    /// each ordered `(lower slot, higher slot)`, sorted, without duplicates, and only where
-    /// one body is dynamic. Pairs for which `exists` answers true are left out.
+    /// [`BroadPhase::update_pairs_into`] into a new vector, for tests.
     #[cfg(any(test, feature = "testing"))]
     pub fn update_pairs(
         &mut self,
@@ -176,8 +174,10 @@ impl BroadPhase {
         pairs
     }
 
-    /// [`BroadPhase::update_pairs`] into `out` (cleared first), allocating nothing once the
-    /// buffers have grown.
+    /// Pairs whose fat boxes began to overlap because one of them moved since the last call,
+    /// each ordered `(lower slot, higher slot)`, sorted, without duplicates, and only where
+    /// one body is dynamic, into `out` (cleared first), allocating nothing once the buffers
+    /// have grown. Pairs for which `exists` answers true are left out.
     pub fn update_pairs_into(
         &mut self,
         mut exists: impl FnMut(ColliderHandle, ColliderHandle) -> bool,

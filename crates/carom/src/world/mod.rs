@@ -501,10 +501,12 @@ impl World {
 
     /// Advances the world by `dt` seconds.
     ///
-    /// The stages, in order: find new pairs in the broadphase; build contact manifolds in the
-    /// narrowphase; solve (integrate forces into velocities, resolve contacts, integrate
-    /// positions, in substeps for soft step); continuous collision for fast bodies; place the
-    /// moved colliders and refresh the broadphase from them; sleep.
+    /// The stages, in order, each over the awake set only: find new pairs in the broadphase;
+    /// build contact manifolds in the narrowphase (waking the sleeping islands a moving body
+    /// touched, joining the islands of contacts that started touching); solve (integrate
+    /// forces into velocities, resolve contacts colour by colour, integrate positions, in
+    /// substeps for soft step); continuous collision for fast bodies; place the moved
+    /// colliders and refresh the broadphase from them; put resting islands to sleep.
     ///
     /// # Errors
     /// A time step that is not finite and positive; the world is left untouched.
