@@ -159,3 +159,34 @@ fn step_stats_count_what_happened() {
     assert!(stats.times.total >= stats.times.solve);
     assert!(stats.times.solve > std::time::Duration::ZERO);
 }
+
+#[test]
+fn a_stack_on_a_still_kinematic_platform_sleeps_and_wakes_when_it_moves() {
+    let mut world = world(true);
+    let platform = world
+        .add_body(BodyDef::kinematic(Shape::rect(3.0, 0.5)).position(vec2(0.0, -0.5)))
+        .unwrap();
+    let stack = column(&mut world, 0.0, 3);
+    let asleep = |world: &World| stack.iter().all(|&b| world.body(b).unwrap().is_sleeping());
+    steps(&mut world, 90);
+    assert!(
+        asleep(&world),
+        "a still platform lets what rests on it sleep"
+    );
+    for step in 0..60 {
+        world.step(DT).unwrap();
+        assert!(asleep(&world), "and it stays asleep ({step} steps on)");
+    }
+    world
+        .body_mut(platform)
+        .unwrap()
+        .set_linear_velocity(vec2(0.0, 1.0))
+        .unwrap();
+    steps(&mut world, 30);
+    assert!(
+        stack.iter().all(|&b| !world.body(b).unwrap().is_sleeping()),
+        "a moving platform wakes it"
+    );
+    let rose = world.body(stack[0]).unwrap().position().y - 0.5;
+    assert!(rose > 0.3, "the stack rides the platform up ({rose} m)");
+}

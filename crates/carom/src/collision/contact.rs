@@ -517,7 +517,7 @@ impl ContactSet {
             if touching {
                 deepest = deepest.max(-contact.manifold.min_separation().unwrap_or(0.0));
                 for (sleeper, other) in [(a, b), (b, a)] {
-                    if sleeper.is_sleeping() && other.moves() {
+                    if sleeper.is_sleeping() && stirs(other) {
                         wake.extend(sleeper.island());
                     }
                 }
@@ -614,6 +614,18 @@ impl ContactSet {
     /// The begin and end events of the last step, in the order they happened.
     pub fn events(&self) -> &[ContactEvent] {
         &self.events
+    }
+}
+
+/// True when `body` can disturb a sleeping body it touches: it is awake and dynamic, or
+/// kinematic and moving. A still kinematic platform lets what rests on it sleep.
+fn stirs(body: &Body) -> bool {
+    match body.kind() {
+        BodyKind::Dynamic => !body.is_sleeping(),
+        BodyKind::Kinematic => {
+            body.linear_velocity() != crate::math::Vec2::zeros() || body.angular_velocity() != 0.0
+        }
+        BodyKind::Static => false,
     }
 }
 

@@ -8,7 +8,9 @@
 //! touching only counts against its island. An island is split (by a search through its
 //! touching contacts) only when one of its bodies wants to sleep, so a step spends nothing on
 //! islands but their changes. Static and kinematic bodies belong to no island, or one floor
-//! would tie a whole world together.
+//! would tie a whole world together (Box2D 3.2 gives kinematic bodies islands). A sleeping
+//! island wakes when an awake dynamic body or a moving kinematic one touches it; a still
+//! kinematic platform lets what rests on it sleep.
 
 use crate::dynamics::body::BodyHandle;
 
