@@ -1,7 +1,7 @@
 //! A carom world rebuilt in Box2D v3 (the `boxdd` 0.6 bindings, Box2D 3.2.0 at commit
 //! `56edae79`, compiled with AVX2) with matched parameters.
 //!
-//! Bodies keep carom's dense order (`World::bodies()`), so index `i` is the same body in both
+//! Bodies keep the order of carom's `World::bodies()`, so index `i` is the same body in both
 //! engines; [`Box2dWorld::index_of`] maps a carom [`BodyHandle`] to it.
 //!
 //! ## Parameter mapping, carom → Box2D

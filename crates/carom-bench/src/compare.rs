@@ -1,10 +1,11 @@
-//! One timed run of a scene in either engine, measured the way Box2D's benchmark harness does.
+//! One timed run of a scene in one engine, measured the way Box2D's benchmark harness does.
 
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region};
 use std::time::Instant;
 
 use carom::{BodyKind, World};
 
+use crate::box2d_world::Box2dWorld;
 use crate::rapier_world::RapierWorld;
 
 /// What one run of a scene in one engine measured.
@@ -105,6 +106,39 @@ pub fn run_carom(world: &mut World, dt: f32, steps: u32) -> Result<RunResult, St
         top_drop: drop_of(top, &start, &end),
         nan: any_nan(&end),
         allocations,
+    })
+}
+
+/// Steps a Box2D world `steps` times by `dt` (in its substeps, on one worker), timing all
+/// but the first. Box2D allocates through C's allocator, which is not counted.
+///
+/// # Errors
+/// A failed Box2D step or body query.
+pub fn run_box2d(world: &mut Box2dWorld, dt: f32, steps: u32) -> Result<RunResult, String> {
+    let positions = |world: &mut Box2dWorld| -> Result<Vec<[f32; 2]>, String> {
+        (0..world.body_count()).map(|i| world.position(i)).collect()
+    };
+    let start = positions(world)?;
+    let dynamic: Vec<bool> = (0..world.body_count())
+        .map(|i| world.kind(i) == BodyKind::Dynamic)
+        .collect();
+    let top = top_body(&start, &dynamic);
+    let mut total_ms = 0.0;
+    if steps > 0 {
+        world.step(dt)?;
+        let t0 = Instant::now();
+        for _ in 1..steps {
+            world.step(dt)?;
+        }
+        total_ms = t0.elapsed().as_secs_f64() * 1e3;
+    }
+    let end = positions(world)?;
+    Ok(RunResult {
+        total_ms,
+        timed_steps: steps.saturating_sub(1),
+        top_drop: drop_of(top, &start, &end),
+        nan: any_nan(&end),
+        allocations: 0,
     })
 }
 

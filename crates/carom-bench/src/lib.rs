@@ -89,5 +89,5 @@ pub mod hard_cases;
 pub mod rapier_world;
 
 pub use box2d_world::Box2dWorld;
-pub use compare::{RunResult, run_carom, run_rapier};
+pub use compare::{RunResult, run_box2d, run_carom, run_rapier};
 pub use rapier_world::RapierWorld;

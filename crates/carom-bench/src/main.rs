@@ -1,12 +1,13 @@
-//! `carom-bench`: times carom and Rapier on the same scenes, in turn, in one process: carom on
-//! one thread and on two, Rapier on one; counts heap allocations per step and memory per body.
+//! `carom-bench`: times carom, Box2D v3 and Rapier on the same scenes, in turn, in one process:
+//! carom on one thread and on two, Box2D and Rapier on one; counts heap allocations per step and
+//! memory per body (carom's and Rapier's: Box2D allocates through C's allocator, not counted).
 //! `carom-bench hard-cases` runs the hard cases of `tests/stability.rs` in carom and in Box2D.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use carom_bench::hard_cases::{self, Options};
-use carom_bench::{RapierWorld, RunResult, run_carom, run_rapier};
+use carom_bench::{Box2dWorld, RapierWorld, RunResult, run_box2d, run_carom, run_rapier};
 use clap::{Parser, Subcommand};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 use std::alloc::System;
@@ -27,7 +28,8 @@ const DEFAULT_SCENES: [(&str, u32); 2] = [
 /// Steps for a scene not in [`DEFAULT_SCENES`] when `--steps` is not given.
 const FALLBACK_STEPS: u32 = 500;
 
-/// Times carom and Rapier on the same scenes: dt 1/60, first step untimed, minimum over runs.
+/// Times carom, Box2D and Rapier on the same scenes: dt 1/60, first step untimed, minimum over
+/// runs.
 #[derive(Parser, Debug)]
 #[command(name = "carom-bench", args_conflicts_with_subcommands = true)]
 struct Args {
@@ -77,18 +79,21 @@ struct Row {
     /// carom on `--threads` threads.
     carom_threads: RunResult,
     rapier: RunResult,
+    /// Box2D v3 on one worker.
+    box2d: RunResult,
     /// Heap bytes live after a run, per body.
     carom_bytes_per_body: f64,
     rapier_bytes_per_body: f64,
 }
 
 impl Row {
-    /// ms/step of carom on one thread, on several, and of Rapier.
-    fn ms_per_step(&self) -> (f64, f64, f64) {
+    /// ms/step of carom on one thread, on several, of Rapier and of Box2D.
+    fn ms_per_step(&self) -> (f64, f64, f64, f64) {
         (
             self.carom.ms_per_step(),
             self.carom_threads.ms_per_step(),
             self.rapier.ms_per_step(),
+            self.box2d.ms_per_step(),
         )
     }
 }
@@ -148,6 +153,7 @@ fn bench_scene(
     let path = &resolve(path);
     let load = || carom_scene::load(path).map_err(|e| format!("{}: {e}", path.display()));
     let (mut carom_best, mut threads_best, mut rapier_best) = (None, None, None);
+    let mut box2d_best = None;
     let (mut bodies, mut carom_bytes, mut rapier_bytes) = (0, 0.0, 0.0);
     for run in 1..=runs {
         // carom on one thread; its memory is what the world holds after the run.
@@ -198,6 +204,17 @@ fn bench_scene(
             r.ms_per_step()
         );
         rapier_best = Some(keep_min(rapier_best, r));
+
+        let scene = load()?;
+        let mut box2d = Box2dWorld::from_carom(&scene.world)?;
+        drop(scene);
+        let b = run_box2d(&mut box2d, DT, steps)?;
+        eprintln!(
+            "{} run {run}: Box2D {:.3} ms/step",
+            path.display(),
+            b.ms_per_step()
+        );
+        box2d_best = Some(keep_min(box2d_best, b));
     }
     let name = path.file_stem().map_or_else(
         || path.display().to_string(),
@@ -209,6 +226,7 @@ fn bench_scene(
         carom: carom_best.ok_or("no runs")?,
         carom_threads: threads_best.ok_or("no runs")?,
         rapier: rapier_best.ok_or("no runs")?,
+        box2d: box2d_best.ok_or("no runs")?,
         carom_bytes_per_body: carom_bytes,
         rapier_bytes_per_body: rapier_bytes,
     })
@@ -224,20 +242,23 @@ fn drop_cell(r: &RunResult) -> String {
 
 fn markdown(rows: &[Row], threads: usize) -> String {
     let mut s = format!(
-        "| scene | bodies | carom ms/step | Rapier ms/step | carom / Rapier | carom on {threads} threads \
-         ms/step | speed-up on {threads} threads | carom top drop m | Rapier top drop m |\n\
-         |---|---|---|---|---|---|---|---|---|\n"
+        "| scene | bodies | carom ms/step | Box2D ms/step | Rapier ms/step | carom / Box2D | \
+         carom / Rapier | carom on {threads} threads ms/step | speed-up on {threads} threads | \
+         carom top drop m | Box2D top drop m | Rapier top drop m |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|\n"
     );
     for r in rows {
-        let (c, t, p) = r.ms_per_step();
+        let (c, t, p, b) = r.ms_per_step();
         let _ = writeln!(
             s,
-            "| {} | {} | {c:.3} | {p:.3} | {:.2} | {t:.3} | {:.2} | {} | {} |",
+            "| {} | {} | {c:.3} | {b:.3} | {p:.3} | {:.2} | {:.2} | {t:.3} | {:.2} | {} | {} | {} |",
             r.scene,
             r.bodies,
+            c / b,
             c / p,
             c / t,
             drop_cell(&r.carom),
+            drop_cell(&r.box2d),
             drop_cell(&r.rapier)
         );
     }
@@ -266,13 +287,15 @@ fn csv(rows: &[Row]) -> String {
         "scene,bodies,carom_ms_per_step,rapier_ms_per_step,carom_rapier_ratio,\
          carom_threads_ms_per_step,thread_speedup,carom_top_drop_m,rapier_top_drop_m,carom_nan,\
          rapier_nan,carom_allocations_per_step,rapier_allocations_per_step,\
-         carom_bytes_per_body,rapier_bytes_per_body\n",
+         carom_bytes_per_body,rapier_bytes_per_body,box2d_ms_per_step,carom_box2d_ratio,\
+         box2d_top_drop_m,box2d_nan\n",
     );
     for r in rows {
-        let (c, t, p) = r.ms_per_step();
+        let (c, t, p, b) = r.ms_per_step();
         let _ = writeln!(
             s,
-            "{},{},{c:.4},{p:.4},{:.4},{t:.4},{:.4},{:.4},{:.4},{},{},{:.2},{:.2},{:.0},{:.0}",
+            "{},{},{c:.4},{p:.4},{:.4},{t:.4},{:.4},{:.4},{:.4},{},{},{:.2},{:.2},{:.0},{:.0},\
+             {b:.4},{:.4},{:.4},{}",
             r.scene,
             r.bodies,
             c / p,
@@ -284,7 +307,10 @@ fn csv(rows: &[Row]) -> String {
             r.carom.allocations_per_step(),
             r.rapier.allocations_per_step(),
             r.carom_bytes_per_body,
-            r.rapier_bytes_per_body
+            r.rapier_bytes_per_body,
+            c / b,
+            r.box2d.top_drop,
+            r.box2d.nan
         );
     }
     s

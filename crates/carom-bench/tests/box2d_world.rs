@@ -113,3 +113,15 @@ fn friction_off_gives_frictionless_shapes_and_triangles_keep_their_vertices() {
     }
     assert!((box2d.mass(0) - body.mass()).abs() < 1e-4 * body.mass());
 }
+
+/// A timed Box2D run steps the world (the box falls 2 m onto the ground), times all steps but
+/// the first, and reports the drop of the highest dynamic body.
+#[test]
+fn a_timed_box2d_run_measures_the_drop() {
+    let world = box_over_ground();
+    let mut box2d = Box2dWorld::from_carom(&world).unwrap();
+    let run = carom_bench::run_box2d(&mut box2d, DT, 120).unwrap();
+    assert_eq!(run.timed_steps, 119);
+    assert!(run.total_ms > 0.0 && !run.nan);
+    assert!((run.top_drop - 2.0).abs() < 0.01, "drop {}", run.top_drop);
+}
