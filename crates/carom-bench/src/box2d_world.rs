@@ -492,3 +492,13 @@ fn polygon(p: &Polygon, collider: &Collider) -> Result<shapes::Polygon, String> 
     raw.centroid = ffi::b2Vec2 { x: c.x, y: c.y };
     shapes::Polygon::from_raw(raw).map_err(|e| format!("{e}: carom polygon {v:?}"))
 }
+
+impl Box2dWorld {
+    /// Box2D's own profile of the last step (ms per stage).
+    ///
+    /// # Errors
+    /// A world Box2D no longer holds.
+    pub fn profile(&self) -> Result<boxdd::Profile, String> {
+        self.world.profile().map_err(err)
+    }
+}

@@ -131,7 +131,9 @@ fn solver_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>
         soft,
         egui::Checkbox::new(&mut params.graph_coloring, "graph colouring (SIMD)"),
     )
-    .on_hover_text("Solve contacts colour by colour, four at a time: faster, a little more jitter");
+    .on_hover_text(
+        "Solve contacts colour by colour, eight (or four) at a time: faster, a little more jitter",
+    );
     ui.add_enabled(
         soft,
         egui::Checkbox::new(&mut params.friction_in_bias_pass, "friction in biased pass"),

@@ -84,6 +84,24 @@ pub(crate) fn for_each_with<A: Sync, B: Send>(
     }
 }
 
+/// `f` on runs of `inputs` and the same runs of `outputs` (of equal length), at least
+/// `per_task` long when shared (on one thread, the whole of both at once).
+pub(crate) fn for_each_chunk_with<A: Sync, B: Send>(
+    inputs: &[A],
+    outputs: &mut [B],
+    per_task: usize,
+    f: impl Fn(&[A], &mut [B]) + Sync + Send,
+) {
+    if worth_sharing(outputs.len(), per_task) {
+        inputs
+            .par_chunks(per_task)
+            .zip(outputs.par_chunks_mut(per_task))
+            .for_each(|(a, b)| f(a, b));
+    } else {
+        f(inputs, outputs);
+    }
+}
+
 /// [`for_each_with`], adding up what `f` returns.
 pub(crate) fn sum_with<A: Sync, B: Send, S: Default + AddAssign + Send>(
     inputs: &[A],
@@ -139,6 +157,13 @@ mod tests {
                 assert!(outputs.iter().zip(&inputs).all(|(o, i)| *o == i + 1));
                 let total = sum_with(&inputs, &mut outputs, 64, |x, _| *x);
                 assert_eq!(total, 4999 * 5000 / 2);
+                for_each_chunk_with(&inputs, &mut outputs, 64, |xs, outs| {
+                    assert_eq!(xs.len(), outs.len());
+                    for (x, out) in xs.iter().zip(outs) {
+                        *out = 2 * x;
+                    }
+                });
+                assert!(outputs.iter().zip(&inputs).all(|(o, i)| *o == 2 * i));
             });
         }
     }

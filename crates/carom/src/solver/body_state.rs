@@ -1,5 +1,6 @@
 //! The solver's copy of a body: velocities and the motion accumulated over the step, stored
-//! contiguously so the inner loops touch little memory.
+//! contiguously so the inner loops touch little memory. Every solver path (one contact at a
+//! time, or several in SIMD lanes) reads and writes this one array.
 
 use super::{Environment, SolverParams};
 use crate::constants::ITEMS_PER_TASK;
@@ -8,24 +9,40 @@ use crate::math::{Real, Rot, Vec2, clamp_magnitude};
 use crate::parallel::{for_each_with, sum_with};
 use crate::stats::Work;
 
-/// One body as the solver sees it.
+/// One body as the solver sees it: eight floats in one 32-byte line (Box2D's `b2BodyState`),
+/// so the SIMD solver loads a body with one or two vector loads and transposes bodies into
+/// lanes: `[v.x, v.y, w, 0, dp.x, dp.y, dq.cos, dq.sin]`.
 #[derive(Debug, Clone, Copy)]
+#[repr(C, align(32))]
 pub(crate) struct BodyState {
     /// Linear velocity.
     pub v: Vec2,
     /// Angular velocity.
     pub w: Real,
+    /// Unused: keeps the velocities in the first half of the line and the motion in the
+    /// second. Always 0.
+    pub pad: Real,
     /// Translation since the start of the step.
     pub dp: Vec2,
     /// Rotation since the start of the step.
     pub dq: Rot,
 }
 
+// The SIMD solver reads a state as eight floats in this order (see `shared_states`).
+const _: () = {
+    use std::mem::{align_of, offset_of, size_of};
+    assert!(size_of::<BodyState>() == 32 && align_of::<BodyState>() == 32);
+    assert!(offset_of!(BodyState, v) == 0 && offset_of!(BodyState, w) == 8);
+    assert!(offset_of!(BodyState, pad) == 12 && offset_of!(BodyState, dp) == 16);
+    assert!(offset_of!(BodyState, dq) == 24 && size_of::<Rot>() == 8);
+};
+
 impl BodyState {
     pub fn from_body(body: &Body) -> Self {
         BodyState {
             v: body.linear_velocity(),
             w: body.angular_velocity(),
+            pad: 0.0,
             dp: Vec2::zeros(),
             dq: Rot::identity(),
         }
@@ -36,6 +53,7 @@ impl BodyState {
         BodyState {
             v: Vec2::zeros(),
             w: 0.0,
+            pad: 0.0,
             dp: Vec2::zeros(),
             dq: Rot::identity(),
         }

@@ -15,15 +15,16 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 /// Runs `task` on every item, colour by colour (`colors` are consecutive ranges of `items`),
-/// on the threads of the current rayon pool when there is enough to share.
+/// on the threads of the current rayon pool when there is enough to share. `task` takes a
+/// block of items of one colour at a time (on one thread, all of them at once, in order).
 pub(crate) fn for_each_by_color<T: Send>(
     items: &mut [T],
     colors: &[Range<usize>],
-    task: impl Fn(&mut T) + Sync,
+    task: impl Fn(&mut [T]) + Sync,
 ) {
     let threads = rayon::current_num_threads();
     if threads < 2 || items.len() < MIN_SHARED || colors.len() > COLOR_COUNT {
-        items.iter_mut().for_each(task);
+        task(items);
         return;
     }
     // Cut every colour into blocks, each behind a lock that is never contended (a block is
@@ -62,7 +63,7 @@ pub(crate) fn for_each_by_color<T: Send>(
                 let _counted = CountOnDrop(&done[color]);
                 if let Some(block) = &blocks[color][index] {
                     let mut block = block.lock().unwrap_or_else(|e| e.into_inner());
-                    block.iter_mut().for_each(&task);
+                    task(&mut block);
                 }
             }
             while done[color].load(Ordering::Acquire) < count {
@@ -104,14 +105,16 @@ mod tests {
             .build()
             .unwrap();
         pool.install(|| {
-            for_each_by_color(&mut items, &colors, |(color, runs, seen_before)| {
-                runs.fetch_add(1, Ordering::Relaxed);
-                *seen_before = if *color == 0 {
-                    0
-                } else {
-                    finished[*color - 1].load(Ordering::Relaxed)
-                };
-                finished[*color].fetch_add(1, Ordering::Relaxed);
+            for_each_by_color(&mut items, &colors, |block| {
+                for (color, runs, seen_before) in block {
+                    runs.fetch_add(1, Ordering::Relaxed);
+                    *seen_before = if *color == 0 {
+                        0
+                    } else {
+                        finished[*color - 1].load(Ordering::Relaxed)
+                    };
+                    finished[*color].fetch_add(1, Ordering::Relaxed);
+                }
             });
         });
         for (color, runs, seen_before) in &items {
@@ -137,8 +140,8 @@ mod tests {
             .unwrap();
         let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
             pool.install(|| {
-                for_each_by_color(&mut items, &colors, |item| {
-                    if *item == 700 {
+                for_each_by_color(&mut items, &colors, |block| {
+                    if block.contains(&700) {
                         panic!("item 700");
                     }
                 });

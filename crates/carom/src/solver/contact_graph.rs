@@ -1,7 +1,7 @@
 //! The solve order of one step's contact constraints: the colours of the persistent graph
 //! colouring (see `collision::coloring`), each a range of constraints no two of which share a
-//! body the solver moves, so a colour's constraints can be solved in any order, four at a time
-//! in SIMD lanes (or on several threads) with the same result as one by one.
+//! body the solver moves, so a colour's constraints can be solved in any order, several at a
+//! time in SIMD lanes (or on several threads) with the same result as one by one.
 
 use crate::constants::COLOR_COUNT;
 use std::ops::Range;

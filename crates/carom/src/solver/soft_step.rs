@@ -7,19 +7,18 @@
 
 use super::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
 use super::contact_constraint::pair_mut;
-use super::contact_graph::ContactGraph;
-use super::wide_contacts::{PassBias, SharedVelocities, WideContacts};
+use super::wide_contacts::{PassBias, WideContacts};
 use super::{BodyState, ContactConstraint, Softness, SolverContext, SolverParams};
 use crate::math::Real;
 use crate::stats::Work;
 
+/// One step in Box2D's stage order. The coloured constraints are in `wide`'s SIMD bundles,
+/// already prepared; `constraints` are the overflow's, solved one by one after the colours.
 pub(super) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
-    graph: &ContactGraph,
     wide: &mut WideContacts,
-    velocities: &mut SharedVelocities,
 ) -> Work {
     let SolverContext {
         params,
@@ -31,79 +30,49 @@ pub(super) fn solve(
     let h = dt / substeps as Real;
     let caps = SpeedCaps::new(params, dt);
     let bias = Bias::new(params, h);
-    if !params.warm_starting {
-        forget_impulses(constraints);
-    }
-    // The last state is a spare for the empty lanes of the last bundle of each colour.
-    let spare = states.len() - 1;
-    wide.build(constraints, graph, bias.soft, bias.static_soft, spare);
     let bias_friction = environment.friction && params.friction_in_bias_pass;
-    let points: usize = constraints.iter().map(|c| c.points().len()).sum();
+    let points: usize =
+        wide.point_count() + constraints.iter().map(|c| c.points().len()).sum::<usize>();
     let mut work = Work::default();
-    // The wide passes work on the shared velocities, the rest on the states: the velocities
-    // cross over only where the other side needs them.
-    let overflow = !wide.overflow.is_empty();
     for _ in 0..substeps {
         work += integrate_velocities(environment, bodies, states, h, caps);
-        velocities.load(states);
-        wide.warm_start(states, velocities);
-        if overflow {
-            velocities.store(states);
-            for &index in &wide.overflow {
-                warm_start_one(&mut constraints[index], states);
-            }
-            velocities.load(states);
+        wide.warm_start(states);
+        for c in constraints.iter_mut() {
+            warm_start_one(c, states);
         }
         for _ in 0..params.iterations {
-            wide.solve(states, velocities, bias.pass(true), bias_friction);
-            if overflow {
-                velocities.store(states);
-                for &index in &wide.overflow {
-                    solve_one(&mut constraints[index], states, &bias, true, bias_friction);
-                }
-                velocities.load(states);
+            wide.solve(states, bias.pass(true), bias_friction);
+            for c in constraints.iter_mut() {
+                solve_one(c, states, &bias, true, bias_friction);
             }
             if bias_friction {
                 work.friction_impulses += points;
             }
         }
-        velocities.store(states);
         integrate_positions(bodies, states, h);
-        velocities.load(states);
         for _ in 0..params.iterations {
-            wide.solve(states, velocities, bias.pass(false), environment.friction);
-            if overflow {
-                velocities.store(states);
-                for &index in &wide.overflow {
-                    solve_one(
-                        &mut constraints[index],
-                        states,
-                        &bias,
-                        false,
-                        environment.friction,
-                    );
-                }
-                velocities.load(states);
+            wide.solve(states, bias.pass(false), environment.friction);
+            for c in constraints.iter_mut() {
+                solve_one(c, states, &bias, false, environment.friction);
             }
             if environment.friction {
                 work.friction_impulses += points;
             }
         }
-        velocities.store(states);
     }
-    wide.store(constraints);
     if environment.restitution {
-        work.restitution_impulses = apply_restitution(params, constraints, states);
+        work.restitution_impulses = wide.restitution(states, params.restitution_threshold)
+            + apply_restitution(params, constraints, states);
     }
     work
 }
 
 /// How the biased pass pushes overlap out in one substep.
-struct Bias {
+pub(super) struct Bias {
     /// Softness of contacts between moving bodies.
-    soft: Softness,
+    pub soft: Softness,
     /// Softness of contacts with static bodies (stiffer).
-    static_soft: Softness,
+    pub static_soft: Softness,
     /// One over the substep.
     inv_h: Real,
     /// The fastest push-out, m/s.
@@ -112,7 +81,7 @@ struct Bias {
 
 impl Bias {
     /// The biases of `params` for substeps of `h`.
-    fn new(params: &SolverParams, h: Real) -> Self {
+    pub fn new(params: &SolverParams, h: Real) -> Self {
         let inv_h = 1.0 / h;
         // Stiffer than a quarter of the substep rate would ring.
         let hertz = params.contact_hertz.min(0.25 * inv_h);
@@ -259,6 +228,9 @@ mod tests {
     use crate::dynamics::body::BodyDef;
     use crate::geometry::shape::Shape;
     use crate::math::{Rot, vec2};
+    use crate::solver::contact_graph::ContactGraph;
+    use crate::solver::wide_contacts::{BundleInputs, Width};
+    use crate::solver::{ColorCheck, order_constraints};
     use crate::world::World;
 
     /// A pile in motion: a pyramid with a kinematic paddle pushing into it and circles
@@ -303,13 +275,15 @@ mod tests {
         world
     }
 
-    /// The inputs of one substep of `world`'s soft step, part-way through it (the bodies
-    /// have moved by one substep of their velocity): states, constraints, the biases, the
-    /// colouring.
+    /// One substep of `world`'s soft step, part-way through it (the bodies have moved by one
+    /// substep of their velocity): the states, every touching contact as a scalar constraint
+    /// in the solve order (colour by colour), the same contacts in SIMD bundles of `width`,
+    /// and the biases.
     fn substep(
         world: &World,
         h: Real,
-    ) -> (Vec<BodyState>, Vec<ContactConstraint>, Bias, ContactGraph) {
+        width: Width,
+    ) -> (Vec<BodyState>, Vec<ContactConstraint>, WideContacts, Bias) {
         let (bodies, awake, contacts, dense, colors) = world.solver_inputs();
         let mut states: Vec<BodyState> = bodies[awake.clone()]
             .iter()
@@ -323,85 +297,97 @@ mod tests {
             })
             .collect();
         states.push(BodyState::spare());
-        let (mut touching, mut constraints) = (Vec::new(), Vec::new());
+        let (mut order, mut demoted, mut claims) = (Vec::new(), Vec::new(), Vec::new());
         let mut graph = ContactGraph::default();
-        crate::solver::order_constraints(contacts, Some(colors), &mut touching, &mut graph);
-        crate::solver::prepare_constraints(
+        let check = ColorCheck {
+            bodies,
+            awake: awake.clone(),
+            dense: &dense,
+            claims: &mut claims,
+        };
+        order_constraints(
+            contacts,
+            Some((colors, check)),
+            &mut order,
+            &mut graph,
+            &mut demoted,
+        );
+        let bias = Bias::new(&SolverParams::default(), h);
+        let inputs = BundleInputs {
             bodies,
             awake,
             contacts,
-            &dense,
-            &touching,
-            &mut constraints,
-        );
-        let bias = Bias::new(&SolverParams::default(), h);
-        (states, constraints, bias, graph)
+            dense: &dense,
+            order: &order,
+            graph: &graph,
+            soft: bias.soft,
+            static_soft: bias.static_soft,
+            warm_starting: true,
+        };
+        let mut wide = WideContacts::new(width);
+        wide.prepare(&inputs);
+        assert!(wide.overflow.is_empty() && demoted.is_empty());
+        let constraints = order.iter().map(|&i| inputs.constraint(i)).collect();
+        (states, constraints, wide, bias)
     }
 
     /// The wide solver's warm start, biased pass and relaxation over `states`.
-    fn solve_wide(
-        states: &mut [BodyState],
-        constraints: &mut [ContactConstraint],
-        bias: &Bias,
-        graph: &ContactGraph,
-    ) {
-        let mut wide = WideContacts::default();
-        wide.build(
-            constraints,
-            graph,
-            bias.soft,
-            bias.static_soft,
-            states.len() - 1,
-        );
-        let mut velocities = SharedVelocities::default();
-        velocities.load(states);
-        wide.warm_start(states, &velocities);
+    fn solve_wide(states: &mut [BodyState], wide: &mut WideContacts, bias: &Bias) {
+        wide.warm_start(states);
         for use_bias in [true, false] {
-            wide.solve(states, &velocities, bias.pass(use_bias), true);
+            wide.solve(states, bias.pass(use_bias), true);
         }
-        velocities.store(states);
-        wide.store(constraints);
+    }
+
+    /// The widths this CPU runs.
+    fn widths() -> Vec<Width> {
+        let mut widths = vec![Width::Four];
+        if Width::widest() != Width::Four {
+            widths.push(Width::widest());
+        }
+        widths
     }
 
     /// The wide solver, one lane per constraint, gives the scalar solver's results bit for bit
     /// when both take the constraints in the same (colour) order: warm start, a biased pass
-    /// and a relaxation, with the bodies part-way through a substep.
+    /// and a relaxation, with the bodies part-way through a substep; at every width.
     #[test]
     fn the_wide_solver_gives_the_scalar_solvers_bits() {
         let world = pile();
-        let (mut states, mut constraints, bias, graph) = substep(&world, 1.0 / 240.0);
-        assert!(constraints.len() > 30, "a pile has many contacts");
-        assert!(
-            constraints.iter().any(|c| !c.dynamic_a || !c.dynamic_b),
-            "some touch the ground or the paddle"
-        );
-        assert!(graph.overflow.is_empty());
-        let mut wide_states = states.clone();
-        let mut wide_constraints = constraints.clone();
-        solve_wide(&mut wide_states, &mut wide_constraints, &bias, &graph);
-
-        let in_colour_order: Vec<usize> = graph.colors().flatten().collect();
-        for &i in &in_colour_order {
-            warm_start_one(&mut constraints[i], &mut states);
-        }
-        for use_bias in [true, false] {
-            for &i in &in_colour_order {
-                solve_one(&mut constraints[i], &mut states, &bias, use_bias, true);
-            }
-        }
-
-        for (i, (scalar, wide)) in states.iter().zip(&wide_states).enumerate() {
+        for width in widths() {
+            let (mut states, mut constraints, mut wide, bias) = substep(&world, 1.0 / 240.0, width);
+            assert!(constraints.len() > 30, "a pile has many contacts");
             assert!(
-                scalar.v == wide.v && scalar.w == wide.w,
-                "body {i}: scalar {scalar:?}, wide {wide:?}"
+                constraints.iter().any(|c| !c.dynamic_a || !c.dynamic_b),
+                "some touch the ground or the paddle"
             );
-        }
-        for (scalar, wide) in constraints.iter().zip(&wide_constraints) {
-            for (p, q) in scalar.points().iter().zip(wide.points()) {
-                assert_eq!(
-                    (p.normal_impulse, p.tangent_impulse, p.total_normal_impulse),
-                    (q.normal_impulse, q.tangent_impulse, q.total_normal_impulse)
+            let mut wide_states = states.clone();
+            solve_wide(&mut wide_states, &mut wide, &bias);
+
+            for c in constraints.iter_mut() {
+                warm_start_one(c, &mut states);
+            }
+            for use_bias in [true, false] {
+                for c in constraints.iter_mut() {
+                    solve_one(c, &mut states, &bias, use_bias, true);
+                }
+            }
+
+            for (i, (scalar, wide)) in states.iter().zip(&wide_states).enumerate() {
+                assert!(
+                    scalar.v == wide.v && scalar.w == wide.w,
+                    "{width:?}, body {i}: scalar {scalar:?}, wide {wide:?}"
                 );
+            }
+            let impulses = wide.impulses();
+            for c in &constraints {
+                let wide = impulses[&c.contact_index];
+                for (p, q) in c.points().iter().zip(wide) {
+                    assert_eq!(
+                        (p.normal_impulse, p.tangent_impulse, p.total_normal_impulse),
+                        q
+                    );
+                }
             }
         }
     }
@@ -411,29 +397,66 @@ mod tests {
     #[test]
     fn the_wide_solver_never_writes_static_or_kinematic_velocities() {
         let world = pile();
-        let (mut states, mut constraints, bias, graph) = substep(&world, 1.0 / 240.0);
-        let before = states.clone();
-        let mut poisoned = 0;
-        for c in constraints
-            .iter_mut()
-            .filter(|c| !c.dynamic_a || !c.dynamic_b)
-        {
-            c.points_mut()[0].normal_impulse = Real::NAN;
-            poisoned += 1;
+        for width in widths() {
+            let (mut states, constraints, mut wide, bias) = substep(&world, 1.0 / 240.0, width);
+            let before = states.clone();
+            let mut poisoned = 0;
+            for c in constraints.iter().filter(|c| !c.dynamic_a || !c.dynamic_b) {
+                wide.set_normal_impulse(c.contact_index, 0, Real::NAN);
+                poisoned += 1;
+            }
+            assert!(poisoned >= 2);
+            solve_wide(&mut states, &mut wide, &bias);
+            let (bodies, awake, _, _, _) = world.solver_inputs();
+            // The awake set's kinematic paddle, and the spare state the static ground reads.
+            let kinds = bodies[awake].iter().map(|b| Some(b.kind())).chain([None]);
+            let mut fixed = 0;
+            for ((kind, after), before) in kinds.zip(&states).zip(&before) {
+                if kind != Some(crate::BodyKind::Dynamic) {
+                    assert_eq!((after.v, after.w), (before.v, before.w), "{kind:?}");
+                    fixed += 1;
+                }
+            }
+            assert_eq!(fixed, 2, "the paddle and the ground's spare state");
         }
-        assert!(poisoned >= 2);
-        solve_wide(&mut states, &mut constraints, &bias, &graph);
-        let (bodies, awake, _, _, _) = world.solver_inputs();
-        // The awake set's kinematic paddle, and the spare state the static ground reads.
-        let kinds = bodies[awake].iter().map(|b| Some(b.kind())).chain([None]);
-        let mut fixed = 0;
-        for ((kind, after), before) in kinds.zip(&states).zip(&before) {
-            if kind != Some(crate::BodyKind::Dynamic) {
-                assert_eq!((after.v, after.w), (before.v, before.w), "{kind:?}");
-                fixed += 1;
+    }
+
+    /// Bounces in SIMD lanes give the scalar pass's bits, and only bounce the points that
+    /// approached fast and pushed.
+    #[test]
+    fn wide_restitution_gives_the_scalar_bits() {
+        let world = pile();
+        for width in widths() {
+            let (mut states, mut constraints, mut wide, bias) = substep(&world, 1.0 / 240.0, width);
+            // Every contact bouncy; a few points approaching fast.
+            for (k, c) in constraints.iter_mut().enumerate() {
+                c.restitution = 0.5;
+                wide.set_restitution(c.contact_index, 0.5);
+                if k % 3 == 0 {
+                    let speed = -2.0 - k as Real * 0.1;
+                    c.points_mut()[0].relative_velocity = speed;
+                    wide.set_relative_velocity(c.contact_index, 0, speed);
+                }
+            }
+            let mut wide_states = states.clone();
+            solve_wide(&mut wide_states, &mut wide, &bias);
+            let params = SolverParams::default();
+            let wide_bounces = wide.restitution(&mut wide_states, params.restitution_threshold);
+            for c in constraints.iter_mut() {
+                warm_start_one(c, &mut states);
+            }
+            for use_bias in [true, false] {
+                for c in constraints.iter_mut() {
+                    solve_one(c, &mut states, &bias, use_bias, true);
+                }
+            }
+            let bounces = apply_restitution(&params, &mut constraints, &mut states);
+            assert!(bounces > 5, "{bounces}");
+            assert_eq!(wide_bounces, bounces);
+            for (scalar, wide) in states.iter().zip(&wide_states) {
+                assert!(scalar.v == wide.v && scalar.w == wide.w);
             }
         }
-        assert_eq!(fixed, 2, "the paddle and the ground's spare state");
     }
 
     /// A deep overlap is pushed apart at exactly the push cap: the cap bounds the softened
@@ -465,7 +488,7 @@ mod tests {
     #[test]
     fn a_warm_started_point_counts_as_pushed_for_restitution() {
         let world = pile();
-        let (mut states, mut constraints, _, _) = substep(&world, 1.0 / 240.0);
+        let (mut states, mut constraints, _, _) = substep(&world, 1.0 / 240.0, Width::Four);
         let c = &mut constraints[0];
         c.restitution = 0.5;
         c.points_mut()[0].normal_impulse = 0.1;

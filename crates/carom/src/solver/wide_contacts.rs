@@ -1,189 +1,180 @@
-//! Soft step's contact solve four constraints at a time: the constraints of one graph colour
-//! (no shared moving body) are packed into bundles of four lanes, stored as structures of
-//! arrays, and solved with `wide`'s 4-lane floats. The arithmetic per lane is the scalar
-//! solver's ([`super::soft_step`]) operation for operation, summed in the same order, so a lane
-//! gives the scalar result bit for bit (tested); only the order of constraints differs (colour
-//! by colour).
+//! Soft step's contact solve several constraints at a time: the contacts of one graph colour
+//! (no shared moving body) are prepared straight into bundles of [`Lanes::WIDTH`] constraints,
+//! stored as structures of arrays, and solved with SIMD lanes, the bodies gathered into lanes
+//! by transposes and their velocities scattered back in place. Eight lanes where the CPU has
+//! AVX, four elsewhere. The arithmetic per lane is the scalar solver's ([`super::soft_step`])
+//! operation for operation, summed in the same order, so a lane gives the scalar result bit for
+//! bit at either width (tested); only the order of constraints differs (colour by colour).
 
+#[cfg(target_arch = "x86_64")]
+use super::avx_lanes::{self, Avx8};
 use super::color_passes::for_each_by_color;
-use super::contact_constraint::ContactConstraint;
+use super::contact_constraint::{ContactConstraint, SolverBody};
 use super::contact_graph::ContactGraph;
+use super::lanes::{Kernel, Lanes};
+use super::shared_states::SharedStates;
 use super::{BodyState, Softness};
+use crate::collision::contact::Contact;
 use crate::constants::{COLOR_COUNT, ITEMS_PER_TASK};
+use crate::dynamics::body::Body;
 use crate::math::Real;
-use crate::parallel::{for_each_with, map_into};
+use crate::parallel::for_each_chunk_with;
 use std::ops::Range;
-use std::sync::atomic::AtomicU32;
-use std::sync::atomic::Ordering::Relaxed;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use wide::f32x4;
 
-/// Lanes per bundle.
-const LANES: usize = 4;
-
-/// One contact point of four constraints.
-#[derive(Debug, Clone, Copy)]
-struct WidePoint {
-    anchor_a_x: f32x4,
-    anchor_a_y: f32x4,
-    anchor_b_x: f32x4,
-    anchor_b_y: f32x4,
-    base_separation: f32x4,
-    normal_mass: f32x4,
-    tangent_mass: f32x4,
-    normal_impulse: f32x4,
-    tangent_impulse: f32x4,
-    total_normal_impulse: f32x4,
+/// How many constraints the solver takes at a time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Width {
+    /// `wide`'s four lanes, on every CPU.
+    Four,
+    /// AVX's eight lanes (x86-64 CPUs with AVX).
+    #[cfg(target_arch = "x86_64")]
+    Eight,
 }
 
-/// Four constraints; lanes past the colour's end are empty (zero masses, no impulse).
+impl Width {
+    /// The widest this CPU runs.
+    pub fn widest() -> Width {
+        #[cfg(target_arch = "x86_64")]
+        if avx_lanes::detected() {
+            return Width::Eight;
+        }
+        Width::Four
+    }
+}
+
+/// One contact point of a bundle's constraints.
 #[derive(Debug, Clone, Copy)]
-struct Bundle {
-    /// Indices into the solver's constraint array (`usize::MAX` for an empty lane).
-    constraints: [usize; LANES],
-    /// Dense body indices (the spare state for an empty lane).
-    a: [usize; LANES],
-    b: [usize; LANES],
-    /// Per lane, whether A and B take impulses (dynamic bodies): only those velocities are
-    /// written back, as Box2D skips static ones, so a static or kinematic body's velocity is
-    /// never touched (nor shared between threads' caches) whatever the lanes computed.
-    writes_a: [bool; LANES],
-    writes_b: [bool; LANES],
-    inv_mass_a: f32x4,
-    inv_inertia_a: f32x4,
-    inv_mass_b: f32x4,
-    inv_inertia_b: f32x4,
-    normal_x: f32x4,
-    normal_y: f32x4,
-    friction: f32x4,
+struct WidePoint<L> {
+    anchor_a_x: L,
+    anchor_a_y: L,
+    anchor_b_x: L,
+    anchor_b_y: L,
+    base_separation: L,
+    normal_mass: L,
+    tangent_mass: L,
+    normal_impulse: L,
+    tangent_impulse: L,
+    total_normal_impulse: L,
+    relative_velocity: L,
+}
+
+/// [`Lanes::WIDTH`] constraints; lanes past the colour's end are empty (zero masses, no
+/// impulse, the spare state for both bodies).
+#[derive(Debug, Clone, Copy)]
+struct Bundle<L: Lanes> {
+    /// Each lane's contact, an index into the awake contacts (`u32::MAX` when empty).
+    contacts: L::Indices,
+    /// Body states (the spare state for a static body or an empty lane).
+    a: L::Indices,
+    b: L::Indices,
+    /// One bit per lane: whether A (B) takes impulses (a dynamic body). Only those velocities
+    /// are written back, as Box2D skips static ones, so a static or kinematic body's velocity
+    /// is never touched (nor shared between threads' caches) whatever the lanes computed.
+    writes_a: u32,
+    writes_b: u32,
+    /// Manifold points in all lanes (for the step's statistics).
+    point_count: u32,
+    inv_mass_a: L,
+    inv_inertia_a: L,
+    inv_mass_b: L,
+    inv_inertia_b: L,
+    normal_x: L,
+    normal_y: L,
+    friction: L,
+    restitution: L,
     /// Soft step's coefficients per lane (stiffer against static bodies).
-    bias_rate: f32x4,
-    mass_scale: f32x4,
-    impulse_scale: f32x4,
-    points: [WidePoint; 2],
+    bias_rate: L,
+    mass_scale: L,
+    impulse_scale: L,
+    points: [WidePoint<L>; 2],
 }
 
-/// Four bodies' states gathered into lanes.
+/// Four or eight bodies' states in lanes.
 #[derive(Debug, Clone, Copy)]
-struct WideBody {
-    v_x: f32x4,
-    v_y: f32x4,
-    w: f32x4,
-    dp_x: f32x4,
-    dp_y: f32x4,
-    cos: f32x4,
-    sin: f32x4,
+struct WideBody<L> {
+    v_x: L,
+    v_y: L,
+    w: L,
+    dp_x: L,
+    dp_y: L,
+    cos: L,
+    sin: L,
 }
 
-impl WideBody {
-    /// Positions from the states, velocities from the shared copy.
+impl<L: Lanes> WideBody<L> {
+    /// Gathers the states of bodies `indices`.
     #[inline(always)]
-    fn gather(
-        states: &[BodyState],
-        velocities: &SharedVelocities,
-        indices: &[usize; LANES],
-    ) -> Self {
-        let [i0, i1, i2, i3] = *indices;
-        let s = [&states[i0], &states[i1], &states[i2], &states[i3]];
-        let v = [
-            velocities.get(i0),
-            velocities.get(i1),
-            velocities.get(i2),
-            velocities.get(i3),
-        ];
-        let lanes = |f: fn(&BodyState) -> Real| f32x4::new([f(s[0]), f(s[1]), f(s[2]), f(s[3])]);
+    fn gather(states: &SharedStates, indices: &L::Indices) -> Self {
+        let [v_x, v_y, w, _, dp_x, dp_y, cos, sin] = L::gather(states, indices);
         WideBody {
-            v_x: f32x4::new([v[0][0], v[1][0], v[2][0], v[3][0]]),
-            v_y: f32x4::new([v[0][1], v[1][1], v[2][1], v[3][1]]),
-            w: f32x4::new([v[0][2], v[1][2], v[2][2], v[3][2]]),
-            dp_x: lanes(|s| s.dp.x),
-            dp_y: lanes(|s| s.dp.y),
-            cos: lanes(|s| s.dq.re),
-            sin: lanes(|s| s.dq.im),
+            v_x,
+            v_y,
+            w,
+            dp_x,
+            dp_y,
+            cos,
+            sin,
         }
     }
 
-    /// Writes back the velocities of the lanes that take impulses (positions do not change
-    /// in a solve).
+    /// Writes back the velocities of the lanes set in `lanes` (positions do not change in a
+    /// solve).
     #[inline(always)]
-    fn scatter(
-        &self,
-        velocities: &SharedVelocities,
-        indices: &[usize; LANES],
-        writes: &[bool; LANES],
-    ) {
-        let (v_x, v_y, w) = (self.v_x.to_array(), self.v_y.to_array(), self.w.to_array());
-        for (lane, (&i, &write)) in indices.iter().zip(writes).enumerate() {
-            if write {
-                velocities.set(i, [v_x[lane], v_y[lane], w[lane]]);
-            }
-        }
-    }
-}
-
-/// The bodies' velocities while the colours are solved, readable and writable from several
-/// threads: no two bundles of a colour share a moving body, so each velocity has one writer
-/// at a time, and relaxed atomics (plain loads and stores on common hardware) are all the
-/// synchronisation needed; rayon orders one colour after the other. Static and kinematic bodies
-/// are only read.
-#[derive(Debug, Default)]
-pub(crate) struct SharedVelocities(Vec<[AtomicU32; 3]>);
-
-impl Clone for SharedVelocities {
-    /// Scratch memory: a copy starts empty.
-    fn clone(&self) -> Self {
-        SharedVelocities::default()
-    }
-}
-
-impl SharedVelocities {
-    /// Takes the states' velocities.
-    pub fn load(&mut self, states: &[BodyState]) {
-        self.0.resize_with(states.len(), Default::default);
-        for_each_with(states, &mut self.0, ITEMS_PER_TASK, |state, shared| {
-            let [x, y, w] = shared;
-            *x.get_mut() = state.v.x.to_bits();
-            *y.get_mut() = state.v.y.to_bits();
-            *w.get_mut() = state.w.to_bits();
-        });
+    fn scatter(&self, states: &SharedStates, indices: &L::Indices, lanes: u32) {
+        L::scatter(states, indices, lanes, [self.v_x, self.v_y, self.w]);
     }
 
-    /// Gives the velocities back to the states.
-    pub fn store(&self, states: &mut [BodyState]) {
-        for_each_with(&self.0, states, ITEMS_PER_TASK, |shared, state| {
-            let [x, y, w] = shared
-                .each_ref()
-                .map(|value| Real::from_bits(value.load(Relaxed)));
-            state.v.x = x;
-            state.v.y = y;
-            state.w = w;
-        });
-    }
-
+    /// The lanes set in `mask` from `self`, the others from `old`.
     #[inline(always)]
-    fn get(&self, index: usize) -> [Real; 3] {
-        self.0[index]
-            .each_ref()
-            .map(|x| Real::from_bits(x.load(Relaxed)))
-    }
-
-    #[inline(always)]
-    fn set(&self, index: usize, velocity: [Real; 3]) {
-        for (shared, value) in self.0[index].iter().zip(velocity) {
-            shared.store(value.to_bits(), Relaxed);
+    fn select(self, mask: L, old: Self) -> Self {
+        WideBody {
+            v_x: mask.select(self.v_x, old.v_x),
+            v_y: mask.select(self.v_y, old.v_y),
+            w: mask.select(self.w, old.w),
+            ..old
         }
     }
 }
 
-/// The constraints of a step in bundles, colour by colour, and the constraints left over.
-#[derive(Debug, Clone, Default)]
+/// The bundles of one width.
+#[derive(Debug, Clone)]
+enum Bundles {
+    Four(Vec<Bundle<f32x4>>),
+    #[cfg(target_arch = "x86_64")]
+    Eight(Vec<Bundle<Avx8>>),
+}
+
+/// Evaluates `$body` with `$bundles` bound to the bundles of whichever width they are.
+macro_rules! with_bundles {
+    ($bundles:expr, |$b:ident| $body:expr) => {
+        match $bundles {
+            Bundles::Four($b) => $body,
+            #[cfg(target_arch = "x86_64")]
+            Bundles::Eight($b) => $body,
+        }
+    };
+}
+
+/// The coloured constraints of a step in bundles, colour by colour, and the contacts left
+/// over for the scalar solver.
+#[derive(Debug, Clone)]
 pub(crate) struct WideContacts {
-    bundles: Vec<Bundle>,
-    /// Each colour's bundles, as a range of `bundles`.
+    bundles: Bundles,
+    /// Each colour's bundles, as a range of the bundles.
     colors: Vec<Range<usize>>,
-    /// Per bundle, its colour and where its constraints start in the colour.
-    slots: Vec<(usize, usize)>,
-    /// Constraints solved one by one (no colour was free).
+    /// Per bundle, its contacts: a range of the solve order.
+    slots: Vec<Range<usize>>,
+    /// Awake contacts (indices) solved one by one after the colours: those no colour was free
+    /// for.
     pub overflow: Vec<usize>,
+}
+
+impl Default for WideContacts {
+    fn default() -> Self {
+        WideContacts::new(Width::widest())
+    }
 }
 
 /// How a pass treats overlap: soft step's biased solve or its relaxation.
@@ -194,202 +185,447 @@ pub(crate) struct PassBias {
     pub max_push_speed: Real,
 }
 
+/// What preparing the bundles reads.
+pub(crate) struct BundleInputs<'a> {
+    /// Every body; the awake ones are `bodies[awake]`, states `0..awake.len()`.
+    pub bodies: &'a [Body],
+    pub awake: Range<usize>,
+    /// The awake contacts and the dense indices of each one's bodies.
+    pub contacts: &'a [Contact],
+    pub dense: &'a [(usize, usize)],
+    /// The solve order (contact indices) and its colours.
+    pub order: &'a [usize],
+    pub graph: &'a ContactGraph,
+    /// Softness against moving and static partners.
+    pub soft: Softness,
+    pub static_soft: Softness,
+    /// Start from last step's impulses (else from zero).
+    pub warm_starting: bool,
+}
+
+impl BundleInputs<'_> {
+    /// A contact's body at dense index `index`, as the solver takes it: its state, and the
+    /// body if it is in the awake set (else the spare state, past the awake ones).
+    fn solver_body(&self, index: usize) -> SolverBody<'_> {
+        if self.awake.contains(&index) {
+            (index - self.awake.start, Some(&self.bodies[index]))
+        } else {
+            (self.awake.len(), None)
+        }
+    }
+
+    /// Contact `index` prepared as a constraint.
+    pub fn constraint(&self, index: usize) -> ContactConstraint {
+        let (a, b) = self.dense[index];
+        let mut constraint = ContactConstraint::new(
+            index,
+            &self.contacts[index],
+            self.solver_body(a),
+            self.solver_body(b),
+        );
+        if !self.warm_starting {
+            for point in constraint.points_mut() {
+                point.normal_impulse = 0.0;
+                point.tangent_impulse = 0.0;
+            }
+        }
+        constraint
+    }
+}
+
 impl WideContacts {
-    /// Packs the coloured constraints into bundles, reusing the memory of the last step;
-    /// `spare` is the index of a body state that empty lanes read and write (nothing reads it
-    /// back).
-    pub fn build(
-        &mut self,
-        constraints: &[ContactConstraint],
-        graph: &ContactGraph,
-        soft: Softness,
-        static_soft: Softness,
-        spare: usize,
-    ) {
-        // Where each bundle's constraints are, then every bundle packed (on all threads).
+    /// No bundles yet, of `width` (four lanes if the CPU lacks AVX for eight).
+    pub fn new(width: Width) -> Self {
+        let bundles = match width {
+            Width::Four => Bundles::Four(Vec::new()),
+            // An `Avx8` may only exist on a CPU with AVX.
+            #[cfg(target_arch = "x86_64")]
+            Width::Eight if avx_lanes::detected() => Bundles::Eight(Vec::new()),
+            #[cfg(target_arch = "x86_64")]
+            Width::Eight => Bundles::Four(Vec::new()),
+        };
+        WideContacts {
+            bundles,
+            colors: Vec::new(),
+            slots: Vec::new(),
+            overflow: Vec::new(),
+        }
+    }
+
+    /// How many constraints a bundle holds.
+    pub fn width(&self) -> usize {
+        with_bundles!(&self.bundles, |bundles| lanes_of(bundles))
+    }
+
+    /// Forgets the bundles (a step that solves no colour).
+    pub fn clear(&mut self) {
+        with_bundles!(&mut self.bundles, |bundles| bundles.clear());
+        self.colors.clear();
+        self.slots.clear();
+        self.overflow.clear();
+    }
+
+    /// Prepares the coloured contacts into bundles (on all threads), reusing last step's
+    /// memory, and lists the overflow's contacts.
+    pub fn prepare(&mut self, inputs: &BundleInputs) {
+        let width = self.width();
         self.slots.clear();
         self.colors.clear();
         self.colors.reserve(COLOR_COUNT);
-        for (color, members) in graph.colors().enumerate() {
+        for members in inputs.graph.colors() {
             if members.is_empty() {
                 continue;
             }
             let start = self.slots.len();
             self.slots.extend(
-                (0..members.len())
-                    .step_by(LANES)
-                    .map(|offset| (color, offset)),
+                members
+                    .clone()
+                    .step_by(width)
+                    .map(|from| from..(from + width).min(members.end)),
             );
             self.colors.push(start..self.slots.len());
         }
-        let softness = [soft, static_soft];
-        let pack = |&(color, offset): &(usize, usize)| {
-            let members = graph.color(color);
-            let start = members.start + offset;
-            let chunk = start..(start + LANES).min(members.end);
-            Bundle::pack(constraints, chunk, softness, spare)
-        };
-        map_into(&self.slots, &mut self.bundles, ITEMS_PER_TASK / LANES, pack);
+        let spare = inputs.awake.len() as u32;
+        let softness = [inputs.soft, inputs.static_soft];
+        let slots = &self.slots;
+        with_bundles!(&mut self.bundles, |bundles| {
+            prepare_bundles(bundles, slots, inputs, softness, spare)
+        });
         self.overflow.clear();
-        self.overflow.extend_from_slice(&graph.overflow);
+        self.overflow
+            .extend(inputs.graph.overflow.iter().map(|&at| inputs.order[at]));
+    }
+
+    /// Manifold points in the bundles.
+    pub fn point_count(&self) -> usize {
+        with_bundles!(&self.bundles, |bundles| bundles
+            .iter()
+            .map(|b| b.point_count as usize)
+            .sum())
     }
 
     /// Applies the accumulated impulses (warm start).
-    pub fn warm_start(&mut self, states: &[BodyState], velocities: &SharedVelocities) {
-        self.each_color(|bundle| bundle.warm_start(states, velocities));
+    #[allow(unsafe_code)]
+    pub fn warm_start(&mut self, states: &mut [BodyState]) {
+        // SAFETY: the bundles of a colour write no state that another bundle of the colour
+        // reads or writes (checked as the order was built, `solver::ColorCheck`), and a colour
+        // runs alone (`for_each_by_color`).
+        let states = unsafe { SharedStates::new(states) };
+        let colors = &self.colors;
+        with_bundles!(&mut self.bundles, |bundles| {
+            each_by_color(bundles, colors, &states, Pass::WarmStart)
+        });
     }
 
     /// One pass: non-penetration (soft-biased or relaxed), then friction if asked.
-    pub fn solve(
-        &mut self,
-        states: &[BodyState],
-        velocities: &SharedVelocities,
-        pass: PassBias,
-        friction: bool,
-    ) {
-        self.each_color(|bundle| bundle.solve(states, velocities, pass, friction));
+    #[allow(unsafe_code)]
+    pub fn solve(&mut self, states: &mut [BodyState], pass: PassBias, friction: bool) {
+        // SAFETY: as in `warm_start`.
+        let states = unsafe { SharedStates::new(states) };
+        let colors = &self.colors;
+        with_bundles!(&mut self.bundles, |bundles| {
+            each_by_color(bundles, colors, &states, Pass::Solve(pass, friction))
+        });
     }
 
-    /// Runs `task` on every bundle, colour after colour, on as many threads as rayon gives.
-    fn each_color(&mut self, task: impl Fn(&mut Bundle) + Sync) {
-        for_each_by_color(&mut self.bundles, &self.colors, task);
+    /// Bounces (see `soft_step::apply_restitution`); returns how many impulses were
+    /// computed.
+    #[allow(unsafe_code)]
+    pub fn restitution(&mut self, states: &mut [BodyState], threshold: Real) -> usize {
+        // SAFETY: as in `warm_start`.
+        let states = unsafe { SharedStates::new(states) };
+        let colors = &self.colors;
+        with_bundles!(&mut self.bundles, |bundles| {
+            each_by_color(bundles, colors, &states, Pass::Restitution(threshold))
+        })
     }
 
-    /// Copies the impulses back into the constraints (for restitution and the next step's warm
-    /// start).
-    pub fn store(&self, constraints: &mut [ContactConstraint]) {
-        for bundle in &self.bundles {
-            for (lane, &index) in bundle.constraints.iter().enumerate() {
-                let Some(c) = constraints.get_mut(index) else {
-                    continue;
-                };
-                for (j, point) in c.points_mut().iter_mut().enumerate() {
-                    let wide = &bundle.points[j];
-                    point.normal_impulse = wide.normal_impulse.to_array()[lane];
-                    point.tangent_impulse = wide.tangent_impulse.to_array()[lane];
-                    point.total_normal_impulse = wide.total_normal_impulse.to_array()[lane];
+    /// Copies the impulses back into the contacts' manifolds, for the next step's warm start.
+    pub fn store(&self, contacts: &mut [Contact]) {
+        with_bundles!(&self.bundles, |bundles| store_bundles(bundles, contacts));
+    }
+}
+
+#[cfg(test)]
+impl WideContacts {
+    /// Each contact's points' normal, tangent and total normal impulses.
+    pub fn impulses(&self) -> std::collections::HashMap<usize, [(Real, Real, Real); 2]> {
+        let mut out = std::collections::HashMap::new();
+        with_bundles!(&self.bundles, |bundles| {
+            for bundle in bundles {
+                for (lane, &contact) in bundle.contacts.as_ref().iter().enumerate() {
+                    let points = bundle.points.map(|p| {
+                        (
+                            p.normal_impulse.lane(lane),
+                            p.tangent_impulse.lane(lane),
+                            p.total_normal_impulse.lane(lane),
+                        )
+                    });
+                    out.insert(contact as usize, points);
                 }
             }
+        });
+        out
+    }
+
+    /// Sets a point's accumulated normal impulse in contact `contact`'s lane.
+    pub fn set_normal_impulse(&mut self, contact: usize, point: usize, value: Real) {
+        with_bundles!(&mut self.bundles, |bundles| {
+            if let Some((bundle, lane)) = lane_of(bundles, contact) {
+                let field = &mut bundle.points[point].normal_impulse;
+                *field = with_lane(*field, lane, value);
+            }
+        });
+    }
+
+    /// Sets contact `contact`'s restitution.
+    pub fn set_restitution(&mut self, contact: usize, value: Real) {
+        with_bundles!(&mut self.bundles, |bundles| {
+            if let Some((bundle, lane)) = lane_of(bundles, contact) {
+                bundle.restitution = with_lane(bundle.restitution, lane, value);
+            }
+        });
+    }
+
+    /// Sets a point's approach speed at the start of the step in contact `contact`'s lane.
+    pub fn set_relative_velocity(&mut self, contact: usize, point: usize, value: Real) {
+        with_bundles!(&mut self.bundles, |bundles| {
+            if let Some((bundle, lane)) = lane_of(bundles, contact) {
+                let field = &mut bundle.points[point].relative_velocity;
+                *field = with_lane(*field, lane, value);
+            }
+        });
+    }
+}
+
+/// The bundle and lane holding contact `contact`.
+#[cfg(test)]
+fn lane_of<L: Lanes>(bundles: &mut [Bundle<L>], contact: usize) -> Option<(&mut Bundle<L>, usize)> {
+    bundles.iter_mut().find_map(|bundle| {
+        let lane = bundle
+            .contacts
+            .as_ref()
+            .iter()
+            .position(|&c| c as usize == contact)?;
+        Some((bundle, lane))
+    })
+}
+
+/// `lanes` with lane `lane` set to `value`.
+#[cfg(test)]
+fn with_lane<L: Lanes>(lanes: L, lane: usize, value: Real) -> L {
+    let mut values = [0.0; 8];
+    lanes.write_to(&mut values);
+    values[lane] = value;
+    L::from_slice(&values)
+}
+
+/// The width of a slice of bundles.
+fn lanes_of<L: Lanes>(_: &[Bundle<L>]) -> usize {
+    L::WIDTH
+}
+
+/// Prepares one bundle per slot, in place (on all threads).
+fn prepare_bundles<L: Lanes>(
+    bundles: &mut Vec<Bundle<L>>,
+    slots: &[Range<usize>],
+    inputs: &BundleInputs,
+    softness: [Softness; 2],
+    spare: u32,
+) {
+    bundles.resize_with(slots.len(), Bundle::empty);
+    for_each_chunk_with(
+        slots,
+        bundles,
+        ITEMS_PER_TASK / L::WIDTH,
+        |slots, bundles| {
+            L::run(Prepare {
+                slots,
+                bundles,
+                inputs,
+                softness,
+                spare,
+            })
+        },
+    );
+}
+
+/// Prepares bundles from their slots.
+struct Prepare<'a, L: Lanes> {
+    slots: &'a [Range<usize>],
+    bundles: &'a mut [Bundle<L>],
+    inputs: &'a BundleInputs<'a>,
+    softness: [Softness; 2],
+    spare: u32,
+}
+
+impl<L: Lanes> Kernel for Prepare<'_, L> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run(self) {
+        for (slot, bundle) in self.slots.iter().zip(self.bundles) {
+            let members = &self.inputs.order[slot.clone()];
+            bundle.prepare(self.inputs, members, self.softness, self.spare);
         }
     }
 }
 
-impl Bundle {
-    /// Applies the bundle's accumulated impulses (and counts them as pushed this step).
-    #[inline(always)]
-    fn warm_start(&mut self, states: &[BodyState], velocities: &SharedVelocities) {
-        let mut a = WideBody::gather(states, velocities, &self.a);
-        let mut b = WideBody::gather(states, velocities, &self.b);
-        let (tangent_x, tangent_y) = (self.normal_y, -self.normal_x);
-        for j in 0..2 {
-            let point = self.points[j];
-            let p_x = self.normal_x * point.normal_impulse + tangent_x * point.tangent_impulse;
-            let p_y = self.normal_y * point.normal_impulse + tangent_y * point.tangent_impulse;
-            self.apply(&point, p_x, p_y, &mut a, &mut b);
-            self.points[j].total_normal_impulse += point.normal_impulse;
-        }
-        a.scatter(velocities, &self.a, &self.writes_a);
-        b.scatter(velocities, &self.b, &self.writes_b);
-    }
+/// One pass over the bundles.
+#[derive(Debug, Clone, Copy)]
+enum Pass {
+    WarmStart,
+    /// A solve, biased or relaxing, with friction or not.
+    Solve(PassBias, bool),
+    /// Restitution, above this approach speed.
+    Restitution(Real),
+}
 
-    /// Solves the bundle's four constraints once.
+/// Runs `pass` on every bundle, colour after colour, on as many threads as rayon gives, in
+/// code compiled for the lanes; returns how many impulses restitution computed.
+fn each_by_color<L: Lanes>(
+    bundles: &mut [Bundle<L>],
+    colors: &[Range<usize>],
+    states: &SharedStates,
+    pass: Pass,
+) -> usize {
+    let total = AtomicUsize::new(0);
+    for_each_by_color(bundles, colors, |block| {
+        let count = L::run(PassBlock {
+            block,
+            states,
+            pass,
+        });
+        total.fetch_add(count, Ordering::Relaxed);
+    });
+    total.into_inner()
+}
+
+/// A pass over a block of bundles of one colour.
+struct PassBlock<'a, L: Lanes> {
+    block: &'a mut [Bundle<L>],
+    states: &'a SharedStates<'a>,
+    pass: Pass,
+}
+
+impl<L: Lanes> Kernel for PassBlock<'_, L> {
+    /// Impulses restitution computed.
+    type Output = usize;
+
     #[inline(always)]
-    fn solve(
-        &mut self,
-        states: &[BodyState],
-        velocities: &SharedVelocities,
-        pass: PassBias,
-        friction: bool,
-    ) {
-        let zero = f32x4::splat(0.0);
-        let one = f32x4::splat(1.0);
-        let inv_h = f32x4::splat(pass.inv_h);
-        let max_push = f32x4::splat(-pass.max_push_speed);
-        let bundle = self;
-        let mut a = WideBody::gather(states, velocities, &bundle.a);
-        let mut b = WideBody::gather(states, velocities, &bundle.b);
-        let (normal_x, normal_y) = (bundle.normal_x, bundle.normal_y);
-        for j in 0..2 {
-            let point = bundle.points[j];
-            // Separation now: the anchors turned by the rotation since the step began.
-            let ra_x = a.cos * point.anchor_a_x - a.sin * point.anchor_a_y;
-            let ra_y = a.sin * point.anchor_a_x + a.cos * point.anchor_a_y;
-            let rb_x = b.cos * point.anchor_b_x - b.sin * point.anchor_b_y;
-            let rb_y = b.sin * point.anchor_b_x + b.cos * point.anchor_b_y;
-            let d_x = (b.dp_x - a.dp_x) + rb_x - ra_x;
-            let d_y = (b.dp_y - a.dp_y) + rb_y - ra_y;
-            let s = point.base_separation + (normal_x * d_x + normal_y * d_y);
-            let speculative = s.simd_gt(zero);
-            let (bias, mass_scale, impulse_scale) = if pass.use_bias {
-                (
-                    (bundle.mass_scale * bundle.bias_rate * s).max(max_push),
-                    bundle.mass_scale,
-                    bundle.impulse_scale,
-                )
-            } else {
-                (zero, one, zero)
-            };
-            let bias = speculative.bitselect(s * inv_h, bias);
-            let mass_scale = speculative.bitselect(one, mass_scale);
-            let impulse_scale = speculative.bitselect(zero, impulse_scale);
-            let vn = bundle.relative_normal_velocity(&point, &a, &b, normal_x, normal_y);
-            let impulse = -point.normal_mass * (mass_scale * vn + bias)
-                - impulse_scale * point.normal_impulse;
-            let total = (point.normal_impulse + impulse).max(zero);
-            let applied = total - point.normal_impulse;
-            let point = &mut bundle.points[j];
-            point.normal_impulse = total;
-            point.total_normal_impulse += applied;
-            let point = *point;
-            bundle.apply(
-                &point,
-                normal_x * applied,
-                normal_y * applied,
-                &mut a,
-                &mut b,
-            );
-        }
-        if friction {
-            let (tangent_x, tangent_y) = (normal_y, -normal_x);
-            for j in 0..2 {
-                let point = bundle.points[j];
-                let vt = bundle.relative_normal_velocity(&point, &a, &b, tangent_x, tangent_y);
-                let limit = bundle.friction * point.normal_impulse;
-                let total = (point.tangent_impulse - point.tangent_mass * vt)
-                    .max(-limit)
-                    .min(limit);
-                let applied = total - point.tangent_impulse;
-                bundle.points[j].tangent_impulse = total;
-                bundle.apply(
-                    &point,
-                    tangent_x * applied,
-                    tangent_y * applied,
-                    &mut a,
-                    &mut b,
-                );
+    fn run(self) -> usize {
+        let states = self.states;
+        let mut count = 0;
+        match self.pass {
+            Pass::WarmStart => {
+                for bundle in self.block.iter_mut() {
+                    bundle.warm_start(states);
+                }
+            }
+            Pass::Solve(bias, friction) => {
+                for bundle in self.block.iter_mut() {
+                    bundle.solve(states, bias, friction);
+                }
+            }
+            Pass::Restitution(threshold) => {
+                for bundle in self.block.iter_mut() {
+                    count += bundle.restitution(states, threshold);
+                }
             }
         }
-        a.scatter(velocities, &bundle.a, &bundle.writes_a);
-        b.scatter(velocities, &bundle.b, &bundle.writes_b);
+        count
+    }
+}
+
+/// Copies every bundle's impulses into its contacts.
+fn store_bundles<L: Lanes>(bundles: &[Bundle<L>], contacts: &mut [Contact]) {
+    L::run(Store { bundles, contacts });
+}
+
+/// Copies bundles' impulses into their contacts.
+struct Store<'a, L: Lanes> {
+    bundles: &'a [Bundle<L>],
+    contacts: &'a mut [Contact],
+}
+
+impl<L: Lanes> Kernel for Store<'_, L> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run(self) {
+        for bundle in self.bundles {
+            bundle.store(self.contacts);
+        }
+    }
+}
+
+impl<L: Lanes> Bundle<L> {
+    /// A bundle of empty lanes, to be prepared.
+    #[inline(always)]
+    fn empty() -> Self {
+        let zero = L::splat(0.0);
+        let point = WidePoint {
+            anchor_a_x: zero,
+            anchor_a_y: zero,
+            anchor_b_x: zero,
+            anchor_b_y: zero,
+            base_separation: zero,
+            normal_mass: zero,
+            tangent_mass: zero,
+            normal_impulse: zero,
+            tangent_impulse: zero,
+            total_normal_impulse: zero,
+            relative_velocity: zero,
+        };
+        Bundle {
+            contacts: L::Indices::default(),
+            a: L::Indices::default(),
+            b: L::Indices::default(),
+            writes_a: 0,
+            writes_b: 0,
+            point_count: 0,
+            inv_mass_a: zero,
+            inv_inertia_a: zero,
+            inv_mass_b: zero,
+            inv_inertia_b: zero,
+            normal_x: zero,
+            normal_y: zero,
+            friction: zero,
+            restitution: zero,
+            bias_rate: zero,
+            mass_scale: zero,
+            impulse_scale: zero,
+            points: [point; 2],
+        }
     }
 
-    /// Packs up to four constraints; `softness` is for moving and static partners.
-    fn pack(
-        constraints: &[ContactConstraint],
-        chunk: Range<usize>,
+    /// Prepares the contacts `members` (up to [`Lanes::WIDTH`]) in place; `softness` is for
+    /// moving and static partners.
+    #[inline(always)]
+    fn prepare(
+        &mut self,
+        inputs: &BundleInputs,
+        members: &[usize],
         softness: [Softness; 2],
-        spare: usize,
-    ) -> Self {
-        let mut lanes = [[0.0; LANES]; 10];
-        let mut points = [[[0.0; LANES]; 10]; 2];
-        let mut bundle_constraints = [usize::MAX; LANES];
-        let (mut a, mut b) = ([spare; LANES], [spare; LANES]);
-        let (mut writes_a, mut writes_b) = ([false; LANES], [false; LANES]);
-        for (lane, index) in chunk.enumerate() {
-            let c = &constraints[index];
-            bundle_constraints[lane] = index;
-            (a[lane], b[lane]) = (c.a, c.b);
-            (writes_a[lane], writes_b[lane]) = (c.dynamic_a, c.dynamic_b);
+        spare: u32,
+    ) {
+        const FIELDS: usize = 12;
+        const POINT_FIELDS: usize = 11;
+        let mut lanes = [[0.0; 8]; FIELDS];
+        let mut points = [[[0.0; 8]; POINT_FIELDS]; 2];
+        let mut contacts = L::Indices::default();
+        contacts.as_mut().fill(u32::MAX);
+        let (mut a, mut b) = (L::Indices::default(), L::Indices::default());
+        a.as_mut().fill(spare);
+        b.as_mut().fill(spare);
+        let (mut writes_a, mut writes_b, mut point_count) = (0, 0, 0);
+        for (lane, &index) in members.iter().enumerate() {
+            let c = inputs.constraint(index);
+            contacts.as_mut()[lane] = index as u32;
+            a.as_mut()[lane] = c.a as u32;
+            b.as_mut()[lane] = c.b as u32;
+            writes_a |= u32::from(c.dynamic_a) << lane;
+            writes_b |= u32::from(c.dynamic_b) << lane;
             let soft = softness[usize::from(c.touches_static)];
             let values = [
                 c.inv_mass_a,
@@ -399,6 +635,7 @@ impl Bundle {
                 c.normal.x,
                 c.normal.y,
                 c.friction,
+                c.restitution,
                 soft.bias_rate,
                 soft.mass_scale,
                 soft.impulse_scale,
@@ -407,6 +644,7 @@ impl Bundle {
                 field[lane] = value;
             }
             // A missing point keeps zero mass: it never takes an impulse.
+            point_count += c.points().len() as u32;
             for (j, p) in c.points().iter().enumerate() {
                 let values = [
                     p.anchor_a.x,
@@ -419,62 +657,206 @@ impl Bundle {
                     p.normal_impulse,
                     p.tangent_impulse,
                     p.total_normal_impulse,
+                    p.relative_velocity,
                 ];
                 for (field, value) in points[j].iter_mut().zip(values) {
                     field[lane] = value;
                 }
             }
         }
-        let point = |p: &[[Real; LANES]; 10]| WidePoint {
-            anchor_a_x: f32x4::new(p[0]),
-            anchor_a_y: f32x4::new(p[1]),
-            anchor_b_x: f32x4::new(p[2]),
-            anchor_b_y: f32x4::new(p[3]),
-            base_separation: f32x4::new(p[4]),
-            normal_mass: f32x4::new(p[5]),
-            tangent_mass: f32x4::new(p[6]),
-            normal_impulse: f32x4::new(p[7]),
-            tangent_impulse: f32x4::new(p[8]),
-            total_normal_impulse: f32x4::new(p[9]),
+        let load = |values: &[f32; 8]| L::from_slice(values);
+        let point = |p: &[[f32; 8]; POINT_FIELDS]| WidePoint {
+            anchor_a_x: load(&p[0]),
+            anchor_a_y: load(&p[1]),
+            anchor_b_x: load(&p[2]),
+            anchor_b_y: load(&p[3]),
+            base_separation: load(&p[4]),
+            normal_mass: load(&p[5]),
+            tangent_mass: load(&p[6]),
+            normal_impulse: load(&p[7]),
+            tangent_impulse: load(&p[8]),
+            total_normal_impulse: load(&p[9]),
+            relative_velocity: load(&p[10]),
         };
-        Bundle {
-            constraints: bundle_constraints,
+        *self = Bundle {
+            contacts,
             a,
             b,
             writes_a,
             writes_b,
-            inv_mass_a: f32x4::new(lanes[0]),
-            inv_inertia_a: f32x4::new(lanes[1]),
-            inv_mass_b: f32x4::new(lanes[2]),
-            inv_inertia_b: f32x4::new(lanes[3]),
-            normal_x: f32x4::new(lanes[4]),
-            normal_y: f32x4::new(lanes[5]),
-            friction: f32x4::new(lanes[6]),
-            bias_rate: f32x4::new(lanes[7]),
-            mass_scale: f32x4::new(lanes[8]),
-            impulse_scale: f32x4::new(lanes[9]),
+            point_count,
+            inv_mass_a: load(&lanes[0]),
+            inv_inertia_a: load(&lanes[1]),
+            inv_mass_b: load(&lanes[2]),
+            inv_inertia_b: load(&lanes[3]),
+            normal_x: load(&lanes[4]),
+            normal_y: load(&lanes[5]),
+            friction: load(&lanes[6]),
+            restitution: load(&lanes[7]),
+            bias_rate: load(&lanes[8]),
+            mass_scale: load(&lanes[9]),
+            impulse_scale: load(&lanes[10]),
             points: [point(&points[0]), point(&points[1])],
-        }
+        };
     }
 
-    /// Velocity of B relative to A at a point, along `(dir_x, dir_y)`.
+    /// Gathers both sides' bodies.
     #[inline(always)]
-    fn relative_normal_velocity(
-        &self,
-        point: &WidePoint,
-        a: &WideBody,
-        b: &WideBody,
-        dir_x: f32x4,
-        dir_y: f32x4,
-    ) -> f32x4 {
-        let dv_x = (b.v_x - b.w * point.anchor_b_y) - (a.v_x - a.w * point.anchor_a_y);
-        let dv_y = (b.v_y + b.w * point.anchor_b_x) - (a.v_y + a.w * point.anchor_a_x);
-        dv_x * dir_x + dv_y * dir_y
+    fn bodies(&self, states: &SharedStates) -> (WideBody<L>, WideBody<L>) {
+        (
+            WideBody::gather(states, &self.a),
+            WideBody::gather(states, &self.b),
+        )
+    }
+
+    /// Writes back both sides' moving bodies (a colour's moving bodies are distinct, so no two
+    /// written lanes share a state).
+    #[inline(always)]
+    fn write(&self, states: &SharedStates, a: &WideBody<L>, b: &WideBody<L>) {
+        a.scatter(states, &self.a, self.writes_a);
+        b.scatter(states, &self.b, self.writes_b);
+    }
+
+    /// Applies the bundle's accumulated impulses (and counts them as pushed this step).
+    #[inline(always)]
+    fn warm_start(&mut self, states: &SharedStates) {
+        let (mut a, mut b) = self.bodies(states);
+        let (tangent_x, tangent_y) = (self.normal_y, -self.normal_x);
+        for j in 0..2 {
+            let point = self.points[j];
+            let p_x = self.normal_x * point.normal_impulse + tangent_x * point.tangent_impulse;
+            let p_y = self.normal_y * point.normal_impulse + tangent_y * point.tangent_impulse;
+            self.apply(&point, p_x, p_y, &mut a, &mut b);
+            self.points[j].total_normal_impulse += point.normal_impulse;
+        }
+        self.write(states, &a, &b);
+    }
+
+    /// Solves the bundle's constraints once.
+    #[inline(always)]
+    fn solve(&mut self, states: &SharedStates, pass: PassBias, friction: bool) {
+        let zero = L::splat(0.0);
+        let one = L::splat(1.0);
+        let inv_h = L::splat(pass.inv_h);
+        let max_push = L::splat(-pass.max_push_speed);
+        let (mut a, mut b) = self.bodies(states);
+        let (normal_x, normal_y) = (self.normal_x, self.normal_y);
+        for j in 0..2 {
+            let point = self.points[j];
+            // Separation now: the anchors turned by the rotation since the step began.
+            let ra_x = a.cos * point.anchor_a_x - a.sin * point.anchor_a_y;
+            let ra_y = a.sin * point.anchor_a_x + a.cos * point.anchor_a_y;
+            let rb_x = b.cos * point.anchor_b_x - b.sin * point.anchor_b_y;
+            let rb_y = b.sin * point.anchor_b_x + b.cos * point.anchor_b_y;
+            let d_x = (b.dp_x - a.dp_x) + rb_x - ra_x;
+            let d_y = (b.dp_y - a.dp_y) + rb_y - ra_y;
+            let s = point.base_separation + (normal_x * d_x + normal_y * d_y);
+            let speculative = s.gt(zero);
+            let (bias, mass_scale, impulse_scale) = if pass.use_bias {
+                (
+                    (self.mass_scale * self.bias_rate * s).max(max_push),
+                    self.mass_scale,
+                    self.impulse_scale,
+                )
+            } else {
+                (zero, one, zero)
+            };
+            let bias = speculative.select(s * inv_h, bias);
+            let mass_scale = speculative.select(one, mass_scale);
+            let impulse_scale = speculative.select(zero, impulse_scale);
+            let vn = relative_velocity(&point, &a, &b, normal_x, normal_y);
+            let impulse = -point.normal_mass * (mass_scale * vn + bias)
+                - impulse_scale * point.normal_impulse;
+            let total = (point.normal_impulse + impulse).max(zero);
+            let applied = total - point.normal_impulse;
+            let point = &mut self.points[j];
+            point.normal_impulse = total;
+            point.total_normal_impulse += applied;
+            let point = *point;
+            self.apply(
+                &point,
+                normal_x * applied,
+                normal_y * applied,
+                &mut a,
+                &mut b,
+            );
+        }
+        if friction {
+            let (tangent_x, tangent_y) = (normal_y, -normal_x);
+            for j in 0..2 {
+                let point = self.points[j];
+                let vt = relative_velocity(&point, &a, &b, tangent_x, tangent_y);
+                let limit = self.friction * point.normal_impulse;
+                let total = (point.tangent_impulse - point.tangent_mass * vt)
+                    .max(-limit)
+                    .min(limit);
+                let applied = total - point.tangent_impulse;
+                self.points[j].tangent_impulse = total;
+                self.apply(
+                    &point,
+                    tangent_x * applied,
+                    tangent_y * applied,
+                    &mut a,
+                    &mut b,
+                );
+            }
+        }
+        self.write(states, &a, &b);
+    }
+
+    /// Bounces the points that approached faster than `threshold` and pushed this step;
+    /// returns how many.
+    #[inline(always)]
+    fn restitution(&mut self, states: &SharedStates, threshold: Real) -> usize {
+        let zero = L::splat(0.0);
+        let bouncy = self.restitution.gt(zero);
+        if bouncy.bits() == 0 {
+            return 0;
+        }
+        let (mut a, mut b) = self.bodies(states);
+        let mut bounced = 0;
+        for j in 0..2 {
+            let point = self.points[j];
+            let slow = point.relative_velocity.gt(L::splat(-threshold));
+            let pushed = point.total_normal_impulse.ne(zero).and(bouncy);
+            let bounce = slow.select(zero, pushed);
+            let lanes = bounce.bits();
+            if lanes == 0 {
+                continue;
+            }
+            bounced += lanes.count_ones() as usize;
+            let vn = relative_velocity(&point, &a, &b, self.normal_x, self.normal_y);
+            let impulse = -point.normal_mass * (vn + self.restitution * point.relative_velocity);
+            let total = (point.normal_impulse + impulse).max(zero);
+            let applied = total - point.normal_impulse;
+            let point = &mut self.points[j];
+            point.normal_impulse = bounce.select(total, point.normal_impulse);
+            point.total_normal_impulse = bounce.select(
+                point.total_normal_impulse + applied,
+                point.total_normal_impulse,
+            );
+            let point = *point;
+            let (old_a, old_b) = (a, b);
+            let (p_x, p_y) = (self.normal_x * applied, self.normal_y * applied);
+            self.apply(&point, p_x, p_y, &mut a, &mut b);
+            // Lanes that do not bounce keep their velocities bit for bit.
+            a = a.select(bounce, old_a);
+            b = b.select(bounce, old_b);
+        }
+        self.write(states, &a, &b);
+        bounced
     }
 
     /// Applies the impulse `(p_x, p_y)` at a point: minus to A, plus to B.
     #[inline(always)]
-    fn apply(&self, point: &WidePoint, p_x: f32x4, p_y: f32x4, a: &mut WideBody, b: &mut WideBody) {
+    fn apply(
+        &self,
+        point: &WidePoint<L>,
+        p_x: L,
+        p_y: L,
+        a: &mut WideBody<L>,
+        b: &mut WideBody<L>,
+    ) {
         a.v_x -= self.inv_mass_a * p_x;
         a.v_y -= self.inv_mass_a * p_y;
         a.w -= self.inv_inertia_a * (point.anchor_a_x * p_y - point.anchor_a_y * p_x);
@@ -482,4 +864,37 @@ impl Bundle {
         b.v_y += self.inv_mass_b * p_y;
         b.w += self.inv_inertia_b * (point.anchor_b_x * p_y - point.anchor_b_y * p_x);
     }
+
+    /// Copies the lanes' impulses into their contacts' manifolds.
+    #[inline(always)]
+    fn store(&self, contacts: &mut [Contact]) {
+        let mut impulses = [[[0.0; 8]; 2]; 2];
+        for (j, point) in self.points.iter().enumerate() {
+            point.normal_impulse.write_to(&mut impulses[j][0]);
+            point.tangent_impulse.write_to(&mut impulses[j][1]);
+        }
+        for (lane, &index) in self.contacts.as_ref().iter().enumerate() {
+            let Some(contact) = contacts.get_mut(index as usize) else {
+                continue;
+            };
+            for (j, point) in contact.manifold_mut().points_mut().iter_mut().enumerate() {
+                point.normal_impulse = impulses[j][0][lane];
+                point.tangent_impulse = impulses[j][1][lane];
+            }
+        }
+    }
+}
+
+/// Velocity of B relative to A at a point, along `(dir_x, dir_y)`.
+#[inline(always)]
+fn relative_velocity<L: Lanes>(
+    point: &WidePoint<L>,
+    a: &WideBody<L>,
+    b: &WideBody<L>,
+    dir_x: L,
+    dir_y: L,
+) -> L {
+    let dv_x = (b.v_x - b.w * point.anchor_b_y) - (a.v_x - a.w * point.anchor_a_y);
+    let dv_y = (b.v_y + b.w * point.anchor_b_x) - (a.v_y + a.w * point.anchor_a_x);
+    dv_x * dir_x + dv_y * dir_y
 }

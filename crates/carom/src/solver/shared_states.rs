@@ -1,0 +1,102 @@
+//! The body states while soft step solves a pass of graph colours, shared by the threads that
+//! solve it.
+//!
+//! The threads write the states in place, as Box2D's do: no two constraints of one colour
+//! share a body the solver moves (the colouring guarantees it, and [`super::wide_contacts`]
+//! checks it again as it builds the bundles, sending any constraint that would break it to the
+//! overflow, solved on one thread), static and kinematic bodies are only read, and a colour
+//! starts only once the one before it is finished (an acquire-release barrier between
+//! colours, `super::color_passes`). So within a colour each state has at most one writer
+//! and no other reader: plain loads and stores, no atomics, which lets the solver load a body
+//! in one or two vector loads instead of eight scalar ones.
+//!
+//! The promise is made once per pass, where a pass borrows the states
+//! ([`SharedStates::new`]); the loads and stores are then safe to call. This module, the three
+//! pass functions of `wide_contacts` that make that promise, and `avx_lanes` are the only
+//! `unsafe` code in carom.
+#![allow(unsafe_code)]
+
+use super::BodyState;
+use std::marker::PhantomData;
+
+/// A mutable borrow of the body states, readable and writable from several threads under the
+/// rule above.
+pub(crate) struct SharedStates<'a> {
+    states: *mut BodyState,
+    len: usize,
+    _borrow: PhantomData<&'a mut [BodyState]>,
+}
+
+// SAFETY: whoever made the `SharedStates` promised that no state is written by one thread
+// while another reads or writes it.
+unsafe impl Send for SharedStates<'_> {}
+// SAFETY: as for `Send`.
+unsafe impl Sync for SharedStates<'_> {}
+
+impl<'a> SharedStates<'a> {
+    /// Borrows the states for the length of a pass.
+    ///
+    /// # Safety
+    /// While the borrow lasts, no state is written by one thread while another reads or
+    /// writes it.
+    pub unsafe fn new(states: &'a mut [BodyState]) -> Self {
+        SharedStates {
+            states: states.as_mut_ptr(),
+            len: states.len(),
+            _borrow: PhantomData,
+        }
+    }
+
+    /// State `index` as eight floats: `[v.x, v.y, w, 0, dp.x, dp.y, dq.cos, dq.sin]`.
+    #[inline(always)]
+    pub fn read(&self, index: u32) -> [f32; 8] {
+        let index = index as usize;
+        assert!(index < self.len, "state {index} of {}", self.len);
+        // SAFETY: in bounds (checked), aligned, and `BodyState` is eight `f32`s in this order
+        // (asserted beside its definition); no other thread writes it (promised in `new`).
+        unsafe { std::ptr::read(self.states.add(index).cast::<[f32; 8]>()) }
+    }
+
+    /// Sets state `index`'s velocities: `[v.x, v.y, w, 0]`.
+    #[inline(always)]
+    pub fn write_velocity(&self, index: u32, velocity: [f32; 4]) {
+        let index = index as usize;
+        assert!(index < self.len, "state {index} of {}", self.len);
+        // SAFETY: in bounds (checked), aligned, the first four floats of a `BodyState` are
+        // `v.x, v.y, w, pad`; no other thread touches it (promised in `new`).
+        unsafe { std::ptr::write(self.states.add(index).cast::<[f32; 4]>(), velocity) }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::{Rot, Vec2};
+
+    #[test]
+    fn a_state_reads_as_its_eight_floats_and_takes_its_velocity() {
+        let mut states = vec![BodyState::spare(); 3];
+        states[1] = BodyState {
+            v: Vec2::new(1.0, 2.0),
+            w: 3.0,
+            pad: 0.0,
+            dp: Vec2::new(5.0, 6.0),
+            dq: Rot::from_cos_sin_unchecked(0.6, 0.8),
+        };
+        // SAFETY: one thread.
+        let shared = unsafe { SharedStates::new(&mut states) };
+        assert_eq!(shared.read(1), [1.0, 2.0, 3.0, 0.0, 5.0, 6.0, 0.6, 0.8]);
+        shared.write_velocity(2, [7.0, 8.0, 9.0, 0.0]);
+        assert_eq!((states[2].v, states[2].w), (Vec2::new(7.0, 8.0), 9.0));
+        assert_eq!(states[2].dq, Rot::identity());
+    }
+
+    #[test]
+    #[should_panic(expected = "state 3 of 3")]
+    fn an_index_past_the_end_panics() {
+        let mut states = vec![BodyState::spare(); 3];
+        // SAFETY: one thread.
+        let shared = unsafe { SharedStates::new(&mut states) };
+        shared.read(3);
+    }
+}
