@@ -123,6 +123,12 @@ impl Lanes for Avx8 {
     }
 
     #[inline(always)]
+    fn lanes_mut(&mut self) -> &mut [f32] {
+        // SAFETY: a `__m256` is eight `f32`s in memory, and `[f32; 8]` asks less alignment.
+        unsafe { &mut *(&mut self.0 as *mut __m256).cast::<[f32; 8]>() }
+    }
+
+    #[inline(always)]
     fn max(self, other: Self) -> Self {
         // SAFETY: AVX (see above).
         unsafe {

@@ -2,6 +2,7 @@
 
 use super::BodyState;
 use crate::collision::contact::Contact;
+use crate::collision::manifold::{Manifold, ManifoldPoint};
 use crate::dynamics::body::Body;
 use crate::math::{Real, Vec2, cross, cross_sv, perp_cw};
 
@@ -33,6 +34,36 @@ pub(crate) struct ConstraintPoint {
     pub relative_velocity: Real,
 }
 
+impl ConstraintPoint {
+    /// A manifold point of a contact of normal `normal` between bodies `a` and `b`.
+    #[inline(always)]
+    pub fn new(mp: &ManifoldPoint, normal: Vec2, a: &SolverBody, b: &SolverBody) -> Self {
+        let tangent = perp_cw(normal);
+        let (ma, ia) = (a.mass.inv_mass, a.mass.inv_inertia);
+        let (mb, ib) = (b.mass.inv_mass, b.mass.inv_inertia);
+        let (ra, rb) = (mp.anchor_a, mp.anchor_b);
+        let k_normal = ma + mb + ia * cross(ra, normal).powi(2) + ib * cross(rb, normal).powi(2);
+        let k_tangent = ma + mb + ia * cross(ra, tangent).powi(2) + ib * cross(rb, tangent).powi(2);
+        let relative = b.v + cross_sv(b.w, rb) - a.v - cross_sv(a.w, ra);
+        ConstraintPoint {
+            anchor_a: ra,
+            anchor_b: rb,
+            base_separation: mp.separation - normal.dot(&(rb - ra)),
+            separation: mp.separation,
+            normal_mass: if k_normal > 0.0 { 1.0 / k_normal } else { 0.0 },
+            tangent_mass: if k_tangent > 0.0 {
+                1.0 / k_tangent
+            } else {
+                0.0
+            },
+            normal_impulse: mp.normal_impulse,
+            tangent_impulse: mp.tangent_impulse,
+            total_normal_impulse: 0.0,
+            relative_velocity: normal.dot(&relative),
+        }
+    }
+}
+
 /// A touching contact prepared for solving.
 #[derive(Debug, Clone)]
 pub(crate) struct ContactConstraint {
@@ -54,79 +85,73 @@ pub(crate) struct ContactConstraint {
     pub restitution: Real,
     /// True when one body is static (soft step makes such contacts stiffer).
     pub touches_static: bool,
-    /// Whether A is dynamic: only dynamic bodies take impulses.
-    pub dynamic_a: bool,
-    /// Whether B is dynamic.
-    pub dynamic_b: bool,
     points: [ConstraintPoint; 2],
     point_count: usize,
 }
 
-/// One body of a contact as the solver takes it: its state's index, and the body if it is in
-/// the awake set (`None` for a static body, which the solver sees as at rest and immovable).
-pub(crate) type SolverBody<'a> = (usize, Option<&'a Body>);
+/// What a contact's constraint needs of one of its bodies, from the solver's compact arrays:
+/// its state's index, mass and velocity. A body outside the awake set (static) is the spare
+/// state: at rest, immovable.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SolverBody {
+    pub index: usize,
+    pub mass: BodyMass,
+    pub v: Vec2,
+    pub w: Real,
+    /// In the awake set (else the spare state of a static body).
+    pub awake: bool,
+}
+
+/// A body's inverse mass and inertia as the solver takes them (zero for a static or
+/// kinematic body), and whether it is dynamic (takes impulses).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct BodyMass {
+    pub inv_mass: Real,
+    pub inv_inertia: Real,
+    pub dynamic: bool,
+}
+
+impl BodyMass {
+    pub fn of(body: &Body) -> Self {
+        BodyMass {
+            inv_mass: body.inv_mass(),
+            inv_inertia: body.inv_inertia(),
+            dynamic: body.is_dynamic(),
+        }
+    }
+}
 
 impl ContactConstraint {
-    /// Prepares a contact between two bodies.
+    /// Prepares a contact (at `contact_index` among the awake contacts) from its manifold and
+    /// its mixed friction and restitution.
+    #[inline]
     pub fn new(
         contact_index: usize,
-        contact: &Contact,
-        (a, body_a): SolverBody,
-        (b, body_b): SolverBody,
+        manifold: &Manifold,
+        (friction, restitution): (Real, Real),
+        a: SolverBody,
+        b: SolverBody,
     ) -> Self {
-        let manifold = contact.manifold();
         let normal = manifold.normal;
-        let tangent = perp_cw(normal);
-        let masses =
-            |body: Option<&Body>| body.map_or((0.0, 0.0), |b| (b.inv_mass(), b.inv_inertia()));
-        let velocities = |body: Option<&Body>| {
-            body.map_or((Vec2::zeros(), 0.0), |b| {
-                (b.linear_velocity(), b.angular_velocity())
-            })
-        };
-        let ((va, wa), (vb, wb)) = (velocities(body_a), velocities(body_b));
-        let (ma, ia) = masses(body_a);
-        let (mb, ib) = masses(body_b);
         let mut points = [ConstraintPoint::default(); 2];
         let point_count = manifold.points().len();
         for (point, mp) in points.iter_mut().zip(manifold.points()) {
-            let (ra, rb) = (mp.anchor_a, mp.anchor_b);
-            let k_normal =
-                ma + mb + ia * cross(ra, normal).powi(2) + ib * cross(rb, normal).powi(2);
-            let k_tangent =
-                ma + mb + ia * cross(ra, tangent).powi(2) + ib * cross(rb, tangent).powi(2);
-            let relative = vb + cross_sv(wb, rb) - va - cross_sv(wa, ra);
-            *point = ConstraintPoint {
-                anchor_a: ra,
-                anchor_b: rb,
-                base_separation: mp.separation - normal.dot(&(rb - ra)),
-                separation: mp.separation,
-                normal_mass: if k_normal > 0.0 { 1.0 / k_normal } else { 0.0 },
-                tangent_mass: if k_tangent > 0.0 {
-                    1.0 / k_tangent
-                } else {
-                    0.0
-                },
-                normal_impulse: mp.normal_impulse,
-                tangent_impulse: mp.tangent_impulse,
-                total_normal_impulse: 0.0,
-                relative_velocity: normal.dot(&relative),
-            };
+            *point = ConstraintPoint::new(mp, normal, &a, &b);
         }
+        let (ma, ia) = (a.mass.inv_mass, a.mass.inv_inertia);
+        let (mb, ib) = (b.mass.inv_mass, b.mass.inv_inertia);
         ContactConstraint {
             contact_index,
-            a,
-            b,
+            a: a.index,
+            b: b.index,
             inv_mass_a: ma,
             inv_inertia_a: ia,
             inv_mass_b: mb,
             inv_inertia_b: ib,
             normal,
-            friction: contact.friction(),
-            restitution: contact.restitution(),
-            touches_static: body_a.is_none() || body_b.is_none(),
-            dynamic_a: body_a.is_some_and(Body::is_dynamic),
-            dynamic_b: body_b.is_some_and(Body::is_dynamic),
+            friction,
+            restitution,
+            touches_static: !a.awake || !b.awake,
             points,
             point_count,
         }

@@ -39,6 +39,8 @@ pub(crate) trait Lanes:
     fn splat(x: f32) -> Self;
     /// The lanes into `out`.
     fn write_to(self, out: &mut [f32]);
+    /// The lanes as floats in memory, to set one at a time.
+    fn lanes_mut(&mut self) -> &mut [f32];
     /// The lanes from the first [`Lanes::WIDTH`] values.
     fn from_slice(values: &[f32]) -> Self;
     /// Lane `lane`.
@@ -99,6 +101,11 @@ impl Lanes for f32x4 {
     #[inline(always)]
     fn write_to(self, out: &mut [f32]) {
         out[..4].copy_from_slice(self.as_array());
+    }
+
+    #[inline(always)]
+    fn lanes_mut(&mut self) -> &mut [f32] {
+        self.as_mut_array()
     }
 
     #[inline(always)]
@@ -247,6 +254,9 @@ pub(crate) mod tests {
         }
         assert_eq!((x + one - one * one).lane(1), -2.0);
         assert_eq!((-L::splat(0.0)).lane(0).to_bits(), (-0.0f32).to_bits());
+        let mut y = x;
+        y.lanes_mut()[L::WIDTH - 1] = 7.0;
+        assert_eq!((y.lane(L::WIDTH - 1), y.lane(0)), (7.0, 1.0));
     }
 
     #[test]

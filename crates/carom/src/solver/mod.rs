@@ -26,6 +26,7 @@ mod tutorial_impulse;
 mod wide_contacts;
 
 pub(crate) use body_state::BodyState;
+use contact_constraint::BodyMass;
 pub(crate) use contact_constraint::ContactConstraint;
 
 use crate::collision::coloring::ContactColors;
@@ -291,7 +292,9 @@ pub(crate) struct SolverContext<'a> {
 /// The solver's memory, kept from step to step so a step in steady state allocates nothing.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Workspace {
+    /// The awake bodies' states and masses, then the spare state's.
     states: Vec<BodyState>,
+    masses: Vec<BodyMass>,
     /// The constraints solved one at a time: every touching contact for the classic solvers
     /// and for soft step without colours, the overflow's with them.
     constraints: Vec<ContactConstraint>,
@@ -310,7 +313,8 @@ pub(crate) struct Workspace {
 /// moves (a dynamic body of the awake set). The solver's SIMD passes write bodies in place on
 /// several threads on the strength of it.
 struct ColorCheck<'a> {
-    bodies: &'a [Body],
+    /// The awake bodies' masses (which are dynamic), and where they are among all bodies.
+    masses: &'a [BodyMass],
     awake: Range<usize>,
     /// The dense indices of each awake contact's bodies.
     dense: &'a [(usize, usize)],
@@ -324,8 +328,8 @@ impl ColorCheck<'_> {
         let (a, b) = self.dense[contact];
         let mark = color as u8 + 1;
         let moving = |index: usize| {
-            (self.awake.contains(&index) && self.bodies[index].is_dynamic())
-                .then(|| index - self.awake.start)
+            let i = index.checked_sub(self.awake.start)?;
+            (self.awake.contains(&index) && self.masses[i].dynamic).then_some(i)
         };
         let (a, b) = (moving(a), moving(b));
         if [a, b].iter().flatten().any(|&i| self.claims[i] == mark) {
@@ -413,6 +417,7 @@ pub(crate) fn step(
     } = set;
     let Workspace {
         states,
+        masses,
         constraints,
         graph,
         wide,
@@ -424,8 +429,15 @@ pub(crate) fn step(
     // one by one in contact order.
     let kind = params.effective_kind();
     let colored = kind == SolverKind::SoftStep && params.graph_coloring;
+    // The awake bodies as the solver sees them, and a spare state past them: static bodies'
+    // (at rest, immovable), and empty SIMD lanes'.
+    let awake_bodies = &bodies[awake.clone()];
+    map_into(awake_bodies, states, ITEMS_PER_TASK, BodyState::from_body);
+    states.push(BodyState::spare());
+    map_into(awake_bodies, masses, ITEMS_PER_TASK, BodyMass::of);
+    masses.push(BodyMass::default());
     let check = ColorCheck {
-        bodies,
+        masses,
         awake: awake.clone(),
         dense,
         claims,
@@ -439,8 +451,9 @@ pub(crate) fn step(
     );
     let bias = soft_step::Bias::new(params, dt / params.substeps.max(1) as Real);
     let inputs = BundleInputs {
-        bodies,
         awake: awake.clone(),
+        states,
+        masses,
         contacts,
         dense,
         order,
@@ -460,9 +473,6 @@ pub(crate) fn step(
         inputs.constraint(i)
     });
     let bodies = &mut bodies[awake];
-    map_into(bodies, states, ITEMS_PER_TASK, BodyState::from_body);
-    // A spare state past the awake bodies: static bodies' (at rest), and empty SIMD lanes'.
-    states.push(BodyState::spare());
     let context = SolverContext {
         params,
         environment,

@@ -228,6 +228,7 @@ mod tests {
     use crate::dynamics::body::BodyDef;
     use crate::geometry::shape::Shape;
     use crate::math::{Rot, vec2};
+    use crate::solver::contact_constraint::BodyMass;
     use crate::solver::contact_graph::ContactGraph;
     use crate::solver::wide_contacts::{BundleInputs, Width};
     use crate::solver::{ColorCheck, order_constraints};
@@ -297,10 +298,12 @@ mod tests {
             })
             .collect();
         states.push(BodyState::spare());
+        let mut masses: Vec<BodyMass> = bodies[awake.clone()].iter().map(BodyMass::of).collect();
+        masses.push(BodyMass::default());
         let (mut order, mut demoted, mut claims) = (Vec::new(), Vec::new(), Vec::new());
         let mut graph = ContactGraph::default();
         let check = ColorCheck {
-            bodies,
+            masses: &masses,
             awake: awake.clone(),
             dense: &dense,
             claims: &mut claims,
@@ -314,8 +317,9 @@ mod tests {
         );
         let bias = Bias::new(&SolverParams::default(), h);
         let inputs = BundleInputs {
-            bodies,
             awake,
+            states: &states,
+            masses: &masses,
             contacts,
             dense: &dense,
             order: &order,
@@ -358,7 +362,9 @@ mod tests {
             let (mut states, mut constraints, mut wide, bias) = substep(&world, 1.0 / 240.0, width);
             assert!(constraints.len() > 30, "a pile has many contacts");
             assert!(
-                constraints.iter().any(|c| !c.dynamic_a || !c.dynamic_b),
+                constraints
+                    .iter()
+                    .any(|c| c.inv_mass_a == 0.0 || c.inv_mass_b == 0.0),
                 "some touch the ground or the paddle"
             );
             let mut wide_states = states.clone();
@@ -401,7 +407,8 @@ mod tests {
             let (mut states, constraints, mut wide, bias) = substep(&world, 1.0 / 240.0, width);
             let before = states.clone();
             let mut poisoned = 0;
-            for c in constraints.iter().filter(|c| !c.dynamic_a || !c.dynamic_b) {
+            let fixed_body = |c: &&ContactConstraint| c.inv_mass_a == 0.0 || c.inv_mass_b == 0.0;
+            for c in constraints.iter().filter(fixed_body) {
                 wide.set_normal_impulse(c.contact_index, 0, Real::NAN);
                 poisoned += 1;
             }

@@ -9,14 +9,14 @@
 #[cfg(target_arch = "x86_64")]
 use super::avx_lanes::{self, Avx8};
 use super::color_passes::for_each_by_color;
-use super::contact_constraint::{ContactConstraint, SolverBody};
+use super::contact_constraint::{BodyMass, ConstraintPoint, ContactConstraint, SolverBody};
 use super::contact_graph::ContactGraph;
 use super::lanes::{Kernel, Lanes};
 use super::shared_states::SharedStates;
 use super::{BodyState, Softness};
 use crate::collision::contact::Contact;
+use crate::collision::manifold::Manifold;
 use crate::constants::{COLOR_COUNT, ITEMS_PER_TASK};
-use crate::dynamics::body::Body;
 use crate::math::Real;
 use crate::parallel::for_each_chunk_with;
 use std::ops::Range;
@@ -58,6 +58,42 @@ struct WidePoint<L> {
     tangent_impulse: L,
     total_normal_impulse: L,
     relative_velocity: L,
+}
+
+impl<L: Lanes> WidePoint<L> {
+    /// Puts a prepared point in `lane`.
+    #[inline(always)]
+    fn set_lane(&mut self, lane: usize, p: &ConstraintPoint) {
+        let values = [
+            p.anchor_a.x,
+            p.anchor_a.y,
+            p.anchor_b.x,
+            p.anchor_b.y,
+            p.base_separation,
+            p.normal_mass,
+            p.tangent_mass,
+            p.normal_impulse,
+            p.tangent_impulse,
+            p.total_normal_impulse,
+            p.relative_velocity,
+        ];
+        let fields = [
+            &mut self.anchor_a_x,
+            &mut self.anchor_a_y,
+            &mut self.anchor_b_x,
+            &mut self.anchor_b_y,
+            &mut self.base_separation,
+            &mut self.normal_mass,
+            &mut self.tangent_mass,
+            &mut self.normal_impulse,
+            &mut self.tangent_impulse,
+            &mut self.total_normal_impulse,
+            &mut self.relative_velocity,
+        ];
+        for (field, value) in fields.into_iter().zip(values) {
+            field.lanes_mut()[lane] = value;
+        }
+    }
 }
 
 /// [`Lanes::WIDTH`] constraints; lanes past the colour's end are empty (zero masses, no
@@ -185,11 +221,13 @@ pub(crate) struct PassBias {
     pub max_push_speed: Real,
 }
 
-/// What preparing the bundles reads.
+/// What preparing the constraints reads.
 pub(crate) struct BundleInputs<'a> {
-    /// Every body; the awake ones are `bodies[awake]`, states `0..awake.len()`.
-    pub bodies: &'a [Body],
+    /// Where the awake set's bodies are among all bodies (dense indices).
     pub awake: Range<usize>,
+    /// The awake bodies' states and masses, then the spare state's (a static body's).
+    pub states: &'a [BodyState],
+    pub masses: &'a [BodyMass],
     /// The awake contacts and the dense indices of each one's bodies.
     pub contacts: &'a [Contact],
     pub dense: &'a [(usize, usize)],
@@ -204,25 +242,42 @@ pub(crate) struct BundleInputs<'a> {
 }
 
 impl BundleInputs<'_> {
-    /// A contact's body at dense index `index`, as the solver takes it: its state, and the
-    /// body if it is in the awake set (else the spare state, past the awake ones).
-    fn solver_body(&self, index: usize) -> SolverBody<'_> {
-        if self.awake.contains(&index) {
-            (index - self.awake.start, Some(&self.bodies[index]))
+    /// A contact's body at dense index `index`, as the solver takes it: its state, or the
+    /// spare state (past the awake ones) if it is not in the awake set.
+    fn solver_body(&self, index: usize) -> SolverBody {
+        let awake = self.awake.contains(&index);
+        let index = if awake {
+            index - self.awake.start
         } else {
-            (self.awake.len(), None)
+            self.awake.len()
+        };
+        let state = &self.states[index];
+        SolverBody {
+            index,
+            mass: self.masses[index],
+            v: state.v,
+            w: state.w,
+            awake,
         }
     }
 
     /// Contact `index` prepared as a constraint.
     pub fn constraint(&self, index: usize) -> ContactConstraint {
-        let (a, b) = self.dense[index];
-        let mut constraint = ContactConstraint::new(
-            index,
-            &self.contacts[index],
-            self.solver_body(a),
-            self.solver_body(b),
-        );
+        let contact = &self.contacts[index];
+        let material = (contact.friction(), contact.restitution());
+        self.constraint_of(index, contact.manifold(), material, self.dense[index])
+    }
+
+    /// Contact `index`, of this manifold, material and bodies, prepared as a constraint.
+    fn constraint_of(
+        &self,
+        index: usize,
+        manifold: &Manifold,
+        material: (Real, Real),
+        (a, b): (usize, usize),
+    ) -> ContactConstraint {
+        let (a, b) = (self.solver_body(a), self.solver_body(b));
+        let mut constraint = ContactConstraint::new(index, manifold, material, a, b);
         if !self.warm_starting {
             for point in constraint.points_mut() {
                 point.normal_impulse = 0.0;
@@ -599,8 +654,9 @@ impl<L: Lanes> Bundle<L> {
         }
     }
 
-    /// Prepares the contacts `members` (up to [`Lanes::WIDTH`]) in place; `softness` is for
-    /// moving and static partners.
+    /// Prepares the contacts `members` (up to [`Lanes::WIDTH`]) in place, one float at a
+    /// time into its lane, as Box2D does (building whole constraints and packing them moved
+    /// more memory than the arithmetic costs); `softness` is for moving and static partners.
     #[inline(always)]
     fn prepare(
         &mut self,
@@ -609,95 +665,84 @@ impl<L: Lanes> Bundle<L> {
         softness: [Softness; 2],
         spare: u32,
     ) {
-        const FIELDS: usize = 12;
-        const POINT_FIELDS: usize = 11;
-        let mut lanes = [[0.0; 8]; FIELDS];
-        let mut points = [[[0.0; 8]; POINT_FIELDS]; 2];
-        let mut contacts = L::Indices::default();
-        contacts.as_mut().fill(u32::MAX);
-        let (mut a, mut b) = (L::Indices::default(), L::Indices::default());
-        a.as_mut().fill(spare);
-        b.as_mut().fill(spare);
-        let (mut writes_a, mut writes_b, mut point_count) = (0, 0, 0);
-        for (lane, &index) in members.iter().enumerate() {
-            let c = inputs.constraint(index);
-            contacts.as_mut()[lane] = index as u32;
-            a.as_mut()[lane] = c.a as u32;
-            b.as_mut()[lane] = c.b as u32;
-            writes_a |= u32::from(c.dynamic_a) << lane;
-            writes_b |= u32::from(c.dynamic_b) << lane;
-            let soft = softness[usize::from(c.touches_static)];
+        (self.writes_a, self.writes_b, self.point_count) = (0, 0, 0);
+        for lane in 0..L::WIDTH {
+            let Some(&index) = members.get(lane) else {
+                self.clear_lane(lane, spare);
+                continue;
+            };
+            let contact = &inputs.contacts[index];
+            let manifold = contact.manifold();
+            let (a, b) = inputs.dense[index];
+            let (a, b) = (inputs.solver_body(a), inputs.solver_body(b));
+            self.contacts.as_mut()[lane] = index as u32;
+            self.a.as_mut()[lane] = a.index as u32;
+            self.b.as_mut()[lane] = b.index as u32;
+            self.writes_a |= u32::from(a.mass.dynamic) << lane;
+            self.writes_b |= u32::from(b.mass.dynamic) << lane;
+            let soft = softness[usize::from(!a.awake || !b.awake)];
+            let normal = manifold.normal;
             let values = [
-                c.inv_mass_a,
-                c.inv_inertia_a,
-                c.inv_mass_b,
-                c.inv_inertia_b,
-                c.normal.x,
-                c.normal.y,
-                c.friction,
-                c.restitution,
+                a.mass.inv_mass,
+                a.mass.inv_inertia,
+                b.mass.inv_mass,
+                b.mass.inv_inertia,
+                normal.x,
+                normal.y,
+                contact.friction(),
+                contact.restitution(),
                 soft.bias_rate,
                 soft.mass_scale,
                 soft.impulse_scale,
             ];
-            for (field, value) in lanes.iter_mut().zip(values) {
-                field[lane] = value;
+            for (field, value) in self.fields_mut().into_iter().zip(values) {
+                field.lanes_mut()[lane] = value;
             }
-            // A missing point keeps zero mass: it never takes an impulse.
-            point_count += c.points().len() as u32;
-            for (j, p) in c.points().iter().enumerate() {
-                let values = [
-                    p.anchor_a.x,
-                    p.anchor_a.y,
-                    p.anchor_b.x,
-                    p.anchor_b.y,
-                    p.base_separation,
-                    p.normal_mass,
-                    p.tangent_mass,
-                    p.normal_impulse,
-                    p.tangent_impulse,
-                    p.total_normal_impulse,
-                    p.relative_velocity,
-                ];
-                for (field, value) in points[j].iter_mut().zip(values) {
-                    field[lane] = value;
+            let points = manifold.points();
+            self.point_count += points.len() as u32;
+            for (j, wide) in self.points.iter_mut().enumerate() {
+                // A missing point keeps zero mass: it never takes an impulse.
+                let mut p = points.get(j).map_or_else(ConstraintPoint::default, |mp| {
+                    ConstraintPoint::new(mp, normal, &a, &b)
+                });
+                if !inputs.warm_starting {
+                    (p.normal_impulse, p.tangent_impulse) = (0.0, 0.0);
                 }
+                wide.set_lane(lane, &p);
             }
         }
-        let load = |values: &[f32; 8]| L::from_slice(values);
-        let point = |p: &[[f32; 8]; POINT_FIELDS]| WidePoint {
-            anchor_a_x: load(&p[0]),
-            anchor_a_y: load(&p[1]),
-            anchor_b_x: load(&p[2]),
-            anchor_b_y: load(&p[3]),
-            base_separation: load(&p[4]),
-            normal_mass: load(&p[5]),
-            tangent_mass: load(&p[6]),
-            normal_impulse: load(&p[7]),
-            tangent_impulse: load(&p[8]),
-            total_normal_impulse: load(&p[9]),
-            relative_velocity: load(&p[10]),
-        };
-        *self = Bundle {
-            contacts,
-            a,
-            b,
-            writes_a,
-            writes_b,
-            point_count,
-            inv_mass_a: load(&lanes[0]),
-            inv_inertia_a: load(&lanes[1]),
-            inv_mass_b: load(&lanes[2]),
-            inv_inertia_b: load(&lanes[3]),
-            normal_x: load(&lanes[4]),
-            normal_y: load(&lanes[5]),
-            friction: load(&lanes[6]),
-            restitution: load(&lanes[7]),
-            bias_rate: load(&lanes[8]),
-            mass_scale: load(&lanes[9]),
-            impulse_scale: load(&lanes[10]),
-            points: [point(&points[0]), point(&points[1])],
-        };
+    }
+
+    /// Makes `lane` empty: no contact, the spare state on both sides, zero masses and impulses.
+    #[inline(always)]
+    fn clear_lane(&mut self, lane: usize, spare: u32) {
+        self.contacts.as_mut()[lane] = u32::MAX;
+        self.a.as_mut()[lane] = spare;
+        self.b.as_mut()[lane] = spare;
+        for field in self.fields_mut() {
+            field.lanes_mut()[lane] = 0.0;
+        }
+        for wide in &mut self.points {
+            wide.set_lane(lane, &ConstraintPoint::default());
+        }
+    }
+
+    /// The per-constraint fields, in the order `prepare` fills them.
+    #[inline(always)]
+    fn fields_mut(&mut self) -> [&mut L; 11] {
+        [
+            &mut self.inv_mass_a,
+            &mut self.inv_inertia_a,
+            &mut self.inv_mass_b,
+            &mut self.inv_inertia_b,
+            &mut self.normal_x,
+            &mut self.normal_y,
+            &mut self.friction,
+            &mut self.restitution,
+            &mut self.bias_rate,
+            &mut self.mass_scale,
+            &mut self.impulse_scale,
+        ]
     }
 
     /// Gathers both sides' bodies.
