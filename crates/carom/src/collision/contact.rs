@@ -681,11 +681,10 @@ fn refresh_manifold(
     if recycling
         && polygons
         && !stopped
-        && let Some(carried) = contact
+        && contact
             .frame
-            .carry(&contact.manifold, (a, shape_a), (b, shape_b))
+            .carry(&mut contact.manifold, (a, shape_a), (b, shape_b))
     {
-        contact.manifold = carried;
         return Refresh::Updated;
     }
     let margins = Margins {
