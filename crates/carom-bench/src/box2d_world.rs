@@ -51,7 +51,8 @@
 //! - `contact_recycling`: Box2D recycles contacts too (on per body by default); the switch is
 //!   left at Box2D's default.
 //! - Box2D's extras are left off or at their defaults: rolling resistance 0, tangent speed 0,
-//!   contact softening (mass-ratio softening) off, one worker thread.
+//!   contact softening (mass-ratio softening) off; one worker thread unless
+//!   [`Box2dWorld::with_workers`] asks for more (Box2D's built-in scheduler).
 //! - The tutorial drag model has no Box2D counterpart (no damping is set).
 //! - Scene events (timed spawns, pushes) in `carom-scene` files are not replayed: the Box2D copy
 //!   is of the world as built at time 0.
@@ -102,12 +103,20 @@ fn err(e: boxdd::Error) -> String {
 }
 
 impl Box2dWorld {
-    /// Rebuilds `world` in Box2D; see the module docs for the mapping.
+    /// Rebuilds `world` in Box2D, stepped on one worker; see the module docs for the mapping.
     ///
     /// # Errors
     /// A polygon Box2D cannot take (more than 8 vertices, or one its validation refuses), or a
     /// setting out of Box2D's range.
     pub fn from_carom(world: &World) -> Result<Box2dWorld, String> {
+        Self::with_workers(world, 1)
+    }
+
+    /// [`Box2dWorld::from_carom`], stepped on `workers` threads by Box2D's own scheduler.
+    ///
+    /// # Errors
+    /// As [`Box2dWorld::from_carom`], or a worker count outside Box2D's 1 to 32.
+    pub fn with_workers(world: &World, workers: u32) -> Result<Box2dWorld, String> {
         let foundation = Foundation::initialize_default().map_err(|e| e.to_string())?;
         let effects = world.effects();
         let settings = world.settings();
@@ -127,6 +136,7 @@ impl Box2dWorld {
             .maximum_linear_speed(solver.max_linear_speed)
             .enable_sleep(effects.contains(Effect::Sleeping))
             .enable_continuous(effects.contains(Effect::Continuous))
+            .worker_count(boxdd::WorkerCount::new(workers).map_err(err)?)
             .build()
             .map_err(err)?;
         let mut b2 = foundation.create_world(def).map_err(err)?;

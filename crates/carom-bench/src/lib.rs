@@ -7,6 +7,9 @@
 //! the minimum over runs. [`RapierWorld::from_carom`] rebuilds a carom [`carom::World`] in Rapier;
 //! [`compare`] times one run in either engine and measures how far the top body fell.
 //!
+//! [`scaling`] times rows of pyramids from about a thousand boxes to a hundred thousand in
+//! every engine and draws how each one's cost grows (`carom-bench scaling`).
+//!
 //! It also runs every hard case of `tests/stability.rs` in carom and in
 //! [Box2D v3](https://box2d.org) (`boxdd` 0.6, the bindings of Box2D 3.2.0, compiled with AVX2):
 //! [`Box2dWorld::from_carom`] rebuilds a carom world in Box2D, and [`hard_cases`] measures each
@@ -87,6 +90,7 @@ pub mod box2d_world;
 pub mod compare;
 pub mod hard_cases;
 pub mod rapier_world;
+pub mod scaling;
 
 pub use box2d_world::Box2dWorld;
 pub use compare::{RunResult, run_box2d, run_carom, run_rapier};

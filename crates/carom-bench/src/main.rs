@@ -1,5 +1,5 @@
 //! `carom-bench`: times carom, Box2D v3 and Rapier on the same scenes, in turn, in one process:
-//! carom on one thread and on two, Box2D and Rapier on one; counts heap allocations per step and
+//! carom and Box2D on one thread and on two, Rapier on one; counts heap allocations per step and
 //! memory per body (carom's and Rapier's: Box2D allocates through C's allocator, not counted).
 //! `carom-bench hard-cases` runs the hard cases of `tests/stability.rs` in carom and in Box2D.
 
@@ -7,6 +7,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use carom_bench::hard_cases::{self, Options};
+use carom_bench::scaling;
 use carom_bench::{Box2dWorld, RapierWorld, RunResult, run_box2d, run_carom, run_rapier};
 use clap::{Parser, Subcommand};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
@@ -46,7 +47,7 @@ struct Args {
     /// Also write the table as CSV to this file.
     #[arg(long)]
     csv: Option<PathBuf>,
-    /// Threads for carom's multi-threaded runs.
+    /// Threads for the multi-threaded runs of carom and Box2D.
     #[arg(long, default_value_t = 2)]
     threads: usize,
 }
@@ -54,6 +55,23 @@ struct Args {
 /// Other jobs than timing.
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Times rows of Box2D's base-10 pyramids at about 1k, 5k, 20k and 100k boxes in every
+    /// engine (one thread and `--threads`), and writes scaling.csv, scaling.md and a log-log
+    /// chart of ms per step against bodies, scaling.png, to `--out`.
+    Scaling {
+        /// Folder for the CSV, table and chart.
+        #[arg(long, default_value = "target/bench")]
+        out: PathBuf,
+        /// Steps per run (the first untimed).
+        #[arg(long, default_value_t = 100)]
+        steps: u32,
+        /// Runs per engine and size; the fastest is kept.
+        #[arg(long, default_value_t = 1)]
+        runs: u32,
+        /// Only sizes up to this many bodies.
+        #[arg(long)]
+        max_bodies: Option<usize>,
+    },
     /// Runs every hard case of tests/stability.rs in carom (soft step, its defaults) and in
     /// Box2D v3 with the same geometry and settings, and prints a markdown table: case, measure,
     /// bar, carom, Box2D (a figure that misses its bar is bold).
@@ -81,6 +99,8 @@ struct Row {
     rapier: RunResult,
     /// Box2D v3 on one worker.
     box2d: RunResult,
+    /// Box2D v3 on `--threads` workers (its own scheduler).
+    box2d_threads: RunResult,
     /// Heap bytes live after a run, per body.
     carom_bytes_per_body: f64,
     rapier_bytes_per_body: f64,
@@ -95,6 +115,11 @@ impl Row {
             self.rapier.ms_per_step(),
             self.box2d.ms_per_step(),
         )
+    }
+
+    /// Box2D's speed-up on several workers.
+    fn box2d_speedup(&self) -> f64 {
+        self.box2d.ms_per_step() / self.box2d_threads.ms_per_step()
     }
 }
 
@@ -152,13 +177,30 @@ fn bench_scene(
 ) -> Result<Row, String> {
     let path = &resolve(path);
     let load = || carom_scene::load(path).map_err(|e| format!("{}: {e}", path.display()));
+    let name = path.file_stem().map_or_else(
+        || path.display().to_string(),
+        |s| s.to_string_lossy().into(),
+    );
+    bench_world(&name, load, steps, runs, one, many)
+}
+
+/// Times the world `load` builds (afresh for every run) in every engine.
+fn bench_world(
+    name: &str,
+    load: impl Fn() -> Result<carom_scene::SceneWorld, String>,
+    steps: u32,
+    runs: u32,
+    one: &rayon::ThreadPool,
+    many: &rayon::ThreadPool,
+) -> Result<Row, String> {
+    let path = Path::new(name);
     let (mut carom_best, mut threads_best, mut rapier_best) = (None, None, None);
-    let mut box2d_best = None;
+    let (mut box2d_best, mut box2d_threads_best) = (None, None);
     let (mut bodies, mut carom_bytes, mut rapier_bytes) = (0, 0.0, 0.0);
     for run in 1..=runs {
         // carom on one thread; its memory is what the world holds after the run.
         let mut result = None;
-        let (bytes, scene) = bytes_per_body(1, load, |scene| {
+        let (bytes, scene) = bytes_per_body(1, &load, |scene| {
             result = Some(one.install(|| run_carom(&mut scene.world, DT, steps))?);
             Ok(())
         })?;
@@ -215,18 +257,27 @@ fn bench_scene(
             b.ms_per_step()
         );
         box2d_best = Some(keep_min(box2d_best, b));
+
+        let workers = many.current_num_threads();
+        let scene = load()?;
+        let mut box2d = Box2dWorld::with_workers(&scene.world, workers as u32)?;
+        drop(scene);
+        let b = run_box2d(&mut box2d, DT, steps)?;
+        eprintln!(
+            "{} run {run}: Box2D on {workers} threads {:.3} ms/step",
+            path.display(),
+            b.ms_per_step()
+        );
+        box2d_threads_best = Some(keep_min(box2d_threads_best, b));
     }
-    let name = path.file_stem().map_or_else(
-        || path.display().to_string(),
-        |s| s.to_string_lossy().into(),
-    );
     Ok(Row {
-        scene: name,
+        scene: name.to_string(),
         bodies,
         carom: carom_best.ok_or("no runs")?,
         carom_threads: threads_best.ok_or("no runs")?,
         rapier: rapier_best.ok_or("no runs")?,
         box2d: box2d_best.ok_or("no runs")?,
+        box2d_threads: box2d_threads_best.ok_or("no runs")?,
         carom_bytes_per_body: carom_bytes,
         rapier_bytes_per_body: rapier_bytes,
     })
@@ -243,20 +294,24 @@ fn drop_cell(r: &RunResult) -> String {
 fn markdown(rows: &[Row], threads: usize) -> String {
     let mut s = format!(
         "| scene | bodies | carom ms/step | Box2D ms/step | Rapier ms/step | carom / Box2D | \
-         carom / Rapier | carom on {threads} threads ms/step | speed-up on {threads} threads | \
+         carom / Rapier | carom on {threads} threads ms/step | carom speed-up | \
+         Box2D on {threads} threads ms/step | Box2D speed-up | \
          carom top drop m | Box2D top drop m | Rapier top drop m |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|---|\n"
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n"
     );
     for r in rows {
         let (c, t, p, b) = r.ms_per_step();
         let _ = writeln!(
             s,
-            "| {} | {} | {c:.3} | {b:.3} | {p:.3} | {:.2} | {:.2} | {t:.3} | {:.2} | {} | {} | {} |",
+            "| {} | {} | {c:.3} | {b:.3} | {p:.3} | {:.2} | {:.2} | {t:.3} | {:.2} | {:.3} | {:.2} \
+             | {} | {} | {} |",
             r.scene,
             r.bodies,
             c / b,
             c / p,
             c / t,
+            r.box2d_threads.ms_per_step(),
+            r.box2d_speedup(),
             drop_cell(&r.carom),
             drop_cell(&r.box2d),
             drop_cell(&r.rapier)
@@ -288,14 +343,14 @@ fn csv(rows: &[Row]) -> String {
          carom_threads_ms_per_step,thread_speedup,carom_top_drop_m,rapier_top_drop_m,carom_nan,\
          rapier_nan,carom_allocations_per_step,rapier_allocations_per_step,\
          carom_bytes_per_body,rapier_bytes_per_body,box2d_ms_per_step,carom_box2d_ratio,\
-         box2d_top_drop_m,box2d_nan\n",
+         box2d_top_drop_m,box2d_nan,box2d_threads_ms_per_step,box2d_thread_speedup\n",
     );
     for r in rows {
         let (c, t, p, b) = r.ms_per_step();
         let _ = writeln!(
             s,
             "{},{},{c:.4},{p:.4},{:.4},{t:.4},{:.4},{:.4},{:.4},{},{},{:.2},{:.2},{:.0},{:.0},\
-             {b:.4},{:.4},{:.4},{}",
+             {b:.4},{:.4},{:.4},{},{:.4},{:.4}",
             r.scene,
             r.bodies,
             c / p,
@@ -310,7 +365,9 @@ fn csv(rows: &[Row]) -> String {
             r.rapier_bytes_per_body,
             c / b,
             r.box2d.top_drop,
-            r.box2d.nan
+            r.box2d.nan,
+            r.box2d_threads.ms_per_step(),
+            r.box2d_speedup()
         );
     }
     s
@@ -361,6 +418,62 @@ fn hard_cases(filter: &[String], out: Option<&Path>, options: Options) -> Result
     Ok(())
 }
 
+/// Times the pyramid rows of [`scaling::SIZES`] in every engine and writes the CSV, table and
+/// chart to `out`.
+fn scaling_run(
+    out: &Path,
+    steps: u32,
+    runs: u32,
+    max_bodies: Option<usize>,
+    (one, many): (&rayon::ThreadPool, &rayon::ThreadPool),
+) -> Result<(), String> {
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    let threads = many.current_num_threads();
+    let mut points = Vec::new();
+    for (rows, columns) in scaling::SIZES {
+        let text = scaling::pyramid_rows(rows, columns);
+        let name = format!("pyramids_{rows}x{columns}");
+        let load = || {
+            let scene = carom_scene::parse(&text, &name).map_err(|e| e.to_string())?;
+            carom_scene::build(&scene, &name).map_err(|e| e.to_string())
+        };
+        let bodies = load()?.world.body_count();
+        if max_bodies.is_some_and(|max| bodies > max) {
+            continue;
+        }
+        let row = bench_world(&name, load, steps, runs, one, many)?;
+        let (c, t, p, b) = row.ms_per_step();
+        for (engine, ms) in [
+            ("carom, 1 thread".to_string(), c),
+            (format!("carom, {threads} threads"), t),
+            ("Box2D v3, 1 thread".to_string(), b),
+            (
+                format!("Box2D v3, {threads} threads"),
+                row.box2d_threads.ms_per_step(),
+            ),
+            ("Rapier, 1 thread".to_string(), p),
+        ] {
+            points.push(scaling::Point {
+                engine,
+                bodies: row.bodies,
+                ms_per_step: ms,
+            });
+        }
+    }
+    let table = scaling::markdown(&points);
+    let write = |file: &str, text: &str| {
+        let path = out.join(file);
+        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))
+    };
+    write("scaling.csv", &scaling::csv(&points))?;
+    write("scaling.md", &table)?;
+    scaling::write_chart(&points, &out.join("scaling.png"))?;
+    println!(
+        "dt 1/60, {steps} steps (the first untimed), best of {runs} run(s), ms per step\n\n{table}"
+    );
+    Ok(())
+}
+
 fn main() -> Result<(), String> {
     let args = Args::parse();
     if let Some(Command::HardCases { case, out, quick }) = &args.command {
@@ -387,6 +500,18 @@ fn main() -> Result<(), String> {
             .map_err(|e| e.to_string())
     };
     let (one, many) = (pool(1)?, pool(args.threads.max(1))?);
+    if let Some(Command::Scaling {
+        out,
+        steps,
+        runs,
+        max_bodies,
+    }) = &args.command
+    {
+        if *runs == 0 || *steps < 2 {
+            return Err("scaling needs --runs of at least 1 and --steps of at least 2".into());
+        }
+        return scaling_run(out, *steps, *runs, *max_bodies, (&one, &many));
+    }
     let mut rows = Vec::new();
     for (path, steps) in &scenes {
         rows.push(bench_scene(path, *steps, args.runs, &one, &many)?);

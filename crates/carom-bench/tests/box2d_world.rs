@@ -125,3 +125,19 @@ fn a_timed_box2d_run_measures_the_drop() {
     assert!(run.total_ms > 0.0 && !run.nan);
     assert!((run.top_drop - 2.0).abs() < 0.01, "drop {}", run.top_drop);
 }
+
+/// Box2D on two workers (its own scheduler) steps the same world to the same place: its
+/// solver gives the same bits on any number of workers.
+#[test]
+fn two_box2d_workers_give_one_workers_result() {
+    let world = box_over_ground();
+    let mut one = Box2dWorld::from_carom(&world).unwrap();
+    let mut two = Box2dWorld::with_workers(&world, 2).unwrap();
+    for _ in 0..90 {
+        one.step(DT).unwrap();
+        two.step(DT).unwrap();
+    }
+    assert_eq!(one.position(1).unwrap(), two.position(1).unwrap());
+    assert!(one.position(1).unwrap()[1] < 0.6, "the box has landed");
+    assert!(Box2dWorld::with_workers(&world, 0).is_err());
+}
