@@ -119,12 +119,17 @@ pub(crate) const ITEMS_PER_TASK: usize = 2048;
 /// a tenth of a microsecond, a fork several microseconds).
 pub(crate) const CONTACTS_PER_TASK: usize = 256;
 
-/// Blocks a colour is cut into, at most, when a solver pass is shared among threads.
+/// Blocks a stage (a colour's bundles, the bodies) is cut into, at most, when soft step's
+/// stages are shared among threads.
 pub(crate) const MAX_BLOCKS: usize = 8;
 
 /// Items per block, at least: a block's work must dwarf the cost of claiming it.
 pub(crate) const MIN_BLOCK: usize = 16;
 
-/// Items a pass must have to be shared: a bundle takes about 60 ns, and starting the threads
-/// on a pass some 10 µs.
-pub(crate) const MIN_SHARED: usize = 1024;
+/// Bundles (of four or eight contacts) a step must have for soft step to share its stages
+/// among threads: a bundle takes some tens of nanoseconds a pass, and starting the threads on
+/// a step's stages some microseconds, with a short wait between stages.
+pub(crate) const MIN_SHARED: usize = 256;
+
+/// Bodies per block, at least, when integration is shared among threads.
+pub(crate) const MIN_BODY_BLOCK: usize = 256;

@@ -100,27 +100,39 @@ pub(crate) fn integrate_velocities(
     caps: SpeedCaps,
 ) -> Work {
     sum_with(bodies, states, ITEMS_PER_TASK, |body, state| {
-        let mut work = Work::default();
-        if body.kind() != BodyKind::Dynamic || body.is_sleeping() {
-            return work;
-        }
-        let mut v = state.v + body.force() * (body.inv_mass() * h);
-        let mut w = state.w + body.torque() * body.inv_inertia() * h;
-        if let Some(gravity) = environment.gravity {
-            v += gravity * (body.gravity_scale() * h);
-            work.gravity_terms += 1;
-        }
-        if let Some(model) = environment.drag
-            && (body.linear_damping() > 0.0 || body.angular_damping() > 0.0)
-        {
-            v = model.apply_linear(v, body.linear_damping(), h);
-            w = model.apply_angular(w, body.angular_damping(), h);
-            work.drag_terms += 1;
-        }
-        state.v = clamp_magnitude(v, caps.linear);
-        state.w = w.clamp(-caps.angular, caps.angular);
-        work
+        integrate_velocity(environment, body, state, h, caps)
     })
+}
+
+/// [`integrate_velocities`] of one body.
+#[inline]
+pub(crate) fn integrate_velocity(
+    environment: Environment,
+    body: &Body,
+    state: &mut BodyState,
+    h: Real,
+    caps: SpeedCaps,
+) -> Work {
+    let mut work = Work::default();
+    if body.kind() != BodyKind::Dynamic || body.is_sleeping() {
+        return work;
+    }
+    let mut v = state.v + body.force() * (body.inv_mass() * h);
+    let mut w = state.w + body.torque() * body.inv_inertia() * h;
+    if let Some(gravity) = environment.gravity {
+        v += gravity * (body.gravity_scale() * h);
+        work.gravity_terms += 1;
+    }
+    if let Some(model) = environment.drag
+        && (body.linear_damping() > 0.0 || body.angular_damping() > 0.0)
+    {
+        v = model.apply_linear(v, body.linear_damping(), h);
+        w = model.apply_angular(w, body.angular_damping(), h);
+        work.drag_terms += 1;
+    }
+    state.v = clamp_magnitude(v, caps.linear);
+    state.w = w.clamp(-caps.angular, caps.angular);
+    work
 }
 
 /// Positions from velocities over `h` (accumulated in `dp` and `dq`), dynamic bodies' velocities
@@ -128,10 +140,16 @@ pub(crate) fn integrate_velocities(
 /// cap bounds the motion itself). Kinematic bodies move as they are told.
 pub(crate) fn integrate_positions(bodies: &[Body], states: &mut [BodyState], h: Real) {
     for_each_with(bodies, states, ITEMS_PER_TASK, |body, state| {
-        if !body.moves() {
-            return;
-        }
-        state.dp += state.v * h;
-        state.dq = Rot::new(state.w * h) * state.dq;
+        integrate_position(body, state, h)
     });
+}
+
+/// [`integrate_positions`] of one body.
+#[inline]
+pub(crate) fn integrate_position(body: &Body, state: &mut BodyState, h: Real) {
+    if !body.moves() {
+        return;
+    }
+    state.dp += state.v * h;
+    state.dq = Rot::new(state.w * h) * state.dq;
 }

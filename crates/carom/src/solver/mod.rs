@@ -14,7 +14,6 @@
 #[cfg(target_arch = "x86_64")]
 mod avx_lanes;
 mod body_state;
-mod color_passes;
 mod contact_constraint;
 mod contact_graph;
 mod lanes;
@@ -22,6 +21,7 @@ mod push_out;
 mod sequential_impulse;
 mod shared_states;
 mod soft_step;
+mod stages;
 mod tutorial_impulse;
 mod wide_contacts;
 
@@ -299,8 +299,9 @@ pub(crate) struct Workspace {
     /// and for soft step without colours, the overflow's with them.
     constraints: Vec<ContactConstraint>,
     graph: ContactGraph,
-    /// Soft step's coloured constraints, in SIMD bundles.
+    /// Soft step's coloured constraints, in SIMD bundles, and its list of stages.
     wide: WideContacts,
+    plan: Vec<wide_contacts::Stage>,
     /// The order the touching contacts are solved in (indices into the awake contacts).
     order: Vec<usize>,
     /// While the order is checked: the colour (plus one) that last claimed each awake body,
@@ -421,6 +422,7 @@ pub(crate) fn step(
         constraints,
         graph,
         wide,
+        plan,
         order,
         claims,
         demoted,
@@ -483,7 +485,7 @@ pub(crate) fn step(
         SolverKind::PushOut => push_out::solve(&context, states, constraints),
         SolverKind::TutorialImpulse => tutorial_impulse::solve(&context, states, constraints),
         SolverKind::SequentialImpulse => sequential_impulse::solve(&context, states, constraints),
-        SolverKind::SoftStep => soft_step::solve(&context, states, constraints, wide),
+        SolverKind::SoftStep => soft_step::solve(&context, states, constraints, wide, plan),
     };
     wide.store(contacts);
     for constraint in constraints.iter() {

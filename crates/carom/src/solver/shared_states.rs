@@ -10,10 +10,13 @@
 //! and no other reader: plain loads and stores, no atomics, which lets the solver load a body
 //! in one or two vector loads instead of eight scalar ones.
 //!
-//! The promise is made once per pass, where a pass borrows the states
-//! ([`SharedStates::new`]); the loads and stores are then safe to call. This module, the three
-//! pass functions of `wide_contacts` that make that promise, and `avx_lanes` are the only
-//! `unsafe` code in carom.
+//! The promise is made once per step, where the solver's stages borrow the states
+//! ([`SharedStates::new`]); the loads and stores of single states are then safe to call. A
+//! stage that changes whole runs of states (integration, or the overflow solved one by one)
+//! borrows them with [`SharedStates::range_mut`], promising that no other thread touches them
+//! meanwhile (the stages around it are over, and no other block of it holds them). This
+//! module, `wide_contacts`'s executor of the stages, which makes those promises, and
+//! `avx_lanes` are the only `unsafe` code in carom.
 #![allow(unsafe_code)]
 
 use super::BodyState;
@@ -55,6 +58,21 @@ impl<'a> SharedStates<'a> {
         // SAFETY: in bounds (checked), aligned, and `BodyState` is eight `f32`s in this order
         // (asserted beside its definition); no other thread writes it (promised in `new`).
         unsafe { std::ptr::read(self.states.add(index).cast::<[f32; 8]>()) }
+    }
+
+    /// States `range`, to change whole (integration, the overflow's one-by-one solve).
+    ///
+    /// # Safety
+    /// No other thread reads or writes these states while the borrow lasts.
+    #[inline]
+    #[allow(clippy::mut_from_ref)]
+    pub unsafe fn range_mut(&self, range: std::ops::Range<usize>) -> &mut [BodyState] {
+        assert!(
+            range.start <= range.end && range.end <= self.len,
+            "states {range:?}"
+        );
+        // SAFETY: in bounds (checked); nobody else touches them meanwhile (the caller's promise).
+        unsafe { std::slice::from_raw_parts_mut(self.states.add(range.start), range.len()) }
     }
 
     /// Sets state `index`'s velocities: `[v.x, v.y, w, 0]`.

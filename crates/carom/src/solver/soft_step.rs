@@ -5,20 +5,24 @@
 //! relax (solve again without bias, so the push-out leaves no energy behind). Anchors stay
 //! fixed for the step; each point's separation is updated from the bodies' motion.
 
-use super::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
+use super::body_state::SpeedCaps;
 use super::contact_constraint::pair_mut;
-use super::wide_contacts::{PassBias, WideContacts};
-use super::{BodyState, ContactConstraint, Softness, SolverContext, SolverParams};
+use super::wide_contacts::{Pass, PassBias, Stage, StageInputs, WideContacts};
+use super::{BodyState, ContactConstraint, Environment, Softness, SolverContext, SolverParams};
 use crate::math::Real;
 use crate::stats::Work;
 
-/// One step in Box2D's stage order. The coloured constraints are in `wide`'s SIMD bundles,
-/// already prepared; `constraints` are the overflow's, solved one by one after the colours.
+/// One step in Box2D's stage order: per substep, integrate velocities, warm start, solve
+/// (biased), integrate positions, relax (unbiased); then restitution. Each contact pass runs
+/// colour by colour over `wide`'s SIMD bundles, already prepared, then over `constraints`,
+/// the overflow's, one by one. The stage list is built here and run by
+/// [`WideContacts::execute`] on as many threads as rayon gives, in one parallel region.
 pub(super) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
     wide: &mut WideContacts,
+    plan: &mut Vec<Stage>,
 ) -> Work {
     let SolverContext {
         params,
@@ -28,43 +32,64 @@ pub(super) fn solve(
     } = *context;
     let substeps = params.substeps.max(1);
     let h = dt / substeps as Real;
-    let caps = SpeedCaps::new(params, dt);
     let bias = Bias::new(params, h);
     let bias_friction = environment.friction && params.friction_in_bias_pass;
-    let points: usize =
-        wide.point_count() + constraints.iter().map(|c| c.points().len()).sum::<usize>();
-    let mut work = Work::default();
-    for _ in 0..substeps {
-        work += integrate_velocities(environment, bodies, states, h, caps);
-        wide.warm_start(states);
-        for c in constraints.iter_mut() {
-            warm_start_one(c, states);
+    plan_stages(
+        plan,
+        params,
+        environment,
+        &bias,
+        wide.color_count(),
+        !constraints.is_empty(),
+    );
+    let inputs = StageInputs {
+        bodies,
+        environment,
+        h,
+        caps: SpeedCaps::new(params, dt),
+        bias: &bias,
+        params,
+    };
+    let (mut work, bounces) = wide.execute(plan, states, constraints, &inputs);
+    let points = wide.point_count() + constraints.iter().map(|c| c.points().len()).sum::<usize>();
+    let friction_passes = u32::from(bias_friction) + u32::from(environment.friction);
+    work.friction_impulses = points * (friction_passes * params.iterations * substeps) as usize;
+    work.restitution_impulses = bounces;
+    work
+}
+
+/// The stages of one step, into `plan`: each contact pass over the `colors` colours in turn,
+/// then over the overflow if it has constraints.
+fn plan_stages(
+    plan: &mut Vec<Stage>,
+    params: &SolverParams,
+    environment: Environment,
+    bias: &Bias,
+    colors: usize,
+    overflow: bool,
+) {
+    plan.clear();
+    let pass = |plan: &mut Vec<Stage>, pass: Pass| {
+        plan.extend((0..colors).map(|color| Stage::Color(color, pass)));
+        if overflow {
+            plan.push(Stage::Overflow(pass));
         }
+    };
+    let bias_friction = environment.friction && params.friction_in_bias_pass;
+    for _ in 0..params.substeps.max(1) {
+        plan.push(Stage::IntegrateVelocities);
+        pass(plan, Pass::WarmStart);
         for _ in 0..params.iterations {
-            wide.solve(states, bias.pass(true), bias_friction);
-            for c in constraints.iter_mut() {
-                solve_one(c, states, &bias, true, bias_friction);
-            }
-            if bias_friction {
-                work.friction_impulses += points;
-            }
+            pass(plan, Pass::Solve(bias.pass(true), bias_friction));
         }
-        integrate_positions(bodies, states, h);
+        plan.push(Stage::IntegratePositions);
         for _ in 0..params.iterations {
-            wide.solve(states, bias.pass(false), environment.friction);
-            for c in constraints.iter_mut() {
-                solve_one(c, states, &bias, false, environment.friction);
-            }
-            if environment.friction {
-                work.friction_impulses += points;
-            }
+            pass(plan, Pass::Solve(bias.pass(false), environment.friction));
         }
     }
     if environment.restitution {
-        work.restitution_impulses = wide.restitution(states, params.restitution_threshold)
-            + apply_restitution(params, constraints, states);
+        pass(plan, Pass::Restitution(params.restitution_threshold));
     }
-    work
 }
 
 /// How the biased pass pushes overlap out in one substep.
@@ -94,7 +119,7 @@ impl Bias {
     }
 
     /// What the wide solver needs of it for one pass, biased or relaxing.
-    fn pass(&self, use_bias: bool) -> PassBias {
+    pub fn pass(&self, use_bias: bool) -> PassBias {
         PassBias {
             use_bias,
             inv_h: self.inv_h,
@@ -119,7 +144,7 @@ pub(super) fn warm_start(constraints: &mut [ContactConstraint], states: &mut [Bo
 }
 
 /// Applies one constraint's accumulated impulses (and counts them as pushed this step).
-fn warm_start_one(c: &mut ContactConstraint, states: &mut [BodyState]) {
+pub(super) fn warm_start_one(c: &mut ContactConstraint, states: &mut [BodyState]) {
     let (a, b) = pair_mut(states, c.a, c.b);
     let tangent = c.tangent();
     for i in 0..c.points().len() {
@@ -134,7 +159,7 @@ fn warm_start_one(c: &mut ContactConstraint, states: &mut [BodyState]) {
 /// friction if asked (in both passes by default, as Box2D v3.1; in the relaxation only with
 /// `friction_in_bias_pass` off, as Box2D 3.2 and Rapier). The wide solver does the same four
 /// constraints at a time; this one serves the constraints no colour was free for.
-fn solve_one(
+pub(super) fn solve_one(
     c: &mut ContactConstraint,
     states: &mut [BodyState],
     bias: &Bias,

@@ -8,18 +8,25 @@
 
 #[cfg(target_arch = "x86_64")]
 use super::avx_lanes::{self, Avx8};
-use super::color_passes::for_each_by_color;
+use super::body_state::{SpeedCaps, integrate_position, integrate_velocity};
 use super::contact_constraint::{BodyMass, ConstraintPoint, ContactConstraint, SolverBody};
 use super::contact_graph::ContactGraph;
 use super::lanes::{Kernel, Lanes};
 use super::shared_states::SharedStates;
-use super::{BodyState, Softness};
+use super::soft_step::{Bias, apply_restitution, solve_one, warm_start_one};
+use super::stages::{block_count, block_range, run_stages};
+use super::{BodyState, Environment, Softness, SolverParams};
 use crate::collision::contact::Contact;
 use crate::collision::manifold::Manifold;
-use crate::constants::{COLOR_COUNT, ITEMS_PER_TASK};
+use crate::constants::{
+    COLOR_COUNT, ITEMS_PER_TASK, MAX_BLOCKS, MIN_BLOCK, MIN_BODY_BLOCK, MIN_SHARED,
+};
+use crate::dynamics::body::Body;
 use crate::math::Real;
 use crate::parallel::for_each_chunk_with;
+use crate::stats::Work;
 use std::ops::Range;
+use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use wide::f32x4;
 
@@ -359,39 +366,33 @@ impl WideContacts {
             .sum())
     }
 
-    /// Applies the accumulated impulses (warm start).
-    #[allow(unsafe_code)]
-    pub fn warm_start(&mut self, states: &mut [BodyState]) {
-        // SAFETY: the bundles of a colour write no state that another bundle of the colour
-        // reads or writes (checked as the order was built, `solver::ColorCheck`), and a colour
-        // runs alone (`for_each_by_color`).
-        let states = unsafe { SharedStates::new(states) };
-        let colors = &self.colors;
-        with_bundles!(&mut self.bundles, |bundles| {
-            each_by_color(bundles, colors, &states, Pass::WarmStart)
-        });
+    /// How many colours have bundles ([`Stage::Color`] takes an index below it).
+    pub fn color_count(&self) -> usize {
+        self.colors.len()
     }
 
-    /// One pass: non-penetration (soft-biased or relaxed), then friction if asked.
+    /// Runs `plan`, stage after stage, on as many threads as rayon gives (in one parallel
+    /// region) when there is enough to share: the stages over the bundles, the overflow's
+    /// constraints one by one, and the integration of the awake bodies (`inputs.bodies`, whose
+    /// states come first in `states`). Returns the work integration did and how many
+    /// restitution impulses were computed.
     #[allow(unsafe_code)]
-    pub fn solve(&mut self, states: &mut [BodyState], pass: PassBias, friction: bool) {
-        // SAFETY: as in `warm_start`.
+    pub fn execute(
+        &mut self,
+        plan: &[Stage],
+        states: &mut [BodyState],
+        overflow: &mut [ContactConstraint],
+        inputs: &StageInputs,
+    ) -> (Work, usize) {
+        let all = 0..states.len();
+        // SAFETY: the stages run one after another (`run_stages`). Within a colour's stage the
+        // bundles write no state that another bundle of the colour reads or writes (checked
+        // as the order was built, `solver::ColorCheck`); integration's blocks borrow disjoint
+        // runs of states, and the overflow's stage is one block, alone (`range_mut` below).
         let states = unsafe { SharedStates::new(states) };
         let colors = &self.colors;
         with_bundles!(&mut self.bundles, |bundles| {
-            each_by_color(bundles, colors, &states, Pass::Solve(pass, friction))
-        });
-    }
-
-    /// Bounces (see `soft_step::apply_restitution`); returns how many impulses were
-    /// computed.
-    #[allow(unsafe_code)]
-    pub fn restitution(&mut self, states: &mut [BodyState], threshold: Real) -> usize {
-        // SAFETY: as in `warm_start`.
-        let states = unsafe { SharedStates::new(states) };
-        let colors = &self.colors;
-        with_bundles!(&mut self.bundles, |bundles| {
-            each_by_color(bundles, colors, &states, Pass::Restitution(threshold))
+            execute_stages(bundles, colors, plan, &states, all, overflow, inputs)
         })
     }
 
@@ -403,6 +404,44 @@ impl WideContacts {
 
 #[cfg(test)]
 impl WideContacts {
+    /// Runs one pass over every colour (on the current rayon pool), as a step's stages do.
+    fn run_pass(&mut self, states: &mut [BodyState], pass: Pass) -> usize {
+        let plan: Vec<Stage> = (0..self.color_count())
+            .map(|color| Stage::Color(color, pass))
+            .collect();
+        let params = SolverParams::default();
+        let bias = Bias::new(&params, 1.0 / 240.0);
+        let inputs = StageInputs {
+            bodies: &[],
+            environment: Environment {
+                gravity: None,
+                drag: None,
+                friction: true,
+                restitution: true,
+            },
+            h: 1.0 / 240.0,
+            caps: SpeedCaps::new(&params, 1.0 / 60.0),
+            bias: &bias,
+            params: &params,
+        };
+        self.execute(&plan, states, &mut [], &inputs).1
+    }
+
+    /// Applies the accumulated impulses (warm start).
+    pub fn warm_start(&mut self, states: &mut [BodyState]) {
+        self.run_pass(states, Pass::WarmStart);
+    }
+
+    /// One pass: non-penetration (soft-biased or relaxed), then friction if asked.
+    pub fn solve(&mut self, states: &mut [BodyState], pass: PassBias, friction: bool) {
+        self.run_pass(states, Pass::Solve(pass, friction));
+    }
+
+    /// Bounces; returns how many impulses were computed.
+    pub fn restitution(&mut self, states: &mut [BodyState], threshold: Real) -> usize {
+        self.run_pass(states, Pass::Restitution(threshold))
+    }
+
     /// Each contact's points' normal, tangent and total normal impulses.
     pub fn impulses(&self) -> std::collections::HashMap<usize, [(Real, Real, Real); 2]> {
         let mut out = std::collections::HashMap::new();
@@ -526,9 +565,9 @@ impl<L: Lanes> Kernel for Prepare<'_, L> {
     }
 }
 
-/// One pass over the bundles.
+/// One pass over constraints.
 #[derive(Debug, Clone, Copy)]
-enum Pass {
+pub(crate) enum Pass {
     WarmStart,
     /// A solve, biased or relaxing, with friction or not.
     Solve(PassBias, bool),
@@ -536,24 +575,151 @@ enum Pass {
     Restitution(Real),
 }
 
-/// Runs `pass` on every bundle, colour after colour, on as many threads as rayon gives, in
-/// code compiled for the lanes; returns how many impulses restitution computed.
-fn each_by_color<L: Lanes>(
+/// One stage of a step's solve, as [`WideContacts::execute`] runs it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Stage {
+    /// Forces, gravity and drag into the awake bodies' velocities.
+    IntegrateVelocities,
+    /// The velocities into the motion since the step began.
+    IntegratePositions,
+    /// A pass over the bundles of a colour (an index below [`WideContacts::color_count`]).
+    Color(usize, Pass),
+    /// The pass over the overflow's constraints, one by one.
+    Overflow(Pass),
+}
+
+/// What the stages read besides the states and constraints.
+pub(crate) struct StageInputs<'a> {
+    /// The awake bodies (their states come first).
+    pub bodies: &'a [Body],
+    pub environment: Environment,
+    /// The substep, and the speed caps.
+    pub h: Real,
+    pub caps: SpeedCaps,
+    /// Soft step's biases (the overflow's solve), and the settings (its restitution).
+    pub bias: &'a Bias,
+    pub params: &'a SolverParams,
+}
+
+/// A block of a colour's bundles, lent to whichever thread claims it.
+type LentBlock<'a, L> = Option<Mutex<&'a mut [Bundle<L>]>>;
+
+/// [`WideContacts::execute`] for bundles of one width.
+fn execute_stages<L: Lanes>(
     bundles: &mut [Bundle<L>],
     colors: &[Range<usize>],
+    plan: &[Stage],
     states: &SharedStates,
-    pass: Pass,
-) -> usize {
-    let total = AtomicUsize::new(0);
-    for_each_by_color(bundles, colors, |block| {
-        let count = L::run(PassBlock {
-            block,
-            states,
-            pass,
-        });
-        total.fetch_add(count, Ordering::Relaxed);
-    });
-    total.into_inner()
+    all_states: Range<usize>,
+    overflow: &mut [ContactConstraint],
+    inputs: &StageInputs,
+) -> (Work, usize) {
+    let threads = rayon::current_num_threads();
+    let shared = threads > 1 && bundles.len() >= MIN_SHARED;
+    // Every colour cut into blocks, each behind a lock that is never contended (a block is
+    // claimed once a stage), which is how a block is lent mutably to whichever thread claims
+    // it; the colour's stages all cut it the same way.
+    let mut blocks: [[LentBlock<L>; MAX_BLOCKS]; COLOR_COUNT] =
+        std::array::from_fn(|_| std::array::from_fn(|_| None));
+    let mut color_blocks = [0; COLOR_COUNT];
+    let mut rest = bundles;
+    for (color, range) in colors.iter().enumerate() {
+        let (mut of_color, after) = rest.split_at_mut(range.len());
+        rest = after;
+        let count = if shared {
+            block_count(range.len(), MIN_BLOCK, threads)
+        } else {
+            1
+        };
+        for (block, slot) in blocks[color].iter_mut().take(count).enumerate() {
+            let size = block_range(range.len(), count, block).len();
+            let (this, more) = of_color.split_at_mut(size);
+            of_color = more;
+            *slot = Some(Mutex::new(this));
+        }
+        color_blocks[color] = count;
+    }
+    let bodies = inputs.bodies;
+    let body_blocks = if shared {
+        block_count(bodies.len(), MIN_BODY_BLOCK, threads)
+    } else {
+        1
+    };
+    let overflow = Mutex::new(overflow);
+    let work = Mutex::new(Work::default());
+    let bounces = AtomicUsize::new(0);
+    let stage_blocks = |stage: usize| match plan[stage] {
+        Stage::IntegrateVelocities | Stage::IntegratePositions => body_blocks,
+        Stage::Color(color, _) => color_blocks[color],
+        Stage::Overflow(_) => 1,
+    };
+    run_stages(
+        plan.len(),
+        stage_blocks,
+        shared,
+        |stage, block| match plan[stage] {
+            Stage::IntegrateVelocities => {
+                let range = block_range(bodies.len(), body_blocks, block);
+                // SAFETY: integration's blocks are disjoint runs, and no other stage runs.
+                #[allow(unsafe_code)]
+                let block_states = unsafe { states.range_mut(range.clone()) };
+                let mut done = Work::default();
+                for (body, state) in bodies[range].iter().zip(block_states) {
+                    done +=
+                        integrate_velocity(inputs.environment, body, state, inputs.h, inputs.caps);
+                }
+                *lock(&work) += done;
+            }
+            Stage::IntegratePositions => {
+                let range = block_range(bodies.len(), body_blocks, block);
+                // SAFETY: as above.
+                #[allow(unsafe_code)]
+                let block_states = unsafe { states.range_mut(range.clone()) };
+                for (body, state) in bodies[range].iter().zip(block_states) {
+                    integrate_position(body, state, inputs.h);
+                }
+            }
+            Stage::Color(color, pass) => {
+                if let Some(block) = &blocks[color][block] {
+                    let mut block = lock(block);
+                    let count = L::run(PassBlock {
+                        block: &mut block,
+                        states,
+                        pass,
+                    });
+                    bounces.fetch_add(count, Ordering::Relaxed);
+                }
+            }
+            Stage::Overflow(pass) => {
+                let mut constraints = lock(&overflow);
+                // SAFETY: the overflow's stage is one block, and no other stage runs.
+                #[allow(unsafe_code)]
+                let all = unsafe { states.range_mut(all_states.clone()) };
+                match pass {
+                    Pass::WarmStart => {
+                        for c in constraints.iter_mut() {
+                            warm_start_one(c, all);
+                        }
+                    }
+                    Pass::Solve(bias, friction) => {
+                        for c in constraints.iter_mut() {
+                            solve_one(c, all, inputs.bias, bias.use_bias, friction);
+                        }
+                    }
+                    Pass::Restitution(_) => {
+                        let count = apply_restitution(inputs.params, &mut constraints, all);
+                        bounces.fetch_add(count, Ordering::Relaxed);
+                    }
+                }
+            }
+        },
+    );
+    (*lock(&work), bounces.into_inner())
+}
+
+/// A lock taken even if a panicking thread poisoned it (the panic is passed on anyway).
+fn lock<T>(mutex: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    mutex.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// A pass over a block of bundles of one colour.
