@@ -31,6 +31,26 @@ pub(crate) fn map_into<T: Sync, U: Send>(
     }
 }
 
+/// `out` becomes `f` of every pair of `a[i]` and `b[i]`, in order (its memory reused).
+pub(crate) fn map_zip_into<A: Sync, B: Sync, U: Send>(
+    a: &[A],
+    b: &[B],
+    out: &mut Vec<U>,
+    per_task: usize,
+    f: impl Fn(&A, &B) -> U + Sync + Send,
+) {
+    if worth_sharing(a.len().min(b.len()), per_task) {
+        a.par_iter()
+            .zip(b.par_iter())
+            .with_min_len(per_task)
+            .map(|(a, b)| f(a, b))
+            .collect_into_vec(out);
+    } else {
+        out.clear();
+        out.extend(a.iter().zip(b).map(|(a, b)| f(a, b)));
+    }
+}
+
 /// `out` becomes `f` of every item, which `f` may change (`out`'s memory reused).
 pub(crate) fn map_mut_into<T: Send, U: Send>(
     items: &mut [T],
@@ -152,6 +172,9 @@ mod tests {
                     *x / 2
                 });
                 assert_eq!((changed[9], halves[9]), (10, 5));
+                let mut sums = Vec::new();
+                map_zip_into(&inputs, &squares, &mut sums, 64, |x, y| x + y);
+                assert_eq!(sums[3], 3 + 9);
                 let mut outputs = vec![0u64; 5000];
                 for_each_with(&inputs, &mut outputs, 64, |x, out| *out = x + 1);
                 assert!(outputs.iter().zip(&inputs).all(|(o, i)| *o == i + 1));

@@ -113,6 +113,14 @@ impl BroadPhase {
         }
     }
 
+    /// Whether [`BroadPhase::update`] would change anything for this collider: its tight box
+    /// left its fat box, or its body changed kind. Reads only, so it may run on many threads.
+    pub fn needs_update(&self, handle: ColliderHandle, kind: BodyKind, aabb: &Aabb) -> bool {
+        self.proxy(handle).is_some_and(|proxy| {
+            kind != proxy.kind || !self.trees[proxy.tree()].fat_aabb(proxy.node).contains(aabb)
+        })
+    }
+
     /// Follows a collider whose body may have moved or changed kind. Its fat box is replaced only when
     /// the tight box has left it; then the body is queued to look for new pairs.
     pub fn update(&mut self, handle: ColliderHandle, kind: BodyKind, aabb: Aabb, margin: Real) {

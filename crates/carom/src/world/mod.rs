@@ -22,7 +22,7 @@ use crate::geometry::aabb::Aabb;
 use crate::geometry::ray::Ray;
 use crate::handle_map::HandleMap;
 use crate::math::{Real, Vec2};
-use crate::parallel::for_each_mut;
+use crate::parallel::{for_each_mut, map_zip_into};
 use crate::solver::{self, Environment, SolverParams};
 use crate::stats::StepStats;
 use crate::world::body_mut::BodyMut;
@@ -83,6 +83,9 @@ struct StepScratch {
     starts: Vec<Pose>,
     /// Sleeping islands a moving body touched.
     wake: Vec<u32>,
+    /// Per awake collider, its predicted box if it left its fat box (or its body changed
+    /// kind), to re-fit in the broadphase.
+    refits: Vec<Option<(Aabb, BodyKind)>>,
 }
 
 fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {
@@ -559,7 +562,7 @@ impl World {
             });
         }
         timed(&mut times.broadphase, || {
-            self.refresh_broadphase(prediction)
+            self.refresh_broadphase(prediction, &mut scratch.refits)
         });
         if effects.contains(Effect::Sleeping) {
             stats.work.sleep_checks = timed(&mut times.sleep, || self.update_sleep(dt));
@@ -702,26 +705,35 @@ impl World {
     }
 
     /// Re-fits the broadphase entries of colliders that moved this step, each box covering
-    /// where its collider can get to in `prediction` seconds at its body's present velocity.
-    fn refresh_broadphase(&mut self, prediction: Real) {
-        let margins = [
-            margin_for(&self.settings, BodyKind::Kinematic),
-            margin_for(&self.settings, BodyKind::Dynamic),
-        ];
+    /// where its collider can get to in `prediction` seconds at its body's present velocity:
+    /// which ones left their fat boxes is found on all threads (into `refits`), then only
+    /// those are re-fitted, in collider order.
+    fn refresh_broadphase(&mut self, prediction: Real, refits: &mut Vec<Option<(Aabb, BodyKind)>>) {
         let bodies = self.bodies.as_slice();
         let awake = self.collider_sets.awake();
-        let colliders = self.colliders.handles()[awake.clone()]
-            .iter()
-            .zip(&self.colliders.as_slice()[awake]);
-        for (&handle, collider) in colliders {
-            let body = &bodies[collider.body_index()];
-            let margin = match body.kind() {
-                BodyKind::Static => continue,
-                BodyKind::Kinematic => margins[0],
-                BodyKind::Dynamic => margins[1],
-            };
-            let aabb = predicted_aabb(body, collider.aabb(), prediction);
-            self.broadphase.update(handle, body.kind(), aabb, margin);
+        let handles = &self.colliders.handles()[awake.clone()];
+        let broadphase = &self.broadphase;
+        map_zip_into(
+            handles,
+            &self.colliders.as_slice()[awake],
+            refits,
+            CONTACTS_PER_TASK,
+            |&handle, collider| {
+                let body = &bodies[collider.body_index()];
+                if body.kind() == BodyKind::Static {
+                    return None;
+                }
+                let aabb = predicted_aabb(body, collider.aabb(), prediction);
+                broadphase
+                    .needs_update(handle, body.kind(), &aabb)
+                    .then_some((aabb, body.kind()))
+            },
+        );
+        for (&handle, refit) in handles.iter().zip(refits.iter()) {
+            if let &Some((aabb, kind)) = refit {
+                let margin = margin_for(&self.settings, kind);
+                self.broadphase.update(handle, kind, aabb, margin);
+            }
         }
     }
 
