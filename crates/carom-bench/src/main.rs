@@ -247,27 +247,24 @@ fn bench_world(
         );
         rapier_best = Some(keep_min(rapier_best, r));
 
-        let scene = load()?;
-        let mut box2d = Box2dWorld::from_carom(&scene.world)?;
-        drop(scene);
-        let b = run_box2d(&mut box2d, DT, steps)?;
-        eprintln!(
-            "{} run {run}: Box2D {:.3} ms/step",
-            path.display(),
-            b.ms_per_step()
-        );
-        box2d_best = Some(keep_min(box2d_best, b));
-
-        let workers = many.current_num_threads();
-        let scene = load()?;
-        let mut box2d = Box2dWorld::with_workers(&scene.world, workers as u32)?;
-        drop(scene);
-        let b = run_box2d(&mut box2d, DT, steps)?;
-        eprintln!(
-            "{} run {run}: Box2D on {workers} threads {:.3} ms/step",
-            path.display(),
-            b.ms_per_step()
-        );
+        let time_box2d = |workers: usize| -> Result<RunResult, String> {
+            let scene = load()?;
+            let mut box2d = Box2dWorld::with_workers(&scene.world, workers as u32)?;
+            drop(scene);
+            let b = run_box2d(&mut box2d, DT, steps)?;
+            let on = match workers {
+                1 => String::new(),
+                n => format!(" on {n} threads"),
+            };
+            eprintln!(
+                "{} run {run}: Box2D{on} {:.3} ms/step",
+                path.display(),
+                b.ms_per_step()
+            );
+            Ok(b)
+        };
+        box2d_best = Some(keep_min(box2d_best, time_box2d(1)?));
+        let b = time_box2d(many.current_num_threads())?;
         box2d_threads_best = Some(keep_min(box2d_threads_best, b));
     }
     Ok(Row {

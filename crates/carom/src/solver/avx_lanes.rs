@@ -131,22 +131,13 @@ impl Lanes for Avx8 {
     #[inline(always)]
     fn max(self, other: Self) -> Self {
         // SAFETY: AVX (see above).
-        unsafe {
-            // maxps gives `other` when either is NaN; `f32::max` gives `self` for a NaN `other`.
-            let max = _mm256_max_ps(self.0, other.0);
-            let nan = _mm256_cmp_ps::<_CMP_UNORD_Q>(other.0, other.0);
-            Avx8(_mm256_blendv_ps(max, self.0, nan))
-        }
+        self.or_self_for_nan(other, unsafe { _mm256_max_ps(self.0, other.0) })
     }
 
     #[inline(always)]
     fn min(self, other: Self) -> Self {
         // SAFETY: AVX (see above).
-        unsafe {
-            let min = _mm256_min_ps(self.0, other.0);
-            let nan = _mm256_cmp_ps::<_CMP_UNORD_Q>(other.0, other.0);
-            Avx8(_mm256_blendv_ps(min, self.0, nan))
-        }
+        self.or_self_for_nan(other, unsafe { _mm256_min_ps(self.0, other.0) })
     }
 
     #[inline(always)]
@@ -234,6 +225,19 @@ impl Lanes for Avx8 {
             if lanes & (1 << lane) != 0 {
                 states.write_velocity(index, row);
             }
+        }
+    }
+}
+
+impl Avx8 {
+    /// `result` (of maxps or minps, which give `other` when either is NaN), with `self` in the
+    /// lanes where `other` is NaN, as `f32::max` and `f32::min` give.
+    #[inline(always)]
+    fn or_self_for_nan(self, other: Self, result: __m256) -> Self {
+        // SAFETY: AVX (see above).
+        unsafe {
+            let nan = _mm256_cmp_ps::<_CMP_UNORD_Q>(other.0, other.0);
+            Avx8(_mm256_blendv_ps(result, self.0, nan))
         }
     }
 }

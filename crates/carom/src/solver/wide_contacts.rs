@@ -5,6 +5,9 @@
 //! AVX, four elsewhere. The arithmetic per lane is the scalar solver's ([`super::soft_step`])
 //! operation for operation, summed in the same order, so a lane gives the scalar result bit for
 //! bit at either width (tested); only the order of constraints differs (colour by colour).
+//!
+//! [`WideContacts::execute`] runs a step's stages (soft step lists them) over the bundles, the
+//! overflow's constraints and the bodies, on all threads.
 
 #[cfg(target_arch = "x86_64")]
 use super::avx_lanes::{self, Avx8};
@@ -17,7 +20,6 @@ use super::soft_step::{Bias, apply_restitution, solve_one, warm_start_one};
 use super::stages::{block_count, block_range, run_stages};
 use super::{BodyState, Environment, Softness, SolverParams};
 use crate::collision::contact::Contact;
-use crate::collision::manifold::Manifold;
 use crate::constants::{
     COLOR_COUNT, ITEMS_PER_TASK, MAX_BLOCKS, MIN_BLOCK, MIN_BODY_BLOCK, MIN_SHARED,
 };
@@ -272,19 +274,9 @@ impl BundleInputs<'_> {
     pub fn constraint(&self, index: usize) -> ContactConstraint {
         let contact = &self.contacts[index];
         let material = (contact.friction(), contact.restitution());
-        self.constraint_of(index, contact.manifold(), material, self.dense[index])
-    }
-
-    /// Contact `index`, of this manifold, material and bodies, prepared as a constraint.
-    fn constraint_of(
-        &self,
-        index: usize,
-        manifold: &Manifold,
-        material: (Real, Real),
-        (a, b): (usize, usize),
-    ) -> ContactConstraint {
+        let (a, b) = self.dense[index];
         let (a, b) = (self.solver_body(a), self.solver_body(b));
-        let mut constraint = ContactConstraint::new(index, manifold, material, a, b);
+        let mut constraint = ContactConstraint::new(index, contact.manifold(), material, a, b);
         if !self.warm_starting {
             for point in constraint.points_mut() {
                 point.normal_impulse = 0.0;
