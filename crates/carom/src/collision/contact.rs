@@ -193,14 +193,21 @@ pub struct ContactSet {
 }
 
 /// What updating one contact's manifold found.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 enum Refresh {
     /// Nothing moves: left as it was.
     Unchanged,
     /// A body is gone, or the pair can no longer touch: the contact ends.
     Gone,
-    /// The manifold was rebuilt.
-    Updated,
+    /// The manifold was rebuilt (or carried along).
+    Updated {
+        /// Its deepest overlap (0 if it does not touch).
+        depth: Real,
+        /// It started or stopped touching.
+        changed: bool,
+        /// It touches a sleeping body that the other body stirs.
+        wakes: bool,
+    },
 }
 
 /// The bodies of the contacts that started touching, and of those that stopped.
@@ -481,7 +488,8 @@ impl ContactSet {
         wake: &mut Vec<u32>,
     ) -> Real {
         // First every manifold, on as many threads as rayon gives (each contact on its own),
-        // then the bookkeeping that touches the whole set, in order.
+        // then the bookkeeping that touches the whole set, in order, for the contacts that
+        // need it: those that end, start or stop touching, or wake a sleeper.
         let awake = self.sets.awake();
         map_mut_into(
             &mut self.contacts[awake.clone()],
@@ -501,7 +509,16 @@ impl ContactSet {
                     self.destroy(index, true);
                     continue;
                 }
-                Refresh::Updated => {}
+                Refresh::Updated {
+                    depth,
+                    changed,
+                    wakes,
+                } => {
+                    deepest = deepest.max(depth);
+                    if !(changed || wakes) {
+                        continue;
+                    }
+                }
             }
             let contact = &mut self.contacts[index];
             // Both colliders were there a moment ago (else the contact would be gone).
@@ -515,7 +532,6 @@ impl ContactSet {
             let (a, b) = (&all[a.body_index()], &all[b.body_index()]);
             let touching = !contact.manifold.is_empty();
             if touching {
-                deepest = deepest.max(-contact.manifold.min_separation().unwrap_or(0.0));
                 for (sleeper, other) in [(a, b), (b, a)] {
                     if sleeper.is_sleeping() && stirs(other) {
                         wake.extend(sleeper.island());
@@ -685,7 +701,7 @@ fn refresh_manifold(
             .frame
             .carry(&mut contact.manifold, (a, shape_a), (b, shape_b))
     {
-        return Refresh::Updated;
+        return updated(contact, a, b);
     }
     let margins = Margins {
         any: margin,
@@ -701,5 +717,21 @@ fn refresh_manifold(
         .manifold
         .set_anchors(a.center_of_mass(), b.center_of_mass());
     contact.frame = ManifoldFrame::of(&contact.manifold, a, b);
-    Refresh::Updated
+    updated(contact, a, b)
+}
+
+/// What the bookkeeping after the narrowphase needs to know of a contact of bodies `a` and
+/// `b` whose manifold was just updated.
+fn updated(contact: &Contact, a: &Body, b: &Body) -> Refresh {
+    let touching = !contact.manifold.is_empty();
+    let stirred = |sleeper: &Body, other: &Body| sleeper.is_sleeping() && stirs(other);
+    Refresh::Updated {
+        depth: if touching {
+            -contact.manifold.min_separation().unwrap_or(0.0)
+        } else {
+            0.0
+        },
+        changed: touching != contact.touching,
+        wakes: touching && (stirred(a, b) || stirred(b, a)),
+    }
 }
