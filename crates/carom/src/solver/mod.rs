@@ -451,6 +451,7 @@ pub(crate) fn step(
         graph,
         demoted,
     );
+    // Soft step's softness, which its bundles are prepared with.
     let bias = soft_step::Bias::new(params, dt / params.substeps.max(1) as Real);
     let inputs = BundleInputs {
         awake: awake.clone(),
@@ -485,7 +486,7 @@ pub(crate) fn step(
         SolverKind::PushOut => push_out::solve(&context, states, constraints),
         SolverKind::TutorialImpulse => tutorial_impulse::solve(&context, states, constraints),
         SolverKind::SequentialImpulse => sequential_impulse::solve(&context, states, constraints),
-        SolverKind::SoftStep => soft_step::solve(&context, states, constraints, wide, plan),
+        SolverKind::SoftStep => soft_step::solve(&context, states, constraints, wide, plan, &bias),
     };
     wide.store(contacts);
     for constraint in constraints.iter() {

@@ -17,12 +17,14 @@ use crate::stats::Work;
 /// colour by colour over `wide`'s SIMD bundles, already prepared, then over `constraints`,
 /// the overflow's, one by one. The stage list is built here and run by
 /// [`WideContacts::execute`] on as many threads as rayon gives, in one parallel region.
+/// `bias` is for the step's substeps (the bundles were prepared with its softness).
 pub(super) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
     wide: &mut WideContacts,
     plan: &mut Vec<Stage>,
+    bias: &Bias,
 ) -> Work {
     let SolverContext {
         params,
@@ -32,13 +34,12 @@ pub(super) fn solve(
     } = *context;
     let substeps = params.substeps.max(1);
     let h = dt / substeps as Real;
-    let bias = Bias::new(params, h);
     let bias_friction = environment.friction && params.friction_in_bias_pass;
     plan_stages(
         plan,
         params,
         environment,
-        &bias,
+        bias,
         wide.color_count(),
         !constraints.is_empty(),
     );
@@ -47,7 +48,7 @@ pub(super) fn solve(
         environment,
         h,
         caps: SpeedCaps::new(params, dt),
-        bias: &bias,
+        bias,
         params,
     };
     let (mut work, bounces) = wide.execute(plan, states, constraints, &inputs);
