@@ -503,7 +503,7 @@ impl ContactSet {
         // skips a contact.
         while index > awake.start {
             index -= 1;
-            match self.refresh[index - awake.start] {
+            let wakes = match self.refresh[index - awake.start] {
                 Refresh::Unchanged => continue,
                 Refresh::Gone => {
                     self.destroy(index, true);
@@ -518,8 +518,9 @@ impl ContactSet {
                     if !(changed || wakes) {
                         continue;
                     }
+                    wakes
                 }
-            }
+            };
             let contact = &mut self.contacts[index];
             // Both colliders were there a moment ago (else the contact would be gone).
             let (Some(a), Some(b)) = (
@@ -530,14 +531,14 @@ impl ContactSet {
             };
             let all = bodies.as_slice();
             let (a, b) = (&all[a.body_index()], &all[b.body_index()]);
-            let touching = !contact.manifold.is_empty();
-            if touching {
+            if wakes {
                 for (sleeper, other) in [(a, b), (b, a)] {
-                    if sleeper.is_sleeping() && stirs(other) {
+                    if stirred(sleeper, other) {
                         wake.extend(sleeper.island());
                     }
                 }
             }
+            let touching = !contact.manifold.is_empty();
             if touching != contact.touching {
                 contact.touching = touching;
                 let pair = contact.pair();
@@ -645,6 +646,11 @@ fn stirs(body: &Body) -> bool {
     }
 }
 
+/// True when `sleeper` sleeps and `other`, touching it, should wake it.
+fn stirred(sleeper: &Body, other: &Body) -> bool {
+    sleeper.is_sleeping() && stirs(other)
+}
+
 /// The fastest two bodies' surfaces can close on each other: their relative speed, and each
 /// one's spin times its farthest point.
 fn closing_speed(a: &Body, b: &Body) -> Real {
@@ -724,7 +730,6 @@ fn refresh_manifold(
 /// `b` whose manifold was just updated.
 fn updated(contact: &Contact, a: &Body, b: &Body) -> Refresh {
     let touching = !contact.manifold.is_empty();
-    let stirred = |sleeper: &Body, other: &Body| sleeper.is_sleeping() && stirs(other);
     Refresh::Updated {
         depth: if touching {
             -contact.manifold.min_separation().unwrap_or(0.0)
