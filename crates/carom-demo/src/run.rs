@@ -48,8 +48,8 @@ pub struct RunReport {
     /// Fingerprint of the final positions and velocities.
     pub hash: u64,
     /// Mean ms per step in each stage (broadphase, narrowphase, solve, continuous, sleep),
-    /// the first step left out.
-    pub stage_ms: [f64; 5],
+    /// then in the parts of solve that prepare and store, the first step left out.
+    pub stage_ms: [f64; 7],
 }
 
 impl RunReport {
@@ -80,8 +80,8 @@ impl RunReport {
              time      {:.4} ms/step (mean after the first), {:.4} ms/step (median)\n\
              accuracy  max penetration {:.5} m, max speed {:.3} m/s, kinetic energy {:.4} J\n\
              state     {} asleep, nan: {}, hash {:016x}\n\
-             stages    broadphase {:.3}, narrowphase {:.3}, solve {:.3}, continuous {:.3}, \
-             sleep {:.3} ms/step",
+             stages    broadphase {:.3}, narrowphase {:.3}, solve {:.3} (prepare {:.3}, store \
+             {:.3}), continuous {:.3}, sleep {:.3} ms/step",
             self.steps,
             self.bodies,
             self.contacts,
@@ -96,6 +96,8 @@ impl RunReport {
             self.stage_ms[0],
             self.stage_ms[1],
             self.stage_ms[2],
+            self.stage_ms[5],
+            self.stage_ms[6],
             self.stage_ms[3],
             self.stage_ms[4],
         )
@@ -129,14 +131,22 @@ fn run_here(file: &Path, options: &RunOptions) -> Result<RunReport, String> {
     apply(&mut scene, options)?;
     let mut times = Vec::with_capacity(options.steps);
     let (mut max_penetration, mut max_speed, mut nan) = (0.0f32, 0.0f32, false);
-    let mut stage_ms = [0.0; 5];
+    let mut stage_ms = [0.0; 7];
     for step in 0..options.steps {
         let clock = Instant::now();
         scene.step().map_err(|e| e.to_string())?;
         times.push(clock.elapsed().as_secs_f64() * 1e3);
         if step > 0 {
             let t = scene.world.stats().times;
-            let stages = [t.broadphase, t.narrowphase, t.solve, t.continuous, t.sleep];
+            let stages = [
+                t.broadphase,
+                t.narrowphase,
+                t.solve,
+                t.continuous,
+                t.sleep,
+                t.prepare,
+                t.store,
+            ];
             for (sum, stage) in stage_ms.iter_mut().zip(stages) {
                 *sum += stage.as_secs_f64() * 1e3 / (options.steps - 1) as f64;
             }

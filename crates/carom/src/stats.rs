@@ -10,8 +10,13 @@ pub struct StageTimes {
     pub broadphase: Duration,
     /// Building contact manifolds.
     pub narrowphase: Duration,
-    /// Integrating and resolving contacts.
+    /// Integrating and resolving contacts, [`StageTimes::prepare`] and [`StageTimes::store`]
+    /// included.
     pub solve: Duration,
+    /// Of `solve`: taking the bodies in and preparing the contact constraints.
+    pub prepare: Duration,
+    /// Of `solve`: storing the impulses for the next step and writing the bodies back.
+    pub store: Duration,
     /// Sweeping fast bodies.
     pub continuous: Duration,
     /// Sleep timers and islands.

@@ -39,6 +39,7 @@ use crate::parallel::{for_each_with, map_into};
 use crate::stats::Work;
 use contact_graph::ContactGraph;
 use std::ops::Range;
+use std::time::{Duration, Instant};
 use wide_contacts::{BundleInputs, WideContacts};
 
 /// Which contact solver runs. Scene files and the command line name it in snake case
@@ -400,15 +401,24 @@ pub(crate) struct AwakeSet<'a> {
     pub colors: &'a ContactColors,
 }
 
-/// Runs one step of the chosen solver over the awake set. Returns how many contact points were
-/// solved and the work the optional effects did.
+/// What one solver step did: contact points solved, the work of the optional effects, and
+/// how long preparing and storing took.
+pub(crate) struct StepReport {
+    pub points: usize,
+    pub work: Work,
+    pub prepare: Duration,
+    pub store: Duration,
+}
+
+/// Runs one step of the chosen solver over the awake set.
 pub(crate) fn step(
     params: &SolverParams,
     environment: Environment,
     set: AwakeSet,
     dt: Real,
     workspace: &mut Workspace,
-) -> (usize, Work) {
+) -> StepReport {
+    let started = Instant::now();
     let AwakeSet {
         bodies,
         awake,
@@ -475,6 +485,7 @@ pub(crate) fn step(
     map_into(one_by_one, constraints, ITEMS_PER_TASK, |&i| {
         inputs.constraint(i)
     });
+    let prepare = started.elapsed();
     let bodies = &mut bodies[awake];
     let context = SolverContext {
         params,
@@ -488,6 +499,7 @@ pub(crate) fn step(
         SolverKind::SequentialImpulse => sequential_impulse::solve(&context, states, constraints),
         SolverKind::SoftStep => soft_step::solve(&context, states, constraints, wide, plan, &bias),
     };
+    let storing = Instant::now();
     wide.store(contacts);
     for constraint in constraints.iter() {
         constraint.store_impulses(&mut contacts[constraint.contact_index]);
@@ -496,5 +508,10 @@ pub(crate) fn step(
         state.write_back(body)
     });
     let points: usize = constraints.iter().map(|c| c.points().len()).sum();
-    (points + wide.point_count(), work)
+    StepReport {
+        points: points + wide.point_count(),
+        work,
+        prepare,
+        store: storing.elapsed(),
+    }
 }

@@ -540,15 +540,20 @@ impl World {
         stats.max_penetration = timed(&mut times.narrowphase, || {
             self.build_manifolds(prediction, &mut scratch.wake)
         });
-        self.contact_bodies(&mut scratch.dense);
         if continuous {
             self.poses(&mut scratch.starts);
         }
-        (stats.contact_points, stats.work) = timed(&mut times.solve, || {
-            let done = self.solve(dt, &scratch.dense);
+        let solved = timed(&mut times.solve, || {
+            let finding = Instant::now();
+            self.contact_bodies(&mut scratch.dense);
+            let finding = finding.elapsed();
+            let mut report = self.solve(dt, &scratch.dense);
+            report.prepare += finding;
             self.place_moved_colliders();
-            done
+            report
         });
+        (stats.contact_points, stats.work) = (solved.points, solved.work);
+        (times.prepare, times.store) = (solved.prepare, solved.store);
         if continuous {
             (stats.continuous_impacts, stats.work.sweeps) = timed(&mut times.continuous, || {
                 continuous::solve_continuous(
@@ -642,7 +647,7 @@ impl World {
 
     /// Runs the configured solver over every moving body and touching contact; returns how
     /// many contact points it solved and the work its effects did.
-    fn solve(&mut self, dt: Real, dense: &[(usize, usize)]) -> (usize, crate::stats::Work) {
+    fn solve(&mut self, dt: Real, dense: &[(usize, usize)]) -> solver::StepReport {
         let effects = self.settings.effects;
         let environment = Environment {
             gravity: effects
