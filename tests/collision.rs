@@ -61,12 +61,14 @@ fn tutorial_worked_example() {
     assert!(close(m.normal, normal, 1e-6));
     let reference = m.reference_edge.unwrap();
     assert_eq!(reference.side, PairSide::B);
-    assert!(close(reference.start, vec2(1.5, -0.333), 1e-5));
-    assert!(close(reference.end, vec2(3.5, -1.666), 1e-5));
+    let (start, end) = reference.ends(&b).unwrap();
+    assert!(close(start, vec2(1.5, -0.333), 1e-5));
+    assert!(close(end, vec2(3.5, -1.666), 1e-5));
     let incident = m.incident_edge.unwrap();
     assert_eq!(incident.side, PairSide::A);
-    assert!(close(incident.start, vec2(3.0, 0.0), 1e-5));
-    assert!(close(incident.end, vec2(-1.0, 0.0), 1e-5));
+    let (start, end) = incident.ends(&a).unwrap();
+    assert!(close(start, vec2(3.0, 0.0), 1e-5));
+    assert!(close(end, vec2(-1.0, 0.0), 1e-5));
 
     let expected = [
         (vec2(1.721_944_5, 0.0), -0.400_185_4),

@@ -8,6 +8,7 @@
 //! Positions and lengths of shapes are in metres. Line widths and point sizes are in screen
 //! pixels, so overlays stay readable at any zoom.
 
+use crate::collision::manifold::PairSide;
 use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::Collider;
 use crate::geometry::shape::WorldShape;
@@ -444,8 +445,16 @@ impl World {
                     (manifold.reference_edge, palette::REFERENCE_EDGE),
                     (manifold.incident_edge, palette::INCIDENT_EDGE),
                 ] {
-                    if let Some(edge) = edge {
-                        out.segment(edge.start, edge.end, CONTACT_EDGE_WIDTH, color);
+                    let Some(edge) = edge else { continue };
+                    let collider = match edge.side {
+                        PairSide::A => contact.collider_a(),
+                        PairSide::B => contact.collider_b(),
+                    };
+                    let ends = self
+                        .collider(collider)
+                        .and_then(|c| edge.ends(c.world_shape()));
+                    if let Some((start, end)) = ends {
+                        out.segment(start, end, CONTACT_EDGE_WIDTH, color);
                     }
                 }
             }

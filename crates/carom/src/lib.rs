@@ -39,6 +39,7 @@ mod geometry;
 mod handle_map;
 mod math;
 mod parallel;
+mod partition;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod solver;

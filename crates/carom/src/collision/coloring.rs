@@ -53,28 +53,24 @@ pub(crate) struct ColorBody {
     pub dynamic: bool,
 }
 
-/// The colours and their contacts.
+/// Which dynamic bodies each colour holds. Each colour's contacts are a part of the contact
+/// array (see `collision::contact_layout`).
 #[derive(Debug, Clone, Default)]
 pub(crate) struct ContactColors {
-    /// Per colour, the dynamic bodies it holds.
     bodies: [BodyBits; COLOR_COUNT],
-    /// Per colour, then the overflow, its contacts (indices into the contact array).
-    members: [Vec<u32>; COLOR_COUNT + 1],
 }
 
 impl ContactColors {
-    /// Gives contact `index`, between `a` and `b`, a colour; returns the colour and the
-    /// contact's place in it.
-    pub fn add(&mut self, index: u32, a: ColorBody, b: ColorBody) -> (u8, u32) {
+    /// Gives a contact between `a` and `b` a colour, which then holds their dynamic bodies
+    /// ([`OVERFLOW`] if none is free).
+    pub fn add(&mut self, a: ColorBody, b: ColorBody) -> u8 {
         let color = self.pick(a, b);
         if color != OVERFLOW {
             for body in [a, b].iter().filter(|body| body.dynamic) {
                 self.bodies[color as usize].set(body.slot);
             }
         }
-        let members = &mut self.members[color as usize];
-        members.push(index);
-        (color, (members.len() - 1) as u32)
+        color
     }
 
     /// The colour a contact between `a` and `b` takes.
@@ -89,27 +85,13 @@ impl ContactColors {
         found.map_or(OVERFLOW, |color| color as u8)
     }
 
-    /// Takes a contact out of its colour (`color`, at `place`), freeing its bodies there.
-    /// Returns the contact that moved into its place, if one did (its place is now `place`).
-    pub fn remove(&mut self, color: u8, place: u32, a: ColorBody, b: ColorBody) -> Option<u32> {
+    /// Takes a contact between `a` and `b` out of `color`, freeing its bodies there.
+    pub fn remove(&mut self, color: u8, a: ColorBody, b: ColorBody) {
         if color != OVERFLOW {
             for body in [a, b].iter().filter(|body| body.dynamic) {
                 self.bodies[color as usize].clear(body.slot);
             }
         }
-        let members = &mut self.members[color as usize];
-        members.swap_remove(place as usize);
-        members.get(place as usize).copied()
-    }
-
-    /// Records that the contact at `place` in `color` now sits at `index` in the contact array.
-    pub fn relocate(&mut self, color: u8, place: u32, index: u32) {
-        self.members[color as usize][place as usize] = index;
-    }
-
-    /// Each colour's contacts, in colour order, then the overflow's.
-    pub fn lists(&self) -> &[Vec<u32>; COLOR_COUNT + 1] {
-        &self.members
     }
 
     /// True when `slot`'s bit is set in `color`, for tests of the colouring.
@@ -142,20 +124,19 @@ mod tests {
     #[test]
     fn contacts_take_free_colours_and_give_them_back() {
         let mut colors = ContactColors::default();
-        assert_eq!(colors.add(0, dynamic(1), dynamic(2)), (0, 0));
-        assert_eq!(colors.add(1, dynamic(2), dynamic(3)), (1, 0));
-        assert_eq!(colors.add(2, dynamic(3), dynamic(4)), (0, 1));
+        assert_eq!(colors.add(dynamic(1), dynamic(2)), 0);
+        assert_eq!(colors.add(dynamic(2), dynamic(3)), 1);
+        assert_eq!(colors.add(dynamic(3), dynamic(4)), 0);
         let top = (COLOR_COUNT - 1) as u8;
-        assert_eq!(colors.add(3, fixed(0), dynamic(1)), (top, 0));
-        assert_eq!(colors.add(4, dynamic(2), fixed(0)), (top, 1));
-        assert_eq!(colors.add(5, fixed(0), dynamic(1)), (top - 1, 0));
+        assert_eq!(colors.add(fixed(0), dynamic(1)), top);
+        assert_eq!(colors.add(dynamic(2), fixed(0)), top);
+        assert_eq!(colors.add(fixed(0), dynamic(1)), top - 1);
         // The ground is not held by any colour.
         assert!(!colors.holds(top, 0));
-        // Contact 0 leaves colour 0; contact 2 moves into its place.
-        assert_eq!(colors.remove(0, 0, dynamic(1), dynamic(2)), Some(2));
-        assert_eq!(colors.lists()[0], vec![2]);
+        // The first contact leaves colour 0, which then takes it again.
+        colors.remove(0, dynamic(1), dynamic(2));
         assert!(!colors.holds(0, 1) && colors.holds(0, 3));
-        assert_eq!(colors.add(6, dynamic(1), dynamic(2)), (0, 1));
+        assert_eq!(colors.add(dynamic(1), dynamic(2)), 0);
     }
 
     /// A body in more contacts than there are colours sends the rest to the overflow.
@@ -163,14 +144,11 @@ mod tests {
     fn a_crowded_body_overflows() {
         let mut colors = ContactColors::default();
         for other in 0..DYNAMIC_COLOR_COUNT as u32 {
-            let (color, _) = colors.add(other, dynamic(0), dynamic(100 + other));
+            let color = colors.add(dynamic(0), dynamic(100 + other));
             assert_eq!(color as u32, other);
         }
-        assert_eq!(colors.add(99, dynamic(0), dynamic(500)).0, OVERFLOW);
+        assert_eq!(colors.add(dynamic(0), dynamic(500)), OVERFLOW);
         // Static contacts of the same body still find the colours kept for them.
-        assert_eq!(
-            colors.add(98, dynamic(0), fixed(7)).0,
-            (COLOR_COUNT - 1) as u8
-        );
+        assert_eq!(colors.add(dynamic(0), fixed(7)), (COLOR_COUNT - 1) as u8);
     }
 }

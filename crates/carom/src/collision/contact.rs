@@ -8,6 +8,9 @@
 
 use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
 use crate::collision::coloring::{ColorBody, ContactColors, NO_COLOR};
+use crate::collision::contact_layout::{
+    ASLEEP, ColorRanges, ContactPartition, NOT_TOUCHING, color_part, color_ranges,
+};
 use crate::collision::manifold::{self, Manifold, Margins};
 use crate::collision::recycle::ManifoldFrame;
 use crate::constants::CONTACTS_PER_TASK;
@@ -17,7 +20,7 @@ use crate::geometry::shape::Shape;
 use crate::handle_map::HandleMap;
 use crate::math::Real;
 use crate::parallel::map_mut_into;
-use crate::world::solver_sets::{SetBounds, SolverSet};
+use crate::world::solver_sets::SolverSet;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 
@@ -36,12 +39,13 @@ pub struct Contact {
     restitution: Real,
     /// What the manifold was built against, to carry it along while the bodies barely move.
     frame: ManifoldFrame,
-    /// Its graph colour while touching in the awake set ([`NO_COLOR`] otherwise), and its place
-    /// among the colour's contacts.
+    /// Its graph colour while touching in the awake set ([`NO_COLOR`] otherwise).
     color: u8,
-    color_place: u32,
     /// Which of its bodies the colour holds (the dynamic ones when it was coloured).
     color_holds: [bool; 2],
+    /// How many contacts the set had made before it: the solvers that take contacts one by
+    /// one take them in this order.
+    serial: u64,
 }
 
 impl Contact {
@@ -100,10 +104,16 @@ impl Contact {
         self.touching
     }
 
-    /// Its colour, its place in it, and which bodies the colour holds, for tests.
+    /// How many contacts its set had made before it, for the solvers that take contacts one
+    /// by one, oldest first.
+    pub(crate) fn serial(&self) -> u64 {
+        self.serial
+    }
+
+    /// Its colour and which bodies the colour holds, for tests.
     #[cfg(test)]
-    pub(crate) fn color(&self) -> (u8, u32, [bool; 2]) {
-        (self.color, self.color_place, self.color_holds)
+    pub(crate) fn color(&self) -> (u8, [bool; 2]) {
+        (self.color, self.color_holds)
     }
 }
 
@@ -166,13 +176,14 @@ fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
     (low.index() as u64) << 32 | high.index() as u64
 }
 
-/// The contacts of a world, stored contiguously in two solver sets (awake first, then
-/// asleep), with a lookup by pair and each body's list.
+/// The contacts of a world, stored contiguously in parts (see `collision::contact_layout`):
+/// the awake ones (a body of the pair is awake) colour by colour, then the sleeping ones;
+/// with a lookup by pair and each body's list.
 #[derive(Debug, Clone, Default)]
 pub struct ContactSet {
     contacts: Vec<Contact>,
-    /// Where the awake contacts (a body of the pair is awake) end and the sleeping ones begin.
-    sets: SetBounds,
+    /// Where each part of `contacts` begins and ends.
+    parts: ContactPartition,
     /// How many sleeping contacts touch (they cannot change while asleep).
     asleep_touching: usize,
     /// The graph colours of the awake touching contacts.
@@ -188,8 +199,12 @@ pub struct ContactSet {
     events: Vec<ContactEvent>,
     /// Events raised between steps (removing a body), reported after the next step.
     pending: Vec<ContactEvent>,
-    /// What the last update found for each contact (kept to reuse the memory).
+    /// What the last update found for each contact, and the contacts it must then file
+    /// again (kept to reuse the memory).
     refresh: Vec<Refresh>,
+    changed: Vec<(u64, Refresh)>,
+    /// How many contacts have been made.
+    made: u64,
 }
 
 /// What updating one contact's manifold found.
@@ -262,10 +277,11 @@ impl ContactSet {
             restitution: a.1.restitution().max(b.1.restitution()),
             frame: ManifoldFrame::default(),
             color: NO_COLOR,
-            color_place: 0,
             color_holds: [false; 2],
+            serial: self.made,
         });
-        // New contacts arrive in the sleeping set, the last.
+        self.made += 1;
+        // New contacts arrive in the sleeping part, the last.
         if awake {
             // Not touching yet: no colour, so no kinds needed.
             let last = self.contacts.len() - 1;
@@ -273,23 +289,35 @@ impl ContactSet {
         }
     }
 
-    /// Swaps two contacts' places; their colours learn where they went.
+    /// Swaps two contacts' places; the lookup learns where they went.
     fn swap(&mut self, i: usize, j: usize) {
-        if i == j {
-            return;
-        }
         self.contacts.swap(i, j);
         for k in [i, j] {
             let c = &self.contacts[k];
             self.lookup.insert(pair_key(c.collider_a, c.collider_b), k);
-            if c.color != NO_COLOR {
-                self.colors.relocate(c.color, c.color_place, k as u32);
-            }
         }
     }
 
-    /// Gives the touching contact at `index` a colour.
-    fn paint(&mut self, index: usize, kinds: &impl Fn(BodyHandle) -> BodyKind) {
+    /// Moves the contact at `index` into part `to`; returns its new index.
+    fn move_part(&mut self, index: usize, to: usize) -> usize {
+        let mut parts = self.parts;
+        let index = parts.move_item(index, to, |i, j| self.swap(i, j));
+        self.parts = parts;
+        index
+    }
+
+    /// The set of the contact at `index`.
+    fn set_of(&self, index: usize) -> SolverSet {
+        if index < self.parts.start(ASLEEP) {
+            SolverSet::Awake
+        } else {
+            SolverSet::Asleep
+        }
+    }
+
+    /// Gives the awake touching contact at `index` a colour and moves it into the colour's
+    /// part; returns its new index.
+    fn paint(&mut self, index: usize, kinds: &impl Fn(BodyHandle) -> BodyKind) -> usize {
         let contact = &self.contacts[index];
         debug_assert!(contact.touching && contact.color == NO_COLOR);
         let side = |body: BodyHandle| ColorBody {
@@ -297,20 +325,22 @@ impl ContactSet {
             dynamic: kinds(body) == BodyKind::Dynamic,
         };
         let (a, b) = (side(contact.body_a), side(contact.body_b));
-        let (color, place) = self.colors.add(index as u32, a, b);
+        let color = self.colors.add(a, b);
         let contact = &mut self.contacts[index];
-        (contact.color, contact.color_place) = (color, place);
+        contact.color = color;
         contact.color_holds = [a.dynamic, b.dynamic];
+        self.move_part(index, color_part(color))
     }
 
     /// Takes the contact at `index` out of its colour, if it has one, freeing there the
-    /// bodies it held (whatever their kind is now).
-    fn unpaint(&mut self, index: usize) {
+    /// bodies it held (whatever their kind is now), into the awake part that does not touch;
+    /// returns its new index.
+    fn unpaint(&mut self, index: usize) -> usize {
         let contact = &mut self.contacts[index];
         if contact.color == NO_COLOR {
-            return;
+            return index;
         }
-        let (color, place) = (contact.color, contact.color_place);
+        let color = contact.color;
         contact.color = NO_COLOR;
         let side = |body: BodyHandle, held: bool| ColorBody {
             slot: body.index(),
@@ -318,9 +348,8 @@ impl ContactSet {
         };
         let [held_a, held_b] = contact.color_holds;
         let (a, b) = (side(contact.body_a, held_a), side(contact.body_b, held_b));
-        if let Some(moved) = self.colors.remove(color, place, a, b) {
-            self.contacts[moved as usize].color_place = place;
-        }
+        self.colors.remove(color, a, b);
+        self.move_part(index, NOT_TOUCHING)
     }
 
     /// Moves the contact at `index` into `set`; returns its new index. A touching contact
@@ -331,28 +360,23 @@ impl ContactSet {
         set: SolverSet,
         kinds: &impl Fn(BodyHandle) -> BodyKind,
     ) -> usize {
-        let from = self.sets.set_of(index);
-        if from == set {
+        if self.set_of(index) == set {
             return index;
         }
         let touching = self.contacts[index].touching;
         if set == SolverSet::Asleep {
-            self.unpaint(index);
-        }
-        if touching {
-            if set == SolverSet::Asleep {
-                self.asleep_touching += 1;
+            self.asleep_touching += usize::from(touching);
+            let index = self.unpaint(index);
+            self.move_part(index, ASLEEP)
+        } else {
+            self.asleep_touching -= usize::from(touching);
+            let index = self.move_part(index, NOT_TOUCHING);
+            if touching {
+                self.paint(index, kinds)
             } else {
-                self.asleep_touching -= 1;
+                index
             }
         }
-        let mut sets = self.sets;
-        let index = sets.move_item(index, set, |i, j| self.swap(i, j));
-        self.sets = sets;
-        if set == SolverSet::Awake && touching {
-            self.paint(index, kinds);
-        }
-        index
     }
 
     /// Files each contact of `body` in the awake set if one of its bodies is awake, else in
@@ -386,7 +410,7 @@ impl ContactSet {
         for k in 0..count {
             let index = self.lookup[&self.edges[slot][k]];
             if self.contacts[index].color != NO_COLOR {
-                self.unpaint(index);
+                let index = self.unpaint(index);
                 self.paint(index, &kinds);
             }
         }
@@ -412,7 +436,7 @@ impl ContactSet {
 
     /// Drops the contact at `index`, ending it if it touched.
     fn destroy(&mut self, index: usize, events_now: bool) {
-        // From the sleeping set, the last, a removal moves only another sleeper.
+        // From the sleeping part, the last, a removal moves only another sleeper.
         let index = self.move_to(index, SolverSet::Asleep, &|_| BodyKind::Static);
         let contact = self.contacts.swap_remove(index);
         if contact.touching {
@@ -451,20 +475,19 @@ impl ContactSet {
         self.destroy_where(handle, |_| true);
     }
 
-    /// Drops the contacts of `body` that `doomed` picks, from the last stored to the first
-    /// (each removal moves only contacts stored after it, so no other doomed index changes).
+    /// Drops the contacts of `body` that `doomed` picks.
     fn destroy_where(&mut self, body: BodyHandle, doomed: impl Fn(&Contact) -> bool) {
         let Some(edges) = self.edges.get(body.index() as usize) else {
             return;
         };
-        let mut indices: Vec<usize> = edges
+        // By pair, as each removal moves other contacts.
+        let keys: Vec<u64> = edges
             .iter()
-            .map(|key| self.lookup[key])
-            .filter(|&index| doomed(&self.contacts[index]))
+            .copied()
+            .filter(|key| doomed(&self.contacts[self.lookup[key]]))
             .collect();
-        indices.sort_unstable_by(|a, b| b.cmp(a));
-        for index in indices {
-            self.destroy(index, false);
+        for key in keys {
+            self.destroy(self.lookup[&key], false);
         }
     }
 
@@ -490,7 +513,7 @@ impl ContactSet {
         // First every manifold, on as many threads as rayon gives (each contact on its own),
         // then the bookkeeping that touches the whole set, in order, for the contacts that
         // need it: those that end, start or stop touching, or wake a sleeper.
-        let awake = self.sets.awake();
+        let awake = self.awake_range();
         map_mut_into(
             &mut self.contacts[awake.clone()],
             &mut self.refresh,
@@ -498,17 +521,14 @@ impl ContactSet {
             |contact| refresh_manifold(contact, bodies, colliders, broadphase, options),
         );
         let mut deepest: Real = 0.0;
-        let mut index = awake.end;
-        // Backwards, so destroying (which moves the last awake contact into the hole) never
-        // skips a contact.
-        while index > awake.start {
-            index -= 1;
-            let wakes = match self.refresh[index - awake.start] {
+        let mut changed = std::mem::take(&mut self.changed);
+        changed.clear();
+        // Listed by pair first, as filing them again moves contacts. Backwards, as contacts
+        // have always been filed.
+        for (index, &refresh) in self.refresh.iter().enumerate().rev() {
+            match refresh {
                 Refresh::Unchanged => continue,
-                Refresh::Gone => {
-                    self.destroy(index, true);
-                    continue;
-                }
+                Refresh::Gone => {}
                 Refresh::Updated {
                     depth,
                     changed,
@@ -518,52 +538,76 @@ impl ContactSet {
                     if !(changed || wakes) {
                         continue;
                     }
-                    wakes
-                }
-            };
-            let contact = &mut self.contacts[index];
-            // Both colliders were there a moment ago (else the contact would be gone).
-            let (Some(a), Some(b)) = (
-                colliders.get(contact.collider_a),
-                colliders.get(contact.collider_b),
-            ) else {
-                continue;
-            };
-            let all = bodies.as_slice();
-            let (a, b) = (&all[a.body_index()], &all[b.body_index()]);
-            if wakes {
-                for (sleeper, other) in [(a, b), (b, a)] {
-                    if stirred(sleeper, other) {
-                        wake.extend(sleeper.island());
-                    }
                 }
             }
-            let touching = !contact.manifold.is_empty();
-            if touching != contact.touching {
-                contact.touching = touching;
-                let pair = contact.pair();
-                self.events.push(if touching {
-                    ContactEvent::Begin(pair)
-                } else {
-                    ContactEvent::End(pair)
-                });
-                let kinds = [(a.handle(), a.kind()), (b.handle(), b.kind())];
-                let bodies = (a.handle(), b.handle());
-                if touching {
-                    self.began.push(bodies);
-                    self.paint(index, &|body| {
-                        kinds
-                            .iter()
-                            .find(|k| k.0 == body)
-                            .map_or(BodyKind::Static, |k| k.1)
-                    });
-                } else {
-                    self.ended.push(bodies);
-                    self.unpaint(index);
+            let contact = &self.contacts[index];
+            changed.push((pair_key(contact.collider_a, contact.collider_b), refresh));
+        }
+        for &(key, refresh) in &changed {
+            self.file(self.lookup[&key], refresh, bodies, colliders, wake);
+        }
+        self.changed = changed;
+        deepest
+    }
+
+    /// Files again the contact at `index`, which the narrowphase found `refresh`: destroys it,
+    /// colours it as it starts touching or takes its colour as it stops, raises the events, and
+    /// adds to `wake` the sleeping islands it stirs.
+    fn file(
+        &mut self,
+        index: usize,
+        refresh: Refresh,
+        bodies: &HandleMap<BodyHandle, Body>,
+        colliders: &HandleMap<ColliderHandle, Collider>,
+        wake: &mut Vec<u32>,
+    ) {
+        let wakes = match refresh {
+            Refresh::Unchanged => return,
+            Refresh::Gone => return self.destroy(index, true),
+            Refresh::Updated { wakes, .. } => wakes,
+        };
+        let contact = &mut self.contacts[index];
+        // Both colliders were there a moment ago (else the contact would be gone).
+        let (Some(a), Some(b)) = (
+            colliders.get(contact.collider_a),
+            colliders.get(contact.collider_b),
+        ) else {
+            return;
+        };
+        let all = bodies.as_slice();
+        let (a, b) = (&all[a.body_index()], &all[b.body_index()]);
+        if wakes {
+            for (sleeper, other) in [(a, b), (b, a)] {
+                if stirred(sleeper, other) {
+                    wake.extend(sleeper.island());
                 }
             }
         }
-        deepest
+        let touching = !contact.manifold.is_empty();
+        if touching == contact.touching {
+            return;
+        }
+        contact.touching = touching;
+        let pair = contact.pair();
+        self.events.push(if touching {
+            ContactEvent::Begin(pair)
+        } else {
+            ContactEvent::End(pair)
+        });
+        let kinds = [(a.handle(), a.kind()), (b.handle(), b.kind())];
+        let bodies = (a.handle(), b.handle());
+        if touching {
+            self.began.push(bodies);
+            self.paint(index, &|body| {
+                kinds
+                    .iter()
+                    .find(|k| k.0 == body)
+                    .map_or(BodyKind::Static, |k| k.1)
+            });
+        } else {
+            self.ended.push(bodies);
+            self.unpaint(index);
+        }
     }
 
     /// Every contact.
@@ -571,10 +615,21 @@ impl ContactSet {
         self.contacts.iter()
     }
 
+    /// The indices of the awake contacts (a body of the pair is awake): the first ones.
+    fn awake_range(&self) -> std::ops::Range<usize> {
+        0..self.parts.start(ASLEEP)
+    }
+
     /// How many contacts are in the awake set, for tests of the sets.
     #[cfg(test)]
     pub(crate) fn awake_len(&self) -> usize {
-        self.sets.awake().end
+        self.awake_range().end
+    }
+
+    /// The part of the contact at `index`, for tests of the layout.
+    #[cfg(test)]
+    pub(crate) fn part_of(&self, index: usize) -> usize {
+        self.parts.part_of(index)
     }
 
     /// How many sleeping contacts touch, as counted while filing them.
@@ -585,7 +640,7 @@ impl ContactSet {
 
     /// The awake contacts (a body of the pair is awake): the ones a step visits.
     pub(crate) fn awake(&self) -> &[Contact] {
-        &self.contacts[self.sets.awake()]
+        &self.contacts[self.awake_range()]
     }
 
     /// Takes the bodies of the contacts that started and stopped touching since the last call;
@@ -607,9 +662,16 @@ impl ContactSet {
         (self.began, self.ended) = (began, ended);
     }
 
-    /// The awake contacts, mutably, for the solver, and their graph colours.
-    pub(crate) fn awake_mut_and_colors(&mut self) -> (&mut [Contact], &ContactColors) {
-        (&mut self.contacts[self.sets.awake()], &self.colors)
+    /// Where each colour's contacts (then the overflow's) are among the awake contacts.
+    pub(crate) fn color_ranges(&self) -> ColorRanges {
+        color_ranges(&self.parts)
+    }
+
+    /// The awake contacts, mutably, for the solver, and where each colour's are among them.
+    pub(crate) fn awake_mut_and_colors(&mut self) -> (&mut [Contact], ColorRanges) {
+        let awake = self.awake_range();
+        let colors = self.color_ranges();
+        (&mut self.contacts[awake], colors)
     }
 
     /// The graph colours of the awake touching contacts.
@@ -618,9 +680,9 @@ impl ContactSet {
         &self.colors
     }
 
-    /// How many contacts touch: the awake ones counted, the sleeping ones remembered.
+    /// How many contacts touch: the awake ones coloured, the sleeping ones remembered.
     pub(crate) fn touching_count(&self) -> usize {
-        self.awake().iter().filter(|c| c.touching).count() + self.asleep_touching
+        self.awake_range().len() - self.parts.range(NOT_TOUCHING).len() + self.asleep_touching
     }
 
     /// How many contacts there are.
@@ -700,13 +762,7 @@ fn refresh_manifold(
     // A body stopped by continuous collision barely moved, but only because it was put back:
     // its manifold may lack the points its motion was about to meet.
     let stopped = a.had_time_of_impact() || b.had_time_of_impact();
-    if recycling
-        && polygons
-        && !stopped
-        && contact
-            .frame
-            .carry(&mut contact.manifold, (a, shape_a), (b, shape_b))
-    {
+    if recycling && polygons && !stopped && contact.frame.carry(&mut contact.manifold, a, b) {
         return updated(contact, a, b);
     }
     let margins = Margins {
@@ -722,7 +778,7 @@ fn refresh_manifold(
     contact
         .manifold
         .set_anchors(a.center_of_mass(), b.center_of_mass());
-    contact.frame = ManifoldFrame::of(&contact.manifold, a, b);
+    contact.frame = ManifoldFrame::of(&contact.manifold, (a, shape_a), (b, shape_b));
     updated(contact, a, b)
 }
 

@@ -102,10 +102,20 @@ pub struct ContactEdge {
     pub side: PairSide,
     /// Its index in that polygon (edge `i` runs from vertex `i` to `i + 1`).
     pub index: usize,
-    /// World start point.
-    pub start: Vec2,
-    /// World end point.
-    pub end: Vec2,
+}
+
+impl ContactEdge {
+    /// Its end points on `shape`, the world shape on its side (wherever that shape is now), if
+    /// `shape` is a polygon with this edge.
+    pub fn ends(&self, shape: &WorldShape) -> Option<(Vec2, Vec2)> {
+        match shape {
+            WorldShape::Polygon { vertices, .. } if self.index < vertices.len() => Some((
+                vertices[self.index],
+                vertices[(self.index + 1) % vertices.len()],
+            )),
+            _ => None,
+        }
+    }
 }
 
 /// Where two shapes touch: a normal from A to B and up to two points.
@@ -344,8 +354,6 @@ fn collide_polygon_circle(
         manifold.reference_edge = Some(ContactEdge {
             side: PairSide::A,
             index: i,
-            start: vertices[i],
-            end: vertices[(i + 1) % vertices.len()],
         });
     }
     manifold
@@ -446,8 +454,6 @@ fn collide_polygons(
             PairSide::A
         },
         index: i1,
-        start: v11,
-        end: v12,
     });
     manifold.incident_edge = Some(ContactEdge {
         side: if reference_on_b {
@@ -456,8 +462,6 @@ fn collide_polygons(
             PairSide::B
         },
         index: j1,
-        start: v21,
-        end: v22,
     });
 
     // Behind the reference face a clipped end may lie outside the reference polygon: with a

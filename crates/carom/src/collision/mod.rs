@@ -1,10 +1,11 @@
 //! Collision: which pairs are near (broadphase), how near (narrowphase), where they touch
-//! (manifolds), the persistent contacts that carry it from step to step, their graph colours,
-//! and continuous collision for fast bodies.
+//! (manifolds), the persistent contacts that carry it from step to step, their graph colours
+//! and where each is stored, and continuous collision for fast bodies.
 
 pub(crate) mod broadphase;
 pub(crate) mod coloring;
 pub(crate) mod contact;
+pub(crate) mod contact_layout;
 pub(crate) mod continuous;
 pub(crate) mod dynamic_tree;
 pub(crate) mod manifold;

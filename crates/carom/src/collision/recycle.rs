@@ -9,13 +9,12 @@
 //! back and forth and feed the rocking until the column falls. Resting piles also cost next
 //! to nothing in the narrowphase.
 
-use crate::collision::manifold::{ContactEdge, Manifold, PairSide};
+use crate::collision::manifold::Manifold;
 use crate::constants::{
     RECYCLE_COS_ANGLE, RECYCLE_DISTANCE, RECYCLE_SIZE_FRACTION, SPECULATIVE_DISTANCE,
 };
 use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::Collider;
-use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Rot, Vec2};
 
 /// What a manifold was built against: the bodies' poses and each point's separation then.
@@ -33,11 +32,18 @@ pub(crate) struct ManifoldFrame {
     relative_rotation: Rot,
     /// Each point's separation when built.
     base_separations: [Real; 2],
+    /// Each collider's smallest extent (its shape's inradius), kept here so carrying reads
+    /// nothing of the colliders.
+    min_extents: [Real; 2],
 }
 
 impl ManifoldFrame {
-    /// Remembers `manifold`, just built (anchors set) for bodies `a` and `b`.
-    pub fn of(manifold: &Manifold, a: &Body, b: &Body) -> Self {
+    /// Remembers `manifold`, just built (anchors set) for bodies `a` and `b` and their colliders.
+    pub fn of(
+        manifold: &Manifold,
+        (a, collider_a): (&Body, &Collider),
+        (b, collider_b): (&Body, &Collider),
+    ) -> Self {
         let relative = a.transform().inv_mul(&b.transform());
         let mut base_separations = [0.0; 2];
         for (slot, point) in base_separations.iter_mut().zip(manifold.points()) {
@@ -50,17 +56,13 @@ impl ManifoldFrame {
             relative_translation: relative.translation.vector,
             relative_rotation: relative.rotation,
             base_separations,
+            min_extents: [collider_a, collider_b].map(|c| c.shape().min_extent()),
         }
     }
 
     /// Carries `manifold` along with bodies `a` and `b`, in place, if they have moved little
     /// enough since it was built; false (leaving it as it was) if it must be built again.
-    pub fn carry(
-        &self,
-        manifold: &mut Manifold,
-        (a, collider_a): (&Body, &Collider),
-        (b, collider_b): (&Body, &Collider),
-    ) -> bool {
+    pub fn carry(&self, manifold: &mut Manifold, a: &Body, b: &Body) -> bool {
         if !self.valid {
             return false;
         }
@@ -79,10 +81,11 @@ impl ManifoldFrame {
         let moving = |body: &Body| body.kind() != BodyKind::Static;
         let extent = |body: &Body| if moving(body) { body.reach() } else { 0.0 };
         let reach = moved + extent(a).max(extent(b)) * relative_turn.im.abs();
-        let smallest = [(a, collider_a), (b, collider_b)]
+        let smallest = [a, b]
             .into_iter()
+            .zip(self.min_extents)
             .filter(|(body, _)| moving(body))
-            .map(|(_, collider)| collider.shape().min_extent())
+            .map(|(_, extent)| extent)
             .fold(Real::INFINITY, Real::min);
         let mut tolerance = RECYCLE_DISTANCE.min(RECYCLE_SIZE_FRACTION * smallest);
         if manifold.is_empty() {
@@ -99,27 +102,7 @@ impl ManifoldFrame {
             point.separation = base + normal.dot(&(on_b - on_a));
             point.point = (on_a + on_b) * 0.5;
         }
-        for edge in [&mut manifold.reference_edge, &mut manifold.incident_edge]
-            .into_iter()
-            .flatten()
-        {
-            let shape = match edge.side {
-                PairSide::A => collider_a.world_shape(),
-                PairSide::B => collider_b.world_shape(),
-            };
-            move_edge(edge, shape);
-        }
         true
-    }
-}
-
-/// Puts an edge's world end points where its polygon is now.
-fn move_edge(edge: &mut ContactEdge, shape: &WorldShape) {
-    if let WorldShape::Polygon { vertices, .. } = shape
-        && edge.index < vertices.len()
-    {
-        edge.start = vertices[edge.index];
-        edge.end = vertices[(edge.index + 1) % vertices.len()];
     }
 }
 
@@ -159,7 +142,7 @@ mod tests {
         let ((a, ca), (b, cb)) = (parts(world, a), parts(world, b));
         let mut built = manifold::collide(ca.world_shape(), cb.world_shape(), SPECULATIVE_DISTANCE);
         built.set_anchors(a.center_of_mass(), b.center_of_mass());
-        let frame = ManifoldFrame::of(&built, a, b);
+        let frame = ManifoldFrame::of(&built, (a, ca), (b, cb));
         (built, frame)
     }
 
@@ -175,7 +158,7 @@ mod tests {
         }
         let (a, b) = (parts(&world, ground), parts(&world, block));
         let mut carried = built;
-        assert!(frame.carry(&mut carried, a, b), "small motion recycles");
+        assert!(frame.carry(&mut carried, a.0, b.0), "small motion recycles");
         let rebuilt = manifold::collide(a.1.world_shape(), b.1.world_shape(), SPECULATIVE_DISTANCE);
         assert_eq!(carried.points().len(), rebuilt.points().len());
         for (c, r) in carried.points().iter().zip(rebuilt.points()) {
@@ -195,14 +178,14 @@ mod tests {
         let (mut world, ground, block) = resting_pair(0.0);
         let (built, frame) = built(&world, ground, block);
         let (a, b) = (parts(&world, ground), parts(&world, block));
-        assert!(!ManifoldFrame::default().carry(&mut built.clone(), a, b));
+        assert!(!ManifoldFrame::default().carry(&mut built.clone(), a.0, b.0));
         let mut moved = |position, angle| {
             let mut body = world.body_mut(block).unwrap();
             body.set_position(position).unwrap();
             body.set_angle(angle).unwrap();
             let (a, b) = (parts(&world, ground), parts(&world, block));
             let mut carried = built;
-            let recycled = frame.carry(&mut carried, a, b);
+            let recycled = frame.carry(&mut carried, a.0, b.0);
             if !recycled {
                 assert_eq!(carried, built, "left as it was");
             }
@@ -228,7 +211,7 @@ mod tests {
                 .set_position(vec2(0.3, 1.05 - by))
                 .unwrap();
             let (a, b) = (parts(&world, ground), parts(&world, block));
-            frame.carry(&mut built.clone(), a, b)
+            frame.carry(&mut built.clone(), a.0, b.0)
         };
         // 8 mm closer, still 4 cm apart: nothing can have come within the margin.
         assert!(closer(0.008));

@@ -29,8 +29,8 @@ pub(crate) use body_state::BodyState;
 use contact_constraint::BodyMass;
 pub(crate) use contact_constraint::ContactConstraint;
 
-use crate::collision::coloring::ContactColors;
 use crate::collision::contact::Contact;
+use crate::collision::contact_layout::ColorRanges;
 use crate::constants::{COLOR_COUNT, ITEMS_PER_TASK};
 use crate::dynamics::body::Body;
 use crate::dynamics::drag::DragModel;
@@ -344,38 +344,35 @@ impl ColorCheck<'_> {
     }
 }
 
-/// The order the touching contacts are solved in, into `order`: with `colors`, colour by
-/// colour (then the overflow), laid out in `graph`; without, in contact order, every one in
-/// the overflow. A contact whose colour already holds one of its moving bodies (which the
-/// colouring never allows) is solved in the overflow.
+/// The order the touching contacts are solved in, into `order`: colour by colour, then the
+/// overflow (`colors` are where each colour's contacts are among `contacts`), laid out in
+/// `graph`, and a contact whose colour already holds one of its moving bodies (which the
+/// colouring never allows) is solved in the overflow. Without `check`, every touching contact
+/// is solved one by one, oldest first (the order sequential impulses were tuned in: a stack
+/// built from the bottom is solved from the bottom).
 fn order_constraints(
     contacts: &[Contact],
-    colors: Option<(&ContactColors, ColorCheck)>,
+    colors: &ColorRanges,
+    check: Option<ColorCheck>,
     order: &mut Vec<usize>,
     graph: &mut ContactGraph,
     demoted: &mut Vec<usize>,
 ) {
     order.clear();
-    let Some((colors, mut check)) = colors else {
-        order.extend(
-            contacts
-                .iter()
-                .enumerate()
-                .filter(|(_, c)| c.is_touching())
-                .map(|(i, _)| i),
-        );
+    let Some(mut check) = check else {
+        order.extend(colors.iter().flat_map(Range::clone));
+        order.sort_unstable_by_key(|&i| contacts[i].serial());
         graph.leave_uncolored(order.len());
         return;
     };
     check.claims.clear();
     check.claims.resize(check.awake.len(), 0);
     demoted.clear();
-    let (lists, overflow) = colors.lists().split_at(COLOR_COUNT);
+    let (ranges, overflow) = colors.split_at(COLOR_COUNT);
     let mut counts = [0; COLOR_COUNT];
-    for (color, (count, list)) in counts.iter_mut().zip(lists).enumerate() {
+    for (color, (count, range)) in counts.iter_mut().zip(ranges).enumerate() {
         let before = order.len();
-        for &i in list {
-            let i = i as usize;
+        for i in range.clone() {
             if check.claim(i, color) {
                 order.push(i);
             } else {
@@ -384,7 +381,7 @@ fn order_constraints(
         }
         *count = order.len() - before;
     }
-    order.extend(overflow[0].iter().map(|&i| i as usize));
+    order.extend(overflow[0].clone());
     order.extend_from_slice(demoted);
     graph.lay_out(counts, overflow[0].len() + demoted.len());
 }
@@ -397,8 +394,8 @@ pub(crate) struct AwakeSet<'a> {
     /// The awake contacts, and the dense indices of each one's bodies.
     pub contacts: &'a mut [Contact],
     pub dense: &'a [(usize, usize)],
-    /// The touching contacts' colours.
-    pub colors: &'a ContactColors,
+    /// Where each colour's contacts (then the overflow's) are among the awake contacts.
+    pub colors: &'a ColorRanges,
 }
 
 /// What one solver step did: contact points solved, the work of the optional effects, and
@@ -456,7 +453,8 @@ pub(crate) fn step(
     };
     order_constraints(
         contacts,
-        colored.then_some((colors, check)),
+        colors,
+        colored.then_some(check),
         order,
         graph,
         demoted,

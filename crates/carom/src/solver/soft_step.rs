@@ -336,7 +336,8 @@ mod tests {
         };
         order_constraints(
             contacts,
-            Some((colors, check)),
+            &colors,
+            Some(check),
             &mut order,
             &mut graph,
             &mut demoted,

@@ -663,7 +663,7 @@ impl World {
             awake: self.body_sets.awake(),
             contacts,
             dense,
-            colors,
+            colors: &colors,
         };
         solver::step(
             &self.settings.solver,
@@ -862,7 +862,7 @@ pub(crate) type SolverInputs<'a> = (
     std::ops::Range<usize>,
     &'a [Contact],
     Vec<(usize, usize)>,
-    &'a crate::collision::coloring::ContactColors,
+    crate::collision::contact_layout::ColorRanges,
 );
 
 /// What the solver starts a step from, for tests of the solver's parts.
@@ -878,14 +878,8 @@ impl World {
         let mut dense = Vec::new();
         self.contact_bodies(&mut dense);
         let awake = self.body_sets.awake();
-        let contacts = self.contacts.awake();
-        (
-            self.bodies.as_slice(),
-            awake,
-            contacts,
-            dense,
-            self.contacts.colors(),
-        )
+        let (contacts, colors) = (self.contacts.awake(), self.contacts.color_ranges());
+        (self.bodies.as_slice(), awake, contacts, dense, colors)
     }
 }
 

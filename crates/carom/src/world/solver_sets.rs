@@ -4,8 +4,9 @@
 //! Bodies live in one dense array in three contiguous sets: static bodies first, then the
 //! awake set (dynamic and kinematic bodies the step moves), then the sleeping bodies. A
 //! body's colliders are stored in the same three sets in the colliders' array, and contacts in
-//! two: awake (a body of the pair is awake) and asleep. Each stage of a step takes the awake
-//! set as one slice; a static or sleeping body is never visited.
+//! two: awake (a body of the pair is awake, kept colour by colour, see
+//! `collision::contact_layout`) and asleep. Each stage of a step takes the awake set as one
+//! slice; a static or sleeping body is never visited.
 //!
 //! Falling asleep moves an island's bodies (and their colliders and contacts) out of the awake
 //! set; waking moves them back (see `world::islands`). Each move is a swap at a set boundary,
@@ -13,6 +14,7 @@
 
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
+use crate::partition::Partition;
 use crate::world::World;
 use std::ops::Range;
 
@@ -27,66 +29,42 @@ pub(crate) enum SolverSet {
     Asleep = 2,
 }
 
-/// Where the sets of one dense array begin and end: `[0, ends[0])` static, `[ends[0], ends[1])`
-/// awake, `[ends[1], len)` asleep.
+/// Where the sets of one dense array begin and end: static, then awake, then asleep.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub(crate) struct SetBounds {
-    ends: [usize; 2],
-}
+pub(crate) struct SetBounds(Partition<2>);
 
 impl SetBounds {
     /// The set of the item at `index`.
     #[inline]
     pub fn set_of(&self, index: usize) -> SolverSet {
-        if index < self.ends[0] {
-            SolverSet::Static
-        } else if index < self.ends[1] {
-            SolverSet::Awake
-        } else {
-            SolverSet::Asleep
+        match self.0.part_of(index) {
+            0 => SolverSet::Static,
+            1 => SolverSet::Awake,
+            _ => SolverSet::Asleep,
         }
     }
 
     /// The dense indices of the awake set.
     #[inline]
     pub fn awake(&self) -> Range<usize> {
-        self.ends[0]..self.ends[1]
+        self.0.range(SolverSet::Awake as usize)
     }
 
     /// Where the sleeping set begins (everything past it sleeps).
     #[inline]
     pub fn asleep_start(&self) -> usize {
-        self.ends[1]
+        self.0.start(SolverSet::Asleep as usize)
     }
 
     /// Moves the item at `index` into set `to` by swapping it across each boundary on the way
-    /// (`swap(i, j)` swaps two items of the array); returns its new index. Only the items at
-    /// the boundaries it crosses move.
+    /// (`swap(i, j)` swaps two items of the array); returns its new index.
     pub fn move_item(
         &mut self,
-        mut index: usize,
+        index: usize,
         to: SolverSet,
-        mut swap: impl FnMut(usize, usize),
+        swap: impl FnMut(usize, usize),
     ) -> usize {
-        let mut set = self.set_of(index) as usize;
-        let target = to as usize;
-        while set < target {
-            // Down: trade places with the last of this set, which then ends before it.
-            let last = self.ends[set] - 1;
-            swap(index, last);
-            self.ends[set] -= 1;
-            index = last;
-            set += 1;
-        }
-        while set > target {
-            // Up: trade places with the first of this set, which then begins after it.
-            let first = self.ends[set - 1];
-            swap(index, first);
-            self.ends[set - 1] += 1;
-            index = first;
-            set -= 1;
-        }
-        index
+        self.0.move_item(index, to as usize, swap)
     }
 }
 
@@ -311,49 +289,46 @@ impl World {
 #[cfg(test)]
 impl World {
     /// Checks the graph colouring: exactly the awake touching contacts have colours, each
-    /// colour's list and its contacts agree, no dynamic body is twice in a colour, and each
-    /// colour holds exactly the bodies of its contacts.
+    /// contact is kept in its colour's part (or the awake part that does not touch, or the
+    /// sleeping one), no dynamic body is twice in a colour, and each colour holds exactly the
+    /// bodies of its contacts.
     fn check_colors(&self) {
         use crate::collision::coloring::{NO_COLOR, OVERFLOW};
+        use crate::collision::contact_layout::{ASLEEP, NOT_TOUCHING, color_part};
         use crate::constants::COLOR_COUNT;
-        let contacts: Vec<_> = self.contacts.iter().collect();
-        let colors = self.contacts.colors();
-        for (i, contact) in contacts.iter().enumerate() {
-            let (color, place, _) = contact.color();
-            let should = contact.is_touching() && i < self.contacts.awake_len();
-            assert_eq!(color != NO_COLOR, should, "contact {i}");
-            if color != NO_COLOR {
-                assert_eq!(colors.lists()[color as usize][place as usize], i as u32);
+        use std::collections::HashSet;
+        let mut held: [HashSet<u32>; COLOR_COUNT] = std::array::from_fn(|_| HashSet::new());
+        for (i, contact) in self.contacts.iter().enumerate() {
+            let (color, holds) = contact.color();
+            let awake = i < self.contacts.awake_len();
+            assert_eq!(
+                color != NO_COLOR,
+                contact.is_touching() && awake,
+                "contact {i}"
+            );
+            let part = match (awake, color) {
+                (false, _) => ASLEEP,
+                (true, NO_COLOR) => NOT_TOUCHING,
+                (true, color) => color_part(color),
+            };
+            assert_eq!(self.contacts.part_of(i), part, "contact {i}'s part");
+            if color == NO_COLOR || color == OVERFLOW {
+                continue;
+            }
+            for (body, holds) in [(contact.body_a(), holds[0]), (contact.body_b(), holds[1])] {
+                let dynamic = self.bodies.get(body).unwrap().is_dynamic();
+                assert_eq!(holds, dynamic, "contact {i} holds its dynamic bodies");
+                if holds {
+                    let fresh = held[color as usize].insert(body.index());
+                    assert!(fresh, "body twice in colour {color}");
+                }
             }
         }
-        for (color, list) in colors.lists().iter().enumerate() {
-            let mut held = std::collections::HashSet::new();
-            for (place, &i) in list.iter().enumerate() {
-                let contact = contacts[i as usize];
-                let (c, p, holds) = contact.color();
-                assert_eq!((c as usize, p as usize), (color, place));
-                if c == OVERFLOW {
-                    continue;
-                }
-                for (body, holds) in [(contact.body_a(), holds[0]), (contact.body_b(), holds[1])] {
-                    let dynamic = self.bodies.get(body).unwrap().is_dynamic();
-                    assert_eq!(holds, dynamic, "contact {i} holds its dynamic bodies");
-                    if holds {
-                        assert!(held.insert(body.index()), "body twice in colour {color}");
-                    }
-                }
-            }
-            if color < COLOR_COUNT {
-                for slot in 0..self
-                    .bodies
-                    .handles()
-                    .iter()
-                    .map(|h| h.index() + 1)
-                    .max()
-                    .unwrap_or(0)
-                {
-                    assert_eq!(colors.holds(color as u8, slot), held.contains(&slot));
-                }
+        let slots = self.bodies.handles().iter().map(|h| h.index() + 1).max();
+        let colors = self.contacts.colors();
+        for (color, held) in held.iter().enumerate() {
+            for slot in 0..slots.unwrap_or(0) {
+                assert_eq!(colors.holds(color as u8, slot), held.contains(&slot));
             }
         }
     }

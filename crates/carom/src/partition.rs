@@ -1,0 +1,122 @@
+//! One dense array kept in consecutive parts, so each part is a slice: the solver sets of
+//! bodies, colliders and contacts, and the touching contacts' graph colours (see
+//! `world::solver_sets` and `collision::contact_layout`).
+//!
+//! An item changes part by trading places with the first or last item of each part it crosses,
+//! so a move costs one swap per non-empty part crossed, whatever the size of the array. New
+//! items are pushed onto the array's end, into the last part, and removed from there.
+
+use std::ops::Range;
+
+/// Where the parts of one array end: part `p` is `[ends[p - 1], ends[p])` (from 0 for the
+/// first), and the last part, `CUTS`, runs from `ends[CUTS - 1]` to the array's end.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Partition<const CUTS: usize> {
+    ends: [usize; CUTS],
+}
+
+impl<const CUTS: usize> Default for Partition<CUTS> {
+    fn default() -> Self {
+        Partition { ends: [0; CUTS] }
+    }
+}
+
+impl<const CUTS: usize> Partition<CUTS> {
+    /// The part of the item at `index`.
+    #[inline]
+    pub fn part_of(&self, index: usize) -> usize {
+        self.ends.partition_point(|&end| end <= index)
+    }
+
+    /// Where part `part` begins.
+    #[inline]
+    pub fn start(&self, part: usize) -> usize {
+        if part == 0 { 0 } else { self.ends[part - 1] }
+    }
+
+    /// The indices of part `part`, which must not be the last (whose end is the array's).
+    #[inline]
+    pub fn range(&self, part: usize) -> Range<usize> {
+        self.start(part)..self.ends[part]
+    }
+
+    /// Moves the item at `index` into part `to` by swapping it across each boundary on the way
+    /// (`swap(i, j)` swaps two items of the array); returns its new index. Only the items at
+    /// the boundaries it crosses move.
+    pub fn move_item(
+        &mut self,
+        mut index: usize,
+        to: usize,
+        mut swap: impl FnMut(usize, usize),
+    ) -> usize {
+        let mut part = self.part_of(index);
+        while part < to {
+            // Down: trade places with the last of this part, which then ends before it.
+            let last = self.ends[part] - 1;
+            if index != last {
+                swap(index, last);
+            }
+            self.ends[part] -= 1;
+            index = last;
+            part += 1;
+        }
+        while part > to {
+            // Up: trade places with the first of this part, which then begins after it.
+            let first = self.ends[part - 1];
+            if index != first {
+                swap(index, first);
+            }
+            self.ends[part - 1] += 1;
+            index = first;
+            part -= 1;
+        }
+        index
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Items labelled by their part, moved around at random among five parts: the parts stay
+    /// contiguous, each item lands in the part asked for, and nothing is lost.
+    #[test]
+    fn moves_keep_the_parts_contiguous() {
+        const PARTS: usize = 5;
+        let mut items: Vec<(u32, usize)> = Vec::new();
+        let mut partition = Partition::<{ PARTS - 1 }>::default();
+        let mut seed: u32 = 12345;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            seed >> 8
+        };
+        for label in 0..300 {
+            // New items arrive at the end (the last part), then go where they belong.
+            let to = next() as usize % PARTS;
+            items.push((label, PARTS - 1));
+            let at = partition.move_item(items.len() - 1, to, |i, j| items.swap(i, j));
+            items[at].1 = to;
+            // Some item changes part, and now and then the last item leaves.
+            let pick = next() as usize % items.len();
+            let to = next() as usize % PARTS;
+            let at = partition.move_item(pick, to, |i, j| items.swap(i, j));
+            items[at].1 = to;
+            if next() % 7 == 0 {
+                let pick = next() as usize % items.len();
+                let at = partition.move_item(pick, PARTS - 1, |i, j| items.swap(i, j));
+                items.swap_remove(at);
+            }
+            for (i, &(_, part)) in items.iter().enumerate() {
+                assert_eq!(partition.part_of(i), part, "item {i} after {label} inserts");
+            }
+            for part in 0..PARTS - 1 {
+                let range = partition.range(part);
+                assert!(items[range].iter().all(|&(_, p)| p == part));
+            }
+        }
+        let mut labels: Vec<u32> = items.iter().map(|&(l, _)| l).collect();
+        labels.sort_unstable();
+        labels.dedup();
+        assert_eq!(labels.len(), items.len());
+    }
+}
