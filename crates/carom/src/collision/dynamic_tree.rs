@@ -112,8 +112,8 @@ impl DynamicTree {
         self.insert_leaf(proxy);
     }
 
-    /// The box stored for a leaf.
-    #[inline]
+    /// The box stored for a leaf, for tests.
+    #[cfg(test)]
     pub fn fat_aabb(&self, proxy: u32) -> Aabb {
         self.nodes[proxy as usize].aabb
     }
