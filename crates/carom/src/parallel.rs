@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use std::ops::AddAssign;
 
 /// True when `items` are worth splitting into tasks of `per_task`.
-fn worth_sharing(items: usize, per_task: usize) -> bool {
+pub(crate) fn worth_sharing(items: usize, per_task: usize) -> bool {
     items >= 2 * per_task && rayon::current_num_threads() > 1
 }
 

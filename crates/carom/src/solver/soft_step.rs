@@ -425,6 +425,35 @@ mod tests {
         }
     }
 
+    /// Impulses stored on several threads, a colour's bundles split in halves down to one
+    /// bundle, land in the same contacts as stored on one thread, each lane's in its own.
+    #[test]
+    fn impulses_stored_in_halves_land_in_their_own_contacts() {
+        let world = pile();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        for width in widths() {
+            let (mut states, _, mut wide, bias) = substep(&world, 1.0 / 240.0, width);
+            solve_wide(&mut states, &mut wide, &bias);
+            let awake = world.solver_inputs().2;
+            let (mut whole, mut halves) = (awake.to_vec(), awake.to_vec());
+            wide.store_in_tasks_of(&mut whole, usize::MAX / 2);
+            pool.install(|| wide.store_in_tasks_of(&mut halves, 1));
+            let impulses = wide.impulses();
+            assert!(impulses.len() > 30, "a pile has many contacts");
+            for (&index, points) in impulses.iter().filter(|(i, _)| **i != u32::MAX as usize) {
+                for stored in [&whole, &halves] {
+                    let manifold = stored[index].manifold();
+                    for (p, q) in manifold.points().iter().zip(points) {
+                        assert_eq!((p.normal_impulse, p.tangent_impulse), (q.0, q.1));
+                    }
+                }
+            }
+        }
+    }
+
     /// Static and kinematic bodies are only read by the wide solver: even an impulse gone bad
     /// (NaN) in a lane with the ground or the paddle leaves their velocities as they were.
     #[test]

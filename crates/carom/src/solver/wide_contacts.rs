@@ -25,7 +25,7 @@ use crate::constants::{
 };
 use crate::dynamics::body::Body;
 use crate::math::Real;
-use crate::parallel::for_each_chunk_with;
+use crate::parallel::{for_each_chunk_with, worth_sharing};
 use crate::stats::Work;
 use std::ops::Range;
 use std::sync::Mutex;
@@ -388,9 +388,18 @@ impl WideContacts {
         })
     }
 
-    /// Copies the impulses back into the contacts' manifolds, for the next step's warm start.
+    /// Copies the impulses back into the contacts' manifolds, for the next step's warm start
+    /// (on all threads when there are enough).
     pub fn store(&self, contacts: &mut [Contact]) {
-        with_bundles!(&self.bundles, |bundles| store_bundles(bundles, contacts));
+        self.store_in_tasks_of(contacts, ITEMS_PER_TASK / self.width());
+    }
+
+    /// [`WideContacts::store`] in tasks of at least `per_task` bundles.
+    pub(super) fn store_in_tasks_of(&self, contacts: &mut [Contact], per_task: usize) {
+        let colors = &self.colors;
+        with_bundles!(&self.bundles, |bundles| store_bundles(
+            bundles, colors, contacts, per_task
+        ));
     }
 }
 
@@ -750,15 +759,56 @@ impl<L: Lanes> Kernel for PassBlock<'_, L> {
     }
 }
 
-/// Copies every bundle's impulses into its contacts.
-fn store_bundles<L: Lanes>(bundles: &[Bundle<L>], contacts: &mut [Contact]) {
-    L::run(Store { bundles, contacts });
+/// Copies every bundle's impulses into its contacts, colour by colour (`colors` are each
+/// colour's bundles). A colour's bundles hold its contacts in rising order, so halves of them
+/// write disjoint halves of the contacts, which threads then share.
+fn store_bundles<L: Lanes>(
+    bundles: &[Bundle<L>],
+    colors: &[Range<usize>],
+    contacts: &mut [Contact],
+    per_task: usize,
+) {
+    for range in colors {
+        let bundles = &bundles[range.clone()];
+        let Some(first) = bundles.first() else {
+            continue;
+        };
+        let start = first.first_contact();
+        store_halves(bundles, &mut contacts[start..], start, per_task);
+    }
 }
 
-/// Copies bundles' impulses into their contacts.
+/// Stores `bundles` into `contacts`, which begin at contact `offset`: in halves on two threads
+/// while the halves are at least `per_task` bundles.
+fn store_halves<L: Lanes>(
+    bundles: &[Bundle<L>],
+    contacts: &mut [Contact],
+    offset: usize,
+    per_task: usize,
+) {
+    if !worth_sharing(bundles.len(), per_task) {
+        L::run(Store {
+            bundles,
+            contacts,
+            offset,
+        });
+        return;
+    }
+    let (low, high) = bundles.split_at(bundles.len() / 2);
+    let at = high[0].first_contact() - offset;
+    debug_assert!(low.iter().all(|b| b.last_contact() < offset + at));
+    let (low_contacts, high_contacts) = contacts.split_at_mut(at);
+    rayon::join(
+        || store_halves(low, low_contacts, offset, per_task),
+        || store_halves(high, high_contacts, offset + at, per_task),
+    );
+}
+
+/// Copies bundles' impulses into their contacts, which begin at contact `offset`.
 struct Store<'a, L: Lanes> {
     bundles: &'a [Bundle<L>],
     contacts: &'a mut [Contact],
+    offset: usize,
 }
 
 impl<L: Lanes> Kernel for Store<'_, L> {
@@ -767,7 +817,7 @@ impl<L: Lanes> Kernel for Store<'_, L> {
     #[inline(always)]
     fn run(self) {
         for bundle in self.bundles {
-            bundle.store(self.contacts);
+            bundle.store(self.contacts, self.offset);
         }
     }
 }
@@ -1068,16 +1118,36 @@ impl<L: Lanes> Bundle<L> {
         b.w += self.inv_inertia_b * (point.anchor_b_x * p_y - point.anchor_b_y * p_x);
     }
 
-    /// Copies the lanes' impulses into their contacts' manifolds.
+    /// The first lane's contact (every prepared bundle has one).
+    fn first_contact(&self) -> usize {
+        self.contacts.as_ref()[0] as usize
+    }
+
+    /// The last filled lane's contact.
+    fn last_contact(&self) -> usize {
+        let lanes = self.contacts.as_ref().iter();
+        lanes
+            .filter(|&&i| i != u32::MAX)
+            .max()
+            .copied()
+            .unwrap_or(0) as usize
+    }
+
+    /// Copies the lanes' impulses into their contacts' manifolds (`contacts` begin at contact
+    /// `offset`).
     #[inline(always)]
-    fn store(&self, contacts: &mut [Contact]) {
+    fn store(&self, contacts: &mut [Contact], offset: usize) {
         let mut impulses = [[[0.0; 8]; 2]; 2];
         for (j, point) in self.points.iter().enumerate() {
             point.normal_impulse.write_to(&mut impulses[j][0]);
             point.tangent_impulse.write_to(&mut impulses[j][1]);
         }
         for (lane, &index) in self.contacts.as_ref().iter().enumerate() {
-            let Some(contact) = contacts.get_mut(index as usize) else {
+            // Empty lanes name no contact (`u32::MAX`).
+            let Some(contact) = (index as usize)
+                .checked_sub(offset)
+                .and_then(|i| contacts.get_mut(i))
+            else {
                 continue;
             };
             for (j, point) in contact.manifold_mut().points_mut().iter_mut().enumerate() {
