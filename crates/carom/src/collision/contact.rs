@@ -46,6 +46,10 @@ pub struct Contact {
     /// How many contacts the set had made before it: the solvers that take contacts one by
     /// one take them in this order.
     serial: u64,
+    /// Where its bodies are among all bodies (dense indices), as the narrowphase found them:
+    /// current for the awake contacts from the narrowphase to the end of the step, so the
+    /// solver looks nothing up (Box2D caches them the same way).
+    body_indices: [u32; 2],
 }
 
 impl Contact {
@@ -108,6 +112,13 @@ impl Contact {
     /// by one, oldest first.
     pub(crate) fn serial(&self) -> u64 {
         self.serial
+    }
+
+    /// Where its bodies are among all bodies (dense indices), for the solver: current from the
+    /// narrowphase to the end of a step.
+    #[inline]
+    pub(crate) fn body_indices(&self) -> (usize, usize) {
+        (self.body_indices[0] as usize, self.body_indices[1] as usize)
     }
 
     /// Its colour and which bodies the colour holds, for tests.
@@ -279,6 +290,7 @@ impl ContactSet {
             color: NO_COLOR,
             color_holds: [false; 2],
             serial: self.made,
+            body_indices: [u32::MAX; 2],
         });
         self.made += 1;
         // New contacts arrive in the sleeping part, the last.
@@ -639,8 +651,17 @@ impl ContactSet {
     }
 
     /// The awake contacts (a body of the pair is awake): the ones a step visits.
+    #[cfg(test)]
     pub(crate) fn awake(&self) -> &[Contact] {
         &self.contacts[self.awake_range()]
+    }
+
+    /// Finds again where the awake contacts' bodies are among all bodies (`dense_index`), after
+    /// bodies woke between the narrowphase and the solver: the woken contacts were not
+    /// refreshed, and their bodies moved.
+    pub(crate) fn find_body_indices(&mut self, dense_index: impl Fn(BodyHandle) -> usize) {
+        let awake = self.awake_range();
+        find_body_indices(&mut self.contacts[awake], dense_index);
     }
 
     /// Takes the bodies of the contacts that started and stopped touching since the last call;
@@ -696,6 +717,16 @@ impl ContactSet {
     }
 }
 
+/// Finds where each of `contacts`' bodies is among all bodies (`dense_index`).
+pub(crate) fn find_body_indices(
+    contacts: &mut [Contact],
+    dense_index: impl Fn(BodyHandle) -> usize,
+) {
+    for contact in contacts {
+        contact.body_indices = [contact.body_a, contact.body_b].map(|b| dense_index(b) as u32);
+    }
+}
+
 /// True when `body` can disturb a sleeping body it touches: it is awake and dynamic, or
 /// kinematic and moving. A still kinematic platform lets what rests on it sleep.
 fn stirs(body: &Body) -> bool {
@@ -740,6 +771,7 @@ fn refresh_manifold(
     ) else {
         return Refresh::Gone;
     };
+    contact.body_indices = [shape_a.body_index(), shape_b.body_index()].map(|i| i as u32);
     let all = bodies.as_slice();
     let (a, b) = (&all[shape_a.body_index()], &all[shape_b.body_index()]);
     if !a.moves() && !b.moves() {

@@ -318,8 +318,8 @@ struct ColorCheck<'a> {
     /// The awake bodies' masses (which are dynamic), and where they are among all bodies.
     masses: &'a [BodyMass],
     awake: Range<usize>,
-    /// The dense indices of each awake contact's bodies.
-    dense: &'a [(usize, usize)],
+    /// The awake contacts (which know where their bodies are).
+    contacts: &'a [Contact],
     claims: &'a mut Vec<u8>,
 }
 
@@ -327,7 +327,7 @@ impl ColorCheck<'_> {
     /// Claims contact `contact`'s moving bodies for colour `color`; false (claiming nothing)
     /// if the colour holds one already.
     fn claim(&mut self, contact: usize, color: usize) -> bool {
-        let (a, b) = self.dense[contact];
+        let (a, b) = self.contacts[contact].body_indices();
         let mark = color as u8 + 1;
         let moving = |index: usize| {
             let i = index.checked_sub(self.awake.start)?;
@@ -391,9 +391,8 @@ pub(crate) struct AwakeSet<'a> {
     /// Every body; the awake ones are `bodies[awake]`.
     pub bodies: &'a mut [Body],
     pub awake: Range<usize>,
-    /// The awake contacts, and the dense indices of each one's bodies.
+    /// The awake contacts, which know where their bodies are.
     pub contacts: &'a mut [Contact],
-    pub dense: &'a [(usize, usize)],
     /// Where each colour's contacts (then the overflow's) are among the awake contacts.
     pub colors: &'a ColorRanges,
 }
@@ -420,9 +419,16 @@ pub(crate) fn step(
         bodies,
         awake,
         contacts,
-        dense,
         colors,
     } = set;
+    debug_assert!(
+        contacts.iter().all(|c| {
+            let (a, b) = c.body_indices();
+            let is = |index: usize, body| bodies.get(index).is_some_and(|x| x.handle() == body);
+            is(a, c.body_a()) && is(b, c.body_b())
+        }),
+        "every awake contact knows where its bodies are"
+    );
     let Workspace {
         states,
         masses,
@@ -448,7 +454,7 @@ pub(crate) fn step(
     let check = ColorCheck {
         masses,
         awake: awake.clone(),
-        dense,
+        contacts,
         claims,
     };
     order_constraints(
@@ -466,7 +472,6 @@ pub(crate) fn step(
         states,
         masses,
         contacts,
-        dense,
         order,
         graph,
         soft: bias.soft,

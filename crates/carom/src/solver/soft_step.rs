@@ -311,7 +311,7 @@ mod tests {
         h: Real,
         width: Width,
     ) -> (Vec<BodyState>, Vec<ContactConstraint>, WideContacts, Bias) {
-        let (bodies, awake, contacts, dense, colors) = world.solver_inputs();
+        let (bodies, awake, contacts, colors) = world.solver_inputs();
         let mut states: Vec<BodyState> = bodies[awake.clone()]
             .iter()
             .map(|body| {
@@ -331,11 +331,11 @@ mod tests {
         let check = ColorCheck {
             masses: &masses,
             awake: awake.clone(),
-            dense: &dense,
+            contacts: &contacts,
             claims: &mut claims,
         };
         order_constraints(
-            contacts,
+            &contacts,
             &colors,
             Some(check),
             &mut order,
@@ -347,8 +347,7 @@ mod tests {
             awake,
             states: &states,
             masses: &masses,
-            contacts,
-            dense: &dense,
+            contacts: &contacts,
             order: &order,
             graph: &graph,
             soft: bias.soft,
@@ -470,7 +469,7 @@ mod tests {
             }
             assert!(poisoned >= 2);
             solve_wide(&mut states, &mut wide, &bias);
-            let (bodies, awake, _, _, _) = world.solver_inputs();
+            let (bodies, awake, _, _) = world.solver_inputs();
             // The awake set's kinematic paddle, and the spare state the static ground reads.
             let kinds = bodies[awake].iter().map(|b| Some(b.kind())).chain([None]);
             let mut fixed = 0;

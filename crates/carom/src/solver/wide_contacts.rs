@@ -237,9 +237,8 @@ pub(crate) struct BundleInputs<'a> {
     /// The awake bodies' states and masses, then the spare state's (a static body's).
     pub states: &'a [BodyState],
     pub masses: &'a [BodyMass],
-    /// The awake contacts and the dense indices of each one's bodies.
+    /// The awake contacts, which know where their bodies are.
     pub contacts: &'a [Contact],
-    pub dense: &'a [(usize, usize)],
     /// The solve order (contact indices) and its colours.
     pub order: &'a [usize],
     pub graph: &'a ContactGraph,
@@ -274,7 +273,7 @@ impl BundleInputs<'_> {
     pub fn constraint(&self, index: usize) -> ContactConstraint {
         let contact = &self.contacts[index];
         let material = (contact.friction(), contact.restitution());
-        let (a, b) = self.dense[index];
+        let (a, b) = contact.body_indices();
         let (a, b) = (self.solver_body(a), self.solver_body(b));
         let mut constraint = ContactConstraint::new(index, contact.manifold(), material, a, b);
         if !self.warm_starting {
@@ -881,7 +880,7 @@ impl<L: Lanes> Bundle<L> {
             };
             let contact = &inputs.contacts[index];
             let manifold = contact.manifold();
-            let (a, b) = inputs.dense[index];
+            let (a, b) = contact.body_indices();
             let (a, b) = (inputs.solver_body(a), inputs.solver_body(b));
             self.contacts.as_mut()[lane] = index as u32;
             self.a.as_mut()[lane] = a.index as u32;

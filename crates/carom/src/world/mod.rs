@@ -77,8 +77,6 @@ pub struct World {
 struct StepScratch {
     /// New pairs from the broadphase.
     pairs: Vec<(ColliderHandle, ColliderHandle)>,
-    /// Dense indices of every awake contact's bodies.
-    dense: Vec<(usize, usize)>,
     /// Awake bodies' poses at the start of the step (for continuous collision).
     starts: Vec<Pose>,
     /// Sleeping islands a moving body touched.
@@ -544,11 +542,7 @@ impl World {
             self.poses(&mut scratch.starts);
         }
         let solved = timed(&mut times.solve, || {
-            let finding = Instant::now();
-            self.contact_bodies(&mut scratch.dense);
-            let finding = finding.elapsed();
-            let mut report = self.solve(dt, &scratch.dense);
-            report.prepare += finding;
+            let report = self.solve(dt);
             self.place_moved_colliders();
             report
         });
@@ -600,6 +594,14 @@ impl World {
         for &island in wake.iter() {
             self.wake_island(island);
         }
+        if !wake.is_empty() {
+            let bodies = &self.bodies;
+            self.contacts.find_body_indices(|body| {
+                bodies
+                    .dense_index(body)
+                    .expect("contacts only join live bodies")
+            });
+        }
         // Islands join as their contacts start touching (after the waking, so a sleeping
         // island that is touched joins awake).
         self.apply_touch_changes();
@@ -628,26 +630,9 @@ impl World {
         poses.extend(self.awake_bodies().iter().map(Pose::of));
     }
 
-    /// The dense indices of every awake contact's two bodies, in contact order, into `dense`.
-    fn contact_bodies(&self, dense: &mut Vec<(usize, usize)>) {
-        let bodies = &self.bodies;
-        let index = |h| {
-            bodies
-                .dense_index(h)
-                .expect("contacts only join live bodies")
-        };
-        dense.clear();
-        dense.extend(
-            self.contacts
-                .awake()
-                .iter()
-                .map(|c| (index(c.body_a()), index(c.body_b()))),
-        );
-    }
-
     /// Runs the configured solver over every moving body and touching contact; returns how
     /// many contact points it solved and the work its effects did.
-    fn solve(&mut self, dt: Real, dense: &[(usize, usize)]) -> solver::StepReport {
+    fn solve(&mut self, dt: Real) -> solver::StepReport {
         let effects = self.settings.effects;
         let environment = Environment {
             gravity: effects
@@ -662,7 +647,6 @@ impl World {
             bodies: self.bodies.as_mut_slice(),
             awake: self.body_sets.awake(),
             contacts,
-            dense,
             colors: &colors,
         };
         solver::step(
@@ -854,14 +838,13 @@ fn timed<T>(slot: &mut std::time::Duration, stage: impl FnOnce() -> T) -> T {
     result
 }
 
-/// What the solver starts a step from: every body, the awake set's range, the awake contacts,
-/// their bodies' dense indices and their colours.
+/// What the solver starts a step from: every body, the awake set's range, the awake contacts
+/// (which know where their bodies are now) and their colours.
 #[cfg(test)]
 pub(crate) type SolverInputs<'a> = (
     &'a [Body],
     std::ops::Range<usize>,
-    &'a [Contact],
-    Vec<(usize, usize)>,
+    Vec<Contact>,
     crate::collision::contact_layout::ColorRanges,
 );
 
@@ -875,11 +858,18 @@ impl World {
 
     /// What the solver starts a step from.
     pub(crate) fn solver_inputs(&self) -> SolverInputs<'_> {
-        let mut dense = Vec::new();
-        self.contact_bodies(&mut dense);
+        let mut contacts = self.contacts.awake().to_vec();
+        let bodies = &self.bodies;
+        crate::collision::contact::find_body_indices(&mut contacts, |body| {
+            bodies.dense_index(body).unwrap()
+        });
         let awake = self.body_sets.awake();
-        let (contacts, colors) = (self.contacts.awake(), self.contacts.color_ranges());
-        (self.bodies.as_slice(), awake, contacts, dense, colors)
+        (
+            self.bodies.as_slice(),
+            awake,
+            contacts,
+            self.contacts.color_ranges(),
+        )
     }
 }
 
