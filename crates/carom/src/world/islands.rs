@@ -47,14 +47,18 @@ impl World {
         self.append_to_island(index, id);
     }
 
-    /// Gives the body at `index`, just made dynamic, an island, joined with those of the
-    /// dynamic bodies it touches.
+    /// Gives the body at `index`, just made dynamic (and awake), an island, joined with those
+    /// of the dynamic bodies it touches, which wake: an island is awake or asleep as a whole.
     pub(crate) fn join_touching_islands(&mut self, index: usize) {
         self.create_island_for(index);
         let handle = self.bodies.handles()[index];
         let mut partners = std::mem::take(&mut self.island_scratch.partners);
         self.contacts.touching_partners(handle, &mut partners);
         for &partner in &partners {
+            let body = &self.bodies.as_slice()[self.handle_index(partner)];
+            if let (true, Some(island)) = (body.is_sleeping(), body.island()) {
+                self.wake_island(island);
+            }
             self.link_islands(handle, partner);
         }
         self.island_scratch.partners = partners;

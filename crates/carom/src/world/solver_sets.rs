@@ -503,6 +503,31 @@ mod tests {
         assert!(!world.body(body).unwrap().is_sleeping());
     }
 
+    /// A static block turned dynamic under a sleeping box joins the box's island and wakes
+    /// it: an island is awake or asleep as a whole.
+    #[test]
+    fn a_support_turned_dynamic_wakes_what_slept_on_it() {
+        let mut world = World::new();
+        world
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)).position(vec2(0.0, -0.5)))
+            .unwrap();
+        let block = world
+            .add_body(BodyDef::static_body(Shape::rect(0.5, 0.5)).position(vec2(0.0, 0.5)))
+            .unwrap();
+        let top = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 1.5)))
+            .unwrap();
+        for _ in 0..120 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        assert!(world.body(top).unwrap().is_sleeping());
+        world.set_body_kind(block, BodyKind::Dynamic).unwrap();
+        world.check_sets();
+        let (block, top) = (world.body(block).unwrap(), world.body(top).unwrap());
+        assert!(!top.is_sleeping());
+        assert_eq!(block.island(), top.island());
+    }
+
     /// Removing what a sleeping stack rests on wakes the stack, so it falls.
     #[test]
     fn removing_a_support_wakes_what_slept_on_it() {
