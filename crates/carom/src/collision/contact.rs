@@ -247,8 +247,9 @@ pub(crate) struct ManifoldOptions {
     /// How far ahead, s, a face point may look: it is kept while the pair could close its gap
     /// within that time at their present speeds (0 keeps points within `margin` only).
     pub prediction: Real,
-    /// Carry a manifold along while its pair barely moves, instead of building it again.
-    pub recycling: bool,
+    /// Carry a manifold along while its pair has moved less than this relative to each other
+    /// since it was built, m, instead of building it again (`None`: build every manifold).
+    pub recycling: Option<Real>,
 }
 
 impl ContactSet {
@@ -794,7 +795,8 @@ fn refresh_manifold(
     // A body stopped by continuous collision barely moved, but only because it was put back:
     // its manifold may lack the points its motion was about to meet.
     let stopped = a.had_time_of_impact() || b.had_time_of_impact();
-    if recycling && polygons && !stopped && contact.frame.carry(&mut contact.manifold, a, b) {
+    let carried = |distance| contact.frame.carry(&mut contact.manifold, a, b, distance);
+    if polygons && !stopped && recycling.is_some_and(carried) {
         return updated(contact, a, b);
     }
     let margins = Margins {

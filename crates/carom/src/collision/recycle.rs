@@ -10,9 +10,7 @@
 //! to nothing in the narrowphase.
 
 use crate::collision::manifold::Manifold;
-use crate::constants::{
-    RECYCLE_COS_ANGLE, RECYCLE_DISTANCE, RECYCLE_SIZE_FRACTION, SPECULATIVE_DISTANCE,
-};
+use crate::constants::{RECYCLE_COS_ANGLE, RECYCLE_SIZE_FRACTION, SPECULATIVE_DISTANCE};
 use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::Collider;
 use crate::math::{Real, Rot, Vec2};
@@ -60,9 +58,11 @@ impl ManifoldFrame {
         }
     }
 
-    /// Carries `manifold` along with bodies `a` and `b`, in place, if they have moved little
-    /// enough since it was built; false (leaving it as it was) if it must be built again.
-    pub fn carry(&self, manifold: &mut Manifold, a: &Body, b: &Body) -> bool {
+    /// Carries `manifold` along with bodies `a` and `b`, in place, if they have moved less than
+    /// `distance` relative to each other since it was built (less for small bodies, and the
+    /// speculative distance for a pair apart); false (leaving it as it was) if it must be
+    /// built again.
+    pub fn carry(&self, manifold: &mut Manifold, a: &Body, b: &Body, distance: Real) -> bool {
         if !self.valid {
             return false;
         }
@@ -87,7 +87,7 @@ impl ManifoldFrame {
             .filter(|(body, _)| moving(body))
             .map(|(_, extent)| extent)
             .fold(Real::INFINITY, Real::min);
-        let mut tolerance = RECYCLE_DISTANCE.min(RECYCLE_SIZE_FRACTION * smallest);
+        let mut tolerance = distance.min(RECYCLE_SIZE_FRACTION * smallest);
         if manifold.is_empty() {
             tolerance = tolerance.min(SPECULATIVE_DISTANCE);
         }
@@ -110,6 +110,7 @@ impl ManifoldFrame {
 mod tests {
     use super::*;
     use crate::collision::manifold;
+    use crate::constants::{RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC};
     use crate::dynamics::body::BodyDef;
     use crate::geometry::shape::Shape;
     use crate::math::vec2;
@@ -158,7 +159,8 @@ mod tests {
         }
         let (a, b) = (parts(&world, ground), parts(&world, block));
         let mut carried = built;
-        assert!(frame.carry(&mut carried, a.0, b.0), "small motion recycles");
+        let recycled = frame.carry(&mut carried, a.0, b.0, RECYCLE_DISTANCE_CLASSIC);
+        assert!(recycled, "small motion recycles");
         let rebuilt = manifold::collide(a.1.world_shape(), b.1.world_shape(), SPECULATIVE_DISTANCE);
         assert_eq!(carried.points().len(), rebuilt.points().len());
         for (c, r) in carried.points().iter().zip(rebuilt.points()) {
@@ -178,25 +180,32 @@ mod tests {
         let (mut world, ground, block) = resting_pair(0.0);
         let (built, frame) = built(&world, ground, block);
         let (a, b) = (parts(&world, ground), parts(&world, block));
-        assert!(!ManifoldFrame::default().carry(&mut built.clone(), a.0, b.0));
-        let mut moved = |position, angle| {
+        let never = ManifoldFrame::default().carry(&mut built.clone(), a.0, b.0, RECYCLE_DISTANCE);
+        assert!(!never, "a new contact has nothing to carry");
+        let mut moved_within = |distance, position, angle| {
             let mut body = world.body_mut(block).unwrap();
             body.set_position(position).unwrap();
             body.set_angle(angle).unwrap();
             let (a, b) = (parts(&world, ground), parts(&world, block));
             let mut carried = built;
-            let recycled = frame.carry(&mut carried, a.0, b.0);
+            let recycled = frame.carry(&mut carried, a.0, b.0, distance);
             if !recycled {
                 assert_eq!(carried, built, "left as it was");
             }
             recycled
         };
+        let mut moved = |position, angle| moved_within(RECYCLE_DISTANCE_CLASSIC, position, angle);
         assert!(moved(vec2(0.3, 1.008), 0.0), "8 mm is within 2 slop");
         assert!(!moved(vec2(0.3, 1.012), 0.0), "12 mm is too far");
         // A turn of 0.01 rad carries the block's corners 7 mm: within.
         assert!(moved(vec2(0.3, 1.0), 0.01));
         // 0.02 rad carries them 14 mm: too far, though the centre stayed.
         assert!(!moved(vec2(0.3, 1.0), 0.02));
+        // Soft step's distance, Box2D's 10 slop, is capped at a tenth of the smaller box's
+        // inradius (the block's 0.5 m): 4 cm is within, 6 cm too far.
+        let mut moved = |position, angle| moved_within(RECYCLE_DISTANCE, position, angle);
+        assert!(moved(vec2(0.3, 1.04), 0.0));
+        assert!(!moved(vec2(0.3, 1.06), 0.0));
     }
 
     #[test]
@@ -211,7 +220,7 @@ mod tests {
                 .set_position(vec2(0.3, 1.05 - by))
                 .unwrap();
             let (a, b) = (parts(&world, ground), parts(&world, block));
-            frame.carry(&mut built.clone(), a.0, b.0)
+            frame.carry(&mut built.clone(), a.0, b.0, RECYCLE_DISTANCE)
         };
         // 8 mm closer, still 4 cm apart: nothing can have come within the margin.
         assert!(closer(0.008));

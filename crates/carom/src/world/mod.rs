@@ -10,7 +10,9 @@ pub(crate) mod solver_sets;
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::contact::{Contact, ContactEvent, ContactSet, ManifoldOptions};
 use crate::collision::continuous::{self, Pose};
-use crate::constants::{CONTACTS_PER_TASK, ITEMS_PER_TASK, LINEAR_SLOP};
+use crate::constants::{
+    CONTACTS_PER_TASK, ITEMS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
+};
 use crate::dynamics::body::{Body, BodyDef, BodyHandle, BodyKind};
 use crate::dynamics::collider::{
     Collider, ColliderDef, ColliderHandle, colliders_aabb, place_colliders,
@@ -23,7 +25,7 @@ use crate::geometry::ray::Ray;
 use crate::handle_map::HandleMap;
 use crate::math::{Real, Vec2};
 use crate::parallel::{for_each_mut, map_zip_into};
-use crate::solver::{self, Environment, SolverParams};
+use crate::solver::{self, Environment, SolverKind, SolverParams};
 use crate::stats::StepStats;
 use crate::world::body_mut::BodyMut;
 use crate::world::effects::{Effect, Effects};
@@ -585,7 +587,13 @@ impl World {
             ManifoldOptions {
                 margin: self.settings.speculative_distance,
                 prediction,
-                recycling: self.settings.contact_recycling,
+                recycling: self.settings.contact_recycling.then(|| {
+                    if self.settings.solver.effective_kind() == SolverKind::SoftStep {
+                        RECYCLE_DISTANCE
+                    } else {
+                        RECYCLE_DISTANCE_CLASSIC
+                    }
+                }),
             },
             wake,
         );
