@@ -35,14 +35,9 @@ pub(super) fn solve(
     let substeps = params.substeps.max(1);
     let h = dt / substeps as Real;
     let bias_friction = environment.friction && params.friction_in_bias_pass;
-    plan_stages(
-        plan,
-        params,
-        environment,
-        bias,
-        wide.color_count(),
-        !constraints.is_empty(),
-    );
+    let bouncy = wide.bouncy() || constraints.iter().any(|c| c.restitution > 0.0);
+    let shape = (wide.color_count(), !constraints.is_empty(), bouncy);
+    plan_stages(plan, params, environment, bias, shape);
     let inputs = StageInputs {
         bodies,
         environment,
@@ -60,14 +55,14 @@ pub(super) fn solve(
 }
 
 /// The stages of one step, into `plan`: each contact pass over the `colors` colours in turn,
-/// then over the overflow if it has constraints.
+/// then over the overflow if it has constraints; the restitution pass only if `bouncy` (some
+/// contact has restitution: the pass does nothing for the others).
 fn plan_stages(
     plan: &mut Vec<Stage>,
     params: &SolverParams,
     environment: Environment,
     bias: &Bias,
-    colors: usize,
-    overflow: bool,
+    (colors, overflow, bouncy): (usize, bool, bool),
 ) {
     plan.clear();
     let pass = |plan: &mut Vec<Stage>, pass: Pass| {
@@ -88,7 +83,7 @@ fn plan_stages(
             pass(plan, Pass::Solve(bias.pass(false), environment.friction));
         }
     }
-    if environment.restitution {
+    if environment.restitution && bouncy {
         pass(plan, Pass::Restitution(params.restitution_threshold));
     }
 }

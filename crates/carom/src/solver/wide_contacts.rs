@@ -214,6 +214,8 @@ pub(crate) struct WideContacts {
     /// Awake contacts (indices) solved one by one after the colours: those no colour was free
     /// for.
     pub overflow: Vec<usize>,
+    /// Some bundle's contact has restitution (else the restitution pass has nothing to do).
+    bouncy: bool,
 }
 
 impl Default for WideContacts {
@@ -302,6 +304,7 @@ impl WideContacts {
             colors: Vec::new(),
             slots: Vec::new(),
             overflow: Vec::new(),
+            bouncy: false,
         }
     }
 
@@ -316,6 +319,7 @@ impl WideContacts {
         self.colors.clear();
         self.slots.clear();
         self.overflow.clear();
+        self.bouncy = false;
     }
 
     /// Prepares the coloured contacts into bundles (on all threads), reusing last step's
@@ -341,8 +345,10 @@ impl WideContacts {
         let spare = inputs.awake.len() as u32;
         let softness = [inputs.soft, inputs.static_soft];
         let slots = &self.slots;
-        with_bundles!(&mut self.bundles, |bundles| {
-            prepare_bundles(bundles, slots, inputs, softness, spare)
+        self.bouncy = with_bundles!(&mut self.bundles, |bundles| {
+            prepare_bundles(bundles, slots, inputs, softness, spare);
+            let zero = Lanes::splat(0.0);
+            bundles.iter().any(|b| b.restitution.gt(zero).bits() != 0)
         });
         self.overflow.clear();
         self.overflow
@@ -355,6 +361,11 @@ impl WideContacts {
             .iter()
             .map(|b| b.point_count as usize)
             .sum())
+    }
+
+    /// True when some bundle's contact has restitution.
+    pub fn bouncy(&self) -> bool {
+        self.bouncy
     }
 
     /// How many colours have bundles ([`Stage::Color`] takes an index below it).
