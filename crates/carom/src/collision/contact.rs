@@ -46,10 +46,6 @@ pub struct Contact {
     /// How many contacts the set had made before it: the solvers that take contacts one by
     /// one take them in this order.
     serial: u64,
-    /// Where its bodies are among all bodies (dense indices), as the narrowphase found them:
-    /// current for the awake contacts from the narrowphase to the end of the step, so the
-    /// solver looks nothing up (Box2D caches them the same way).
-    body_indices: [u32; 2],
 }
 
 impl Contact {
@@ -112,13 +108,6 @@ impl Contact {
     /// by one, oldest first.
     pub(crate) fn serial(&self) -> u64 {
         self.serial
-    }
-
-    /// Where its bodies are among all bodies (dense indices), for the solver: current from the
-    /// narrowphase to the end of a step.
-    #[inline]
-    pub(crate) fn body_indices(&self) -> (usize, usize) {
-        (self.body_indices[0] as usize, self.body_indices[1] as usize)
     }
 
     /// Its colour and which bodies the colour holds, for tests.
@@ -212,8 +201,12 @@ pub struct ContactSet {
     pending: Vec<ContactEvent>,
     /// What the last update found for each contact, and the contacts it must then file
     /// again (kept to reuse the memory).
-    refresh: Vec<Refresh>,
+    refresh: Vec<(Refresh, BodyIndices)>,
     changed: Vec<(u64, Refresh)>,
+    /// Where each contact's bodies are among all bodies (dense indices), beside the contacts
+    /// so the solver reads them from a compact array (Box2D caches them in its contacts):
+    /// found by the narrowphase, current for the awake contacts until the step ends.
+    body_indices: Vec<BodyIndices>,
     /// How many contacts have been made.
     made: u64,
 }
@@ -291,8 +284,8 @@ impl ContactSet {
             color: NO_COLOR,
             color_holds: [false; 2],
             serial: self.made,
-            body_indices: [u32::MAX; 2],
         });
+        self.body_indices.push(NO_BODIES);
         self.made += 1;
         // New contacts arrive in the sleeping part, the last.
         if awake {
@@ -305,6 +298,7 @@ impl ContactSet {
     /// Swaps two contacts' places; the lookup learns where they went.
     fn swap(&mut self, i: usize, j: usize) {
         self.contacts.swap(i, j);
+        self.body_indices.swap(i, j);
         for k in [i, j] {
             let c = &self.contacts[k];
             self.lookup.insert(pair_key(c.collider_a, c.collider_b), k);
@@ -452,6 +446,7 @@ impl ContactSet {
         // From the sleeping part, the last, a removal moves only another sleeper.
         let index = self.move_to(index, SolverSet::Asleep, &|_| BodyKind::Static);
         let contact = self.contacts.swap_remove(index);
+        self.body_indices.swap_remove(index);
         if contact.touching {
             self.asleep_touching -= 1;
             self.ended.push((contact.body_a, contact.body_b));
@@ -538,7 +533,8 @@ impl ContactSet {
         changed.clear();
         // Listed by pair first, as filing them again moves contacts. Backwards, as contacts
         // have always been filed.
-        for (index, &refresh) in self.refresh.iter().enumerate().rev() {
+        for (index, &(refresh, indices)) in self.refresh.iter().enumerate().rev() {
+            self.body_indices[index] = indices;
             match refresh {
                 Refresh::Unchanged => continue,
                 Refresh::Gone => {}
@@ -662,8 +658,12 @@ impl ContactSet {
     /// refreshed, and their bodies moved.
     pub(crate) fn find_body_indices(&mut self, dense_index: impl Fn(BodyHandle) -> usize) {
         let awake = self.awake_range();
-        find_body_indices(&mut self.contacts[awake], dense_index);
+        let (contacts, indices) = (&self.contacts[awake.clone()], &mut self.body_indices[awake]);
+        for (contact, indices) in contacts.iter().zip(indices) {
+            *indices = body_indices_of(contact, &dense_index);
+        }
     }
+
 
     /// Takes the bodies of the contacts that started and stopped touching since the last call;
     /// give the lists back (emptied) with [`ContactSet::give_back_touch_changes`] to keep their
@@ -689,11 +689,16 @@ impl ContactSet {
         color_ranges(&self.parts)
     }
 
-    /// The awake contacts, mutably, for the solver, and where each colour's are among them.
-    pub(crate) fn awake_mut_and_colors(&mut self) -> (&mut [Contact], ColorRanges) {
+    /// The awake contacts, mutably, for the solver, where their bodies are, and where each
+    /// colour's contacts are among them.
+    pub(crate) fn awake_mut_and_colors(&mut self) -> (&mut [Contact], &[BodyIndices], ColorRanges) {
         let awake = self.awake_range();
         let colors = self.color_ranges();
-        (&mut self.contacts[awake], colors)
+        (
+            &mut self.contacts[awake.clone()],
+            &self.body_indices[awake],
+            colors,
+        )
     }
 
     /// The graph colours of the awake touching contacts.
@@ -718,14 +723,18 @@ impl ContactSet {
     }
 }
 
-/// Finds where each of `contacts`' bodies is among all bodies (`dense_index`).
-pub(crate) fn find_body_indices(
-    contacts: &mut [Contact],
+/// Where a contact's two bodies are among all bodies (dense indices).
+pub(crate) type BodyIndices = [u32; 2];
+
+/// A new contact's [`BodyIndices`], until the narrowphase finds them.
+const NO_BODIES: BodyIndices = [u32::MAX; 2];
+
+/// Where `contact`'s bodies are, by `dense_index`.
+pub(crate) fn body_indices_of(
+    contact: &Contact,
     dense_index: impl Fn(BodyHandle) -> usize,
-) {
-    for contact in contacts {
-        contact.body_indices = [contact.body_a, contact.body_b].map(|b| dense_index(b) as u32);
-    }
+) -> BodyIndices {
+    [contact.body_a, contact.body_b].map(|b| dense_index(b) as u32)
 }
 
 /// True when `body` can disturb a sleeping body it touches: it is awake and dynamic, or
@@ -753,11 +762,31 @@ fn closing_speed(a: &Body, b: &Body) -> Real {
 }
 
 /// Rebuilds one contact's manifold if either body moves (or, `recycling`, carries the last one
-/// along if they barely moved relative to each other); says whether the contact lives on.
+/// along if they barely moved relative to each other); says whether the contact lives on, and
+/// where its bodies are.
 fn refresh_manifold(
     contact: &mut Contact,
     bodies: &HandleMap<BodyHandle, Body>,
     colliders: &HandleMap<ColliderHandle, Collider>,
+    broadphase: &BroadPhase,
+    options: ManifoldOptions,
+) -> (Refresh, BodyIndices) {
+    let (Some(shape_a), Some(shape_b)) = (
+        colliders.get(contact.collider_a),
+        colliders.get(contact.collider_b),
+    ) else {
+        return (Refresh::Gone, NO_BODIES);
+    };
+    let indices = [shape_a.body_index(), shape_b.body_index()].map(|i| i as u32);
+    let refresh = rebuild_manifold(contact, (shape_a, shape_b), bodies, broadphase, options);
+    (refresh, indices)
+}
+
+/// [`refresh_manifold`] of a contact between colliders `shape_a` and `shape_b`.
+fn rebuild_manifold(
+    contact: &mut Contact,
+    (shape_a, shape_b): (&Collider, &Collider),
+    bodies: &HandleMap<BodyHandle, Body>,
     broadphase: &BroadPhase,
     options: ManifoldOptions,
 ) -> Refresh {
@@ -766,13 +795,6 @@ fn refresh_manifold(
         prediction,
         recycling,
     } = options;
-    let (Some(shape_a), Some(shape_b)) = (
-        colliders.get(contact.collider_a),
-        colliders.get(contact.collider_b),
-    ) else {
-        return Refresh::Gone;
-    };
-    contact.body_indices = [shape_a.body_index(), shape_b.body_index()].map(|i| i as u32);
     let all = bodies.as_slice();
     let (a, b) = (&all[shape_a.body_index()], &all[shape_b.body_index()]);
     if !a.moves() && !b.moves() {

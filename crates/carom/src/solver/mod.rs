@@ -29,7 +29,7 @@ pub(crate) use body_state::BodyState;
 use contact_constraint::BodyMass;
 pub(crate) use contact_constraint::ContactConstraint;
 
-use crate::collision::contact::Contact;
+use crate::collision::contact::{BodyIndices, Contact};
 use crate::collision::contact_layout::ColorRanges;
 use crate::constants::{COLOR_COUNT, ITEMS_PER_TASK};
 use crate::dynamics::body::Body;
@@ -318,8 +318,8 @@ struct ColorCheck<'a> {
     /// The awake bodies' masses (which are dynamic), and where they are among all bodies.
     masses: &'a [BodyMass],
     awake: Range<usize>,
-    /// The awake contacts (which know where their bodies are).
-    contacts: &'a [Contact],
+    /// Where each awake contact's bodies are among all bodies.
+    body_indices: &'a [BodyIndices],
     claims: &'a mut Vec<u8>,
 }
 
@@ -327,7 +327,7 @@ impl ColorCheck<'_> {
     /// Claims contact `contact`'s moving bodies for colour `color`; false (claiming nothing)
     /// if the colour holds one already.
     fn claim(&mut self, contact: usize, color: usize) -> bool {
-        let (a, b) = self.contacts[contact].body_indices();
+        let [a, b] = self.body_indices[contact].map(|i| i as usize);
         let mark = color as u8 + 1;
         let moving = |index: usize| {
             let i = index.checked_sub(self.awake.start)?;
@@ -391,8 +391,9 @@ pub(crate) struct AwakeSet<'a> {
     /// Every body; the awake ones are `bodies[awake]`.
     pub bodies: &'a mut [Body],
     pub awake: Range<usize>,
-    /// The awake contacts, which know where their bodies are.
+    /// The awake contacts, and where each one's bodies are among all bodies.
     pub contacts: &'a mut [Contact],
+    pub body_indices: &'a [BodyIndices],
     /// Where each colour's contacts (then the overflow's) are among the awake contacts.
     pub colors: &'a ColorRanges,
 }
@@ -419,15 +420,18 @@ pub(crate) fn step(
         bodies,
         awake,
         contacts,
+        body_indices,
         colors,
     } = set;
     debug_assert!(
-        contacts.iter().all(|c| {
-            let (a, b) = c.body_indices();
-            let is = |index: usize, body| bodies.get(index).is_some_and(|x| x.handle() == body);
+        contacts.iter().zip(body_indices).all(|(c, &[a, b])| {
+            let is = |index: u32, body| {
+                let body_at = bodies.get(index as usize);
+                body_at.is_some_and(|x| x.handle() == body)
+            };
             is(a, c.body_a()) && is(b, c.body_b())
         }),
-        "every awake contact knows where its bodies are"
+        "every awake contact's bodies are where the narrowphase found them"
     );
     let Workspace {
         states,
@@ -454,7 +458,7 @@ pub(crate) fn step(
     let check = ColorCheck {
         masses,
         awake: awake.clone(),
-        contacts,
+        body_indices,
         claims,
     };
     order_constraints(
@@ -472,6 +476,7 @@ pub(crate) fn step(
         states,
         masses,
         contacts,
+        body_indices,
         order,
         graph,
         soft: bias.soft,

@@ -306,7 +306,7 @@ mod tests {
         h: Real,
         width: Width,
     ) -> (Vec<BodyState>, Vec<ContactConstraint>, WideContacts, Bias) {
-        let (bodies, awake, contacts, colors) = world.solver_inputs();
+        let (bodies, awake, contacts, body_indices, colors) = world.solver_inputs();
         let mut states: Vec<BodyState> = bodies[awake.clone()]
             .iter()
             .map(|body| {
@@ -326,11 +326,11 @@ mod tests {
         let check = ColorCheck {
             masses: &masses,
             awake: awake.clone(),
-            contacts: &contacts,
+            body_indices: &body_indices,
             claims: &mut claims,
         };
         order_constraints(
-            &contacts,
+            contacts,
             &colors,
             Some(check),
             &mut order,
@@ -342,7 +342,8 @@ mod tests {
             awake,
             states: &states,
             masses: &masses,
-            contacts: &contacts,
+            contacts,
+            body_indices: &body_indices,
             order: &order,
             graph: &graph,
             soft: bias.soft,
@@ -464,7 +465,7 @@ mod tests {
             }
             assert!(poisoned >= 2);
             solve_wide(&mut states, &mut wide, &bias);
-            let (bodies, awake, _, _) = world.solver_inputs();
+            let (bodies, awake, _, _, _) = world.solver_inputs();
             // The awake set's kinematic paddle, and the spare state the static ground reads.
             let kinds = bodies[awake].iter().map(|b| Some(b.kind())).chain([None]);
             let mut fixed = 0;

@@ -19,7 +19,7 @@ use super::shared_states::SharedStates;
 use super::soft_step::{Bias, apply_restitution, solve_one, warm_start_one};
 use super::stages::{block_count, block_range, run_stages};
 use super::{BodyState, Environment, Softness, SolverParams};
-use crate::collision::contact::Contact;
+use crate::collision::contact::{BodyIndices, Contact};
 use crate::constants::{
     COLOR_COUNT, ITEMS_PER_TASK, MAX_BLOCKS, MIN_BLOCK, MIN_BODY_BLOCK, MIN_SHARED,
 };
@@ -239,8 +239,9 @@ pub(crate) struct BundleInputs<'a> {
     /// The awake bodies' states and masses, then the spare state's (a static body's).
     pub states: &'a [BodyState],
     pub masses: &'a [BodyMass],
-    /// The awake contacts, which know where their bodies are.
+    /// The awake contacts, and where each one's bodies are among all bodies.
     pub contacts: &'a [Contact],
+    pub body_indices: &'a [BodyIndices],
     /// The solve order (contact indices) and its colours.
     pub order: &'a [usize],
     pub graph: &'a ContactGraph,
@@ -275,8 +276,7 @@ impl BundleInputs<'_> {
     pub fn constraint(&self, index: usize) -> ContactConstraint {
         let contact = &self.contacts[index];
         let material = (contact.friction(), contact.restitution());
-        let (a, b) = contact.body_indices();
-        let (a, b) = (self.solver_body(a), self.solver_body(b));
+        let [a, b] = self.body_indices[index].map(|i| self.solver_body(i as usize));
         let mut constraint = ContactConstraint::new(index, contact.manifold(), material, a, b);
         if !self.warm_starting {
             for point in constraint.points_mut() {
@@ -891,7 +891,7 @@ impl<L: Lanes> Bundle<L> {
             };
             let contact = &inputs.contacts[index];
             let manifold = contact.manifold();
-            let (a, b) = contact.body_indices();
+            let [a, b] = inputs.body_indices[index].map(|i| i as usize);
             let (a, b) = (inputs.solver_body(a), inputs.solver_body(b));
             self.contacts.as_mut()[lane] = index as u32;
             self.a.as_mut()[lane] = a.index as u32;

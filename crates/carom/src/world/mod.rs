@@ -650,11 +650,12 @@ impl World {
             friction: effects.contains(Effect::Friction),
             restitution: effects.contains(Effect::Restitution),
         };
-        let (contacts, colors) = self.contacts.awake_mut_and_colors();
+        let (contacts, body_indices, colors) = self.contacts.awake_mut_and_colors();
         let set = solver::AwakeSet {
             bodies: self.bodies.as_mut_slice(),
             awake: self.body_sets.awake(),
             contacts,
+            body_indices,
             colors: &colors,
         };
         solver::step(
@@ -846,13 +847,14 @@ fn timed<T>(slot: &mut std::time::Duration, stage: impl FnOnce() -> T) -> T {
     result
 }
 
-/// What the solver starts a step from: every body, the awake set's range, the awake contacts
-/// (which know where their bodies are now) and their colours.
+/// What the solver starts a step from: every body, the awake set's range, the awake contacts,
+/// where their bodies are now, and their colours.
 #[cfg(test)]
 pub(crate) type SolverInputs<'a> = (
     &'a [Body],
     std::ops::Range<usize>,
-    Vec<Contact>,
+    &'a [Contact],
+    Vec<crate::collision::contact::BodyIndices>,
     crate::collision::contact_layout::ColorRanges,
 );
 
@@ -866,17 +868,24 @@ impl World {
 
     /// What the solver starts a step from.
     pub(crate) fn solver_inputs(&self) -> SolverInputs<'_> {
-        let mut contacts = self.contacts.awake().to_vec();
+        let contacts = self.contacts.awake();
         let bodies = &self.bodies;
-        crate::collision::contact::find_body_indices(&mut contacts, |body| {
-            bodies.dense_index(body).unwrap()
-        });
+        let body_indices = contacts
+            .iter()
+            .map(|c| {
+                crate::collision::contact::body_indices_of(c, |body| {
+                    bodies.dense_index(body).unwrap()
+                })
+            })
+            .collect();
         let awake = self.body_sets.awake();
+        let colors = self.contacts.color_ranges();
         (
             self.bodies.as_slice(),
             awake,
             contacts,
-            self.contacts.color_ranges(),
+            body_indices,
+            colors,
         )
     }
 }
