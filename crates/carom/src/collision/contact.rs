@@ -531,8 +531,8 @@ impl ContactSet {
         let mut deepest: Real = 0.0;
         let mut changed = std::mem::take(&mut self.changed);
         changed.clear();
-        // Listed by pair first, as filing them again moves contacts. Backwards, as contacts
-        // have always been filed.
+        // Listed by pair first, as filing them again moves contacts; backwards, the order they
+        // are filed in (which decides the colours they take).
         for (index, &(refresh, indices)) in self.refresh.iter().enumerate().rev() {
             self.body_indices[index] = indices;
             match refresh {
@@ -663,7 +663,6 @@ impl ContactSet {
             *indices = body_indices_of(contact, &dense_index);
         }
     }
-
 
     /// Takes the bodies of the contacts that started and stopped touching since the last call;
     /// give the lists back (emptied) with [`ContactSet::give_back_touch_changes`] to keep their

@@ -127,7 +127,7 @@ pub struct SolverParams {
     /// body), eight at a time in SIMD lanes where the CPU has AVX, else four, as Box2D v3
     /// does. A contact keeps its colour while it touches, and contacts with static bodies take
     /// the last colours, so they are solved last in each pass. Several times faster than one
-    /// by one. Off solves one by one in contact order. Default on.
+    /// by one. Off solves one by one, oldest contact first. Default on.
     pub graph_coloring: bool,
     /// Soft step: solve friction in the biased pass too, not only in the relaxation, as Box2D
     /// v3.1 does. Friction then converges twice as often, so piles spread less (the top of
