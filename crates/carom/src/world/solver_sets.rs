@@ -503,17 +503,14 @@ mod tests {
         assert!(!world.body(body).unwrap().is_sleeping());
     }
 
-    /// A static block turned dynamic under a sleeping box joins the box's island and wakes
-    /// it: an island is awake or asleep as a whole.
-    #[test]
-    fn a_support_turned_dynamic_wakes_what_slept_on_it() {
+    /// A box on `base` (a 1 m box, at rest on the ground) stepped until it sleeps; the world,
+    /// the base and the box.
+    fn box_asleep_on(base: BodyDef) -> (World, crate::BodyHandle, crate::BodyHandle) {
         let mut world = World::new();
         world
             .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)).position(vec2(0.0, -0.5)))
             .unwrap();
-        let block = world
-            .add_body(BodyDef::static_body(Shape::rect(0.5, 0.5)).position(vec2(0.0, 0.5)))
-            .unwrap();
+        let base = world.add_body(base.position(vec2(0.0, 0.5))).unwrap();
         let top = world
             .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 1.5)))
             .unwrap();
@@ -521,6 +518,14 @@ mod tests {
             world.step(1.0 / 60.0).unwrap();
         }
         assert!(world.body(top).unwrap().is_sleeping());
+        (world, base, top)
+    }
+
+    /// A static block turned dynamic under a sleeping box joins the box's island and wakes
+    /// it: an island is awake or asleep as a whole.
+    #[test]
+    fn a_support_turned_dynamic_wakes_what_slept_on_it() {
+        let (mut world, block, top) = box_asleep_on(BodyDef::static_body(Shape::rect(0.5, 0.5)));
         world.set_body_kind(block, BodyKind::Dynamic).unwrap();
         world.check_sets();
         let (block, top) = (world.body(block).unwrap(), world.body(top).unwrap());
@@ -531,20 +536,7 @@ mod tests {
     /// Removing what a sleeping stack rests on wakes the stack, so it falls.
     #[test]
     fn removing_a_support_wakes_what_slept_on_it() {
-        let mut world = World::new();
-        world
-            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)).position(vec2(0.0, -0.5)))
-            .unwrap();
-        let base = world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 0.5)))
-            .unwrap();
-        let top = world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 1.5)))
-            .unwrap();
-        for _ in 0..120 {
-            world.step(1.0 / 60.0).unwrap();
-        }
-        assert!(world.body(top).unwrap().is_sleeping());
+        let (mut world, base, top) = box_asleep_on(BodyDef::dynamic(Shape::rect(0.5, 0.5)));
         world.remove_body(base).unwrap();
         world.check_sets();
         assert!(!world.body(top).unwrap().is_sleeping());
