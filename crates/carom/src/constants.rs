@@ -122,6 +122,10 @@ pub(crate) const ITEMS_PER_TASK: usize = 2048;
 /// a tenth of a microsecond, a fork several microseconds).
 pub(crate) const CONTACTS_PER_TASK: usize = 256;
 
+/// Moved colliders per task when the broadphase's pair queries are shared among threads (a
+/// query walks the trees in about a microsecond).
+pub(crate) const MOVES_PER_TASK: usize = 64;
+
 /// Blocks a stage (a colour's bundles, the bodies) is cut into, at most, when soft step's
 /// stages are shared among threads.
 pub(crate) const MAX_BLOCKS: usize = 8;

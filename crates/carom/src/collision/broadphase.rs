@@ -8,10 +8,13 @@
 //! at; two colliders of one body never pair.
 
 use super::dynamic_tree::DynamicTree;
+use crate::constants::MOVES_PER_TASK;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
 use crate::geometry::aabb::Aabb;
 use crate::math::{Real, Vec2};
+use crate::parallel::worth_sharing;
+use rayon::prelude::*;
 
 /// True when a pair of bodies of these kinds can ever produce a contact response: at least
 /// one of them must be dynamic.
@@ -58,7 +61,10 @@ pub struct BroadPhase {
     proxies: Vec<Option<Proxy>>,
     /// Slots whose fat box changed since the last pair update.
     move_buffer: Vec<u32>,
-    /// Candidate pairs of slots found by the last pair update (kept to reuse the memory).
+    /// New pairs of slots found by the last pair update, one list per task of queries (kept
+    /// to reuse the memory).
+    found: Vec<Vec<(u32, u32)>>,
+    /// All of them, sorted (kept to reuse the memory).
     candidates: Vec<(u32, u32)>,
 }
 
@@ -181,7 +187,7 @@ impl BroadPhase {
     #[cfg(any(test, feature = "testing"))]
     pub fn update_pairs(
         &mut self,
-        exists: impl FnMut(ColliderHandle, ColliderHandle) -> bool,
+        exists: impl Fn(ColliderHandle, ColliderHandle) -> bool + Sync,
     ) -> Vec<(ColliderHandle, ColliderHandle)> {
         let mut pairs = Vec::new();
         self.update_pairs_into(exists, &mut pairs);
@@ -191,39 +197,38 @@ impl BroadPhase {
     /// Pairs whose fat boxes began to overlap because one of them moved since the last call,
     /// each ordered `(lower slot, higher slot)`, sorted, without duplicates, and only where
     /// one body is dynamic, into `out` (cleared first), allocating nothing once the buffers
-    /// have grown. Pairs for which `exists` answers true are left out.
+    /// have grown. Pairs for which `exists` answers true are left out. The moved colliders'
+    /// queries run on all threads when there are enough of them.
     pub fn update_pairs_into(
         &mut self,
-        mut exists: impl FnMut(ColliderHandle, ColliderHandle) -> bool,
+        exists: impl Fn(ColliderHandle, ColliderHandle) -> bool + Sync,
         out: &mut Vec<(ColliderHandle, ColliderHandle)>,
     ) {
-        let mut pairs = std::mem::take(&mut self.candidates);
-        pairs.clear();
-        for &slot in &self.move_buffer {
-            let Some(proxy) = self.proxies[slot as usize] else {
-                continue;
-            };
-            let fat = proxy.fat;
-            // Only dynamic bodies need the static tree; everything needs the moving one.
-            let trees: &[usize] = if proxy.kind == BodyKind::Dynamic {
-                &[STATIC_TREE, MOVING_TREE]
-            } else {
-                &[MOVING_TREE]
-            };
-            for &tree in trees {
-                self.trees[tree].query(&fat, |node| {
-                    let other_slot = self.trees[tree].payload(node);
-                    if other_slot == slot {
-                        return;
-                    }
-                    let Some(other) = self.proxies[other_slot as usize] else {
-                        return;
-                    };
-                    if other.body != proxy.body && kinds_can_collide(proxy.kind, other.kind) {
-                        pairs.push((slot.min(other_slot), slot.max(other_slot)));
-                    }
-                });
+        out.clear();
+        let moved = &self.move_buffer;
+        let tasks = if worth_sharing(moved.len(), MOVES_PER_TASK) {
+            moved.len().div_ceil(MOVES_PER_TASK)
+        } else {
+            1
+        };
+        let mut found = std::mem::take(&mut self.found);
+        if found.len() < tasks {
+            found.resize_with(tasks, Vec::new);
+        }
+        let per_task = moved.len().div_ceil(tasks).max(1);
+        let query = |slots: &[u32], found: &mut Vec<(u32, u32)>| {
+            found.clear();
+            for &slot in slots {
+                self.new_pairs_of(slot, &exists, found);
             }
+        };
+        if tasks > 1 {
+            found[..tasks]
+                .par_iter_mut()
+                .zip(moved.par_chunks(per_task))
+                .for_each(|(found, slots)| query(slots, found));
+        } else {
+            query(moved, &mut found[0]);
         }
         for &slot in &self.move_buffer {
             if let Some(p) = self.proxies[slot as usize].as_mut() {
@@ -231,17 +236,67 @@ impl BroadPhase {
             }
         }
         self.move_buffer.clear();
+        let pairs = &mut self.candidates;
+        pairs.clear();
+        for found in &found[..tasks] {
+            pairs.extend_from_slice(found);
+        }
+        self.found = found;
         pairs.sort_unstable();
+        // A slot queued twice (its collider removed and another added in its place) finds
+        // its pairs twice.
         pairs.dedup();
-        out.clear();
         out.extend(pairs.iter().filter_map(|&(a, b)| {
-            let (a, b) = (
+            Some((
                 self.proxies[a as usize]?.handle,
                 self.proxies[b as usize]?.handle,
-            );
-            (!exists(a, b)).then_some((a, b))
+            ))
         }));
-        self.candidates = pairs;
+    }
+
+    /// The pairs the queued proxy in `slot` makes with the proxies its fat box overlaps, into
+    /// `found`, leaving out those `exists` knows. Where both moved, only the lower slot's
+    /// query keeps the pair.
+    fn new_pairs_of(
+        &self,
+        slot: u32,
+        exists: &impl Fn(ColliderHandle, ColliderHandle) -> bool,
+        found: &mut Vec<(u32, u32)>,
+    ) {
+        let Some(proxy) = self.proxies[slot as usize] else {
+            return;
+        };
+        // Only dynamic bodies need the static tree; everything needs the moving one.
+        let trees: &[usize] = if proxy.kind == BodyKind::Dynamic {
+            &[STATIC_TREE, MOVING_TREE]
+        } else {
+            &[MOVING_TREE]
+        };
+        for &tree in trees {
+            self.trees[tree].query(&proxy.fat, |node| {
+                let other_slot = self.trees[tree].payload(node);
+                let Some(other) = self.proxies[other_slot as usize] else {
+                    return;
+                };
+                let (low, high) = (slot.min(other_slot), slot.max(other_slot));
+                let lower_also_moved = other.queued && other_slot < slot;
+                if other_slot == slot
+                    || lower_also_moved
+                    || other.body == proxy.body
+                    || !kinds_can_collide(proxy.kind, other.kind)
+                {
+                    return;
+                }
+                let (a, b) = if low == slot {
+                    (proxy.handle, other.handle)
+                } else {
+                    (other.handle, proxy.handle)
+                };
+                if !exists(a, b) {
+                    found.push((low, high));
+                }
+            });
+        }
     }
 
     /// Every pair whose fat boxes overlap now, as [`BroadPhase::update_pairs`] orders them:
@@ -367,6 +422,27 @@ mod tests {
 
     #[test]
     fn incremental_pairs_match_brute_force_as_bodies_move() {
+        incremental_pairs_match_brute_force(1);
+    }
+
+    /// The moved colliders' queries split among threads find the same pairs, in the same
+    /// order.
+    #[test]
+    fn incremental_pairs_match_brute_force_with_queries_on_threads() {
+        incremental_pairs_match_brute_force(3);
+    }
+
+    /// Moves 2000 colliders about for six rounds, checking each round's new pairs against a
+    /// brute-force search, with the queries on `threads` threads.
+    fn incremental_pairs_match_brute_force(threads: usize) {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(check_incremental_pairs);
+    }
+
+    fn check_incremental_pairs() {
         let mut rng = Lcg(9);
         let mut broadphase = BroadPhase::new();
         let kinds = [
