@@ -228,7 +228,8 @@ fn body_def(spec: &BodySpec) -> Result<BodyDef, CaromError> {
         .linear_velocity(vec2(spec.linear_velocity.0, spec.linear_velocity.1))
         .angular_velocity(spec.angular_velocity)
         .damping(material.damping.0, material.damping.1)
-        .bullet(spec.bullet);
+        .bullet(spec.bullet)
+        .awake(spec.awake);
     def.colliders = colliders;
     Ok(def)
 }
@@ -302,6 +303,7 @@ fn generate(generator: &Generator) -> Result<(Vec<BodyDef>, Material), String> {
             shape: spec,
             kind: kind_name,
             material,
+            awake,
         } => {
             let shape = shape(spec).map_err(|e| e.to_string())?;
             let mut defs = Vec::new();
@@ -312,7 +314,9 @@ fn generate(generator: &Generator) -> Result<(Vec<BodyDef>, Material), String> {
                         origin.1 + row as f32 * spacing.1,
                     );
                     defs.push(with_material(
-                        BodyDef::new(*kind_name, shape.clone()).position(at),
+                        BodyDef::new(*kind_name, shape.clone())
+                            .position(at)
+                            .awake(*awake),
                         material,
                     ));
                 }

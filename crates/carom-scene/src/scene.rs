@@ -265,6 +265,10 @@ pub struct BodySpec {
     /// Swept against moving bodies too.
     #[serde(default)]
     pub bullet: bool,
+    /// Starts awake; a dynamic body that starts asleep waits, unsolved, until something
+    /// touches it.
+    #[serde(default = "yes")]
+    pub awake: bool,
 }
 
 /// One more shape of a body, placed in its frame; its material is the body's unless given.
@@ -349,6 +353,10 @@ pub enum Generator {
         /// Their material.
         #[serde(default)]
         material: Material,
+        /// Whether they start awake (dynamic ones that do not wait, unsolved, until
+        /// something touches them).
+        #[serde(default = "yes")]
+        awake: bool,
     },
     /// `count` copies of a shape scattered over the rectangle from `low` to `high` (its
     /// corners), at positions drawn from `seed`: the same seed, the same scatter.
@@ -398,6 +406,10 @@ pub enum Generator {
 
 fn one() -> f32 {
     1.0
+}
+
+fn yes() -> bool {
+    true
 }
 
 /// Something that happens during the run.

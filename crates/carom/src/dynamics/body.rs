@@ -76,6 +76,18 @@ pub struct BodyDef {
     /// Free for the user (an id into game data, a colour...).
     #[cfg_attr(feature = "serde", serde(default))]
     pub user_tag: u64,
+    /// Whether a dynamic body starts awake. One that starts asleep (at rest, in an island of
+    /// its own) costs nothing per step until a moving body touches it or it is woken, even in
+    /// a world that does not put bodies to sleep: a pile placed at rest stays out of the solver
+    /// until something hits it. Ignored for static and kinematic bodies.
+    #[cfg_attr(feature = "serde", serde(default = "crate::dynamics::body::yes"))]
+    pub awake: bool,
+}
+
+/// `true`, the default of [`BodyDef::awake`] in saved definitions.
+#[cfg(feature = "serde")]
+fn yes() -> bool {
+    true
 }
 
 impl BodyDef {
@@ -94,6 +106,7 @@ impl BodyDef {
             angular_damping: 0.0,
             bullet: false,
             user_tag: 0,
+            awake: true,
         }
     }
 
@@ -182,6 +195,12 @@ impl BodyDef {
     /// Marks the body as a bullet.
     pub fn bullet(mut self, bullet: bool) -> Self {
         self.bullet = bullet;
+        self
+    }
+
+    /// Sets whether a dynamic body starts awake (see [`BodyDef::awake`]).
+    pub fn awake(mut self, awake: bool) -> Self {
+        self.awake = awake;
         self
     }
 

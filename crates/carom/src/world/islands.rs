@@ -41,10 +41,11 @@ impl World {
         island.len += 1;
     }
 
-    /// Gives the dynamic body at `index` an island of its own.
-    pub(crate) fn create_island_for(&mut self, index: usize) {
+    /// Gives the dynamic body at `index` an island of its own, and returns its id.
+    pub(crate) fn create_island_for(&mut self, index: usize) -> u32 {
         let id = self.islands.create();
         self.append_to_island(index, id);
+        id
     }
 
     /// Gives the body at `index`, just made dynamic (and awake), an island, joined with those
@@ -275,7 +276,7 @@ impl World {
 
     /// Puts every body of island `id` to sleep: they, their colliders and contacts leave the
     /// awake set.
-    fn sleep_island(&mut self, id: u32) {
+    pub(crate) fn sleep_island(&mut self, id: u32) {
         let mut next = self.islands.get(id).head;
         while let Some(handle) = next {
             let index = self.handle_index(handle);

@@ -201,6 +201,7 @@ impl World {
     pub fn add_body(&mut self, def: BodyDef) -> Result<BodyHandle, CaromError> {
         let handle = self.bodies.next_handle();
         let mut body = Body::new(handle, &def)?;
+        let starts_awake = def.awake;
         let transform = body.transform();
         let index = self.bodies.len();
         let parts: Vec<Collider> = def
@@ -220,7 +221,10 @@ impl World {
         // Stored last, in the sleeping set; then moved into its own.
         let index = self.settle_body(index);
         if self.bodies.as_slice()[index].is_dynamic() {
-            self.create_island_for(index);
+            let island = self.create_island_for(index);
+            if !starts_awake {
+                self.sleep_island(island);
+            }
         }
         self.place_colliders_of(handle);
         let body = self.bodies.get(handle).expect("just inserted");

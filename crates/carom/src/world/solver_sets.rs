@@ -503,6 +503,62 @@ mod tests {
         assert!(!world.body(body).unwrap().is_sleeping());
     }
 
+    /// A grid of boxes added asleep, with gravity and sleeping off (Box2D's smash): nothing
+    /// of it is solved until a box thrown at it arrives; then the boxes it touches wake, and
+    /// those it has not reached sleep on, unmoved.
+    #[test]
+    fn bodies_added_asleep_wait_until_something_touches_them() {
+        let mut world = World::new();
+        let effects = world
+            .effects()
+            .without(crate::Effect::Gravity)
+            .without(crate::Effect::Sleeping);
+        world.set_effects(effects);
+        let mut grid = Vec::new();
+        for column in 0..20 {
+            for row in 0..5 {
+                let at = vec2(10.0 + column as Real * 0.4, row as Real * 0.4);
+                let def = BodyDef::dynamic(Shape::rect(0.2, 0.2))
+                    .position(at)
+                    .awake(false);
+                grid.push(world.add_body(def).unwrap());
+            }
+        }
+        world.check_sets();
+        assert!(grid.iter().all(|&h| world.body(h).unwrap().is_sleeping()));
+        let thrown = world
+            .add_body(
+                BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                    .position(vec2(0.0, 0.8))
+                    .linear_velocity(vec2(20.0, 0.0)),
+            )
+            .unwrap();
+        world.step(1.0 / 60.0).unwrap();
+        world.check_sets();
+        assert_eq!(
+            world.stats().sleeping_bodies,
+            grid.len(),
+            "still on its way"
+        );
+        for _ in 0..40 {
+            world.step(1.0 / 60.0).unwrap();
+            world.check_sets();
+        }
+        let (asleep, woken): (Vec<BodyHandle>, Vec<BodyHandle>) = grid
+            .iter()
+            .partition(|&&h| world.body(h).unwrap().is_sleeping());
+        assert!(!woken.is_empty(), "the thrown box woke what it hit");
+        assert!(!asleep.is_empty(), "and not yet what lies beyond");
+        for (i, &h) in grid.iter().enumerate() {
+            let body = world.body(h).unwrap();
+            let start = vec2(10.0 + (i / 5) as Real * 0.4, (i % 5) as Real * 0.4);
+            if body.is_sleeping() {
+                assert_eq!(body.position(), start, "a sleeping box does not move");
+            }
+        }
+        assert!(world.body(thrown).unwrap().position().x > 9.0);
+    }
+
     /// A box on `base` (a 1 m box, at rest on the ground) stepped until it sleeps; the world,
     /// the base and the box.
     fn box_asleep_on(base: BodyDef) -> (World, crate::BodyHandle, crate::BodyHandle) {
