@@ -349,6 +349,16 @@ impl BroadPhase {
         }
     }
 
+    /// Calls `visit(handle)` for every static collider whose fat box overlaps `aabb`.
+    pub fn query_static(&self, aabb: &Aabb, mut visit: impl FnMut(ColliderHandle)) {
+        let tree = &self.trees[STATIC_TREE];
+        tree.query(aabb, |node| {
+            if let Some(p) = self.proxies[tree.payload(node) as usize] {
+                visit(p.handle);
+            }
+        });
+    }
+
     /// Walks the colliders whose fat boxes the segment passes through, clipping the walk to the
     /// fraction `visit` returns (see [`DynamicTree::ray_cast`]).
     pub fn ray_cast(

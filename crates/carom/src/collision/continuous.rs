@@ -112,6 +112,7 @@ fn time_of_impact(
     sweep: &Sweep,
     other: &WorldShape,
     target: Real,
+    placed: &mut WorldShape,
 ) -> Option<Real> {
     let radius = collider.reach_from(sweep.local_center);
     // The fastest any point of the shape moves, per unit of sweep time.
@@ -120,9 +121,8 @@ fn time_of_impact(
         return None;
     }
     let tolerance = 0.25 * target;
-    let mut placed = collider.world_shape().clone();
-    collider.place_shape(&mut placed, &sweep.at(0.0));
-    let start = separation(other, &placed).separation;
+    collider.place_shape(placed, &sweep.at(0.0));
+    let start = separation(other, placed).separation;
     let goal = if start >= target + tolerance {
         target
     } else {
@@ -138,8 +138,8 @@ fn time_of_impact(
         if t >= 1.0 {
             return None;
         }
-        collider.place_shape(&mut placed, &sweep.at(t));
-        distance = separation(other, &placed).separation;
+        collider.place_shape(placed, &sweep.at(t));
+        distance = separation(other, placed).separation;
     }
     // Still approaching after many small advances: stop here, short of the goal.
     Some(t)
@@ -160,6 +160,7 @@ pub(crate) fn solve_continuous(
     awake: Range<usize>,
     colliders: &mut HandleMap<ColliderHandle, Collider>,
     starts: &[Pose],
+    swept: &mut Option<WorldShape>,
     broadphase: &BroadPhase,
     target: Real,
 ) -> (usize, usize) {
@@ -182,10 +183,18 @@ pub(crate) fn solve_continuous(
         sweeps += 1;
         let mut first: Option<Real> = None;
         for collider in body.colliders().iter().filter_map(|&c| colliders.get(c)) {
-            let mut start_shape = collider.world_shape().clone();
-            collider.place_shape(&mut start_shape, &sweep.at(0.0));
-            let swept = start_shape.aabb().union(&collider.aabb());
-            broadphase.query(&swept, |handle| {
+            let placed = swept.get_or_insert_with(|| collider.world_shape().clone());
+            collider.place_shape(placed, &sweep.at(0.0));
+            let path = placed.aabb().union(&collider.aabb());
+            // Only a bullet stops at moving bodies: the others need only the static tree.
+            let query = |visit: &mut dyn FnMut(ColliderHandle)| {
+                if body.is_bullet() {
+                    broadphase.query(&path, visit)
+                } else {
+                    broadphase.query_static(&path, visit)
+                }
+            };
+            query(&mut |handle| {
                 let Some(other) = colliders.get(handle) else {
                     return;
                 };
@@ -195,7 +204,9 @@ pub(crate) fn solve_continuous(
                 if !eligible {
                     return;
                 }
-                if let Some(t) = time_of_impact(collider, &sweep, other.world_shape(), target)
+                let placed = swept.get_or_insert_with(|| collider.world_shape().clone());
+                if let Some(t) =
+                    time_of_impact(collider, &sweep, other.world_shape(), target, placed)
                     && first.is_none_or(|f| t < f)
                 {
                     first = Some(t);

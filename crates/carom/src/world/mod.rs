@@ -22,6 +22,7 @@ use crate::dynamics::island::Islands;
 use crate::error::{CaromError, check_finite_vec};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::ray::Ray;
+use crate::geometry::shape::WorldShape;
 use crate::handle_map::HandleMap;
 use crate::math::{Real, Vec2};
 use crate::parallel::{for_each_mut, map_zip_into};
@@ -81,6 +82,8 @@ struct StepScratch {
     pairs: Vec<(ColliderHandle, ColliderHandle)>,
     /// Awake bodies' poses at the start of the step (for continuous collision).
     starts: Vec<Pose>,
+    /// The shape a sweep places along its path (its memory reused from step to step).
+    swept: Option<WorldShape>,
     /// Sleeping islands a moving body touched.
     wake: Vec<u32>,
     /// Per awake collider, its predicted box if it left its fat box (or its body changed
@@ -561,6 +564,7 @@ impl World {
                     self.body_sets.awake(),
                     &mut self.colliders,
                     &scratch.starts,
+                    &mut scratch.swept,
                     &self.broadphase,
                     LINEAR_SLOP,
                 )
