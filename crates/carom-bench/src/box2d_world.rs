@@ -23,6 +23,7 @@
 //! | `restitution_threshold` (1 m/s) | world `restitutionThreshold` (1 m/s) | yes |
 //! | `Sleeping` effect | world `enableSleep` | switch yes, thresholds the same: both 0.05 m/s for 0.5 s, islands sleep whole |
 //! | `Continuous` effect | world `enableContinuous` (dynamic against static) | yes |
+//! | a body asleep when the copy is made (one added with `awake: false`) | body `isAwake` false (a sleeping set of its own, as Box2D makes one) | yes |
 //! | `is_bullet` (with the `Continuous` effect) | body `isBullet` (dynamic against dynamic too) | yes; a bullet with `Continuous` off is not a bullet in either |
 //! | soft step's `substeps` (default 4) | `subStepCount` of `b2World_Step` (4 in Box2D's samples) | yes |
 //! | `contact_hertz` (30), `damping_ratio` (10) | world `contactHertz`, `contactDampingRatio` (30, 10) | yes at the defaults; Box2D caps the stiffness at an eighth of the substep rate (30 Hz at 4 substeps of 1/60 s), carom at a quarter (60 Hz), so carom's stiffer settings are capped in Box2D |
@@ -456,7 +457,8 @@ fn body_def(
         .position(Position::new(p.x, p.y))
         .angle(body.angle())
         .gravity_scale(body.gravity_scale())
-        .bullet(bullets && body.is_bullet());
+        .bullet(bullets && body.is_bullet())
+        .awake(!body.is_sleeping());
     if body.kind() != BodyKind::Static {
         let v = body.linear_velocity();
         def = def

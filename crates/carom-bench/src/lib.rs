@@ -31,6 +31,7 @@
 //! | restitution, mixed by max (`Restitution` effect; 0 when off) | collider `restitution` + `CoefficientCombineRule::Max` | rule yes; carom does not bounce below 1 m/s approach, Rapier has no such threshold |
 //! | gravity (zero when the `Gravity` effect is off) | `gravity` argument of `PhysicsPipeline::step` | yes |
 //! | `Sleeping` effect | `can_sleep(true)` on every body; off → `can_sleep(false)` | switch yes, thresholds close: both 0.05 m/s and 0.5 s, but carom measures the fastest point's speed (`|v| + r |ω|`) and sleeps islands, Rapier its own per-body linear (0.05) and angular (0.5 rad/s) thresholds |
+//! | a body asleep when the copy is made (one added with `awake: false`) | `sleeping(true)` | yes |
 //! | `is_bullet` (with the `Continuous` effect) | `ccd_enabled(true)` | partly: carom also sweeps every fast dynamic body against static ones; Rapier's CCD is only switched on for bullets here |
 //! | soft step's `substeps` (default 4) | `num_solver_iterations` (Rapier's solver iterations are its substeps) | yes |
 //! | soft step's `iterations` (default 1) | `num_internal_pgs_iterations` (default 1) | yes; the classic solvers (no substeps) map to 1 substep of `iterations` PGS sweeps, which is not the same algorithm |

@@ -21,9 +21,11 @@ static ALLOCATOR: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
 const DT: f32 = 1.0 / 60.0;
 
 /// Box2D's benchmark scenes and step counts, run when no scene is named.
-const DEFAULT_SCENES: [(&str, u32); 2] = [
+const DEFAULT_SCENES: [(&str, u32); 4] = [
     ("demos/large_pyramid.ron", 500),
     ("demos/many_pyramids.ron", 200),
+    ("demos/tumbler.ron", 750),
+    ("demos/smash.ron", 300),
 ];
 
 /// Steps for a scene not in [`DEFAULT_SCENES`] when `--steps` is not given.
@@ -36,7 +38,8 @@ const FALLBACK_STEPS: u32 = 500;
 struct Args {
     #[command(subcommand)]
     command: Option<Command>,
-    /// Scene files (default: demos/large_pyramid.ron, 500 steps; demos/many_pyramids.ron, 200).
+    /// Scene files (default: Box2D's recipes with its step counts: demos/large_pyramid.ron, 500
+    /// steps; demos/many_pyramids.ron, 200; demos/tumbler.ron, 750; demos/smash.ron, 300).
     scenes: Vec<PathBuf>,
     /// Steps per run, overriding each scene's default.
     #[arg(long)]

@@ -207,6 +207,7 @@ fn rigid_body(body: &Body, drag: bool, can_sleep: bool, ccd: bool) -> RigidBodyB
         .rotation(body.angle())
         .gravity_scale(body.gravity_scale())
         .can_sleep(can_sleep)
+        .sleeping(body.is_sleeping())
         .ccd_enabled(ccd && body.is_bullet());
     if body.kind() != BodyKind::Static {
         let v = body.linear_velocity();
