@@ -340,18 +340,19 @@ impl BroadPhase {
 
     /// Calls `visit(handle)` for every collider whose fat box overlaps `aabb`.
     pub fn query(&self, aabb: &Aabb, mut visit: impl FnMut(ColliderHandle)) {
-        for tree in &self.trees {
-            tree.query(aabb, |node| {
-                if let Some(p) = self.proxies[tree.payload(node) as usize] {
-                    visit(p.handle);
-                }
-            });
+        for tree in [STATIC_TREE, MOVING_TREE] {
+            self.query_tree(tree, aabb, &mut visit);
         }
     }
 
     /// Calls `visit(handle)` for every static collider whose fat box overlaps `aabb`.
     pub fn query_static(&self, aabb: &Aabb, mut visit: impl FnMut(ColliderHandle)) {
-        let tree = &self.trees[STATIC_TREE];
+        self.query_tree(STATIC_TREE, aabb, &mut visit);
+    }
+
+    /// [`BroadPhase::query`] in one tree.
+    fn query_tree(&self, tree: usize, aabb: &Aabb, visit: &mut impl FnMut(ColliderHandle)) {
+        let tree = &self.trees[tree];
         tree.query(aabb, |node| {
             if let Some(p) = self.proxies[tree.payload(node) as usize] {
                 visit(p.handle);

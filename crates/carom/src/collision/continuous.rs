@@ -186,15 +186,7 @@ pub(crate) fn solve_continuous(
             let placed = swept.get_or_insert_with(|| collider.world_shape().clone());
             collider.place_shape(placed, &sweep.at(0.0));
             let path = placed.aabb().union(&collider.aabb());
-            // Only a bullet stops at moving bodies: the others need only the static tree.
-            let query = |visit: &mut dyn FnMut(ColliderHandle)| {
-                if body.is_bullet() {
-                    broadphase.query(&path, visit)
-                } else {
-                    broadphase.query_static(&path, visit)
-                }
-            };
-            query(&mut |handle| {
+            let mut visit = |handle| {
                 let Some(other) = colliders.get(handle) else {
                     return;
                 };
@@ -211,7 +203,13 @@ pub(crate) fn solve_continuous(
                 {
                     first = Some(t);
                 }
-            });
+            };
+            // Only a bullet stops at moving bodies: the others need only the static tree.
+            if body.is_bullet() {
+                broadphase.query(&path, &mut visit);
+            } else {
+                broadphase.query_static(&path, &mut visit);
+            }
         }
         if let Some(t) = first.filter(|&t| t < 1.0) {
             let (center, rotation) = sweep.pose_at(t);
