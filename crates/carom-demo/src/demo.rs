@@ -3,7 +3,7 @@
 //! times and draws what it describes; tests feed it synthetic events the same way.
 
 use crate::metrics::Metrics;
-use carom::{Color, DrawList, DrawOptions, MouseJoint, Vec2};
+use carom::{BodyHandle, Color, DrawList, DrawOptions, JointDef, JointHandle, Vec2};
 use carom_render::Camera;
 use carom_scene::SceneWorld;
 use std::path::{Path, PathBuf};
@@ -103,9 +103,20 @@ pub struct Demo {
     /// Step costs and errors.
     pub metrics: Metrics,
     accumulator: f64,
-    grab: Option<MouseJoint>,
+    grab: Option<Grab>,
     pan_from: Option<Vec2>,
 }
+
+/// A body held by the cursor through a mouse joint.
+#[derive(Debug, Clone, Copy)]
+struct Grab {
+    joint: JointHandle,
+    body: BodyHandle,
+}
+
+/// How hard the cursor may pull, as an acceleration of the held body's mass, m/s² (Box2D's
+/// samples pull with 1000 times the body's mass).
+const GRAB_ACCELERATION: f32 = 1000.0;
 
 impl Demo {
     /// Opens `scene` (a file), listing the scenes of `folder` for the menu.
@@ -212,20 +223,16 @@ impl Demo {
         Ok(steps)
     }
 
-    /// One fixed step, with the grab's spring applied and the cost recorded.
+    /// One fixed step, with its cost recorded.
     pub fn step(&mut self) -> Result<(), String> {
-        if let Some(joint) = &self.grab {
-            joint
-                .apply(&mut self.scene.world)
-                .map_err(|e| e.to_string())?;
-        }
         let clock = Instant::now();
         self.scene.step().map_err(|e| e.to_string())?;
         let ms = clock.elapsed().as_secs_f64() * 1e3;
         self.metrics.record(&self.scene.world, ms);
+        // The held body may be gone, and its joint with it (or the joint broke).
         if self
             .grab
-            .is_some_and(|joint| self.scene.world.body(joint.body()).is_none())
+            .is_some_and(|grab| self.scene.world.joint(grab.joint).is_none())
         {
             self.grab = None;
         }
@@ -256,12 +263,21 @@ impl Demo {
     pub fn press(&mut self, button: Button, screen: Vec2) {
         match button {
             Button::Left => {
+                self.let_go();
                 let point = self.camera.screen_to_world(screen, self.viewport);
-                self.grab = self
-                    .scene
-                    .world
-                    .body_at(point)
-                    .and_then(|body| MouseJoint::new(&self.scene.world, body, point));
+                let world = &mut self.scene.world;
+                let Some(body) = world.body_at(point) else {
+                    return;
+                };
+                let Some(mass) = world
+                    .body(body)
+                    .filter(|b| b.is_dynamic())
+                    .map(|b| b.mass())
+                else {
+                    return;
+                };
+                let def = JointDef::mouse(body, point, GRAB_ACCELERATION * mass);
+                self.grab = world.add_joint(def).ok().map(|joint| Grab { joint, body });
             }
             Button::Right | Button::Middle => self.pan_from = Some(screen),
         }
@@ -269,10 +285,10 @@ impl Demo {
 
     /// The cursor moved to `screen`.
     pub fn move_to(&mut self, screen: Vec2) {
-        if let Some(joint) = &mut self.grab {
+        if let Some(grab) = self.grab {
             let point = self.camera.screen_to_world(screen, self.viewport);
             // Screen points map to finite world points; a failure would leave the old target.
-            let _ = joint.set_target(point);
+            let _ = self.scene.world.set_mouse_target(grab.joint, point);
         }
         if let Some(from) = self.pan_from {
             self.camera.pan_by_pixels(screen - from);
@@ -283,8 +299,16 @@ impl Demo {
     /// A button went up: a held body is let go with the velocity it has (a throw).
     pub fn release(&mut self, button: Button) {
         match button {
-            Button::Left => self.grab = None,
+            Button::Left => self.let_go(),
             Button::Right | Button::Middle => self.pan_from = None,
+        }
+    }
+
+    /// Lets go of the held body, if any: it keeps the velocity it has.
+    fn let_go(&mut self) {
+        if let Some(grab) = self.grab.take() {
+            // Gone already if the body was removed or the joint broke.
+            let _ = self.scene.world.remove_joint(grab.joint);
         }
     }
 
@@ -296,20 +320,24 @@ impl Demo {
 
     /// The body held, if any.
     pub fn grabbed(&self) -> Option<carom::BodyHandle> {
-        self.grab.map(|joint| joint.body())
+        self.grab.map(|grab| grab.body)
     }
 
     /// Describes the scene and the grab's spring to `out` (cleared first).
     pub fn describe(&self, out: &mut DrawList) {
         out.clear();
         self.scene.debug_draw(&self.draw, out);
-        if let Some(joint) = &self.grab
-            && let Some(anchor) = joint.anchor(&self.scene.world)
+        let world = &self.scene.world;
+        if let Some(grab) = self.grab
+            && let Some(joint) = world.joint(grab.joint)
+            && let Some(body) = world.body(grab.body)
+            && let carom::JointKind::Mouse(mouse) = joint.kind()
         {
+            let anchor = body.world_point(joint.local_anchors()[1]);
             let spring = Color::rgb(1.0, 1.0, 1.0);
-            carom::DebugDraw::segment(out, anchor, joint.target(), 1.5, spring);
+            carom::DebugDraw::segment(out, anchor, mouse.target, 1.5, spring);
             carom::DebugDraw::point(out, anchor, 6.0, spring);
-            carom::DebugDraw::point(out, joint.target(), 4.0, spring);
+            carom::DebugDraw::point(out, mouse.target, 4.0, spring);
         }
     }
 }

@@ -109,6 +109,23 @@ pub(crate) const MAX_CORRECTION: Real = 0.2;
 /// solve as a block (Box2D v2.4's `k_maxConditionNumber`).
 pub(crate) const MAX_CONDITION: Real = 1000.0;
 
+/// Soft step: how stiffly a rigid joint's drift is pushed back in the biased pass, Hz, and
+/// its damping ratio (Box2D 3.2's joint defaults; the stiffness at most a quarter of the
+/// substep rate).
+pub(crate) const JOINT_HERTZ: Real = 60.0;
+pub(crate) const JOINT_DAMPING_RATIO: Real = 2.0;
+
+/// Soft step: colours joints may take before the overflow. Joints are coloured apart from
+/// contacts, in colours of their own solved first in each pass.
+pub(crate) const JOINT_COLOR_COUNT: usize = 12;
+
+/// Joints per block, at least, when a joint colour is shared among threads.
+pub(crate) const MIN_JOINT_BLOCK: usize = 64;
+
+/// The mouse joint's spin damping: a soft constraint toward no spin (Box2D v3.0's).
+pub(crate) const MOUSE_ANGULAR_HERTZ: Real = 0.5;
+pub(crate) const MOUSE_ANGULAR_DAMPING_RATIO: Real = 0.1;
+
 /// The tutorial's impulse solver: the overlap it leaves alone, m.
 pub(crate) const TUTORIAL_SLOP: Real = 0.01;
 

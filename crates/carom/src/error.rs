@@ -85,12 +85,34 @@ pub enum CaromError {
         "no {what} for handle {index}v{generation}: it was removed or belongs to another world"
     )]
     StaleHandle {
-        /// What the handle was for: "body" or "collider".
+        /// What the handle was for: "body", "collider" or "joint".
         what: &'static str,
         /// The handle's slot index.
         index: u32,
         /// The handle's generation.
         generation: u32,
+    },
+    /// A joint joins two different bodies, except a mouse joint, which holds one.
+    #[error("a {kind} joint needs two different bodies (a mouse joint names one body twice)")]
+    JointBodies {
+        /// The joint's kind.
+        kind: &'static str,
+    },
+    /// A joint definition set something its kind does not have.
+    #[error("a {kind} joint has no {setting}")]
+    JointSetting {
+        /// The joint's kind.
+        kind: &'static str,
+        /// The setting: "limits", "motor" or "spring".
+        setting: &'static str,
+    },
+    /// A joint's settings were replaced with another kind's.
+    #[error("a {from} joint cannot become a {to} joint; remove it and add another")]
+    JointKindChange {
+        /// The joint's kind.
+        from: &'static str,
+        /// The kind asked for.
+        to: &'static str,
     },
     /// A body needs a collider to have a shape and a mass.
     #[error("a body needs at least one collider (a shape)")]

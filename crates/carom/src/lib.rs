@@ -37,6 +37,7 @@ mod dynamics;
 mod error;
 mod geometry;
 mod handle_map;
+mod joint;
 mod math;
 mod parallel;
 mod partition;
@@ -61,12 +62,15 @@ pub use geometry::aabb::Aabb;
 pub use geometry::mass::MassProperties;
 pub use geometry::ray::{Ray, RayHit};
 pub use geometry::shape::{Circle, Polygon, Shape, WorldShape};
+pub use joint::{
+    Anchors, DistanceJoint, Joint, JointDef, JointEvent, JointHandle, JointKind, Limits, Motor,
+    MotorJoint, MouseJoint, PrismaticJoint, RevoluteJoint, Spring, WeldJoint, WheelJoint,
+};
 pub use math::{Isometry, Mat3, Real, Rot, Vec2, vec2};
 pub use solver::{SolverKind, SolverParams};
 pub use stats::{StageTimes, StepStats, Work};
 pub use world::body_mut::BodyMut;
 pub use world::effects::{Effect, Effects};
-pub use world::mouse_joint::MouseJoint;
 pub use world::settings::WorldSettings;
 pub use world::{World, WorldRayHit};
 

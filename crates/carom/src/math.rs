@@ -58,6 +58,17 @@ pub fn clamp_magnitude(v: Vec2, max_len: Real) -> Vec2 {
     }
 }
 
+/// `angle` brought into `[-π, π]` by whole turns.
+#[inline]
+pub fn unwind_angle(angle: Real) -> Real {
+    use std::f32::consts::{PI, TAU};
+    if (-PI..=PI).contains(&angle) {
+        angle
+    } else {
+        angle - TAU * ((angle + PI) / TAU).floor()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

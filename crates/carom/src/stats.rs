@@ -66,6 +66,8 @@ pub struct StepStats {
     pub touching_contacts: usize,
     /// Contact points solved.
     pub contact_points: usize,
+    /// Joints solved.
+    pub joints: usize,
     /// The deepest overlap among the contacts built this step, m.
     pub max_penetration: Real,
     /// Kinetic energy of the moving bodies after the step, J.

@@ -161,6 +161,14 @@ impl BroadPhase {
         }
     }
 
+    /// Looks for new pairs of a collider at the next pair update, though it has not moved
+    /// (two bodies that could not collide now can).
+    pub fn requeue(&mut self, handle: ColliderHandle) {
+        if self.proxy(handle).is_some() {
+            self.enqueue(Self::slot(handle));
+        }
+    }
+
     fn enqueue(&mut self, slot: usize) {
         if let Some(p) = self.proxies[slot].as_mut()
             && !p.queued

@@ -16,6 +16,7 @@ mod avx_lanes;
 mod body_state;
 mod contact_constraint;
 mod contact_graph;
+mod joints;
 mod lanes;
 mod push_out;
 mod sequential_impulse;
@@ -28,12 +29,14 @@ mod wide_contacts;
 pub(crate) use body_state::BodyState;
 use contact_constraint::BodyMass;
 pub(crate) use contact_constraint::ContactConstraint;
+pub(crate) use joints::{JointBody, JointColors, JointConstraint};
 
 use crate::collision::contact::{BodyIndices, Contact};
 use crate::collision::contact_layout::ColorRanges;
 use crate::constants::{COLOR_COUNT, ITEMS_PER_TASK};
 use crate::dynamics::body::Body;
 use crate::dynamics::drag::DragModel;
+use crate::joint::{Joint, JointKind};
 use crate::math::{Real, Vec2};
 use crate::parallel::{for_each_with, map_into};
 use crate::stats::Work;
@@ -309,6 +312,9 @@ pub(crate) struct Workspace {
     /// and the contacts sent to the overflow because their colour had claimed a body already.
     claims: Vec<u8>,
     demoted: Vec<usize>,
+    /// The awake joints prepared for the step, sorted by colour for soft step.
+    joints: Vec<JointConstraint>,
+    joint_colors: JointColors,
 }
 
 /// The colouring's promise, checked: no two contacts of a colour share a body the solver
@@ -396,12 +402,24 @@ pub(crate) struct AwakeSet<'a> {
     pub body_indices: &'a [BodyIndices],
     /// Where each colour's contacts (then the overflow's) are among the awake contacts.
     pub colors: &'a ColorRanges,
+    /// Every joint; the ones to solve are `awake_joints`.
+    pub joints: &'a mut [Joint],
+    pub awake_joints: &'a [AwakeJoint],
+}
+
+/// A joint to solve: where it is among the joints, and where its bodies are among all bodies.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct AwakeJoint {
+    pub index: u32,
+    pub bodies: [u32; 2],
 }
 
 /// What one solver step did: contact points solved, the work of the optional effects, and
 /// how long preparing and storing took.
 pub(crate) struct StepReport {
     pub points: usize,
+    /// Joints solved.
+    pub joints: usize,
     pub work: Work,
     pub prepare: Duration,
     pub store: Duration,
@@ -422,6 +440,8 @@ pub(crate) fn step(
         contacts,
         body_indices,
         colors,
+        joints,
+        awake_joints,
     } = set;
     debug_assert!(
         contacts.iter().zip(body_indices).all(|(c, &[a, b])| {
@@ -443,6 +463,8 @@ pub(crate) fn step(
         order,
         claims,
         demoted,
+        joints: joint_constraints,
+        joint_colors,
     } = workspace;
     // Soft step solves colour by colour; the classic solvers, and soft step without colours,
     // one by one in contact order.
@@ -493,6 +515,26 @@ pub(crate) fn step(
     map_into(one_by_one, constraints, ITEMS_PER_TASK, |&i| {
         inputs.constraint(i)
     });
+    // The joints, prepared for the step's substeps (soft step) or the whole step.
+    let h = if kind.has_substeps() {
+        dt / params.substeps.max(1) as Real
+    } else {
+        dt
+    };
+    prepare_joints(
+        bodies,
+        awake.clone(),
+        joints,
+        awake_joints,
+        h,
+        params.warm_starting,
+        joint_constraints,
+    );
+    if colored {
+        joints::color_joints(joint_constraints, states.len(), joint_colors);
+    } else {
+        joint_colors.all_overflow(joint_constraints.len());
+    }
     let prepare = started.elapsed();
     let bodies = &mut bodies[awake];
     let context = SolverContext {
@@ -501,13 +543,33 @@ pub(crate) fn step(
         bodies,
         dt,
     };
+    // Push-out and the tutorial's impulses predate joints: they leave them out.
     let work = match kind {
         SolverKind::PushOut => push_out::solve(&context, states, constraints),
         SolverKind::TutorialImpulse => tutorial_impulse::solve(&context, states, constraints),
-        SolverKind::SequentialImpulse => sequential_impulse::solve(&context, states, constraints),
-        SolverKind::SoftStep => soft_step::solve(&context, states, constraints, wide, plan, &bias),
+        SolverKind::SequentialImpulse => {
+            sequential_impulse::solve(&context, states, constraints, joint_constraints)
+        }
+        SolverKind::SoftStep => soft_step::solve(
+            &context,
+            states,
+            constraints,
+            (joint_constraints, joint_colors),
+            wide,
+            plan,
+            &bias,
+        ),
     };
     let storing = Instant::now();
+    let solved_joints = matches!(kind, SolverKind::SequentialImpulse | SolverKind::SoftStep);
+    for c in joint_constraints.iter() {
+        let joint = &mut joints[c.joint];
+        if solved_joints {
+            joint.impulses = c.impulses;
+            let (force, torque) = c.reaction(1.0 / h);
+            joint.set_reaction(force, torque);
+        }
+    }
     wide.store(contacts);
     for constraint in constraints.iter() {
         constraint.store_impulses(&mut contacts[constraint.contact_index]);
@@ -517,9 +579,52 @@ pub(crate) fn step(
     });
     let points: usize = constraints.iter().map(|c| c.points().len()).sum();
     StepReport {
+        joints: if solved_joints {
+            joint_constraints.len()
+        } else {
+            0
+        },
         points: points + wide.point_count(),
         work,
         prepare,
         store: storing.elapsed(),
+    }
+}
+
+/// Prepares the awake joints (filter joints have nothing to solve) into `constraints`, for
+/// (sub)steps of `h`.
+fn prepare_joints(
+    bodies: &[Body],
+    awake: Range<usize>,
+    joints: &[Joint],
+    awake_joints: &[AwakeJoint],
+    h: Real,
+    warm_starting: bool,
+    constraints: &mut Vec<JointConstraint>,
+) {
+    constraints.clear();
+    // The spare state, past the awake bodies' states: a body outside the awake set.
+    let spare = awake.len();
+    let side = |index: u32| {
+        let index = index as usize;
+        let body = &bodies[index];
+        let is_awake = awake.contains(&index);
+        JointBody {
+            body,
+            state: if is_awake { index - awake.start } else { spare },
+            moves: is_awake && body.is_dynamic(),
+        }
+    };
+    for &AwakeJoint {
+        index,
+        bodies: [a, b],
+    } in awake_joints
+    {
+        let joint = &joints[index as usize];
+        if matches!(joint.kind(), JointKind::Filter) {
+            continue;
+        }
+        let c = JointConstraint::prepare(index as usize, joint, side(a), side(b), h, warm_starting);
+        constraints.push(c);
     }
 }

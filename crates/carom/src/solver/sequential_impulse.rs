@@ -5,10 +5,15 @@
 //! passes push overlap beyond the slop out directly (Baumgarte's fraction per pass, at most
 //! [`MAX_CORRECTION`]). A velocity bias would stay in the bodies as energy and, in a pressed
 //! pile, feed on itself until it explodes.
+//!
+//! Joints are solved before the contacts in each iteration, warm started too, with
+//! Baumgarte's bias on their drift (the fraction [`SolverParams::baumgarte`] per step) and no
+//! position pass of their own.
 
 use super::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
 use super::contact_constraint::ConstraintPoint;
 use super::contact_constraint::pair_mut;
+use super::joints::{JointConstraint, JointPass};
 use super::soft_step::{apply_restitution, forget_impulses, solve_friction, warm_start};
 use super::{BodyState, ContactConstraint, SolverContext, SolverParams};
 use crate::constants::{LINEAR_SLOP, MAX_CONDITION, MAX_CORRECTION, POSITION_ITERATIONS};
@@ -19,6 +24,7 @@ pub(super) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
+    joints: &mut [JointConstraint],
 ) -> Work {
     let SolverContext {
         params,
@@ -29,12 +35,19 @@ pub(super) fn solve(
     let inv_dt = 1.0 / dt;
     let mut work =
         integrate_velocities(environment, bodies, states, dt, SpeedCaps::new(params, dt));
+    let joint_pass = JointPass::baumgarte(dt, params.baumgarte);
     if params.warm_starting {
+        for joint in joints.iter_mut() {
+            with_joint_states(joint, states, |j, a, b| j.warm_start(a, b));
+        }
         warm_start(constraints, states);
     } else {
         forget_impulses(constraints);
     }
     for _ in 0..params.iterations {
+        for joint in joints.iter_mut() {
+            with_joint_states(joint, states, |j, a, b| j.solve(a, b, &joint_pass));
+        }
         for c in constraints.iter_mut() {
             let (a, b) = pair_mut(states, c.a, c.b);
             // Friction first, against last iteration's normal impulse (Box2D v2's order).
@@ -60,6 +73,23 @@ pub(super) fn solve(
         correct_positions(params, constraints, states);
     }
     work
+}
+
+/// Runs `f` on copies of a joint's two states, and writes back the velocities of the bodies
+/// it moves.
+pub(super) fn with_joint_states(
+    joint: &mut JointConstraint,
+    states: &mut [BodyState],
+    f: impl FnOnce(&mut JointConstraint, &mut BodyState, &mut BodyState),
+) {
+    let (mut a, mut b) = (states[joint.a], states[joint.b]);
+    f(joint, &mut a, &mut b);
+    if joint.moves_a {
+        (states[joint.a].v, states[joint.a].w) = (a.v, a.w);
+    }
+    if joint.moves_b {
+        (states[joint.b].v, states[joint.b].w) = (b.v, b.w);
+    }
 }
 
 /// The slowest normal velocity a point allows: close a speculative gap exactly; an overlap is

@@ -60,6 +60,22 @@ impl<'a> SharedStates<'a> {
         unsafe { std::ptr::read(self.states.add(index).cast::<[f32; 8]>()) }
     }
 
+    /// State `index`, copied (for a joint, which works on its own copies of two states).
+    #[inline(always)]
+    pub fn get(&self, index: usize) -> BodyState {
+        assert!(index < self.len, "state {index} of {}", self.len);
+        // SAFETY: in bounds (checked) and aligned; no other thread writes it (promised in
+        // `new`).
+        unsafe { std::ptr::read(self.states.add(index)) }
+    }
+
+    /// Sets state `index`'s velocities from `state` (a joint's copy, solved).
+    #[inline(always)]
+    pub fn set_velocity(&self, index: usize, state: &BodyState) {
+        let velocity = [state.v.x, state.v.y, state.w, 0.0];
+        self.write_velocity(index as u32, velocity);
+    }
+
     /// States `range`, to change whole (integration, the overflow's one-by-one solve).
     ///
     /// # Safety

@@ -3,10 +3,12 @@
 //! Per substep: integrate velocities, warm start, solve with a soft-constraint bias (a stiff,
 //! heavily damped spring pulls overlap out at a bounded speed), integrate positions, then
 //! relax (solve again without bias, so the push-out leaves no energy behind). Anchors stay
-//! fixed for the step; each point's separation is updated from the bodies' motion.
+//! fixed for the step; each point's separation is updated from the bodies' motion. Joints are
+//! solved the same way, before the contacts in each pass ([`super::joints`]).
 
 use super::body_state::SpeedCaps;
 use super::contact_constraint::pair_mut;
+use super::joints::{JointColors, JointConstraint};
 use super::wide_contacts::{Pass, PassBias, Stage, StageInputs, WideContacts};
 use super::{BodyState, ContactConstraint, Environment, Softness, SolverContext, SolverParams};
 use crate::math::Real;
@@ -22,6 +24,7 @@ pub(super) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
+    (joints, joint_colors): (&mut [JointConstraint], &JointColors),
     wide: &mut WideContacts,
     plan: &mut Vec<Stage>,
     bias: &Bias,
@@ -37,7 +40,7 @@ pub(super) fn solve(
     let bias_friction = environment.friction && params.friction_in_bias_pass;
     let bouncy = wide.bouncy() || constraints.iter().any(|c| c.restitution > 0.0);
     let shape = (wide.color_count(), !constraints.is_empty(), bouncy);
-    plan_stages(plan, params, environment, bias, shape);
+    plan_stages(plan, params, environment, bias, joint_colors, shape);
     let inputs = StageInputs {
         bodies,
         environment,
@@ -46,7 +49,8 @@ pub(super) fn solve(
         bias,
         params,
     };
-    let (mut work, bounces) = wide.execute(plan, states, constraints, &inputs);
+    let (mut work, bounces) =
+        wide.execute(plan, states, constraints, (joints, joint_colors), &inputs);
     let points = wide.point_count() + constraints.iter().map(|c| c.points().len()).sum::<usize>();
     let friction_passes = u32::from(bias_friction) + u32::from(environment.friction);
     work.friction_impulses = points * (friction_passes * params.iterations * substeps) as usize;
@@ -54,18 +58,25 @@ pub(super) fn solve(
     work
 }
 
-/// The stages of one step, into `plan`: each contact pass over the `colors` colours in turn,
-/// then over the overflow if it has constraints; the restitution pass only if `bouncy` (some
-/// contact has restitution: the pass does nothing for the others).
+/// The stages of one step, into `plan`: each pass over the joint colours that have joints
+/// (the last being their overflow), then the contacts' `colors` colours in turn, then the
+/// contacts' overflow if it has constraints; the restitution pass (contacts only) only if
+/// `bouncy` (some contact has restitution: the pass does nothing for the others).
 fn plan_stages(
     plan: &mut Vec<Stage>,
     params: &SolverParams,
     environment: Environment,
     bias: &Bias,
+    joint_colors: &JointColors,
     (colors, overflow, bouncy): (usize, bool, bool),
 ) {
     plan.clear();
     let pass = |plan: &mut Vec<Stage>, pass: Pass| {
+        if !matches!(pass, Pass::Restitution(_)) {
+            let joints = joint_colors.ranges.iter().enumerate();
+            let used = joints.filter(|(_, range)| !range.is_empty());
+            plan.extend(used.map(|(color, _)| Stage::Joints(color, pass)));
+        }
         plan.extend((0..colors).map(|color| Stage::Color(color, pass)));
         if overflow {
             plan.push(Stage::Overflow(pass));

@@ -14,6 +14,7 @@ use super::avx_lanes::{self, Avx8};
 use super::body_state::{SpeedCaps, integrate_position, integrate_velocity};
 use super::contact_constraint::{BodyMass, ConstraintPoint, ContactConstraint, SolverBody};
 use super::contact_graph::ContactGraph;
+use super::joints::{JointColors, JointConstraint, JointPass};
 use super::lanes::{Kernel, Lanes};
 use super::shared_states::SharedStates;
 use super::soft_step::{Bias, apply_restitution, solve_one, warm_start_one};
@@ -21,7 +22,8 @@ use super::stages::{block_count, block_range, run_stages};
 use super::{BodyState, Environment, Softness, SolverParams};
 use crate::collision::contact::{BodyIndices, Contact};
 use crate::constants::{
-    COLOR_COUNT, ITEMS_PER_TASK, MAX_BLOCKS, MIN_BLOCK, MIN_BODY_BLOCK, MIN_SHARED,
+    COLOR_COUNT, ITEMS_PER_TASK, JOINT_COLOR_COUNT, MAX_BLOCKS, MIN_BLOCK, MIN_BODY_BLOCK,
+    MIN_JOINT_BLOCK, MIN_SHARED,
 };
 use crate::dynamics::body::Body;
 use crate::math::Real;
@@ -384,17 +386,22 @@ impl WideContacts {
         plan: &[Stage],
         states: &mut [BodyState],
         overflow: &mut [ContactConstraint],
+        joints: (&mut [JointConstraint], &JointColors),
         inputs: &StageInputs,
     ) -> (Work, usize) {
         let all = 0..states.len();
         // SAFETY: the stages run one after another (`run_stages`). Within a colour's stage the
         // bundles write no state that another bundle of the colour reads or writes (checked
-        // as the order was built, `solver::ColorCheck`); integration's blocks borrow disjoint
-        // runs of states, and the overflow's stage is one block, alone (`range_mut` below).
+        // as the order was built, `solver::ColorCheck`), nor do a joint colour's joints (the
+        // joint colouring only puts a joint in a colour none of whose joints moves its
+        // bodies); integration's blocks borrow disjoint runs of states, and the overflow's
+        // stage is one block, alone (`range_mut` below).
         let states = unsafe { SharedStates::new(states) };
         let colors = &self.colors;
         with_bundles!(&mut self.bundles, |bundles| {
-            execute_stages(bundles, colors, plan, &states, all, overflow, inputs)
+            execute_stages(
+                bundles, colors, plan, &states, all, overflow, joints, inputs,
+            )
         })
     }
 
@@ -435,7 +442,8 @@ impl WideContacts {
             bias: &bias,
             params: &params,
         };
-        self.execute(&plan, states, &mut [], &inputs).1
+        let joints = (&mut [][..], &JointColors::default());
+        self.execute(&plan, states, &mut [], joints, &inputs).1
     }
 
     /// Applies the accumulated impulses (warm start).
@@ -597,6 +605,8 @@ pub(crate) enum Stage {
     Color(usize, Pass),
     /// The pass over the overflow's constraints, one by one.
     Overflow(Pass),
+    /// A pass over the joints of a joint colour (the last is their overflow, one block).
+    Joints(usize, Pass),
 }
 
 /// What the stages read besides the states and constraints.
@@ -616,6 +626,7 @@ pub(crate) struct StageInputs<'a> {
 type LentBlock<'a, L> = Option<Mutex<&'a mut [Bundle<L>]>>;
 
 /// [`WideContacts::execute`] for bundles of one width.
+#[allow(clippy::too_many_arguments)]
 fn execute_stages<L: Lanes>(
     bundles: &mut [Bundle<L>],
     colors: &[Range<usize>],
@@ -623,10 +634,17 @@ fn execute_stages<L: Lanes>(
     states: &SharedStates,
     all_states: Range<usize>,
     overflow: &mut [ContactConstraint],
+    (joints, joint_colors): (&mut [JointConstraint], &JointColors),
     inputs: &StageInputs,
 ) -> (Work, usize) {
     let threads = rayon::current_num_threads();
-    let shared = threads > 1 && bundles.len() >= MIN_SHARED;
+    // A joint costs about what a bundle does.
+    let shared = threads > 1 && bundles.len() + joints.len() >= MIN_SHARED;
+    let joint_blocks = lend_joint_blocks(joints, joint_colors, shared, threads);
+    let joint_block_counts = joint_blocks
+        .each_ref()
+        .map(|blocks| blocks.iter().filter(|b| b.is_some()).count());
+    let joint_passes = [true, false].map(|use_bias| JointPass::soft(inputs.h, use_bias));
     // Every colour cut into blocks, each behind a lock that is never contended (a block is
     // claimed once a stage), which is how a block is lent mutably to whichever thread claims
     // it; the colour's stages all cut it the same way.
@@ -663,6 +681,7 @@ fn execute_stages<L: Lanes>(
         Stage::IntegrateVelocities | Stage::IntegratePositions => body_blocks,
         Stage::Color(color, _) => color_blocks[color],
         Stage::Overflow(_) => 1,
+        Stage::Joints(color, _) => joint_block_counts[color],
     };
     run_stages(
         plan.len(),
@@ -723,10 +742,68 @@ fn execute_stages<L: Lanes>(
                     }
                 }
             }
+            Stage::Joints(color, pass) => {
+                if let Some(block) = &joint_blocks[color][block] {
+                    let mut block = lock(block);
+                    for joint in block.iter_mut() {
+                        let mut a = states.get(joint.a);
+                        let mut b = states.get(joint.b);
+                        match pass {
+                            Pass::WarmStart => joint.warm_start(&mut a, &mut b),
+                            Pass::Solve(bias, _) => {
+                                let pass = &joint_passes[usize::from(!bias.use_bias)];
+                                joint.solve(&mut a, &mut b, pass);
+                            }
+                            Pass::Restitution(_) => {}
+                        }
+                        if joint.moves_a {
+                            states.set_velocity(joint.a, &a);
+                        }
+                        if joint.moves_b {
+                            states.set_velocity(joint.b, &b);
+                        }
+                    }
+                }
+            }
         },
     );
     (*lock(&work), bounces.into_inner())
 }
+
+/// The joints of each joint colour cut into blocks (one for the overflow, the last colour),
+/// each lent to whichever thread claims it.
+fn lend_joint_blocks<'a>(
+    joints: &'a mut [JointConstraint],
+    colors: &JointColors,
+    shared: bool,
+    threads: usize,
+) -> [[LentJoints<'a>; MAX_BLOCKS]; JOINT_COLOR_COUNT + 1] {
+    let mut lent: [[LentJoints; MAX_BLOCKS]; JOINT_COLOR_COUNT + 1] =
+        std::array::from_fn(|_| std::array::from_fn(|_| None));
+    let mut rest = joints;
+    let overflow = colors.ranges.len().saturating_sub(1);
+    for ((color, range), blocks) in colors.ranges.iter().enumerate().zip(&mut lent) {
+        let (mut of_color, after) = rest.split_at_mut(range.len());
+        rest = after;
+        let count = if shared && color != overflow {
+            block_count(range.len(), MIN_JOINT_BLOCK, threads)
+        } else {
+            1
+        };
+        if !range.is_empty() {
+            for (block, slot) in blocks.iter_mut().take(count).enumerate() {
+                let size = block_range(range.len(), count, block).len();
+                let (this, more) = of_color.split_at_mut(size);
+                of_color = more;
+                *slot = Some(Mutex::new(this));
+            }
+        }
+    }
+    lent
+}
+
+/// A block of a joint colour's joints, lent to whichever thread claims it.
+type LentJoints<'a> = Option<Mutex<&'a mut [JointConstraint]>>;
 
 /// A lock taken even if a panicking thread poisoned it (the panic is passed on anyway).
 fn lock<T>(mutex: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {

@@ -17,6 +17,8 @@ pub(crate) struct IslandScratch {
     stack: Vec<BodyHandle>,
     /// One body's touching partners.
     pub partners: Vec<BodyHandle>,
+    /// One body's joined partners.
+    joined: Vec<BodyHandle>,
     /// The islands falling asleep this step.
     sleepy: Vec<u32>,
 }
@@ -49,12 +51,17 @@ impl World {
     }
 
     /// Gives the body at `index`, just made dynamic (and awake), an island, joined with those
-    /// of the dynamic bodies it touches, which wake: an island is awake or asleep as a whole.
+    /// of the dynamic bodies it touches or is joined to, which wake: an island is awake or
+    /// asleep as a whole.
     pub(crate) fn join_touching_islands(&mut self, index: usize) {
         self.create_island_for(index);
         let handle = self.bodies.handles()[index];
         let mut partners = std::mem::take(&mut self.island_scratch.partners);
+        let mut joined = std::mem::take(&mut self.island_scratch.joined);
         self.contacts.touching_partners(handle, &mut partners);
+        self.joint_partners(handle, &mut joined);
+        partners.extend_from_slice(&joined);
+        self.island_scratch.joined = joined;
         for &partner in &partners {
             let body = &self.bodies.as_slice()[self.handle_index(partner)];
             if let (true, Some(island)) = (body.is_sleeping(), body.island()) {
@@ -168,12 +175,14 @@ impl World {
         self.contacts.give_back_touch_changes(began, ended);
     }
 
-    /// Splits island `id` into the groups of its bodies that touching contacts still join,
-    /// by a search through each body's contacts; the first group keeps the id.
+    /// Splits island `id` into the groups of its bodies that touching contacts and joints
+    /// still join, by a search through each body's contacts and joints; the first group keeps
+    /// the id.
     fn split_island(&mut self, id: u32) {
         let mut members = std::mem::take(&mut self.island_scratch.members);
         let mut stack = std::mem::take(&mut self.island_scratch.stack);
         let mut partners = std::mem::take(&mut self.island_scratch.partners);
+        let mut joined = std::mem::take(&mut self.island_scratch.joined);
         members.clear();
         let mut next = self.islands.get(id).head;
         while let Some(handle) = next {
@@ -200,6 +209,8 @@ impl World {
             stack.push(seed);
             while let Some(handle) = stack.pop() {
                 self.contacts.touching_partners(handle, &mut partners);
+                self.joint_partners(handle, &mut joined);
+                partners.extend_from_slice(&joined);
                 for &partner in &partners {
                     let index = self.handle_index(partner);
                     let body = &self.bodies.as_slice()[index];
@@ -213,6 +224,7 @@ impl World {
         self.island_scratch.members = members;
         self.island_scratch.stack = stack;
         self.island_scratch.partners = partners;
+        self.island_scratch.joined = joined;
     }
 
     /// The sleep stage: advances the awake dynamic bodies' sleep timers, puts every island

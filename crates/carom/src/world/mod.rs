@@ -3,7 +3,7 @@
 pub(crate) mod body_mut;
 pub(crate) mod effects;
 pub(crate) mod islands;
-pub(crate) mod mouse_joint;
+pub(crate) mod joints;
 pub(crate) mod settings;
 pub(crate) mod solver_sets;
 
@@ -24,6 +24,7 @@ use crate::geometry::aabb::Aabb;
 use crate::geometry::ray::Ray;
 use crate::geometry::shape::WorldShape;
 use crate::handle_map::HandleMap;
+use crate::joint::store::JointStore;
 use crate::math::{Real, Vec2};
 use crate::parallel::{for_each_mut, map_zip_into};
 use crate::solver::{self, Environment, SolverKind, SolverParams};
@@ -57,6 +58,7 @@ pub struct World {
     bodies: HandleMap<BodyHandle, Body>,
     /// Stored in the same sets as their bodies.
     colliders: HandleMap<ColliderHandle, Collider>,
+    joints: JointStore,
     /// The dynamic bodies' islands.
     islands: Islands,
     island_scratch: IslandScratch,
@@ -86,6 +88,8 @@ struct StepScratch {
     swept: Option<WorldShape>,
     /// Sleeping islands a moving body touched.
     wake: Vec<u32>,
+    /// The joints solved this step.
+    awake_joints: Vec<solver::AwakeJoint>,
     /// Per awake collider, its predicted box if it left its fat box (or its body changed
     /// kind), to re-fit in the broadphase.
     refits: Vec<Option<(Aabb, BodyKind)>>,
@@ -240,10 +244,12 @@ impl World {
         Ok(handle)
     }
 
-    /// Removes a body with its colliders and returns it. Its contacts end (reported after the
-    /// next step), and the sleeping bodies it touched wake.
+    /// Removes a body with its colliders and joints and returns it. Its contacts end
+    /// (reported after the next step), and the sleeping bodies it touched or was joined to
+    /// wake.
     pub fn remove_body(&mut self, handle: BodyHandle) -> Result<Body, CaromError> {
         self.bodies.checked_index(handle)?;
+        self.remove_joints_of(handle);
         self.wake_touching(handle);
         let index = self.bodies.checked_index(handle).expect("checked");
         let index = self.prepare_removal(index);
@@ -550,12 +556,15 @@ impl World {
         if continuous {
             self.poses(&mut scratch.starts);
         }
+        self.awake_joints(&mut scratch.awake_joints);
         let solved = timed(&mut times.solve, || {
-            let report = self.solve(dt);
+            let report = self.solve(dt, &scratch.awake_joints);
             self.place_moved_colliders();
             report
         });
         (stats.contact_points, stats.work) = (solved.points, solved.work);
+        stats.joints = solved.joints;
+        self.break_joints(&scratch.awake_joints);
         (times.prepare, times.store) = (solved.prepare, solved.store);
         if continuous {
             (stats.continuous_impacts, stats.work.sweeps) = timed(&mut times.continuous, || {
@@ -648,7 +657,7 @@ impl World {
 
     /// Runs the configured solver over every moving body and touching contact; returns how
     /// many contact points it solved and the work its effects did.
-    fn solve(&mut self, dt: Real) -> solver::StepReport {
+    fn solve(&mut self, dt: Real, awake_joints: &[solver::AwakeJoint]) -> solver::StepReport {
         let effects = self.settings.effects;
         let environment = Environment {
             gravity: effects
@@ -665,6 +674,8 @@ impl World {
             contacts,
             body_indices,
             colors: &colors,
+            joints: self.joints.as_mut_slice(),
+            awake_joints,
         };
         solver::step(
             &self.settings.solver,
@@ -686,6 +697,9 @@ impl World {
             else {
                 continue;
             };
+            if self.joints.filters(collider_a.body(), collider_b.body()) {
+                continue;
+            }
             let sets = self.body_sets;
             let awake = [collider_a, collider_b]
                 .iter()

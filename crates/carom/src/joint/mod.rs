@@ -1,0 +1,499 @@
+//! Joints: constraints between two bodies (a hinge, a slider, a rope, a weld, ...).
+//!
+//! A joint holds a point fixed in each body (its anchors) in some relation: together, at a
+//! distance, along an axis. Define one with [`JointDef`]'s constructors, from points in the
+//! world where the bodies are now, and add it with [`crate::World::add_joint`]. Each step the
+//! solver holds the joint together with the contacts, in the same substeps (softly in the
+//! biased pass, rigidly in the relaxation, as Box2D v3 does); two bodies joined share an
+//! island, so they sleep and wake together. A joint reports the force and torque it applied in
+//! the last step, and one given a break force or torque comes apart when it exceeds it
+//! ([`JointEvent::Broken`]).
+
+pub(crate) mod kinds;
+pub(crate) mod store;
+
+pub use kinds::{
+    DistanceJoint, JointKind, Limits, Motor, MotorJoint, MouseJoint, PrismaticJoint, RevoluteJoint,
+    Spring, WeldJoint, WheelJoint,
+};
+
+use crate::dynamics::body::{Body, BodyHandle};
+use crate::error::{CaromError, check_finite_vec};
+use crate::handle_map::generational_handle;
+use crate::math::{Real, Rot, Vec2};
+
+generational_handle!(
+    /// A stable reference to a joint in a [`crate::World`].
+    JointHandle,
+    "joint"
+);
+
+/// Where a joint's anchors are given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+pub enum Anchors {
+    /// Points in the world, where the bodies are when the joint is added: the joint holds
+    /// them as they are then (its reference angle is their angle then; an axis is a world
+    /// direction then).
+    World {
+        /// On body A.
+        a: Vec2,
+        /// On body B.
+        b: Vec2,
+    },
+    /// Points in each body's own frame, with the angle of B relative to A that the joint
+    /// treats as zero (an axis is in A's frame).
+    Local {
+        /// In A's frame.
+        a: Vec2,
+        /// In B's frame.
+        b: Vec2,
+        /// B's angle less A's at the joint's zero, rad.
+        reference_angle: Real,
+    },
+}
+
+/// Everything needed to create a joint: build one with a constructor ([`JointDef::revolute`],
+/// [`JointDef::distance`], ...) and the chained setters; checked when added to a world.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct JointDef {
+    /// The first body.
+    pub body_a: BodyHandle,
+    /// The second body (for a mouse joint, the same as the first).
+    pub body_b: BodyHandle,
+    /// The anchors, in the world or in the bodies' frames.
+    pub anchors: Anchors,
+    /// Whether the two bodies still collide with each other. Default false.
+    pub collide_connected: bool,
+    /// The joint breaks when the force it applies exceeds this, N. Default infinite.
+    pub break_force: Real,
+    /// The joint breaks when the torque it applies exceeds this, N·m. Default infinite.
+    pub break_torque: Real,
+    /// What it does, with its settings.
+    pub kind: JointKind,
+    /// A setter used on a kind that has no such setting ("limits", "motor", "spring"),
+    /// reported when the joint is added.
+    misuse: Option<&'static str>,
+}
+
+impl JointDef {
+    /// A joint of `kind` between `a` and `b` at world points `anchor_a` and `anchor_b`.
+    pub fn new(
+        a: BodyHandle,
+        b: BodyHandle,
+        anchor_a: Vec2,
+        anchor_b: Vec2,
+        kind: JointKind,
+    ) -> Self {
+        JointDef {
+            body_a: a,
+            body_b: b,
+            anchors: Anchors::World {
+                a: anchor_a,
+                b: anchor_b,
+            },
+            collide_connected: false,
+            break_force: Real::INFINITY,
+            break_torque: Real::INFINITY,
+            kind,
+            misuse: None,
+        }
+    }
+
+    /// A rigid rod between world points `anchor_a` on `a` and `anchor_b` on `b`, as long as
+    /// they are apart now. Add [`JointDef::spring`] to make it soft, [`JointDef::limits`] to
+    /// bound it.
+    pub fn distance(a: BodyHandle, b: BodyHandle, anchor_a: Vec2, anchor_b: Vec2) -> Self {
+        let length = (anchor_b - anchor_a).norm();
+        let kind = JointKind::Distance(DistanceJoint {
+            length,
+            spring: None,
+            limits: None,
+        });
+        JointDef::new(a, b, anchor_a, anchor_b, kind)
+    }
+
+    /// A rope between world points `anchor_a` on `a` and `anchor_b` on `b`: slack up to
+    /// `length`, taut beyond.
+    pub fn rope(
+        a: BodyHandle,
+        b: BodyHandle,
+        anchor_a: Vec2,
+        anchor_b: Vec2,
+        length: Real,
+    ) -> Self {
+        let kind = JointKind::Distance(DistanceJoint {
+            length,
+            spring: Some(Spring::new(0.0, 0.0)),
+            limits: Some(Limits {
+                lower: 0.0,
+                upper: length,
+            }),
+        });
+        JointDef::new(a, b, anchor_a, anchor_b, kind)
+    }
+
+    /// A hinge between `a` and `b` at world point `anchor`.
+    pub fn revolute(a: BodyHandle, b: BodyHandle, anchor: Vec2) -> Self {
+        let kind = JointKind::Revolute(RevoluteJoint::default());
+        JointDef::new(a, b, anchor, anchor, kind)
+    }
+
+    /// A slider: `b` moves along world direction `axis` through world point `anchor`.
+    pub fn prismatic(a: BodyHandle, b: BodyHandle, anchor: Vec2, axis: Vec2) -> Self {
+        let kind = JointKind::Prismatic(PrismaticJoint {
+            axis,
+            ..PrismaticJoint::default()
+        });
+        JointDef::new(a, b, anchor, anchor, kind)
+    }
+
+    /// Glues `a` and `b` together as they are, at world point `anchor` (where a soft weld
+    /// bends).
+    pub fn weld(a: BodyHandle, b: BodyHandle, anchor: Vec2) -> Self {
+        JointDef::new(a, b, anchor, anchor, JointKind::Weld(WeldJoint::default()))
+    }
+
+    /// Wheel `b` on chassis `a`: `b`'s centre at world point `anchor` rides a suspension
+    /// along world direction `axis` (4 Hz, damping ratio 0.7 until set).
+    pub fn wheel(a: BodyHandle, b: BodyHandle, anchor: Vec2, axis: Vec2) -> Self {
+        let kind = JointKind::Wheel(WheelJoint {
+            axis,
+            ..WheelJoint::default()
+        });
+        JointDef::new(a, b, anchor, anchor, kind)
+    }
+
+    /// Drives `b` toward its present pose relative to `a` with at most `max_force` and
+    /// `max_torque`, through world point `anchor` (usually `b`'s centre): with no offset
+    /// set, it holds `b` where it is; an offset moves the target (change it with
+    /// [`crate::World::set_joint_kind`]).
+    pub fn motor(
+        a: BodyHandle,
+        b: BodyHandle,
+        anchor: Vec2,
+        max_force: Real,
+        max_torque: Real,
+    ) -> Self {
+        let kind = JointKind::Motor(MotorJoint {
+            max_force,
+            max_torque,
+            ..MotorJoint::default()
+        });
+        JointDef::new(a, b, anchor, anchor, kind)
+    }
+
+    /// Grabs `body` at world point `point` and pulls that point toward `point` (move it with
+    /// [`crate::World::set_mouse_target`]) with at most `max_force`.
+    pub fn mouse(body: BodyHandle, point: Vec2, max_force: Real) -> Self {
+        let kind = JointKind::Mouse(MouseJoint {
+            target: point,
+            max_force,
+            ..MouseJoint::default()
+        });
+        JointDef::new(body, body, point, point, kind)
+    }
+
+    /// Only keeps `a` and `b` from colliding.
+    pub fn filter(a: BodyHandle, b: BodyHandle) -> Self {
+        JointDef::new(a, b, Vec2::zeros(), Vec2::zeros(), JointKind::Filter)
+    }
+
+    /// Anchors in each body's own frame, with B's angle relative to A's at the joint's zero
+    /// (an axis is then in A's frame).
+    pub fn local_anchors(mut self, a: Vec2, b: Vec2, reference_angle: Real) -> Self {
+        self.anchors = Anchors::Local {
+            a,
+            b,
+            reference_angle,
+        };
+        self
+    }
+
+    /// Lets the two bodies collide with each other (or not).
+    pub fn collide_connected(mut self, collide: bool) -> Self {
+        self.collide_connected = collide;
+        self
+    }
+
+    /// Breaks the joint when it applies more than `force` newtons.
+    pub fn break_force(mut self, force: Real) -> Self {
+        self.break_force = force;
+        self
+    }
+
+    /// Breaks the joint when it applies more than `torque` newton-metres.
+    pub fn break_torque(mut self, torque: Real) -> Self {
+        self.break_torque = torque;
+        self
+    }
+
+    /// Limits: angles for a revolute joint, translations for a prismatic or wheel joint,
+    /// lengths for a distance joint (which then also needs a spring to move between them).
+    /// Ignored by the other kinds (reported when the joint is added).
+    pub fn limits(mut self, lower: Real, upper: Real) -> Self {
+        let limits = Some(Limits { lower, upper });
+        match &mut self.kind {
+            JointKind::Revolute(j) => j.limits = limits,
+            JointKind::Prismatic(j) => j.limits = limits,
+            JointKind::Wheel(j) => j.limits = limits,
+            JointKind::Distance(j) => j.limits = limits,
+            _ => self.misuse = Some("limits"),
+        }
+        self
+    }
+
+    /// A motor at `speed` with at most `max_force` (a torque for a revolute or wheel joint).
+    pub fn motor_drive(mut self, speed: Real, max_force: Real) -> Self {
+        let motor = Some(Motor { speed, max_force });
+        match &mut self.kind {
+            JointKind::Revolute(j) => j.motor = motor,
+            JointKind::Prismatic(j) => j.motor = motor,
+            JointKind::Wheel(j) => j.motor = motor,
+            _ => self.misuse = Some("motor"),
+        }
+        self
+    }
+
+    /// A spring of `hertz` and `damping_ratio`: the distance joint's, the revolute and
+    /// prismatic joints' (toward their targets), the wheel's suspension, both of a weld's, or
+    /// the mouse joint's.
+    pub fn spring(mut self, hertz: Real, damping_ratio: Real) -> Self {
+        let spring = Spring::new(hertz, damping_ratio);
+        match &mut self.kind {
+            JointKind::Distance(j) => j.spring = Some(spring),
+            JointKind::Revolute(j) => j.spring = Some(spring),
+            JointKind::Prismatic(j) => j.spring = Some(spring),
+            JointKind::Wheel(j) => j.spring = Some(spring),
+            JointKind::Weld(j) => (j.linear, j.angular) = (Some(spring), Some(spring)),
+            JointKind::Mouse(j) => j.spring = spring,
+            _ => self.misuse = Some("spring"),
+        }
+        self
+    }
+
+    /// Checks the definition against the world's bodies (`None` for a stale handle), and
+    /// makes the joint: anchors, reference angle and axis in the bodies' frames.
+    pub(crate) fn build(
+        &self,
+        handle: JointHandle,
+        a: Option<&Body>,
+        b: Option<&Body>,
+    ) -> Result<Joint, CaromError> {
+        let stale = |h: BodyHandle| CaromError::StaleHandle {
+            what: "body",
+            index: h.index(),
+            generation: h.generation(),
+        };
+        let a = a.ok_or_else(|| stale(self.body_a))?;
+        let b = b.ok_or_else(|| stale(self.body_b))?;
+        let mouse = matches!(self.kind, JointKind::Mouse(_));
+        if mouse != (self.body_a == self.body_b) {
+            return Err(CaromError::JointBodies {
+                kind: self.kind.name(),
+            });
+        }
+        if let Some(setting) = self.misuse {
+            return Err(CaromError::JointSetting {
+                kind: self.kind.name(),
+                setting,
+            });
+        }
+        for (name, value) in [
+            ("joint break force", self.break_force),
+            ("joint break torque", self.break_torque),
+        ] {
+            if value.is_nan() || value < 0.0 {
+                return Err(CaromError::OutOfRange {
+                    name,
+                    expected: "not negative",
+                    value,
+                });
+            }
+        }
+        self.kind.validate()?;
+        let mut kind = self.kind;
+        let (local_a, local_b, reference_angle) = match self.anchors {
+            Anchors::World { a: pa, b: pb } => {
+                check_finite_vec("joint anchor a", pa)?;
+                check_finite_vec("joint anchor b", pb)?;
+                if let Some(axis) = kind.axis_mut() {
+                    *axis = a.rotation().inverse() * *axis;
+                }
+                (a.local_point(pa), b.local_point(pb), b.angle() - a.angle())
+            }
+            Anchors::Local {
+                a: pa,
+                b: pb,
+                reference_angle,
+            } => {
+                check_finite_vec("joint anchor a", pa)?;
+                check_finite_vec("joint anchor b", pb)?;
+                if !reference_angle.is_finite() {
+                    return Err(CaromError::non_finite(
+                        "joint reference angle",
+                        reference_angle,
+                    ));
+                }
+                (pa, pb, reference_angle)
+            }
+        };
+        if let Some(axis) = kind.axis_mut() {
+            *axis = axis.normalize();
+        }
+        Ok(Joint {
+            handle,
+            body_a: self.body_a,
+            body_b: self.body_b,
+            local_anchor_a: local_a,
+            local_anchor_b: local_b,
+            reference_angle,
+            collide_connected: self.collide_connected,
+            break_force: self.break_force,
+            break_torque: self.break_torque,
+            kind,
+            force: Vec2::zeros(),
+            torque: 0.0,
+            impulses: JointImpulses::default(),
+        })
+    }
+}
+
+/// A joint's accumulated impulses, kept from step to step to warm start the next. Each kind
+/// uses the ones it needs.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct JointImpulses {
+    /// The point constraint's (revolute, weld, mouse, motor), or the prismatic and wheel
+    /// joints' perpendicular one (x) and the prismatic's angular one (y).
+    pub linear: Vec2,
+    /// The weld's and the motor joint's angular constraint, the mouse joint's spin damping.
+    pub angular: Real,
+    /// Along the joint's free motion: the distance joint's rod or spring, a spring's.
+    pub axial: Real,
+    pub motor: Real,
+    pub lower: Real,
+    pub upper: Real,
+}
+
+/// A joint in a world.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Joint {
+    handle: JointHandle,
+    body_a: BodyHandle,
+    body_b: BodyHandle,
+    local_anchor_a: Vec2,
+    local_anchor_b: Vec2,
+    reference_angle: Real,
+    collide_connected: bool,
+    break_force: Real,
+    break_torque: Real,
+    kind: JointKind,
+    force: Vec2,
+    torque: Real,
+    pub(crate) impulses: JointImpulses,
+}
+
+impl Joint {
+    /// Its handle.
+    pub fn handle(&self) -> JointHandle {
+        self.handle
+    }
+
+    /// The two bodies (a mouse joint's are the same body).
+    pub fn bodies(&self) -> [BodyHandle; 2] {
+        [self.body_a, self.body_b]
+    }
+
+    /// The anchors in the bodies' own frames.
+    pub fn local_anchors(&self) -> [Vec2; 2] {
+        [self.local_anchor_a, self.local_anchor_b]
+    }
+
+    /// B's angle less A's at the joint's zero, rad.
+    pub fn reference_angle(&self) -> Real {
+        self.reference_angle
+    }
+
+    /// Whether the two bodies collide with each other.
+    pub fn collide_connected(&self) -> bool {
+        self.collide_connected
+    }
+
+    /// The force and the torque past which it breaks (infinite: never).
+    pub fn break_thresholds(&self) -> (Real, Real) {
+        (self.break_force, self.break_torque)
+    }
+
+    /// What it does; an axis is in A's frame.
+    pub fn kind(&self) -> &JointKind {
+        &self.kind
+    }
+
+    /// The force it applied to body B in the last step, N (A felt the opposite).
+    pub fn reaction_force(&self) -> Vec2 {
+        self.force
+    }
+
+    /// The torque it applied to body B in the last step about the anchor, N·m.
+    pub fn reaction_torque(&self) -> Real {
+        self.torque
+    }
+
+    /// The anchors in the world, where `a` and `b` (its bodies) are now.
+    pub fn world_anchors(&self, a: &Body, b: &Body) -> [Vec2; 2] {
+        [
+            a.world_point(self.local_anchor_a),
+            b.world_point(self.local_anchor_b),
+        ]
+    }
+
+    /// The angle of B relative to A less the reference angle, rad, in `(-π, π]`.
+    pub fn angle(&self, a: &Body, b: &Body) -> Real {
+        let relative = a.rotation().inverse() * b.rotation() * Rot::new(-self.reference_angle);
+        relative.angle()
+    }
+
+    /// Replaces its settings with a checked `kind` of the same kind, axis in A's frame.
+    pub(crate) fn set_kind(&mut self, kind: JointKind) -> Result<(), CaromError> {
+        if std::mem::discriminant(&kind) != std::mem::discriminant(&self.kind) {
+            return Err(CaromError::JointKindChange {
+                from: self.kind.name(),
+                to: kind.name(),
+            });
+        }
+        kind.validate()?;
+        let mut kind = kind;
+        if let Some(axis) = kind.axis_mut() {
+            *axis = axis.normalize();
+        }
+        self.kind = kind;
+        Ok(())
+    }
+
+    /// Records what the last step applied.
+    pub(crate) fn set_reaction(&mut self, force: Vec2, torque: Real) {
+        (self.force, self.torque) = (force, torque);
+    }
+
+    /// Whether the last step's reaction exceeded a break threshold.
+    pub(crate) fn is_broken(&self) -> bool {
+        self.force.norm() > self.break_force || self.torque.abs() > self.break_torque
+    }
+}
+
+/// Something that happened to a joint during a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum JointEvent {
+    /// The joint applied more than its break force or torque and was removed.
+    Broken {
+        /// The joint, no longer in the world.
+        joint: JointHandle,
+        /// Its bodies.
+        bodies: [BodyHandle; 2],
+        /// The force it applied in its last step, N.
+        force: Vec2,
+        /// The torque it applied in its last step, N·m.
+        torque: Real,
+    },
+}

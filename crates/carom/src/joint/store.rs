@@ -1,0 +1,124 @@
+//! The world's joints: stored contiguously behind handles, with each body's list of joints
+//! (for removing a body, linking islands and filtering pairs).
+
+use super::{Joint, JointEvent, JointHandle};
+use crate::dynamics::body::BodyHandle;
+use crate::handle_map::HandleMap;
+use std::collections::HashMap;
+
+/// Every joint of a world.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct JointStore {
+    joints: HandleMap<JointHandle, Joint>,
+    /// Each body's joints, in the order they were added.
+    by_body: HashMap<BodyHandle, Vec<JointHandle>>,
+    /// Joints that keep their bodies from colliding: how many join each pair of bodies (the
+    /// lower handle first).
+    filters: HashMap<(BodyHandle, BodyHandle), u32>,
+    /// What happened to joints in the last step.
+    pub events: Vec<JointEvent>,
+}
+
+/// The pair key of two bodies, in a fixed order.
+fn pair(a: BodyHandle, b: BodyHandle) -> (BodyHandle, BodyHandle) {
+    if a <= b { (a, b) } else { (b, a) }
+}
+
+impl JointStore {
+    /// The handle the next joint will get.
+    pub fn next_handle(&self) -> JointHandle {
+        self.joints.next_handle()
+    }
+
+    /// Stores a joint (made for [`JointStore::next_handle`]).
+    pub fn insert(&mut self, joint: Joint) -> JointHandle {
+        let [a, b] = joint.bodies();
+        let filters = !joint.collide_connected() && a != b;
+        let handle = self.joints.insert(joint);
+        self.by_body.entry(a).or_default().push(handle);
+        if b != a {
+            self.by_body.entry(b).or_default().push(handle);
+        }
+        if filters {
+            *self.filters.entry(pair(a, b)).or_default() += 1;
+        }
+        handle
+    }
+
+    /// Removes a joint.
+    pub fn remove(&mut self, handle: JointHandle) -> Option<Joint> {
+        let joint = self.joints.remove(handle)?;
+        let [a, b] = joint.bodies();
+        for body in [a, b] {
+            if let Some(list) = self.by_body.get_mut(&body) {
+                list.retain(|&h| h != handle);
+                if list.is_empty() {
+                    self.by_body.remove(&body);
+                }
+            }
+        }
+        if !joint.collide_connected() && a != b {
+            let key = pair(a, b);
+            if let Some(count) = self.filters.get_mut(&key) {
+                *count -= 1;
+                if *count == 0 {
+                    self.filters.remove(&key);
+                }
+            }
+        }
+        Some(joint)
+    }
+
+    pub fn get(&self, handle: JointHandle) -> Option<&Joint> {
+        self.joints.get(handle)
+    }
+
+    pub fn get_mut(&mut self, handle: JointHandle) -> Option<&mut Joint> {
+        self.joints.get_mut(handle)
+    }
+
+    /// Every joint, in storage order.
+    pub fn as_slice(&self) -> &[Joint] {
+        self.joints.as_slice()
+    }
+
+    pub fn as_mut_slice(&mut self) -> &mut [Joint] {
+        self.joints.as_mut_slice()
+    }
+
+    /// Every joint in handle order.
+    pub fn iter_by_handle(&self) -> impl ExactSizeIterator<Item = &Joint> {
+        self.joints.iter_by_handle()
+    }
+
+    pub fn len(&self) -> usize {
+        self.joints.len()
+    }
+
+    /// A body's joints.
+    pub fn of_body(&self, body: BodyHandle) -> &[JointHandle] {
+        self.by_body.get(&body).map_or(&[], Vec::as_slice)
+    }
+
+    /// True when a joint keeps `a` and `b` from colliding.
+    pub fn filters(&self, a: BodyHandle, b: BodyHandle) -> bool {
+        !self.filters.is_empty() && self.filters.contains_key(&pair(a, b))
+    }
+
+    /// The bodies joined to `body`, into `out` (cleared first; a body joined twice is listed
+    /// twice).
+    pub fn partners(&self, body: BodyHandle, out: &mut Vec<BodyHandle>) {
+        out.clear();
+        for &handle in self.of_body(body) {
+            let [a, b] = self
+                .joints
+                .get(handle)
+                .expect("listed joints live")
+                .bodies();
+            let other = if a == body { b } else { a };
+            if other != body {
+                out.push(other);
+            }
+        }
+    }
+}

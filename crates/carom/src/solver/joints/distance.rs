@@ -1,0 +1,112 @@
+//! The distance joint: a rigid rod between the anchors, or a spring with stops (a rope is a
+//! spring of 0 Hz stopped at its length).
+//!
+//! `C = |d| - L` along the unit `u = d / |d|`, `d` from A's anchor to B's; `J = [-u, -rA × u,
+//! u, rB × u]`. The axis is taken once per step (the anchors move little in one).
+
+use super::{JointConstraint, JointPass, inverse_or_zero};
+use crate::joint::DistanceJoint;
+use crate::math::{Real, Vec2, cross};
+use crate::solver::{BodyState, Softness};
+
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Prepared {
+    pub settings: DistanceJoint,
+    /// The direction from A's anchor to B's at the start of the step.
+    pub axis: Vec2,
+    axial_mass: Real,
+    spring: Softness,
+}
+
+pub(super) fn prepare(c: &JointConstraint, settings: DistanceJoint, h: Real) -> Prepared {
+    let (ra, rb) = (c.frame_a, c.frame_b);
+    let d = c.delta_center + rb - ra;
+    let length = d.norm();
+    let axis = if length > 1.0e-9 {
+        d / length
+    } else {
+        Vec2::new(0.0, 1.0)
+    };
+    let (ma, ia, mb, ib) = c.masses();
+    let (cra, crb) = (cross(ra, axis), cross(rb, axis));
+    let spring = settings.spring.map_or(Softness::new(0.0, 0.0, h), |s| {
+        Softness::new(s.hertz, s.damping_ratio, h)
+    });
+    Prepared {
+        settings,
+        axis,
+        axial_mass: inverse_or_zero(ma + mb + ia * cra * cra + ib * crb * crb),
+        spring,
+    }
+}
+
+pub(super) fn warm_start(c: &JointConstraint, p: &Prepared, a: &mut BodyState, b: &mut BodyState) {
+    let (ra, rb) = c.anchors(a, b);
+    let axis = axis_now(c, a, b, ra, rb, p.axis).0;
+    let i = &c.impulses;
+    c.apply_linear(a, b, ra, rb, axis * (i.axial + i.lower - i.upper));
+}
+
+/// The axis and length now.
+fn axis_now(
+    c: &JointConstraint,
+    a: &BodyState,
+    b: &BodyState,
+    ra: Vec2,
+    rb: Vec2,
+    fallback: Vec2,
+) -> (Vec2, Real) {
+    let d = c.separation(a, b, ra, rb);
+    let length = d.norm();
+    if length > 1.0e-9 {
+        (d / length, length)
+    } else {
+        (fallback, length)
+    }
+}
+
+pub(super) fn solve(
+    c: &mut JointConstraint,
+    p: &Prepared,
+    a: &mut BodyState,
+    b: &mut BodyState,
+    pass: &JointPass,
+) {
+    let (ra, rb) = c.anchors(a, b);
+    let (axis, length) = axis_now(c, a, b, ra, rb, p.axis);
+    let speed =
+        |a: &BodyState, b: &BodyState| JointConstraint::relative_velocity(a, b, ra, rb).dot(&axis);
+    let settings = &p.settings;
+    let Some(spring) = settings.spring else {
+        // A rigid rod.
+        let (bias, mass_scale, impulse_scale) = pass.rigid(length - settings.length);
+        let impulse =
+            -mass_scale * p.axial_mass * (speed(a, b) + bias) - impulse_scale * c.impulses.axial;
+        c.impulses.axial += impulse;
+        c.apply_linear(a, b, ra, rb, axis * impulse);
+        return;
+    };
+    if spring.hertz > 0.0 {
+        let bias = p.spring.bias_rate * (length - settings.length);
+        let impulse = -p.spring.mass_scale * p.axial_mass * (speed(a, b) + bias)
+            - p.spring.impulse_scale * c.impulses.axial;
+        c.impulses.axial += impulse;
+        c.apply_linear(a, b, ra, rb, axis * impulse);
+    }
+    if let Some(limits) = settings.limits {
+        // Lower: C = length - lower >= 0.
+        let (bias, mass_scale, impulse_scale) = pass.limit(length - limits.lower);
+        let old = c.impulses.lower;
+        let impulse = -mass_scale * p.axial_mass * (speed(a, b) + bias) - impulse_scale * old;
+        c.impulses.lower = (old + impulse).max(0.0);
+        let applied = c.impulses.lower - old;
+        c.apply_linear(a, b, ra, rb, axis * applied);
+        // Upper: C = upper - length >= 0, the signs flipped.
+        let (bias, mass_scale, impulse_scale) = pass.limit(limits.upper - length);
+        let old = c.impulses.upper;
+        let impulse = -mass_scale * p.axial_mass * (-speed(a, b) + bias) - impulse_scale * old;
+        c.impulses.upper = (old + impulse).max(0.0);
+        let applied = c.impulses.upper - old;
+        c.apply_linear(a, b, ra, rb, axis * -applied);
+    }
+}

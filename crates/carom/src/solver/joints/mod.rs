@@ -1,0 +1,441 @@
+//! Joints as the solver takes them: prepared once per step (anchors relative to the centres of
+//! mass, fixed for the step; effective masses; softness), then warm started and solved in
+//! every substep beside the contacts, as Box2D v3 does: soft in the biased pass (a stiff,
+//! damped spring closes a joint's drift), rigid in the relaxation, so the push back into
+//! place leaves no energy behind. Each kind's equations are in its own file.
+//!
+//! Soft step solves the joints before the contacts in each pass, in colours of their own: no
+//! two joints of a colour share a dynamic body, so a colour's joints are solved on several
+//! threads at once ([`color_joints`]). Sequential impulse solves them one by one with
+//! Baumgarte's bias instead of softness (see [`JointPass::baumgarte`]).
+
+mod distance;
+mod motor;
+mod mouse;
+mod prismatic;
+mod revolute;
+mod weld;
+mod wheel;
+
+use super::{BodyState, Softness};
+use crate::constants::{JOINT_COLOR_COUNT, JOINT_DAMPING_RATIO, JOINT_HERTZ};
+use crate::dynamics::body::Body;
+use crate::joint::{Joint, JointImpulses, JointKind};
+use crate::math::{Real, Rot, Vec2, cross};
+
+/// A joint prepared for one step.
+#[derive(Debug, Clone)]
+pub(crate) struct JointConstraint {
+    /// Where the joint lives in the world's joint store.
+    pub joint: usize,
+    /// Body A's and B's indices among the solver's states (the spare state when not awake).
+    pub a: usize,
+    pub b: usize,
+    /// Which of them take impulses (dynamic and awake).
+    pub moves_a: bool,
+    pub moves_b: bool,
+    inv_mass_a: Real,
+    inv_inertia_a: Real,
+    inv_mass_b: Real,
+    inv_inertia_b: Real,
+    /// From each centre of mass to its anchor, at the start of the step.
+    frame_a: Vec2,
+    frame_b: Vec2,
+    /// A's rotation, and B's less the reference angle, at the start of the step: the joint's
+    /// angle is the one from the first to the second.
+    rot_a: Rot,
+    rot_b: Rot,
+    /// B's centre of mass less A's at the start of the step (a mouse joint: less the target).
+    delta_center: Vec2,
+    /// The accumulated impulses, for the warm start and the reaction.
+    pub impulses: JointImpulses,
+    /// The kind's settings and what was prepared from them.
+    data: JointData,
+}
+
+/// Each kind's settings, and the spring softness and masses prepared for the step.
+#[derive(Debug, Clone, Copy)]
+enum JointData {
+    Distance(distance::Prepared),
+    Revolute(revolute::Prepared),
+    Prismatic(prismatic::Prepared),
+    Weld(weld::Prepared),
+    Wheel(wheel::Prepared),
+    Motor(motor::Prepared),
+    Mouse(mouse::Prepared),
+    Filter,
+}
+
+/// How a pass treats a joint's drift.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct JointPass {
+    /// The (sub)step.
+    pub h: Real,
+    pub inv_h: Real,
+    /// Push drift back (the biased pass), or hold the velocities only (relaxation).
+    pub use_bias: bool,
+    /// How drift is pushed back.
+    pub softness: Softness,
+}
+
+impl JointPass {
+    /// Soft step's pass over substeps of `h`: Box2D's joint softness (60 Hz, damping ratio 2,
+    /// at most a quarter of the substep rate).
+    pub fn soft(h: Real, use_bias: bool) -> Self {
+        let inv_h = 1.0 / h;
+        let hertz = JOINT_HERTZ.min(0.25 * inv_h);
+        JointPass {
+            h,
+            inv_h,
+            use_bias,
+            softness: Softness::new(hertz, JOINT_DAMPING_RATIO, h),
+        }
+    }
+
+    /// Sequential impulse's pass over a step of `dt`: Baumgarte's bias, a fraction `beta` of
+    /// the drift closed per step, rigid otherwise.
+    pub fn baumgarte(dt: Real, beta: Real) -> Self {
+        JointPass {
+            h: dt,
+            inv_h: 1.0 / dt,
+            use_bias: true,
+            softness: Softness {
+                bias_rate: beta / dt,
+                mass_scale: 1.0,
+                impulse_scale: 0.0,
+            },
+        }
+    }
+
+    /// The bias, mass scale and impulse scale of a rigid constraint with error `c`.
+    #[inline]
+    fn rigid(&self, c: Real) -> (Real, Real, Real) {
+        if self.use_bias {
+            let s = self.softness;
+            (s.bias_rate * c, s.mass_scale, s.impulse_scale)
+        } else {
+            (0.0, 1.0, 0.0)
+        }
+    }
+
+    /// The same for a limit with slack `c` (positive: not yet reached, which may close
+    /// exactly this substep).
+    #[inline]
+    fn limit(&self, c: Real) -> (Real, Real, Real) {
+        if c > 0.0 {
+            (c * self.inv_h, 1.0, 0.0)
+        } else {
+            self.rigid(c)
+        }
+    }
+}
+
+/// What a joint needs of one of its bodies: its pose and mass, and where its state is.
+pub(crate) struct JointBody<'a> {
+    pub body: &'a Body,
+    /// Its state's index (the spare one if it is not awake).
+    pub state: usize,
+    /// Awake and dynamic: it takes impulses.
+    pub moves: bool,
+}
+
+impl JointConstraint {
+    /// Prepares `joint` (at `index` in the store) for a step whose substeps last `h`.
+    pub fn prepare(
+        index: usize,
+        joint: &Joint,
+        a: JointBody,
+        b: JointBody,
+        h: Real,
+        warm_starting: bool,
+    ) -> Self {
+        let mass = |side: &JointBody| {
+            if side.moves {
+                (side.body.inv_mass(), side.body.inv_inertia())
+            } else {
+                (0.0, 0.0)
+            }
+        };
+        let ((ma, ia), (mb, ib)) = (mass(&a), mass(&b));
+        let [local_a, local_b] = joint.local_anchors();
+        let mouse = matches!(joint.kind(), JointKind::Mouse(_));
+        let offset = |side: &JointBody, local: Vec2| {
+            side.body.rotation() * (local - side.body.local_center())
+        };
+        let frame_b = offset(&b, local_b);
+        let rot_b = b.body.rotation() * Rot::new(-joint.reference_angle());
+        let (frame_a, rot_a, delta_center, a_state, moves_a) = match joint.kind() {
+            // A mouse joint holds B to a point of the world: A is the world, at rest.
+            JointKind::Mouse(settings) => (
+                Vec2::zeros(),
+                Rot::identity(),
+                b.body.center_of_mass() - settings.target,
+                usize::MAX,
+                false,
+            ),
+            _ => (
+                offset(&a, local_a),
+                a.body.rotation(),
+                b.body.center_of_mass() - a.body.center_of_mass(),
+                a.state,
+                a.moves,
+            ),
+        };
+        let (ma, ia) = if mouse { (0.0, 0.0) } else { (ma, ia) };
+        let mut c = JointConstraint {
+            joint: index,
+            a: if mouse { b.state } else { a_state },
+            b: b.state,
+            moves_a,
+            moves_b: b.moves,
+            inv_mass_a: ma,
+            inv_inertia_a: ia,
+            inv_mass_b: mb,
+            inv_inertia_b: ib,
+            frame_a,
+            frame_b,
+            rot_a,
+            rot_b,
+            delta_center,
+            impulses: if warm_starting {
+                joint.impulses
+            } else {
+                JointImpulses::default()
+            },
+            data: JointData::Filter,
+        };
+        c.data = match *joint.kind() {
+            JointKind::Distance(s) => JointData::Distance(distance::prepare(&c, s, h)),
+            JointKind::Revolute(s) => JointData::Revolute(revolute::prepare(&c, s, h)),
+            JointKind::Prismatic(s) => JointData::Prismatic(prismatic::prepare(&c, s, h)),
+            JointKind::Weld(s) => JointData::Weld(weld::prepare(&c, s, h)),
+            JointKind::Wheel(s) => JointData::Wheel(wheel::prepare(&c, s, h)),
+            JointKind::Motor(s) => JointData::Motor(motor::prepare(&c, s)),
+            JointKind::Mouse(s) => JointData::Mouse(mouse::prepare(&c, s, h)),
+            JointKind::Filter => JointData::Filter,
+        };
+        c
+    }
+
+    /// Applies the accumulated impulses.
+    pub fn warm_start(&mut self, a: &mut BodyState, b: &mut BodyState) {
+        match self.data {
+            JointData::Distance(p) => distance::warm_start(self, &p, a, b),
+            JointData::Revolute(_) => revolute::warm_start(self, a, b),
+            JointData::Prismatic(p) => prismatic::warm_start(self, &p, a, b),
+            JointData::Weld(_) => weld::warm_start(self, a, b),
+            JointData::Wheel(p) => wheel::warm_start(self, &p, a, b),
+            JointData::Motor(_) => motor::warm_start(self, a, b),
+            JointData::Mouse(_) => mouse::warm_start(self, b),
+            JointData::Filter => {}
+        }
+    }
+
+    /// One pass.
+    pub fn solve(&mut self, a: &mut BodyState, b: &mut BodyState, pass: &JointPass) {
+        match self.data {
+            JointData::Distance(p) => distance::solve(self, &p, a, b, pass),
+            JointData::Revolute(p) => revolute::solve(self, &p, a, b, pass),
+            JointData::Prismatic(p) => prismatic::solve(self, &p, a, b, pass),
+            JointData::Weld(p) => weld::solve(self, &p, a, b, pass),
+            JointData::Wheel(p) => wheel::solve(self, &p, a, b, pass),
+            JointData::Motor(p) => motor::solve(self, &p, a, b, pass),
+            JointData::Mouse(p) => mouse::solve(self, &p, b, pass),
+            JointData::Filter => {}
+        }
+    }
+
+    /// The force and torque the accumulated impulses of the last (sub)step of `h` applied
+    /// to B.
+    pub fn reaction(&self, inv_h: Real) -> (Vec2, Real) {
+        let i = &self.impulses;
+        let (linear, angular) = match self.data {
+            JointData::Distance(p) => (p.axis * (i.axial + i.lower - i.upper), 0.0),
+            JointData::Revolute(_) => (i.linear, i.motor + i.lower - i.upper + i.axial),
+            JointData::Prismatic(p) => {
+                let axis = self.rot_a * p.settings.axis;
+                let axial = i.axial + i.motor + i.lower - i.upper;
+                (
+                    axis * axial + crate::math::cross_sv(1.0, axis) * i.linear.x,
+                    i.linear.y,
+                )
+            }
+            JointData::Weld(_) => (i.linear, i.angular),
+            JointData::Wheel(p) => {
+                let axis = self.rot_a * p.settings.axis;
+                let axial = i.axial + i.lower - i.upper;
+                (
+                    axis * axial + crate::math::cross_sv(1.0, axis) * i.linear.x,
+                    i.motor,
+                )
+            }
+            JointData::Motor(_) => (i.linear, i.angular),
+            JointData::Mouse(_) => (i.linear, 0.0),
+            JointData::Filter => (Vec2::zeros(), 0.0),
+        };
+        (linear * inv_h, angular * inv_h)
+    }
+
+    // Shared kinematics.
+
+    /// The anchors' offsets from the centres of mass now.
+    #[inline]
+    fn anchors(&self, a: &BodyState, b: &BodyState) -> (Vec2, Vec2) {
+        (a.dq * self.frame_a, b.dq * self.frame_b)
+    }
+
+    /// B's anchor less A's now.
+    #[inline]
+    fn separation(&self, a: &BodyState, b: &BodyState, ra: Vec2, rb: Vec2) -> Vec2 {
+        (b.dp - a.dp) + (rb - ra) + self.delta_center
+    }
+
+    /// The joint's angle now: B's rotation relative to A's, less the reference angle.
+    #[inline]
+    fn angle(&self, a: &BodyState, b: &BodyState) -> Real {
+        ((a.dq * self.rot_a).inverse() * (b.dq * self.rot_b)).angle()
+    }
+
+    /// Applies impulse `p` at the anchors (to B, and its opposite to A).
+    #[inline]
+    fn apply_linear(&self, a: &mut BodyState, b: &mut BodyState, ra: Vec2, rb: Vec2, p: Vec2) {
+        a.v -= p * self.inv_mass_a;
+        a.w -= self.inv_inertia_a * cross(ra, p);
+        b.v += p * self.inv_mass_b;
+        b.w += self.inv_inertia_b * cross(rb, p);
+    }
+
+    /// Applies angular impulse `l` (to B, and its opposite to A).
+    #[inline]
+    fn apply_angular(&self, a: &mut BodyState, b: &mut BodyState, l: Real) {
+        a.w -= self.inv_inertia_a * l;
+        b.w += self.inv_inertia_b * l;
+    }
+
+    /// The point constraint's effective mass matrix, `K = [[k11, k12], [k12, k22]]`.
+    #[inline]
+    fn point_mass(&self, ra: Vec2, rb: Vec2) -> [Real; 3] {
+        let (ma, ia, mb, ib) = self.masses();
+        [
+            ma + mb + ra.y * ra.y * ia + rb.y * rb.y * ib,
+            -ra.y * ra.x * ia - rb.y * rb.x * ib,
+            ma + mb + ra.x * ra.x * ia + rb.x * rb.x * ib,
+        ]
+    }
+
+    #[inline]
+    fn masses(&self) -> (Real, Real, Real, Real) {
+        (
+            self.inv_mass_a,
+            self.inv_inertia_a,
+            self.inv_mass_b,
+            self.inv_inertia_b,
+        )
+    }
+
+    /// The velocity of B's anchor relative to A's.
+    #[inline]
+    fn relative_velocity(a: &BodyState, b: &BodyState, ra: Vec2, rb: Vec2) -> Vec2 {
+        b.v + crate::math::cross_sv(b.w, rb) - a.v - crate::math::cross_sv(a.w, ra)
+    }
+}
+
+/// `K⁻¹ rhs` for the symmetric `K = [[k11, k12], [k12, k22]]`; zero if `K` is singular.
+#[inline]
+fn solve22([k11, k12, k22]: [Real; 3], rhs: Vec2) -> Vec2 {
+    let det = k11 * k22 - k12 * k12;
+    if det == 0.0 {
+        return Vec2::zeros();
+    }
+    let inv = 1.0 / det;
+    Vec2::new(
+        inv * (k22 * rhs.x - k12 * rhs.y),
+        inv * (k11 * rhs.y - k12 * rhs.x),
+    )
+}
+
+/// `1 / k`, or 0 when nothing can move (`k` is 0).
+#[inline]
+fn inverse_or_zero(k: Real) -> Real {
+    if k > 0.0 { 1.0 / k } else { 0.0 }
+}
+
+/// The joint colouring of a step: joints sorted so each colour's are together, no two of a
+/// colour sharing a body that moves (the last range, the overflow's, is solved alone).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct JointColors {
+    /// Per colour, then the overflow: the range of the sorted constraints it holds.
+    pub ranges: Vec<std::ops::Range<usize>>,
+    /// Per state, the colours that already hold it (a bit each).
+    claims: Vec<u32>,
+    /// Each constraint's colour while sorting.
+    colors: Vec<u8>,
+    sorted: Vec<JointConstraint>,
+}
+
+impl JointColors {
+    /// No colours: all `count` joints in the overflow, solved one by one in order.
+    pub fn all_overflow(&mut self, count: usize) {
+        self.ranges.clear();
+        self.ranges.resize(JOINT_COLOR_COUNT, 0..0);
+        self.ranges.push(0..count);
+    }
+}
+
+/// Colours `constraints` greedily in order, each into the first colour that holds neither of
+/// its moving bodies (up to [`JOINT_COLOR_COUNT`], then the overflow), and sorts them by
+/// colour (stable: within a colour they keep their order). `states` is how many states there
+/// are.
+pub(crate) fn color_joints(
+    constraints: &mut Vec<JointConstraint>,
+    states: usize,
+    colors: &mut JointColors,
+) {
+    let JointColors {
+        ranges,
+        claims,
+        colors: assigned,
+        sorted,
+    } = colors;
+    claims.clear();
+    claims.resize(states, 0);
+    assigned.clear();
+    let overflow = JOINT_COLOR_COUNT as u8;
+    let mut counts = [0usize; JOINT_COLOR_COUNT + 1];
+    for c in constraints.iter() {
+        let mut taken = 0u32;
+        for (index, moves) in [(c.a, c.moves_a), (c.b, c.moves_b)] {
+            if moves {
+                taken |= claims[index];
+            }
+        }
+        let color = (!taken).trailing_zeros().min(overflow as u32) as u8;
+        if color < overflow {
+            for (index, moves) in [(c.a, c.moves_a), (c.b, c.moves_b)] {
+                if moves {
+                    claims[index] |= 1 << color;
+                }
+            }
+        }
+        counts[color as usize] += 1;
+        assigned.push(color);
+    }
+    ranges.clear();
+    let mut start = 0;
+    for count in counts {
+        ranges.push(start..start + count);
+        start += count;
+    }
+    let mut next = [0; JOINT_COLOR_COUNT + 1];
+    for (next, range) in next.iter_mut().zip(ranges.iter()) {
+        *next = range.start;
+    }
+    sorted.clear();
+    sorted.extend(constraints.iter().cloned());
+    for (c, &color) in constraints.drain(..).zip(assigned.iter()) {
+        let slot = &mut next[color as usize];
+        sorted[*slot] = c;
+        *slot += 1;
+    }
+    std::mem::swap(constraints, sorted);
+}

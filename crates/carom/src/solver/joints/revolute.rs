@@ -1,0 +1,91 @@
+//! The revolute joint: a hinge. The anchors coincide (a 2x2 point constraint); the angle may
+//! be held within limits, driven by a motor, or pulled toward a target by a spring. Solved in
+//! Box2D's order: spring, motor, limits, then the point, so the point constraint, which
+//! matters most, has the last word.
+
+use super::{JointConstraint, JointPass, inverse_or_zero, solve22};
+use crate::joint::RevoluteJoint;
+use crate::math::{Real, unwind_angle};
+use crate::solver::{BodyState, Softness};
+
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Prepared {
+    settings: RevoluteJoint,
+    /// `1 / (iA + iB)`: the mass the angle feels.
+    axial_mass: Real,
+    spring: Softness,
+}
+
+pub(super) fn prepare(c: &JointConstraint, settings: RevoluteJoint, h: Real) -> Prepared {
+    let (_, ia, _, ib) = c.masses();
+    let spring = settings.spring.map_or(Softness::new(0.0, 0.0, h), |s| {
+        Softness::new(s.hertz, s.damping_ratio, h)
+    });
+    Prepared {
+        settings,
+        axial_mass: inverse_or_zero(ia + ib),
+        spring,
+    }
+}
+
+pub(super) fn warm_start(c: &JointConstraint, a: &mut BodyState, b: &mut BodyState) {
+    let (ra, rb) = c.anchors(a, b);
+    let i = &c.impulses;
+    c.apply_angular(a, b, i.axial + i.motor + i.lower - i.upper);
+    c.apply_linear(a, b, ra, rb, i.linear);
+}
+
+pub(super) fn solve(
+    c: &mut JointConstraint,
+    p: &Prepared,
+    a: &mut BodyState,
+    b: &mut BodyState,
+    pass: &JointPass,
+) {
+    let settings = &p.settings;
+    let turns = p.axial_mass > 0.0;
+    if turns && settings.spring.is_some_and(|s| s.hertz > 0.0) {
+        let error = unwind_angle(c.angle(a, b) - settings.target_angle);
+        let s = p.spring;
+        let impulse = -s.mass_scale * p.axial_mass * (b.w - a.w + s.bias_rate * error)
+            - s.impulse_scale * c.impulses.axial;
+        c.impulses.axial += impulse;
+        c.apply_angular(a, b, impulse);
+    }
+    if let (true, Some(motor)) = (turns, settings.motor) {
+        let impulse = -p.axial_mass * (b.w - a.w - motor.speed);
+        let old = c.impulses.motor;
+        let max = pass.h * motor.max_force;
+        c.impulses.motor = (old + impulse).clamp(-max, max);
+        c.apply_angular(a, b, c.impulses.motor - old);
+    }
+    if let (true, Some(limits)) = (turns, settings.limits) {
+        let angle = c.angle(a, b);
+        // Lower: C = angle - lower >= 0.
+        let (bias, mass_scale, impulse_scale) = pass.limit(angle - limits.lower);
+        let old = c.impulses.lower;
+        let impulse = -mass_scale * p.axial_mass * (b.w - a.w + bias) - impulse_scale * old;
+        c.impulses.lower = (old + impulse).max(0.0);
+        c.apply_angular(a, b, c.impulses.lower - old);
+        // Upper: C = upper - angle >= 0, the signs flipped.
+        let (bias, mass_scale, impulse_scale) = pass.limit(limits.upper - angle);
+        let old = c.impulses.upper;
+        let impulse = -mass_scale * p.axial_mass * (a.w - b.w + bias) - impulse_scale * old;
+        c.impulses.upper = (old + impulse).max(0.0);
+        c.apply_angular(a, b, -(c.impulses.upper - old));
+    }
+    // The point.
+    let (ra, rb) = c.anchors(a, b);
+    let velocity = JointConstraint::relative_velocity(a, b, ra, rb);
+    let (bias, mass_scale, impulse_scale) = if pass.use_bias {
+        let s = pass.softness;
+        let separation = c.separation(a, b, ra, rb);
+        (separation * s.bias_rate, s.mass_scale, s.impulse_scale)
+    } else {
+        (crate::math::Vec2::zeros(), 1.0, 0.0)
+    };
+    let k = c.point_mass(ra, rb);
+    let impulse = -solve22(k, velocity + bias) * mass_scale - c.impulses.linear * impulse_scale;
+    c.impulses.linear += impulse;
+    c.apply_linear(a, b, ra, rb, impulse);
+}

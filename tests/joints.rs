@@ -1,0 +1,597 @@
+//! Joints: each kind does what it says in soft step and in sequential impulse, limits and
+//! motors hold, joined bodies share islands, broken joints go, and bad definitions are
+//! refused with a clear error.
+
+use carom::{
+    BodyDef, BodyHandle, BodyKind, CaromError, Effect, Effects, JointDef, JointEvent, JointKind,
+    Real, Shape, SolverKind, SolverParams, Vec2, World, WorldSettings, vec2,
+};
+use std::f32::consts::PI;
+
+const DT: Real = 1.0 / 60.0;
+
+/// The solvers that solve joints.
+const SOLVERS: [SolverKind; 2] = [SolverKind::SoftStep, SolverKind::SequentialImpulse];
+
+fn world(kind: SolverKind) -> World {
+    World::with_settings(WorldSettings {
+        solver: SolverParams::for_kind(kind),
+        effects: Effects::ALL.switched(Effect::Sleeping, false),
+        ..WorldSettings::default()
+    })
+    .unwrap()
+}
+
+fn anchor(world: &mut World, at: Vec2) -> BodyHandle {
+    world
+        .add_body(BodyDef::static_body(Shape::rect(0.1, 0.1)).position(at))
+        .unwrap()
+}
+
+fn ball(world: &mut World, at: Vec2, radius: Real, density: Real) -> BodyHandle {
+    world
+        .add_body(
+            BodyDef::dynamic(Shape::circle(radius))
+                .position(at)
+                .density(density),
+        )
+        .unwrap()
+}
+
+fn step(world: &mut World, steps: usize) {
+    for _ in 0..steps {
+        world.step(DT).unwrap();
+    }
+}
+
+/// The mean period of `x(t)`'s upward zero crossings, linearly interpolated.
+fn period(samples: &[(Real, Real)]) -> Real {
+    let mut crossings = Vec::new();
+    for pair in samples.windows(2) {
+        let ((t0, x0), (t1, x1)) = (pair[0], pair[1]);
+        if x0 < 0.0 && x1 >= 0.0 {
+            crossings.push(t0 + (t1 - t0) * (-x0 / (x1 - x0)));
+        }
+    }
+    assert!(crossings.len() >= 3, "{} crossings", crossings.len());
+    (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as Real
+}
+
+/// A 1 m pendulum from 10° on a revolute joint swings with the period of a physical pendulum
+/// (the bob's own inertia included), to 0.5 %, in both solvers.
+#[test]
+fn a_pendulum_on_a_hinge_keeps_its_period() {
+    let (length, theta, radius) = (1.0, 10.0_f32.to_radians(), 0.05);
+    for kind in SOLVERS {
+        let mut world = world(kind);
+        let pivot = anchor(&mut world, Vec2::zeros());
+        let start = vec2(length * theta.sin(), -length * theta.cos());
+        let bob = ball(&mut world, start, radius, 1000.0);
+        world
+            .add_joint(JointDef::revolute(pivot, bob, Vec2::zeros()))
+            .unwrap();
+        let mut samples = Vec::new();
+        for i in 0..1200 {
+            world.step(DT).unwrap();
+            samples.push((i as Real * DT, world.body(bob).unwrap().position().x));
+        }
+        let measured = period(&samples);
+        let inertia_ratio = 1.0 + radius * radius / (2.0 * length * length);
+        let expected =
+            2.0 * PI * (inertia_ratio * length / 10.0).sqrt() * (1.0 + theta * theta / 16.0);
+        let error = (measured - expected).abs() / expected;
+        assert!(
+            error < 0.005,
+            "{kind:?}: {measured} s, expected {expected} s"
+        );
+        let p = world.body(bob).unwrap().position();
+        assert!(
+            (p.norm() - length).abs() < 0.005,
+            "{kind:?}: length {}",
+            p.norm()
+        );
+    }
+}
+
+/// A rigid distance joint holds a swinging ball at its length; a rope lets it fall closer
+/// and stops it at its length.
+#[test]
+fn a_rod_holds_its_length_and_a_rope_only_its_maximum() {
+    for kind in SOLVERS {
+        let mut world = world(kind);
+        let pivot = anchor(&mut world, Vec2::zeros());
+        let bob = ball(&mut world, vec2(2.0, 0.0), 0.1, 1.0);
+        world
+            .add_joint(JointDef::distance(
+                pivot,
+                bob,
+                Vec2::zeros(),
+                vec2(2.0, 0.0),
+            ))
+            .unwrap();
+        let mut worst: Real = 0.0;
+        for _ in 0..300 {
+            world.step(DT).unwrap();
+            let r = world.body(bob).unwrap().position().norm();
+            worst = worst.max((r - 2.0).abs());
+        }
+        assert!(worst < 0.02, "{kind:?}: the rod stretched {worst} m");
+
+        let mut world = self::world(kind);
+        let pivot = anchor(&mut world, Vec2::zeros());
+        let bob = ball(&mut world, vec2(0.5, 0.0), 0.1, 1.0);
+        let rope = JointDef::rope(pivot, bob, Vec2::zeros(), vec2(0.5, 0.0), 2.0);
+        world.add_joint(rope).unwrap();
+        // Slack: free fall at first.
+        step(&mut world, 20);
+        let falling = world.body(bob).unwrap();
+        assert!(
+            falling.linear_velocity().y < -3.0,
+            "{kind:?}: held while slack"
+        );
+        step(&mut world, 300);
+        let r = world.body(bob).unwrap().position().norm();
+        assert!(r < 2.02 && r > 1.9, "{kind:?}: rope at {r} m");
+    }
+}
+
+/// A ball hung on a soft distance joint oscillates at the spring's frequency.
+#[test]
+fn a_distance_spring_rings_at_its_frequency() {
+    let mut world = world(SolverKind::SoftStep);
+    world.set_gravity(Vec2::zeros()).unwrap();
+    let pivot = anchor(&mut world, Vec2::zeros());
+    let bob = ball(&mut world, vec2(0.0, -1.2), 0.1, 1.0);
+    let mut def = JointDef::distance(pivot, bob, Vec2::zeros(), vec2(0.0, -1.2)).spring(2.0, 0.0);
+    if let JointKind::Distance(settings) = &mut def.kind {
+        settings.length = 1.0;
+    }
+    world.add_joint(def).unwrap();
+    let mut samples = Vec::new();
+    for i in 0..240 {
+        world.step(DT).unwrap();
+        let y = world.body(bob).unwrap().position().y;
+        samples.push((i as Real * DT, y + 1.0));
+    }
+    let measured = period(&samples);
+    assert!(
+        (measured - 0.5).abs() < 0.02,
+        "{measured} s, expected 0.5 s"
+    );
+}
+
+/// A bar on a hinge with limits of ±0.5 rad falls onto its lower limit and stays there, in
+/// both solvers; the joint reports the torque that holds it.
+#[test]
+fn hinge_limits_hold() {
+    for kind in SOLVERS {
+        let mut world = world(kind);
+        let pivot = anchor(&mut world, Vec2::zeros());
+        let bar = world
+            .add_body(BodyDef::dynamic(Shape::rect(1.0, 0.1)).position(vec2(1.0, 0.0)))
+            .unwrap();
+        let hinge = world
+            .add_joint(JointDef::revolute(pivot, bar, Vec2::zeros()).limits(-0.5, 0.5))
+            .unwrap();
+        let mut lowest: Real = 0.0;
+        for _ in 0..240 {
+            world.step(DT).unwrap();
+            lowest = lowest.min(world.body(bar).unwrap().angle());
+        }
+        let angle = world.body(bar).unwrap().angle();
+        assert!((angle + 0.5).abs() < 0.01, "{kind:?}: rests at {angle}");
+        assert!(
+            lowest > -0.5 - 2.0_f32.to_radians(),
+            "{kind:?}: reached {lowest}"
+        );
+        // Gravity on a 2 x 0.2 m bar of density 1 (0.4 kg) at 1 m: about 4 N·m, at cos 0.5.
+        let torque = world.joint(hinge).unwrap().reaction_torque();
+        let expected = 0.4 * 10.0 * 1.0 * 0.5_f32.cos();
+        assert!(
+            (torque - expected).abs() < 0.05 * expected,
+            "{kind:?}: torque {torque}, expected {expected}"
+        );
+    }
+}
+
+/// A hinge motor spins a free wheel up to its speed; a weak one cannot lift a bar.
+#[test]
+fn hinge_motors_reach_their_speed_within_their_torque() {
+    for kind in SOLVERS {
+        let mut world = world(kind);
+        let pivot = anchor(&mut world, Vec2::zeros());
+        let wheel = ball(&mut world, Vec2::zeros(), 0.5, 1.0);
+        world
+            .add_joint(JointDef::revolute(pivot, wheel, Vec2::zeros()).motor_drive(3.0, 100.0))
+            .unwrap();
+        step(&mut world, 60);
+        let w = world.body(wheel).unwrap().angular_velocity();
+        assert!((w - 3.0).abs() < 1e-3, "{kind:?}: spins at {w}");
+
+        let mut world = self::world(kind);
+        let pivot = anchor(&mut world, Vec2::zeros());
+        let bar = world
+            .add_body(BodyDef::dynamic(Shape::rect(1.0, 0.1)).position(vec2(1.0, 0.0)))
+            .unwrap();
+        // Holding the bar up takes 4 N·m; the motor has 1.
+        world
+            .add_joint(JointDef::revolute(pivot, bar, Vec2::zeros()).motor_drive(1.0, 1.0))
+            .unwrap();
+        step(&mut world, 30);
+        assert!(world.body(bar).unwrap().angle() < -0.1, "{kind:?}: lifted");
+    }
+}
+
+/// A slider on a diagonal axis only slides along it, stops at its limit, and a motor drives
+/// it back up at its speed.
+#[test]
+fn a_slider_stays_on_its_axis_within_its_limits() {
+    for kind in SOLVERS {
+        let mut world = world(kind);
+        let ground = anchor(&mut world, Vec2::zeros());
+        let block = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.2, 0.2)).position(vec2(1.0, 1.0)))
+            .unwrap();
+        let axis = vec2(1.0, 1.0).normalize();
+        let slider = world
+            .add_joint(JointDef::prismatic(ground, block, vec2(1.0, 1.0), axis).limits(-1.0, 0.5))
+            .unwrap();
+        for _ in 0..180 {
+            world.step(DT).unwrap();
+            let body = world.body(block).unwrap();
+            let offset = body.position() - vec2(1.0, 1.0);
+            let off_axis = offset.x * axis.y - offset.y * axis.x;
+            assert!(
+                off_axis.abs() < 0.005,
+                "{kind:?}: off the axis by {off_axis}"
+            );
+            assert!(
+                body.angle().abs() < 0.01,
+                "{kind:?}: turned {}",
+                body.angle()
+            );
+        }
+        let along = (world.body(block).unwrap().position() - vec2(1.0, 1.0)).dot(&axis);
+        assert!((along + 1.0).abs() < 0.01, "{kind:?}: rests at {along}");
+        let JointKind::Prismatic(mut settings) = *world.joint(slider).unwrap().kind() else {
+            unreachable!()
+        };
+        settings.motor = Some(carom::Motor {
+            speed: 0.5,
+            max_force: 100.0,
+        });
+        world
+            .set_joint_kind(slider, JointKind::Prismatic(settings))
+            .unwrap();
+        step(&mut world, 30);
+        let v = world.body(block).unwrap().linear_velocity().dot(&axis);
+        assert!((v - 0.5).abs() < 1e-3, "{kind:?}: slides at {v}");
+    }
+}
+
+/// A plank welded to a wall by its end stays level (a rigid weld), and a soft weld sags
+/// further.
+#[test]
+fn a_weld_holds_a_cantilever() {
+    for kind in SOLVERS {
+        let mut droops = Vec::new();
+        for spring in [None, Some(2.0)] {
+            let mut world = world(kind);
+            let wall = anchor(&mut world, Vec2::zeros());
+            let plank = world
+                .add_body(BodyDef::dynamic(Shape::rect(1.0, 0.1)).position(vec2(1.0, 0.0)))
+                .unwrap();
+            let mut weld = JointDef::weld(wall, plank, Vec2::zeros());
+            if let Some(hertz) = spring {
+                weld = weld.spring(hertz, 1.0);
+            }
+            world.add_joint(weld).unwrap();
+            step(&mut world, 180);
+            droops.push(-world.body(plank).unwrap().angle());
+        }
+        assert!(
+            droops[0].abs() < 0.01,
+            "{kind:?}: a rigid weld droops {}",
+            droops[0]
+        );
+        assert!(
+            droops[1] > 0.05,
+            "{kind:?}: a soft weld droops {}",
+            droops[1]
+        );
+    }
+}
+
+/// A wheel on a sprung axle settles where the spring carries its weight, and its motor turns
+/// it.
+#[test]
+fn a_wheel_rides_its_suspension_and_turns() {
+    for kind in SOLVERS {
+        let mut world = world(kind);
+        let chassis = anchor(&mut world, Vec2::zeros());
+        let wheel = ball(&mut world, vec2(0.0, -1.0), 0.4, 1.0);
+        let (hertz, speed) = (2.0, -4.0);
+        world
+            .add_joint(
+                JointDef::wheel(chassis, wheel, vec2(0.0, -1.0), vec2(0.0, 1.0))
+                    .spring(hertz, 1.0)
+                    .motor_drive(speed, 50.0),
+            )
+            .unwrap();
+        step(&mut world, 300);
+        let body = world.body(wheel).unwrap();
+        // A spring of frequency f sags g / (2πf)² under its load.
+        let sag = 10.0 / (2.0 * PI * hertz).powi(2);
+        let y = body.position().y;
+        assert!((y + 1.0 + sag).abs() < 0.01, "{kind:?}: at {y}, sag {sag}");
+        assert!(body.position().x.abs() < 1e-3, "{kind:?}: off the axle");
+        assert!((body.angular_velocity() - speed).abs() < 1e-3, "{kind:?}");
+    }
+}
+
+/// A motor joint drives a body (no gravity) to its offset and angle from another.
+#[test]
+fn a_motor_joint_drives_to_its_offset() {
+    for kind in SOLVERS {
+        let mut world = world(kind);
+        world.set_gravity(Vec2::zeros()).unwrap();
+        let base = anchor(&mut world, Vec2::zeros());
+        let puck = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.3, 0.3)).position(vec2(1.0, 0.0)))
+            .unwrap();
+        let motor = world
+            .add_joint(JointDef::motor(base, puck, vec2(1.0, 0.0), 50.0, 20.0))
+            .unwrap();
+        let JointKind::Motor(mut settings) = *world.joint(motor).unwrap().kind() else {
+            unreachable!()
+        };
+        settings.linear_offset = vec2(-1.0, 2.0);
+        settings.angular_offset = 1.0;
+        world
+            .set_joint_kind(motor, JointKind::Motor(settings))
+            .unwrap();
+        step(&mut world, 300);
+        let body = world.body(puck).unwrap();
+        assert!(
+            (body.position() - vec2(0.0, 2.0)).norm() < 0.01,
+            "{kind:?}: {}",
+            body.position()
+        );
+        assert!(
+            (body.angle() - 1.0).abs() < 0.01,
+            "{kind:?}: {}",
+            body.angle()
+        );
+    }
+}
+
+/// A mouse joint pulls a grabbed point to its target, and its force cap holds: a weak one
+/// cannot lift a heavy box.
+#[test]
+fn a_mouse_joint_pulls_within_its_force() {
+    for kind in SOLVERS {
+        let mut world = world(kind);
+        let crate_ = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 0.0)))
+            .unwrap();
+        let grab = world
+            .add_joint(JointDef::mouse(crate_, vec2(0.25, 0.25), 1000.0))
+            .unwrap();
+        world.set_mouse_target(grab, vec2(3.25, 2.25)).unwrap();
+        step(&mut world, 240);
+        let point = world.body(crate_).unwrap().world_point(vec2(0.25, 0.25));
+        assert!(
+            (point - vec2(3.25, 2.25)).norm() < 0.05,
+            "{kind:?}: at {point}"
+        );
+
+        let mut world = self::world(kind);
+        let heavy = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).density(10.0))
+            .unwrap();
+        // 10 kg under gravity weighs 100 N; the joint may pull 50.
+        let grab = world
+            .add_joint(JointDef::mouse(heavy, Vec2::zeros(), 50.0))
+            .unwrap();
+        step(&mut world, 60);
+        let force = world.joint(grab).unwrap().reaction_force().norm();
+        assert!(force <= 50.0 * 1.001, "{kind:?}: pulled {force} N");
+        assert!(
+            world.body(heavy).unwrap().position().y < -1.0,
+            "{kind:?}: lifted"
+        );
+    }
+}
+
+/// Joined bodies do not collide unless the joint says so; a filter joint only stops them
+/// colliding, and once it is removed they collide again.
+#[test]
+fn joined_bodies_collide_only_if_allowed() {
+    let overlapping = |world: &mut World| {
+        let a = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 0.0)))
+            .unwrap();
+        let b = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.5, 0.0)))
+            .unwrap();
+        (a, b)
+    };
+    let mut world = world(SolverKind::SoftStep);
+    world.set_gravity(Vec2::zeros()).unwrap();
+    let (a, b) = overlapping(&mut world);
+    let filter = world.add_joint(JointDef::filter(a, b)).unwrap();
+    step(&mut world, 30);
+    assert_eq!(world.contacts().len(), 0);
+    assert_eq!(world.body(b).unwrap().position(), vec2(0.5, 0.0));
+    world.remove_joint(filter).unwrap();
+    step(&mut world, 30);
+    // Each pushed half the overlap away.
+    let gap = world.body(b).unwrap().position().x - world.body(a).unwrap().position().x;
+    assert!(gap > 0.99, "pushed apart once free: {gap}");
+
+    let mut world = self::world(SolverKind::SoftStep);
+    world.set_gravity(Vec2::zeros()).unwrap();
+    let (a, b) = overlapping(&mut world);
+    world
+        .add_joint(JointDef::revolute(a, b, vec2(0.25, 0.0)).collide_connected(true))
+        .unwrap();
+    step(&mut world, 1);
+    assert!(world.contacts().any(|c| c.is_touching()));
+}
+
+/// A joint given a break force comes apart under more, reports it once, and is gone; the
+/// ball then falls free.
+#[test]
+fn a_joint_breaks_past_its_threshold() {
+    for kind in SOLVERS {
+        let mut world = world(kind);
+        let pivot = anchor(&mut world, Vec2::zeros());
+        let light = ball(&mut world, vec2(-1.0, -1.0), 0.2, 1.0);
+        let heavy = ball(&mut world, vec2(1.0, -1.0), 0.2, 100.0);
+        let holds = world
+            .add_joint(JointDef::revolute(pivot, light, vec2(-1.0, 0.0)).break_force(100.0))
+            .unwrap();
+        let snaps = world
+            .add_joint(JointDef::revolute(pivot, heavy, vec2(1.0, 0.0)).break_force(100.0))
+            .unwrap();
+        let mut broken = Vec::new();
+        for _ in 0..60 {
+            world.step(DT).unwrap();
+            broken.extend_from_slice(world.joint_events());
+        }
+        assert_eq!(broken.len(), 1, "{kind:?}: {broken:?}");
+        let JointEvent::Broken { joint, force, .. } = broken[0];
+        assert_eq!(joint, snaps);
+        assert!(force.norm() > 100.0);
+        assert!(world.joint(snaps).is_none() && world.joint(holds).is_some());
+        assert!(
+            world.body(heavy).unwrap().position().y < -5.0,
+            "{kind:?}: still held"
+        );
+    }
+}
+
+/// Removing a body removes its joints; joined bodies sleep and wake together.
+#[test]
+fn joints_follow_their_bodies_through_removal_and_sleep() {
+    let mut world = World::new();
+    let ground = world
+        .add_body(BodyDef::static_body(Shape::rect(10.0, 0.5)).position(vec2(0.0, -0.5)))
+        .unwrap();
+    let a = world
+        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(-2.0, 0.5)))
+        .unwrap();
+    let b = world
+        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(2.0, 0.5)))
+        .unwrap();
+    let rod = world
+        .add_joint(JointDef::distance(a, b, vec2(-2.0, 0.5), vec2(2.0, 0.5)))
+        .unwrap();
+    step(&mut world, 120);
+    assert!(world.body(a).unwrap().is_sleeping() && world.body(b).unwrap().is_sleeping());
+    // Pushing one wakes both: they are one island.
+    world
+        .body_mut(a)
+        .unwrap()
+        .apply_impulse_at_center(vec2(0.0, 2.0))
+        .unwrap();
+    assert!(!world.body(b).unwrap().is_sleeping(), "b woke with a");
+    step(&mut world, 1);
+    assert_eq!(world.stats().joints, 1);
+    world.remove_body(a).unwrap();
+    assert!(world.joint(rod).is_none());
+    assert_eq!(world.joint_count(), 0);
+    assert!(world.joints_of(b).is_empty());
+    step(&mut world, 120);
+    assert!(world.body(b).unwrap().is_sleeping());
+    assert!(world.contains(ground));
+}
+
+/// Bad definitions are refused with an error that names the problem, and add nothing.
+#[test]
+fn bad_joints_are_refused() {
+    let mut world = World::new();
+    let a = ball(&mut world, Vec2::zeros(), 0.5, 1.0);
+    let b = ball(&mut world, vec2(2.0, 0.0), 0.5, 1.0);
+    let gone = ball(&mut world, vec2(4.0, 0.0), 0.5, 1.0);
+    world.remove_body(gone).unwrap();
+    let cases: Vec<(JointDef, &str)> = vec![
+        (JointDef::revolute(a, gone, Vec2::zeros()), "no body"),
+        (
+            JointDef::revolute(a, a, Vec2::zeros()),
+            "two different bodies",
+        ),
+        (JointDef::revolute(a, b, vec2(Real::NAN, 0.0)), "finite"),
+        (
+            JointDef::revolute(a, b, Vec2::zeros()).limits(1.0, -1.0),
+            "ordered",
+        ),
+        (
+            JointDef::revolute(a, b, Vec2::zeros()).motor_drive(1.0, -5.0),
+            "not negative",
+        ),
+        (
+            JointDef::revolute(a, b, Vec2::zeros()).spring(-1.0, 0.5),
+            "not negative",
+        ),
+        (
+            JointDef::revolute(a, b, Vec2::zeros()).break_force(-1.0),
+            "not negative",
+        ),
+        (
+            JointDef::weld(a, b, Vec2::zeros()).limits(0.0, 1.0),
+            "has no limits",
+        ),
+        (JointDef::filter(a, b).spring(1.0, 1.0), "has no spring"),
+        (
+            JointDef::prismatic(a, b, Vec2::zeros(), Vec2::zeros()),
+            "axis",
+        ),
+        (
+            JointDef::distance(a, b, Vec2::zeros(), Vec2::zeros()),
+            "length",
+        ),
+    ];
+    for (def, expected) in cases {
+        let error = world.add_joint(def).unwrap_err().to_string();
+        assert!(
+            error.contains(expected),
+            "{error:?} should say {expected:?}"
+        );
+    }
+    assert_eq!(world.joint_count(), 0);
+    let hinge = world
+        .add_joint(JointDef::revolute(a, b, vec2(1.0, 0.0)))
+        .unwrap();
+    let error = world.set_joint_kind(hinge, JointKind::Filter).unwrap_err();
+    assert!(matches!(error, CaromError::JointKindChange { .. }));
+    assert!(world.set_mouse_target(hinge, Vec2::zeros()).is_err());
+    world.remove_joint(hinge).unwrap();
+    assert!(matches!(
+        world.remove_joint(hinge),
+        Err(CaromError::StaleHandle { what: "joint", .. })
+    ));
+}
+
+/// A joint to a kinematic body: the kinematic body carries what hangs from it and is not
+/// pulled back.
+#[test]
+fn a_kinematic_body_carries_what_hangs_from_it() {
+    for kind in SOLVERS {
+        let mut world = world(kind);
+        let hook = world
+            .add_body(BodyDef::kinematic(Shape::rect(0.1, 0.1)).linear_velocity(vec2(1.0, 0.0)))
+            .unwrap();
+        let load = ball(&mut world, vec2(0.0, -1.0), 0.2, 5.0);
+        world
+            .add_joint(JointDef::revolute(hook, load, Vec2::zeros()))
+            .unwrap();
+        step(&mut world, 120);
+        let hook_body = world.body(hook).unwrap();
+        assert_eq!(hook_body.kind(), BodyKind::Kinematic);
+        assert!((hook_body.position().x - 2.0).abs() < 1e-4);
+        assert_eq!(hook_body.linear_velocity(), vec2(1.0, 0.0));
+        let load_x = world.body(load).unwrap().position().x;
+        assert!((load_x - 2.0).abs() < 0.5, "{kind:?}: load at {load_x}");
+    }
+}
