@@ -70,6 +70,26 @@ fn semantic_errors_name_the_body_or_event_and_the_reason() {
             "accuracy",
             "no body is named \"crate\"",
         ),
+        (
+            "scenes/bad_joint_body.ron",
+            "joint 1 (\"hook\" to \"lamb\")",
+            "no body is named \"lamb\"",
+        ),
+        (
+            "scenes/bad_joint_self.ron",
+            "joint 0",
+            "needs two different bodies",
+        ),
+        (
+            "scenes/bad_joint_setting.ron",
+            "joint 0",
+            "motor max force must be not negative, got -3",
+        ),
+        (
+            "scenes/bad_joint_nan.ron",
+            "joint 0",
+            "spring hertz must be finite",
+        ),
     ] {
         let (error, message) = error_of(file);
         assert!(matches!(error, SceneError::Invalid { .. }), "{message}");
@@ -96,8 +116,30 @@ fn the_documented_example_is_a_valid_scene() {
     let scene = carom_scene::parse(&readme[start..end], "demos/README.md")
         .unwrap_or_else(|e| panic!("{e}"));
     let mut built = carom_scene::build(&scene, "demos/README.md").unwrap_or_else(|e| panic!("{e}"));
-    // 7 bodies, a stack of 10, a pyramid of 15, a grid of 8, 4 walls, 20 drops, 2 stacks of 3.
-    assert_eq!(built.world.body_count(), 7 + 10 + 15 + 8 + 4 + 20 + 6);
+    // 12 bodies, a stack of 10, a pyramid of 15, a grid of 8, 4 walls, 20 drops, 2 stacks of
+    // 3, a chain of 6 links, 2 groups of 2.
+    assert_eq!(
+        built.world.body_count(),
+        12 + 10 + 15 + 8 + 4 + 20 + 6 + 6 + 4
+    );
+    // 8 joints, one of each kind; the chain's 6; one in each group.
+    assert_eq!(built.world.joint_count(), 8 + 6 + 2);
+    let mut kinds: Vec<&str> = built.world.joints().map(|j| j.kind().name()).collect();
+    kinds.sort_unstable();
+    kinds.dedup();
+    assert_eq!(
+        kinds,
+        [
+            "distance",
+            "filter",
+            "motor",
+            "mouse",
+            "prismatic",
+            "revolute",
+            "weld",
+            "wheel"
+        ]
+    );
     // The hammer is one body of two colliders, its head heavier than its handle.
     let hammer = built.world.body(built.names["hammer"]).unwrap();
     assert_eq!(hammer.colliders().len(), 2);

@@ -2,10 +2,15 @@
 
 use crate::error::SceneError;
 use crate::events::Events;
-use crate::scene::{Accuracy, BodySpec, Camera, Generator, Material, Scene, ShapeSpec, WorldSpec};
+use crate::scene::{
+    Accuracy, BodySpec, Camera, Generator, JointKindSpec, JointSpec, Material, Pair, RevoluteSpec,
+    Scene, ShapeSpec, WorldSpec,
+};
 use carom::{
-    BodyDef, BodyHandle, CaromError, ColliderDef, Color, DebugDraw, DrawFlags, DrawOptions,
-    Effects, Real, Shape, SolverParams, World, WorldSettings, vec2,
+    BodyDef, BodyHandle, CaromError, ColliderDef, Color, DebugDraw, DistanceJoint, DrawFlags,
+    DrawOptions, Effects, JointDef, JointKind, Limits, MotorJoint, MouseJoint, PrismaticJoint,
+    Real, RevoluteJoint, Shape, SolverParams, Vec2, WeldJoint, WheelJoint, World, WorldSettings,
+    vec2,
 };
 use std::collections::HashMap;
 
@@ -98,17 +103,40 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
             initial.insert(handle, def);
         }
     }
+    let mut pending = Vec::new();
     for (index, generator) in scene.generators.iter().enumerate() {
         let what = format!("generator {index} ({})", generator_name(generator));
-        let (defs, material) = generate(generator).map_err(|e| invalid(what.clone(), e))?;
-        for def in defs {
+        let batch = generate(generator).map_err(|e| invalid(what.clone(), e))?;
+        let mut handles = Vec::with_capacity(batch.defs.len());
+        for (def, color) in batch.defs.into_iter().zip(batch.colors) {
             let handle = world
                 .add_body(def)
                 .map_err(|e| invalid(what.clone(), e.to_string()))?;
-            if let Some(color) = material.color {
+            if let Some(color) = color {
                 colors.insert(handle, color);
             }
+            handles.push(handle);
         }
+        // Joined once every generator's bodies exist (a chain may hang from a later one).
+        pending.extend(
+            batch
+                .joints
+                .into_iter()
+                .map(|joint| (what.clone(), joint, handles.clone())),
+        );
+    }
+    for (index, spec) in scene.joints.iter().enumerate() {
+        let what = format!("joint {index} ({:?} to {:?})", spec.bodies.0, spec.bodies.1);
+        let joint = PendingJoint::named(spec, Vec2::zeros());
+        pending.push((what, joint, Vec::new()));
+    }
+    for (what, joint, handles) in pending {
+        let def = joint
+            .def(&handles, &names)
+            .map_err(|e| invalid(what.clone(), e))?;
+        world
+            .add_joint(def)
+            .map_err(|e| invalid(what.clone(), e.to_string()))?;
     }
     let events = Events::new(&scene.events, &names, initial, &world)
         .map_err(|(index, reason)| invalid(format!("event {index}"), reason))?;
@@ -242,14 +270,200 @@ fn generator_name(generator: &Generator) -> &'static str {
         Generator::Room { .. } => "room",
         Generator::Rain { .. } => "rain",
         Generator::Repeat { .. } => "repeat",
+        Generator::Chain { .. } => "chain",
+        Generator::Group { .. } => "group",
     }
 }
 
-/// The bodies a generator makes, and their material.
-fn generate(generator: &Generator) -> Result<(Vec<BodyDef>, Material), String> {
+/// The bodies a generator makes, their colours, and the joints between them.
+#[derive(Debug, Clone, Default)]
+struct Batch {
+    defs: Vec<BodyDef>,
+    colors: Vec<Option<(f32, f32, f32)>>,
+    joints: Vec<PendingJoint>,
+}
+
+impl Batch {
+    /// Bodies all of one material.
+    fn of(defs: Vec<BodyDef>, material: &Material) -> Self {
+        Batch {
+            colors: vec![material.color; defs.len()],
+            defs,
+            joints: Vec::new(),
+        }
+    }
+}
+
+/// A joint's body: one of its batch's (by index), or one the scene named.
+#[derive(Debug, Clone)]
+enum Target {
+    Local(usize),
+    Named(String),
+}
+
+/// A joint waiting for its bodies to exist.
+#[derive(Debug, Clone)]
+struct PendingJoint {
+    bodies: [Target; 2],
+    kind: JointKindSpec,
+    anchor: Vec2,
+    anchor_b: Option<Vec2>,
+    collide_connected: bool,
+    break_force: Option<f32>,
+    break_torque: Option<f32>,
+}
+
+fn point((x, y): Pair) -> Vec2 {
+    vec2(x, y)
+}
+
+impl PendingJoint {
+    /// `spec`, its bodies found by name among the scene's, moved by `shift`.
+    fn named(spec: &JointSpec, shift: Vec2) -> Self {
+        Self::with_targets(
+            spec,
+            [
+                Target::Named(spec.bodies.0.clone()),
+                Target::Named(spec.bodies.1.clone()),
+            ],
+            shift,
+        )
+    }
+
+    fn with_targets(spec: &JointSpec, bodies: [Target; 2], shift: Vec2) -> Self {
+        PendingJoint {
+            bodies,
+            kind: spec.kind,
+            anchor: point(spec.anchor) + shift,
+            anchor_b: spec.anchor_b.map(|b| point(b) + shift),
+            collide_connected: spec.collide_connected,
+            break_force: spec.break_force,
+            break_torque: spec.break_torque,
+        }
+    }
+
+    /// The same joint moved by `shift`, its batch bodies `offset` further on.
+    fn shifted(&self, shift: Vec2, offset: usize) -> Self {
+        let mut moved = self.clone();
+        for target in &mut moved.bodies {
+            if let Target::Local(index) = target {
+                *index += offset;
+            }
+        }
+        moved.anchor += shift;
+        moved.anchor_b = moved.anchor_b.map(|b| b + shift);
+        if let JointKindSpec::Mouse { target, .. } = &mut moved.kind {
+            *target = (target.0 + shift.x, target.1 + shift.y);
+        }
+        moved
+    }
+
+    /// The joint's definition, its bodies found among the batch's `handles` or the scene's
+    /// `names`.
+    fn def(
+        &self,
+        handles: &[BodyHandle],
+        names: &HashMap<String, BodyHandle>,
+    ) -> Result<JointDef, String> {
+        let find = |target: &Target| match target {
+            Target::Local(index) => Ok(handles[*index]),
+            Target::Named(name) => names
+                .get(name)
+                .copied()
+                .ok_or_else(|| format!("no body is named {name:?}")),
+        };
+        let (a, b) = (find(&self.bodies[0])?, find(&self.bodies[1])?);
+        let anchor_b = self.anchor_b.unwrap_or(self.anchor);
+        let limits = |limits: Option<Pair>| limits.map(|(lower, upper)| Limits { lower, upper });
+        let kind = match self.kind {
+            JointKindSpec::Distance {
+                length,
+                spring,
+                limits: range,
+            } => JointKind::Distance(DistanceJoint {
+                length: length.unwrap_or_else(|| (anchor_b - self.anchor).norm()),
+                spring,
+                limits: limits(range),
+            }),
+            JointKindSpec::Revolute {
+                limits: range,
+                motor,
+                spring,
+                target_angle,
+            } => JointKind::Revolute(RevoluteJoint {
+                limits: limits(range),
+                motor,
+                spring,
+                target_angle,
+            }),
+            JointKindSpec::Prismatic {
+                axis,
+                limits: range,
+                motor,
+                spring,
+                target_translation,
+            } => JointKind::Prismatic(PrismaticJoint {
+                axis: point(axis),
+                limits: limits(range),
+                motor,
+                spring,
+                target_translation,
+            }),
+            JointKindSpec::Weld { linear, angular } => {
+                JointKind::Weld(WeldJoint { linear, angular })
+            }
+            JointKindSpec::Wheel {
+                axis,
+                spring,
+                limits: range,
+                motor,
+            } => JointKind::Wheel(WheelJoint {
+                axis: point(axis),
+                spring,
+                limits: limits(range),
+                motor,
+            }),
+            JointKindSpec::Motor {
+                linear_offset,
+                angular_offset,
+                max_force,
+                max_torque,
+                correction_factor,
+            } => JointKind::Motor(MotorJoint {
+                linear_offset: point(linear_offset),
+                angular_offset,
+                max_force,
+                max_torque,
+                correction_factor,
+            }),
+            JointKindSpec::Mouse {
+                target,
+                spring,
+                max_force,
+            } => JointKind::Mouse(MouseJoint {
+                target: point(target),
+                spring,
+                max_force,
+            }),
+            JointKindSpec::Filter => JointKind::Filter,
+        };
+        let mut def = JointDef::new(a, b, self.anchor, anchor_b, kind)
+            .collide_connected(self.collide_connected);
+        if let Some(force) = self.break_force {
+            def = def.break_force(force);
+        }
+        if let Some(torque) = self.break_torque {
+            def = def.break_torque(torque);
+        }
+        Ok(def)
+    }
+}
+
+/// The bodies and joints a generator makes.
+fn generate(generator: &Generator) -> Result<Batch, String> {
     let square =
         |size: f32| checked(Shape::rect(0.5 * size, 0.5 * size)).map_err(|e| e.to_string());
-    Ok(match generator {
+    let (defs, material) = match generator {
         Generator::Stack {
             base,
             count,
@@ -361,19 +575,44 @@ fn generate(generator: &Generator) -> Result<(Vec<BodyDef>, Material), String> {
             spacing,
             of,
         } => {
-            let (one, material) = generate(of)?;
-            let mut defs = Vec::with_capacity(one.len() * (*columns * *rows) as usize);
+            let one = generate(of)?;
+            let mut all = Batch::default();
             for row in 0..*rows {
                 for column in 0..*columns {
                     let shift = vec2(column as f32 * spacing.0, row as f32 * spacing.1);
-                    defs.extend(one.iter().cloned().map(|mut def| {
+                    let offset = all.defs.len();
+                    all.defs.extend(one.defs.iter().cloned().map(|mut def| {
                         def.position += shift;
                         def
                     }));
+                    all.colors.extend_from_slice(&one.colors);
+                    all.joints
+                        .extend(one.joints.iter().map(|j| j.shifted(shift, offset)));
                 }
             }
-            (defs, material)
+            return Ok(all);
         }
+        Generator::Chain {
+            from,
+            to,
+            count,
+            thickness,
+            start,
+            end,
+            joint,
+            material,
+        } => {
+            return chain(
+                point(*from),
+                point(*to),
+                *count,
+                *thickness,
+                (start, end),
+                joint,
+                material,
+            );
+        }
+        Generator::Group { bodies, joints } => return group(bodies, joints),
         Generator::Room {
             center,
             width,
@@ -397,5 +636,97 @@ fn generate(generator: &Generator) -> Result<(Vec<BodyDef>, Material), String> {
             ];
             (defs, *material)
         }
+    };
+    Ok(Batch::of(defs, &material))
+}
+
+/// A chain of `count` box links from `from` to `to`, each joined to the next at their shared
+/// end, the first to `start` and the last to `end` (scene body names) if given.
+fn chain(
+    from: Vec2,
+    to: Vec2,
+    count: u32,
+    thickness: f32,
+    (start, end): (&Option<String>, &Option<String>),
+    joint: &RevoluteSpec,
+    material: &Material,
+) -> Result<Batch, String> {
+    if count == 0 {
+        return Err("a chain needs at least one link".into());
+    }
+    let step = (to - from) / count as f32;
+    let length = step.norm();
+    let link = checked(Shape::rect(0.5 * length, 0.5 * thickness)).map_err(|e| e.to_string())?;
+    let angle = step.y.atan2(step.x);
+    let defs: Vec<BodyDef> = (0..count)
+        .map(|i| {
+            let at = from + step * (i as f32 + 0.5);
+            with_material(
+                BodyDef::dynamic(link.clone()).position(at).angle(angle),
+                material,
+            )
+        })
+        .collect();
+    let spec = JointSpec {
+        bodies: (String::new(), String::new()),
+        kind: JointKindSpec::Revolute {
+            limits: joint.limits,
+            motor: joint.motor,
+            spring: joint.spring,
+            target_angle: joint.target_angle,
+        },
+        anchor: (0.0, 0.0),
+        anchor_b: None,
+        collide_connected: false,
+        break_force: None,
+        break_torque: None,
+    };
+    let n = count as usize;
+    let mut joints = Vec::new();
+    for i in 0..=n {
+        let before = match i {
+            0 => start.clone().map(Target::Named),
+            _ => Some(Target::Local(i - 1)),
+        };
+        let after = match i {
+            _ if i == n => end.clone().map(Target::Named),
+            _ => Some(Target::Local(i)),
+        };
+        if let (Some(a), Some(b)) = (before, after) {
+            let at = from + step * i as f32;
+            joints.push(PendingJoint::with_targets(&spec, [a, b], at));
+        }
+    }
+    Ok(Batch {
+        joints,
+        ..Batch::of(defs, material)
     })
+}
+
+/// Bodies and joints defined together; a joint's names are looked up among the group's
+/// bodies first, then the scene's.
+fn group(bodies: &[BodySpec], joints: &[JointSpec]) -> Result<Batch, String> {
+    let mut batch = Batch::default();
+    let mut local = HashMap::new();
+    for (index, spec) in bodies.iter().enumerate() {
+        let def = body_def(spec).map_err(|e| format!("body {index}: {e}"))?;
+        if let Some(name) = &spec.name
+            && local.insert(name.clone(), index).is_some()
+        {
+            return Err(format!("body {index}: the name {name:?} is used twice"));
+        }
+        batch.defs.push(def);
+        batch.colors.push(spec.material.color);
+    }
+    let target = |name: &String| match local.get(name) {
+        Some(&index) => Target::Local(index),
+        None => Target::Named(name.clone()),
+    };
+    for spec in joints {
+        let bodies = [target(&spec.bodies.0), target(&spec.bodies.1)];
+        batch
+            .joints
+            .push(PendingJoint::with_targets(spec, bodies, Vec2::zeros()));
+    }
+    Ok(batch)
 }

@@ -1,6 +1,6 @@
 //! The scene format: what a RON file in `demos/` holds. Every field but `name` has a default.
 
-use carom::{BodyKind, DrawFlags, Effects, SolverKind};
+use carom::{BodyKind, DrawFlags, Effects, Motor, SolverKind, Spring};
 use serde::{Deserialize, Serialize};
 
 /// A 2D vector written `(x, y)`.
@@ -30,6 +30,9 @@ pub struct Scene {
     /// Bodies made in bulk.
     #[serde(default)]
     pub generators: Vec<Generator>,
+    /// Joints between named bodies.
+    #[serde(default)]
+    pub joints: Vec<JointSpec>,
     /// Things that happen at given times.
     #[serde(default)]
     pub events: Vec<EventSpec>,
@@ -387,6 +390,42 @@ pub enum Generator {
         /// What is repeated.
         of: Box<Generator>,
     },
+    /// A chain of `count` box links from `from` to `to`, each joined to the next by a
+    /// revolute joint at their shared end; the first joined to the body named `start` at
+    /// `from`, the last to the body named `end` at `to`, if given. A rope, a bridge.
+    Chain {
+        /// Where the first link starts (its joint with `start`).
+        from: Pair,
+        /// Where the last link ends (its joint with `end`).
+        to: Pair,
+        /// How many links.
+        count: u32,
+        /// Each link's thickness, m (its length is the chain's over `count`).
+        #[serde(default = "tenth")]
+        thickness: f32,
+        /// The body the first link hangs from, by name.
+        #[serde(default)]
+        start: Option<String>,
+        /// The body the last link holds, by name.
+        #[serde(default)]
+        end: Option<String>,
+        /// The joints' settings (limits, motor as joint friction, spring).
+        #[serde(default)]
+        joint: RevoluteSpec,
+        /// The links' material.
+        #[serde(default)]
+        material: Material,
+    },
+    /// Bodies and joints made together (a ragdoll, a car), so that [`Generator::Repeat`] can
+    /// copy them: names are local to each copy (joints find a name in their own copy first,
+    /// then among the scene's bodies).
+    Group {
+        /// The bodies, as in the scene's list.
+        bodies: Vec<BodySpec>,
+        /// Joints between them (or to the scene's named bodies).
+        #[serde(default)]
+        joints: Vec<JointSpec>,
+    },
     /// Four static walls of a box-shaped room centred on `center`.
     Room {
         /// Centre of the room.
@@ -406,6 +445,168 @@ pub enum Generator {
 
 fn one() -> f32 {
     1.0
+}
+
+fn tenth() -> f32 {
+    0.1
+}
+
+/// A joint between two named bodies, its anchor given where the bodies start.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JointSpec {
+    /// The two bodies, by name (a mouse joint names its body twice).
+    pub bodies: (String, String),
+    /// What it does.
+    pub kind: JointKindSpec,
+    /// Where it joins them, in the world where they start, m: both bodies' anchor, or body
+    /// A's if `anchor_b` is given.
+    #[serde(default)]
+    pub anchor: Pair,
+    /// Body B's anchor, if it is not `anchor` (a distance joint's other end).
+    #[serde(default)]
+    pub anchor_b: Option<Pair>,
+    /// Whether the two bodies still collide with each other.
+    #[serde(default)]
+    pub collide_connected: bool,
+    /// It breaks when it applies more force, N.
+    #[serde(default)]
+    pub break_force: Option<f32>,
+    /// It breaks when it applies more torque, N·m.
+    #[serde(default)]
+    pub break_torque: Option<f32>,
+}
+
+/// A revolute joint's settings.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RevoluteSpec {
+    /// Lowest and highest angle of B relative to A, rad (0 where they start).
+    pub limits: Option<Pair>,
+    /// Speed (rad/s) and most torque (N·m); speed 0 is joint friction.
+    pub motor: Option<Motor>,
+    /// Pulls toward `target_angle`.
+    pub spring: Option<Spring>,
+    /// The angle the spring pulls to, rad.
+    pub target_angle: f32,
+}
+
+/// What a joint does, with its settings (as in carom's joint types).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum JointKindSpec {
+    /// A rod between `anchor` and `anchor_b`; with a spring, soft, within `limits`.
+    Distance {
+        /// Rest length, m; default the anchors' distance at the start.
+        #[serde(default)]
+        length: Option<f32>,
+        /// Makes it a spring (0 Hz: no spring force, a rope within `limits`).
+        #[serde(default)]
+        spring: Option<Spring>,
+        /// Shortest and longest, m.
+        #[serde(default)]
+        limits: Option<Pair>,
+    },
+    /// A hinge at `anchor`.
+    Revolute {
+        /// Lowest and highest angle of B relative to A, rad (0 where they start).
+        #[serde(default)]
+        limits: Option<Pair>,
+        /// Speed (rad/s) and most torque (N·m); speed 0 is joint friction.
+        #[serde(default)]
+        motor: Option<Motor>,
+        /// Pulls toward `target_angle`.
+        #[serde(default)]
+        spring: Option<Spring>,
+        /// The angle the spring pulls to, rad.
+        #[serde(default)]
+        target_angle: f32,
+    },
+    /// A slider through `anchor` along `axis`.
+    Prismatic {
+        /// The direction of travel, in the world at the start.
+        axis: Pair,
+        /// Least and most translation, m.
+        #[serde(default)]
+        limits: Option<Pair>,
+        /// Speed (m/s) and most force (N).
+        #[serde(default)]
+        motor: Option<Motor>,
+        /// Pulls toward `target_translation`.
+        #[serde(default)]
+        spring: Option<Spring>,
+        /// m.
+        #[serde(default)]
+        target_translation: f32,
+    },
+    /// Glues the bodies together at `anchor`; springs make it soft.
+    Weld {
+        /// Soft translation.
+        #[serde(default)]
+        linear: Option<Spring>,
+        /// Soft rotation.
+        #[serde(default)]
+        angular: Option<Spring>,
+    },
+    /// Wheel B on chassis A: a suspension along `axis` through `anchor`, a motor on its turn.
+    Wheel {
+        /// The suspension's direction, in the world at the start. Default up.
+        #[serde(default = "up")]
+        axis: Pair,
+        /// The suspension. Default 4 Hz, damping ratio 0.7.
+        #[serde(default = "suspension")]
+        spring: Option<Spring>,
+        /// Least and most travel along the axis, m.
+        #[serde(default)]
+        limits: Option<Pair>,
+        /// Speed (rad/s) and most torque (N·m).
+        #[serde(default)]
+        motor: Option<Motor>,
+    },
+    /// Drives B toward an offset and angle from A with at most `max_force` and `max_torque`.
+    Motor {
+        /// Where B's anchor should be from A's, in A's frame, m. Default where it starts.
+        #[serde(default)]
+        linear_offset: Pair,
+        /// B's angle from A's should be this more than at the start, rad.
+        #[serde(default)]
+        angular_offset: f32,
+        /// N.
+        max_force: f32,
+        /// N·m.
+        max_torque: f32,
+        /// Fraction of the error closed per step, 0..1. Default 0.3.
+        #[serde(default = "correction")]
+        correction_factor: f32,
+    },
+    /// Pulls body B's point at `anchor` toward `target` (both names the same body).
+    Mouse {
+        /// Where it pulls to, m.
+        target: Pair,
+        /// Default 5 Hz, damping ratio 0.7.
+        #[serde(default = "mouse_spring")]
+        spring: Spring,
+        /// N.
+        max_force: f32,
+    },
+    /// Only keeps the two bodies from colliding.
+    Filter,
+}
+
+fn up() -> Pair {
+    (0.0, 1.0)
+}
+
+fn suspension() -> Option<Spring> {
+    Some(Spring::new(4.0, 0.7))
+}
+
+fn correction() -> f32 {
+    0.3
+}
+
+fn mouse_spring() -> Spring {
+    Spring::new(5.0, 0.7)
 }
 
 fn yes() -> bool {
