@@ -35,6 +35,7 @@ pub fn scene(name: &str, params: SolverParams) -> SceneWorld {
         .set_solver(SolverParams {
             substeps: own.substeps,
             contact_hertz: own.contact_hertz,
+            joint_hertz: own.joint_hertz,
             ..params
         })
         .unwrap();

@@ -1,6 +1,7 @@
 //! Helpers shared by carom's cross-crate test suites.
 
 pub mod hard_case_worlds;
+pub mod joint_measures;
 
 use carom::{BodyHandle, World, WorldShape};
 

@@ -104,11 +104,20 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
         }
     }
     let mut pending = Vec::new();
+    // Collision groups handed out to copies of groups that do not collide with themselves.
+    let mut groups_used = 0;
     for (index, generator) in scene.generators.iter().enumerate() {
         let what = format!("generator {index} ({})", generator_name(generator));
         let batch = generate(generator).map_err(|e| invalid(what.clone(), e))?;
         let mut handles = Vec::with_capacity(batch.defs.len());
-        for (def, color) in batch.defs.into_iter().zip(batch.colors) {
+        let copies = batch.apart.iter().flatten().max().map_or(0, |&k| k + 1);
+        for ((mut def, color), apart) in batch.defs.into_iter().zip(batch.colors).zip(batch.apart) {
+            if let Some(copy) = apart {
+                let group = -(1 + groups_used + copy as i32);
+                for collider in &mut def.colliders {
+                    collider.filter.group = group;
+                }
+            }
             let handle = world
                 .add_body(def)
                 .map_err(|e| invalid(what.clone(), e.to_string()))?;
@@ -117,6 +126,7 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
             }
             handles.push(handle);
         }
+        groups_used += copies as i32;
         // Joined once every generator's bodies exist (a chain may hang from a later one).
         pending.extend(
             batch
@@ -192,6 +202,10 @@ fn world_settings(spec: &WorldSpec, effects: Effects) -> Result<WorldSettings, C
     solver.contact_hertz = spec.contact_hertz.unwrap_or(solver.contact_hertz);
     solver.damping_ratio = spec.damping_ratio.unwrap_or(solver.damping_ratio);
     solver.max_push_speed = spec.max_push_speed.unwrap_or(solver.max_push_speed);
+    solver.joint_hertz = spec.joint_hertz.unwrap_or(solver.joint_hertz);
+    solver.joint_damping_ratio = spec
+        .joint_damping_ratio
+        .unwrap_or(solver.joint_damping_ratio);
     solver.validate()?;
     Ok(WorldSettings {
         gravity: vec2(spec.gravity.0, spec.gravity.1),
@@ -220,7 +234,8 @@ fn checked(shape: Shape) -> Result<Shape, CaromError> {
 }
 
 fn with_material(def: BodyDef, material: &Material) -> BodyDef {
-    def.density(material.density)
+    def.filter(material.filter)
+        .density(material.density)
         .friction(material.friction)
         .restitution(material.restitution)
         .damping(material.damping.0, material.damping.1)
@@ -234,7 +249,8 @@ fn body_def(spec: &BodySpec) -> Result<BodyDef, CaromError> {
             ColliderDef::new(shape(first)?)
                 .density(material.density)
                 .friction(material.friction)
-                .restitution(material.restitution),
+                .restitution(material.restitution)
+                .filter(material.filter),
         );
     }
     for part in &spec.colliders {
@@ -244,7 +260,8 @@ fn body_def(spec: &BodySpec) -> Result<BodyDef, CaromError> {
                 .angle(part.angle)
                 .density(part.density.unwrap_or(material.density))
                 .friction(part.friction.unwrap_or(material.friction))
-                .restitution(part.restitution.unwrap_or(material.restitution)),
+                .restitution(part.restitution.unwrap_or(material.restitution))
+                .filter(part.filter.unwrap_or(material.filter)),
         );
     }
     let Some(first) = colliders.first() else {
@@ -281,6 +298,8 @@ struct Batch {
     defs: Vec<BodyDef>,
     colors: Vec<Option<(f32, f32, f32)>>,
     joints: Vec<PendingJoint>,
+    /// Per body, the copy of a group that must not collide with itself it belongs to.
+    apart: Vec<Option<u32>>,
 }
 
 impl Batch {
@@ -288,6 +307,7 @@ impl Batch {
     fn of(defs: Vec<BodyDef>, material: &Material) -> Self {
         Batch {
             colors: vec![material.color; defs.len()],
+            apart: vec![None; defs.len()],
             defs,
             joints: Vec::new(),
         }
@@ -576,9 +596,13 @@ fn generate(generator: &Generator) -> Result<Batch, String> {
             of,
         } => {
             let one = generate(of)?;
+            let copies_apart = one.apart.iter().flatten().max().map_or(0, |&k| k + 1);
             let mut all = Batch::default();
             for row in 0..*rows {
                 for column in 0..*columns {
+                    let copy = row * columns + column;
+                    let apart = one.apart.iter().map(|k| k.map(|k| k + copy * copies_apart));
+                    all.apart.extend(apart);
                     let shift = vec2(column as f32 * spacing.0, row as f32 * spacing.1);
                     let offset = all.defs.len();
                     all.defs.extend(one.defs.iter().cloned().map(|mut def| {
@@ -612,7 +636,11 @@ fn generate(generator: &Generator) -> Result<Batch, String> {
                 material,
             );
         }
-        Generator::Group { bodies, joints } => return group(bodies, joints),
+        Generator::Group {
+            bodies,
+            joints,
+            self_collide,
+        } => return group(bodies, joints, *self_collide),
         Generator::Room {
             center,
             width,
@@ -705,7 +733,7 @@ fn chain(
 
 /// Bodies and joints defined together; a joint's names are looked up among the group's
 /// bodies first, then the scene's.
-fn group(bodies: &[BodySpec], joints: &[JointSpec]) -> Result<Batch, String> {
+fn group(bodies: &[BodySpec], joints: &[JointSpec], self_collide: bool) -> Result<Batch, String> {
     let mut batch = Batch::default();
     let mut local = HashMap::new();
     for (index, spec) in bodies.iter().enumerate() {
@@ -717,6 +745,7 @@ fn group(bodies: &[BodySpec], joints: &[JointSpec]) -> Result<Batch, String> {
         }
         batch.defs.push(def);
         batch.colors.push(spec.material.color);
+        batch.apart.push((!self_collide).then_some(0));
     }
     let target = |name: &String| match local.get(name) {
         Some(&index) => Target::Local(index),

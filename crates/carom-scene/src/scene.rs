@@ -1,6 +1,6 @@
 //! The scene format: what a RON file in `demos/` holds. Every field but `name` has a default.
 
-use carom::{BodyKind, DrawFlags, Effects, Motor, SolverKind, Spring};
+use carom::{BodyKind, CollisionFilter, DrawFlags, Effects, Motor, SolverKind, Spring};
 use serde::{Deserialize, Serialize};
 
 /// A 2D vector written `(x, y)`.
@@ -36,7 +36,8 @@ pub struct Scene {
     /// Things that happen at given times.
     #[serde(default)]
     pub events: Vec<EventSpec>,
-    /// What the demo and snapshots draw at first. Default: shapes, sleeping bodies dimmed.
+    /// What the demo and snapshots draw at first. Default: shapes, sleeping bodies dimmed,
+    /// joints.
     #[serde(default = "default_draw")]
     pub draw: DrawFlags,
     /// How `carom bench` measures this scene's error against the exact answer. Default: no
@@ -87,7 +88,7 @@ fn dynamic() -> BodyKind {
 }
 
 fn default_draw() -> DrawFlags {
-    DrawFlags::SHAPES | DrawFlags::SLEEPING
+    DrawFlags::default()
 }
 
 fn all_effects() -> Effects {
@@ -153,6 +154,10 @@ pub struct WorldSpec {
     pub damping_ratio: Option<f32>,
     /// Fastest push-out, m/s (soft step).
     pub max_push_speed: Option<f32>,
+    /// Joint stiffness, Hz (soft step).
+    pub joint_hertz: Option<f32>,
+    /// Joint damping ratio (soft step).
+    pub joint_damping_ratio: Option<f32>,
 }
 
 impl Default for WorldSpec {
@@ -167,6 +172,8 @@ impl Default for WorldSpec {
             contact_hertz: None,
             damping_ratio: None,
             max_push_speed: None,
+            joint_hertz: None,
+            joint_damping_ratio: None,
         }
     }
 }
@@ -220,6 +227,8 @@ pub struct Material {
     pub damping: Pair,
     /// RGB in 0..1, for drawing.
     pub color: Option<(f32, f32, f32)>,
+    /// What it collides with: `(category, mask, group)` as in carom's `CollisionFilter`.
+    pub filter: CollisionFilter,
 }
 
 impl Default for Material {
@@ -230,6 +239,7 @@ impl Default for Material {
             restitution: 0.0,
             damping: (0.0, 0.0),
             color: None,
+            filter: CollisionFilter::DEFAULT,
         }
     }
 }
@@ -295,6 +305,9 @@ pub struct ColliderSpec {
     /// Bounciness; the body's if not given.
     #[serde(default)]
     pub restitution: Option<f32>,
+    /// What it collides with; the body's if not given.
+    #[serde(default)]
+    pub filter: Option<CollisionFilter>,
 }
 
 /// Bodies made in bulk.
@@ -425,6 +438,11 @@ pub enum Generator {
         /// Joints between them (or to the scene's named bodies).
         #[serde(default)]
         joints: Vec<JointSpec>,
+        /// Whether a copy's bodies collide with each other. False gives each copy a collision
+        /// group of its own (a ragdoll's limbs pass through each other but hit other
+        /// ragdolls). Default true.
+        #[serde(default = "yes")]
+        self_collide: bool,
     },
     /// Four static walls of a box-shaped room centred on `center`.
     Room {

@@ -109,12 +109,6 @@ pub(crate) const MAX_CORRECTION: Real = 0.2;
 /// solve as a block (Box2D v2.4's `k_maxConditionNumber`).
 pub(crate) const MAX_CONDITION: Real = 1000.0;
 
-/// Soft step: how stiffly a rigid joint's drift is pushed back in the biased pass, Hz, and
-/// its damping ratio (Box2D 3.2's joint defaults; the stiffness at most a quarter of the
-/// substep rate).
-pub(crate) const JOINT_HERTZ: Real = 60.0;
-pub(crate) const JOINT_DAMPING_RATIO: Real = 2.0;
-
 /// Soft step: colours joints may take before the overflow. Joints are coloured apart from
 /// contacts, in colours of their own solved first in each pass.
 pub(crate) const JOINT_COLOR_COUNT: usize = 12;

@@ -48,6 +48,7 @@ mod stats;
 mod world;
 
 pub use collision::contact::{Contact, ContactEvent, ContactPair};
+pub use collision::filter::CollisionFilter;
 pub use collision::manifold::{FeatureId, Manifold, ManifoldPoint, collide};
 pub use collision::narrowphase::{Separation, separation};
 pub use constants::{LINEAR_SLOP, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_TO_SLEEP};

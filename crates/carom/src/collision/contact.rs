@@ -483,6 +483,11 @@ impl ContactSet {
         self.destroy_where(handle, |_| true);
     }
 
+    /// Drops the contacts of `body` that `doomed` picks (their filters no longer allow them).
+    pub(crate) fn remove_where(&mut self, body: BodyHandle, doomed: impl Fn(&Contact) -> bool) {
+        self.destroy_where(body, doomed);
+    }
+
     /// Drops every contact between two bodies (a joint now keeps them apart).
     pub(crate) fn remove_between(&mut self, a: BodyHandle, b: BodyHandle) {
         self.destroy_where(a, |c| c.body_a() == b || c.body_b() == b);

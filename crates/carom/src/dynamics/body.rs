@@ -179,6 +179,14 @@ impl BodyDef {
         self
     }
 
+    /// Sets what every collider collides with.
+    pub fn filter(mut self, filter: crate::CollisionFilter) -> Self {
+        for collider in &mut self.colliders {
+            collider.filter = filter;
+        }
+        self
+    }
+
     /// Sets the gravity scale.
     pub fn gravity_scale(mut self, scale: Real) -> Self {
         self.gravity_scale = scale;

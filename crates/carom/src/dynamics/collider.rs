@@ -7,6 +7,7 @@
 //! broadphase holds one box per collider and contacts join pairs of colliders; the body's
 //! mass, centre of mass and inertia are summed over its colliders.
 
+use crate::collision::filter::CollisionFilter;
 use crate::dynamics::body::{Body, BodyHandle};
 use crate::error::{CaromError, check_finite, check_finite_vec};
 use crate::geometry::aabb::Aabb;
@@ -45,6 +46,9 @@ pub struct ColliderDef {
     /// Bounciness: 0 does not bounce, 1 bounces back at the speed it came.
     #[cfg_attr(feature = "serde", serde(default))]
     pub restitution: Real,
+    /// What it collides with. Default: everything.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub filter: CollisionFilter,
 }
 
 /// The default friction coefficient.
@@ -73,6 +77,7 @@ impl ColliderDef {
             density: 1.0,
             friction: DEFAULT_FRICTION,
             restitution: 0.0,
+            filter: CollisionFilter::DEFAULT,
         }
     }
 
@@ -103,6 +108,12 @@ impl ColliderDef {
     /// Sets the restitution.
     pub fn restitution(mut self, restitution: Real) -> Self {
         self.restitution = restitution;
+        self
+    }
+
+    /// Sets what it collides with.
+    pub fn filter(mut self, filter: CollisionFilter) -> Self {
+        self.filter = filter;
         self
     }
 
@@ -150,6 +161,7 @@ pub struct Collider {
     density: Real,
     friction: Real,
     restitution: Real,
+    filter: CollisionFilter,
     world_shape: WorldShape,
     aabb: Aabb,
 }
@@ -173,6 +185,7 @@ impl Collider {
             density: def.density,
             friction: def.friction,
             restitution: def.restitution,
+            filter: def.filter,
             aabb: world_shape.aabb(),
             world_shape,
         };
@@ -224,6 +237,17 @@ impl Collider {
     #[inline]
     pub fn restitution(&self) -> Real {
         self.restitution
+    }
+
+    /// What it collides with.
+    #[inline]
+    pub fn filter(&self) -> CollisionFilter {
+        self.filter
+    }
+
+    /// Sets what it collides with; the world ends contacts it no longer allows.
+    pub(crate) fn set_filter(&mut self, filter: CollisionFilter) {
+        self.filter = filter;
     }
 
     /// The shape in world coordinates, as of the last step or edit.

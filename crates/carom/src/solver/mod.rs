@@ -146,6 +146,13 @@ pub struct SolverParams {
     pub damping_ratio: Real,
     /// Soft step: contacts against static bodies are this much stiffer. Default 2.
     pub static_stiffness: Real,
+    /// Soft step: how stiffly a joint's drift is pushed back in the biased pass, Hz, at most
+    /// a quarter of the substep rate. Default 60, as Box2D. A soft joint gives under load,
+    /// most where a heavy body hangs from light ones: a chain of 0.5 kg links holding 50 kg
+    /// stretches about 6 % at 60 Hz and 4 substeps, under 2 % at 120 Hz and 8 substeps.
+    pub joint_hertz: Real,
+    /// Soft step: the joints' damping ratio. Default 2, as Box2D.
+    pub joint_damping_ratio: Real,
     /// Soft step: the fastest overlap is pushed apart, m/s. Default 3.
     pub max_push_speed: Real,
     /// Sequential and tutorial impulse: fraction of the overlap beyond the slop removed per
@@ -174,6 +181,8 @@ impl Default for SolverParams {
             contact_hertz: 30.0,
             damping_ratio: 10.0,
             static_stiffness: 2.0,
+            joint_hertz: 60.0,
+            joint_damping_ratio: 2.0,
             max_push_speed: 3.0,
             baumgarte: 0.2,
             restitution_threshold: 1.0,
@@ -229,6 +238,8 @@ impl SolverParams {
         positive("contact hertz", self.contact_hertz)?;
         positive("damping ratio", self.damping_ratio)?;
         positive("static stiffness", self.static_stiffness)?;
+        positive("joint hertz", self.joint_hertz)?;
+        positive("joint damping ratio", self.joint_damping_ratio)?;
         positive("max push speed", self.max_push_speed)?;
         if !(self.baumgarte.is_finite() && (0.0..=1.0).contains(&self.baumgarte)) {
             return Err(crate::CaromError::OutOfRange {

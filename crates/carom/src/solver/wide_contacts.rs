@@ -644,7 +644,8 @@ fn execute_stages<L: Lanes>(
     let joint_block_counts = joint_blocks
         .each_ref()
         .map(|blocks| blocks.iter().filter(|b| b.is_some()).count());
-    let joint_passes = [true, false].map(|use_bias| JointPass::soft(inputs.h, use_bias));
+    let joint_passes =
+        [true, false].map(|use_bias| JointPass::soft(inputs.params, inputs.h, use_bias));
     // Every colour cut into blocks, each behind a lock that is never contended (a block is
     // claimed once a stage), which is how a block is lent mutably to whichever thread claims
     // it; the colour's stages all cut it the same way.

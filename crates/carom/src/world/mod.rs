@@ -345,6 +345,41 @@ impl World {
         Ok(removed)
     }
 
+    /// Changes what a collider collides with: its contacts the new filter forbids end (reported
+    /// after the next step), and it is looked at again for pairs the filter now allows.
+    ///
+    /// # Errors
+    /// A stale handle.
+    pub fn set_collider_filter(
+        &mut self,
+        handle: ColliderHandle,
+        filter: crate::CollisionFilter,
+    ) -> Result<(), CaromError> {
+        let collider = self
+            .colliders
+            .get_mut(handle)
+            .ok_or(CaromError::StaleHandle {
+                what: "collider",
+                index: handle.index(),
+                generation: handle.generation(),
+            })?;
+        collider.set_filter(filter);
+        let body = collider.body();
+        let colliders = &self.colliders;
+        self.contacts.remove_where(body, |c| {
+            let (Some(a), Some(b)) = (colliders.get(c.collider_a()), colliders.get(c.collider_b()))
+            else {
+                return false;
+            };
+            !a.filter().collides_with(&b.filter())
+        });
+        let index = self.bodies.checked_index(body).expect("live");
+        self.wake_body(index);
+        self.apply_touch_changes();
+        self.broadphase.requeue(handle);
+        Ok(())
+    }
+
     /// Changes a collider's density; its body's mass, centre of mass and inertia follow.
     ///
     /// # Errors
@@ -697,7 +732,9 @@ impl World {
             else {
                 continue;
             };
-            if self.joints.filters(collider_a.body(), collider_b.body()) {
+            if !collider_a.filter().collides_with(&collider_b.filter())
+                || self.joints.filters(collider_a.body(), collider_b.body())
+            {
                 continue;
             }
             let sets = self.body_sets;

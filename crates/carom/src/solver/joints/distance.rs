@@ -86,7 +86,7 @@ pub(super) fn solve(
         c.apply_linear(a, b, ra, rb, axis * impulse);
         return;
     };
-    if spring.hertz > 0.0 {
+    if pass.drive && spring.hertz > 0.0 {
         let bias = p.spring.bias_rate * (length - settings.length);
         let impulse = -p.spring.mass_scale * p.axial_mass * (speed(a, b) + bias)
             - p.spring.impulse_scale * c.impulses.axial;

@@ -17,8 +17,8 @@ mod revolute;
 mod weld;
 mod wheel;
 
-use super::{BodyState, Softness};
-use crate::constants::{JOINT_COLOR_COUNT, JOINT_DAMPING_RATIO, JOINT_HERTZ};
+use super::{BodyState, Softness, SolverParams};
+use crate::constants::JOINT_COLOR_COUNT;
 use crate::dynamics::body::Body;
 use crate::joint::{Joint, JointImpulses, JointKind};
 use crate::math::{Real, Rot, Vec2, cross};
@@ -76,34 +76,50 @@ pub(crate) struct JointPass {
     pub use_bias: bool,
     /// How drift is pushed back.
     pub softness: Softness,
+    /// Springs and motors act (off in a pass that only corrects positions).
+    pub drive: bool,
 }
 
 impl JointPass {
-    /// Soft step's pass over substeps of `h`: Box2D's joint softness (60 Hz, damping ratio 2,
-    /// at most a quarter of the substep rate).
-    pub fn soft(h: Real, use_bias: bool) -> Self {
+    /// Soft step's pass over substeps of `h`: the joint softness of `params` (its stiffness
+    /// at most a quarter of the substep rate, as Box2D caps it).
+    pub fn soft(params: &SolverParams, h: Real, use_bias: bool) -> Self {
         let inv_h = 1.0 / h;
-        let hertz = JOINT_HERTZ.min(0.25 * inv_h);
+        let hertz = params.joint_hertz.min(0.25 * inv_h);
         JointPass {
             h,
             inv_h,
             use_bias,
-            softness: Softness::new(hertz, JOINT_DAMPING_RATIO, h),
+            softness: Softness::new(hertz, params.joint_damping_ratio, h),
+            drive: true,
         }
     }
 
-    /// Sequential impulse's pass over a step of `dt`: Baumgarte's bias, a fraction `beta` of
-    /// the drift closed per step, rigid otherwise.
-    pub fn baumgarte(dt: Real, beta: Real) -> Self {
+    /// Sequential impulse's velocity pass over a step of `dt`: rigid, drift left to the
+    /// position passes.
+    pub fn velocities(dt: Real) -> Self {
+        JointPass {
+            h: dt,
+            inv_h: 1.0 / dt,
+            use_bias: false,
+            softness: Softness::new(0.0, 0.0, dt),
+            drive: true,
+        }
+    }
+
+    /// Sequential impulse's position pass ([`JointConstraint::correct_positions`]): the
+    /// whole drift closed, nothing driven.
+    pub fn positions(dt: Real) -> Self {
         JointPass {
             h: dt,
             inv_h: 1.0 / dt,
             use_bias: true,
             softness: Softness {
-                bias_rate: beta / dt,
+                bias_rate: 1.0 / dt,
                 mass_scale: 1.0,
                 impulse_scale: 0.0,
             },
+            drive: false,
         }
     }
 
@@ -242,6 +258,27 @@ impl JointConstraint {
             JointData::Motor(p) => motor::solve(self, &p, a, b, pass),
             JointData::Mouse(p) => mouse::solve(self, &p, b, pass),
             JointData::Filter => {}
+        }
+    }
+
+    /// One Gauss-Seidel pass on positions, as Box2D v2.4 corrects joints after its velocity
+    /// iterations: the velocity solve run on bodies at rest with a bias of the whole drift
+    /// gives the velocities that would close it in `dt`; the bodies are moved by them, and
+    /// keep their real velocities and the joint its impulses.
+    pub fn correct_positions(&self, a: &mut BodyState, b: &mut BodyState, dt: Real) {
+        let pass = JointPass::positions(dt);
+        let mut scratch = self.clone();
+        scratch.impulses = JointImpulses::default();
+        let still = |s: &BodyState| BodyState {
+            v: Vec2::zeros(),
+            w: 0.0,
+            ..*s
+        };
+        let (mut pa, mut pb) = (still(a), still(b));
+        scratch.solve(&mut pa, &mut pb, &pass);
+        for (state, pushed) in [(a, pa), (b, pb)] {
+            state.dp += pushed.v * dt;
+            state.dq = Rot::new(pushed.w * dt) * state.dq;
         }
     }
 

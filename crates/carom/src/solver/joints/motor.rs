@@ -34,6 +34,9 @@ pub(super) fn solve(
     b: &mut BodyState,
     pass: &JointPass,
 ) {
+    if !pass.drive {
+        return;
+    }
     let s = &p.settings;
     let rate = s.correction_factor * pass.inv_h;
     // The angle.

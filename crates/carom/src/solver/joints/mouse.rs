@@ -33,6 +33,9 @@ pub(super) fn warm_start(c: &JointConstraint, b: &mut BodyState) {
 }
 
 pub(super) fn solve(c: &mut JointConstraint, p: &Prepared, b: &mut BodyState, pass: &JointPass) {
+    if !pass.drive {
+        return;
+    }
     let (_, _, mb, ib) = c.masses();
     // Spin damping: a soft constraint toward no spin, without bias.
     if ib > 0.0 {

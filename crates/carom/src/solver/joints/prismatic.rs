@@ -134,13 +134,13 @@ pub(super) fn solve(
     let arms = slide.arms(slide.axis);
     let free = (Real::NEG_INFINITY, Real::INFINITY);
     let mut impulses = c.impulses;
-    if settings.spring.is_some_and(|s| s.hertz > 0.0) {
+    if pass.drive && settings.spring.is_some_and(|s| s.hertz > 0.0) {
         let s = p.spring;
         let bias = s.bias_rate * (translation - settings.target_translation);
         let scales = (bias, s.mass_scale, s.impulse_scale);
         axial_impulse(c, a, b, slide.axis, arms, scales, &mut impulses.axial, free);
     }
-    if let Some(motor) = settings.motor {
+    if let (true, Some(motor)) = (pass.drive, settings.motor) {
         let max = pass.h * motor.max_force;
         let scales = (-motor.speed, 1.0, 0.0);
         axial_impulse(

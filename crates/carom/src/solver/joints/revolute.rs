@@ -44,7 +44,7 @@ pub(super) fn solve(
 ) {
     let settings = &p.settings;
     let turns = p.axial_mass > 0.0;
-    if turns && settings.spring.is_some_and(|s| s.hertz > 0.0) {
+    if pass.drive && turns && settings.spring.is_some_and(|s| s.hertz > 0.0) {
         let error = unwind_angle(c.angle(a, b) - settings.target_angle);
         let s = p.spring;
         let impulse = -s.mass_scale * p.axial_mass * (b.w - a.w + s.bias_rate * error)
@@ -52,7 +52,7 @@ pub(super) fn solve(
         c.impulses.axial += impulse;
         c.apply_angular(a, b, impulse);
     }
-    if let (true, Some(motor)) = (turns, settings.motor) {
+    if let (true, Some(motor)) = (pass.drive && turns, settings.motor) {
         let impulse = -p.axial_mass * (b.w - a.w - motor.speed);
         let old = c.impulses.motor;
         let max = pass.h * motor.max_force;

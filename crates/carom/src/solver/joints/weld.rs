@@ -50,13 +50,38 @@ pub(super) fn solve(
     b: &mut BodyState,
     pass: &JointPass,
 ) {
-    // The angle.
+    // A spring is no drift: a pass that only corrects positions leaves it be.
+    let angular = p.angular.is_none() || pass.drive;
+    let linear = p.linear.is_none() || pass.drive;
+    if angular {
+        solve_angle(c, p, a, b, pass);
+    }
+    if linear {
+        solve_point(c, p, a, b, pass);
+    }
+}
+
+fn solve_angle(
+    c: &mut JointConstraint,
+    p: &Prepared,
+    a: &mut BodyState,
+    b: &mut BodyState,
+    pass: &JointPass,
+) {
     let (bias, mass_scale, impulse_scale) = scales(p.angular, pass, c.angle(a, b));
     let impulse =
         -mass_scale * p.axial_mass * (b.w - a.w + bias) - impulse_scale * c.impulses.angular;
     c.impulses.angular += impulse;
     c.apply_angular(a, b, impulse);
-    // The point.
+}
+
+fn solve_point(
+    c: &mut JointConstraint,
+    p: &Prepared,
+    a: &mut BodyState,
+    b: &mut BodyState,
+    pass: &JointPass,
+) {
     let (ra, rb) = c.anchors(a, b);
     let separation = c.separation(a, b, ra, rb);
     let (bias_rate, mass_scale, impulse_scale) = scales(p.linear, pass, 1.0);

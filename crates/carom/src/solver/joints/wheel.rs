@@ -49,7 +49,7 @@ pub(super) fn solve(
 ) {
     let settings = &p.settings;
     let mut impulses = c.impulses;
-    if let (true, Some(motor)) = (p.motor_mass > 0.0, settings.motor) {
+    if let (true, Some(motor)) = (pass.drive && p.motor_mass > 0.0, settings.motor) {
         let impulse = -p.motor_mass * (b.w - a.w - motor.speed);
         let old = impulses.motor;
         let max = pass.h * motor.max_force;
@@ -59,7 +59,7 @@ pub(super) fn solve(
     let slide = Slide::now(c, a, b, settings.axis);
     let translation = slide.axis.dot(&slide.d);
     let arms = slide.arms(slide.axis);
-    if settings.spring.is_some_and(|s| s.hertz > 0.0) {
+    if pass.drive && settings.spring.is_some_and(|s| s.hertz > 0.0) {
         let s = p.spring;
         let scales = (s.bias_rate * translation, s.mass_scale, s.impulse_scale);
         let free = (Real::NEG_INFINITY, Real::INFINITY);
