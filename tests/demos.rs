@@ -1,5 +1,6 @@
 //! Every scene shipped in `demos/` loads and runs without NaN.
 
+use carom::Real;
 use carom_scene::load;
 use std::path::PathBuf;
 
@@ -224,4 +225,104 @@ fn the_card_house_stands() {
         .map(|(b, s)| s.y - b.position().y)
         .fold(0.0, f32::max);
     assert!(dropped < 0.05, "a card fell {dropped} m");
+}
+
+fn demo(name: &str) -> carom_scene::SceneWorld {
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("../demos/{name}.ron"));
+    load(&file).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn run(scene: &mut carom_scene::SceneWorld, steps: usize) {
+    for _ in 0..steps {
+        scene.step().unwrap();
+    }
+}
+
+#[test]
+fn the_tumbler_s_motor_turns_its_heavy_box_at_25_degrees_a_second() {
+    let mut scene = demo("tumbler");
+    let drum = scene.names["drum"];
+    assert!(scene.world.body(drum).unwrap().is_dynamic());
+    run(&mut scene, 120);
+    let w = scene.world.body(drum).unwrap().angular_velocity();
+    let target = 25.0_f32.to_radians();
+    assert!((w - target).abs() < 0.01 * target, "turns at {w} rad/s");
+    // Still on its hinge.
+    let centre = scene.world.body(drum).unwrap().position();
+    assert!(
+        (centre - carom::vec2(0.0, 10.0)).norm() < 0.01,
+        "{centre:?}"
+    );
+}
+
+#[test]
+fn the_car_drives_over_the_bumps_on_its_wheels() {
+    let mut scene = demo("car");
+    let [chassis, rear, front] = ["chassis", "rear", "front"].map(|n| scene.names[n]);
+    run(&mut scene, 300);
+    let world = &scene.world;
+    let body = world.body(chassis).unwrap();
+    assert!(body.position().x > 10.0, "drove {} m", body.position().x);
+    assert!(body.angle().abs() < 0.5, "tipped to {}", body.angle());
+    // Each wheel stays on its axle: within its travel, and under the chassis.
+    for wheel in [rear, front] {
+        let joint = world.joint(world.joints_of(wheel)[0]).unwrap();
+        let [a, b] = joint.bodies().map(|h| world.body(h).unwrap());
+        let [pa, pb] = joint.world_anchors(a, b);
+        let offset = a.rotation().inverse() * (pb - pa);
+        assert!(offset.x.abs() < 0.01, "off its axle by {}", offset.x);
+        assert!(offset.y.abs() < 0.26, "past its travel: {}", offset.y);
+    }
+}
+
+#[test]
+fn the_cradle_on_strings_passes_the_swing_down_the_row() {
+    let mut scene = demo("cradle");
+    let [first, last] = ["ball0", "ball4"].map(|n| scene.names[n]);
+    let mut highest_last = Real::NEG_INFINITY;
+    for _ in 0..100 {
+        scene.step().unwrap();
+        highest_last = highest_last.max(scene.world.body(last).unwrap().position().y);
+    }
+    // The first ball fell from 40° (1.94 m); the last swung well up after the knock.
+    assert!(highest_last > 1.5, "the last ball rose to {highest_last}");
+    let first = scene.world.body(first).unwrap();
+    assert!(
+        first.position().y < 1.3,
+        "the first ball is at {}",
+        first.position().y
+    );
+    // Strings keep their length.
+    let world = &scene.world;
+    for joint in world.joints() {
+        let [a, b] = joint.bodies().map(|h| world.body(h).unwrap());
+        let [pa, pb] = joint.world_anchors(a, b);
+        assert!(
+            ((pb - pa).norm() - 4.0).abs() < 0.02,
+            "{}",
+            (pb - pa).norm()
+        );
+    }
+}
+
+#[test]
+fn soft_bodies_squash_and_hold_together() {
+    let mut scene = demo("soft_body");
+    run(&mut scene, 240);
+    let world = &scene.world;
+    let mut worst: Real = 0.0;
+    for joint in world.joints() {
+        let [a, b] = joint.bodies().map(|h| world.body(h).unwrap());
+        let [pa, pb] = joint.world_anchors(a, b);
+        let carom::JointKind::Distance(rod) = joint.kind() else {
+            panic!("a blob is held by distance springs");
+        };
+        worst = worst.max(((pb - pa).norm() - rod.length).abs() / rod.length);
+    }
+    assert!(worst < 0.5, "a spring strained {worst}");
+    // They landed: nothing above where they started, nothing below the floor.
+    assert!(world.bodies().filter(|b| b.is_dynamic()).all(|b| {
+        let y = b.position().y;
+        y < 5.1 && y > 0.0
+    }));
 }

@@ -28,7 +28,7 @@ const CHANNEL_TOLERANCE: u8 = 40;
 const MAX_DIFFERING_FRACTION: f64 = 0.002;
 
 /// Each case: scene, steps before the picture, and what it shows.
-const CASES: [(&str, usize); 5] = [
+const CASES: [(&str, usize); 8] = [
     // Mixed shapes piled on the floor, contact points and normals drawn.
     ("collision", 150),
     // The worked example's reference and incident edges, and every edge normal.
@@ -39,6 +39,12 @@ const CASES: [(&str, usize); 5] = [
     ("vertical_stack", 120),
     // A pyramid of 210 boxes after a second.
     ("pyramid", 60),
+    // A chain of 40 hinged links holding a ball, joints drawn.
+    ("chain", 30),
+    // Box2D's bridge with boxes dropped on it, after two seconds.
+    ("bridge", 120),
+    // 20 ragdolls falling into a pile, after a second and a half.
+    ("ragdolls", 90),
 ];
 
 fn workspace() -> PathBuf {

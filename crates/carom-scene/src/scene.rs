@@ -36,8 +36,7 @@ pub struct Scene {
     /// Things that happen at given times.
     #[serde(default)]
     pub events: Vec<EventSpec>,
-    /// What the demo and snapshots draw at first. Default: shapes, sleeping bodies dimmed,
-    /// joints.
+    /// What the demo and snapshots draw at first. Default: shapes, sleeping bodies dimmed.
     #[serde(default = "default_draw")]
     pub draw: DrawFlags,
     /// How `carom bench` measures this scene's error against the exact answer. Default: no
@@ -88,7 +87,7 @@ fn dynamic() -> BodyKind {
 }
 
 fn default_draw() -> DrawFlags {
-    DrawFlags::default()
+    DrawFlags::SHAPES | DrawFlags::SLEEPING
 }
 
 fn all_effects() -> Effects {

@@ -406,7 +406,7 @@ const JOINT_WIDTH: f32 = 1.5;
 /// Joint limit line and tick thickness, pixels: thicker than the links they cross.
 const JOINT_LIMIT_WIDTH: f32 = 2.5;
 /// Joint anchor diameter, pixels.
-const JOINT_ANCHOR_SIZE: f32 = 5.0;
+const JOINT_ANCHOR_SIZE: f32 = 3.0;
 /// The longest reaction force arrow, m.
 const MAX_FORCE_ARROW: Real = 2.0;
 

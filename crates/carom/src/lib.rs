@@ -1,9 +1,10 @@
 //! # carom
 //!
 //! A 2D rigid-body physics engine: bodies made of circles and convex polygons (colliders) with
-//! mass from density, forces, drag, queries, a dynamic-tree broadphase, SAT narrowphase with
-//! clipped contact manifolds, contact solvers from the tutorial's push-out to Box2D v3's soft
-//! step, continuous collision and sleeping. It has no graphics dependency.
+//! mass from density, forces, drag, queries, collision filters, a dynamic-tree broadphase, SAT
+//! narrowphase with clipped contact manifolds, joints ([`JointDef`]), contact solvers from the
+//! tutorial's push-out to Box2D v3's soft step, continuous collision and sleeping. It has no
+//! graphics dependency.
 //!
 //! Units are SI: metres, kilograms, seconds, radians. Angles are counter-clockwise. Shapes are
 //! centred on their centroid when built; a body's colliders place them in its frame, whose

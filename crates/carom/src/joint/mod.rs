@@ -8,6 +8,27 @@
 //! island, so they sleep and wake together. A joint reports the force and torque it applied in
 //! the last step, and one given a break force or torque comes apart when it exceeds it
 //! ([`JointEvent::Broken`]).
+//!
+//! A door on a hinge that swings at most 45° either way, with a little friction:
+//!
+//! ```
+//! use carom::{BodyDef, JointDef, Shape, World, vec2};
+//!
+//! let mut world = World::new();
+//! let hook = world.add_body(BodyDef::static_body(Shape::rect(0.2, 0.2)))?;
+//! let door = world.add_body(BodyDef::dynamic(Shape::rect(1.0, 0.1)).position(vec2(1.0, 0.0)))?;
+//! let hinge = world.add_joint(
+//!     JointDef::revolute(hook, door, vec2(0.0, 0.0)).limits(-0.785, 0.785).motor_drive(0.0, 0.5),
+//! )?;
+//! for _ in 0..120 {
+//!     world.step(1.0 / 60.0)?;
+//! }
+//! // It hangs on its lower limit, its hinge pushing up on it.
+//! let angle = world.body(door).unwrap().angle();
+//! assert!((angle + 0.785).abs() < 0.02, "{angle}");
+//! assert!(world.joint(hinge).unwrap().reaction_force().y > 0.0);
+//! # Ok::<(), carom::CaromError>(())
+//! ```
 
 pub(crate) mod kinds;
 pub(crate) mod store;
