@@ -2,7 +2,7 @@
 //! step to step. Counted by an instrumented global allocator, so this file holds one test (the
 //! count is process-wide).
 
-use carom::{BodyDef, Effect, Effects, Shape, World, WorldSettings, vec2};
+use carom::{BodyDef, Effect, Effects, JointDef, Shape, World, WorldSettings, vec2};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 use std::alloc::System;
 
@@ -45,6 +45,43 @@ fn pyramid(base: usize, effects: Effects) -> World {
     world
 }
 
+/// A 30 x 30 grid of circles joined to their neighbours by hinges and hung from its two top
+/// corners, swinging (1740 joints: soft step shares its joint colours among threads), beside
+/// the same pyramid of 20.
+fn hanging_grid(effects: Effects) -> World {
+    let mut world = pyramid(20, effects);
+    let n = 30;
+    let mut grid = Vec::new();
+    for i in 0..n {
+        for k in 0..n {
+            let at = vec2(40.0 + k as f32, 40.0 - i as f32);
+            let shape = Shape::circle(0.4);
+            let def = if i == 0 && (k == 0 || k == n - 1) {
+                BodyDef::static_body(shape)
+            } else {
+                BodyDef::dynamic(shape)
+            };
+            grid.push(world.add_body(def.position(at)).unwrap());
+        }
+    }
+    for i in 0..n {
+        for k in 0..n {
+            let at = vec2(40.0 + k as f32, 40.0 - i as f32);
+            if i > 0 {
+                let def =
+                    JointDef::revolute(grid[(i - 1) * n + k], grid[i * n + k], at + vec2(0.0, 0.5));
+                world.add_joint(def).unwrap();
+            }
+            if k > 0 {
+                let def =
+                    JointDef::revolute(grid[i * n + k - 1], grid[i * n + k], at - vec2(0.5, 0.0));
+                world.add_joint(def).unwrap();
+            }
+        }
+    }
+    world
+}
+
 /// Allocations over `steps` steps of `world` after `warm_up` steps, on `threads` threads.
 fn allocations(mut world: World, threads: usize, warm_up: usize, steps: usize) -> usize {
     let pool = rayon::ThreadPoolBuilder::new()
@@ -81,6 +118,18 @@ fn a_world_in_steady_state_allocates_nothing_per_step() {
             "pyramid of 20, sleeping on",
             pyramid(20, Effects::ALL),
             1,
+            30,
+        ),
+        (
+            "a hanging grid of joints, 1 thread",
+            hanging_grid(awake),
+            1,
+            30,
+        ),
+        (
+            "a hanging grid of joints, 2 threads",
+            hanging_grid(awake),
+            2,
             30,
         ),
     ];

@@ -133,3 +133,58 @@ fn sleeping_and_waking_give_the_same_world_on_every_thread_count() {
         assert_eq!(final_hash_with_sleep(threads).0, one, "{threads} threads");
     }
 }
+
+/// A 40 x 40 grid of circles joined to their neighbours by hinges, hung from its top row
+/// (3120 joints: enough that soft step shares its joint colours among threads), swinging and
+/// falling: the same world on every thread count.
+#[test]
+fn joints_give_the_same_world_on_every_thread_count() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut world = World::new();
+            let n = 40;
+            let mut grid = Vec::new();
+            for i in 0..n {
+                for k in 0..n {
+                    let fixed = i == 0 && (k == 0 || k == n - 1);
+                    let shape = Shape::circle(0.4);
+                    let at = vec2(k as f32, -(i as f32));
+                    let def = if fixed {
+                        BodyDef::static_body(shape)
+                    } else {
+                        BodyDef::dynamic(shape)
+                    };
+                    grid.push(world.add_body(def.position(at)).unwrap());
+                }
+            }
+            for i in 0..n {
+                for k in 0..n {
+                    let here = grid[i * n + k];
+                    let at = vec2(k as f32, -(i as f32));
+                    if i > 0 {
+                        let above = grid[(i - 1) * n + k];
+                        let def = carom::JointDef::revolute(above, here, at + vec2(0.0, 0.5));
+                        world.add_joint(def).unwrap();
+                    }
+                    if k > 0 {
+                        let left = grid[i * n + k - 1];
+                        let def = carom::JointDef::revolute(left, here, at - vec2(0.5, 0.0));
+                        world.add_joint(def).unwrap();
+                    }
+                }
+            }
+            for _ in 0..60 {
+                world.step(1.0 / 60.0).unwrap();
+            }
+            assert_eq!(world.stats().joints, 2 * n * (n - 1));
+            world.state_hash()
+        })
+    };
+    let one = run(1);
+    assert_eq!(run(2), one);
+    assert_eq!(run(3), one);
+}
