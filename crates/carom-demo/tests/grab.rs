@@ -42,6 +42,12 @@ fn a_body_is_grabbed_dragged_against_a_wall_and_thrown() {
     // Press on the box: it is grabbed at the point clicked.
     demo.press(Button::Left, screen);
     assert_eq!(demo.grabbed(), Some(handle));
+    // The grab is a mouse joint on the box, a soft constraint the solver holds with the
+    // contacts.
+    let joints: Vec<_> = demo.scene.world.joints().collect();
+    assert_eq!(joints.len(), 1);
+    assert!(matches!(joints[0].kind(), carom::JointKind::Mouse(_)));
+    assert_eq!(joints[0].bodies(), [handle, handle]);
 
     // Drag far past the right wall (0.5 m thick, its inner face at x = 7): the box follows the
     // cursor but stops at the wall. Contacts are soft, as Box2D's: the box hits the wall at
@@ -79,6 +85,11 @@ fn a_body_is_grabbed_dragged_against_a_wall_and_thrown() {
     }
     demo.release(Button::Left);
     assert_eq!(demo.grabbed(), None);
+    assert_eq!(
+        demo.scene.world.joint_count(),
+        0,
+        "letting go removes the joint"
+    );
     let velocity = demo.scene.world.body(handle).unwrap().linear_velocity();
     assert!(
         velocity.x < -2.0 && velocity.y > 0.5,
