@@ -549,3 +549,53 @@ fn polygon_circle_survives_a_zero_length_edge_and_a_centre_on_a_vertex() {
         assert!((s.normal.norm() - 1.0).abs() < 1e-5, "{center:?}: {s:?}");
     }
 }
+
+/// Filters decide which colliders collide, as Box2D's rule: a shared negative group never, a
+/// shared positive group always, otherwise each one's category in the other's mask. A filter
+/// changed at run time ends the contacts it forbids and lets new ones begin.
+#[test]
+fn collision_filters_pick_the_pairs_that_collide() {
+    use carom::{CollisionFilter, Effects};
+    let limb = CollisionFilter {
+        group: -1,
+        ..CollisionFilter::DEFAULT
+    };
+    let grid = CollisionFilter {
+        category: 2,
+        mask: !2,
+        group: 0,
+    };
+    for (a, b, collide) in [
+        (limb, limb, false),
+        (limb, CollisionFilter::DEFAULT, true),
+        (grid, grid, false),
+        (grid, CollisionFilter::DEFAULT, true),
+        (
+            CollisionFilter { group: 3, ..grid },
+            CollisionFilter { group: 3, ..grid },
+            true,
+        ),
+    ] {
+        let mut world = World::new();
+        world.set_effects(Effects::NONE);
+        let first = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).filter(a))
+            .unwrap();
+        let second = world
+            .add_body(
+                BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                    .position(vec2(0.5, 0.0))
+                    .filter(b),
+            )
+            .unwrap();
+        world.step(1.0 / 60.0).unwrap();
+        assert_eq!(world.contacts().len() == 1, collide, "{a:?} and {b:?}");
+        // Swap the second's filter for the first's: a limb with a limb never collides.
+        let collider = world.body(second).unwrap().colliders()[0];
+        world.set_collider_filter(collider, a).unwrap();
+        world.step(1.0 / 60.0).unwrap();
+        let same = a.collides_with(&a);
+        assert_eq!(world.contacts().len() == 1, same, "{a:?} twice");
+        assert!(world.contains(first));
+    }
+}

@@ -8,6 +8,7 @@
 //! at; two colliders of one body never pair.
 
 use super::dynamic_tree::DynamicTree;
+use super::filter::CollisionFilter;
 use crate::constants::MOVES_PER_TASK;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
@@ -37,6 +38,8 @@ struct Proxy {
     /// Its fat box, as its tree holds it: the narrowphase reads it for every contact, and
     /// here it costs one memory access instead of two.
     fat: Aabb,
+    /// What its collider collides with: pairs it forbids are never reported.
+    filter: CollisionFilter,
 }
 
 impl Proxy {
@@ -111,8 +114,19 @@ impl BroadPhase {
             node,
             queued: false,
             fat,
+            filter: CollisionFilter::DEFAULT,
         });
         self.enqueue(slot);
+    }
+
+    /// Sets what a collider collides with (every proxy starts colliding with everything);
+    /// it looks for pairs again at the next update.
+    pub fn set_filter(&mut self, handle: ColliderHandle, filter: CollisionFilter) {
+        let slot = Self::slot(handle);
+        if let Some(Some(proxy)) = self.proxies.get_mut(slot) {
+            proxy.filter = filter;
+            self.enqueue(slot);
+        }
     }
 
     /// Removes a collider's proxy.
@@ -141,6 +155,7 @@ impl BroadPhase {
             let body = BodyHandle::from_raw_parts(proxy.body, 0);
             self.remove(handle);
             self.insert(handle, body, kind, aabb, margin);
+            self.set_filter(handle, proxy.filter);
             return;
         }
         let left_fat_box = !proxy.fat.contains(&aabb);
@@ -292,6 +307,7 @@ impl BroadPhase {
                     || lower_also_moved
                     || other.body == proxy.body
                     || !kinds_can_collide(proxy.kind, other.kind)
+                    || !proxy.filter.collides_with(&other.filter)
                 {
                     return;
                 }

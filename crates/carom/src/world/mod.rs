@@ -237,9 +237,10 @@ impl World {
         let body = self.bodies.get(handle).expect("just inserted");
         let margin = margin_for(&self.settings, body.kind());
         for &collider in body.colliders() {
-            let aabb = self.colliders.get(collider).expect("attached").aabb();
+            let attached = self.colliders.get(collider).expect("attached");
             self.broadphase
-                .insert(collider, handle, body.kind(), aabb, margin);
+                .insert(collider, handle, body.kind(), attached.aabb(), margin);
+            self.broadphase.set_filter(collider, attached.filter());
         }
         Ok(handle)
     }
@@ -300,9 +301,11 @@ impl World {
         let index = self.bodies.checked_index(body).expect("live");
         self.settle_body(index);
         self.place_colliders_of(body);
-        let aabb = self.colliders.get(handle).expect("just inserted").aabb();
+        let attached = self.colliders.get(handle).expect("just inserted");
+        let (aabb, filter) = (attached.aabb(), attached.filter());
         self.broadphase
             .insert(handle, body, kind, aabb, margin_for(&self.settings, kind));
+        self.broadphase.set_filter(handle, filter);
         Ok(handle)
     }
 
@@ -376,7 +379,7 @@ impl World {
         let index = self.bodies.checked_index(body).expect("live");
         self.wake_body(index);
         self.apply_touch_changes();
-        self.broadphase.requeue(handle);
+        self.broadphase.set_filter(handle, filter);
         Ok(())
     }
 
