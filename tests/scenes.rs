@@ -71,6 +71,11 @@ fn semantic_errors_name_the_body_or_event_and_the_reason() {
             "no body is named \"crate\"",
         ),
         (
+            "scenes/bad_accuracy_joint.ron",
+            "accuracy",
+            "\"crate\" has no joint to measure",
+        ),
+        (
             "scenes/bad_joint_body.ron",
             "joint 1 (\"hook\" to \"lamb\")",
             "no body is named \"lamb\"",
@@ -116,14 +121,15 @@ fn the_documented_example_is_a_valid_scene() {
     let scene = carom_scene::parse(&readme[start..end], "demos/README.md")
         .unwrap_or_else(|e| panic!("{e}"));
     let mut built = carom_scene::build(&scene, "demos/README.md").unwrap_or_else(|e| panic!("{e}"));
-    // 12 bodies, a stack of 10, a pyramid of 15, a grid of 8, 4 walls, 20 drops, 2 stacks of
-    // 3, a chain of 6 links, 2 groups of 2.
+    // 12 bodies, a stack of 10, a pyramid of 15, a grid of 8, a joint grid of 3 x 2, 4 walls,
+    // 20 drops, 2 stacks of 3, a chain of 6 links, 2 groups of 2.
     assert_eq!(
         built.world.body_count(),
-        12 + 10 + 15 + 8 + 4 + 20 + 6 + 6 + 4
+        12 + 10 + 15 + 8 + 6 + 4 + 20 + 6 + 6 + 4
     );
-    // 8 joints, one of each kind; the chain's 6; one in each group.
-    assert_eq!(built.world.joint_count(), 8 + 6 + 2);
+    // 8 joints, one of each kind; the joint grid's 3 down its columns and 4 across its rows;
+    // the chain's 6; one in each group.
+    assert_eq!(built.world.joint_count(), 8 + 3 + 4 + 6 + 2);
     let mut kinds: Vec<&str> = built.world.joints().map(|j| j.kind().name()).collect();
     kinds.sort_unstable();
     kinds.dedup();

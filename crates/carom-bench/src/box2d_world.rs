@@ -30,6 +30,17 @@
 //! | `max_push_speed` (3 m/s) | world `contactSpeed` (Box2D 3.1's `maxContactPushSpeed`, 3 m/s) | yes |
 //! | `max_linear_speed` (400 m/s) | world `maximumLinearSpeed` (400 m/s) | yes |
 //! | `warm_starting` | `b2World_EnableWarmStarting` | yes |
+//! | a collider's filter: `category`, `mask`, `group` | shape `filter`: `categoryBits`, `maskBits`, `groupIndex` | yes: both 64-bit, the same rule (one group: collide if positive, never if negative; else both masks) |
+//! | a joint's bodies, anchors in each body, reference angle, axis (in A's frame) | `localFrameA` at A's anchor turned to the axis (a slider's or wheel's axis is the frame's x), `localFrameB` at B's anchor turned by the axis angle less the reference angle | yes: the joint's angle and translation are 0 where carom's are |
+//! | `collide_connected` | `collideConnected` | yes |
+//! | soft step's `joint_hertz` (60), `joint_damping_ratio` (2) | each joint's `constraintHertz`, `constraintDampingRatio` (60, 2) | yes; both cap it at a quarter of the substep rate |
+//! | distance joint: rigid rod / spring (`hertz`, `damping_ratio`) with `limits` / rope (0 Hz, limits) | `length`, `enableSpring`, `hertz`, `dampingRatio`, `enableLimit`, `minLength`, `maxLength` | yes (Box2D raises a lower limit below the slop, 5 mm, to it) |
+//! | revolute joint: limits, motor (speed, torque), spring toward `target_angle` | `enableLimit`, `lowerAngle`, `upperAngle`, `enableMotor`, `motorSpeed`, `maxMotorTorque`, `enableSpring`, `hertz`, `dampingRatio`, `targetAngle` | yes; limits beyond Box2D's ±0.99π are narrowed to it (noted) |
+//! | prismatic joint: axis, limits, motor, spring toward `target_translation` | the frame's x axis, the same settings, `targetTranslation` | yes |
+//! | wheel joint: axis, suspension spring, limits, motor | the frame's x axis, `enableSpring`, ..., `maxMotorTorque` | yes |
+//! | weld joint: linear and angular springs (none: rigid) | `linearHertz`, `angularHertz` and damping ratios (0 Hz: rigid) | yes |
+//! | filter joint | `b2FilterJointDef` | yes |
+//! | an unbounded motor force | `f32::MAX` | yes |
 //!
 //! ## What does not map
 //!
@@ -55,17 +66,29 @@
 //!   contact softening (mass-ratio softening) off; one worker thread unless
 //!   [`Box2dWorld::with_workers`] asks for more (Box2D's built-in scheduler).
 //! - The tutorial drag model has no Box2D counterpart (no damping is set).
+//! - Motor joints: Box2D 3.2's drives relative velocities and springs toward its frame;
+//!   carom's closes a fraction of its offset per step within force and torque caps, as Box2D
+//!   3.0's did. Mouse joints: Box2D 3.2 has none. Both are left out, noted.
+//! - Break thresholds: Box2D reports a joint past its force or torque threshold and leaves
+//!   breaking it to the program; they are left out, noted. [`Box2dWorld::notes`] lists
+//!   everything left out, and `carom-bench` prints it under its table.
 //! - Scene events (timed spawns, pushes) in `carom-scene` files are not replayed: the Box2D copy
 //!   is of the world as built at time 0.
 
 use std::collections::HashMap;
 
 use boxdd::{
-    BodyBuilder, BodyId, BodyType, Foundation, Position, ShapeDef, SurfaceMaterial, Vec2,
-    WorldBuilder, shapes,
+    BodyBuilder, BodyId, BodyType, ConstraintTuning, DistanceJointDef, Filter, FilterJointDef,
+    Foundation, JointBase, Position, PrismaticJointDef, RevoluteJointDef, ShapeDef,
+    SurfaceMaterial, Transform, Vec2, WeldJointDef, WheelJointDef, WorldBuilder, shapes,
 };
 use boxdd_sys::ffi;
-use carom::{Body, BodyHandle, BodyKind, Collider, DragModel, Effect, Polygon, Shape, World};
+use carom::{
+    Body, BodyHandle, BodyKind, Collider, DragModel, Effect, Joint, JointKind, Polygon, Shape,
+    Spring, World,
+};
+
+use crate::notes::Notes;
 
 /// Box2D's limit on polygon vertices.
 const MAX_POLYGON_VERTICES: usize = 8;
@@ -88,6 +111,8 @@ pub struct Box2dWorld {
     shapes: Vec<Vec<LocalShape>>,
     /// Box2D's mass and rotational inertia (about the centre of mass) of each body.
     mass: Vec<(f32, f32)>,
+    /// What the copy leaves out or approximates.
+    notes: Notes,
 }
 
 impl std::fmt::Debug for Box2dWorld {
@@ -155,6 +180,7 @@ impl Box2dWorld {
             kinds: Vec::with_capacity(world.body_count()),
             shapes: Vec::with_capacity(world.body_count()),
             mass: Vec::with_capacity(world.body_count()),
+            notes: Notes::default(),
         };
         for body in world.bodies() {
             let def = body_def(foundation, body, drag, bullets).map_err(err)?;
@@ -172,9 +198,15 @@ impl Box2dWorld {
                         })
                     })
                     .map_err(err)?;
+                let filter = collider.filter();
                 let shape_def = ShapeDef::builder()
                     .density(collider.density())
                     .material(material)
+                    .filter(Filter {
+                        category_bits: filter.category,
+                        mask_bits: filter.mask,
+                        group_index: filter.group,
+                    })
                     .build()
                     .map_err(err)?;
                 let place = collider.local_transform();
@@ -209,7 +241,202 @@ impl Box2dWorld {
             out.shapes.push(locals);
             out.mass.push(mass);
         }
+        // Soft step's joint stiffness is each Box2D 3.2 joint's own (`constraintHertz`,
+        // `constraintDampingRatio`; Box2D's 60 Hz and 2 are carom's defaults).
+        let tuning =
+            ConstraintTuning::new(solver.joint_hertz, solver.joint_damping_ratio).map_err(err)?;
+        for joint in world.joints() {
+            out.add_joint(joint, tuning)?;
+        }
         Ok(out)
+    }
+
+    /// What this copy leaves out of the carom world or approximates (empty if nothing).
+    pub fn notes(&self) -> &Notes {
+        &self.notes
+    }
+
+    /// Number of joints Box2D holds.
+    ///
+    /// # Errors
+    /// A world Box2D no longer holds.
+    pub fn joint_count(&self) -> Result<usize, String> {
+        let counters = self.world.counters().map_err(err)?;
+        usize::try_from(counters.joint_count).map_err(|e| e.to_string())
+    }
+
+    /// Number of contacts Box2D holds: pairs whose fattened boxes overlap and that its filters
+    /// let collide, touching or not.
+    ///
+    /// # Errors
+    /// A world Box2D no longer holds.
+    pub fn contact_count(&self) -> Result<usize, String> {
+        let counters = self.world.counters().map_err(err)?;
+        usize::try_from(counters.contact_count).map_err(|e| e.to_string())
+    }
+
+    /// Rebuilds one carom joint in Box2D 3.2, whose joints hold a frame in each body (an
+    /// anchor and a rotation): the anchors are carom's, body A's frame is turned to the axis
+    /// of a slider or a wheel (Box2D's axis is that frame's x), and body B's frame by the
+    /// reference angle less, so the joint's angle is 0 where carom's is. Joints Box2D cannot
+    /// express are noted and left out.
+    fn add_joint(&mut self, joint: &Joint, tuning: ConstraintTuning) -> Result<(), String> {
+        let kind = joint.kind();
+        let name = kind.name();
+        let skip = match kind {
+            JointKind::Mouse(_) => Some(
+                "a mouse joint: not translated (Box2D 3.2 has no mouse joint; its samples drag \
+                 bodies with a motor joint's spring instead)",
+            ),
+            JointKind::Motor(_) => Some(
+                "a motor joint: not translated (Box2D 3.2's motor joint drives velocities and \
+                 springs toward a frame; carom's closes a fraction of its offset per step, \
+                 capped, as Box2D 3.0's did)",
+            ),
+            _ => None,
+        };
+        if let Some(what) = skip {
+            self.notes.add(what);
+            return Ok(());
+        }
+        let [a, b] = joint.bodies().map(|h| {
+            self.body_id(h)
+                .ok_or(format!("a {name} joint's body is not in the copy"))
+        });
+        let (a, b) = (a?, b?);
+        let (break_force, break_torque) = joint.break_thresholds();
+        if break_force.is_finite() || break_torque.is_finite() {
+            self.notes.add(
+                "a joint's break force or torque: not translated (Box2D reports a joint past \
+                 its threshold and leaves breaking it to the program)",
+            );
+        }
+        let axis_angle = match kind {
+            JointKind::Prismatic(j) => j.axis.y.atan2(j.axis.x),
+            JointKind::Wheel(j) => j.axis.y.atan2(j.axis.x),
+            _ => 0.0,
+        };
+        let [la, lb] = joint.local_anchors();
+        let frame_a = Transform::from_pos_angle(Vec2::new(la.x, la.y), axis_angle).map_err(err)?;
+        let frame_b =
+            Transform::from_pos_angle(Vec2::new(lb.x, lb.y), axis_angle - joint.reference_angle())
+                .map_err(err)?;
+        let base: JointBase = self
+            .world
+            .joint_base(a, b)
+            .map_err(err)?
+            .with_local_frames(frame_a, frame_b)
+            .with_collide_connected(joint.collide_connected())
+            .with_constraint_tuning(tuning);
+        // carom allows an unbounded motor; Box2D wants a finite one.
+        let finite = |force: f32| force.min(f32::MAX);
+        let created = match *kind {
+            JointKind::Distance(d) => {
+                let mut def = DistanceJointDef::new(base).length(d.length);
+                // Without a spring carom holds the rod rigidly and ignores limits, as Box2D does.
+                if let Some(spring) = d.spring {
+                    def = def
+                        .enable_spring(true)
+                        .hertz(spring.hertz)
+                        .damping_ratio(spring.damping_ratio);
+                    if let Some(limits) = d.limits {
+                        def = def
+                            .enable_limit(true)
+                            .min_length(limits.lower)
+                            .max_length(limits.upper);
+                    }
+                }
+                self.world.create_distance_joint(&def)
+            }
+            JointKind::Revolute(r) => {
+                let mut def = RevoluteJointDef::new(base);
+                if let Some(limits) = r.limits {
+                    // Box2D's hinge limits stay within ±0.99π.
+                    let most = 0.99 * std::f32::consts::PI;
+                    if limits.lower < -most || limits.upper > most {
+                        self.notes.add(
+                            "a revolute joint's limits beyond ±0.99π: narrowed to Box2D's range",
+                        );
+                    }
+                    def = def
+                        .enable_limit(true)
+                        .lower_angle(limits.lower.clamp(-most, most))
+                        .upper_angle(limits.upper.clamp(-most, most));
+                }
+                if let Some(motor) = r.motor {
+                    def = def
+                        .enable_motor(true)
+                        .motor_speed(motor.speed)
+                        .max_motor_torque(finite(motor.max_force));
+                }
+                if let Some(spring) = r.spring {
+                    def = def
+                        .enable_spring(true)
+                        .hertz(spring.hertz)
+                        .damping_ratio(spring.damping_ratio)
+                        .target_angle(r.target_angle);
+                }
+                self.world.create_revolute_joint(&def)
+            }
+            JointKind::Prismatic(p) => {
+                let mut def = PrismaticJointDef::new(base);
+                if let Some(limits) = p.limits {
+                    def = def
+                        .enable_limit(true)
+                        .lower_translation(limits.lower)
+                        .upper_translation(limits.upper);
+                }
+                if let Some(motor) = p.motor {
+                    def = def
+                        .enable_motor(true)
+                        .motor_speed(motor.speed)
+                        .max_motor_force(finite(motor.max_force));
+                }
+                if let Some(spring) = p.spring {
+                    def = def
+                        .enable_spring(true)
+                        .hertz(spring.hertz)
+                        .damping_ratio(spring.damping_ratio)
+                        .translation(p.target_translation);
+                }
+                self.world.create_prismatic_joint(&def)
+            }
+            JointKind::Weld(w) => {
+                // Box2D's 0 Hz is rigid, as carom's weld without a spring (or with one of 0 Hz).
+                let rigid = Spring::new(0.0, 0.0);
+                let (linear, angular) = (w.linear.unwrap_or(rigid), w.angular.unwrap_or(rigid));
+                let def = WeldJointDef::new(base)
+                    .linear_hertz(linear.hertz)
+                    .linear_damping_ratio(linear.damping_ratio)
+                    .angular_hertz(angular.hertz)
+                    .angular_damping_ratio(angular.damping_ratio);
+                self.world.create_weld_joint(&def)
+            }
+            JointKind::Wheel(w) => {
+                let mut def = WheelJointDef::new(base).enable_spring(w.spring.is_some());
+                if let Some(spring) = w.spring {
+                    def = def.hertz(spring.hertz).damping_ratio(spring.damping_ratio);
+                }
+                if let Some(limits) = w.limits {
+                    def = def
+                        .enable_limit(true)
+                        .lower_translation(limits.lower)
+                        .upper_translation(limits.upper);
+                }
+                if let Some(motor) = w.motor {
+                    def = def
+                        .enable_motor(true)
+                        .motor_speed(motor.speed)
+                        .max_motor_torque(finite(motor.max_force));
+                }
+                self.world.create_wheel_joint(&def)
+            }
+            JointKind::Filter => self.world.create_filter_joint(&FilterJointDef::new(base)),
+            JointKind::Mouse(_) | JointKind::Motor(_) => unreachable!("noted and skipped above"),
+        };
+        created
+            .map(|_| ())
+            .map_err(|e| format!("Box2D refused a {name} joint: {e}"))
     }
 
     /// Advances the world by `dt` seconds in the carom world's soft-step substeps.

@@ -42,6 +42,17 @@
 //! | `max_push_speed` (3 m/s) | `normalized_max_corrective_velocity` (default 3) | yes |
 //! | `max_linear_speed` (400 m/s) | `normalized_max_linear_velocity` (default 400) | yes |
 //! | `contact_hertz` 30, `damping_ratio` 10, `static_stiffness` 2 | left at Rapier's defaults: `contact_softness` 30 Hz, ζ 10; `static_contact_softness` 60 Hz, ζ 10 | equal at carom's defaults (Box2D's); a scene that changes carom's softness is not followed |
+//! | collision filter: `category`, `mask` (`u64`), `group` | `collision_groups`: memberships = category, filter = mask, test `And` | yes when the collider has no group and every category in the world fits Rapier's 32 bits (a mask's higher bits then meet no category); otherwise the collider lets every pair through its groups and a contact-pair hook applies carom's rule (same group: collide if positive, never if negative; else both masks) exactly |
+//! | a joint: bodies, anchors in each body, reference angle, axis in A's frame | an impulse joint (`GenericJoint`): `local_frame1` at A's anchor turned to the axis, `local_frame2` at B's anchor turned by the axis less the reference angle | yes |
+//! | `collide_connected` | `contacts_enabled` (Rapier's default is true, carom's false) | yes |
+//! | revolute: limits / motor / spring toward `target_angle` | `AngX` free: limits, a velocity motor (rigid: damping 1e10) capped at the motor's torque, or a position motor | yes; a spring and a motor together keep the spring only (one motor per axis), noted |
+//! | prismatic: axis, limits, motor, spring toward `target_translation` | `LinX` free along A's frame's x: limits, motor as for the revolute | yes, same spring-and-motor note |
+//! | wheel: axis, suspension spring, limits, motor | pin-slot (`LinY` locked): a position motor at 0 on `LinX`, limits on `LinX`, a velocity motor on `AngX` | yes |
+//! | weld, rigid / with linear and angular springs | all axes locked / a sprung part freed and pulled home by position motors | rigid yes; a linear spring acts per axis of A's frame (carom and Box2D solve the point as one block) |
+//! | distance: rope (0 Hz spring, limits) / spring / rigid rod | coupled linear axes (the anchors' distance): upper limit; position motor at the length; for a rod, the upper limit and a spring as stiff as Rapier's joints | rope and spring yes, except a lower limit above 0 (Rapier's coupled limit has no lower side), noted; the rod is rigid only against stretching, noted |
+//! | filter joint | a joint with no axis locked, contacts off | yes |
+//! | a spring of `hertz`, `damping_ratio` | motor stiffness `ω²` and damping `2ζω`, acceleration-based (Rapier's default model), `ω = 2π hertz` | yes: Box2D's soft-constraint bias, mass and impulse scales |
+//! | soft step's `joint_hertz` 60, `joint_damping_ratio` 2 | not followed: Rapier's joint `softness` stays at its default (1 MHz, ζ 1) | no: Rapier softens joints in every pass, Box2D and carom only in the biased one, so 60 Hz makes Rapier's joints far softer (the joint grid's widest joint opens 0.82 m in a second against 0.67 m at Rapier's default; carom and Box2D 0.36 m) |
 //!
 //! ## What does not map
 //!
@@ -53,6 +64,10 @@
 //! - carom's `max_rotation` guard is π/4 per step and settable; Rapier's is a fixed π/4 per
 //!   step. carom's restitution threshold (1 m/s) has no Rapier counterpart.
 //!   Rapier's `length_unit` is 1 m, as carom's units.
+//! - Motor and mouse joints: Rapier has no joint that closes a fraction of an offset per step
+//!   within force caps, and no mouse joint; they are left out, and break thresholds too (its
+//!   joints do not break). [`RapierWorld::notes`] lists what was left out or approximated, and
+//!   `carom-bench` prints it under its table.
 //! - Scene events (timed spawns, pushes) in `carom-scene` files are not replayed: the Rapier copy
 //!   is of the world as built at time 0.
 //!
@@ -75,13 +90,18 @@
 //! | soft step's `substeps` (4) | `subStepCount` (4) | yes |
 //! | `contact_hertz` (30), `damping_ratio` (10), `max_push_speed` (3 m/s) | world `contactHertz`, `contactDampingRatio`, `contactSpeed` (3.1's `maxContactPushSpeed`) | yes |
 //! | `max_linear_speed` (400 m/s), `warm_starting` | world `maximumLinearSpeed`, `b2World_EnableWarmStarting` | yes |
+//! | collision filter (`category`, `mask`, `group`) | shape `filter` (`categoryBits`, `maskBits`, `groupIndex`) | yes: the same rule, the same widths |
+//! | joints: distance, revolute, prismatic, weld, wheel, filter, with their limits, motors and springs; `collide_connected`; `joint_hertz`, `joint_damping_ratio` | Box2D 3.2's joints of the same kinds, from local frames (anchor, and rotation for the axis and reference angle); `collideConnected`; each joint's `constraintHertz`, `constraintDampingRatio` | yes (hinge limits narrowed to Box2D's ±0.99π, noted) |
 //!
 //! What does not map: Box2D has only its soft step (a carom world set to another solver still
 //! runs soft step in Box2D); one solve and one relax pass per substep (carom's default
 //! `iterations` 1); static contacts always twice as stiff (carom's default `static_stiffness`
 //! 2); friction in the relax pass only, where carom's default `friction_in_bias_pass` also solves
 //! it in the biased pass; always graph colouring; `LINEAR_SLOP` and `speculative_distance` are
-//! Box2D constants with carom's default values; both cap rotation at π/4 per step, carom's
+//! Box2D constants with carom's default values; motor and mouse joints (Box2D 3.2's motor
+//! joint drives velocities and springs, and it has no mouse joint) and break thresholds (Box2D
+//! reports, it does not break) are left out and noted ([`Box2dWorld::notes`]); both cap
+//! rotation at π/4 per step, carom's
 //! settable; Box2D caps contact stiffness at an eighth of the substep rate, carom at a
 //! quarter (equal at the default 30 Hz with 4 substeps); contact recycling stays at
 //! Box2D's default (on); the tutorial drag model has no counterpart; scene events are not
@@ -90,9 +110,11 @@
 pub mod box2d_world;
 pub mod compare;
 pub mod hard_cases;
+pub mod notes;
 pub mod rapier_world;
 pub mod scaling;
 
 pub use box2d_world::Box2dWorld;
 pub use compare::{RunResult, run_box2d, run_carom, run_rapier};
+pub use notes::Notes;
 pub use rapier_world::RapierWorld;

@@ -21,7 +21,8 @@ static ALLOCATOR: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
 const DT: f32 = 1.0 / 60.0;
 
 /// Box2D's benchmark scenes and step counts, run when no scene is named.
-const DEFAULT_SCENES: [(&str, u32); 4] = [
+const DEFAULT_SCENES: [(&str, u32); 5] = [
+    ("demos/joint_grid.ron", 500),
     ("demos/large_pyramid.ron", 500),
     ("demos/many_pyramids.ron", 200),
     ("demos/tumbler.ron", 750),
@@ -38,8 +39,9 @@ const FALLBACK_STEPS: u32 = 500;
 struct Args {
     #[command(subcommand)]
     command: Option<Command>,
-    /// Scene files (default: Box2D's recipes with its step counts: demos/large_pyramid.ron, 500
-    /// steps; demos/many_pyramids.ron, 200; demos/tumbler.ron, 750; demos/smash.ron, 300).
+    /// Scene files (default: Box2D's recipes with its step counts: demos/joint_grid.ron, 500
+    /// steps; demos/large_pyramid.ron, 500; demos/many_pyramids.ron, 200; demos/tumbler.ron,
+    /// 750; demos/smash.ron, 300).
     scenes: Vec<PathBuf>,
     /// Steps per run, overriding each scene's default.
     #[arg(long)]
@@ -107,6 +109,8 @@ struct Row {
     /// Heap bytes live after a run, per body.
     carom_bytes_per_body: f64,
     rapier_bytes_per_body: f64,
+    /// What the peers' copies leave out or approximate, each line naming its engine.
+    notes: Vec<String>,
 }
 
 impl Row {
@@ -200,6 +204,7 @@ fn bench_world(
     let (mut carom_best, mut threads_best, mut rapier_best) = (None, None, None);
     let (mut box2d_best, mut box2d_threads_best) = (None, None);
     let (mut bodies, mut carom_bytes, mut rapier_bytes) = (0, 0.0, 0.0);
+    let mut notes = Vec::new();
     for run in 1..=runs {
         // carom on one thread; its memory is what the world holds after the run.
         let mut result = None;
@@ -240,6 +245,15 @@ fn bench_world(
             },
         )?;
         rapier_bytes = bytes;
+        if run == 1 {
+            notes.extend(
+                rapier
+                    .notes()
+                    .lines()
+                    .into_iter()
+                    .map(|l| format!("Rapier: {l}")),
+            );
+        }
         drop(rapier);
         drop(scene);
         let r = result.ok_or("no Rapier run")?;
@@ -250,10 +264,19 @@ fn bench_world(
         );
         rapier_best = Some(keep_min(rapier_best, r));
 
-        let time_box2d = |workers: usize| -> Result<RunResult, String> {
+        let mut time_box2d = |workers: usize| -> Result<RunResult, String> {
             let scene = load()?;
             let mut box2d = Box2dWorld::with_workers(&scene.world, workers as u32)?;
             drop(scene);
+            if run == 1 && workers == 1 {
+                notes.extend(
+                    box2d
+                        .notes()
+                        .lines()
+                        .into_iter()
+                        .map(|l| format!("Box2D: {l}")),
+                );
+            }
             let b = run_box2d(&mut box2d, DT, steps)?;
             let on = match workers {
                 1 => String::new(),
@@ -280,6 +303,7 @@ fn bench_world(
         box2d_threads: box2d_threads_best.ok_or("no runs")?,
         carom_bytes_per_body: carom_bytes,
         rapier_bytes_per_body: rapier_bytes,
+        notes,
     })
 }
 
@@ -526,6 +550,17 @@ fn main() -> Result<(), String> {
         args.runs
     );
     print!("{}", markdown(&rows, args.threads));
+    // What a peer could not express, so a figure is never read as the same scene when it
+    // is not quite.
+    let noted: Vec<_> = rows.iter().filter(|r| !r.notes.is_empty()).collect();
+    if !noted.is_empty() {
+        println!("\nNot translated or approximated in the peers' copies:\n");
+        for row in noted {
+            for note in &row.notes {
+                println!("- {}: {note}", row.scene);
+            }
+        }
+    }
     if let Some(path) = &args.csv {
         std::fs::write(path, csv(&rows)).map_err(|e| format!("{}: {e}", path.display()))?;
     }

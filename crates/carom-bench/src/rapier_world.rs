@@ -1,13 +1,22 @@
 //! A carom world rebuilt in Rapier with matched parameters; see the crate docs for the mapping.
 
-use carom::{Body, BodyKind, DragModel, Effect, Polygon, Shape, World};
+use std::collections::HashMap;
+
+use carom::{
+    Body, BodyKind, CollisionFilter, DragModel, Effect, Joint, JointKind, Polygon, Shape, Spring,
+    World,
+};
 use rapier2d::math::Pose;
 use rapier2d::prelude::{
-    CCDSolver, CoefficientCombineRule, ColliderBuilder, ColliderSet, DefaultBroadPhase,
-    ImpulseJointSet, IntegrationParameters, IslandManager, MultibodyJointSet, NarrowPhase,
-    PhysicsPipeline, RigidBodyBuilder, RigidBodyHandle, RigidBodySet, RigidBodyType, SoftBodySet,
-    Vector,
+    ActiveHooks, CCDSolver, CoefficientCombineRule, ColliderBuilder, ColliderSet,
+    DefaultBroadPhase, GenericJoint, GenericJointBuilder, Group, ImpulseJointSet,
+    IntegrationParameters, InteractionGroups, InteractionTestMode, IslandManager, JointAxesMask,
+    JointAxis, MultibodyJointSet, NarrowPhase, PairFilterContext, PhysicsHooks, PhysicsPipeline,
+    RigidBodyBuilder, RigidBodyHandle, RigidBodySet, RigidBodyType, SoftBodySet, SolverFlags,
+    SpringCoefficients, Vector,
 };
+
+use crate::notes::Notes;
 
 /// How far a polygon's edge may lean off an axis, in metres, and still count as a rectangle's.
 const AXIS_TOLERANCE: f32 = 1e-6;
@@ -27,7 +36,63 @@ pub struct RapierWorld {
     soft_bodies: SoftBodySet,
     ccd: CCDSolver,
     handles: Vec<RigidBodyHandle>,
+    /// carom's collision filters, for the pairs Rapier's groups cannot decide.
+    filters: GroupFilter,
+    /// What the copy leaves out or approximates.
+    notes: Notes,
 }
+
+/// carom's (and Box2D's) collision rule for the colliders Rapier's interaction groups cannot
+/// express: those in a collision group (which overrides categories and masks) and, in a world
+/// with categories beyond Rapier's 32 bits, every collider not at the default filter. Such a
+/// collider's Rapier groups let everything through and this hook decides, from each collider's
+/// carom filter (its `user_data` is its index here).
+#[derive(Debug, Default)]
+struct GroupFilter {
+    filters: Vec<CollisionFilter>,
+}
+
+impl PhysicsHooks for GroupFilter {
+    fn filter_contact_pair(&self, context: &PairFilterContext) -> Option<SolverFlags> {
+        let filter = |handle: rapier2d::prelude::ColliderHandle| {
+            let index = context.colliders[handle].user_data as usize;
+            self.filters[index]
+        };
+        filter(context.collider1)
+            .collides_with(&filter(context.collider2))
+            .then_some(SolverFlags::COMPUTE_RIGID_IMPULSES)
+    }
+}
+
+/// Rapier's groups for a carom filter, if they decide exactly as carom would: no collision
+/// group, and every category in the world within 32 bits (a mask's higher bits then meet no
+/// category, so cutting them changes nothing).
+fn interaction_groups(
+    filter: CollisionFilter,
+    narrow_categories: bool,
+) -> Option<InteractionGroups> {
+    (filter.group == 0 && narrow_categories).then(|| {
+        InteractionGroups::new(
+            Group::from_bits_truncate(filter.category as u32),
+            Group::from_bits_truncate(filter.mask as u32),
+            InteractionTestMode::And,
+        )
+    })
+}
+
+/// A spring of `spring.hertz` and `spring.damping_ratio` as a Rapier motor's stiffness and
+/// damping in its acceleration-based model (its default): `ω²` and `2ζω`. With them Rapier's
+/// motor row has Box2D's soft-constraint bias rate, mass scale and impulse scale, the same
+/// spring as carom's.
+fn spring_gains(spring: Spring) -> (f32, f32) {
+    let omega = std::f32::consts::TAU * spring.hertz;
+    (omega * omega, 2.0 * spring.damping_ratio * omega)
+}
+
+/// The damping of a Rapier velocity motor standing for carom's rigid one (a motor that
+/// reaches its speed unless held by its force cap): its softness `1 / (h c)` is then below
+/// 1e-4 at any substep above a microsecond.
+const RIGID_MOTOR_DAMPING: f32 = 1.0e10;
 
 impl RapierWorld {
     /// Rebuilds `world` in Rapier, to be stepped by `dt` seconds at a time.
@@ -91,7 +156,16 @@ impl RapierWorld {
             soft_bodies: SoftBodySet::new(),
             ccd: CCDSolver::new(),
             handles: Vec::with_capacity(world.body_count()),
+            filters: GroupFilter::default(),
+            notes: Notes::default(),
         };
+        let mut index = HashMap::with_capacity(world.body_count());
+        let narrow_categories = world.bodies().all(|body| {
+            body.colliders()
+                .iter()
+                .filter_map(|&c| world.collider(c))
+                .all(|c| c.filter().category <= u64::from(u32::MAX))
+        });
         let drag = effects.contains(Effect::Drag) && settings.drag == DragModel::Exponential;
         let can_sleep = effects.contains(Effect::Sleeping);
         let ccd = effects.contains(Effect::Continuous);
@@ -112,12 +186,74 @@ impl RapierWorld {
                     .friction_combine_rule(CoefficientCombineRule::GeometricMean)
                     .restitution(if restitution { part.restitution() } else { 0.0 })
                     .restitution_combine_rule(CoefficientCombineRule::Max);
+                let filter = part.filter();
+                let collider = match interaction_groups(filter, narrow_categories) {
+                    Some(groups) => collider.collision_groups(groups),
+                    None => collider
+                        .collision_groups(InteractionGroups::all())
+                        .active_hooks(ActiveHooks::FILTER_CONTACT_PAIRS),
+                }
+                .user_data(out.filters.filters.len() as u128);
+                out.filters.filters.push(filter);
                 out.colliders
                     .insert_with_parent(collider, handle, &mut out.bodies);
             }
+            index.insert(body.handle(), handle);
             out.handles.push(handle);
         }
+        // Joints keep Rapier's own softness (1 MHz, ζ 1: nearly rigid), not soft step's 60 Hz
+        // and 2. Rapier softens a joint in every pass, Box2D and carom only in the biased one,
+        // so the same 60 Hz makes Rapier's joints far softer: Box2D's 100 x 100 joint grid
+        // opens its widest joint to 0.82 m in a second at 60 Hz, 0.67 m at Rapier's default,
+        // where carom's and Box2D's open to 0.36 m.
+        let softness = SpringCoefficients::<f32>::joint_defaults();
+        for joint in world.joints() {
+            let Some(data) = generic_joint(joint, softness, &mut out.notes) else {
+                continue;
+            };
+            let [a, b] = joint.bodies().map(|h| index.get(&h).copied());
+            let (Some(a), Some(b)) = (a, b) else {
+                return Err(format!(
+                    "a {} joint's body is not in the copy",
+                    joint.kind().name()
+                ));
+            };
+            out.impulse_joints.insert(a, b, data, true);
+        }
         Ok(out)
+    }
+
+    /// What this copy leaves out of the carom world or approximates (empty if nothing).
+    pub fn notes(&self) -> &Notes {
+        &self.notes
+    }
+
+    /// Number of joints Rapier holds.
+    pub fn joint_count(&self) -> usize {
+        self.impulse_joints.len()
+    }
+
+    /// Number of contact pairs with at least one point within the prediction distance (what
+    /// Rapier solves). A pair the filters reject has none, though the narrowphase may still
+    /// list it.
+    pub fn contact_count(&self) -> usize {
+        self.narrow_phase
+            .contact_pairs()
+            .filter(|pair| pair.has_any_active_contact())
+            .count()
+    }
+
+    /// Angle of the `index`-th body, rad.
+    pub fn angle(&self, index: usize) -> Option<f32> {
+        let body = &self.bodies[*self.handles.get(index)?];
+        Some(body.rotation().angle())
+    }
+
+    /// Linear and angular velocity of the `index`-th body.
+    pub fn velocity(&self, index: usize) -> Option<([f32; 2], f32)> {
+        let body = &self.bodies[*self.handles.get(index)?];
+        let v = body.linvel();
+        Some(([v.x, v.y], body.angvel()))
     }
 
     /// Advances the world by one time step.
@@ -134,7 +270,7 @@ impl RapierWorld {
             &mut self.multibody_joints,
             &mut self.soft_bodies,
             &mut self.ccd,
-            &(),
+            &self.filters,
             &(),
         );
     }
@@ -268,4 +404,175 @@ fn axis_aligned_rectangle(p: &Polygon) -> Option<(f32, f32)> {
     } else {
         None
     }
+}
+
+/// A carom joint as a Rapier generic joint: one frame in each body, the anchors carom's, body
+/// A's frame turned to a slider's or wheel's axis (Rapier's free axis is that frame's x) and
+/// body B's by the reference angle less, so the joint's angle is 0 where carom's is. `None`
+/// for a joint Rapier cannot express, with a note saying so; approximations are noted too.
+fn generic_joint(
+    joint: &Joint,
+    softness: SpringCoefficients<f32>,
+    notes: &mut Notes,
+) -> Option<GenericJoint> {
+    let kind = joint.kind();
+    let (break_force, break_torque) = joint.break_thresholds();
+    if break_force.is_finite() || break_torque.is_finite() {
+        notes.add("a joint's break force or torque: not translated (Rapier's joints do not break)");
+    }
+    let axis_angle = match kind {
+        JointKind::Prismatic(j) => j.axis.y.atan2(j.axis.x),
+        JointKind::Wheel(j) => j.axis.y.atan2(j.axis.x),
+        _ => 0.0,
+    };
+    let [la, lb] = joint.local_anchors();
+    let builder = |locked: JointAxesMask| {
+        GenericJointBuilder::new(locked)
+            .local_frame1(Pose::new(Vector::new(la.x, la.y), axis_angle))
+            .local_frame2(Pose::new(
+                Vector::new(lb.x, lb.y),
+                axis_angle - joint.reference_angle(),
+            ))
+            .contacts_enabled(joint.collide_connected())
+            .softness(softness)
+    };
+    // A spring on a free axis: Rapier's position motor, mass-independent (see `spring_gains`).
+    let spring_on = |b: GenericJointBuilder, axis: JointAxis, target: f32, spring: Spring| {
+        let (stiffness, damping) = spring_gains(spring);
+        b.motor_position(axis, target, stiffness, damping)
+    };
+    // carom's motor: the speed, reached rigidly within the force cap.
+    let drive = |b: GenericJointBuilder, axis: JointAxis, motor: carom::Motor| {
+        b.motor_velocity(axis, motor.speed, RIGID_MOTOR_DAMPING)
+            .motor_max_force(axis, motor.max_force.min(f32::MAX))
+    };
+    let built = match *kind {
+        JointKind::Distance(d) => {
+            // The distance between the anchors is Rapier's coupled linear axis (as in its rope
+            // and spring joints).
+            let mut b = builder(JointAxesMask::empty()).coupled_axes(JointAxesMask::LIN_AXES);
+            match d.spring {
+                None => {
+                    // Rapier's coupled axis takes only an upper limit (its source: "FIXME:
+                    // handle min limit too"): the rod is rigid against stretching and held at
+                    // its length against shortening by a spring as stiff as Rapier's joints.
+                    notes.add(
+                        "a rigid distance joint: rigid only against stretching in Rapier (its \
+                         distance limit has no lower side), held against shortening by a spring \
+                         as stiff as its joints",
+                    );
+                    let hold = Spring::new(softness.natural_frequency, softness.damping_ratio);
+                    b = spring_on(b, JointAxis::LinX, d.length, hold)
+                        .limits(JointAxis::LinX, [0.0, d.length]);
+                }
+                Some(spring) => {
+                    if spring.hertz > 0.0 {
+                        b = spring_on(b, JointAxis::LinX, d.length, spring);
+                    }
+                    if let Some(limits) = d.limits {
+                        if limits.lower > 0.0 {
+                            notes.add(
+                                "a distance joint's lower limit: not translated (Rapier's \
+                                 distance limit has no lower side)",
+                            );
+                        }
+                        b = b.limits(JointAxis::LinX, [0.0, limits.upper]);
+                    }
+                }
+            }
+            b
+        }
+        JointKind::Revolute(r) => {
+            let mut b = builder(JointAxesMask::LOCKED_REVOLUTE_AXES);
+            if let Some(limits) = r.limits {
+                b = b.limits(JointAxis::AngX, [limits.lower, limits.upper]);
+            }
+            match (r.spring.filter(|s| s.hertz > 0.0), r.motor) {
+                (Some(spring), Some(_)) => {
+                    notes.add(
+                        "a revolute joint with both a spring and a motor: the motor not \
+                         translated (Rapier has one motor per axis, which holds the spring)",
+                    );
+                    b = spring_on(b, JointAxis::AngX, r.target_angle, spring);
+                }
+                (Some(spring), None) => b = spring_on(b, JointAxis::AngX, r.target_angle, spring),
+                (None, Some(motor)) => b = drive(b, JointAxis::AngX, motor),
+                (None, None) => {}
+            }
+            b
+        }
+        JointKind::Prismatic(p) => {
+            let mut b = builder(JointAxesMask::LOCKED_PRISMATIC_AXES);
+            if let Some(limits) = p.limits {
+                b = b.limits(JointAxis::LinX, [limits.lower, limits.upper]);
+            }
+            match (p.spring.filter(|s| s.hertz > 0.0), p.motor) {
+                (Some(spring), Some(_)) => {
+                    notes.add(
+                        "a prismatic joint with both a spring and a motor: the motor not \
+                         translated (Rapier has one motor per axis, which holds the spring)",
+                    );
+                    b = spring_on(b, JointAxis::LinX, p.target_translation, spring);
+                }
+                (Some(spring), None) => {
+                    b = spring_on(b, JointAxis::LinX, p.target_translation, spring)
+                }
+                (None, Some(motor)) => b = drive(b, JointAxis::LinX, motor),
+                (None, None) => {}
+            }
+            b
+        }
+        JointKind::Weld(w) => {
+            // A sprung part of the weld is freed and pulled home by a position motor: per axis
+            // of A's frame for the point, where carom and Box2D solve it as one 2x2 block.
+            let (linear, angular) = (
+                w.linear.filter(|s| s.hertz > 0.0),
+                w.angular.filter(|s| s.hertz > 0.0),
+            );
+            let mut locked = JointAxesMask::LOCKED_FIXED_AXES;
+            if linear.is_some() {
+                locked.remove(JointAxesMask::LIN_AXES);
+            }
+            if angular.is_some() {
+                locked.remove(JointAxesMask::ANG_X);
+            }
+            let mut b = builder(locked);
+            if let Some(spring) = linear {
+                b = spring_on(b, JointAxis::LinX, 0.0, spring);
+                b = spring_on(b, JointAxis::LinY, 0.0, spring);
+            }
+            if let Some(spring) = angular {
+                b = spring_on(b, JointAxis::AngX, 0.0, spring);
+            }
+            b
+        }
+        JointKind::Wheel(w) => {
+            // Rapier's pin-slot: B's anchor on A's axis, free to slide along it and to turn.
+            let mut b = builder(JointAxesMask::LOCKED_PIN_SLOT_AXES);
+            if let Some(spring) = w.spring.filter(|s| s.hertz > 0.0) {
+                b = spring_on(b, JointAxis::LinX, 0.0, spring);
+            }
+            if let Some(limits) = w.limits {
+                b = b.limits(JointAxis::LinX, [limits.lower, limits.upper]);
+            }
+            if let Some(motor) = w.motor {
+                b = drive(b, JointAxis::AngX, motor);
+            }
+            b
+        }
+        // No axis locked: the joint only keeps the bodies from colliding (and in one island).
+        JointKind::Filter => builder(JointAxesMask::empty()),
+        JointKind::Motor(_) => {
+            notes.add(
+                "a motor joint: not translated (Rapier has no joint that closes a fraction of \
+                 an offset per step within a force cap)",
+            );
+            return None;
+        }
+        JointKind::Mouse(_) => {
+            notes.add("a mouse joint: not translated (Rapier has no mouse joint)");
+            return None;
+        }
+    };
+    Some(built.build())
 }

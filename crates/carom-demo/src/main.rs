@@ -63,10 +63,10 @@ enum Command {
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
         threads: Option<u32>,
     },
-    /// Sweep solvers, iterations and substeps over scenes: ms/step against error, written as a
-    /// CSV, a markdown report and a chart.
+    /// Sweep solvers, iterations and substeps (and joint stiffness on scenes with joints) over
+    /// scenes: ms/step against error, written as a CSV, a markdown report and a chart.
     Bench {
-        /// Scene files (default: the five accuracy scenes in demos/).
+        /// Scene files (default: the seven accuracy scenes in demos/).
         scenes: Vec<PathBuf>,
         /// The folder the CSV, report and chart go to.
         #[arg(long, default_value = "target/bench")]
@@ -83,6 +83,11 @@ enum Command {
         /// Substep counts for soft step, comma separated (default: 1,2,4,8).
         #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=16))]
         substeps: Option<Vec<u32>>,
+        /// Joint stiffnesses for soft step on scenes with joints, Hz, comma separated (default:
+        /// 60,240). Each is capped at a quarter of the substep rate; those the cap makes equal
+        /// run once.
+        #[arg(long, value_delimiter = ',', value_parser = joint_hertz)]
+        joint_hertz: Option<Vec<f32>>,
         /// How long scenes without an accuracy measure run, s.
         #[arg(long, default_value_t = 10.0)]
         seconds: f32,
@@ -126,6 +131,14 @@ fn solver_kind(text: &str) -> Result<SolverKind, String> {
             .collect();
         format!("unknown solver {text:?}; one of {}", names.join(", "))
     })
+}
+
+/// A joint stiffness from the command line: finite and positive, as the solver requires.
+fn joint_hertz(text: &str) -> Result<f32, String> {
+    match text.parse::<f32>() {
+        Ok(hertz) if hertz.is_finite() && hertz > 0.0 => Ok(hertz),
+        _ => Err(format!("{text:?} is not a positive number of hertz")),
+    }
 }
 
 /// Effects to switch on (`true`) and off, in order.
@@ -211,6 +224,7 @@ fn main() -> ExitCode {
             solvers,
             iterations,
             substeps,
+            joint_hertz,
             seconds,
         }) => {
             let defaults = SweepOptions::default();
@@ -224,6 +238,7 @@ fn main() -> ExitCode {
                 solvers: solvers.unwrap_or(defaults.solvers),
                 iterations: iterations.unwrap_or(defaults.iterations),
                 substeps: substeps.unwrap_or(defaults.substeps),
+                joint_hertz: joint_hertz.unwrap_or(defaults.joint_hertz),
                 seconds,
             };
             let command: Vec<String> = std::env::args().collect();

@@ -20,6 +20,7 @@ fn setting(solver: SolverKind, iterations: u32, substeps: u32) -> Setting {
         solver,
         iterations,
         substeps,
+        joint_hertz: None,
     }
 }
 
@@ -70,6 +71,73 @@ fn a_resting_stack_sinks_less_with_a_better_solver() {
 }
 
 #[test]
+fn a_hinged_pendulum_keeps_its_period_and_a_soft_chain_stretches_less_when_stiffer() {
+    let (pendulum, file) = scene("pendulum.ron");
+    let soft = measure(&pendulum, &file, setting(SolverKind::SoftStep, 1, 4), 10.0).unwrap();
+    // Box2D 3.2 on the same scene: 0.0002 %.
+    assert!(
+        soft.error < 1e-3,
+        "soft step period off by {} %",
+        soft.error
+    );
+    let si = measure(
+        &pendulum,
+        &file,
+        setting(SolverKind::SequentialImpulse, 8, 1),
+        10.0,
+    );
+    let si = si.unwrap().error;
+    assert!(si < 0.5, "sequential impulse period off by {si} %");
+
+    let (chain, file) = scene("chain.ron");
+    // Box2D's settings: 4 substeps, 60 Hz joints; Box2D 3.2 stretches 6.48 %.
+    let box2d = measure(&chain, &file, setting(SolverKind::SoftStep, 1, 4), 10.0).unwrap();
+    assert!(
+        (box2d.error - 6.48).abs() < 0.2,
+        "4 substeps, 60 Hz: {} %",
+        box2d.error
+    );
+    let stiff = Setting {
+        joint_hertz: Some(120.0),
+        ..setting(SolverKind::SoftStep, 1, 8)
+    };
+    let stiff = measure(&chain, &file, stiff, 10.0).unwrap();
+    assert!(stiff.error < 2.0, "8 substeps, 120 Hz: {} %", stiff.error);
+}
+
+#[test]
+fn a_joint_scene_is_swept_without_the_solvers_that_leave_joints_out() {
+    let options = SweepOptions {
+        scenes: vec![PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../demos/chain.ron")],
+        runs: 1,
+        solvers: SolverKind::ALL.to_vec(),
+        iterations: vec![1],
+        substeps: vec![4, 8],
+        joint_hertz: vec![60.0, 240.0],
+        seconds: 1.0,
+    };
+    let points = sweep(&options, |_, _, _| {}).unwrap();
+    let settings: Vec<(SolverKind, u32, Option<f32>)> = points
+        .iter()
+        .map(|p| (p.setting.solver, p.setting.substeps, p.setting.joint_hertz))
+        .collect();
+    assert_eq!(
+        settings,
+        [
+            (SolverKind::SequentialImpulse, 1, None),
+            (SolverKind::SoftStep, 4, None),
+            (SolverKind::SoftStep, 8, None),
+            (SolverKind::SoftStep, 8, Some(120.0)),
+        ]
+    );
+    assert!(
+        points
+            .iter()
+            .all(|p| p.joints && p.error_kind == ErrorKind::Stretch && p.error.is_finite())
+    );
+}
+
+#[test]
 fn a_sweep_has_a_point_per_setting_and_substeps_only_for_soft_step() {
     let options = SweepOptions {
         scenes: vec![
@@ -79,6 +147,7 @@ fn a_sweep_has_a_point_per_setting_and_substeps_only_for_soft_step() {
         solvers: vec![SolverKind::SequentialImpulse, SolverKind::SoftStep],
         iterations: vec![1, 4],
         substeps: vec![1, 2],
+        joint_hertz: vec![60.0, 240.0],
         seconds: 1.0,
     };
     let mut calls = 0;

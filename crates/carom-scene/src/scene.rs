@@ -79,6 +79,32 @@ pub enum Accuracy {
         /// How long each trial runs, s.
         seconds: f32,
     },
+    /// A body swinging on a joint (a pendulum) should swing with the period `expected`. The
+    /// bench records the body's x less its pivot's (its first joint's anchor on the other
+    /// body) every step for `seconds`, and takes the mean time between upward zero crossings.
+    /// The error is |measured − expected| / expected, in %.
+    Period {
+        /// The swinging body (its `name`); it must have a joint.
+        body: String,
+        /// The exact period, s.
+        expected: f32,
+        /// How long to run, s (a few periods at least: fewer than three crossings is an
+        /// infinite error).
+        seconds: f32,
+    },
+    /// A body hanging from `anchor` by a chain of joints should stay `length` from it: the
+    /// error is the worst, over `seconds`, of |distance − length| / length, in %, where the
+    /// distance is from `anchor` to the body's first joint's anchor on the body.
+    Stretch {
+        /// The hanging body (its `name`); it must have a joint.
+        body: String,
+        /// The fixed point it hangs from, m.
+        anchor: Pair,
+        /// Its joint anchor's exact distance from `anchor`, m.
+        length: f32,
+        /// How long to run, s.
+        seconds: f32,
+    },
 }
 
 /// Bodies are dynamic unless a scene says otherwise.
@@ -373,6 +399,35 @@ pub enum Generator {
         #[serde(default = "yes")]
         awake: bool,
     },
+    /// `columns × rows` copies of a shape joined into a net by revolute joints (Box2D's joint
+    /// grid): each body is hinged to the one before it in its column and to the one beside it
+    /// in the column before, at the midpoint between their centres, the earlier body being
+    /// joint body A. Bodies are made column by column, each column from its first row, and
+    /// each body's joints right after it (Box2D's order, which sets how both engines store
+    /// and colour them).
+    JointGrid {
+        /// Centre of the first body (column 0, row 0).
+        origin: Pair,
+        /// Columns (bodies per row).
+        columns: u32,
+        /// Rows (bodies per column).
+        rows: u32,
+        /// From one column's centres to the next's (x) and one row's to the next's (y), m;
+        /// negative goes left or down.
+        spacing: Pair,
+        /// The shape of each.
+        shape: ShapeSpec,
+        /// Their material (its filter decides whether neighbours collide where they are not
+        /// joined; joined ones do not).
+        #[serde(default)]
+        material: Material,
+        /// Cells whose bodies are static; the rest are dynamic.
+        #[serde(default)]
+        fixed: Vec<Cells>,
+        /// The joints' settings (limits, motor as joint friction, spring). Default: none.
+        #[serde(default)]
+        joint: RevoluteSpec,
+    },
     /// `count` copies of a shape scattered over the rectangle from `low` to `high` (its
     /// corners), at positions drawn from `seed`: the same seed, the same scatter.
     Rain {
@@ -458,6 +513,25 @@ pub enum Generator {
         #[serde(default)]
         material: Material,
     },
+}
+
+/// A block of a grid's cells: the columns and the rows from the first to the last given, both
+/// included, counted from 0.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Cells {
+    /// First and last column.
+    pub columns: (u32, u32),
+    /// First and last row.
+    pub rows: (u32, u32),
+}
+
+impl Cells {
+    /// Whether the cell at `column`, `row` is in the block.
+    pub fn contains(&self, column: u32, row: u32) -> bool {
+        (self.columns.0..=self.columns.1).contains(&column)
+            && (self.rows.0..=self.rows.1).contains(&row)
+    }
 }
 
 fn one() -> f32 {

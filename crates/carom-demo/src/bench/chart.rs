@@ -43,7 +43,8 @@ pub fn draw_chart(points: &[Point]) -> Result<image::RgbImage, String> {
             }
         }
         if let Some(panel) = panels.get(scenes.len()) {
-            draw_legend(panel, &all_series)?;
+            let joints = points.iter().any(|p| p.joints);
+            draw_legend(panel, &all_series, joints)?;
         }
         root.present().map_err(draw_error)?;
     }
@@ -102,20 +103,27 @@ fn draw_panel<DB: DrawingBackend>(
     Ok(())
 }
 
+/// The legend: how to read a line, what joint scenes leave out (if `joints`), the series.
 fn draw_legend<DB: DrawingBackend>(
     panel: &DrawingArea<DB, plotters::coord::Shift>,
     series: &[(String, RGBColor)],
+    joints: bool,
 ) -> Result<(), String> {
     let style = ("sans-serif", 18).into_font();
-    panel
-        .draw(&Text::new(
-            "each line: 1, 2, 4 ... 64 iterations, left to right",
-            (30, 30),
-            style.clone(),
-        ))
-        .map_err(draw_error)?;
+    let mut notes = vec!["each line: 1, 2, 4 ... 64 iterations, left to right"];
+    if joints {
+        // Said here, as no line can say why it is missing.
+        notes.push("joint scenes: push-out and tutorial impulse leave joints out");
+    }
+    for (index, note) in notes.iter().enumerate() {
+        let y = 30 + 26 * index as i32;
+        panel
+            .draw(&Text::new(*note, (30, y), style.clone()))
+            .map_err(draw_error)?;
+    }
+    let top = 44 + 26 * notes.len() as i32;
     for (index, (name, color)) in series.iter().enumerate() {
-        let y = 70 + 32 * index as i32;
+        let y = top + 32 * index as i32;
         panel
             .draw(&PathElement::new(
                 vec![(30, y), (80, y)],
@@ -158,17 +166,24 @@ fn ranges(points: &[&Point]) -> (std::ops::Range<f64>, std::ops::Range<f64>, f64
     )
 }
 
-/// One colour per solver; soft step darker with more substeps.
+/// One colour per solver; soft step darker with more substeps, in reds at the default joint
+/// stiffness and purples at another.
 fn color_of(point: &Point) -> RGBColor {
-    match point.setting.solver {
-        SolverKind::PushOut => RGBColor(130, 130, 130),
-        SolverKind::TutorialImpulse => RGBColor(235, 150, 30),
-        SolverKind::SequentialImpulse => RGBColor(40, 100, 220),
-        SolverKind::SoftStep => match point.setting.substeps {
+    match (point.setting.solver, point.setting.joint_hertz) {
+        (SolverKind::PushOut, _) => RGBColor(130, 130, 130),
+        (SolverKind::TutorialImpulse, _) => RGBColor(235, 150, 30),
+        (SolverKind::SequentialImpulse, _) => RGBColor(40, 100, 220),
+        (SolverKind::SoftStep, None) => match point.setting.substeps {
             0..=1 => RGBColor(245, 150, 150),
             2..=3 => RGBColor(225, 90, 90),
             4..=7 => RGBColor(190, 30, 30),
             _ => RGBColor(110, 0, 20),
+        },
+        (SolverKind::SoftStep, Some(_)) => match point.setting.substeps {
+            0..=3 => RGBColor(200, 140, 230),
+            4..=7 => RGBColor(150, 70, 200),
+            8..=11 => RGBColor(110, 30, 170),
+            _ => RGBColor(60, 0, 110),
         },
     }
 }
@@ -214,10 +229,12 @@ mod tests {
                 solver,
                 iterations,
                 substeps: 1,
+                joint_hertz: None,
             },
             ms_per_step: ms,
             error,
             max_penetration: 0.0,
+            joints: false,
         }
     }
 
@@ -239,5 +256,24 @@ mod tests {
             "a tutorial line with no points"
         );
         assert_eq!(series_name(&points[0]), "sequential impulse");
+    }
+
+    #[test]
+    fn a_stiffer_joint_setting_has_a_colour_of_its_own() {
+        let mut points = Vec::new();
+        for joint_hertz in [None, Some(120.0)] {
+            for (iterations, ms) in [(1, 0.02), (8, 0.1)] {
+                let mut p = point("chain", SolverKind::SoftStep, iterations, ms, 6.0);
+                p.setting.substeps = 8;
+                p.setting.joint_hertz = joint_hertz;
+                p.joints = true;
+                points.push(p);
+            }
+        }
+        assert_ne!(color_of(&points[0]), color_of(&points[2]));
+        let image = draw_chart(&points).unwrap();
+        let has = |color: RGBColor| image.pixels().any(|p| p.0 == [color.0, color.1, color.2]);
+        assert!(has(color_of(&points[0])), "no default joint line");
+        assert!(has(color_of(&points[2])), "no stiffer joint line");
     }
 }

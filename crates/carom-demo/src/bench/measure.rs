@@ -1,12 +1,12 @@
 //! One measurement: a scene run with one solver setting, its step times and its error against
 //! the scene's exact answer (see [`carom_scene::Accuracy`]).
 
-use carom::{BodyKind, Effect, Real, SolverKind, Vec2, World};
+use carom::{BodyHandle, BodyKind, Effect, Real, SolverKind, SolverParams, Vec2, World};
 use carom_scene::{Accuracy, Scene, SceneWorld};
 use std::time::Instant;
 
 /// The solver setting a point of the sweep runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Setting {
     /// The solver.
     pub solver: SolverKind,
@@ -14,6 +14,27 @@ pub struct Setting {
     pub iterations: u32,
     /// Substeps (1 for the solvers without them).
     pub substeps: u32,
+    /// Soft step's joint stiffness, Hz, where it is not the default: `None` runs the
+    /// solver's 60 Hz (Box2D's), which the solver caps at a quarter of the substep rate.
+    /// A scene's own stiffness is replaced either way, as its iterations and substeps are.
+    pub joint_hertz: Option<f32>,
+}
+
+impl Setting {
+    /// The joint stiffness the solver runs with `hertz` asked for, at `time_step` seconds per
+    /// step: at most a quarter of the substep rate, as the solver caps it (Box2D's rule).
+    pub fn capped_joint_hertz(&self, hertz: f32, time_step: f32) -> f32 {
+        let cap = 0.25 * self.substeps as f64 / time_step as f64;
+        // To a thousandth of a hertz: 1/60 s in f32 makes 8 substeps' cap 119.99999 Hz, which
+        // is 120 Hz as far as the solver goes and should read so.
+        ((hertz as f64).min(cap) * 1000.0).round() as f32 / 1000.0
+    }
+}
+
+/// Whether a solver solves joints. Push-out and the tutorial's impulse solver leave joints
+/// out, so on a scene with joints their error measures only the bodies falling apart.
+pub fn solves_joints(solver: SolverKind) -> bool {
+    matches!(solver, SolverKind::SequentialImpulse | SolverKind::SoftStep)
 }
 
 /// What one run of a setting gave.
@@ -36,6 +57,10 @@ pub enum ErrorKind {
     Conservation,
     /// Error of the angle at which sliding starts.
     SlideAngle,
+    /// Relative error of a swing's period.
+    Period,
+    /// Worst relative stretch of what a body hangs by.
+    Stretch,
     /// No exact answer: the deepest overlap.
     Overlap,
 }
@@ -47,6 +72,8 @@ impl ErrorKind {
             Some(Accuracy::Rest { .. }) => ErrorKind::Rest,
             Some(Accuracy::Conservation { .. }) => ErrorKind::Conservation,
             Some(Accuracy::SlideAngle { .. }) => ErrorKind::SlideAngle,
+            Some(Accuracy::Period { .. }) => ErrorKind::Period,
+            Some(Accuracy::Stretch { .. }) => ErrorKind::Stretch,
             None => ErrorKind::Overlap,
         }
     }
@@ -57,6 +84,8 @@ impl ErrorKind {
             ErrorKind::Rest => "distance from the resting pose after the run",
             ErrorKind::Conservation => "relative change of momentum or kinetic energy",
             ErrorKind::SlideAngle => "error of the angle at which the box starts to slide",
+            ErrorKind::Period => "error of the swing's period",
+            ErrorKind::Stretch => "worst stretch of the joints holding the body",
             ErrorKind::Overlap => "deepest overlap (no exact answer)",
         }
     }
@@ -67,6 +96,7 @@ impl ErrorKind {
             ErrorKind::Rest | ErrorKind::Overlap => "m",
             ErrorKind::Conservation => "ratio",
             ErrorKind::SlideAngle => "deg",
+            ErrorKind::Period | ErrorKind::Stretch => "%",
         }
     }
 }
@@ -117,6 +147,51 @@ pub fn measure(
             let angle = slide_angle(scene, file, setting, body, critical, steps, &mut run)?;
             (angle - critical).abs().to_degrees()
         }
+        Some(Accuracy::Period {
+            body,
+            expected,
+            seconds,
+        }) => {
+            let handle = run.scene.names[body];
+            let steps = seconds_to_steps(*seconds);
+            let mut samples = Vec::with_capacity(steps);
+            for step in 1..=steps {
+                run.steps(1)?;
+                // The body's centre, not its anchor: a hinge's anchor stays at the pivot.
+                let [_, pivot] = run.joint_anchors(handle);
+                let x = run.position(handle).x as f64 - pivot.x as f64;
+                // Time counted in steps, not summed, and in double precision: a minute of
+                // swings measured to a millionth of a period.
+                samples.push((step as f64 * time_step as f64, x));
+            }
+            // Too few swings to time (the body stopped, or fell off its joint) is no period.
+            period(&samples).map_or(f64::INFINITY, |measured| {
+                100.0 * (measured - *expected as f64).abs() / *expected as f64
+            })
+        }
+        Some(Accuracy::Stretch {
+            body,
+            anchor,
+            length,
+            seconds,
+        }) => {
+            let handle = run.scene.names[body];
+            let anchor = carom::vec2(anchor.0, anchor.1);
+            let length = *length as f64;
+            let mut worst: f64 = 0.0;
+            for _ in 0..seconds_to_steps(*seconds) {
+                run.steps(1)?;
+                let [on_body, _] = run.joint_anchors(handle);
+                let stretch = 100.0 * ((on_body - anchor).norm() as f64 - length).abs() / length;
+                // A NaN anchor is a world gone wrong, not a small stretch (max would drop it).
+                worst = if stretch.is_nan() {
+                    f64::INFINITY
+                } else {
+                    worst.max(stretch)
+                };
+            }
+            worst
+        }
         None => {
             run.steps(seconds_to_steps(default_seconds))?;
             run.max_penetration
@@ -145,6 +220,9 @@ impl Run {
         params.impulse_resolution = true;
         params.iterations = setting.iterations;
         params.substeps = setting.substeps;
+        params.joint_hertz = setting
+            .joint_hertz
+            .unwrap_or(SolverParams::default().joint_hertz);
         built.world.set_solver(params).map_err(|e| e.to_string())?;
         // Every step is solved: a setting that settles sooner would otherwise look cheaper
         // only because its bodies sleep.
@@ -176,6 +254,41 @@ impl Run {
             .map(|b| b.position())
             .unwrap_or_else(Vec2::zeros)
     }
+
+    /// Where the body's first joint holds it and where it holds the other body, in the world
+    /// (NaN if the joint is gone: the scene's build checked that the body had one).
+    fn joint_anchors(&self, handle: BodyHandle) -> [Vec2; 2] {
+        let world = &self.scene.world;
+        let anchors = world
+            .joints_of(handle)
+            .first()
+            .and_then(|&joint| world.joint(joint))
+            .and_then(|joint| {
+                let [a, b] = joint.bodies();
+                let anchors = joint.world_anchors(world.body(a)?, world.body(b)?);
+                Some(if a == handle {
+                    anchors
+                } else {
+                    [anchors[1], anchors[0]]
+                })
+            });
+        anchors.unwrap_or([Vec2::repeat(Real::NAN); 2])
+    }
+}
+
+/// The mean period of a signal's upward zero crossings, linearly interpolated, from samples
+/// `(t, x)`; `None` with fewer than three crossings (as `tests/joint_measures.rs` measures
+/// the pendulum scene, in double precision).
+pub fn period(samples: &[(f64, f64)]) -> Option<f64> {
+    let mut crossings = Vec::new();
+    for pair in samples.windows(2) {
+        let ((t0, x0), (t1, x1)) = (pair[0], pair[1]);
+        if x0 < 0.0 && x1 >= 0.0 {
+            crossings.push(t0 + (t1 - t0) * (-x0 / (x1 - x0)));
+        }
+    }
+    (crossings.len() >= 3)
+        .then(|| (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f64)
 }
 
 /// The dynamic body whose centre is highest (the top box of a stack or pyramid).
@@ -251,4 +364,63 @@ fn slide_angle(
         }
     }
     Ok(0.5 * (low + high))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_period_of_a_sampled_sine_is_its_own() {
+        // 2.5 s sampled at 60 Hz for 20 s, starting off zero: crossings between samples.
+        let samples: Vec<(f64, f64)> = (0..1200)
+            .map(|i| {
+                let t = i as f64 / 60.0;
+                (t, (std::f64::consts::TAU * t / 2.5 + 0.3).sin())
+            })
+            .collect();
+        let period = period(&samples).unwrap();
+        assert!((period - 2.5).abs() < 1e-5, "{period}");
+        // Two upward crossings are one period, too few to trust.
+        assert_eq!(super::period(&samples[..200]), None);
+    }
+
+    #[test]
+    fn joint_stiffness_is_capped_at_a_quarter_of_the_substep_rate() {
+        let setting = |substeps| Setting {
+            solver: SolverKind::SoftStep,
+            iterations: 1,
+            substeps,
+            joint_hertz: None,
+        };
+        let step = 1.0 / 60.0;
+        assert_eq!(setting(1).capped_joint_hertz(60.0, step), 15.0);
+        assert_eq!(setting(4).capped_joint_hertz(240.0, step), 60.0);
+        // f32's 1/60 would make this 119.99999.
+        assert_eq!(setting(8).capped_joint_hertz(240.0, step), 120.0);
+        assert_eq!(setting(16).capped_joint_hertz(180.0, step), 180.0);
+    }
+
+    #[test]
+    fn the_joint_measures_are_percentages() {
+        for accuracy in [
+            Accuracy::Period {
+                body: "bob".into(),
+                expected: 2.0,
+                seconds: 1.0,
+            },
+            Accuracy::Stretch {
+                body: "ball".into(),
+                anchor: (0.0, 0.0),
+                length: 20.0,
+                seconds: 1.0,
+            },
+        ] {
+            assert_eq!(ErrorKind::of(Some(&accuracy)).unit(), "%");
+        }
+        assert!(
+            solves_joints(SolverKind::SoftStep) && solves_joints(SolverKind::SequentialImpulse)
+        );
+        assert!(!solves_joints(SolverKind::PushOut) && !solves_joints(SolverKind::TutorialImpulse));
+    }
 }

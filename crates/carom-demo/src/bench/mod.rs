@@ -1,15 +1,17 @@
 //! `carom bench`: what accuracy costs in time. Every solver setting (solver × iterations ×
-//! substeps) runs each scene a few times, sleeping off; each point of the sweep is its median
-//! ms/step and its error against the scene's exact answer ([`carom_scene::Accuracy`]). The results go to a CSV,
-//! a markdown report and a chart of error against time.
+//! substeps, and joint stiffness on scenes with joints) runs each scene a few times, sleeping
+//! off; each point of the sweep is its median ms/step and its error against the scene's exact
+//! answer ([`carom_scene::Accuracy`]). The results go to a CSV, a markdown report and a chart
+//! of error against time.
 
 pub mod chart;
 pub mod measure;
 pub mod report;
 
-pub use measure::{ErrorKind, Measurement, Setting, measure};
+pub use measure::{ErrorKind, Measurement, Setting, measure, solves_joints};
 
-use carom::SolverKind;
+use carom::{SolverKind, SolverParams};
+use carom_scene::SceneWorld;
 use std::path::PathBuf;
 
 /// What to sweep.
@@ -25,12 +27,17 @@ pub struct SweepOptions {
     pub iterations: Vec<u32>,
     /// Substep counts (for the solvers that have substeps; the others run 1).
     pub substeps: Vec<u32>,
+    /// Joint stiffnesses for soft step on scenes with joints, Hz. Each is capped at a quarter
+    /// of the substep rate, as the solver caps it, and stiffnesses the cap makes equal run
+    /// once.
+    pub joint_hertz: Vec<f32>,
     /// How long a scene without an accuracy measure runs, s.
     pub seconds: f32,
 }
 
 impl Default for SweepOptions {
-    /// The issue's sweep over the five accuracy scenes in `demos/`.
+    /// The sweep over the seven accuracy scenes in `demos/`; joints at Box2D's 60 Hz and at
+    /// 240 Hz, which is as stiff as the substeps allow up to 16 substeps (120 Hz at 8).
     fn default() -> Self {
         SweepOptions {
             scenes: [
@@ -39,6 +46,8 @@ impl Default for SweepOptions {
                 "high_mass_ratio",
                 "newtons_cradle",
                 "incline_friction",
+                "pendulum",
+                "chain",
             ]
             .iter()
             .map(|name| PathBuf::from(format!("demos/{name}.ron")))
@@ -47,28 +56,56 @@ impl Default for SweepOptions {
             solvers: SolverKind::ALL.to_vec(),
             iterations: vec![1, 2, 4, 8, 16, 32, 64],
             substeps: vec![1, 2, 4, 8],
+            joint_hertz: vec![60.0, 240.0],
             seconds: 10.0,
         }
     }
 }
 
 impl SweepOptions {
-    /// Every setting the sweep runs, solver by solver.
-    pub fn settings(&self) -> Vec<Setting> {
+    /// Every setting the sweep runs on `scene`, solver by solver. On a scene with joints the
+    /// solvers that leave joints out do not run ([`solves_joints`]), and soft step runs once
+    /// per joint stiffness the cap leaves distinct.
+    pub fn settings(&self, scene: &SceneWorld) -> Vec<Setting> {
+        let joints = scene.world.joint_count() > 0;
+        let default_hertz = SolverParams::default().joint_hertz;
         let mut settings = Vec::new();
         for &solver in &self.solvers {
+            if joints && !solves_joints(solver) {
+                continue;
+            }
             let substeps: &[u32] = if solver.has_substeps() {
                 &self.substeps
             } else {
                 &[1]
             };
             for &substeps in substeps {
-                for &iterations in &self.iterations {
-                    settings.push(Setting {
-                        solver,
-                        iterations,
-                        substeps,
-                    });
+                let base = Setting {
+                    solver,
+                    iterations: 1,
+                    substeps,
+                    joint_hertz: None,
+                };
+                // The stiffnesses this substep count makes distinct, the default first; the
+                // solver caps the default too, so a stiffness capped to it is the default.
+                let mut joint_hertz = vec![None];
+                if joints && solver.has_substeps() {
+                    let default = base.capped_joint_hertz(default_hertz, scene.time_step);
+                    for &hertz in &self.joint_hertz {
+                        let capped = base.capped_joint_hertz(hertz, scene.time_step);
+                        if capped != default && !joint_hertz.contains(&Some(capped)) {
+                            joint_hertz.push(Some(capped));
+                        }
+                    }
+                }
+                for joint_hertz in joint_hertz {
+                    for &iterations in &self.iterations {
+                        settings.push(Setting {
+                            iterations,
+                            joint_hertz,
+                            ..base
+                        });
+                    }
                 }
             }
         }
@@ -91,6 +128,8 @@ pub struct Point {
     pub error: f64,
     /// The deepest overlap seen, m.
     pub max_penetration: f64,
+    /// Whether the scene has joints (so the solvers that leave them out did not run).
+    pub joints: bool,
 }
 
 /// Runs the sweep; `progress(done, total, what)` is told before each run.
@@ -102,19 +141,26 @@ pub fn sweep(
         .scenes
         .iter()
         .map(|path| {
+            let file = path.display().to_string();
             let scene = carom_scene::read(path).map_err(|e| e.to_string())?;
-            Ok((scene, path.display().to_string()))
+            // Built once here to see what settings it takes (its joints, its time step).
+            let built = carom_scene::build(&scene, &file).map_err(|e| e.to_string())?;
+            let settings = options.settings(&built);
+            let joints = built.world.joint_count() > 0;
+            Ok((scene, file, settings, joints))
         })
         .collect::<Result<Vec<_>, String>>()?;
-    let settings = options.settings();
     let runs = options.runs.max(1);
-    let total = scenes.len() * settings.len() * runs;
+    let total = scenes.iter().map(|s| s.2.len()).sum::<usize>() * runs;
     let mut done = 0;
-    let mut points = Vec::with_capacity(scenes.len() * settings.len());
-    for (scene, file) in &scenes {
-        for &setting in &settings {
+    let mut points = Vec::with_capacity(total / runs);
+    for (scene, file, settings, joints) in &scenes {
+        for &setting in settings {
+            let joint_hertz = setting
+                .joint_hertz
+                .map_or(String::new(), |hertz| format!(", {hertz} Hz joints"));
             let what = format!(
-                "{}: {}, {} iterations, {} substeps",
+                "{}: {}, {} iterations, {} substeps{joint_hertz}",
                 scene.name,
                 setting.solver.name(),
                 setting.iterations,
@@ -137,6 +183,7 @@ pub fn sweep(
                 ms_per_step: median(&medians),
                 error: first.error,
                 max_penetration: first.max_penetration,
+                joints: *joints,
             });
         }
     }
@@ -192,4 +239,64 @@ pub fn sweep_to_folder(
     )?;
     chart::write_chart(&points, &out.join("accuracy.png"))?;
     Ok(points)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A scene of a ball, hinged to a hook if `joined`.
+    fn scene(joined: bool) -> SceneWorld {
+        let joints = if joined {
+            r#"joints: [(bodies: ("hook", "ball"), anchor: (0.0, 0.0), kind: Revolute())],"#
+        } else {
+            ""
+        };
+        let text = format!(
+            r#"(
+                name: "hinge",
+                bodies: [
+                    (name: "hook", kind: static, shape: Circle(radius: 0.1)),
+                    (name: "ball", shape: Circle(radius: 0.1), position: (1.0, 0.0)),
+                ],
+                {joints}
+            )"#
+        );
+        let scene = carom_scene::parse(&text, "hinge.ron").unwrap();
+        carom_scene::build(&scene, "hinge.ron").unwrap()
+    }
+
+    fn options() -> SweepOptions {
+        SweepOptions {
+            iterations: vec![1],
+            ..SweepOptions::default()
+        }
+    }
+
+    #[test]
+    fn a_scene_without_joints_runs_every_solver_at_the_default_joint_stiffness() {
+        let settings = options().settings(&scene(false));
+        // Push-out, tutorial and sequential impulse, soft step at 1, 2, 4 and 8 substeps.
+        assert_eq!(settings.len(), 3 + 4);
+        assert!(settings.iter().all(|s| s.joint_hertz.is_none()));
+    }
+
+    #[test]
+    fn a_scene_with_joints_skips_the_solvers_without_them_and_sweeps_stiffness() {
+        let settings = options().settings(&scene(true));
+        assert!(settings.iter().all(|s| solves_joints(s.solver)));
+        let soft: Vec<(u32, Option<f32>)> = settings
+            .iter()
+            .filter(|s| s.solver == SolverKind::SoftStep)
+            .map(|s| (s.substeps, s.joint_hertz))
+            .collect();
+        // 240 Hz is capped to the default's 15, 30 and 60 Hz up to 4 substeps; at 8 the
+        // default stays 60 Hz and 240 Hz becomes 120.
+        assert_eq!(
+            soft,
+            [(1, None), (2, None), (4, None), (8, None), (8, Some(120.0))]
+        );
+        let classic = settings.len() - soft.len();
+        assert_eq!(classic, 1, "sequential impulse alone: {settings:?}");
+    }
 }

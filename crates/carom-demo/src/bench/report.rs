@@ -5,17 +5,18 @@ use std::fmt::Write as _;
 use std::time::{SystemTime, UNIX_EPOCH};
 
 /// The CSV header, in the order [`csv`] writes the columns.
-pub const CSV_HEADER: &str =
-    "scene,error_kind,solver,iterations,substeps,ms_per_step,error,error_unit,max_penetration_m";
+pub const CSV_HEADER: &str = "scene,error_kind,solver,iterations,substeps,ms_per_step,error,\
+                              error_unit,max_penetration_m,joint_hertz";
 
-/// Every point as one CSV line (NaN worlds have the error `inf`).
+/// Every point as one CSV line (NaN worlds have the error `inf`; `joint_hertz` is empty for
+/// the solver's default, 60 Hz capped at a quarter of the substep rate).
 pub fn csv(points: &[Point]) -> String {
     let mut out = String::from(CSV_HEADER);
     out.push('\n');
     for p in points {
         let _ = writeln!(
             out,
-            "{},{:?},{},{},{},{:.6},{},{},{:.6}",
+            "{},{:?},{},{},{},{:.6},{},{},{:.6},{}",
             p.scene,
             p.error_kind,
             p.setting.solver.name(),
@@ -24,7 +25,10 @@ pub fn csv(points: &[Point]) -> String {
             p.ms_per_step,
             format_error(p.error),
             p.error_kind.unit(),
-            p.max_penetration
+            p.max_penetration,
+            p.setting
+                .joint_hertz
+                .map_or(String::new(), |hertz| hertz.to_string())
         );
     }
     out
@@ -108,6 +112,9 @@ pub fn markdown(points: &[Point], machine: &Machine, command: &str, runs: usize)
             kind.description(),
             kind.unit()
         );
+        if of_scene[0].joints {
+            let _ = writeln!(out, "{JOINTS_NOTE}\n");
+        }
         let mut iterations: Vec<u32> = of_scene.iter().map(|p| p.setting.iterations).collect();
         iterations.sort_unstable();
         iterations.dedup();
@@ -137,6 +144,13 @@ pub fn markdown(points: &[Point], machine: &Machine, command: &str, runs: usize)
     out
 }
 
+/// What a scene with joints says under its heading: why two solvers have no row, and what
+/// joint stiffness soft step's rows ran.
+pub const JOINTS_NOTE: &str = "The scene has joints: push-out and tutorial impulse leave \
+    joints out, so they do not run on it. Soft step's joints are at 60 Hz (Box2D's default), \
+    which the solver caps at a quarter of the substep rate (15 Hz at 1 substep, 30 Hz at 2), \
+    unless a row names another.";
+
 /// The points of one scene grouped into series: one per solver, and for solvers with substeps
 /// one per substep count, in sweep order.
 pub fn series_of<'a>(points: &[&'a Point]) -> Vec<(String, Vec<&'a Point>)> {
@@ -151,16 +165,20 @@ pub fn series_of<'a>(points: &[&'a Point]) -> Vec<(String, Vec<&'a Point>)> {
     series
 }
 
-/// "soft step, 4 substeps", or just the solver's name.
+/// "soft step, 4 substeps", "soft step, 8 substeps, 120 Hz joints" (a joint stiffness
+/// other than the default), or just the solver's name.
 pub fn series_name(point: &Point) -> String {
     let solver = point.setting.solver;
+    let mut name = solver.name().to_string();
     if solver.has_substeps() {
         let substeps = point.setting.substeps;
         let plural = if substeps == 1 { "" } else { "s" };
-        format!("{}, {substeps} substep{plural}", solver.name())
-    } else {
-        solver.name().to_string()
+        let _ = write!(name, ", {substeps} substep{plural}");
     }
+    if let Some(hertz) = point.setting.joint_hertz {
+        let _ = write!(name, ", {hertz} Hz joints");
+    }
+    name
 }
 
 /// Three significant digits, or `inf`.
@@ -175,6 +193,50 @@ fn format_error(error: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    use crate::bench::{ErrorKind, Setting};
+    use carom::SolverKind;
+
+    fn point(substeps: u32, joint_hertz: Option<f32>) -> Point {
+        Point {
+            scene: "chain".into(),
+            error_kind: ErrorKind::Stretch,
+            setting: Setting {
+                solver: SolverKind::SoftStep,
+                iterations: 1,
+                substeps,
+                joint_hertz,
+            },
+            ms_per_step: 0.02,
+            error: 6.5,
+            max_penetration: 0.0,
+            joints: true,
+        }
+    }
+
+    #[test]
+    fn a_joint_scene_says_what_it_leaves_out_and_names_its_stiffer_joints() {
+        let points = [point(4, None), point(8, None), point(8, Some(120.0))];
+        let machine = Machine {
+            cpu: "cpu".into(),
+            cores: 1,
+            date: "2026-11-24".into(),
+        };
+        let report = markdown(&points, &machine, "carom bench", 1);
+        assert!(report.contains(JOINTS_NOTE), "{report}");
+        assert!(report.contains("worst stretch"), "{report}");
+        assert!(
+            report.contains("| soft step, 8 substeps, 120 Hz joints |"),
+            "{report}"
+        );
+        assert_eq!(series_name(&points[1]), "soft step, 8 substeps");
+        let csv = csv(&points);
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines[0], CSV_HEADER);
+        assert!(CSV_HEADER.ends_with("max_penetration_m,joint_hertz"));
+        assert!(lines[2].ends_with(",%,0.000000,"), "{}", lines[2]);
+        assert!(lines[3].ends_with(",%,0.000000,120"), "{}", lines[3]);
+    }
 
     #[test]
     fn civil_dates_are_right() {
