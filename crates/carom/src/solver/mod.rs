@@ -29,7 +29,7 @@ mod wide_contacts;
 pub(crate) use body_state::BodyState;
 use contact_constraint::BodyMass;
 pub(crate) use contact_constraint::ContactConstraint;
-pub(crate) use joints::{JointBody, JointColors, JointConstraint};
+pub(crate) use joints::{JointBody, JointColors, JointConstraint, JointStates};
 
 use crate::collision::contact::{BodyIndices, Contact};
 use crate::collision::contact_layout::ColorRanges;
@@ -532,20 +532,24 @@ pub(crate) fn step(
     } else {
         dt
     };
-    prepare_joints(
+    let joint_inputs = JointInputs {
         bodies,
-        awake.clone(),
+        awake: awake.clone(),
         joints,
         awake_joints,
-        h,
-        params.warm_starting,
-        joint_constraints,
+    };
+    joint_colors.order(
+        awake_joints.len(),
+        |i| joint_inputs.states(i),
+        colored,
+        states.len(),
     );
-    if colored {
-        joints::color_joints(joint_constraints, states.len(), joint_colors);
-    } else {
-        joint_colors.all_overflow(joint_constraints.len());
-    }
+    map_into(
+        &joint_colors.order,
+        joint_constraints,
+        ITEMS_PER_TASK,
+        |&i| joint_inputs.prepare(i, h, params.warm_starting),
+    );
     let prepare = started.elapsed();
     let bodies = &mut bodies[awake];
     let context = SolverContext {
@@ -602,40 +606,53 @@ pub(crate) fn step(
     }
 }
 
-/// Prepares the awake joints (filter joints have nothing to solve) into `constraints`, for
-/// (sub)steps of `h`.
-fn prepare_joints(
-    bodies: &[Body],
+/// What preparing the step's joints reads.
+struct JointInputs<'a> {
+    /// Every body; the awake ones are `bodies[awake]`, whose states come first, then the
+    /// spare state (a body outside the awake set).
+    bodies: &'a [Body],
     awake: Range<usize>,
-    joints: &[Joint],
-    awake_joints: &[AwakeJoint],
-    h: Real,
-    warm_starting: bool,
-    constraints: &mut Vec<JointConstraint>,
-) {
-    constraints.clear();
-    // The spare state, past the awake bodies' states: a body outside the awake set.
-    let spare = awake.len();
-    let side = |index: u32| {
+    joints: &'a [Joint],
+    awake_joints: &'a [AwakeJoint],
+}
+
+impl JointInputs<'_> {
+    /// A joint's body at dense index `index`, as the solver takes it.
+    fn side(&self, index: u32) -> JointBody<'_> {
         let index = index as usize;
-        let body = &bodies[index];
-        let is_awake = awake.contains(&index);
+        let body = &self.bodies[index];
+        let is_awake = self.awake.contains(&index);
         JointBody {
             body,
-            state: if is_awake { index - awake.start } else { spare },
+            state: if is_awake {
+                index - self.awake.start
+            } else {
+                self.awake.len()
+            },
             moves: is_awake && body.is_dynamic(),
         }
-    };
-    for &AwakeJoint {
-        index,
-        bodies: [a, b],
-    } in awake_joints
-    {
-        let joint = &joints[index as usize];
-        if matches!(joint.kind(), JointKind::Filter) {
-            continue;
+    }
+
+    /// The states awake joint `i` touches and which it moves; `None` for a filter joint,
+    /// which has nothing to solve. A mouse joint moves only its one body.
+    fn states(&self, i: usize) -> Option<JointStates> {
+        let AwakeJoint { index, bodies } = self.awake_joints[i];
+        let kind = self.joints[index as usize].kind();
+        if matches!(kind, JointKind::Filter) {
+            return None;
         }
-        let c = JointConstraint::prepare(index as usize, joint, side(a), side(b), h, warm_starting);
-        constraints.push(c);
+        let [a, b] = bodies.map(|body| self.side(body));
+        if matches!(kind, JointKind::Mouse(_)) {
+            return Some([(b.state, false), (b.state, b.moves)]);
+        }
+        Some([(a.state, a.moves), (b.state, b.moves)])
+    }
+
+    /// Awake joint `i` prepared for (sub)steps of `h`.
+    fn prepare(&self, i: usize, h: Real, warm_starting: bool) -> JointConstraint {
+        let AwakeJoint { index, bodies } = self.awake_joints[i];
+        let joint = &self.joints[index as usize];
+        let [a, b] = bodies.map(|body| self.side(body));
+        JointConstraint::prepare(index as usize, joint, a, b, h, warm_starting)
     }
 }

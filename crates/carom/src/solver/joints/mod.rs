@@ -397,82 +397,85 @@ fn inverse_or_zero(k: Real) -> Real {
     if k > 0.0 { 1.0 / k } else { 0.0 }
 }
 
-/// The joint colouring of a step: joints sorted so each colour's are together, no two of a
-/// colour sharing a body that moves (the last range, the overflow's, is solved alone).
+/// The joint colouring of a step: the order the joints are prepared and solved in, colour by
+/// colour, no two of a colour sharing a body that moves (the last range, the overflow's, is
+/// solved alone, one by one).
 #[derive(Debug, Clone, Default)]
 pub(crate) struct JointColors {
-    /// Per colour, then the overflow: the range of the sorted constraints it holds.
+    /// Per colour, then the overflow: the range of the order it holds.
     pub ranges: Vec<std::ops::Range<usize>>,
+    /// The joints to solve (indices into the step's awake joints), colour by colour.
+    pub order: Vec<usize>,
     /// Per state, the colours that already hold it (a bit each).
     claims: Vec<u32>,
-    /// Each constraint's colour while sorting.
+    /// Each joint's colour, or `u8::MAX` for one with nothing to solve.
     colors: Vec<u8>,
-    sorted: Vec<JointConstraint>,
 }
+
+/// Which states a joint touches, and whether it moves each (dynamic and awake).
+pub(crate) type JointStates = [(usize, bool); 2];
 
 impl JointColors {
-    /// No colours: all `count` joints in the overflow, solved one by one in order.
-    pub fn all_overflow(&mut self, count: usize) {
-        self.ranges.clear();
-        self.ranges.resize(JOINT_COLOR_COUNT, 0..0);
-        self.ranges.push(0..count);
-    }
-}
-
-/// Colours `constraints` greedily in order, each into the first colour that holds neither of
-/// its moving bodies (up to [`JOINT_COLOR_COUNT`], then the overflow), and sorts them by
-/// colour (stable: within a colour they keep their order). `states` is how many states there
-/// are.
-pub(crate) fn color_joints(
-    constraints: &mut Vec<JointConstraint>,
-    states: usize,
-    colors: &mut JointColors,
-) {
-    let JointColors {
-        ranges,
-        claims,
-        colors: assigned,
-        sorted,
-    } = colors;
-    claims.clear();
-    claims.resize(states, 0);
-    assigned.clear();
-    let overflow = JOINT_COLOR_COUNT as u8;
-    let mut counts = [0usize; JOINT_COLOR_COUNT + 1];
-    for c in constraints.iter() {
-        let mut taken = 0u32;
-        for (index, moves) in [(c.a, c.moves_a), (c.b, c.moves_b)] {
-            if moves {
-                taken |= claims[index];
-            }
+    /// Colours `count` joints greedily in order, each into the first colour that holds
+    /// neither of the states it moves (up to [`JOINT_COLOR_COUNT`], then the overflow), or
+    /// all into the overflow unless `colored`; `states(i)` says which states joint `i`
+    /// touches (`None`: nothing to solve, left out). `state_count` is how many states there
+    /// are. Within a colour the joints keep their order.
+    pub fn order(
+        &mut self,
+        count: usize,
+        states: impl Fn(usize) -> Option<JointStates>,
+        colored: bool,
+        state_count: usize,
+    ) {
+        let overflow = JOINT_COLOR_COUNT as u8;
+        self.claims.clear();
+        if colored {
+            self.claims.resize(state_count, 0);
         }
-        let color = (!taken).trailing_zeros().min(overflow as u32) as u8;
-        if color < overflow {
-            for (index, moves) in [(c.a, c.moves_a), (c.b, c.moves_b)] {
-                if moves {
-                    claims[index] |= 1 << color;
+        self.colors.clear();
+        let mut counts = [0usize; JOINT_COLOR_COUNT + 1];
+        for i in 0..count {
+            let Some(touched) = states(i) else {
+                self.colors.push(u8::MAX);
+                continue;
+            };
+            let color = if colored {
+                let taken = touched
+                    .iter()
+                    .filter(|(_, moves)| *moves)
+                    .fold(0u32, |taken, &(state, _)| taken | self.claims[state]);
+                let color = (!taken).trailing_zeros().min(overflow as u32) as u8;
+                if color < overflow {
+                    for &(state, moves) in &touched {
+                        if moves {
+                            self.claims[state] |= 1 << color;
+                        }
+                    }
                 }
+                color
+            } else {
+                overflow
+            };
+            counts[color as usize] += 1;
+            self.colors.push(color);
+        }
+        self.ranges.clear();
+        let mut next = [0; JOINT_COLOR_COUNT + 1];
+        let mut start = 0;
+        for (count, next) in counts.iter().zip(&mut next) {
+            self.ranges.push(start..start + count);
+            *next = start;
+            start += count;
+        }
+        self.order.clear();
+        self.order.resize(start, 0);
+        for (i, &color) in self.colors.iter().enumerate() {
+            if color != u8::MAX {
+                let slot = &mut next[color as usize];
+                self.order[*slot] = i;
+                *slot += 1;
             }
         }
-        counts[color as usize] += 1;
-        assigned.push(color);
     }
-    ranges.clear();
-    let mut start = 0;
-    for count in counts {
-        ranges.push(start..start + count);
-        start += count;
-    }
-    let mut next = [0; JOINT_COLOR_COUNT + 1];
-    for (next, range) in next.iter_mut().zip(ranges.iter()) {
-        *next = range.start;
-    }
-    sorted.clear();
-    sorted.extend(constraints.iter().cloned());
-    for (c, &color) in constraints.drain(..).zip(assigned.iter()) {
-        let slot = &mut next[color as usize];
-        sorted[*slot] = c;
-        *slot += 1;
-    }
-    std::mem::swap(constraints, sorted);
 }
