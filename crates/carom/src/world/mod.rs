@@ -358,14 +358,8 @@ impl World {
         handle: ColliderHandle,
         filter: crate::CollisionFilter,
     ) -> Result<(), CaromError> {
-        let collider = self
-            .colliders
-            .get_mut(handle)
-            .ok_or(CaromError::StaleHandle {
-                what: "collider",
-                index: handle.index(),
-                generation: handle.generation(),
-            })?;
+        let index = self.colliders.checked_index(handle)?;
+        let collider = &mut self.colliders.as_mut_slice()[index];
         collider.set_filter(filter);
         let body = collider.body();
         let colliders = &self.colliders;
@@ -394,14 +388,8 @@ impl World {
         density: Real,
     ) -> Result<(), CaromError> {
         crate::dynamics::collider::check_non_negative("density", density)?;
-        let collider = self
-            .colliders
-            .get_mut(handle)
-            .ok_or(CaromError::StaleHandle {
-                what: "collider",
-                index: handle.index(),
-                generation: handle.generation(),
-            })?;
+        let index = self.colliders.checked_index(handle)?;
+        let collider = &mut self.colliders.as_mut_slice()[index];
         let previous = collider.density();
         collider.set_density(density);
         let body = collider.body();

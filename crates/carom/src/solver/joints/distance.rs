@@ -4,7 +4,7 @@
 //! `C = |d| - L` along the unit `u = d / |d|`, `d` from A's anchor to B's; `J = [-u, -rA × u,
 //! u, rB × u]`. The axis is taken once per step (the anchors move little in one).
 
-use super::{JointConstraint, JointPass, inverse_or_zero};
+use super::{JointConstraint, JointPass, inverse_or_zero, spring_softness};
 use crate::joint::DistanceJoint;
 use crate::math::{Real, Vec2, cross};
 use crate::solver::{BodyState, Softness};
@@ -29,9 +29,7 @@ pub(super) fn prepare(c: &JointConstraint, settings: DistanceJoint, h: Real) -> 
     };
     let (ma, ia, mb, ib) = c.masses();
     let (cra, crb) = (cross(ra, axis), cross(rb, axis));
-    let spring = settings.spring.map_or(Softness::new(0.0, 0.0, h), |s| {
-        Softness::new(s.hertz, s.damping_ratio, h)
-    });
+    let spring = spring_softness(settings.spring, h);
     Prepared {
         settings,
         axis,

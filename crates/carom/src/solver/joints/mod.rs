@@ -391,6 +391,14 @@ fn solve22([k11, k12, k22]: [Real; 3], rhs: Vec2) -> Vec2 {
     )
 }
 
+/// A joint spring's softness for (sub)steps of `h`; no spring is none (0 Hz: no force).
+#[inline]
+fn spring_softness(spring: Option<crate::joint::Spring>, h: Real) -> Softness {
+    spring.map_or(Softness::new(0.0, 0.0, h), |s| {
+        Softness::new(s.hertz, s.damping_ratio, h)
+    })
+}
+
 /// `1 / k`, or 0 when nothing can move (`k` is 0).
 #[inline]
 fn inverse_or_zero(k: Real) -> Real {

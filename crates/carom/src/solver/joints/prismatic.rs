@@ -6,7 +6,7 @@
 //! The axis and lever arms are taken from the bodies' motion so far in the step, at every
 //! pass: `d` from A's anchor to B's, lever arms `a1 = (rA + d) × axis`, `a2 = rB × axis`.
 
-use super::{JointConstraint, JointPass, inverse_or_zero, solve22};
+use super::{JointConstraint, JointPass, inverse_or_zero, solve22, spring_softness};
 use crate::joint::PrismaticJoint;
 use crate::math::{Real, Vec2, cross, cross_sv};
 use crate::solver::{BodyState, Softness};
@@ -18,9 +18,7 @@ pub(super) struct Prepared {
 }
 
 pub(super) fn prepare(_c: &JointConstraint, settings: PrismaticJoint, h: Real) -> Prepared {
-    let spring = settings.spring.map_or(Softness::new(0.0, 0.0, h), |s| {
-        Softness::new(s.hertz, s.damping_ratio, h)
-    });
+    let spring = spring_softness(settings.spring, h);
     Prepared { settings, spring }
 }
 

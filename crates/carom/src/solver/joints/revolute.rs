@@ -3,7 +3,7 @@
 //! Box2D's order: spring, motor, limits, then the point, so the point constraint, which
 //! matters most, has the last word.
 
-use super::{JointConstraint, JointPass, inverse_or_zero, solve22};
+use super::{JointConstraint, JointPass, inverse_or_zero, solve22, spring_softness};
 use crate::joint::RevoluteJoint;
 use crate::math::{Real, unwind_angle};
 use crate::solver::{BodyState, Softness};
@@ -18,9 +18,7 @@ pub(super) struct Prepared {
 
 pub(super) fn prepare(c: &JointConstraint, settings: RevoluteJoint, h: Real) -> Prepared {
     let (_, ia, _, ib) = c.masses();
-    let spring = settings.spring.map_or(Softness::new(0.0, 0.0, h), |s| {
-        Softness::new(s.hertz, s.damping_ratio, h)
-    });
+    let spring = spring_softness(settings.spring, h);
     Prepared {
         settings,
         axial_mass: inverse_or_zero(ia + ib),

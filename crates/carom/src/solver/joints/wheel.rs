@@ -3,7 +3,7 @@
 //! a motor. Solved in Box2D's order: motor, spring, limits, then the line.
 
 use super::prismatic::{Slide, axial_impulse};
-use super::{JointConstraint, JointPass, inverse_or_zero};
+use super::{JointConstraint, JointPass, inverse_or_zero, spring_softness};
 use crate::joint::WheelJoint;
 use crate::math::Real;
 use crate::solver::{BodyState, Softness};
@@ -18,9 +18,7 @@ pub(super) struct Prepared {
 
 pub(super) fn prepare(c: &JointConstraint, settings: WheelJoint, h: Real) -> Prepared {
     let (_, ia, _, ib) = c.masses();
-    let spring = settings.spring.map_or(Softness::new(0.0, 0.0, h), |s| {
-        Softness::new(s.hertz, s.damping_ratio, h)
-    });
+    let spring = spring_softness(settings.spring, h);
     Prepared {
         settings,
         spring,
