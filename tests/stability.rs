@@ -737,9 +737,9 @@ fn a_bridge_carries_a_load_without_stretching() {
 
 /// The ragdolls scene: 20 ragdolls dropped into a pile. How far any hinge comes apart and
 /// how far past its limits any turns, at worst over 10 s (the elbows and knees start past
-/// theirs, as in Box2D), at the scene's 8 substeps and 120 Hz joints. Box2D 3.2, same recipe
-/// (capsules where carom has boxes), 4 substeps: 6.9 cm and 31.2° at worst; soft step at
-/// those settings: 7.8 cm and 25.9°. The worst of it is the first impacts, heads and torsos
+/// theirs, as in Box2D), at Box2D's settings (4 substeps, 60 Hz joints). Box2D 3.2 on the same
+/// recipe (`carom-bench hard-cases --case ragdolls`): 7.4 cm and 11.4°; with capsules, as its
+/// sample has them, 6.9 cm and 31.2°. The worst of it is the first impacts, heads and torsos
 /// of 30 g and 80 g struck at up to 10 m/s; both bars are known misses.
 #[test]
 fn ragdolls_pile_up_without_coming_apart() {

@@ -48,6 +48,11 @@ pub trait CaseWorld {
     /// # Errors
     /// The engine no longer holds the body.
     fn body_position(&mut self, i: usize) -> Res<[f32; 2]>;
+    /// Angle of body `i`, rad.
+    ///
+    /// # Errors
+    /// The engine no longer holds the body.
+    fn body_angle(&mut self, i: usize) -> Res<f32>;
     /// Linear and angular velocity of body `i`.
     ///
     /// # Errors
@@ -109,6 +114,10 @@ impl CaseWorld for World {
         Ok([p.x, p.y])
     }
 
+    fn body_angle(&mut self, i: usize) -> Res<f32> {
+        Ok(nth(self, i)?.angle())
+    }
+
     fn body_velocity(&mut self, i: usize) -> Res<([f32; 2], f32)> {
         let b = nth(self, i)?;
         let v = b.linear_velocity();
@@ -167,6 +176,10 @@ impl CaseWorld for Box2dWorld {
 
     fn body_position(&mut self, i: usize) -> Res<[f32; 2]> {
         self.position(i)
+    }
+
+    fn body_angle(&mut self, i: usize) -> Res<f32> {
+        self.angle(i)
     }
 
     fn body_velocity(&mut self, i: usize) -> Res<([f32; 2], f32)> {
@@ -433,6 +446,26 @@ pub fn cases() -> Vec<Case> {
             name: "random_worlds",
             title: "random worlds, 4 seeds x 2000 steps",
             run: |e, _, o| random_worlds(e, o),
+        },
+        Case {
+            name: "pendulum",
+            title: "pendulum from 10°, 60 s (demos/pendulum.ron)",
+            run: |e, _, o| pendulum(e, o),
+        },
+        Case {
+            name: "chain",
+            title: "chain of 40 links holding 50 kg, 4 substeps and 60 Hz joints",
+            run: |e, _, o| chain(e, o),
+        },
+        Case {
+            name: "bridge",
+            title: "bridge of 160 planks with 30 boxes, 4 substeps and 60 Hz joints",
+            run: |e, _, o| bridge(e, o),
+        },
+        Case {
+            name: "ragdolls",
+            title: "20 ragdolls in a pile, 4 substeps and 60 Hz joints",
+            run: |e, _, o| ragdolls(e, o),
         },
     ]
 }
@@ -951,4 +984,171 @@ pub fn markdown(results: &[CaseResult]) -> String {
         }
     }
     s
+}
+
+// Joints. The joint scenes run at soft step's defaults, Box2D's (4 substeps, 60 Hz joints),
+// whatever the scene asks, so both engines are measured at the same settings; the scenes' own
+// stiffer settings are `tests/stability.rs`'s business.
+
+/// A joint as the measures need it: its bodies (dense indices), its anchors in their frames,
+/// and a hinge's reference angle and limits.
+struct JointInfo {
+    bodies: [usize; 2],
+    anchors: [[f32; 2]; 2],
+    reference_angle: f32,
+    limits: Option<(f32, f32)>,
+    hinge: bool,
+}
+
+/// A demo scene at soft step's defaults, and its joints.
+fn joint_scene(name: &str) -> Res<(carom_scene::SceneWorld, Vec<JointInfo>)> {
+    let mut scene = worlds::scene(name, soft_step());
+    scene
+        .world
+        .set_solver(soft_step())
+        .map_err(|e| e.to_string())?;
+    let world = &scene.world;
+    let mut joints = Vec::new();
+    for joint in world.joints() {
+        let [a, b] = joint.bodies();
+        let [la, lb] = joint.local_anchors();
+        let (hinge, limits) = match joint.kind() {
+            carom::JointKind::Revolute(r) => (true, r.limits.map(|l| (l.lower, l.upper))),
+            _ => (false, None),
+        };
+        joints.push(JointInfo {
+            bodies: [index(world, a)?, index(world, b)?],
+            anchors: [[la.x, la.y], [lb.x, lb.y]],
+            reference_angle: joint.reference_angle(),
+            limits,
+            hinge,
+        });
+    }
+    Ok((scene, joints))
+}
+
+/// Where body `i`'s point `local` (in its frame) is in the world.
+fn world_point(w: &mut dyn CaseWorld, i: usize, local: [f32; 2]) -> Res<[f32; 2]> {
+    let p = w.body_position(i)?;
+    let (sin, cos) = w.body_angle(i)?.sin_cos();
+    Ok([
+        p[0] + cos * local[0] - sin * local[1],
+        p[1] + sin * local[0] + cos * local[1],
+    ])
+}
+
+/// The distance between a joint's two anchors, m.
+fn joint_gap(w: &mut dyn CaseWorld, joint: &JointInfo) -> Res<f64> {
+    let a = world_point(w, joint.bodies[0], joint.anchors[0])?;
+    let b = world_point(w, joint.bodies[1], joint.anchors[1])?;
+    Ok(distance(a, b))
+}
+
+/// How far past its limits a hinge has turned, rad.
+fn limit_violation(w: &mut dyn CaseWorld, joint: &JointInfo) -> Res<f64> {
+    let Some((lower, upper)) = joint.limits else {
+        return Ok(0.0);
+    };
+    let relative = w.body_angle(joint.bodies[1])? - w.body_angle(joint.bodies[0])?;
+    let angle = carom_unwind(relative - joint.reference_angle);
+    Ok(f64::from((lower - angle).max(angle - upper).max(0.0)))
+}
+
+/// `angle` brought into `[-π, π]`.
+fn carom_unwind(angle: f32) -> f32 {
+    use std::f32::consts::{PI, TAU};
+    angle - TAU * ((angle + PI) / TAU).floor()
+}
+
+fn pendulum(engine: Engine, o: &mut Outcome) -> Res<()> {
+    let (scene, joints) = joint_scene("pendulum")?;
+    let bob = index(&scene.world, scene.names["bob"])?;
+    on(engine, scene.world, |w| {
+        let mut crossings = Vec::new();
+        let mut last = w.body_position(bob)?[0];
+        for step in 1..=3600 {
+            w.advance(DT)?;
+            let x = w.body_position(bob)?[0];
+            if last < 0.0 && x >= 0.0 {
+                let t = (step as f64 - 1.0 + f64::from(-last / (x - last))) * f64::from(DT);
+                crossings.push(t);
+            }
+            last = x;
+        }
+        let periods = crossings.len().saturating_sub(1).max(1) as f64;
+        let period =
+            (crossings.last().unwrap_or(&0.0) - crossings.first().unwrap_or(&0.0)) / periods;
+        // A physical pendulum: the bob's own inertia included.
+        let (length, radius, theta) = (1.0_f64, 0.05_f64, 10.0_f64.to_radians());
+        let expected = 2.0
+            * std::f64::consts::PI
+            * ((1.0 + radius * radius / (2.0 * length * length)) * length / 10.0).sqrt()
+            * (1.0 + theta * theta / 16.0);
+        o.bar(
+            "period error %",
+            Bar::Below(0.5),
+            100.0 * (period - expected).abs() / expected,
+        );
+        o.figure("hinge gap m", joint_gap(w, &joints[0])?);
+        o.check_finite(w)
+    })
+}
+
+fn chain(engine: Engine, o: &mut Outcome) -> Res<()> {
+    let (scene, joints) = joint_scene("chain")?;
+    let ball = index(&scene.world, scene.names["ball"])?;
+    let held = joints
+        .iter()
+        .position(|j| j.bodies[1] == ball)
+        .ok_or("the ball hangs by a joint")?;
+    let anchor = joints[held].anchors[1];
+    on(engine, scene.world, |w| {
+        let mut worst: f64 = 0.0;
+        for _ in 0..600 {
+            w.advance(DT)?;
+            let at = world_point(w, ball, anchor)?;
+            worst = worst.max(100.0 * (distance(at, [0.0, 0.0]) - 20.0) / 20.0);
+        }
+        o.bar("worst stretch %", Bar::Below(1.0), worst);
+        let at = world_point(w, ball, anchor)?;
+        o.figure(
+            "stretch at 10 s %",
+            100.0 * (distance(at, [0.0, 0.0]) - 20.0) / 20.0,
+        );
+        o.check_finite(w)
+    })
+}
+
+fn bridge(engine: Engine, o: &mut Outcome) -> Res<()> {
+    let (scene, joints) = joint_scene("bridge")?;
+    on(engine, scene.world, |w| {
+        let mut worst: f64 = 0.0;
+        for _ in 0..600 {
+            w.advance(DT)?;
+            let mut gaps = 0.0;
+            for joint in &joints {
+                gaps += joint_gap(w, joint)?;
+            }
+            worst = worst.max(100.0 * gaps / 160.0);
+        }
+        o.bar("worst stretch %", Bar::Below(2.0), worst);
+        o.check_finite(w)
+    })
+}
+
+fn ragdolls(engine: Engine, o: &mut Outcome) -> Res<()> {
+    let (scene, joints) = joint_scene("ragdolls")?;
+    on(engine, scene.world, |w| {
+        let (mut gap, mut past): (f64, f64) = (0.0, 0.0);
+        for _ in 0..600 {
+            w.advance(DT)?;
+            for joint in joints.iter().filter(|j| j.hinge) {
+                gap = gap.max(joint_gap(w, joint)?);
+                past = past.max(limit_violation(w, joint)?.to_degrees());
+            }
+        }
+        o.bar("worst hinge gap m", Bar::Below(0.02), gap);
+        o.bar("worst past a limit deg", Bar::Below(5.0), past);
+        o.check_finite(w)
+    })
 }

@@ -110,7 +110,7 @@ pub(crate) const MAX_CORRECTION: Real = 0.2;
 pub(crate) const MAX_CONDITION: Real = 1000.0;
 
 /// Soft step: colours joints may take before the overflow. Joints are coloured apart from
-/// contacts, in colours of their own solved first in each pass.
+/// contacts, in colours of their own solved after the contacts' in each pass.
 pub(crate) const JOINT_COLOR_COUNT: usize = 12;
 
 /// Joints per block, at least, when a joint colour is shared among threads.

@@ -4,10 +4,11 @@
 //! damped spring closes a joint's drift), rigid in the relaxation, so the push back into
 //! place leaves no energy behind. Each kind's equations are in its own file.
 //!
-//! Soft step solves the joints before the contacts in each pass, in colours of their own: no
+//! Soft step solves the joints after the contacts in each pass, in colours of their own: no
 //! two joints of a colour share a dynamic body, so a colour's joints are solved on several
-//! threads at once ([`color_joints`]). Sequential impulse solves them one by one with
-//! Baumgarte's bias instead of softness (see [`JointPass::baumgarte`]).
+//! threads at once ([`JointColors::order`]). Sequential impulse solves them one by one,
+//! rigidly, and closes their drift in its position passes
+//! ([`JointConstraint::correct_positions`]).
 
 mod distance;
 mod motor;
