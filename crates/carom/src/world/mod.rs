@@ -546,9 +546,10 @@ impl World {
     /// The stages, in order, each over the awake set only: find new pairs in the broadphase;
     /// build contact manifolds in the narrowphase (waking the sleeping islands a moving body
     /// touched, joining the islands of contacts that started touching); solve (integrate
-    /// forces into velocities, resolve contacts colour by colour, integrate positions, in
-    /// substeps for soft step); continuous collision for fast bodies; place the moved
-    /// colliders and refresh the broadphase from them; put resting islands to sleep.
+    /// forces into velocities, resolve contacts and then joints colour by colour, integrate
+    /// positions, in substeps for soft step); remove the joints pulled past their break
+    /// thresholds; continuous collision for fast bodies; place the moved colliders and refresh
+    /// the broadphase from them; put resting islands to sleep.
     ///
     /// # Errors
     /// A time step that is not finite and positive; the world is left untouched.
