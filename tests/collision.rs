@@ -599,3 +599,78 @@ fn collision_filters_pick_the_pairs_that_collide() {
         assert!(world.contains(first));
     }
 }
+
+/// The world's box and shape queries find exactly what a search of every collider finds, in
+/// random worlds, for random boxes and shapes, with and without a filter.
+#[test]
+fn box_and_shape_queries_agree_with_brute_force() {
+    use carom::{Aabb, CollisionFilter, Effects};
+    let mut rng = Rng::new(0x9e7);
+    let odd = CollisionFilter {
+        category: 2,
+        mask: 1,
+        group: 0,
+    };
+    // Finds colliders of category 1 only: not the odd ones.
+    let plain = CollisionFilter {
+        category: 1,
+        mask: 1,
+        group: 0,
+    };
+    for seed in 0..8 {
+        let mut world = World::new();
+        world.set_effects(Effects::NONE);
+        for i in 0..120 {
+            let shape = if i % 2 == 0 {
+                Shape::circle(rng.range(0.1, 0.8))
+            } else {
+                Shape::regular(3 + rng.below(5), rng.range(0.2, 0.9)).unwrap()
+            };
+            let at = vec2(rng.range(-15.0, 15.0), rng.range(-15.0, 15.0));
+            let filter = if i % 5 == 0 {
+                odd
+            } else {
+                CollisionFilter::DEFAULT
+            };
+            let def = if i % 3 == 0 {
+                BodyDef::static_body(shape)
+            } else {
+                BodyDef::dynamic(shape)
+            };
+            world
+                .add_body(def.position(at).angle(rng.range(0.0, 6.0)).filter(filter))
+                .unwrap();
+        }
+        world.step(1.0 / 60.0).unwrap();
+        let mut found_any = 0;
+        for _ in 0..40 {
+            let (x, y) = (rng.range(-16.0, 16.0), rng.range(-16.0, 16.0));
+            let (w, h) = (rng.range(0.0, 6.0), rng.range(0.0, 6.0));
+            let probe = Aabb::new(vec2(x, y), vec2(x + w, y + h));
+            let shape = WorldShape::at(
+                &Shape::regular(3 + rng.below(5), rng.range(0.3, 3.0)).unwrap(),
+                vec2(x, y),
+                rng.range(0.0, 6.0),
+            );
+            for filter in [CollisionFilter::DEFAULT, plain] {
+                let wanted = |c: &carom::Collider| filter.collides_with(&c.filter());
+                let mut boxes: Vec<_> = world
+                    .colliders()
+                    .filter(|c| wanted(c) && c.aabb().overlaps(&probe))
+                    .map(|c| world.body(c.body()).unwrap().colliders()[0])
+                    .collect();
+                boxes.sort_unstable_by_key(|h| h.index());
+                assert_eq!(world.query_aabb(&probe, filter), boxes, "seed {seed}");
+                let mut shapes: Vec<_> = world
+                    .colliders()
+                    .filter(|c| wanted(c) && separation(&shape, c.world_shape()).separation <= 0.0)
+                    .map(|c| world.body(c.body()).unwrap().colliders()[0])
+                    .collect();
+                shapes.sort_unstable_by_key(|h| h.index());
+                assert_eq!(world.query_shape(&shape, filter), shapes, "seed {seed}");
+                found_any += shapes.len();
+            }
+        }
+        assert!(found_any > 20, "the queries hit something: {found_any}");
+    }
+}

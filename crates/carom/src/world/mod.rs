@@ -4,6 +4,7 @@ pub(crate) mod body_mut;
 pub(crate) mod effects;
 pub(crate) mod islands;
 pub(crate) mod joints;
+pub(crate) mod queries;
 pub(crate) mod settings;
 pub(crate) mod solver_sets;
 
