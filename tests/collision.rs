@@ -674,3 +674,82 @@ fn box_and_shape_queries_agree_with_brute_force() {
         assert!(found_any > 20, "the queries hit something: {found_any}");
     }
 }
+
+/// Ray casts find every collider a ray enters, nearest first, and the closest of those
+/// allowed by a filter, as casting against every collider does, in random worlds.
+#[test]
+fn ray_casts_agree_with_brute_force() {
+    use carom::{CollisionFilter, Effects, Ray};
+    let mut rng = Rng::new(0x4a7);
+    let odd = CollisionFilter {
+        category: 2,
+        mask: 1,
+        group: 0,
+    };
+    let plain = CollisionFilter {
+        category: 1,
+        mask: 1,
+        group: 0,
+    };
+    let mut hits_seen = 0;
+    for seed in 0..6 {
+        let mut world = World::new();
+        world.set_effects(Effects::NONE);
+        for i in 0..100 {
+            let shape = if i % 2 == 0 {
+                Shape::circle(rng.range(0.1, 0.8))
+            } else {
+                Shape::regular(3 + rng.below(5), rng.range(0.2, 0.9)).unwrap()
+            };
+            let at = vec2(rng.range(-15.0, 15.0), rng.range(-15.0, 15.0));
+            let filter = if i % 4 == 0 {
+                odd
+            } else {
+                CollisionFilter::DEFAULT
+            };
+            world
+                .add_body(
+                    BodyDef::dynamic(shape)
+                        .position(at)
+                        .angle(rng.range(0.0, 6.0))
+                        .filter(filter),
+                )
+                .unwrap();
+        }
+        world.step(1.0 / 60.0).unwrap();
+        for _ in 0..60 {
+            let origin = vec2(rng.range(-18.0, 18.0), rng.range(-18.0, 18.0));
+            let ray = Ray::new(origin, vec2(rng.range(-30.0, 30.0), rng.range(-30.0, 30.0)));
+            for filter in [CollisionFilter::DEFAULT, plain] {
+                // Every collider, cast in its body's frame (each body is one shape at its
+                // origin).
+                let mut expected: Vec<(f32, carom::BodyHandle)> = world
+                    .colliders()
+                    .filter(|c| filter.collides_with(&c.filter()))
+                    .filter_map(|c| {
+                        let body = world.body(c.body()).unwrap();
+                        let inverse = body.rotation().inverse();
+                        let local =
+                            Ray::new(body.local_point(ray.origin), inverse * ray.translation);
+                        c.shape()
+                            .ray_cast_local(&local)
+                            .map(|h| (h.fraction, c.body()))
+                    })
+                    .collect();
+                expected.sort_by(|a, b| a.0.total_cmp(&b.0));
+                let all: Vec<(f32, carom::BodyHandle)> = world
+                    .cast_ray_all(&ray, filter)
+                    .iter()
+                    .map(|h| (h.fraction, h.body))
+                    .collect();
+                assert_eq!(all, expected, "seed {seed}");
+                let closest = world
+                    .cast_ray_filtered(&ray, filter)
+                    .map(|h| (h.fraction, h.body));
+                assert_eq!(closest, expected.first().copied(), "seed {seed}");
+                hits_seen += all.len();
+            }
+        }
+    }
+    assert!(hits_seen > 50, "the rays hit something: {hits_seen}");
+}

@@ -22,7 +22,6 @@ use crate::dynamics::drag::DragModel;
 use crate::dynamics::island::Islands;
 use crate::error::{CaromError, check_finite_vec};
 use crate::geometry::aabb::Aabb;
-use crate::geometry::ray::Ray;
 use crate::geometry::shape::WorldShape;
 use crate::handle_map::HandleMap;
 use crate::joint::store::JointStore;
@@ -841,42 +840,6 @@ impl World {
         found.dedup();
         found
     }
-
-    /// The first collider the ray enters, if any.
-    pub fn cast_ray(&self, ray: &Ray) -> Option<WorldRayHit> {
-        if !(crate::math::is_finite_vec(ray.origin) && crate::math::is_finite_vec(ray.translation))
-        {
-            return None;
-        }
-        let mut best: Option<WorldRayHit> = None;
-        self.broadphase
-            .ray_cast(ray.origin, ray.translation, |handle, reach| {
-                let (Some(collider), Some(body)) = (
-                    self.colliders.get(handle),
-                    self.colliders
-                        .get(handle)
-                        .and_then(|c| self.bodies.get(c.body())),
-                ) else {
-                    return reach;
-                };
-                let inverse = body.rotation().inverse();
-                let local = Ray::new(body.local_point(ray.origin), inverse * ray.translation);
-                if let Some(hit) = collider.ray_cast_body_frame(&local)
-                    && hit.fraction <= reach
-                    && best.is_none_or(|b| hit.fraction < b.fraction)
-                {
-                    best = Some(WorldRayHit {
-                        body: body.handle(),
-                        collider: handle,
-                        point: ray.at(hit.fraction),
-                        normal: body.rotation() * hit.normal,
-                        fraction: hit.fraction,
-                    });
-                }
-                best.map_or(reach, |b| b.fraction)
-            });
-        best
-    }
 }
 
 /// A collider's box, grown to cover where its body can take it in `time` at its present
@@ -945,6 +908,7 @@ impl World {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::ray::Ray;
     use crate::geometry::shape::Shape;
     use crate::math::vec2;
 
