@@ -2,7 +2,7 @@
 //! step to step. Counted by an instrumented global allocator, so this file holds one test (the
 //! count is process-wide).
 
-use carom::{BodyDef, Effect, Effects, JointDef, Shape, World, WorldSettings, vec2};
+use carom::{BodyDef, Effect, Effects, Shape, World, WorldSettings, vec2};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 use std::alloc::System;
 
@@ -50,35 +50,7 @@ fn pyramid(base: usize, effects: Effects) -> World {
 /// the same pyramid of 20.
 fn hanging_grid(effects: Effects) -> World {
     let mut world = pyramid(20, effects);
-    let n = 30;
-    let mut grid = Vec::new();
-    for i in 0..n {
-        for k in 0..n {
-            let at = vec2(40.0 + k as f32, 40.0 - i as f32);
-            let shape = Shape::circle(0.4);
-            let def = if i == 0 && (k == 0 || k == n - 1) {
-                BodyDef::static_body(shape)
-            } else {
-                BodyDef::dynamic(shape)
-            };
-            grid.push(world.add_body(def.position(at)).unwrap());
-        }
-    }
-    for i in 0..n {
-        for k in 0..n {
-            let at = vec2(40.0 + k as f32, 40.0 - i as f32);
-            if i > 0 {
-                let def =
-                    JointDef::revolute(grid[(i - 1) * n + k], grid[i * n + k], at + vec2(0.0, 0.5));
-                world.add_joint(def).unwrap();
-            }
-            if k > 0 {
-                let def =
-                    JointDef::revolute(grid[i * n + k - 1], grid[i * n + k], at - vec2(0.5, 0.0));
-                world.add_joint(def).unwrap();
-            }
-        }
-    }
+    carom_tests::hanging_grid(&mut world, vec2(40.0, 40.0), 30);
     world
 }
 

@@ -600,48 +600,59 @@ fn collision_filters_pick_the_pairs_that_collide() {
     }
 }
 
+/// A filter that only category-1 colliders collide with ("odd" ones), and one that finds only
+/// category-1 colliders.
+const ODD: carom::CollisionFilter = carom::CollisionFilter {
+    category: 2,
+    mask: 1,
+    group: 0,
+};
+const PLAIN: carom::CollisionFilter = carom::CollisionFilter {
+    category: 1,
+    mask: 1,
+    group: 0,
+};
+
+/// `count` circles and regular polygons scattered over 30 x 30 m at random angles, every
+/// `odd_every`th [`ODD`], every `static_every`th static (0: none), stepped once so their
+/// boxes are placed; nothing simulated.
+fn scattered_world(rng: &mut Rng, count: usize, odd_every: usize, static_every: usize) -> World {
+    use carom::{CollisionFilter, Effects};
+    let mut world = World::new();
+    world.set_effects(Effects::NONE);
+    for i in 0..count {
+        let shape = if i % 2 == 0 {
+            Shape::circle(rng.range(0.1, 0.8))
+        } else {
+            Shape::regular(3 + rng.below(5), rng.range(0.2, 0.9)).unwrap()
+        };
+        let at = vec2(rng.range(-15.0, 15.0), rng.range(-15.0, 15.0));
+        let filter = if i % odd_every == 0 {
+            ODD
+        } else {
+            CollisionFilter::DEFAULT
+        };
+        let def = if static_every > 0 && i % static_every == 0 {
+            BodyDef::static_body(shape)
+        } else {
+            BodyDef::dynamic(shape)
+        };
+        world
+            .add_body(def.position(at).angle(rng.range(0.0, 6.0)).filter(filter))
+            .unwrap();
+    }
+    world.step(1.0 / 60.0).unwrap();
+    world
+}
+
 /// The world's box and shape queries find exactly what a search of every collider finds, in
 /// random worlds, for random boxes and shapes, with and without a filter.
 #[test]
 fn box_and_shape_queries_agree_with_brute_force() {
-    use carom::{Aabb, CollisionFilter, Effects};
+    use carom::{Aabb, CollisionFilter};
     let mut rng = Rng::new(0x9e7);
-    let odd = CollisionFilter {
-        category: 2,
-        mask: 1,
-        group: 0,
-    };
-    // Finds colliders of category 1 only: not the odd ones.
-    let plain = CollisionFilter {
-        category: 1,
-        mask: 1,
-        group: 0,
-    };
     for seed in 0..8 {
-        let mut world = World::new();
-        world.set_effects(Effects::NONE);
-        for i in 0..120 {
-            let shape = if i % 2 == 0 {
-                Shape::circle(rng.range(0.1, 0.8))
-            } else {
-                Shape::regular(3 + rng.below(5), rng.range(0.2, 0.9)).unwrap()
-            };
-            let at = vec2(rng.range(-15.0, 15.0), rng.range(-15.0, 15.0));
-            let filter = if i % 5 == 0 {
-                odd
-            } else {
-                CollisionFilter::DEFAULT
-            };
-            let def = if i % 3 == 0 {
-                BodyDef::static_body(shape)
-            } else {
-                BodyDef::dynamic(shape)
-            };
-            world
-                .add_body(def.position(at).angle(rng.range(0.0, 6.0)).filter(filter))
-                .unwrap();
-        }
-        world.step(1.0 / 60.0).unwrap();
+        let world = scattered_world(&mut rng, 120, 5, 3);
         let mut found_any = 0;
         for _ in 0..40 {
             let (x, y) = (rng.range(-16.0, 16.0), rng.range(-16.0, 16.0));
@@ -652,7 +663,7 @@ fn box_and_shape_queries_agree_with_brute_force() {
                 vec2(x, y),
                 rng.range(0.0, 6.0),
             );
-            for filter in [CollisionFilter::DEFAULT, plain] {
+            for filter in [CollisionFilter::DEFAULT, PLAIN] {
                 let wanted = |c: &carom::Collider| filter.collides_with(&c.filter());
                 let mut boxes: Vec<_> = world
                     .colliders()
@@ -679,48 +690,15 @@ fn box_and_shape_queries_agree_with_brute_force() {
 /// allowed by a filter, as casting against every collider does, in random worlds.
 #[test]
 fn ray_casts_agree_with_brute_force() {
-    use carom::{CollisionFilter, Effects, Ray};
+    use carom::{CollisionFilter, Ray};
     let mut rng = Rng::new(0x4a7);
-    let odd = CollisionFilter {
-        category: 2,
-        mask: 1,
-        group: 0,
-    };
-    let plain = CollisionFilter {
-        category: 1,
-        mask: 1,
-        group: 0,
-    };
     let mut hits_seen = 0;
     for seed in 0..6 {
-        let mut world = World::new();
-        world.set_effects(Effects::NONE);
-        for i in 0..100 {
-            let shape = if i % 2 == 0 {
-                Shape::circle(rng.range(0.1, 0.8))
-            } else {
-                Shape::regular(3 + rng.below(5), rng.range(0.2, 0.9)).unwrap()
-            };
-            let at = vec2(rng.range(-15.0, 15.0), rng.range(-15.0, 15.0));
-            let filter = if i % 4 == 0 {
-                odd
-            } else {
-                CollisionFilter::DEFAULT
-            };
-            world
-                .add_body(
-                    BodyDef::dynamic(shape)
-                        .position(at)
-                        .angle(rng.range(0.0, 6.0))
-                        .filter(filter),
-                )
-                .unwrap();
-        }
-        world.step(1.0 / 60.0).unwrap();
+        let world = scattered_world(&mut rng, 100, 4, 0);
         for _ in 0..60 {
             let origin = vec2(rng.range(-18.0, 18.0), rng.range(-18.0, 18.0));
             let ray = Ray::new(origin, vec2(rng.range(-30.0, 30.0), rng.range(-30.0, 30.0)));
-            for filter in [CollisionFilter::DEFAULT, plain] {
+            for filter in [CollisionFilter::DEFAULT, PLAIN] {
                 // Every collider, cast in its body's frame (each body is one shape at its
                 // origin).
                 let mut expected: Vec<(f32, carom::BodyHandle)> = world

@@ -89,6 +89,40 @@ pub fn world_shape(world: &World, body: BodyHandle) -> &WorldShape {
         .world_shape()
 }
 
+/// Adds an `n` x `n` grid of circles of radius 0.4, 1 m apart, its first at `origin` and its
+/// rows going down, each joined to its neighbours by hinges at the midpoints and hung from
+/// the two top corners (static): `2 n (n - 1)` joints.
+pub fn hanging_grid(world: &mut World, origin: carom::Vec2, n: usize) {
+    let at = |i: usize, k: usize| origin + carom::vec2(k as f32, -(i as f32));
+    let mut grid = Vec::with_capacity(n * n);
+    for i in 0..n {
+        for k in 0..n {
+            let shape = carom::Shape::circle(0.4);
+            let def = if i == 0 && (k == 0 || k == n - 1) {
+                carom::BodyDef::static_body(shape)
+            } else {
+                carom::BodyDef::dynamic(shape)
+            };
+            grid.push(world.add_body(def.position(at(i, k))).unwrap());
+        }
+    }
+    for i in 0..n {
+        for k in 0..n {
+            let here = grid[i * n + k];
+            if i > 0 {
+                let above = grid[(i - 1) * n + k];
+                let def = carom::JointDef::revolute(above, here, at(i, k) + carom::vec2(0.0, 0.5));
+                world.add_joint(def).unwrap();
+            }
+            if k > 0 {
+                let left = grid[i * n + k - 1];
+                let def = carom::JointDef::revolute(left, here, at(i, k) - carom::vec2(0.5, 0.0));
+                world.add_joint(def).unwrap();
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::Rng;

@@ -147,36 +147,7 @@ fn joints_give_the_same_world_on_every_thread_count() {
         pool.install(|| {
             let mut world = World::new();
             let n = 40;
-            let mut grid = Vec::new();
-            for i in 0..n {
-                for k in 0..n {
-                    let fixed = i == 0 && (k == 0 || k == n - 1);
-                    let shape = Shape::circle(0.4);
-                    let at = vec2(k as f32, -(i as f32));
-                    let def = if fixed {
-                        BodyDef::static_body(shape)
-                    } else {
-                        BodyDef::dynamic(shape)
-                    };
-                    grid.push(world.add_body(def.position(at)).unwrap());
-                }
-            }
-            for i in 0..n {
-                for k in 0..n {
-                    let here = grid[i * n + k];
-                    let at = vec2(k as f32, -(i as f32));
-                    if i > 0 {
-                        let above = grid[(i - 1) * n + k];
-                        let def = carom::JointDef::revolute(above, here, at + vec2(0.0, 0.5));
-                        world.add_joint(def).unwrap();
-                    }
-                    if k > 0 {
-                        let left = grid[i * n + k - 1];
-                        let def = carom::JointDef::revolute(left, here, at - vec2(0.5, 0.0));
-                        world.add_joint(def).unwrap();
-                    }
-                }
-            }
+            carom_tests::hanging_grid(&mut world, vec2(0.0, 0.0), n);
             for _ in 0..60 {
                 world.step(1.0 / 60.0).unwrap();
             }
