@@ -1050,14 +1050,9 @@ fn limit_violation(w: &mut dyn CaseWorld, joint: &JointInfo) -> Res<f64> {
         return Ok(0.0);
     };
     let relative = w.body_angle(joint.bodies[1])? - w.body_angle(joint.bodies[0])?;
-    let angle = carom_unwind(relative - joint.reference_angle);
+    // The angle brought into [-π, π], as carom's `Joint::angle` measures it.
+    let angle = carom::Rot::new(relative - joint.reference_angle).angle();
     Ok(f64::from((lower - angle).max(angle - upper).max(0.0)))
-}
-
-/// `angle` brought into `[-π, π]`.
-fn carom_unwind(angle: f32) -> f32 {
-    use std::f32::consts::{PI, TAU};
-    angle - TAU * ((angle + PI) / TAU).floor()
 }
 
 fn pendulum(engine: Engine, o: &mut Outcome) -> Res<()> {

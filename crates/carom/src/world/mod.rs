@@ -724,9 +724,8 @@ impl World {
             else {
                 continue;
             };
-            if !collider_a.filter().collides_with(&collider_b.filter())
-                || self.joints.filters(collider_a.body(), collider_b.body())
-            {
+            // Collision filters were applied by the broadphase; joints are a world matter.
+            if self.joints.filters(collider_a.body(), collider_b.body()) {
                 continue;
             }
             let sets = self.body_sets;

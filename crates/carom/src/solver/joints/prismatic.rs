@@ -107,6 +107,36 @@ pub(super) fn axial_impulse(
     );
 }
 
+/// A stop along `axis` with lever arms `arms`: the lower one pushes B along the axis, the
+/// upper one (`upper`) back against it; the accumulated impulse only ever pushes.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn stop(
+    c: &JointConstraint,
+    a: &mut BodyState,
+    b: &mut BodyState,
+    axis: Vec2,
+    arms: (Real, Real),
+    scales: (Real, Real, Real),
+    accumulated: &mut Real,
+    upper: bool,
+) {
+    let (axis, arms) = if upper {
+        (-axis, (-arms.0, -arms.1))
+    } else {
+        (axis, arms)
+    };
+    axial_impulse(
+        c,
+        a,
+        b,
+        axis,
+        arms,
+        scales,
+        accumulated,
+        (0.0, Real::INFINITY),
+    );
+}
+
 pub(super) fn warm_start(c: &JointConstraint, p: &Prepared, a: &mut BodyState, b: &mut BodyState) {
     let slide = Slide::now(c, a, b, p.settings.axis);
     let (a1, a2) = slide.arms(slide.axis);
@@ -155,28 +185,26 @@ pub(super) fn solve(
     if let Some(limits) = settings.limits {
         // Only near a limit: further away, a stop would only slow the slide.
         let near = 0.25 * (limits.upper - limits.lower);
-        let stop = (0.0, Real::INFINITY);
         let lower = translation - limits.lower;
         if lower < near {
             let scales = pass.limit(lower.min(1.0));
-            axial_impulse(c, a, b, slide.axis, arms, scales, &mut impulses.lower, stop);
+            stop(
+                c,
+                a,
+                b,
+                slide.axis,
+                arms,
+                scales,
+                &mut impulses.lower,
+                false,
+            );
         } else {
             impulses.lower = 0.0;
         }
         let upper = limits.upper - translation;
         if upper < near {
             let scales = pass.limit(upper.min(1.0));
-            let flipped = (-arms.0, -arms.1);
-            axial_impulse(
-                c,
-                a,
-                b,
-                -slide.axis,
-                flipped,
-                scales,
-                &mut impulses.upper,
-                stop,
-            );
+            stop(c, a, b, slide.axis, arms, scales, &mut impulses.upper, true);
         } else {
             impulses.upper = 0.0;
         }

@@ -2,7 +2,7 @@
 //! constraint), sprung along it (the suspension) within limits, and B turns freely, driven by
 //! a motor. Solved in Box2D's order: motor, spring, limits, then the line.
 
-use super::prismatic::{Slide, axial_impulse};
+use super::prismatic::{Slide, axial_impulse, stop};
 use super::{JointConstraint, JointPass, inverse_or_zero, spring_softness};
 use crate::joint::WheelJoint;
 use crate::math::Real;
@@ -64,21 +64,19 @@ pub(super) fn solve(
         axial_impulse(c, a, b, slide.axis, arms, scales, &mut impulses.axial, free);
     }
     if let Some(limits) = settings.limits {
-        let stop = (0.0, Real::INFINITY);
         let scales = pass.limit(translation - limits.lower);
-        axial_impulse(c, a, b, slide.axis, arms, scales, &mut impulses.lower, stop);
-        let scales = pass.limit(limits.upper - translation);
-        let flipped = (-arms.0, -arms.1);
-        axial_impulse(
+        stop(
             c,
             a,
             b,
-            -slide.axis,
-            flipped,
+            slide.axis,
+            arms,
             scales,
-            &mut impulses.upper,
-            stop,
+            &mut impulses.lower,
+            false,
         );
+        let scales = pass.limit(limits.upper - translation);
+        stop(c, a, b, slide.axis, arms, scales, &mut impulses.upper, true);
     }
     // On the line.
     let perp_arms = slide.arms(slide.perp);
