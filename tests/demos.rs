@@ -326,3 +326,57 @@ fn soft_bodies_squash_and_hold_together() {
         y < 5.1 && y > 0.0
     }));
 }
+
+#[test]
+fn terrain_shapes_roll_downhill_and_none_falls_through_the_chain() {
+    let mut scene = demo("terrain");
+    let ground = scene.names["ground"];
+    // The chain's links, to find the ground's height under any x.
+    let links: Vec<(carom::Vec2, carom::Vec2)> = scene
+        .world
+        .body(ground)
+        .unwrap()
+        .colliders()
+        .iter()
+        .filter_map(|&c| match scene.world.collider(c).unwrap().shape() {
+            carom::Shape::ChainSegment(link) => Some((link.point1(), link.point2())),
+            _ => None,
+        })
+        .collect();
+    let height_at = |x: Real| {
+        links
+            .iter()
+            .find(|(p, q)| p.x.min(q.x) <= x && x <= p.x.max(q.x) && p.x != q.x)
+            .map(|(p, q)| p.y + (q.y - p.y) * (x - p.x) / (q.x - p.x))
+            .unwrap()
+    };
+    let dynamic = |scene: &carom_scene::SceneWorld| -> Vec<carom::Vec2> {
+        scene
+            .world
+            .bodies()
+            .filter(|b| b.is_dynamic())
+            .map(|b| b.position())
+            .collect()
+    };
+    let start = dynamic(&scene);
+    assert_eq!(start.len(), 120);
+    let mean_x = |points: &[carom::Vec2]| points.iter().map(|p| p.x).sum::<Real>() / 120.0;
+    for _ in 0..20 {
+        run(&mut scene, 60);
+        for p in dynamic(&scene) {
+            assert!(p.x.is_finite() && p.y.is_finite());
+            assert!(
+                p.y > height_at(p.x),
+                "a body at {p:?} is under the ground ({})",
+                height_at(p.x)
+            );
+        }
+    }
+    let end = dynamic(&scene);
+    assert!(
+        mean_x(&end) > mean_x(&start) + 10.0,
+        "the shapes stayed where they fell: mean x {} from {}",
+        mean_x(&end),
+        mean_x(&start)
+    );
+}

@@ -121,11 +121,38 @@ fn the_documented_example_is_a_valid_scene() {
     let scene = carom_scene::parse(&readme[start..end], "demos/README.md")
         .unwrap_or_else(|e| panic!("{e}"));
     let mut built = carom_scene::build(&scene, "demos/README.md").unwrap_or_else(|e| panic!("{e}"));
-    // 12 bodies, a stack of 10, a pyramid of 15, a grid of 8, a joint grid of 3 x 2, 4 walls,
+    // 17 bodies, a stack of 10, a pyramid of 15, a grid of 8, a joint grid of 3 x 2, 4 walls,
     // 20 drops, 2 stacks of 3, a chain of 6 links, 2 groups of 2.
     assert_eq!(
         built.world.body_count(),
-        12 + 10 + 15 + 8 + 6 + 4 + 20 + 6 + 6 + 4
+        17 + 10 + 15 + 8 + 6 + 4 + 20 + 6 + 6 + 4
+    );
+    // Every kind of shape is there; the chain of 3 points is 2 links.
+    let mut shapes: Vec<&str> = built
+        .world
+        .colliders()
+        .map(|c| match c.shape() {
+            carom::Shape::Circle(_) => "circle",
+            carom::Shape::Capsule(_) => "capsule",
+            carom::Shape::Polygon(p) if p.radius() > 0.0 => "rounded polygon",
+            carom::Shape::Polygon(_) => "polygon",
+            carom::Shape::Segment(_) => "segment",
+            carom::Shape::ChainSegment(_) => "chain segment",
+        })
+        .collect();
+    assert_eq!(shapes.iter().filter(|&&s| s == "chain segment").count(), 2);
+    shapes.sort_unstable();
+    shapes.dedup();
+    assert_eq!(
+        shapes,
+        [
+            "capsule",
+            "chain segment",
+            "circle",
+            "polygon",
+            "rounded polygon",
+            "segment"
+        ]
     );
     // 8 joints, one of each kind; the joint grid's 3 down its columns and 4 across its rows;
     // the chain's 6; one in each group.
@@ -146,9 +173,9 @@ fn the_documented_example_is_a_valid_scene() {
             "wheel"
         ]
     );
-    // The hammer is one body of two colliders, its head heavier than its handle.
+    // The hammer is one body of three colliders, its head heavier than its handle.
     let hammer = built.world.body(built.names["hammer"]).unwrap();
-    assert_eq!(hammer.colliders().len(), 2);
+    assert_eq!(hammer.colliders().len(), 3);
     assert!(hammer.local_center().x > 0.4, "{:?}", hammer.local_center());
     let ball = built.names["ball"];
     for _ in 0..16 {

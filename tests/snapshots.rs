@@ -28,7 +28,7 @@ const CHANNEL_TOLERANCE: u8 = 40;
 const MAX_DIFFERING_FRACTION: f64 = 0.002;
 
 /// Each case: scene, steps before the picture, and what it shows.
-const CASES: [(&str, usize); 8] = [
+const CASES: [(&str, usize); 9] = [
     // Mixed shapes piled on the floor, contact points and normals drawn.
     ("collision", 150),
     // The worked example's reference and incident edges, and every edge normal.
@@ -43,6 +43,8 @@ const CASES: [(&str, usize); 8] = [
     ("chain", 30),
     // Box2D's bridge with boxes dropped on it, after two seconds.
     ("bridge", 120),
+    // Capsules, rounded boxes and circles on their way down a chain landscape, after 4 s.
+    ("terrain", 240),
     // 20 ragdolls falling into a pile, after a second and a half.
     ("ragdolls", 90),
 ];

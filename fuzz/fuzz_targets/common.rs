@@ -46,6 +46,37 @@ pub fn polygon(points: &[(f32, f32)]) -> Option<Shape> {
     Shape::hull(&points).ok()
 }
 
+/// Any shape carom has, from fuzz input; [`AnyShape::build`] keeps those a world accepts.
+#[derive(Debug, Arbitrary)]
+pub enum AnyShape {
+    Circle(f32),
+    Polygon(Vec<(f32, f32)>),
+    Rounded(Vec<(f32, f32)>, f32),
+    Capsule((f32, f32), (f32, f32), f32),
+    Segment((f32, f32), (f32, f32)),
+    ChainSegment([(f32, f32); 4]),
+}
+
+impl AnyShape {
+    pub fn build(&self) -> Option<Shape> {
+        let point = |(x, y): (f32, f32)| vec2(x, y);
+        let shape = match self {
+            AnyShape::Circle(radius) => return circle(*radius),
+            AnyShape::Polygon(points) => return polygon(points),
+            AnyShape::Rounded(points, radius) => match polygon(points)? {
+                Shape::Polygon(p) => Shape::Polygon(p.rounded(*radius)),
+                other => other,
+            },
+            AnyShape::Capsule(c1, c2, radius) => Shape::capsule(point(*c1), point(*c2), *radius),
+            AnyShape::Segment(p, q) => Shape::segment(point(*p), point(*q)),
+            AnyShape::ChainSegment([g1, p1, p2, g2]) => Shape::ChainSegment(
+                carom::ChainSegment::new(point(*g1), point(*p1), point(*p2), point(*g2)),
+            ),
+        };
+        shape.validate().ok().map(|()| shape)
+    }
+}
+
 /// Separation and manifold of a pair, both ways: finite, unit normals, opposite when swapped.
 pub fn check_pair(a: &WorldShape, b: &WorldShape) {
     let ab = separation(a, b);

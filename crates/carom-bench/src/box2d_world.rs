@@ -98,7 +98,8 @@ const MAX_POLYGON_VERTICES: usize = 8;
 #[derive(Debug, Clone)]
 enum LocalShape {
     Circle([f32; 2], f32),
-    Polygon(Vec<[f32; 2]>),
+    /// A core's vertices (a polygon's, a capsule's two centres, a segment's ends) and radius.
+    Polygon(Vec<[f32; 2]>, f32),
 }
 
 /// A Box2D world holding one body per carom body, in carom's order, and one shape per collider.
@@ -226,7 +227,28 @@ impl Box2dWorld {
                             .vertices()
                             .iter()
                             .map(|v| place.rotation * v + place.translation.vector);
-                        LocalShape::Polygon(placed.map(|v| [v.x, v.y]).collect())
+                        LocalShape::Polygon(placed.map(|v| [v.x, v.y]).collect(), p.radius())
+                    }
+                    Shape::Capsule(c) => {
+                        let [c1, c2] = [c.center1(), c.center2()].map(|v| point_in_body(&place, v));
+                        let capsule = shapes::capsule(c1, c2, c.radius()).map_err(err)?;
+                        handle.create_capsule(&shape_def, &capsule).map_err(err)?;
+                        LocalShape::Polygon(vec![[c1.x, c1.y], [c2.x, c2.y]], c.radius())
+                    }
+                    Shape::Segment(s) => {
+                        let [p1, p2] = [s.point1(), s.point2()].map(|v| point_in_body(&place, v));
+                        let segment = shapes::segment(p1, p2).map_err(err)?;
+                        handle.create_segment(&shape_def, &segment).map_err(err)?;
+                        LocalShape::Polygon(vec![[p1.x, p1.y], [p2.x, p2.y]], 0.0)
+                    }
+                    Shape::ChainSegment(s) => {
+                        let [g1, p1, p2, g2] = [s.ghost1(), s.point1(), s.point2(), s.ghost2()]
+                            .map(|v| point_in_body(&place, v));
+                        let link = shapes::chain_segment(g1, p1, p2, g2).map_err(err)?;
+                        handle
+                            .create_chain_segment(&shape_def, &link)
+                            .map_err(err)?;
+                        LocalShape::Polygon(vec![[p1.x, p1.y], [p2.x, p2.y]], 0.0)
                     }
                 };
                 locals.push(local);
@@ -584,9 +606,9 @@ impl Box2dWorld {
         for shape in &self.shapes[i] {
             match shape {
                 LocalShape::Circle(center, radius) => cover(place(center), *radius),
-                LocalShape::Polygon(vertices) => {
+                LocalShape::Polygon(vertices, radius) => {
                     for v in vertices {
-                        cover(place(v), 0.0);
+                        cover(place(v), *radius);
                     }
                 }
             }
@@ -700,8 +722,14 @@ fn body_def(
     def.build()
 }
 
-/// Box2D's polygon with carom's own vertices (counter-clockwise, centred on the centroid) and
-/// edge normals, radius 0, placed in the body's frame as `collider` places it.
+/// A point of a collider's frame in its body's frame, as Box2D's vector.
+fn point_in_body(place: &carom::Isometry, v: carom::Vec2) -> Vec2 {
+    let q = place.rotation * v + place.translation.vector;
+    Vec2::new(q.x, q.y)
+}
+
+/// Box2D's polygon with carom's own vertices (counter-clockwise, centred on the centroid),
+/// edge normals and rounding, placed in the body's frame as `collider` places it.
 fn polygon(p: &Polygon, collider: &Collider) -> Result<shapes::Polygon, String> {
     let place = collider.local_transform();
     let v = p.vertices();
@@ -716,7 +744,7 @@ fn polygon(p: &Polygon, collider: &Collider) -> Result<shapes::Polygon, String> 
         vertices: [zero; MAX_POLYGON_VERTICES],
         normals: [zero; MAX_POLYGON_VERTICES],
         centroid: zero,
-        radius: 0.0,
+        radius: p.radius(),
         count: v.len() as i32,
     };
     for (i, (q, n)) in v.iter().zip(p.normals()).enumerate() {

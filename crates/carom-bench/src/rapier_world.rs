@@ -361,14 +361,40 @@ fn rigid_body(body: &Body, drag: bool, can_sleep: bool, ccd: bool) -> RigidBodyB
 
 /// The collider matching a carom shape, in body space (carom recentres shapes on the centroid,
 /// which is the body's origin, so the collider sits at the body's origin too).
+///
+/// A chain link becomes a plain segment: Rapier's segments are two-sided and have no ghost
+/// vertices (its polylines smooth their joins, but only within one polyline).
 fn collider(shape: &Shape) -> Result<ColliderBuilder, String> {
+    let point = |v: carom::Vec2| Vector::new(v.x, v.y);
     match shape {
         Shape::Circle(c) => Ok(ColliderBuilder::ball(c.radius())),
+        Shape::Capsule(c) => Ok(ColliderBuilder::capsule_from_endpoints(
+            point(c.center1()),
+            point(c.center2()),
+            c.radius(),
+        )),
+        Shape::Segment(s) => Ok(ColliderBuilder::segment(
+            point(s.point1()),
+            point(s.point2()),
+        )),
+        Shape::ChainSegment(s) => Ok(ColliderBuilder::segment(
+            point(s.point1()),
+            point(s.point2()),
+        )),
         Shape::Polygon(p) => {
+            let rounding = p.radius();
             if let Some((hx, hy)) = axis_aligned_rectangle(p) {
-                return Ok(ColliderBuilder::cuboid(hx, hy));
+                return Ok(if rounding > 0.0 {
+                    ColliderBuilder::round_cuboid(hx, hy, rounding)
+                } else {
+                    ColliderBuilder::cuboid(hx, hy)
+                });
             }
-            let points: Vec<Vector> = p.vertices().iter().map(|v| Vector::new(v.x, v.y)).collect();
+            let points: Vec<Vector> = p.vertices().iter().map(|&v| point(v)).collect();
+            if rounding > 0.0 {
+                return ColliderBuilder::round_convex_polyline(points, rounding)
+                    .ok_or_else(|| format!("Rapier rejected the polygon {:?}", p.vertices()));
+            }
             // Carom polygons are convex and counter-clockwise already, as `convex_polyline`
             // wants; the hull is only a fallback for near-degenerate outlines it rejects.
             ColliderBuilder::convex_polyline(points.clone())
@@ -384,7 +410,7 @@ fn axis_aligned_rectangle(p: &Polygon) -> Option<(f32, f32)> {
     if v.len() != 4 {
         return None;
     }
-    let scale = p.radius().max(1.0);
+    let scale = p.circumradius().max(1.0);
     let tol = AXIS_TOLERANCE * scale;
     for i in 0..4 {
         let e = v[(i + 1) % 4] - v[i];

@@ -7,10 +7,10 @@ use crate::scene::{
     RevoluteSpec, Scene, ShapeSpec, WorldSpec,
 };
 use carom::{
-    BodyDef, BodyHandle, BodyKind, CaromError, ColliderDef, Color, DebugDraw, DistanceJoint,
-    DrawFlags, DrawOptions, Effects, JointDef, JointKind, Limits, MotorJoint, MouseJoint,
-    PrismaticJoint, Real, RevoluteJoint, Shape, SolverParams, Vec2, WeldJoint, WheelJoint, World,
-    WorldSettings, vec2,
+    BodyDef, BodyHandle, BodyKind, CaromError, ChainDef, ColliderDef, Color, DebugDraw,
+    DistanceJoint, DrawFlags, DrawOptions, Effects, JointDef, JointKind, Limits, MotorJoint,
+    MouseJoint, PrismaticJoint, Real, RevoluteJoint, Shape, SolverParams, Vec2, WeldJoint,
+    WheelJoint, World, WorldSettings, vec2,
 };
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -90,7 +90,7 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
             Some(name) => format!("body {index} ({name:?})"),
             None => format!("body {index}"),
         };
-        let def = body_def(spec).map_err(|e| invalid(what.clone(), e.to_string()))?;
+        let def = body_def(spec).map_err(|e| invalid(what.clone(), e))?;
         let handle = world
             .add_body(def.clone())
             .map_err(|e| invalid(what.clone(), e.to_string()))?;
@@ -250,15 +250,92 @@ fn world_settings(spec: &WorldSpec, effects: Effects) -> Result<WorldSettings, C
     })
 }
 
-fn shape(spec: &ShapeSpec) -> Result<Shape, CaromError> {
+/// The shape of a single collider (a chain makes several: [`colliders_of`] builds those), or
+/// what is wrong with it.
+fn shape(spec: &ShapeSpec) -> Result<Shape, String> {
+    if let ShapeSpec::Chain { .. } = spec {
+        return Err(
+            "a chain can be a body's shape or one of its colliders, not a generator's \
+                    shape"
+                .into(),
+        );
+    }
+    single_shape(spec).map_err(|e| e.to_string())
+}
+
+fn single_shape(spec: &ShapeSpec) -> Result<Shape, CaromError> {
     let points =
         |points: &[(f32, f32)]| points.iter().map(|&(x, y)| vec2(x, y)).collect::<Vec<_>>();
+    let rounded = |shape: Shape, radius: f32| match shape {
+        Shape::Polygon(p) if radius != 0.0 => checked(Shape::Polygon(p.rounded(radius))),
+        shape => Ok(shape),
+    };
     match spec {
         ShapeSpec::Circle { radius } => checked(Shape::circle(*radius)),
         ShapeSpec::Box { width, height } => checked(Shape::rect(0.5 * width, 0.5 * height)),
-        ShapeSpec::Regular { sides, radius } => Shape::regular(*sides as usize, *radius),
-        ShapeSpec::Polygon { points: p } => Shape::polygon(&points(p)),
-        ShapeSpec::Hull { points: p } => Shape::hull(&points(p)),
+        ShapeSpec::RoundedBox {
+            width,
+            height,
+            radius,
+        } => {
+            let fits = radius.is_finite() && *radius >= 0.0 && 2.0 * radius < width.min(*height);
+            if !fits {
+                return Err(CaromError::OutOfRange {
+                    name: "rounded box radius",
+                    expected: "at least 0 and less than half the width and half the height",
+                    value: *radius,
+                });
+            }
+            checked(Shape::rounded_rect(
+                0.5 * width - radius,
+                0.5 * height - radius,
+                *radius,
+            ))
+        }
+        ShapeSpec::Capsule { length, radius } => checked(Shape::capsule(
+            vec2(-0.5 * length, 0.0),
+            vec2(0.5 * length, 0.0),
+            *radius,
+        )),
+        ShapeSpec::Regular {
+            sides,
+            radius,
+            rounding,
+        } => rounded(Shape::regular(*sides as usize, *radius)?, *rounding),
+        ShapeSpec::Polygon { points: p, radius } => rounded(Shape::polygon(&points(p))?, *radius),
+        ShapeSpec::Hull { points: p, radius } => rounded(Shape::hull(&points(p))?, *radius),
+        ShapeSpec::Segment { from, to } => {
+            checked(Shape::segment(vec2(from.0, from.1), vec2(to.0, to.1)))
+        }
+        ShapeSpec::Chain { .. } => unreachable!("chains are made by `colliders_of`"),
+    }
+}
+
+/// The colliders a shape makes, with `base`'s placement and material: one, or a chain's links.
+fn colliders_of(spec: &ShapeSpec, base: ColliderDef) -> Result<Vec<ColliderDef>, String> {
+    match spec {
+        ShapeSpec::Chain { points, closed } => {
+            let points: Vec<Vec2> = points.iter().map(|&(x, y)| vec2(x, y)).collect();
+            let chain = if *closed {
+                ChainDef::closed(points)
+            } else {
+                ChainDef::open(points)
+            };
+            Ok(chain
+                .segments()
+                .map_err(|e| e.to_string())?
+                .into_iter()
+                .map(|link| ColliderDef {
+                    shape: Shape::ChainSegment(link),
+                    density: 0.0,
+                    ..base.clone()
+                })
+                .collect())
+        }
+        _ => Ok(vec![ColliderDef {
+            shape: shape(spec)?,
+            ..base
+        }]),
     }
 }
 
@@ -276,31 +353,35 @@ fn with_material(def: BodyDef, material: &Material) -> BodyDef {
         .damping(material.damping.0, material.damping.1)
 }
 
-fn body_def(spec: &BodySpec) -> Result<BodyDef, CaromError> {
+fn body_def(spec: &BodySpec) -> Result<BodyDef, String> {
     let material = &spec.material;
     let mut colliders = Vec::with_capacity(spec.colliders.len() + 1);
+    // Placeholder shapes: `colliders` puts each spec's own in.
+    let placeholder = || ColliderDef::new(Shape::circle(1.0));
     if let Some(first) = &spec.shape {
-        colliders.push(
-            ColliderDef::new(shape(first)?)
+        colliders.extend(colliders_of(
+            first,
+            placeholder()
                 .density(material.density)
                 .friction(material.friction)
                 .restitution(material.restitution)
                 .filter(material.filter),
-        );
+        )?);
     }
     for part in &spec.colliders {
-        colliders.push(
-            ColliderDef::new(shape(&part.shape)?)
+        colliders.extend(colliders_of(
+            &part.shape,
+            placeholder()
                 .offset(vec2(part.offset.0, part.offset.1))
                 .angle(part.angle)
                 .density(part.density.unwrap_or(material.density))
                 .friction(part.friction.unwrap_or(material.friction))
                 .restitution(part.restitution.unwrap_or(material.restitution))
                 .filter(part.filter.unwrap_or(material.filter)),
-        );
+        )?);
     }
     let Some(first) = colliders.first() else {
-        return Err(CaromError::NoCollider);
+        return Err(CaromError::NoCollider.to_string());
     };
     let mut def = BodyDef::new(spec.kind, first.shape.clone())
         .position(vec2(spec.position.0, spec.position.1))
@@ -575,7 +656,7 @@ fn generate(generator: &Generator) -> Result<Batch, String> {
             material,
             awake,
         } => {
-            let shape = shape(spec).map_err(|e| e.to_string())?;
+            let shape = shape(spec)?;
             let mut defs = Vec::new();
             for row in 0..*rows {
                 for column in 0..*columns {
@@ -603,7 +684,7 @@ fn generate(generator: &Generator) -> Result<Batch, String> {
             fixed,
             joint,
         } => {
-            let shape = shape(spec).map_err(|e| e.to_string())?;
+            let shape = shape(spec)?;
             return Ok(joint_grid(
                 point(*origin),
                 (*columns, *rows),
@@ -622,7 +703,7 @@ fn generate(generator: &Generator) -> Result<Batch, String> {
             seed,
             material,
         } => {
-            let shape = shape(spec).map_err(|e| e.to_string())?;
+            let shape = shape(spec)?;
             // xorshift64*: small, deterministic on every machine.
             let mut state = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
             let mut unit = move || {

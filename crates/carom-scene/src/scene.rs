@@ -203,7 +203,8 @@ impl Default for WorldSpec {
     }
 }
 
-/// A shape, in the body's frame.
+/// A shape, in the body's frame. Polygons may be rounded by a `radius` (default 0): grown by
+/// it all round, corners becoming arcs.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum ShapeSpec {
@@ -219,22 +220,66 @@ pub enum ShapeSpec {
         /// Full height, m.
         height: f32,
     },
+    /// An axis-aligned box with rounded corners, `width` by `height` overall: a box smaller by
+    /// `radius` on every side, grown by `radius`.
+    RoundedBox {
+        /// Full width, m.
+        width: f32,
+        /// Full height, m.
+        height: f32,
+        /// Corner radius, m: less than half the width and half the height.
+        radius: f32,
+    },
+    /// A capsule along x, centred: two circles' centres `length` apart, joined.
+    Capsule {
+        /// Distance between the centres, m.
+        length: f32,
+        /// Radius, m.
+        radius: f32,
+    },
     /// A regular polygon with a flat bottom.
     Regular {
         /// Number of sides.
         sides: u32,
         /// Distance from centre to corners, m.
         radius: f32,
+        /// Rounding, m.
+        #[serde(default)]
+        rounding: f32,
     },
     /// A convex polygon, its points in order (either winding); it is recentred on its centroid.
     Polygon {
         /// The corners.
         points: Vec<Pair>,
+        /// Rounding, m.
+        #[serde(default)]
+        radius: f32,
     },
     /// The convex hull of any points.
     Hull {
         /// The points.
         points: Vec<Pair>,
+        /// Rounding, m.
+        #[serde(default)]
+        radius: f32,
+    },
+    /// A two-sided segment for static geometry, its ends where they are given (not
+    /// recentred); it has no mass.
+    Segment {
+        /// One end, m.
+        from: Pair,
+        /// The other end, m.
+        to: Pair,
+    },
+    /// A chain of one-sided segments for terrain, its points where they are given; it collides
+    /// on its right, walking along the points (ground whose solid side is below runs right to
+    /// left; a counter-clockwise loop is solid outside). One collider per link; no mass.
+    Chain {
+        /// The points, in order.
+        points: Vec<Pair>,
+        /// Whether the last point joins back to the first.
+        #[serde(default)]
+        closed: bool,
     },
 }
 

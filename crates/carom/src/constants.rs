@@ -50,6 +50,16 @@ pub(crate) const REFERENCE_TOLERANCE: Real = 0.1 * LINEAR_SLOP;
 /// not geometry, at the scale of the slop.
 pub const SPURIOUS_TOLERANCE: Real = 0.1 * LINEAR_SLOP;
 
+// Chains (Box2D's tolerances for smooth collision).
+
+/// How sharply a chain must turn at a vertex for the vertex to count as convex, as the sine of
+/// the turn: flatter joins count as concave, where normals snap to the link's own.
+pub(crate) const CHAIN_CONVEX_SINE: Real = 0.01;
+
+/// How far past a convex neighbour's normal a contact normal may lean and still be a link's
+/// own, as a sine: beyond it, the neighbour handles the contact.
+pub(crate) const CHAIN_NORMAL_SINE: Real = 0.01;
+
 // Contact recycling.
 
 /// Under soft step, a kept manifold's pair may have moved relative to each other by no more

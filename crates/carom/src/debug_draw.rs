@@ -442,7 +442,9 @@ impl World {
                     draw_shape(body, collider, color, out);
                 }
                 if flags.contains(DrawFlags::EDGE_NORMALS)
-                    && let WorldShape::Polygon { vertices, normals } = collider.world_shape()
+                    && let WorldShape::Polygon {
+                        vertices, normals, ..
+                    } = collider.world_shape()
                 {
                     for (i, normal) in normals.iter().enumerate() {
                         let middle = (vertices[i] + vertices[(i + 1) % vertices.len()]) * 0.5;
@@ -656,14 +658,29 @@ fn segment_unless_empty(
     }
 }
 
-/// A collider's shape: polygons filled and outlined, circles with a radius line at their
-/// angle.
+/// A collider's shape: polygons filled and outlined, rounded ones along their arcs, circles
+/// with a radius line at their angle, segments and chain links as lines.
 fn draw_shape(body: &Body, collider: &Collider, color: Color, out: &mut impl DebugDraw) {
     let outline = color.mix(Color::rgb(1.0, 1.0, 1.0), 0.45);
     let fill = color.mix(Color::BACKGROUND, 0.35);
     match collider.world_shape() {
-        WorldShape::Polygon { vertices, .. } => {
+        WorldShape::Polygon {
+            vertices, radius, ..
+        } if *radius == 0.0 && vertices.len() >= 3 => {
             out.polygon(vertices, fill, outline);
+        }
+        WorldShape::Polygon {
+            vertices,
+            normals,
+            radius,
+        } if *radius > 0.0 => {
+            out.polygon(&rounded_outline(vertices, normals, *radius), fill, outline);
+        }
+        WorldShape::Polygon { vertices, .. } => {
+            out.segment(vertices[0], vertices[1], 2.0 * OUTLINE_WIDTH, outline);
+        }
+        WorldShape::ChainSegment { point1, point2, .. } => {
+            out.segment(*point1, *point2, 2.0 * OUTLINE_WIDTH, outline);
         }
         WorldShape::Circle { center, radius } => {
             out.circle(*center, *radius, fill, outline);
@@ -672,6 +689,25 @@ fn draw_shape(body: &Body, collider: &Collider, color: Color, out: &mut impl Deb
             out.segment(*center, rim, OUTLINE_WIDTH, outline);
         }
     }
+}
+
+/// The outline of a core grown by `radius`: at each vertex, an arc from the previous edge's
+/// normal round to the next one's, in steps of at most a sixteenth of a turn.
+fn rounded_outline(vertices: &[Vec2], normals: &[Vec2], radius: Real) -> Vec<Vec2> {
+    let n = vertices.len();
+    let mut outline = Vec::with_capacity(n * 5);
+    for i in 0..n {
+        let from = normals[(i + n - 1) % n];
+        let to = normals[i];
+        let turn = crate::math::cross(from, to).abs().atan2(from.dot(&to));
+        let steps = (turn / (std::f32::consts::TAU / 16.0)).ceil().max(1.0) as usize;
+        let start = from.y.atan2(from.x);
+        for k in 0..=steps {
+            let angle = start + turn * k as Real / steps as Real;
+            outline.push(vertices[i] + vec2(angle.cos(), angle.sin()) * radius);
+        }
+    }
+    outline
 }
 
 #[cfg(test)]

@@ -117,6 +117,27 @@ pub enum CaromError {
     /// A body needs a collider to have a shape and a mass.
     #[error("a body needs at least one collider (a shape)")]
     NoCollider,
+    /// Two points that must differ (a capsule's centres, a segment's ends, neighbouring
+    /// points of a chain) coincide.
+    #[error("{what} coincide at ({x}, {y}); give two different points")]
+    CoincidentPoints {
+        /// Which points, for example "capsule centres" or "chain points 3 and 4".
+        what: String,
+        /// Where they coincide.
+        x: Real,
+        /// Where they coincide.
+        y: Real,
+    },
+    /// A chain has too few points to make a segment (or a loop).
+    #[error("{kind} needs at least {needed} points, got {count}")]
+    TooFewChainPoints {
+        /// "an open chain" or "a closed chain".
+        kind: &'static str,
+        /// How many it needs.
+        needed: usize,
+        /// How many it got.
+        count: usize,
+    },
 }
 
 impl CaromError {

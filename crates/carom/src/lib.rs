@@ -1,10 +1,10 @@
 //! # carom
 //!
-//! A 2D rigid-body physics engine: bodies made of circles and convex polygons (colliders) with
-//! mass from density, forces, drag, queries, collision filters, a dynamic-tree broadphase, SAT
-//! narrowphase with clipped contact manifolds, joints ([`JointDef`]), contact solvers from the
-//! tutorial's push-out to Box2D v3's soft step, continuous collision and sleeping. It has no
-//! graphics dependency.
+//! A 2D rigid-body physics engine: bodies made of circles, capsules, convex polygons (sharp or
+//! rounded), segments and smooth chains ([`ChainDef`]) with mass from density, forces, drag,
+//! queries, collision filters, a dynamic-tree broadphase, SAT narrowphase with clipped contact
+//! manifolds, joints ([`JointDef`]), contact solvers from the tutorial's push-out to Box2D v3's
+//! soft step, continuous collision and sleeping. It has no graphics dependency.
 //!
 //! Units are SI: metres, kilograms, seconds, radians. Angles are counter-clockwise. Shapes are
 //! centred on their centroid when built; a body's colliders place them in its frame, whose
@@ -57,13 +57,14 @@ pub use debug_draw::{
     ARROW_WIDTH, Color, DebugDraw, DrawFlags, DrawList, DrawOptions, OUTLINE_WIDTH,
 };
 pub use dynamics::body::{Body, BodyDef, BodyHandle, BodyKind};
+pub use dynamics::chain::ChainDef;
 pub use dynamics::collider::{Collider, ColliderDef, ColliderHandle};
 pub use dynamics::drag::DragModel;
 pub use error::CaromError;
 pub use geometry::aabb::Aabb;
 pub use geometry::mass::MassProperties;
 pub use geometry::ray::{Ray, RayHit};
-pub use geometry::shape::{Circle, Polygon, Shape, WorldShape};
+pub use geometry::shape::{Capsule, ChainSegment, Circle, Polygon, Segment, Shape, WorldShape};
 pub use joint::{
     Anchors, DistanceJoint, Joint, JointDef, JointEvent, JointHandle, JointKind, Limits, Motor,
     MotorJoint, MouseJoint, PrismaticJoint, RevoluteJoint, Spring, WeldJoint, WheelJoint,

@@ -2,7 +2,7 @@
 //! lists of names, shapes as their outline (checked again when read).
 
 use crate::debug_draw::DrawFlags;
-use crate::geometry::shape::{Polygon, Shape};
+use crate::geometry::shape::{ChainSegment, Polygon, Shape};
 use crate::math::{Real, Vec2};
 use crate::world::effects::{Effect, Effects};
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
@@ -103,25 +103,63 @@ impl<'de> Deserialize<'de> for LayerName {
     }
 }
 
-/// A shape as it is written: a circle's radius, or a convex polygon's outline in the
-/// coordinates it was given in (read back, it is centred on its centroid again).
+/// A shape as it is written: a circle's radius, a convex polygon's outline in the coordinates
+/// it was given in (read back, it is centred on its centroid again) and its rounding, a
+/// capsule's centres and radius, a segment's ends, a chain link's four points.
 #[derive(Serialize, Deserialize)]
 #[serde(rename = "Shape", rename_all = "snake_case", deny_unknown_fields)]
 enum ShapeData {
-    Circle { radius: Real },
-    Polygon { points: Vec<Vec2> },
+    Circle {
+        radius: Real,
+    },
+    Capsule {
+        center1: Vec2,
+        center2: Vec2,
+        radius: Real,
+    },
+    Polygon {
+        points: Vec<Vec2>,
+        #[serde(default)]
+        radius: Real,
+    },
+    Segment {
+        point1: Vec2,
+        point2: Vec2,
+    },
+    ChainSegment {
+        ghost1: Vec2,
+        point1: Vec2,
+        point2: Vec2,
+        ghost2: Vec2,
+    },
 }
 
 impl Serialize for Shape {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         match self {
             Shape::Circle(c) => ShapeData::Circle { radius: c.radius() },
+            Shape::Capsule(c) => ShapeData::Capsule {
+                center1: c.center1(),
+                center2: c.center2(),
+                radius: c.radius(),
+            },
             Shape::Polygon(p) => ShapeData::Polygon {
                 points: p
                     .vertices()
                     .iter()
                     .map(|v| v + p.source_centroid())
                     .collect(),
+                radius: p.radius(),
+            },
+            Shape::Segment(s) => ShapeData::Segment {
+                point1: s.point1(),
+                point2: s.point2(),
+            },
+            Shape::ChainSegment(s) => ShapeData::ChainSegment {
+                ghost1: s.ghost1(),
+                point1: s.point1(),
+                point2: s.point2(),
+                ghost2: s.ghost2(),
             },
         }
         .serialize(serializer)
@@ -132,9 +170,23 @@ impl<'de> Deserialize<'de> for Shape {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         let shape = match ShapeData::deserialize(deserializer)? {
             ShapeData::Circle { radius } => Shape::circle(radius),
-            ShapeData::Polygon { points } => {
-                Shape::Polygon(Polygon::new(&points).map_err(de::Error::custom)?)
-            }
+            ShapeData::Capsule {
+                center1,
+                center2,
+                radius,
+            } => Shape::capsule(center1, center2, radius),
+            ShapeData::Polygon { points, radius } => Shape::Polygon(
+                Polygon::new(&points)
+                    .map_err(de::Error::custom)?
+                    .rounded(radius),
+            ),
+            ShapeData::Segment { point1, point2 } => Shape::segment(point1, point2),
+            ShapeData::ChainSegment {
+                ghost1,
+                point1,
+                point2,
+                ghost2,
+            } => Shape::ChainSegment(ChainSegment::new(ghost1, point1, point2, ghost2)),
         };
         shape.validate().map_err(de::Error::custom)?;
         Ok(shape)

@@ -17,6 +17,7 @@
 //! speculative point there would stop bodies that were only going to graze past (a ghost
 //! collision).
 
+use super::chain_segment::{self, ChainLink};
 use super::narrowphase::{self, PolygonFeature};
 use crate::constants::LINEAR_SLOP;
 use crate::constants::{REFERENCE_TOLERANCE, SPURIOUS_TOLERANCE};
@@ -155,14 +156,14 @@ impl Manifold {
         self.points().iter().map(|p| p.separation).reduce(Real::min)
     }
 
-    fn with_normal(normal: Vec2) -> Self {
+    pub(crate) fn with_normal(normal: Vec2) -> Self {
         Manifold {
             normal,
             ..Manifold::default()
         }
     }
 
-    fn push(&mut self, point: Vec2, separation: Real, id: FeatureId) {
+    pub(crate) fn push(&mut self, point: Vec2, separation: Real, id: FeatureId) {
         self.points[self.point_count] = ManifoldPoint {
             point,
             separation,
@@ -173,7 +174,7 @@ impl Manifold {
     }
 
     /// The same contact described from B's side.
-    fn flipped(mut self) -> Self {
+    pub(crate) fn flipped(mut self) -> Self {
         let swap = |edge: Option<ContactEdge>| {
             edge.map(|mut e| {
                 e.side = match e.side {
@@ -263,22 +264,70 @@ fn collide_after(
                 radius: rb,
             },
         ) => collide_circles(*ca, *ra, *cb, *rb, margin),
-        (WorldShape::Polygon { vertices, normals }, WorldShape::Circle { center, radius }) => {
-            collide_polygon_circle(vertices, normals, *center, *radius, margins)
-        }
-        (WorldShape::Circle { center, radius }, WorldShape::Polygon { vertices, normals }) => {
-            collide_polygon_circle(vertices, normals, *center, *radius, margins).flipped()
-        }
+        (
+            WorldShape::Polygon {
+                vertices,
+                normals,
+                radius: rounding,
+            },
+            WorldShape::Circle { center, radius },
+        ) => collide_polygon_circle(vertices, normals, *rounding, *center, *radius, margins),
+        (
+            WorldShape::Circle { center, radius },
+            WorldShape::Polygon {
+                vertices,
+                normals,
+                radius: rounding,
+            },
+        ) => collide_polygon_circle(vertices, normals, *rounding, *center, *radius, margins)
+            .flipped(),
         (
             WorldShape::Polygon {
                 vertices: va,
                 normals: na,
+                radius: ra,
             },
             WorldShape::Polygon {
                 vertices: vb,
                 normals: nb,
+                radius: rb,
             },
-        ) => collide_polygons(va, na, vb, nb, margins, previous_reference),
+        ) => collide_polygons(
+            Core::new(va, na, *ra),
+            Core::new(vb, nb, *rb),
+            margins,
+            previous_reference,
+        ),
+        (link @ WorldShape::ChainSegment { .. }, other) => {
+            chain_segment::collide(&ChainLink::of(link), other, margins)
+        }
+        (other, link @ WorldShape::ChainSegment { .. }) => {
+            chain_segment::collide(&ChainLink::of(link), other, margins).flipped()
+        }
+    }
+}
+
+/// A convex core, its outward unit normals and the radius it is grown by: a polygon, rounded
+/// or not, or a capsule's or segment's two-vertex core.
+#[derive(Clone, Copy)]
+pub(crate) struct Core<'a> {
+    pub vertices: &'a [Vec2],
+    pub normals: &'a [Vec2],
+    pub radius: Real,
+}
+
+impl<'a> Core<'a> {
+    pub fn new(vertices: &'a [Vec2], normals: &'a [Vec2], radius: Real) -> Self {
+        Core {
+            vertices,
+            normals,
+            radius,
+        }
+    }
+
+    /// A segment's or capsule's core, which has no inside.
+    fn is_line(&self) -> bool {
+        self.vertices.len() == 2
     }
 }
 
@@ -326,11 +375,13 @@ fn middle(a: (Real, Real), b: (Real, Real)) -> Real {
 fn collide_polygon_circle(
     vertices: &[Vec2],
     normals: &[Vec2],
+    rounding: Real,
     center: Vec2,
     radius: Real,
     margins: Margins,
 ) -> Manifold {
-    let pc = narrowphase::polygon_circle(vertices, normals, center, radius);
+    // A rounded polygon against a circle is its core against a circle as much larger.
+    let pc = narrowphase::polygon_circle(vertices, normals, center, radius + rounding);
     let s = pc.separation;
     let mut manifold = Manifold::with_normal(s.normal);
     let margin = match pc.feature {
@@ -340,11 +391,15 @@ fn collide_polygon_circle(
     if s.separation > margin {
         return manifold;
     }
-    // Along the normal from the polygon's nearest point: the polygon behind it, the circle
-    // from `separation` to `separation + 2 r` in front of it.
+    // Along the normal from the core's nearest point: the polygon from `rounding` behind its
+    // core to `rounding` in front of it, the circle from `separation + rounding` to that plus
+    // its diameter.
     let polygon = polygon_chord(vertices, normals, pc.polygon_point, s.normal);
-    let circle = (s.separation, s.separation + 2.0 * radius);
-    let u = middle((polygon.0, polygon.1.min(0.0)), circle);
+    let near = s.separation + rounding;
+    let u = middle(
+        (polygon.0 - rounding, polygon.1.min(0.0) + rounding),
+        (near, near + 2.0 * radius),
+    );
     manifold.push(
         pc.polygon_point + s.normal * u,
         s.separation,
@@ -359,42 +414,49 @@ fn collide_polygon_circle(
     manifold
 }
 
+/// Two convex cores, each grown by its radius: SAT and clipping on the cores, every
+/// separation less both radii, every point midway between the grown surfaces.
 fn collide_polygons(
-    a_vertices: &[Vec2],
-    a_normals: &[Vec2],
-    b_vertices: &[Vec2],
-    b_normals: &[Vec2],
+    a: Core,
+    b: Core,
     margins: Margins,
     previous_reference: Option<PairSide>,
 ) -> Manifold {
     let margin = margins.any;
+    let rounding = a.radius + b.radius;
     let pp = narrowphase::polygon_polygon_within(
-        a_vertices,
-        a_normals,
-        b_vertices,
-        b_normals,
+        a.vertices,
+        a.normals,
+        b.vertices,
+        b.normals,
         0.1 * LINEAR_SLOP,
     );
     let (edge_a, separation_a) = pp.edge_a;
     let (edge_b, separation_b) = pp.edge_b;
-    if pp.separation.separation > margins.face {
+    if pp.separation.separation - rounding > margins.face {
         return Manifold::with_normal(pp.separation.normal);
     }
     // Apart with two corners facing each other: one point on the line between them.
     if let Some(closest) = pp.closest
         && pp.separation.separation > separation_a.max(separation_b)
     {
-        let mut manifold = Manifold::with_normal(pp.separation.normal);
-        if closest.distance > margin {
+        let normal = pp.separation.normal;
+        let mut manifold = Manifold::with_normal(normal);
+        if closest.distance - rounding > margin {
             return manifold;
         }
         let id =
             FeatureId::vertex_pair(closest.vertex_a.unwrap_or(0), closest.vertex_b.unwrap_or(0));
-        manifold.push(
-            (closest.point_a + closest.point_b) * 0.5,
-            closest.distance,
-            id,
-        );
+        let point = if rounding == 0.0 {
+            (closest.point_a + closest.point_b) * 0.5
+        } else {
+            // Midway between the grown surfaces, but within both corners' discs (a large
+            // rounding reaching past a sharp corner would put it outside that shape).
+            let d = closest.distance;
+            let t = (0.5 * (d + a.radius - b.radius)).clamp(-a.radius, d + b.radius);
+            closest.point_a + normal * t
+        };
+        manifold.push(point, closest.distance - rounding, id);
         return manifold;
     }
 
@@ -403,13 +465,15 @@ fn collide_polygons(
         Some(PairSide::B) => separation_b + REFERENCE_TOLERANCE >= separation_a,
         None => separation_b > separation_a,
     };
-    let (reference, incident) = if reference_on_b {
-        ((b_vertices, b_normals, edge_b), (a_vertices, a_normals))
+    let ((reference, i1), incident) = if reference_on_b {
+        ((b, edge_b), a)
     } else {
-        ((a_vertices, a_normals, edge_a), (b_vertices, b_normals))
+        ((a, edge_a), b)
     };
-    let (ref_vertices, ref_normals, i1) = reference;
-    let (inc_vertices, inc_normals) = incident;
+    let (ref_vertices, ref_normals) = (reference.vertices, reference.normals);
+    let (inc_vertices, inc_normals) = (incident.vertices, incident.normals);
+    // The grown surfaces lie each its radius out from the core: points move to midway.
+    let surface_shift = 0.5 * (reference.radius - incident.radius);
     let i2 = (i1 + 1) % ref_vertices.len();
     let (v11, v12) = (ref_vertices[i1], ref_vertices[i2]);
     let normal = ref_normals[i1];
@@ -471,7 +535,9 @@ fn collide_polygons(
     // None when no part of the way is inside: in a deep overlap the incident point can poke out
     // past the reference polygon's other faces, and then it marks no contact at all.
     let into_reference = |end: Vec2, toward: Vec2| {
-        if normal.dot(&(end - v11)) >= 0.0
+        // A segment's core has no inside for a point to poke out of.
+        if reference.is_line()
+            || normal.dot(&(end - v11)) >= 0.0
             || distance_outside(ref_vertices, ref_normals, end) <= SPURIOUS_TOLERANCE
         {
             return Some(end);
@@ -505,20 +571,42 @@ fn collide_polygons(
     };
     for (point, reference_vertex, incident_vertex) in candidates.into_iter().flatten() {
         let separation = normal.dot(&(point - v11));
-        if separation > point_margin {
+        if separation - rounding > point_margin {
             continue;
         }
+        let incident_extent = || polygon_chord(inc_vertices, inc_normals, point, normal).1;
         let u = if separation < 0.0 {
             // Midway to the reference face, unless the incident polygon is thinner than that
             // along the normal (a small shape deep in a large one).
-            let (_, incident_extent) = polygon_chord(inc_vertices, inc_normals, point, normal);
-            0.5 * (-separation).min(incident_extent.max(0.0))
+            0.5 * (-separation).min(incident_extent().max(0.0))
         } else {
             -0.5 * separation
         };
+        let shift = if surface_shift == 0.0 {
+            u
+        } else {
+            // Out to midway between the grown surfaces, but never through the far side of
+            // either shape (a thin one deep in a round one). Where a capsule's core crosses
+            // the other shape the two limits can conflict, and the point stays in the
+            // incident shape, as it does for sharp shapes.
+            let mut shift = u + surface_shift;
+            // A point on a side plane through a sharp corner meets that shape in the corner
+            // alone, which rounding may miss by a hair.
+            let (reference_lo, reference_hi) =
+                polygon_chord(ref_vertices, ref_normals, point, normal);
+            if reference_lo <= reference_hi + SPURIOUS_TOLERANCE {
+                shift = shift.max(reference_lo.min(reference_hi) - reference.radius);
+            }
+            let (incident_lo, incident_hi) =
+                polygon_chord(inc_vertices, inc_normals, point, normal);
+            if incident_lo <= incident_hi + SPURIOUS_TOLERANCE {
+                shift = shift.min(incident_hi.max(incident_lo).max(0.0) + incident.radius);
+            }
+            shift
+        };
         manifold.push(
-            point + normal * u,
-            separation,
+            point + normal * shift,
+            separation - rounding,
             FeatureId::clipped(reference_on_b, reference_vertex, incident_vertex),
         );
     }
@@ -528,7 +616,7 @@ fn collide_polygons(
         if let Some(center) = overlap_center(ref_vertices, ref_normals, inc_vertices) {
             manifold.push(
                 center,
-                pp.separation.separation,
+                pp.separation.separation - rounding,
                 FeatureId::clipped(reference_on_b, i1, j1),
             );
         }

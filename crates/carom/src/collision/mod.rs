@@ -1,8 +1,10 @@
 //! Collision: which pairs are near (broadphase), how near (narrowphase), where they touch
-//! (manifolds), which pairs may collide at all (filters), the persistent contacts that carry it from step to step, their graph colours
-//! and where each is stored, and continuous collision for fast bodies.
+//! (manifolds, with chains' smooth segments apart), which pairs may collide at all (filters),
+//! the persistent contacts that carry it from step to step, their graph colours and where
+//! each is stored, and continuous collision for fast bodies.
 
 pub(crate) mod broadphase;
+pub(crate) mod chain_segment;
 pub(crate) mod coloring;
 pub(crate) mod contact;
 pub(crate) mod contact_layout;

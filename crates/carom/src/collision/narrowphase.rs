@@ -13,7 +13,7 @@
 
 use crate::constants::COINCIDENT_NORMAL;
 use crate::geometry::shape::WorldShape;
-use crate::math::{Real, Vec2};
+use crate::math::{Real, Vec2, perp_cw};
 
 /// Where B stands relative to A along the direction that separates them best.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -47,7 +47,9 @@ impl Separation {
     }
 }
 
-/// Signed separation of two placed shapes; see the module documentation.
+/// Signed separation of two placed shapes; see the module documentation. A chain segment
+/// counts as a plain segment here, both sides solid: a query asks where shapes are, not which
+/// way they may collide.
 pub fn separation(a: &WorldShape, b: &WorldShape) -> Separation {
     match (a, b) {
         (
@@ -60,24 +62,37 @@ pub fn separation(a: &WorldShape, b: &WorldShape) -> Separation {
                 radius: rb,
             },
         ) => circle_circle(*ca, *ra, *cb, *rb),
-        (WorldShape::Polygon { vertices, normals }, WorldShape::Circle { center, radius }) => {
-            polygon_circle(vertices, normals, *center, *radius).separation
+        (WorldShape::Circle { .. }, _) => separation(b, a).flipped(),
+        (_, WorldShape::Circle { center, radius }) => {
+            with_core(a, |vertices, normals, rounding| {
+                polygon_circle(vertices, normals, *center, radius + rounding).separation
+            })
         }
-        (WorldShape::Circle { center, radius }, WorldShape::Polygon { vertices, normals }) => {
-            polygon_circle(vertices, normals, *center, *radius)
-                .separation
-                .flipped()
+        _ => with_core(a, |va, na, ra| {
+            with_core(b, |vb, nb, rb| {
+                let mut s = polygon_polygon(va, na, vb, nb).separation;
+                s.separation -= ra + rb;
+                s
+            })
+        }),
+    }
+}
+
+/// Calls `f` with a polygon's or chain segment's core (vertices and outward normals) and its
+/// rounding; a chain segment is a two-vertex core, both sides solid, and a circle a
+/// one-vertex core rounded by its radius.
+pub(crate) fn with_core<R>(shape: &WorldShape, f: impl FnOnce(&[Vec2], &[Vec2], Real) -> R) -> R {
+    match shape {
+        WorldShape::Polygon {
+            vertices,
+            normals,
+            radius,
+        } => f(vertices, normals, *radius),
+        WorldShape::ChainSegment { point1, point2, .. } => {
+            let normal = perp_cw(point2 - point1).normalize();
+            f(&[*point1, *point2], &[normal, -normal], 0.0)
         }
-        (
-            WorldShape::Polygon {
-                vertices: va,
-                normals: na,
-            },
-            WorldShape::Polygon {
-                vertices: vb,
-                normals: nb,
-            },
-        ) => polygon_polygon(va, na, vb, nb).separation,
+        WorldShape::Circle { center, radius } => f(&[*center], &[], *radius),
     }
 }
 
@@ -136,7 +151,9 @@ pub fn polygon_circle(
             best_distance = d;
         }
     }
-    if best_distance <= 0.0 {
+    // A two-vertex core (a capsule's or segment's) has no inside: a centre on its line may
+    // still lie beyond its ends.
+    if best_distance <= 0.0 && n >= 3 {
         // Inside: the nearest way out is through the nearest edge.
         let normal = normals[best_edge];
         return PolygonCircle {
@@ -165,6 +182,10 @@ pub fn polygon_circle(
             (start, PolygonFeature::Vertex(i))
         } else if t >= 1.0 {
             (end, PolygonFeature::Vertex((i + 1) % n))
+        } else if normals[i].dot(&(center - start)) < 0.0 {
+            // The edge faces away: the same line facing the centre is the other edge of a
+            // two-vertex core (a polygon's nearest edge from outside always faces the centre).
+            continue;
         } else {
             (start + edge * t, PolygonFeature::Edge(i))
         };
@@ -326,7 +347,7 @@ pub fn polygon_polygon_within(
 ) -> PolygonPolygon {
     let edge_a = max_separation(a_vertices, a_normals, b_vertices);
     let edge_b = max_separation(b_vertices, b_normals, a_vertices);
-    let sat = if edge_b.1 > edge_a.1 {
+    let mut sat = if edge_b.1 > edge_a.1 {
         Separation {
             normal: -b_normals[edge_b.0],
             separation: edge_b.1,
@@ -337,6 +358,21 @@ pub fn polygon_polygon_within(
             separation: edge_a.1,
         }
     };
+    if let ([a0, a1], [b0, b1]) = (a_vertices, b_vertices) {
+        // Two segments' cores: their normals miss the gap between two on one line, end to end
+        // (the Minkowski difference is then a segment along that line), so the line is an
+        // axis too.
+        let along = (a1 - a0).normalize();
+        let (a_lo, a_hi) = min_max(along.dot(a0), along.dot(a1));
+        let (b_lo, b_hi) = min_max(along.dot(b0), along.dot(b1));
+        let (ahead, behind) = (b_lo - a_hi, a_lo - b_hi);
+        if ahead.max(behind) > sat.separation {
+            sat = Separation {
+                normal: if ahead >= behind { along } else { -along },
+                separation: ahead.max(behind),
+            };
+        }
+    }
     if sat.separation <= sat_is_enough {
         return PolygonPolygon {
             separation: sat,
@@ -364,6 +400,12 @@ pub fn polygon_polygon_within(
     }
 }
 
+/// The smaller and the larger of two numbers.
+#[inline]
+fn min_max(p: Real, q: Real) -> (Real, Real) {
+    if p <= q { (p, q) } else { (q, p) }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -389,7 +431,10 @@ mod tests {
     #[test]
     fn polygon_circle_in_every_region() {
         let square = placed(Shape::rect(1.0, 1.0), 0.0, 0.0, 0.0);
-        let WorldShape::Polygon { vertices, normals } = &square else {
+        let WorldShape::Polygon {
+            vertices, normals, ..
+        } = &square
+        else {
             unreachable!()
         };
         // Across an edge.

@@ -6,6 +6,7 @@
 //! (the common case) has its centre of mass at its origin, as shapes are centred on their
 //! centroid. The solver moves centres of mass; the origin follows.
 
+use crate::dynamics::chain::ChainDef;
 use crate::dynamics::collider::{Collider, ColliderDef, ColliderHandle, check_non_negative};
 use crate::error::{CaromError, check_finite, check_finite_vec};
 use crate::geometry::aabb::Aabb;
@@ -123,6 +124,16 @@ impl BodyDef {
     /// A kinematic body.
     pub fn kinematic(shape: Shape) -> Self {
         Self::new(BodyKind::Kinematic, shape)
+    }
+
+    /// A static body made of a chain's links; see [`ChainDef`].
+    ///
+    /// # Errors
+    /// A chain [`ChainDef::segments`] refuses.
+    pub fn static_chain(chain: &ChainDef) -> Result<Self, CaromError> {
+        let mut def = Self::static_body(Shape::circle(1.0));
+        def.colliders = chain.colliders()?;
+        Ok(def)
     }
 
     /// Adds another collider.

@@ -1,6 +1,8 @@
-//! Dynamics: bodies, the colliders they are made of, drag, and the islands that sleep.
+//! Dynamics: bodies, the colliders they are made of (chains among them), drag, and the
+//! islands that sleep.
 
 pub(crate) mod body;
+pub(crate) mod chain;
 pub(crate) mod collider;
 pub(crate) mod drag;
 pub(crate) mod island;

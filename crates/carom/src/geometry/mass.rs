@@ -166,6 +166,82 @@ pub fn polygon_mass(points: &[Vec2], density: Real) -> Option<MassProperties> {
     })
 }
 
+/// Mass properties of a convex core grown by `radius` at uniform density: a rounded polygon
+/// (a counter-clockwise core of three or more vertices) or a capsule (a core of two).
+///
+/// Exact: the shape is the core, a rectangle `radius` deep on the outside of each edge, and a
+/// circular sector at each vertex between its edges' normals (the sectors make one whole
+/// circle). The inertia is about the centroid, which [`MassProperties::center`] gives.
+pub fn rounded_mass(core: &[Vec2], radius: Real, density: Real) -> MassProperties {
+    let r = radius as f64;
+    let n = core.len();
+    let point = |v: Vec2| [v.x as f64, v.y as f64];
+    let mut area = 0.0;
+    let mut first = [0.0f64; 2];
+    let mut second = 0.0;
+    let mut add = |a: f64, centroid: [f64; 2], own_second: f64| {
+        area += a;
+        first[0] += a * centroid[0];
+        first[1] += a * centroid[1];
+        second += own_second + a * (centroid[0] * centroid[0] + centroid[1] * centroid[1]);
+    };
+    if n >= 3
+        && let Some(m) = moments(core)
+    {
+        let a = m.area.abs();
+        let [cx, cy] = m.centroid;
+        // `moments` gives the second moment about the origin; split it at the centroid.
+        let own = m.second_moment * m.area.signum() - a * (cx * cx + cy * cy);
+        add(a, m.centroid, own);
+    }
+    // Each edge's outward normal; a two-vertex core has one edge each way.
+    let normal = |i: usize| {
+        let [x0, y0] = point(core[i]);
+        let [x1, y1] = point(core[(i + 1) % n]);
+        let (ex, ey) = (x1 - x0, y1 - y0);
+        let length = (ex * ex + ey * ey).sqrt();
+        ([ey / length, -ex / length], length)
+    };
+    for i in 0..n {
+        let ([nx, ny], length) = normal(i);
+        let [x0, y0] = point(core[i]);
+        let [x1, y1] = point(core[(i + 1) % n]);
+        let a = length * r;
+        let centroid = [
+            0.5 * (x0 + x1) + 0.5 * r * nx,
+            0.5 * (y0 + y1) + 0.5 * r * ny,
+        ];
+        add(a, centroid, a * (length * length + r * r) / 12.0);
+    }
+    for (i, &vertex) in core.iter().enumerate() {
+        let ([px, py], _) = normal((i + n - 1) % n);
+        let ([qx, qy], _) = normal(i);
+        // The sector's angle, from the previous edge's normal round to the next one's; the
+        // turn is counter-clockwise, so the cross product is never negative (a two-vertex
+        // core turns half round, where it is zero).
+        let angle = (px * qy - py * qx).abs().atan2(px * qx + py * qy);
+        let a = 0.5 * angle * r * r;
+        // Its centroid lies on the bisector, 2 r sin(α) / (3 α) from the vertex, α = angle / 2.
+        let half = 0.5 * angle;
+        let (sin, cos) = half.sin_cos();
+        let bisector = [px * cos - py * sin, px * sin + py * cos];
+        let reach = 2.0 * r * sin / (3.0 * half);
+        let [vx, vy] = point(vertex);
+        let centroid = [vx + reach * bisector[0], vy + reach * bisector[1]];
+        // About the vertex the sector's polar moment is a r² / 2; moved to its own centroid.
+        let own = a * (0.5 * r * r - reach * reach);
+        add(a, centroid, own);
+    }
+    let rho = density as f64;
+    let center = [first[0] / area, first[1] / area];
+    let about_center = (second - area * (center[0] * center[0] + center[1] * center[1])).max(0.0);
+    MassProperties {
+        mass: (rho * area) as Real,
+        center: Vec2::new(center[0] as Real, center[1] as Real),
+        inertia: (rho * about_center) as Real,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -223,6 +299,77 @@ mod tests {
             Err(CaromError::NonFinite { .. })
         ));
         assert!(check_density(Real::INFINITY).is_err());
+    }
+
+    /// Area, centroid and polar moment about the centroid of whatever `inside` holds within
+    /// `extent` of the origin, by the midpoint rule on a fine grid.
+    fn integrate(extent: f64, inside: impl Fn(Vec2) -> bool) -> (f64, [f64; 2], f64) {
+        let cells = 1200;
+        let h = 2.0 * extent / cells as f64;
+        let (mut area, mut mx, mut my, mut second) = (0.0, 0.0, 0.0, 0.0);
+        for i in 0..cells {
+            for j in 0..cells {
+                let (x, y) = (
+                    -extent + (i as f64 + 0.5) * h,
+                    -extent + (j as f64 + 0.5) * h,
+                );
+                if inside(vec2(x as Real, y as Real)) {
+                    area += h * h;
+                    mx += h * h * x;
+                    my += h * h * y;
+                    second += h * h * (x * x + y * y);
+                }
+            }
+        }
+        let (cx, cy) = (mx / area, my / area);
+        (area, [cx, cy], second - area * (cx * cx + cy * cy))
+    }
+
+    #[test]
+    fn rounded_shapes_match_numeric_integration() {
+        use crate::geometry::shape::Shape;
+        let shapes = [
+            Shape::capsule(vec2(-0.7, 0.2), vec2(0.5, -0.4), 0.3),
+            Shape::rounded_rect(0.6, 0.3, 0.2),
+            Shape::Polygon(
+                crate::geometry::polygon::Polygon::new(&pts(&[
+                    (-0.5, -0.4),
+                    (0.7, -0.2),
+                    (0.1, 0.6),
+                ]))
+                .unwrap()
+                .rounded(0.15),
+            ),
+        ];
+        for shape in &shapes {
+            let mass = shape.mass_properties(2.0).unwrap();
+            let (area, [cx, cy], inertia) = integrate(1.5, |p| shape.contains_local(p));
+            let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 2e-3 * scale;
+            assert!(
+                close(mass.mass as f64, 2.0 * area, 2.0 * area),
+                "{shape:?}: mass {} against {}",
+                mass.mass,
+                2.0 * area
+            );
+            assert!(
+                close(mass.center.x as f64, cx, 1.0) && close(mass.center.y as f64, cy, 1.0),
+                "{shape:?}: centre {:?} against ({cx}, {cy})",
+                mass.center
+            );
+            assert!(
+                close(mass.inertia as f64, 2.0 * inertia, 2.0 * inertia),
+                "{shape:?}: inertia {} against {}",
+                mass.inertia,
+                2.0 * inertia
+            );
+        }
+        // A capsule: Box2D's closed form, m = ρ (2 r L + π r²).
+        let capsule = Shape::capsule(vec2(-1.0, 0.0), vec2(1.0, 0.0), 0.5)
+            .mass_properties(1.0)
+            .unwrap();
+        let expected = 2.0 * 0.5 * 2.0 + std::f32::consts::PI * 0.25;
+        assert!((capsule.mass - expected).abs() < 1e-5);
+        assert!(capsule.center.norm() < 1e-6);
     }
 
     #[test]

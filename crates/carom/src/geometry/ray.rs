@@ -1,11 +1,11 @@
-//! Ray casts against circles and polygons.
+//! Ray casts against circles, polygons (rounded or not), capsules and segments.
 //!
 //! A ray is a segment: the points `origin + t * translation` for fractions `t` in `[0, 1]`.
 //! A cast reports where the ray *enters* a shape; a ray that starts inside a shape does not hit
 //! it (as in Box2D), so a query from inside a body looks past that body.
 
 use crate::constants::CONTAINMENT_TOLERANCE;
-use crate::math::{Real, Vec2};
+use crate::math::{Real, Vec2, perp_cw};
 
 /// A ray: from `origin` along `translation` (its length is the ray's reach).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -126,10 +126,98 @@ pub fn ray_cast_polygon(vertices: &[Vec2], normals: &[Vec2], ray: &Ray) -> Optio
     })
 }
 
+/// Casts a ray against a segment, from either side or, `one_sided`, only from the right of
+/// `point1` → `point2` (a chain's colliding side). A ray along the segment's line misses it.
+pub fn ray_cast_segment(point1: Vec2, point2: Vec2, one_sided: bool, ray: &Ray) -> Option<RayHit> {
+    let edge = point2 - point1;
+    let length = edge.norm();
+    if length == 0.0 || !length.is_finite() {
+        return None;
+    }
+    let mut normal = perp_cw(edge) / length;
+    let approach = normal.dot(&ray.translation);
+    if approach == 0.0 || (one_sided && approach > 0.0) {
+        return None;
+    }
+    let fraction = normal.dot(&(point1 - ray.origin)) / approach;
+    if !(0.0..=1.0).contains(&fraction) {
+        return None;
+    }
+    let point = ray.at(fraction);
+    let along = (point - point1).dot(&edge) / (length * length);
+    if !(0.0..=1.0).contains(&along) {
+        return None;
+    }
+    if approach > 0.0 {
+        normal = -normal;
+    }
+    Some(RayHit {
+        point,
+        normal,
+        fraction,
+    })
+}
+
+/// Casts a ray against a capsule: the segment `center1`–`center2` grown by `radius`.
+pub fn ray_cast_capsule(center1: Vec2, center2: Vec2, radius: Real, ray: &Ray) -> Option<RayHit> {
+    let normal = perp_cw(center2 - center1).normalize();
+    ray_cast_rounded(&[center1, center2], &[normal, -normal], radius, ray)
+}
+
+/// Casts a ray against a convex core (counter-clockwise vertices and outward unit normals, or
+/// a capsule's two) grown by `radius`: the first of its faces, each `radius` out from an edge,
+/// and its corners' circles that the ray meets. A ray starting inside never enters.
+pub fn ray_cast_rounded(
+    vertices: &[Vec2],
+    normals: &[Vec2],
+    radius: Real,
+    ray: &Ray,
+) -> Option<RayHit> {
+    let length = ray.translation.norm();
+    if length == 0.0 || !length.is_finite() {
+        return None;
+    }
+    let n = vertices.len();
+    let inside_core = n >= 3
+        && vertices
+            .iter()
+            .zip(normals)
+            .all(|(v, normal)| normal.dot(&(ray.origin - v)) <= 0.0);
+    if inside_core || crate::geometry::polygon::distance_to_outline(vertices, ray.origin) < radius {
+        return None;
+    }
+    let mut best: Option<RayHit> = None;
+    let mut keep = |hit: RayHit| {
+        if best.is_none_or(|b| hit.fraction < b.fraction) {
+            best = Some(hit);
+        }
+    };
+    for i in 0..n {
+        let (start, end, normal) = (vertices[i], vertices[(i + 1) % n], normals[i]);
+        let approach = normal.dot(&ray.translation);
+        if approach < 0.0 {
+            let fraction = normal.dot(&(start + normal * radius - ray.origin)) / approach;
+            let edge = end - start;
+            let along = (ray.at(fraction) - start).dot(&edge) / edge.norm_squared();
+            if (0.0..=1.0).contains(&fraction) && (0.0..=1.0).contains(&along) {
+                keep(RayHit {
+                    point: ray.at(fraction),
+                    normal,
+                    fraction,
+                });
+            }
+        }
+        if let Some(hit) = ray_cast_circle(start, radius, ray) {
+            keep(hit);
+        }
+    }
+    best
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::shape::Polygon;
+    use crate::geometry::polygon::Polygon;
     use crate::math::vec2;
 
     #[test]
@@ -169,6 +257,48 @@ mod tests {
         )
         .unwrap();
         assert!((tangent.point - vec2(0.0, 1.0)).norm() < 1e-6);
+    }
+
+    #[test]
+    fn segments_and_rounded_shapes() {
+        let ray = Ray::new(vec2(0.5, 2.0), vec2(0.0, -4.0));
+        let flat = (vec2(-1.0, 0.0), vec2(1.0, 0.0));
+        // Walking from (1, 0) to (-1, 0), the right side is up.
+        let hit = ray_cast_segment(flat.1, flat.0, true, &ray).unwrap();
+        assert!((hit.point - vec2(0.5, 0.0)).norm() < 1e-6);
+        assert_eq!(hit.normal, vec2(0.0, 1.0));
+        // One-sided: the other way round the ray comes from behind.
+        assert!(ray_cast_segment(flat.0, flat.1, true, &ray).is_none());
+        assert_eq!(
+            ray_cast_segment(flat.0, flat.1, false, &ray)
+                .unwrap()
+                .normal,
+            vec2(0.0, 1.0)
+        );
+        // A capsule along x of radius 0.5: the top face, then the end cap.
+        let hit = ray_cast_capsule(flat.0, flat.1, 0.5, &ray).unwrap();
+        assert!((hit.point - vec2(0.5, 0.5)).norm() < 1e-6);
+        assert!((hit.fraction - 0.375).abs() < 1e-6);
+        let side = Ray::new(vec2(3.0, 0.0), vec2(-4.0, 0.0));
+        let hit = ray_cast_capsule(flat.0, flat.1, 0.5, &side).unwrap();
+        assert!((hit.point - vec2(1.5, 0.0)).norm() < 1e-6);
+        assert!((hit.normal - vec2(1.0, 0.0)).norm() < 1e-6);
+        // Inside: no entry.
+        assert!(
+            ray_cast_capsule(
+                flat.0,
+                flat.1,
+                0.5,
+                &Ray::new(vec2(1.2, 0.1), vec2(4.0, 0.0))
+            )
+            .is_none()
+        );
+        // A rounded square: the corner arc.
+        let square = Polygon::rect(1.0, 1.0);
+        let diagonal = Ray::new(vec2(3.0, 3.0), vec2(-3.0, -3.0));
+        let hit = ray_cast_rounded(square.vertices(), square.normals(), 0.5, &diagonal).unwrap();
+        let corner = vec2(1.0, 1.0) + vec2(1.0, 1.0).normalize() * 0.5;
+        assert!((hit.point - corner).norm() < 1e-5);
     }
 
     #[test]

@@ -1,448 +1,33 @@
-//! Collision shapes: circles and convex polygons, in their local frame and in the world.
+//! Collision shapes: circles, capsules, convex polygons (rounded or not), segments and chain
+//! segments, in their local frame and in the world.
 
-use crate::constants::{COLLINEAR_SINE, CONTAINMENT_TOLERANCE, MAX_SHAPE_EXTENT, WELD_TOLERANCE};
-use crate::error::{CaromError, check_finite, check_finite_vec};
+use crate::error::CaromError;
 use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::{self, MassProperties};
-use crate::geometry::ray::{Ray, RayHit};
-use crate::math::{Isometry, Real, Vec2, cross, perp_cw};
-use std::f64::consts::TAU;
+use crate::geometry::ray::{self, Ray, RayHit};
+use crate::math::{Isometry, Real, Vec2, perp_cw};
 
-/// Checks that a shape's coordinate or size is no larger than [`MAX_SHAPE_EXTENT`].
-fn check_extent(what: &'static str, value: Real) -> Result<(), CaromError> {
-    if value.abs() <= MAX_SHAPE_EXTENT {
-        Ok(())
-    } else {
-        Err(CaromError::OutOfRange {
-            name: what,
-            expected: "within 100 km (100000 m)",
-            value,
-        })
-    }
-}
-
-/// Checks a polygon point: finite and within [`MAX_SHAPE_EXTENT`].
-fn check_point(what: &str, point: Vec2) -> Result<(), CaromError> {
-    check_finite_vec(what, point)?;
-    check_extent("polygon coordinate", point.x)?;
-    check_extent("polygon coordinate", point.y)
-}
-
-/// A circle centred on its body's centre of mass.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Circle {
-    radius: Real,
-}
-
-impl Circle {
-    /// A circle of the given radius. The radius must be finite and positive, which
-    /// [`Circle::validate`] checks (a world checks it when the circle is added).
-    pub fn new(radius: Real) -> Self {
-        Circle { radius }
-    }
-
-    /// Checks the radius: finite, positive, within 100 km.
-    ///
-    /// # Errors
-    /// A radius that is not all three.
-    pub fn validate(&self) -> Result<(), CaromError> {
-        check_finite("circle radius", self.radius)?;
-        if self.radius <= 0.0 {
-            return Err(CaromError::InvalidRadius {
-                radius: self.radius,
-            });
-        }
-        check_extent("circle radius", self.radius)
-    }
-
-    /// The radius.
-    #[inline]
-    pub fn radius(&self) -> Real {
-        self.radius
-    }
-
-    /// True when the local point lies inside or on the circle.
-    #[inline]
-    pub fn contains_local(&self, point: Vec2) -> bool {
-        let r = self.radius + CONTAINMENT_TOLERANCE;
-        point.norm_squared() <= r * r
-    }
-}
-
-/// A convex polygon, counter-clockwise, recentred so that its centroid is the local origin.
-///
-/// Edge `i` runs from vertex `i` to vertex `i + 1` (wrapping); its outward normal is the unit
-/// clockwise perpendicular of the edge. Edges and normals are computed once, here.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Polygon {
-    vertices: Vec<Vec2>,
-    edges: Vec<Vec2>,
-    normals: Vec<Vec2>,
-    /// Where the centroid was in the coordinates the points were given in.
-    source_centroid: Vec2,
-    /// Distance from the centroid to the farthest vertex.
-    radius: Real,
-    /// Why the arguments of an infallible constructor ([`Polygon::rect`]) made no polygon;
-    /// [`Polygon::validate`] reports it. The vertices are then a unit square's.
-    problem: Option<Box<CaromError>>,
-}
-
-impl Polygon {
-    /// Builds a convex polygon from its vertices in order around the outline.
-    ///
-    /// Clockwise input is reversed; points collinear with their neighbours are dropped. The
-    /// result is recentred on its centroid: [`Polygon::source_centroid`] tells where that was.
-    ///
-    /// # Errors
-    /// Fewer than 3 points, a NaN or infinite coordinate, two coinciding points, zero area, a
-    /// reflex (inward-turning) vertex, or edges that cross each other.
-    pub fn new(points: &[Vec2]) -> Result<Self, CaromError> {
-        if points.len() < 3 {
-            return Err(CaromError::TooFewVertices {
-                count: points.len(),
-            });
-        }
-        for (i, p) in points.iter().enumerate() {
-            check_point(&format!("polygon vertex {i}"), *p)?;
-        }
-        let weld = weld_distance(points);
-        for i in 0..points.len() {
-            for j in i + 1..points.len() {
-                if (points[i] - points[j]).norm() <= weld {
-                    return Err(CaromError::DuplicateVertex {
-                        first: i,
-                        second: j,
-                        x: points[i].x,
-                        y: points[i].y,
-                    });
-                }
-            }
-        }
-        // Keep each point's index in the input so errors can name it.
-        let mut outline: Vec<(usize, Vec2)> = points.iter().copied().enumerate().collect();
-        let area = mass::polygon_area(points);
-        if area == 0.0 {
-            return Err(CaromError::ZeroArea);
-        }
-        if area < 0.0 {
-            outline.reverse();
-        }
-        drop_collinear(&mut outline)?;
-        let vertices: Vec<Vec2> = outline.iter().map(|&(_, p)| p).collect();
-        let turns = winding_turns(&vertices);
-        if turns != 1 {
-            return Err(CaromError::SelfIntersecting { turns });
-        }
-        Self::from_convex_ccw(vertices)
-    }
-
-    /// The convex hull of any cloud of points (Andrew's monotone chain).
-    ///
-    /// Interior points, coinciding points and points on the hull's edges are dropped.
-    ///
-    /// # Errors
-    /// A NaN or infinite coordinate, or fewer than 3 points not all on one line.
-    pub fn hull(points: &[Vec2]) -> Result<Self, CaromError> {
-        for (i, p) in points.iter().enumerate() {
-            check_point(&format!("hull point {i}"), *p)?;
-        }
-        let mut sorted: Vec<Vec2> = points.to_vec();
-        sorted.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-        let weld = weld_distance(points);
-        sorted.dedup_by(|a, b| (*a - *b).norm() <= weld);
-        if sorted.len() < 3 {
-            return Err(CaromError::TooFewVertices {
-                count: sorted.len(),
-            });
-        }
-        // A point is kept only when the chain turns strictly left at it.
-        let turns_left = |o: Vec2, a: Vec2, b: Vec2| {
-            let (e, f) = (a - o, b - a);
-            let sine = cross(e, f) as f64 / (e.norm() as f64 * f.norm() as f64);
-            sine > COLLINEAR_SINE
-        };
-        let mut hull: Vec<Vec2> = Vec::with_capacity(sorted.len() + 1);
-        // Lower chain left to right, then upper chain right to left.
-        for &p in &sorted {
-            while hull.len() >= 2 && !turns_left(hull[hull.len() - 2], hull[hull.len() - 1], p) {
-                hull.pop();
-            }
-            hull.push(p);
-        }
-        let lower_len = hull.len() + 1;
-        for &p in sorted.iter().rev().skip(1) {
-            while hull.len() >= lower_len
-                && !turns_left(hull[hull.len() - 2], hull[hull.len() - 1], p)
-            {
-                hull.pop();
-            }
-            hull.push(p);
-        }
-        // The upper chain ends where the lower one started.
-        hull.pop();
-        if hull.len() < 3 {
-            return Err(CaromError::ZeroArea);
-        }
-        Self::from_convex_ccw(hull)
-    }
-
-    /// An axis-aligned rectangle `2 half_width` by `2 half_height`, centred on the origin.
-    /// The half sizes must be finite,
-    /// positive and within 100 km, which [`Polygon::validate`] checks (a world checks it
-    /// when the rectangle is added).
-    pub fn rect(half_width: Real, half_height: Real) -> Self {
-        let check = || {
-            for (name, value) in [("half_width", half_width), ("half_height", half_height)] {
-                check_finite(name, value)?;
-                if value <= 0.0 {
-                    return Err(CaromError::OutOfRange {
-                        name,
-                        expected: "positive",
-                        value,
-                    });
-                }
-                check_extent(name, value)?;
-            }
-            Ok(())
-        };
-        let (w, h, problem) = match check() {
-            Ok(()) => (half_width, half_height, None),
-            Err(e) => (0.5, 0.5, Some(Box::new(e))),
-        };
-        let corners = vec![
-            Vec2::new(-w, -h),
-            Vec2::new(w, -h),
-            Vec2::new(w, h),
-            Vec2::new(-w, h),
-        ];
-        let mut rect = Self::from_convex_ccw(corners).unwrap_or_else(|e| Polygon {
-            problem: Some(Box::new(e)),
-            ..Self::rect(0.5, 0.5)
-        });
-        rect.problem = rect.problem.take().or(problem);
-        rect
-    }
-
-    /// Checks a polygon made by an infallible constructor ([`Polygon::rect`]); the others
-    /// check their input as they build and always pass.
-    ///
-    /// # Errors
-    /// What was wrong with the constructor's arguments.
-    pub fn validate(&self) -> Result<(), CaromError> {
-        match &self.problem {
-            Some(problem) => Err((**problem).clone()),
-            None => Ok(()),
-        }
-    }
-
-    /// A regular polygon with `sides` vertices on a circle of `radius`.
-    ///
-    /// It is turned so its bottom edge is horizontal: boxes (4 sides) come out axis-aligned
-    /// and every regular polygon can rest flat on a floor.
-    pub fn regular(sides: usize, radius: Real) -> Result<Self, CaromError> {
-        if sides < 3 {
-            return Err(CaromError::TooFewVertices { count: sides });
-        }
-        check_finite("regular polygon radius", radius)?;
-        check_extent("regular polygon radius", radius)?;
-        if radius <= 0.0 {
-            return Err(CaromError::OutOfRange {
-                name: "regular polygon radius",
-                expected: "positive",
-                value: radius,
-            });
-        }
-        let n = sides as f64;
-        let start = -0.25 * TAU - 0.5 * TAU / n;
-        let vertices = (0..sides)
-            .map(|i| {
-                let angle = start + TAU * i as f64 / n;
-                Vec2::new(
-                    (radius as f64 * angle.cos()) as Real,
-                    (radius as f64 * angle.sin()) as Real,
-                )
-            })
-            .collect();
-        Self::from_convex_ccw(vertices)
-    }
-
-    /// Builds the cached data from vertices already known to be convex and counter-clockwise.
-    fn from_convex_ccw(mut vertices: Vec<Vec2>) -> Result<Self, CaromError> {
-        let source_centroid = mass::polygon_centroid(&vertices).ok_or(CaromError::ZeroArea)?;
-        for v in &mut vertices {
-            *v -= source_centroid;
-        }
-        // Recentring rounds: points a hair apart far from the centroid can land on one
-        // another. Merge them, so no edge is too short to have a normal.
-        let weld = weld_distance(&vertices);
-        let mut i = 0;
-        while vertices.len() >= 3 && i < vertices.len() {
-            let next = (i + 1) % vertices.len();
-            if (vertices[next] - vertices[i]).norm() <= weld {
-                vertices.remove(next);
-            } else {
-                i += 1;
-            }
-        }
-        if vertices.len() < 3 {
-            return Err(CaromError::ZeroArea);
-        }
-        let n = vertices.len();
-        let edges: Vec<Vec2> = (0..n)
-            .map(|i| vertices[(i + 1) % n] - vertices[i])
-            .collect();
-        let normals: Vec<Vec2> = edges.iter().map(|e| perp_cw(*e).normalize()).collect();
-        if normals
-            .iter()
-            .any(|n| !(n.x.is_finite() && n.y.is_finite()))
-        {
-            return Err(CaromError::ZeroArea);
-        }
-        let radius = vertices.iter().map(|v| v.norm()).fold(0.0, Real::max);
-        Ok(Polygon {
-            vertices,
-            edges,
-            normals,
-            source_centroid,
-            radius,
-            problem: None,
-        })
-    }
-
-    /// The vertices, counter-clockwise, relative to the centroid.
-    #[inline]
-    pub fn vertices(&self) -> &[Vec2] {
-        &self.vertices
-    }
-
-    /// The edges: `edges()[i] = vertices()[i + 1] - vertices()[i]`, wrapping.
-    #[inline]
-    pub fn edges(&self) -> &[Vec2] {
-        &self.edges
-    }
-
-    /// The unit outward normal of each edge.
-    #[inline]
-    pub fn normals(&self) -> &[Vec2] {
-        &self.normals
-    }
-
-    /// The number of vertices (and of edges).
-    #[inline]
-    pub fn len(&self) -> usize {
-        self.vertices.len()
-    }
-
-    /// Always false: a polygon has at least three vertices. Present for API symmetry with `len`.
-    #[inline]
-    pub fn is_empty(&self) -> bool {
-        false
-    }
-
-    /// Where the centroid was in the coordinates the points were given in: the offset that
-    /// was subtracted from every point. Place the body there to keep the shape where it was.
-    #[inline]
-    pub fn source_centroid(&self) -> Vec2 {
-        self.source_centroid
-    }
-
-    /// Distance from the centroid to the farthest vertex.
-    #[inline]
-    pub fn radius(&self) -> Real {
-        self.radius
-    }
-
-    /// True when the local point lies inside or on the polygon.
-    ///
-    /// The tutorial's test: the point is on the inner side of every edge, i.e. the cross
-    /// product of the edge with the vector from its start to the point is not negative. With
-    /// unit normals that is `normal · (point - vertex) <= 0`, which lets the tolerance be a
-    /// distance.
-    pub fn contains_local(&self, point: Vec2) -> bool {
-        self.vertices
-            .iter()
-            .zip(&self.normals)
-            .all(|(v, n)| n.dot(&(point - v)) <= CONTAINMENT_TOLERANCE)
-    }
-
-    /// The index of the vertex farthest along `direction` (the support point).
-    pub fn support(&self, direction: Vec2) -> usize {
-        let mut best = 0;
-        let mut best_dot = self.vertices[0].dot(&direction);
-        for (i, v) in self.vertices.iter().enumerate().skip(1) {
-            let d = v.dot(&direction);
-            if d > best_dot {
-                best = i;
-                best_dot = d;
-            }
-        }
-        best
-    }
-}
-
-/// How close two points of this cloud must be to count as one.
-fn weld_distance(points: &[Vec2]) -> Real {
-    let extent = points
-        .iter()
-        .map(|p| p.x.abs().max(p.y.abs()))
-        .fold(0.0, Real::max);
-    WELD_TOLERANCE * extent.max(1.0)
-}
-
-/// Removes vertices collinear with their neighbours; rejects inward turns and spikes.
-fn drop_collinear(outline: &mut Vec<(usize, Vec2)>) -> Result<(), CaromError> {
-    let mut i = 0;
-    let mut unchanged = 0;
-    // Walk around until a full lap removes nothing: dropping a point changes its neighbours.
-    while unchanged < outline.len() {
-        if outline.len() < 3 {
-            return Err(CaromError::ZeroArea);
-        }
-        let n = outline.len();
-        let prev = outline[(i + n - 1) % n].1;
-        let (index, here) = outline[i % n];
-        let next = outline[(i + 1) % n].1;
-        let (e, f) = (here - prev, next - here);
-        let sine = cross(e, f) as f64 / (e.norm() as f64 * f.norm() as f64);
-        if sine < -COLLINEAR_SINE || (sine <= COLLINEAR_SINE && e.dot(&f) < 0.0) {
-            // A right turn, or a spike that doubles back on itself.
-            return Err(CaromError::ReflexVertex {
-                index,
-                x: here.x,
-                y: here.y,
-            });
-        }
-        if sine <= COLLINEAR_SINE {
-            outline.remove(i % n);
-            unchanged = 0;
-        } else {
-            i = (i + 1) % n;
-            unchanged += 1;
-        }
-    }
-    Ok(())
-}
-
-/// How many times a counter-clockwise outline of left turns goes around (1 for a simple one).
-fn winding_turns(vertices: &[Vec2]) -> i32 {
-    let n = vertices.len();
-    let total: f64 = (0..n)
-        .map(|i| {
-            let e = vertices[(i + 1) % n] - vertices[i];
-            let f = vertices[(i + 2) % n] - vertices[(i + 1) % n];
-            (cross(e, f) as f64).atan2(e.dot(&f) as f64)
-        })
-        .sum();
-    (total / TAU).round() as i32
-}
+pub use crate::geometry::capsule::Capsule;
+pub use crate::geometry::circle::Circle;
+pub use crate::geometry::polygon::Polygon;
+pub use crate::geometry::segment::{ChainSegment, Segment};
 
 /// A collision shape. Matched on in hot code (no dynamic dispatch).
+///
+/// Circles and polygons are centred on their centroid when built; capsules, segments and chain
+/// segments keep the points they are given, in the collider's frame.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Shape {
-    /// A circle centred on the body's centre of mass.
+    /// A circle centred on the local origin.
     Circle(Circle),
-    /// A convex polygon whose centroid is the body's centre of mass.
+    /// Two circles' centres joined by their radius.
+    Capsule(Capsule),
+    /// A convex polygon, rounded or not, whose centroid is the local origin.
     Polygon(Polygon),
+    /// A two-sided segment of no thickness, for static geometry (it has no mass).
+    Segment(Segment),
+    /// One link of a chain: one-sided, with ghost vertices (see [`crate::ChainDef`]).
+    ChainSegment(ChainSegment),
 }
 
 impl Shape {
@@ -458,15 +43,35 @@ impl Shape {
         Shape::Polygon(Polygon::rect(half_width, half_height))
     }
 
-    /// Checks the shape: a circle's radius, or the arguments a rectangle was made from
-    /// (polygons from points are checked as they are built).
+    /// A rectangle `2 half_width` by `2 half_height` rounded by `radius`, so `radius` larger
+    /// on every side, as Box2D's `b2MakeRoundedBox`; see [`Polygon::rounded`].
+    pub fn rounded_rect(half_width: Real, half_height: Real, radius: Real) -> Self {
+        Shape::Polygon(Polygon::rect(half_width, half_height).rounded(radius))
+    }
+
+    /// A capsule; see [`Capsule::new`].
+    pub fn capsule(center1: Vec2, center2: Vec2, radius: Real) -> Self {
+        Shape::Capsule(Capsule::new(center1, center2, radius))
+    }
+
+    /// A two-sided segment; see [`Segment::new`].
+    pub fn segment(point1: Vec2, point2: Vec2) -> Self {
+        Shape::Segment(Segment::new(point1, point2))
+    }
+
+    /// Checks the shape: a circle's or capsule's radius, a segment's ends, or the arguments a
+    /// rectangle or a rounding was made from (polygons from points are checked as they are
+    /// built).
     ///
     /// # Errors
     /// The first thing wrong with the shape.
     pub fn validate(&self) -> Result<(), CaromError> {
         match self {
             Shape::Circle(c) => c.validate(),
+            Shape::Capsule(c) => c.validate(),
             Shape::Polygon(p) => p.validate(),
+            Shape::Segment(s) => s.validate(),
+            Shape::ChainSegment(s) => s.validate(),
         }
     }
 
@@ -485,7 +90,15 @@ impl Shape {
         Polygon::hull(points).map(Shape::Polygon)
     }
 
-    /// Mass properties at uniform `density`, about the local origin (the centroid).
+    /// True for the shapes that enclose area and so can give a body mass; segments and chain
+    /// segments do not.
+    pub fn has_area(&self) -> bool {
+        !matches!(self, Shape::Segment(_) | Shape::ChainSegment(_))
+    }
+
+    /// Mass properties at uniform `density`, about the shape's centroid, which
+    /// [`MassProperties::center`] gives in the local frame (the origin for circles and
+    /// polygons). Segments have no area, hence no mass.
     ///
     /// # Errors
     /// An invalid shape ([`Shape::validate`]), or a density that is not finite and positive.
@@ -493,60 +106,104 @@ impl Shape {
         self.validate()?;
         mass::check_density(density)?;
         Ok(match self {
-            Shape::Circle(c) => mass::circle_mass(c.radius, density),
+            Shape::Circle(c) => mass::circle_mass(c.radius(), density),
+            Shape::Capsule(c) => {
+                mass::rounded_mass(&[c.center1(), c.center2()], c.radius(), density)
+            }
+            Shape::Polygon(p) if p.radius() > 0.0 => {
+                let mut m = mass::rounded_mass(p.vertices(), p.radius(), density);
+                // Rounding a polygon about its centroid keeps the centroid only for
+                // symmetric cores; otherwise the rounded centroid is a little off the origin.
+                if m.center.norm() <= 1e-6 * p.circumradius() {
+                    m.center = Vec2::zeros();
+                }
+                m
+            }
             Shape::Polygon(p) => {
-                let mut m = mass::polygon_mass(&p.vertices, density).ok_or(CaromError::ZeroArea)?;
+                let mut m =
+                    mass::polygon_mass(p.vertices(), density).ok_or(CaromError::ZeroArea)?;
                 // The polygon is recentred already; drop the rounding residue.
                 m.center = Vec2::zeros();
                 m
             }
+            Shape::Segment(s) => massless((s.point1() + s.point2()) * 0.5),
+            Shape::ChainSegment(s) => massless((s.point1() + s.point2()) * 0.5),
         })
     }
 
-    /// True when the local point lies inside or on the shape.
+    /// True when the local point lies inside or on the shape (on it, for segments).
     #[inline]
     pub fn contains_local(&self, point: Vec2) -> bool {
         match self {
             Shape::Circle(c) => c.contains_local(point),
+            Shape::Capsule(c) => c.contains_local(point),
             Shape::Polygon(p) => p.contains_local(point),
+            Shape::Segment(s) => s.contains_local(point),
+            Shape::ChainSegment(s) => s.contains_local(point),
         }
     }
 
-    /// Casts a ray given in the shape's local frame; see [`Ray`].
+    /// Casts a ray given in the shape's local frame; see [`Ray`]. A chain segment is hit only
+    /// from its colliding side.
     pub fn ray_cast_local(&self, ray: &Ray) -> Option<RayHit> {
         match self {
-            Shape::Circle(c) => crate::geometry::ray::ray_cast_circle(Vec2::zeros(), c.radius, ray),
-            Shape::Polygon(p) => {
-                crate::geometry::ray::ray_cast_polygon(&p.vertices, &p.normals, ray)
+            Shape::Circle(c) => ray::ray_cast_circle(Vec2::zeros(), c.radius(), ray),
+            Shape::Capsule(c) => ray::ray_cast_capsule(c.center1(), c.center2(), c.radius(), ray),
+            Shape::Polygon(p) if p.radius() > 0.0 => {
+                ray::ray_cast_rounded(p.vertices(), p.normals(), p.radius(), ray)
             }
+            Shape::Polygon(p) => ray::ray_cast_polygon(p.vertices(), p.normals(), ray),
+            Shape::Segment(s) => ray::ray_cast_segment(s.point1(), s.point2(), false, ray),
+            Shape::ChainSegment(s) => ray::ray_cast_segment(s.point1(), s.point2(), true, ray),
         }
     }
 
-    /// The largest distance from the centre to the boundary: how far any point of the shape
-    /// moves when the body turns by a small angle, per radian.
+    /// The largest distance from the local origin to the boundary: how far any point of the
+    /// shape moves when the body turns by a small angle, per radian.
     pub fn max_extent(&self) -> Real {
         match self {
-            Shape::Circle(c) => c.radius,
-            Shape::Polygon(p) => p.radius,
+            Shape::Circle(c) => c.radius(),
+            Shape::Capsule(c) => c.center1().norm().max(c.center2().norm()) + c.radius(),
+            Shape::Polygon(p) => p.circumradius() + p.radius(),
+            Shape::Segment(s) => s.point1().norm().max(s.point2().norm()),
+            Shape::ChainSegment(s) => s.point1().norm().max(s.point2().norm()),
         }
     }
 
-    /// The smallest distance from the centre to the boundary: the size below which a body
-    /// could pass through a thin wall in one step.
+    /// How thick the shape is at its thinnest, halved: the size below which a body could
+    /// pass through a thin wall in one step. A polygon's inradius about its centroid (plus
+    /// its rounding), a capsule's radius, zero for segments.
     pub fn min_extent(&self) -> Real {
         match self {
-            Shape::Circle(c) => c.radius,
-            Shape::Polygon(p) => p
-                .vertices
-                .iter()
-                .zip(&p.normals)
-                .map(|(v, n)| n.dot(v))
-                .fold(Real::INFINITY, Real::min),
+            Shape::Circle(c) => c.radius(),
+            Shape::Capsule(c) => c.radius(),
+            Shape::Polygon(p) => {
+                p.vertices()
+                    .iter()
+                    .zip(p.normals())
+                    .map(|(v, n)| n.dot(v))
+                    .fold(Real::INFINITY, Real::min)
+                    + p.radius()
+            }
+            Shape::Segment(_) | Shape::ChainSegment(_) => 0.0,
         }
     }
 }
 
+/// No mass, centred at `center`.
+fn massless(center: Vec2) -> MassProperties {
+    MassProperties {
+        mass: 0.0,
+        center,
+        inertia: 0.0,
+    }
+}
+
 /// A shape placed in the world: what collision and queries read, computed once per step.
+///
+/// Capsules and segments are placed as two-vertex polygons: the core's two edges are the same
+/// line facing both ways, and a capsule's radius rounds it. Collision then treats every
+/// convex shape but the circle alike.
 #[derive(Debug, Clone, PartialEq)]
 pub enum WorldShape {
     /// A circle in world coordinates.
@@ -556,17 +213,31 @@ pub enum WorldShape {
         /// Radius.
         radius: Real,
     },
-    /// A polygon in world coordinates.
+    /// A convex polygon (or a capsule's or segment's two-vertex core) in world coordinates,
+    /// rounded by `radius`.
     Polygon {
-        /// World vertices, counter-clockwise.
+        /// World vertices of the core, counter-clockwise.
         vertices: Vec<Vec2>,
         /// World outward unit normals, one per edge.
         normals: Vec<Vec2>,
+        /// How far the shape reaches beyond its core (0 for sharp polygons and segments).
+        radius: Real,
+    },
+    /// A chain's link in world coordinates: collides on the right of `point1` → `point2`.
+    ChainSegment {
+        /// The previous link's first point.
+        ghost1: Vec2,
+        /// The first end.
+        point1: Vec2,
+        /// The second end.
+        point2: Vec2,
+        /// The next link's second point.
+        ghost2: Vec2,
     },
 }
 
 impl WorldShape {
-    /// The shape with its centroid at `position`, turned by `angle` radians.
+    /// The shape with its local origin at `position`, turned by `angle` radians.
     pub fn at(shape: &Shape, position: Vec2, angle: Real) -> Self {
         WorldShape::new(shape, &Isometry::new(position, angle))
     }
@@ -576,11 +247,18 @@ impl WorldShape {
         let mut world = match shape {
             Shape::Circle(c) => WorldShape::Circle {
                 center: Vec2::zeros(),
-                radius: c.radius,
+                radius: c.radius(),
             },
-            Shape::Polygon(_) => WorldShape::Polygon {
+            Shape::Capsule(_) | Shape::Polygon(_) | Shape::Segment(_) => WorldShape::Polygon {
                 vertices: Vec::new(),
                 normals: Vec::new(),
+                radius: 0.0,
+            },
+            Shape::ChainSegment(s) => WorldShape::ChainSegment {
+                ghost1: s.ghost1(),
+                point1: s.point1(),
+                point2: s.point2(),
+                ghost2: s.ghost2(),
             },
         };
         world.update(shape, transform);
@@ -589,18 +267,62 @@ impl WorldShape {
 
     /// Re-places the shape, reusing this cache's storage.
     pub fn update(&mut self, shape: &Shape, transform: &Isometry) {
+        let rotation = transform.rotation;
+        let translation = transform.translation.vector;
+        let place = |p: Vec2| rotation * p + translation;
         match (self, shape) {
             (WorldShape::Circle { center, radius }, Shape::Circle(c)) => {
-                *center = transform.translation.vector;
-                *radius = c.radius;
+                *center = translation;
+                *radius = c.radius();
             }
-            (WorldShape::Polygon { vertices, normals }, Shape::Polygon(p)) => {
-                let rotation = transform.rotation;
-                let translation = transform.translation.vector;
+            (
+                WorldShape::Polygon {
+                    vertices,
+                    normals,
+                    radius,
+                },
+                Shape::Polygon(p),
+            ) => {
                 vertices.clear();
-                vertices.extend(p.vertices.iter().map(|v| rotation * v + translation));
+                vertices.extend(p.vertices().iter().map(|&v| place(v)));
                 normals.clear();
-                normals.extend(p.normals.iter().map(|n| rotation * n));
+                normals.extend(p.normals().iter().map(|n| rotation * n));
+                *radius = p.radius();
+            }
+            (
+                WorldShape::Polygon {
+                    vertices,
+                    normals,
+                    radius,
+                },
+                Shape::Capsule(_) | Shape::Segment(_),
+            ) => {
+                let (ends, rounding) = match shape {
+                    Shape::Capsule(c) => ([c.center1(), c.center2()], c.radius()),
+                    Shape::Segment(s) => ([s.point1(), s.point2()], 0.0),
+                    _ => unreachable!("matched above"),
+                };
+                let [p1, p2] = ends.map(place);
+                let normal = perp_cw(p2 - p1).normalize();
+                vertices.clear();
+                vertices.extend([p1, p2]);
+                normals.clear();
+                normals.extend([normal, -normal]);
+                *radius = rounding;
+            }
+            (
+                WorldShape::ChainSegment {
+                    ghost1,
+                    point1,
+                    point2,
+                    ghost2,
+                },
+                Shape::ChainSegment(s),
+            ) => {
+                *ghost1 = place(s.ghost1());
+                *point1 = place(s.point1());
+                *point2 = place(s.point2());
+                *ghost2 = place(s.ghost2());
             }
             (world, shape) => *world = WorldShape::new(shape, transform),
         }
@@ -613,9 +335,29 @@ impl WorldShape {
                 let r = Vec2::new(*radius, *radius);
                 Aabb::new(center - r, center + r)
             }
-            WorldShape::Polygon { vertices, .. } => {
-                Aabb::from_points(vertices).expect("a polygon has at least three vertices")
+            WorldShape::Polygon {
+                vertices, radius, ..
+            } => {
+                let core =
+                    Aabb::from_points(vertices).expect("a polygon has at least two vertices");
+                if *radius > 0.0 {
+                    core.fattened(*radius)
+                } else {
+                    core
+                }
             }
+            WorldShape::ChainSegment { point1, point2, .. } => {
+                Aabb::new(point1.inf(point2), point1.sup(point2))
+            }
+        }
+    }
+
+    /// How far the shape reaches beyond the points that define it: a circle's or a rounded
+    /// shape's radius, 0 for sharp ones.
+    pub fn radius(&self) -> Real {
+        match self {
+            WorldShape::Circle { radius, .. } | WorldShape::Polygon { radius, .. } => *radius,
+            WorldShape::ChainSegment { .. } => 0.0,
         }
     }
 }
@@ -624,143 +366,6 @@ impl WorldShape {
 mod tests {
     use super::*;
     use crate::math::vec2;
-
-    fn pts(coords: &[(Real, Real)]) -> Vec<Vec2> {
-        coords.iter().map(|&(x, y)| vec2(x, y)).collect()
-    }
-
-    #[test]
-    fn polygon_is_ccw_recentred_with_outward_normals() {
-        // Clockwise input is accepted and reversed.
-        let poly = Polygon::new(&pts(&[(0.0, 0.0), (0.0, 2.0), (4.0, 2.0), (4.0, 0.0)])).unwrap();
-        assert_eq!(poly.source_centroid(), vec2(2.0, 1.0));
-        assert!(mass::polygon_area(poly.vertices()) > 0.0);
-        for i in 0..poly.len() {
-            let v = poly.vertices()[i];
-            let next = poly.vertices()[(i + 1) % poly.len()];
-            assert_eq!(poly.edges()[i], next - v);
-            let n = poly.normals()[i];
-            assert!((n.norm() - 1.0).abs() < 1e-6);
-            assert!(n.dot(&poly.edges()[i]).abs() < 1e-6);
-            // Outward: the centroid (origin) is behind every edge.
-            assert!(n.dot(&(Vec2::zeros() - v)) < 0.0);
-        }
-        assert!(mass::polygon_centroid(poly.vertices()).unwrap().norm() < 1e-6);
-    }
-
-    #[test]
-    fn collinear_points_are_dropped() {
-        let poly = Polygon::new(&pts(&[
-            (0.0, 0.0),
-            (1.0, 0.0),
-            (2.0, 0.0),
-            (2.0, 1.0),
-            (2.0, 2.0),
-            (0.0, 2.0),
-        ]))
-        .unwrap();
-        assert_eq!(poly.len(), 4);
-    }
-
-    #[test]
-    fn bad_polygons_are_named_errors() {
-        assert_eq!(
-            Polygon::new(&pts(&[(0.0, 0.0), (1.0, 0.0)])),
-            Err(CaromError::TooFewVertices { count: 2 })
-        );
-        assert!(matches!(
-            Polygon::new(&pts(&[(0.0, 0.0), (1.0, Real::NAN), (0.0, 1.0)])),
-            Err(CaromError::NonFinite { .. })
-        ));
-        assert!(matches!(
-            Polygon::new(&pts(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (1.0, 0.0)])),
-            Err(CaromError::DuplicateVertex {
-                first: 1,
-                second: 3,
-                ..
-            })
-        ));
-        assert_eq!(
-            Polygon::new(&pts(&[(0.0, 0.0), (1.0, 1.0), (2.0, 2.0)])),
-            Err(CaromError::ZeroArea)
-        );
-        // An arrow head: vertex 2 points inward.
-        let err = Polygon::new(&pts(&[
-            (0.0, 0.0),
-            (2.0, 0.0),
-            (1.0, 0.5),
-            (2.0, 2.0),
-            (0.0, 2.0),
-        ]));
-        assert_eq!(
-            err,
-            Err(CaromError::ReflexVertex {
-                index: 2,
-                x: 1.0,
-                y: 0.5
-            })
-        );
-        assert!(err.unwrap_err().to_string().contains("vertex 2"));
-        // A pentagram turns left at every vertex but winds twice.
-        let star: Vec<Vec2> = (0..5)
-            .map(|i| {
-                let a = std::f32::consts::TAU * (2 * i) as Real / 5.0;
-                vec2(a.cos(), a.sin())
-            })
-            .collect();
-        assert_eq!(
-            Polygon::new(&star),
-            Err(CaromError::SelfIntersecting { turns: 2 })
-        );
-    }
-
-    #[test]
-    fn hull_of_a_cloud() {
-        let mut cloud = pts(&[(0.0, 0.0), (4.0, 0.0), (4.0, 4.0), (0.0, 4.0), (2.0, 0.0)]);
-        // Interior points and duplicates.
-        for i in 0..20 {
-            cloud.push(vec2(
-                0.5 + (i % 5) as Real * 0.6,
-                0.5 + (i / 5) as Real * 0.7,
-            ));
-        }
-        cloud.push(vec2(4.0, 4.0));
-        let hull = Polygon::hull(&cloud).unwrap();
-        assert_eq!(hull.len(), 4);
-        assert_eq!(hull.source_centroid(), vec2(2.0, 2.0));
-        assert!(matches!(
-            Polygon::hull(&pts(&[(0.0, 0.0), (1.0, 1.0), (3.0, 3.0)])),
-            Err(CaromError::ZeroArea)
-        ));
-        assert!(Polygon::hull(&pts(&[(0.0, 0.0), (0.0, 0.0), (0.0, 0.0)])).is_err());
-    }
-
-    #[test]
-    fn rect_and_regular() {
-        let r = Polygon::rect(2.0, 1.0);
-        assert_eq!(r.vertices()[0], vec2(-2.0, -1.0));
-        assert_eq!(r.normals()[0], vec2(0.0, -1.0));
-        assert!(r.validate().is_ok());
-        assert!(Polygon::rect(0.0, 1.0).validate().is_err());
-        assert!(Polygon::rect(1.0, Real::INFINITY).validate().is_err());
-        assert!(Polygon::rect(-1.0, 1.0).validate().is_err());
-        assert!(Polygon::rect(1.0e-30, 1.0e-30).validate().is_err());
-        // A bad rectangle is still a sane polygon until it is refused.
-        let bad = Polygon::rect(Real::NAN, 1.0);
-        assert!(
-            bad.vertices()
-                .iter()
-                .all(|v| v.x.is_finite() && v.y.is_finite())
-        );
-        assert!(Shape::Polygon(bad).mass_properties(1.0).is_err());
-        let hex = Polygon::regular(6, 1.0).unwrap();
-        assert_eq!(hex.len(), 6);
-        // Flat bottom edge.
-        assert!((hex.normals()[0] - vec2(0.0, -1.0)).norm() < 1e-6);
-        assert!((hex.radius() - 1.0).abs() < 1e-6);
-        assert!(Polygon::regular(2, 1.0).is_err());
-        assert!(Polygon::regular(5, -1.0).is_err());
-    }
 
     #[test]
     fn world_shape_follows_the_transform() {

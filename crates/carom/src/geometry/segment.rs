@@ -1,0 +1,133 @@
+//! Segments: lines of no thickness for static geometry, two-sided on their own or one-sided
+//! as the links of a chain.
+//!
+//! A [`ChainSegment`] is one link of a chain ([`crate::ChainDef`]): it collides only on its
+//! right side, seen walking from `point1` to `point2` (so a counter-clockwise loop collides on
+//! its outside, like a polygon), and it knows its neighbours' far ends, its *ghost vertices*.
+//! They tell the narrowphase which way the chain turns at each end, so a body sliding across
+//! a join meets one smooth surface instead of catching on the corner of the next link (Box2D's
+//! smooth collision; see `collision::chain_segment`).
+//!
+//! Both keep the points they are given, in the collider's frame: they are not recentred.
+
+use crate::constants::CONTAINMENT_TOLERANCE;
+use crate::error::CaromError;
+use crate::geometry::capsule::check_apart;
+use crate::geometry::checks::check_point;
+use crate::geometry::polygon::distance_to_segment;
+use crate::math::{Vec2, perp_cw};
+
+/// A two-sided line segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Segment {
+    point1: Vec2,
+    point2: Vec2,
+}
+
+impl Segment {
+    /// The segment from `point1` to `point2`, checked when it is added to a world or by
+    /// [`Segment::validate`].
+    pub fn new(point1: Vec2, point2: Vec2) -> Self {
+        Segment { point1, point2 }
+    }
+
+    /// Checks the segment: finite ends within 100 km that do not coincide.
+    ///
+    /// # Errors
+    /// The first value that is not so.
+    pub fn validate(&self) -> Result<(), CaromError> {
+        check_point("segment point1", self.point1)?;
+        check_point("segment point2", self.point2)?;
+        check_apart("segment ends", self.point1, self.point2)
+    }
+
+    /// The first end.
+    #[inline]
+    pub fn point1(&self) -> Vec2 {
+        self.point1
+    }
+
+    /// The second end.
+    #[inline]
+    pub fn point2(&self) -> Vec2 {
+        self.point2
+    }
+
+    /// True when the local point lies on the segment (within the containment tolerance).
+    pub fn contains_local(&self, point: Vec2) -> bool {
+        distance_to_segment(point, self.point1, self.point2) <= CONTAINMENT_TOLERANCE
+    }
+}
+
+/// One link of a chain: a one-sided segment with its neighbours' far ends.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ChainSegment {
+    ghost1: Vec2,
+    segment: Segment,
+    ghost2: Vec2,
+}
+
+impl ChainSegment {
+    /// The link from `point1` to `point2`, whose neighbours run from `ghost1` to `point1` and
+    /// from `point2` to `ghost2`. Checked when it is added to a world, or by
+    /// [`ChainSegment::validate`]; [`crate::ChainDef`] makes whole chains.
+    pub fn new(ghost1: Vec2, point1: Vec2, point2: Vec2, ghost2: Vec2) -> Self {
+        ChainSegment {
+            ghost1,
+            segment: Segment::new(point1, point2),
+            ghost2,
+        }
+    }
+
+    /// Checks the link: finite points within 100 km, each different from the next.
+    ///
+    /// # Errors
+    /// The first value that is not so.
+    pub fn validate(&self) -> Result<(), CaromError> {
+        check_point("chain ghost1", self.ghost1)?;
+        check_point("chain ghost2", self.ghost2)?;
+        self.segment.validate()?;
+        check_apart("chain ghost1 and point1", self.ghost1, self.point1())?;
+        check_apart("chain point2 and ghost2", self.point2(), self.ghost2)
+    }
+
+    /// The segment itself.
+    #[inline]
+    pub fn segment(&self) -> Segment {
+        self.segment
+    }
+
+    /// The previous link's first point.
+    #[inline]
+    pub fn ghost1(&self) -> Vec2 {
+        self.ghost1
+    }
+
+    /// The first end.
+    #[inline]
+    pub fn point1(&self) -> Vec2 {
+        self.segment.point1
+    }
+
+    /// The second end.
+    #[inline]
+    pub fn point2(&self) -> Vec2 {
+        self.segment.point2
+    }
+
+    /// The next link's second point.
+    #[inline]
+    pub fn ghost2(&self) -> Vec2 {
+        self.ghost2
+    }
+
+    /// The unit normal of the side that collides: to the right of `point1` → `point2`.
+    pub fn normal(&self) -> Vec2 {
+        perp_cw(self.point2() - self.point1()).normalize()
+    }
+
+    /// True when the local point lies on the segment (within the containment tolerance).
+    pub fn contains_local(&self, point: Vec2) -> bool {
+        self.segment.contains_local(point)
+    }
+}
