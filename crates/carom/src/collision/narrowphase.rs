@@ -12,6 +12,7 @@
 //! off a corner.
 
 use crate::constants::COINCIDENT_NORMAL;
+use crate::geometry::segment::closest_on_segment;
 use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Vec2, perp_cw};
 
@@ -246,18 +247,6 @@ pub struct ClosestPoints {
     pub vertex_a: Option<usize>,
     /// The vertex of B at `point_b`, when `point_b` is a vertex.
     pub vertex_b: Option<usize>,
-}
-
-/// The nearest point to `p` on the segment `start`–`end`, and where along it (`0..=1`).
-#[inline]
-fn closest_on_segment(p: Vec2, start: Vec2, end: Vec2) -> (Vec2, Real) {
-    let edge = end - start;
-    let length_sq = edge.norm_squared();
-    if length_sq == 0.0 {
-        return (start, 0.0);
-    }
-    let t = ((p - start).dot(&edge) / length_sq).clamp(0.0, 1.0);
-    (start + edge * t, t)
 }
 
 /// Closest points of two convex polygons that do not overlap: the nearest pair among every

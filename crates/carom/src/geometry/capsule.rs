@@ -8,7 +8,7 @@
 use crate::constants::{CONTAINMENT_TOLERANCE, WELD_TOLERANCE};
 use crate::error::{CaromError, check_finite};
 use crate::geometry::checks::{check_extent, check_point};
-use crate::geometry::polygon::distance_to_segment;
+use crate::geometry::segment::distance_to_segment;
 use crate::math::{Real, Vec2};
 
 /// Two circles' centres and their radius, joined.

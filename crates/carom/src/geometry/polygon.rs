@@ -4,6 +4,7 @@ use crate::constants::{COLLINEAR_SINE, CONTAINMENT_TOLERANCE, WELD_TOLERANCE};
 use crate::error::{CaromError, check_finite};
 use crate::geometry::checks::{check_extent, check_point};
 use crate::geometry::mass;
+use crate::geometry::segment::distance_to_segment;
 use crate::math::{Real, Vec2, cross, perp_cw};
 use std::f64::consts::TAU;
 
@@ -367,18 +368,6 @@ pub(crate) fn distance_to_outline(vertices: &[Vec2], point: Vec2) -> Real {
     (0..n)
         .map(|i| distance_to_segment(point, vertices[i], vertices[(i + 1) % n]))
         .fold(Real::INFINITY, Real::min)
-}
-
-/// The distance from `point` to the segment `start`–`end`.
-pub(crate) fn distance_to_segment(point: Vec2, start: Vec2, end: Vec2) -> Real {
-    let edge = end - start;
-    let length_sq = edge.norm_squared();
-    let t = if length_sq > 0.0 {
-        ((point - start).dot(&edge) / length_sq).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (start + edge * t - point).norm()
 }
 
 /// How close two points of this cloud must be to count as one.

@@ -14,8 +14,24 @@ use crate::constants::CONTAINMENT_TOLERANCE;
 use crate::error::CaromError;
 use crate::geometry::capsule::check_apart;
 use crate::geometry::checks::check_point;
-use crate::geometry::polygon::distance_to_segment;
-use crate::math::{Vec2, perp_cw};
+use crate::math::{Real, Vec2, perp_cw};
+
+/// The nearest point to `p` on the segment `start`–`end`, and where along it (`0..=1`).
+#[inline]
+pub(crate) fn closest_on_segment(p: Vec2, start: Vec2, end: Vec2) -> (Vec2, Real) {
+    let edge = end - start;
+    let length_sq = edge.norm_squared();
+    if length_sq == 0.0 {
+        return (start, 0.0);
+    }
+    let t = ((p - start).dot(&edge) / length_sq).clamp(0.0, 1.0);
+    (start + edge * t, t)
+}
+
+/// The distance from `point` to the segment `start`–`end`.
+pub(crate) fn distance_to_segment(point: Vec2, start: Vec2, end: Vec2) -> Real {
+    (closest_on_segment(point, start, end).0 - point).norm()
+}
 
 /// A two-sided line segment.
 #[derive(Debug, Clone, Copy, PartialEq)]
