@@ -94,6 +94,17 @@ impl Contact {
         &self.manifold
     }
 
+    /// The normal impulse the last step applied over all the points, N·s (their
+    /// [`crate::ManifoldPoint::total_normal_impulse`]): divided by the step, the force pressing
+    /// the colliders apart.
+    pub fn total_normal_impulse(&self) -> Real {
+        self.manifold
+            .points()
+            .iter()
+            .map(|p| p.total_normal_impulse)
+            .sum()
+    }
+
     /// The manifold, for the solver to store impulses in.
     pub(crate) fn manifold_mut(&mut self) -> &mut Manifold {
         &mut self.manifold
