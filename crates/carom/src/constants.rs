@@ -18,6 +18,17 @@ pub const SPECULATIVE_DISTANCE: Real = 4.0 * LINEAR_SLOP;
 /// body can move a little without its tree entry changing.
 pub const AABB_MARGIN: Real = 0.05;
 
+// Contact events.
+
+/// A pair begins to touch, for its begin event, once a point's separation is at most this, m
+/// (a tenth of the slop). Not zero: a body a speculative point stopped at a surface rests
+/// there to within rounding, a few micrometres to either side.
+pub(crate) const TOUCH_BEGIN: Real = 0.1 * LINEAR_SLOP;
+
+/// A touching pair stops touching, for its end event, once every point is farther apart than
+/// this, m (the slop). A resting body rocks by far less, so its contact does not flicker.
+pub(crate) const TOUCH_END: Real = LINEAR_SLOP;
+
 // Shapes.
 
 /// The largest coordinate or radius a shape may have, m (Box2D's `B2_HUGE`): beyond it an f32

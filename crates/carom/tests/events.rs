@@ -2,7 +2,8 @@
 //! point applied.
 
 use carom::{
-    BodyDef, BodyHandle, Effect, Real, Shape, SolverKind, SolverParams, World, WorldSettings, vec2,
+    BodyDef, BodyHandle, ContactEvent, Effect, Real, Shape, SolverKind, SolverParams, World,
+    WorldSettings, vec2,
 };
 
 const DT: Real = 1.0 / 60.0;
@@ -73,4 +74,99 @@ fn a_resting_box_reports_its_weight_as_the_step_impulse_in_both_solvers() {
         let force = floor_contact.total_normal_impulse() / DT;
         assert!((force - 20.0).abs() < 0.2, "{kind:?}: {force} N");
     }
+}
+
+#[test]
+fn a_dropped_ball_begins_touching_on_impact_not_within_the_margin_and_ends_when_lifted() {
+    for kind in [SolverKind::SoftStep, SolverKind::SequentialImpulse] {
+        let mut world = world_with(kind);
+        let ball = world
+            .add_body(BodyDef::dynamic(Shape::circle(0.5)).position(vec2(0.0, 3.0)))
+            .unwrap();
+        let closest = |world: &World| {
+            world
+                .contacts()
+                .find(|c| c.body_b() == ball)
+                .and_then(|c| c.manifold().min_separation())
+        };
+        let (mut speculative_steps, mut begin_step) = (0, None);
+        for step in 0..240 {
+            world.step(DT).unwrap();
+            let events = world.contact_events();
+            match begin_step {
+                None => {
+                    assert!(
+                        events.iter().all(|e| matches!(e, ContactEvent::Begin(_))),
+                        "{kind:?}: {events:?} before the impact"
+                    );
+                    if events.is_empty() {
+                        // Points within the speculative margin, apart: no event yet.
+                        if closest(&world).is_some_and(|s| s > 0.0) {
+                            speculative_steps += 1;
+                        }
+                    } else {
+                        assert_eq!(events.len(), 1, "{kind:?}");
+                        let s = closest(&world).unwrap();
+                        assert!(s <= 0.0005, "{kind:?}: began {s} m apart");
+                        begin_step = Some(step);
+                    }
+                }
+                // Resting for the rest of the 4 s: no flicker.
+                Some(_) => assert!(events.is_empty(), "{kind:?} step {step}: {events:?}"),
+            }
+        }
+        let begin_step = begin_step.expect("the ball lands");
+        assert!(speculative_steps >= 1, "{kind:?}: never speculative");
+        assert!(begin_step < 60, "{kind:?}: landed at step {begin_step}");
+        let contact = world.contacts().find(|c| c.body_b() == ball).unwrap();
+        assert!(contact.is_touching());
+        // Thrown up gently (5 cm high, 0.2 s there and back): the contact ends while the pair is
+        // still within the fat margin, and begins again as the ball lands.
+        world
+            .body_mut(ball)
+            .unwrap()
+            .set_linear_velocity(vec2(0.0, 1.0))
+            .unwrap();
+        let mut seen = Vec::new();
+        for step in 0..60 {
+            world.step(DT).unwrap();
+            seen.extend(world.contact_events().iter().map(|&e| (step, e)));
+        }
+        let [
+            (ended, ContactEvent::End(a)),
+            (landed, ContactEvent::Begin(b)),
+        ] = seen[..]
+        else {
+            panic!("{kind:?}: {seen:?}");
+        };
+        assert!(a.body_b == ball && b.body_b == ball);
+        // Over the slop (5 mm) at 1 m/s: within the first steps.
+        assert!(ended <= 2, "{kind:?}: ended at step {ended}");
+        assert!(
+            (10..=16).contains(&landed),
+            "{kind:?}: landed at step {landed}"
+        );
+    }
+}
+
+#[test]
+fn a_rolling_hexagon_touches_once_though_it_hops_from_corner_to_corner() {
+    let mut world = world_with(SolverKind::SoftStep);
+    let hexagon = Shape::regular(6, 0.5).unwrap();
+    world
+        .add_body(
+            BodyDef::dynamic(hexagon)
+                .position(vec2(-8.0, 0.5))
+                .angular_velocity(-6.0),
+        )
+        .unwrap();
+    let mut events = Vec::new();
+    for _ in 0..240 {
+        world.step(DT).unwrap();
+        events.extend_from_slice(world.contact_events());
+    }
+    // Rolling over a corner lifts it up to about a millimetre off the floor now and then:
+    // within the slop, so the contact goes on (with the begin tolerance alone it ends and
+    // begins again three times).
+    assert!(matches!(events[..], [ContactEvent::Begin(_)]), "{events:?}");
 }

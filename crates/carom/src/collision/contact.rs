@@ -2,9 +2,19 @@
 //!
 //! The broadphase creates a contact when two colliders' fat boxes begin to overlap; each step the
 //! narrowphase rebuilds its manifold (carrying impulses over by feature id) and destroys it
-//! once the boxes part. A contact is *touching* while its manifold has points, speculative
-//! ones included, as in Box2D: the shapes are within the speculative margin. Changes of
-//! touching are reported as begin and end events, readable after the step.
+//! once the boxes part. The solver works on every contact whose manifold has points,
+//! speculative ones included (the shapes are within the speculative margin), as Box2D does;
+//! those take a graph colour and link their bodies' islands.
+//!
+//! Events report something narrower: whether the shapes really touch. A pair begins to touch
+//! when a point's separation is at most [`TOUCH_BEGIN`] (a tenth of the slop, not zero: a body
+//! a speculative point stopped at a surface rests there to within rounding, micrometres to
+//! either side), and stops once every point is farther apart than [`TOUCH_END`] (the slop), or
+//! the contact is destroyed. The gap between the two is hysteresis: a resting body rocks by
+//! far less than the slop, so its contact does not flicker between begin and end. A body that
+//! only comes within the speculative margin and turns back (a speculative point stops it
+//! short, as sequential impulse's restitution can) never touches. Changes of touching are
+//! reported as begin and end events, readable after the step.
 
 use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
 use crate::collision::coloring::{ColorBody, ContactColors, NO_COLOR};
@@ -13,7 +23,7 @@ use crate::collision::contact_layout::{
 };
 use crate::collision::manifold::{self, Manifold, Margins};
 use crate::collision::recycle::ManifoldFrame;
-use crate::constants::CONTACTS_PER_TASK;
+use crate::constants::{CONTACTS_PER_TASK, TOUCH_BEGIN, TOUCH_END};
 use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
 use crate::geometry::shape::Shape;
@@ -32,7 +42,12 @@ pub struct Contact {
     body_a: BodyHandle,
     body_b: BodyHandle,
     manifold: Manifold,
+    /// The manifold has points, speculative ones included: the solver works on it (it has a
+    /// colour while awake, and links its bodies' islands). Not what events report.
     touching: bool,
+    /// The shapes touch, as events report it (see the module's notes): within [`TOUCH_BEGIN`]
+    /// to begin, [`TOUCH_END`] to go on.
+    in_contact: bool,
     /// The colliders' friction mixed: their geometric mean.
     friction: Real,
     /// The colliders' restitution mixed: the larger.
@@ -110,8 +125,17 @@ impl Contact {
         &mut self.manifold
     }
 
-    /// True while the manifold has points.
+    /// True while the shapes touch, as begin and end events report it: since a point came
+    /// within a tenth of the slop (0.5 mm), until every point is more than the slop apart. A
+    /// contact with only speculative points does not touch, though the solver works on it
+    /// (its manifold has points).
     pub fn is_touching(&self) -> bool {
+        self.in_contact
+    }
+
+    /// True while the manifold has points, speculative ones included: the solver works on it.
+    #[cfg(test)]
+    pub(crate) fn is_solved(&self) -> bool {
         self.touching
     }
 
@@ -144,9 +168,11 @@ pub struct ContactPair {
 /// A change in whether two colliders touch.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ContactEvent {
-    /// The colliders began to touch.
+    /// The colliders began to touch: a point came within a tenth of the slop (0.5 mm), not
+    /// merely within the speculative margin (see [`Contact::is_touching`]).
     Begin(ContactPair),
-    /// The colliders stopped touching (or one of them, or its body, was removed).
+    /// The colliders stopped touching: every point is more than the slop (5 mm) apart, or
+    /// one of them, or its body, was removed.
     End(ContactPair),
 }
 
@@ -233,8 +259,10 @@ enum Refresh {
     Updated {
         /// Its deepest overlap (0 if it does not touch).
         depth: Real,
-        /// It started or stopped touching.
+        /// Its manifold gained its first points or lost its last.
         changed: bool,
+        /// Whether the shapes touch now, as events report it.
+        in_contact: bool,
         /// It touches a sleeping body that the other body stirs.
         wakes: bool,
     },
@@ -289,6 +317,7 @@ impl ContactSet {
             body_b: b.1.body(),
             manifold: Manifold::default(),
             touching: false,
+            in_contact: false,
             friction: (a.1.friction() * b.1.friction()).sqrt(),
             restitution: a.1.restitution().max(b.1.restitution()),
             frame: ManifoldFrame::default(),
@@ -474,7 +503,7 @@ impl ContactSet {
             self.lookup
                 .insert(pair_key(moved.collider_a, moved.collider_b), index);
         }
-        if contact.touching {
+        if contact.in_contact {
             let event = ContactEvent::End(contact.pair());
             if events_now {
                 self.events.push(event);
@@ -562,10 +591,12 @@ impl ContactSet {
                 Refresh::Updated {
                     depth,
                     changed,
+                    in_contact,
                     wakes,
                 } => {
                     deepest = deepest.max(depth);
-                    if !(changed || wakes) {
+                    let begins_or_ends = in_contact != self.contacts[index].in_contact;
+                    if !(changed || begins_or_ends || wakes) {
                         continue;
                     }
                 }
@@ -581,8 +612,9 @@ impl ContactSet {
     }
 
     /// Files again the contact at `index`, which the narrowphase found `refresh`: destroys it,
-    /// colours it as it starts touching or takes its colour as it stops, raises the events, and
-    /// adds to `wake` the sleeping islands it stirs.
+    /// colours it as its manifold gains points or takes its colour as it loses them, raises
+    /// the events as the shapes begin or stop touching, and adds to `wake` the sleeping islands
+    /// it stirs.
     fn file(
         &mut self,
         index: usize,
@@ -591,10 +623,12 @@ impl ContactSet {
         colliders: &HandleMap<ColliderHandle, Collider>,
         wake: &mut Vec<u32>,
     ) {
-        let wakes = match refresh {
+        let (wakes, in_contact) = match refresh {
             Refresh::Unchanged => return,
             Refresh::Gone => return self.destroy(index, true),
-            Refresh::Updated { wakes, .. } => wakes,
+            Refresh::Updated {
+                wakes, in_contact, ..
+            } => (wakes, in_contact),
         };
         let contact = &mut self.contacts[index];
         // Both colliders were there a moment ago (else the contact would be gone).
@@ -613,17 +647,20 @@ impl ContactSet {
                 }
             }
         }
+        if in_contact != contact.in_contact {
+            contact.in_contact = in_contact;
+            let pair = contact.pair();
+            self.events.push(if in_contact {
+                ContactEvent::Begin(pair)
+            } else {
+                ContactEvent::End(pair)
+            });
+        }
         let touching = !contact.manifold.is_empty();
         if touching == contact.touching {
             return;
         }
         contact.touching = touching;
-        let pair = contact.pair();
-        self.events.push(if touching {
-            ContactEvent::Begin(pair)
-        } else {
-            ContactEvent::End(pair)
-        });
         let kinds = [(a.handle(), a.kind()), (b.handle(), b.kind())];
         let bodies = (a.handle(), b.handle());
         if touching {
@@ -862,13 +899,21 @@ fn rebuild_manifold(
 /// `b` whose manifold was just updated.
 fn updated(contact: &Contact, a: &Body, b: &Body) -> Refresh {
     let touching = !contact.manifold.is_empty();
+    let closest = contact.manifold.min_separation();
+    // Hysteresis: closer than TOUCH_BEGIN to begin, within TOUCH_END to go on.
+    let reach = if contact.in_contact {
+        TOUCH_END
+    } else {
+        TOUCH_BEGIN
+    };
     Refresh::Updated {
         depth: if touching {
-            -contact.manifold.min_separation().unwrap_or(0.0)
+            -closest.unwrap_or(0.0)
         } else {
             0.0
         },
         changed: touching != contact.touching,
+        in_contact: closest.is_some_and(|s| s <= reach),
         wakes: touching && (stirred(a, b) || stirred(b, a)),
     }
 }
