@@ -29,6 +29,10 @@ pub(crate) const TOUCH_BEGIN: Real = 0.1 * LINEAR_SLOP;
 /// this, m (the slop). A resting body rocks by far less, so its contact does not flicker.
 pub(crate) const TOUCH_END: Real = LINEAR_SLOP;
 
+/// The approach speed above which a push is a hit, by default, m/s (Box2D's
+/// `hitEventThreshold`).
+pub(crate) const HIT_EVENT_THRESHOLD: Real = 1.0;
+
 // Shapes.
 
 /// The largest coordinate or radius a shape may have, m (Box2D's `B2_HUGE`): beyond it an f32

@@ -50,6 +50,7 @@ mod world;
 
 pub use collision::contact::{Contact, ContactEvent, ContactPair};
 pub use collision::filter::CollisionFilter;
+pub use collision::hits::HitEvent;
 pub use collision::manifold::{FeatureId, Manifold, ManifoldPoint, collide};
 pub use collision::narrowphase::{Separation, separation};
 pub use constants::{LINEAR_SLOP, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_TO_SLEEP};

@@ -2,8 +2,8 @@
 //! point applied.
 
 use carom::{
-    BodyDef, BodyHandle, ContactEvent, Effect, Real, Shape, SolverKind, SolverParams, World,
-    WorldSettings, vec2,
+    BodyDef, BodyHandle, ContactEvent, Effect, HitEvent, Real, Shape, SolverKind, SolverParams,
+    World, WorldSettings, vec2,
 };
 
 const DT: Real = 1.0 / 60.0;
@@ -169,4 +169,64 @@ fn a_rolling_hexagon_touches_once_though_it_hops_from_corner_to_corner() {
     // within the slop, so the contact goes on (with the begin tolerance alone it ends and
     // begins again three times).
     assert!(matches!(events[..], [ContactEvent::Begin(_)]), "{events:?}");
+}
+
+/// The hits a ball of radius 0.5 dropped from `height` (its bottom above the floor) reports in
+/// 2 s, asking for them or not; and the world.
+fn drop_ball(height: Real, asks: bool, restitution: Real) -> (Vec<HitEvent>, World) {
+    let mut world = world_with(SolverKind::SoftStep);
+    world
+        .add_body(
+            BodyDef::dynamic(Shape::circle(0.5))
+                .position(vec2(0.3, 0.5 + height))
+                .restitution(restitution)
+                .hit_events(asks),
+        )
+        .unwrap();
+    let mut hits = Vec::new();
+    for _ in 0..120 {
+        world.step(DT).unwrap();
+        hits.extend_from_slice(world.hit_events());
+    }
+    (hits, world)
+}
+
+#[test]
+fn a_ball_dropped_from_5_m_reports_one_hit_at_the_impact_speed() {
+    let (hits, world) = drop_ball(5.0, true, 0.0);
+    let [hit] = hits[..] else {
+        panic!("{hits:?}");
+    };
+    // v = sqrt(2 g h), less what gravity adds in the step it is stopped (g dt, 1.7 %).
+    let expected = (2.0 * 10.0 * 5.0 as Real).sqrt();
+    assert!(
+        (hit.approach_speed - expected).abs() < 0.03 * expected,
+        "{} m/s, expected {expected}",
+        hit.approach_speed
+    );
+    // The floor was added first: the normal points from it to the ball, up.
+    assert!(
+        (hit.normal - vec2(0.0, 1.0)).norm() < 1e-5,
+        "{:?}",
+        hit.normal
+    );
+    assert!(
+        (hit.point - vec2(0.3, 0.0)).norm() < 1e-3,
+        "{:?}",
+        hit.point
+    );
+    let ball = world.bodies().last().unwrap().handle();
+    assert_eq!(hit.pair.body_b, ball);
+    // Dropped from 2 cm (0.63 m/s, below the 1 m/s threshold): nothing.
+    assert!(drop_ball(0.02, true, 0.0).0.is_empty());
+    // Not asked for: nothing.
+    assert!(drop_ball(5.0, false, 0.0).0.is_empty());
+    // A bouncing ball reports each bounce faster than the threshold, each slower than the last.
+    let (bounces, _) = drop_ball(1.0, true, 0.8);
+    assert!(bounces.len() >= 3, "{bounces:?}");
+    assert!(
+        bounces
+            .windows(2)
+            .all(|w| w[1].approach_speed < w[0].approach_speed && w[1].approach_speed > 1.0)
+    );
 }

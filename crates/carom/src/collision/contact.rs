@@ -48,6 +48,8 @@ pub struct Contact {
     /// The shapes touch, as events report it (see the module's notes): within [`TOUCH_BEGIN`]
     /// to begin, [`TOUCH_END`] to go on.
     in_contact: bool,
+    /// A collider of the pair asks for hit events.
+    hit_events: bool,
     /// The colliders' friction mixed: their geometric mean.
     friction: Real,
     /// The colliders' restitution mixed: the larger.
@@ -137,6 +139,11 @@ impl Contact {
     #[cfg(test)]
     pub(crate) fn is_solved(&self) -> bool {
         self.touching
+    }
+
+    /// True when a collider of the pair asks for hit events.
+    pub(crate) fn reports_hits(&self) -> bool {
+        self.hit_events
     }
 
     /// How many contacts its set had made before it, for the solvers that take contacts one
@@ -318,6 +325,7 @@ impl ContactSet {
             manifold: Manifold::default(),
             touching: false,
             in_contact: false,
+            hit_events: a.1.hit_events() || b.1.hit_events(),
             friction: (a.1.friction() * b.1.friction()).sqrt(),
             restitution: a.1.restitution().max(b.1.restitution()),
             frame: ManifoldFrame::default(),
@@ -744,6 +752,13 @@ impl ContactSet {
     /// Where each colour's contacts (then the overflow's) are among the awake contacts.
     pub(crate) fn color_ranges(&self) -> ColorRanges {
         color_ranges(&self.parts)
+    }
+
+    /// The awake contacts and where their bodies are (current from the narrowphase until the
+    /// step ends).
+    pub(crate) fn awake_and_bodies(&self) -> (&[Contact], &[BodyIndices]) {
+        let awake = self.awake_range();
+        (&self.contacts[awake.clone()], &self.body_indices[awake])
     }
 
     /// The awake contacts, mutably, for the solver, where their bodies are, and where each

@@ -187,6 +187,14 @@ impl BodyDef {
         self
     }
 
+    /// Asks for hit events on every collider so far (see [`ColliderDef::hit_events`]).
+    pub fn hit_events(mut self, on: bool) -> Self {
+        for collider in &mut self.colliders {
+            collider.hit_events = on;
+        }
+        self
+    }
+
     /// Sets the gravity scale.
     pub fn gravity_scale(mut self, scale: Real) -> Self {
         self.gravity_scale = scale;

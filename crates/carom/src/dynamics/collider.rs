@@ -49,6 +49,11 @@ pub struct ColliderDef {
     /// What it collides with. Default: everything.
     #[cfg_attr(feature = "serde", serde(default))]
     pub filter: CollisionFilter,
+    /// Report hard hits on it as [`crate::HitEvent`]s (its contacts approaching faster than
+    /// [`crate::WorldSettings::hit_event_threshold`]). Default off: a world where no collider
+    /// asks does no work for them.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub hit_events: bool,
 }
 
 /// The default friction coefficient.
@@ -78,6 +83,7 @@ impl ColliderDef {
             friction: DEFAULT_FRICTION,
             restitution: 0.0,
             filter: CollisionFilter::DEFAULT,
+            hit_events: false,
         }
     }
 
@@ -114,6 +120,12 @@ impl ColliderDef {
     /// Sets what it collides with.
     pub fn filter(mut self, filter: CollisionFilter) -> Self {
         self.filter = filter;
+        self
+    }
+
+    /// Asks for hit events on it (see [`ColliderDef::hit_events`]).
+    pub fn hit_events(mut self, on: bool) -> Self {
+        self.hit_events = on;
         self
     }
 
@@ -162,6 +174,7 @@ pub struct Collider {
     friction: Real,
     restitution: Real,
     filter: CollisionFilter,
+    hit_events: bool,
     world_shape: WorldShape,
     aabb: Aabb,
 }
@@ -186,6 +199,7 @@ impl Collider {
             friction: def.friction,
             restitution: def.restitution,
             filter: def.filter,
+            hit_events: def.hit_events,
             aabb: world_shape.aabb(),
             world_shape,
         };
@@ -243,6 +257,12 @@ impl Collider {
     #[inline]
     pub fn filter(&self) -> CollisionFilter {
         self.filter
+    }
+
+    /// True when hard hits on it are reported (see [`ColliderDef::hit_events`]).
+    #[inline]
+    pub fn hit_events(&self) -> bool {
+        self.hit_events
     }
 
     /// Sets what it collides with; the world ends contacts it no longer allows.

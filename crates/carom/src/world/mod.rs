@@ -11,6 +11,7 @@ pub(crate) mod solver_sets;
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::contact::{Contact, ContactEvent, ContactSet, ManifoldOptions};
 use crate::collision::continuous::{self, Pose};
+use crate::collision::hits::{HitEvent, find_hits};
 use crate::constants::{
     CONTACTS_PER_TASK, ITEMS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
 };
@@ -74,6 +75,10 @@ pub struct World {
     solver_workspace: solver::Workspace,
     /// The other stages' memory, reused from step to step.
     scratch: StepScratch,
+    /// How many colliders ask for hit events: with none, a step looks for none.
+    hit_event_colliders: usize,
+    /// The hits of the last step.
+    hit_events: Vec<HitEvent>,
 }
 
 /// What the stages of a step work in besides the solver, kept so a step in steady state
@@ -101,6 +106,7 @@ fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {
     for (name, value) in [
         ("speculative distance", settings.speculative_distance),
         ("AABB margin", settings.aabb_margin),
+        ("hit event threshold", settings.hit_event_threshold),
     ] {
         if !(value.is_finite() && value >= 0.0) {
             return Err(CaromError::OutOfRange {
@@ -219,6 +225,7 @@ impl World {
         body.rebuild_mass(parts.iter())?;
         let handle = self.bodies.insert(body);
         for collider in parts {
+            self.note_collider(&collider, true);
             let collider = self.colliders.insert(collider);
             self.bodies
                 .get_mut(handle)
@@ -258,7 +265,9 @@ impl World {
         self.contacts.remove_body(handle);
         self.apply_touch_changes();
         for &collider in body.colliders() {
-            self.colliders.remove(collider);
+            if let Some(removed) = self.colliders.remove(collider) {
+                self.note_collider(&removed, false);
+            }
             self.broadphase.remove(collider);
         }
         // The last body moved into the hole: its colliders follow it.
@@ -292,6 +301,7 @@ impl World {
             .filter_map(|&c| self.colliders.get(c))
             .collect();
         updated.rebuild_mass(existing.into_iter().chain(std::iter::once(&collider)))?;
+        self.note_collider(&collider, true);
         let handle = self.colliders.insert(collider);
         updated.attach(handle);
         updated.wake_up();
@@ -344,6 +354,7 @@ impl World {
         self.broadphase.remove(handle);
         self.prepare_collider_removal(handle);
         let removed = self.colliders.remove(handle).expect("checked");
+        self.note_collider(&removed, false);
         self.place_colliders_of(body);
         Ok(removed)
     }
@@ -440,6 +451,18 @@ impl World {
         Ok(())
     }
 
+    /// Counts a collider that was added to the world (or, `added` false, removed) among those
+    /// asking for the optional events, so a step does their work only when some ask.
+    fn note_collider(&mut self, collider: &Collider, added: bool) {
+        if collider.hit_events() {
+            if added {
+                self.hit_event_colliders += 1;
+            } else {
+                self.hit_event_colliders -= 1;
+            }
+        }
+    }
+
     /// Rebuilds a body's mass from its colliders.
     fn rebuild_mass_of(&mut self, handle: BodyHandle) -> Result<(), CaromError> {
         let index = self.bodies.checked_index(handle)?;
@@ -513,6 +536,12 @@ impl World {
         self.contacts.events()
     }
 
+    /// The hard hits of the last step on colliders that ask for them
+    /// ([`ColliderDef::hit_events`]), in contact storage order (the same from run to run).
+    pub fn hit_events(&self) -> &[HitEvent] {
+        &self.hit_events
+    }
+
     /// The broadphase, for inspection (fat boxes, tree shape) by carom's own tests.
     #[cfg(any(test, feature = "testing"))]
     pub fn broadphase(&self) -> &BroadPhase {
@@ -547,8 +576,8 @@ impl World {
     /// build contact manifolds in the narrowphase (waking the sleeping islands a moving body
     /// touched, joining the islands of contacts that started touching); solve (integrate
     /// forces into velocities, resolve contacts and then joints colour by colour, integrate
-    /// positions, in substeps for soft step); remove the joints pulled past their break
-    /// thresholds; continuous collision for fast bodies; place the moved colliders and refresh
+    /// positions, in substeps for soft step); report the hard hits, if some collider asks;
+    /// remove the joints pulled past their break thresholds; continuous collision for fast bodies; place the moved colliders and refresh
     /// the broadphase from them; put resting islands to sleep.
     ///
     /// # Errors
@@ -565,6 +594,7 @@ impl World {
         let mut stats = StepStats::default();
         let times = &mut stats.times;
         self.contacts.begin_step();
+        self.hit_events.clear();
 
         let mut scratch = std::mem::take(&mut self.scratch);
 
@@ -590,6 +620,18 @@ impl World {
             report
         });
         (stats.contact_points, stats.work) = (solved.points, solved.work);
+        if self.hit_event_colliders > 0 {
+            let (contacts, body_indices) = self.contacts.awake_and_bodies();
+            let threshold = self.settings.hit_event_threshold;
+            let bodies = self.bodies.as_slice();
+            find_hits(
+                contacts,
+                body_indices,
+                bodies,
+                threshold,
+                &mut self.hit_events,
+            );
+        }
         stats.joints = solved.joints;
         self.break_joints(&scratch.awake_joints);
         (times.prepare, times.store) = (solved.prepare, solved.store);
