@@ -1,9 +1,9 @@
 //! What a step reports besides motion, through the public interface: the impulses each contact
-//! point applied.
+//! point applied, when contacts begin and end touching, hard hits, and what overlaps sensors.
 
 use carom::{
-    BodyDef, BodyHandle, ContactEvent, Effect, HitEvent, Real, Shape, SolverKind, SolverParams,
-    World, WorldSettings, vec2,
+    BodyDef, BodyHandle, ContactEvent, Effect, HitEvent, Real, SensorEvent, SensorOverlap, Shape,
+    SolverKind, SolverParams, World, WorldSettings, vec2,
 };
 
 const DT: Real = 1.0 / 60.0;
@@ -229,4 +229,256 @@ fn a_ball_dropped_from_5_m_reports_one_hit_at_the_impact_speed() {
             .windows(2)
             .all(|w| w[1].approach_speed < w[0].approach_speed && w[1].approach_speed > 1.0)
     );
+}
+
+/// Every sensor event of `steps` steps, with the step it came in.
+fn sensor_events(world: &mut World, steps: usize) -> Vec<(usize, SensorEvent)> {
+    let mut seen = Vec::new();
+    for step in 0..steps {
+        world.step(DT).unwrap();
+        seen.extend(world.sensor_events().iter().map(|&e| (step, e)));
+    }
+    seen
+}
+
+#[test]
+fn a_static_sensor_sees_a_ball_fall_through_and_never_touches_it() {
+    let mut world = world_with(SolverKind::SoftStep);
+    // A 4 x 1 m zone from y = 2.5 to 3.5.
+    let zone = world
+        .add_body(
+            BodyDef::static_body(Shape::rect(2.0, 0.5))
+                .position(vec2(0.0, 3.0))
+                .sensor(true),
+        )
+        .unwrap();
+    let sensor = world.body(zone).unwrap().colliders()[0];
+    let ball = world
+        .add_body(BodyDef::dynamic(Shape::circle(0.25)).position(vec2(0.5, 5.0)))
+        .unwrap();
+    let visitor = world.body(ball).unwrap().colliders()[0];
+    let mut seen = Vec::new();
+    for step in 0..120 {
+        world.step(DT).unwrap();
+        seen.extend(world.sensor_events().iter().map(|&e| (step, e)));
+        assert!(
+            world
+                .contacts()
+                .all(|c| c.collider_a() != sensor && c.collider_b() != sensor),
+            "the sensor never pairs"
+        );
+        // While inside, the sensor lists the ball.
+        let y = world.body(ball).unwrap().position().y;
+        let inside = (2.25..=3.75).contains(&y);
+        let listed = world.sensor_overlaps(sensor).unwrap();
+        if (2.3..=3.7).contains(&y) {
+            assert_eq!(listed.len(), 1, "at y = {y}");
+            assert_eq!(listed[0].visitor, visitor);
+        } else if !inside {
+            assert!(listed.is_empty(), "at y = {y}");
+        }
+    }
+    let expected = SensorOverlap {
+        sensor,
+        sensor_body: zone,
+        visitor,
+        visitor_body: ball,
+    };
+    let [
+        (entered, SensorEvent::Begin(a)),
+        (left, SensorEvent::End(b)),
+    ] = seen[..]
+    else {
+        panic!("{seen:?}");
+    };
+    assert_eq!((a, b), (expected, expected));
+    // Free fall from 5 m: the ball's bottom reaches 3.5 m after sqrt(2 × 1.25 / 10) = 0.5 s
+    // and its top leaves 2.5 m after sqrt(2 × 2.75 / 10) = 0.74 s, undisturbed.
+    assert!((29..=31).contains(&entered), "entered at step {entered}");
+    assert!((43..=45).contains(&left), "left at step {left}");
+    // It came to rest on the floor, not on the sensor.
+    assert!((world.body(ball).unwrap().position().y - 0.25).abs() < 0.01);
+}
+
+#[test]
+fn a_kinematic_sensor_sees_dynamic_bodies_and_not_static_ones() {
+    let mut world = world_with(SolverKind::SoftStep);
+    let ball = world
+        .add_body(BodyDef::dynamic(Shape::circle(0.25)).position(vec2(0.0, 0.25)))
+        .unwrap();
+    let post = world
+        .add_body(BodyDef::static_body(Shape::rect(0.1, 0.5)).position(vec2(2.0, 0.5)))
+        .unwrap();
+    // A sweeping 1 m blade from x = -3, at 4 m/s: over the ball at 0.5 s, the post at 1.25 s.
+    let blade = world
+        .add_body(
+            BodyDef::kinematic(Shape::rect(0.5, 0.5))
+                .position(vec2(-3.0, 0.5))
+                .linear_velocity(vec2(4.0, 0.0))
+                .sensor(true),
+        )
+        .unwrap();
+    let seen = sensor_events(&mut world, 120);
+    assert!(
+        seen.iter()
+            .all(|(_, e)| e.overlap().sensor_body == blade && e.overlap().visitor_body == ball),
+        "{seen:?}"
+    );
+    assert!(matches!(
+        seen[..],
+        [(_, SensorEvent::Begin(_)), (_, SensorEvent::End(_))]
+    ));
+    // The ball did not move: the blade passed through it.
+    assert!((world.body(ball).unwrap().position() - vec2(0.0, 0.25)).norm() < 1e-3);
+    assert!(world.contains(post));
+}
+
+#[test]
+fn a_dynamic_sensor_sees_the_static_floor_and_sensors_do_not_see_sensors() {
+    let mut world = world_with(SolverKind::SoftStep);
+    let floor = world.bodies().next().unwrap().handle();
+    // A ball carrying a sensor ring around it, dropped through a static sensor zone onto the
+    // floor.
+    let zone = world
+        .add_body(
+            BodyDef::static_body(Shape::rect(2.0, 0.5))
+                .position(vec2(0.0, 3.0))
+                .sensor(true),
+        )
+        .unwrap();
+    let ball = world
+        .add_body(
+            BodyDef::dynamic(Shape::circle(0.25))
+                .collider(carom::ColliderDef::new(Shape::circle(0.6)).sensor(true))
+                .position(vec2(0.0, 5.0)),
+        )
+        .unwrap();
+    let [solid, ring] = world.body(ball).unwrap().colliders()[..] else {
+        panic!("two colliders");
+    };
+    let seen = sensor_events(&mut world, 120);
+    let events: Vec<SensorEvent> = seen.iter().map(|&(_, e)| e).collect();
+    let zone_sensor = world.body(zone).unwrap().colliders()[0];
+    // The zone sees the solid ball pass, never the ring; the ring sees the floor (static) and
+    // stays on it, never the zone nor its own body's ball.
+    let of = |sensor, visitor| {
+        events
+            .iter()
+            .filter(|e| e.overlap().sensor == sensor && e.overlap().visitor == visitor)
+            .count()
+    };
+    assert_eq!(of(zone_sensor, solid), 2, "{events:?}");
+    let floor_collider = world.body(floor).unwrap().colliders()[0];
+    assert_eq!(of(ring, floor_collider), 1, "{events:?}");
+    assert_eq!(events.len(), 3, "{events:?}");
+    let listed = world.sensor_overlaps(ring).unwrap();
+    assert_eq!(listed.len(), 1);
+    assert_eq!(listed[0].visitor_body, floor);
+}
+
+#[test]
+fn a_visitor_that_falls_asleep_inside_stays_seen() {
+    let mut settings = WorldSettings::default();
+    settings.effects.set(Effect::Sleeping, true);
+    let mut world = World::with_settings(settings).unwrap();
+    world
+        .add_body(BodyDef::static_body(Shape::rect(10.0, 0.5)).position(vec2(0.0, -0.5)))
+        .unwrap();
+    let pad = world
+        .add_body(
+            BodyDef::static_body(Shape::rect(1.0, 0.1))
+                .position(vec2(0.0, 0.1))
+                .sensor(true),
+        )
+        .unwrap();
+    let sensor = world.body(pad).unwrap().colliders()[0];
+    let crate_box = world
+        .add_body(BodyDef::dynamic(Shape::rect(0.25, 0.25)).position(vec2(0.0, 1.0)))
+        .unwrap();
+    let seen = sensor_events(&mut world, 240);
+    assert!(world.body(crate_box).unwrap().is_sleeping(), "it sleeps");
+    assert!(matches!(seen[..], [(_, SensorEvent::Begin(_))]), "{seen:?}");
+    assert_eq!(world.sensor_overlaps(sensor).unwrap().len(), 1);
+}
+
+#[test]
+fn removing_a_visitor_or_the_sensor_ends_the_overlap() {
+    let mut world = world_with(SolverKind::SoftStep);
+    let pad = world
+        .add_body(
+            BodyDef::static_body(Shape::rect(2.0, 0.5))
+                .position(vec2(0.0, 0.5))
+                .sensor(true),
+        )
+        .unwrap();
+    let sensor = world.body(pad).unwrap().colliders()[0];
+    let balls: Vec<BodyHandle> = [-1.0, 1.0]
+        .iter()
+        .map(|&x| {
+            world
+                .add_body(BodyDef::dynamic(Shape::circle(0.25)).position(vec2(x, 0.25)))
+                .unwrap()
+        })
+        .collect();
+    let seen = sensor_events(&mut world, 10);
+    assert_eq!(seen.len(), 2, "{seen:?}");
+    world.remove_body(balls[0]).unwrap();
+    let seen = sensor_events(&mut world, 1);
+    assert!(
+        matches!(seen[..], [(_, SensorEvent::End(o))] if o.visitor_body == balls[0]),
+        "{seen:?}"
+    );
+    world.remove_body(pad).unwrap();
+    let seen = sensor_events(&mut world, 1);
+    assert!(
+        matches!(seen[..], [(_, SensorEvent::End(o))] if o.visitor_body == balls[1] && o.sensor == sensor),
+        "{seen:?}"
+    );
+    assert!(world.sensor_events().len() == 1);
+    assert!(matches!(
+        world.sensor_overlaps(sensor),
+        Err(carom::CaromError::StaleHandle { .. })
+    ));
+    let solid = world.body(balls[1]).unwrap().colliders()[0];
+    assert!(matches!(
+        world.sensor_overlaps(solid),
+        Err(carom::CaromError::NotASensor { .. })
+    ));
+}
+
+#[test]
+fn the_collision_filter_applies_between_sensor_and_visitor() {
+    let mut world = world_with(SolverKind::SoftStep);
+    let ghosts = carom::CollisionFilter {
+        category: 2,
+        ..carom::CollisionFilter::DEFAULT
+    };
+    // The sensor ignores category 2.
+    world
+        .add_body(
+            BodyDef::static_body(Shape::rect(2.0, 0.5))
+                .position(vec2(0.0, 0.5))
+                .sensor(true)
+                .filter(carom::CollisionFilter {
+                    mask: !2,
+                    ..carom::CollisionFilter::DEFAULT
+                }),
+        )
+        .unwrap();
+    let ghost = world
+        .add_body(
+            BodyDef::dynamic(Shape::circle(0.25))
+                .position(vec2(-1.0, 0.25))
+                .filter(ghosts),
+        )
+        .unwrap();
+    let seen_ball = world
+        .add_body(BodyDef::dynamic(Shape::circle(0.25)).position(vec2(1.0, 0.25)))
+        .unwrap();
+    let seen = sensor_events(&mut world, 10);
+    assert!(
+        matches!(seen[..], [(_, SensorEvent::Begin(o))] if o.visitor_body == seen_ball),
+        "{seen:?}"
+    );
+    assert!(world.contains(ghost));
 }

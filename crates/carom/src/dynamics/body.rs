@@ -195,6 +195,14 @@ impl BodyDef {
         self
     }
 
+    /// Makes every collider so far a sensor, or not (see [`ColliderDef::sensor`]).
+    pub fn sensor(mut self, on: bool) -> Self {
+        for collider in &mut self.colliders {
+            collider.sensor = on;
+        }
+        self
+    }
+
     /// Sets the gravity scale.
     pub fn gravity_scale(mut self, scale: Real) -> Self {
         self.gravity_scale = scale;

@@ -54,6 +54,11 @@ pub struct ColliderDef {
     /// asks does no work for them.
     #[cfg_attr(feature = "serde", serde(default))]
     pub hit_events: bool,
+    /// A sensor: it reports what overlaps it ([`crate::SensorEvent`]) and never collides.
+    /// It still adds its density's mass to its body. Queries, ray casts and picking do not
+    /// see it. Default off.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub sensor: bool,
 }
 
 /// The default friction coefficient.
@@ -84,6 +89,7 @@ impl ColliderDef {
             restitution: 0.0,
             filter: CollisionFilter::DEFAULT,
             hit_events: false,
+            sensor: false,
         }
     }
 
@@ -126,6 +132,12 @@ impl ColliderDef {
     /// Asks for hit events on it (see [`ColliderDef::hit_events`]).
     pub fn hit_events(mut self, on: bool) -> Self {
         self.hit_events = on;
+        self
+    }
+
+    /// Makes it a sensor, or not (see [`ColliderDef::sensor`]).
+    pub fn sensor(mut self, on: bool) -> Self {
+        self.sensor = on;
         self
     }
 
@@ -175,6 +187,7 @@ pub struct Collider {
     restitution: Real,
     filter: CollisionFilter,
     hit_events: bool,
+    sensor: bool,
     world_shape: WorldShape,
     aabb: Aabb,
 }
@@ -200,6 +213,7 @@ impl Collider {
             restitution: def.restitution,
             filter: def.filter,
             hit_events: def.hit_events,
+            sensor: def.sensor,
             aabb: world_shape.aabb(),
             world_shape,
         };
@@ -263,6 +277,12 @@ impl Collider {
     #[inline]
     pub fn hit_events(&self) -> bool {
         self.hit_events
+    }
+
+    /// True for a sensor (see [`ColliderDef::sensor`]).
+    #[inline]
+    pub fn is_sensor(&self) -> bool {
+        self.sensor
     }
 
     /// Sets what it collides with; the world ends contacts it no longer allows.

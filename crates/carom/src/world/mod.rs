@@ -12,6 +12,7 @@ use crate::collision::broadphase::BroadPhase;
 use crate::collision::contact::{Contact, ContactEvent, ContactSet, ManifoldOptions};
 use crate::collision::continuous::{self, Pose};
 use crate::collision::hits::{HitEvent, find_hits};
+use crate::collision::sensor::{SensorEvent, SensorOverlap, Sensors};
 use crate::constants::{
     CONTACTS_PER_TASK, ITEMS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
 };
@@ -79,6 +80,8 @@ pub struct World {
     hit_event_colliders: usize,
     /// The hits of the last step.
     hit_events: Vec<HitEvent>,
+    /// The sensor colliders, which the broadphase does not hold, and what overlaps them.
+    sensors: Sensors,
 }
 
 /// What the stages of a step work in besides the solver, kept so a step in steady state
@@ -225,8 +228,8 @@ impl World {
         body.rebuild_mass(parts.iter())?;
         let handle = self.bodies.insert(body);
         for collider in parts {
-            self.note_collider(&collider, true);
             let collider = self.colliders.insert(collider);
+            self.note_added(collider);
             self.bodies
                 .get_mut(handle)
                 .expect("just inserted")
@@ -245,6 +248,9 @@ impl World {
         let margin = margin_for(&self.settings, body.kind());
         for &collider in body.colliders() {
             let attached = self.colliders.get(collider).expect("attached");
+            if attached.is_sensor() {
+                continue;
+            }
             self.broadphase
                 .insert(collider, handle, body.kind(), attached.aabb(), margin);
             self.broadphase.set_filter(collider, attached.filter());
@@ -266,7 +272,7 @@ impl World {
         self.apply_touch_changes();
         for &collider in body.colliders() {
             if let Some(removed) = self.colliders.remove(collider) {
-                self.note_collider(&removed, false);
+                self.note_removed(collider, &removed);
             }
             self.broadphase.remove(collider);
         }
@@ -301,8 +307,8 @@ impl World {
             .filter_map(|&c| self.colliders.get(c))
             .collect();
         updated.rebuild_mass(existing.into_iter().chain(std::iter::once(&collider)))?;
-        self.note_collider(&collider, true);
         let handle = self.colliders.insert(collider);
+        self.note_added(handle);
         updated.attach(handle);
         updated.wake_up();
         let kind = updated.kind();
@@ -312,10 +318,12 @@ impl World {
         self.settle_body(index);
         self.place_colliders_of(body);
         let attached = self.colliders.get(handle).expect("just inserted");
-        let (aabb, filter) = (attached.aabb(), attached.filter());
-        self.broadphase
-            .insert(handle, body, kind, aabb, margin_for(&self.settings, kind));
-        self.broadphase.set_filter(handle, filter);
+        if !attached.is_sensor() {
+            let (aabb, filter) = (attached.aabb(), attached.filter());
+            self.broadphase
+                .insert(handle, body, kind, aabb, margin_for(&self.settings, kind));
+            self.broadphase.set_filter(handle, filter);
+        }
         Ok(handle)
     }
 
@@ -354,7 +362,7 @@ impl World {
         self.broadphase.remove(handle);
         self.prepare_collider_removal(handle);
         let removed = self.colliders.remove(handle).expect("checked");
-        self.note_collider(&removed, false);
+        self.note_removed(handle, &removed);
         self.place_colliders_of(body);
         Ok(removed)
     }
@@ -451,15 +459,23 @@ impl World {
         Ok(())
     }
 
-    /// Counts a collider that was added to the world (or, `added` false, removed) among those
-    /// asking for the optional events, so a step does their work only when some ask.
-    fn note_collider(&mut self, collider: &Collider, added: bool) {
-        if collider.hit_events() {
-            if added {
-                self.hit_event_colliders += 1;
-            } else {
-                self.hit_event_colliders -= 1;
-            }
+    /// Notes a collider just added to the world among those asking for the optional events
+    /// and the sensors, so a step does their work only when some ask.
+    fn note_added(&mut self, handle: ColliderHandle) {
+        let Some(collider) = self.colliders.get(handle) else {
+            return;
+        };
+        self.hit_event_colliders += usize::from(collider.hit_events());
+        if collider.is_sensor() {
+            self.sensors.add(handle);
+        }
+    }
+
+    /// Forgets a collider just removed from the world (as `removed`): a sensor's overlaps end.
+    fn note_removed(&mut self, handle: ColliderHandle, removed: &Collider) {
+        self.hit_event_colliders -= usize::from(removed.hit_events());
+        if removed.is_sensor() {
+            self.sensors.remove(handle);
         }
     }
 
@@ -536,6 +552,25 @@ impl World {
         self.contacts.events()
     }
 
+    /// What began and stopped overlapping each sensor during the last step (and the ends of
+    /// sensors removed before it), sensor by sensor in the order they were added, each
+    /// sensor's in visitor handle order.
+    pub fn sensor_events(&self) -> &[SensorEvent] {
+        self.sensors.events()
+    }
+
+    /// What overlaps a sensor as of the last step, in visitor handle order.
+    ///
+    /// # Errors
+    /// A stale handle, or a collider that is not a sensor.
+    pub fn sensor_overlaps(&self, sensor: ColliderHandle) -> Result<&[SensorOverlap], CaromError> {
+        self.colliders.checked_index(sensor)?;
+        self.sensors.overlaps(sensor).ok_or(CaromError::NotASensor {
+            index: sensor.index(),
+            generation: sensor.generation(),
+        })
+    }
+
     /// The hard hits of the last step on colliders that ask for them
     /// ([`ColliderDef::hit_events`]), in contact storage order (the same from run to run).
     pub fn hit_events(&self) -> &[HitEvent] {
@@ -578,7 +613,7 @@ impl World {
     /// forces into velocities, resolve contacts and then joints colour by colour, integrate
     /// positions, in substeps for soft step); report the hard hits, if some collider asks;
     /// remove the joints pulled past their break thresholds; continuous collision for fast bodies; place the moved colliders and refresh
-    /// the broadphase from them; put resting islands to sleep.
+    /// the broadphase from them; put resting islands to sleep; find what overlaps each sensor.
     ///
     /// # Errors
     /// A time step that is not finite and positive; the world is left untouched.
@@ -594,6 +629,7 @@ impl World {
         let mut stats = StepStats::default();
         let times = &mut stats.times;
         self.contacts.begin_step();
+        self.sensors.begin_step();
         self.hit_events.clear();
 
         let mut scratch = std::mem::take(&mut self.scratch);
@@ -654,6 +690,8 @@ impl World {
         if effects.contains(Effect::Sleeping) {
             stats.work.sleep_checks = timed(&mut times.sleep, || self.update_sleep(dt));
         }
+        self.sensors
+            .update(&self.bodies, &self.colliders, &self.broadphase);
 
         self.scratch = scratch;
         self.record(stats, started);
