@@ -53,6 +53,7 @@ pub use collision::filter::CollisionFilter;
 pub use collision::hits::HitEvent;
 pub use collision::manifold::{FeatureId, Manifold, ManifoldPoint, collide};
 pub use collision::narrowphase::{Separation, separation};
+pub use collision::pre_solve::PreSolveContact;
 pub use collision::sensor::{SensorEvent, SensorOverlap};
 pub use constants::{LINEAR_SLOP, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_TO_SLEEP};
 pub use debug_draw::{

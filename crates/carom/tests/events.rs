@@ -482,3 +482,95 @@ fn the_collision_filter_applies_between_sensor_and_visitor() {
     );
     assert!(world.contains(ghost));
 }
+
+#[test]
+fn the_pre_solve_hook_drops_a_box_through_the_floor_and_brings_it_back() {
+    use std::sync::Arc;
+    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+    let mut settings = WorldSettings::default();
+    settings.effects.set(Effect::Sleeping, false);
+    let mut world = World::with_settings(settings).unwrap();
+    // A 2 m thick floor, top at y = 0, that opted in; beside it one that did not.
+    world
+        .add_body(
+            BodyDef::static_body(Shape::rect(3.0, 1.0))
+                .position(vec2(0.0, -1.0))
+                .pre_solve(true),
+        )
+        .unwrap();
+    world
+        .add_body(BodyDef::static_body(Shape::rect(3.0, 1.0)).position(vec2(10.0, -1.0)))
+        .unwrap();
+    let crate_box = world
+        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 0.5)))
+        .unwrap();
+    let bystander = world
+        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(10.0, 0.5)))
+        .unwrap();
+    let solid = Arc::new(AtomicBool::new(true));
+    let strays = Arc::new(AtomicUsize::new(0));
+    let (hook_solid, hook_strays) = (Arc::clone(&solid), Arc::clone(&strays));
+    world.set_pre_solve(move |contact| {
+        if contact.pair.body_b == bystander {
+            hook_strays.fetch_add(1, Ordering::Relaxed);
+        }
+        contact.pair.body_b != crate_box || hook_solid.load(Ordering::Relaxed)
+    });
+    let floor_contact = |world: &World| {
+        world
+            .contacts()
+            .find(|c| c.body_b() == crate_box)
+            .map(|c| (*c.manifold(), c.is_touching()))
+    };
+    let mut events = Vec::new();
+    for _ in 0..30 {
+        world.step(DT).unwrap();
+    }
+    assert!((world.body(crate_box).unwrap().position().y - 0.5).abs() < 0.01);
+    // Disabled for 15 steps: free fall into the floor, no points, no impulse.
+    solid.store(false, Ordering::Relaxed);
+    for _ in 0..15 {
+        world.step(DT).unwrap();
+        events.extend_from_slice(world.contact_events());
+        let (manifold, touching) = floor_contact(&world).expect("the boxes still overlap");
+        assert!(manifold.is_empty() && !touching);
+    }
+    let falling = world.body(crate_box).unwrap();
+    assert!(
+        (falling.linear_velocity().y + 10.0 * 15.0 * DT).abs() < 0.01,
+        "free fall: {:?}",
+        falling.linear_velocity()
+    );
+    assert!(
+        falling.position().y < 0.25,
+        "sunk in: {}",
+        falling.position().y
+    );
+    // Solved again: pushed back out onto the top, where it rests.
+    solid.store(true, Ordering::Relaxed);
+    for _ in 0..120 {
+        world.step(DT).unwrap();
+        events.extend_from_slice(world.contact_events());
+    }
+    let back = world.body(crate_box).unwrap();
+    assert!(
+        (back.position().y - 0.5).abs() < 0.01,
+        "{}",
+        back.position().y
+    );
+    assert!(back.linear_velocity().norm() < 0.01);
+    let floor_events: Vec<_> = events
+        .iter()
+        .filter(|e| e.pair().body_b == crate_box)
+        .collect();
+    assert!(
+        matches!(
+            floor_events[..],
+            [ContactEvent::End(_), ContactEvent::Begin(_)]
+        ),
+        "{floor_events:?}"
+    );
+    // Only the contacts of colliders that opted in are shown to the hook.
+    assert_eq!(strays.load(Ordering::Relaxed), 0);
+    assert!(world.contacts().any(|c| c.body_b() == bystander));
+}

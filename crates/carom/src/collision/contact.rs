@@ -22,6 +22,7 @@ use crate::collision::contact_layout::{
     ASLEEP, ColorRanges, ContactPartition, NOT_TOUCHING, color_part, color_ranges,
 };
 use crate::collision::manifold::{self, Manifold, Margins};
+use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::recycle::ManifoldFrame;
 use crate::constants::{CONTACTS_PER_TASK, TOUCH_BEGIN, TOUCH_END};
 use crate::dynamics::body::{Body, BodyHandle, BodyKind};
@@ -50,6 +51,8 @@ pub struct Contact {
     in_contact: bool,
     /// A collider of the pair asks for hit events.
     hit_events: bool,
+    /// A collider of the pair asks for the pre-solve hook.
+    pre_solve: bool,
     /// The colliders' friction mixed: their geometric mean.
     friction: Real,
     /// The colliders' restitution mixed: the larger.
@@ -280,7 +283,7 @@ pub(crate) type TouchChanges = (Vec<(BodyHandle, BodyHandle)>, Vec<(BodyHandle, 
 
 /// How the narrowphase builds manifolds this step.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ManifoldOptions {
+pub(crate) struct ManifoldOptions<'a> {
     /// Points are kept up to this far apart, m (the speculative distance).
     pub margin: Real,
     /// How far ahead, s, a face point may look: it is kept while the pair could close its gap
@@ -289,6 +292,8 @@ pub(crate) struct ManifoldOptions {
     /// Carry a manifold along while its pair has moved less than this relative to each other
     /// since it was built, m, instead of building it again (`None`: build every manifold).
     pub recycling: Option<Real>,
+    /// The world's pre-solve hook, asked about the contacts of colliders that opted in.
+    pub pre_solve: Option<&'a PreSolveHook>,
 }
 
 impl ContactSet {
@@ -326,6 +331,7 @@ impl ContactSet {
             touching: false,
             in_contact: false,
             hit_events: a.1.hit_events() || b.1.hit_events(),
+            pre_solve: a.1.pre_solve() || b.1.pre_solve(),
             friction: (a.1.friction() * b.1.friction()).sqrt(),
             restitution: a.1.restitution().max(b.1.restitution()),
             frame: ManifoldFrame::default(),
@@ -866,6 +872,7 @@ fn rebuild_manifold(
         margin,
         prediction,
         recycling,
+        pre_solve,
     } = options;
     let all = bodies.as_slice();
     let (a, b) = (&all[shape_a.body_index()], &all[shape_b.body_index()]);
@@ -891,7 +898,7 @@ fn rebuild_manifold(
     let stopped = a.had_time_of_impact() || b.had_time_of_impact();
     let carried = |distance| contact.frame.carry(&mut contact.manifold, a, b, distance);
     if polygons && !stopped && recycling.is_some_and(carried) {
-        return updated(contact, a, b);
+        return settled(contact, [shape_a, shape_b], [a, b], pre_solve);
     }
     let margins = Margins {
         any: margin,
@@ -907,7 +914,35 @@ fn rebuild_manifold(
         .manifold
         .set_anchors(a.center_of_mass(), b.center_of_mass());
     contact.frame = ManifoldFrame::of(&contact.manifold, (a, shape_a), (b, shape_b));
-    updated(contact, a, b)
+    settled(contact, [shape_a, shape_b], [a, b], pre_solve)
+}
+
+/// Asks the pre-solve `hook`, if the contact's colliders opted in and its manifold has points,
+/// whether it is solved this step; one turned down loses its points (and with them what it
+/// would warm start from) and its recycling frame, so next step builds it afresh. Then what
+/// the bookkeeping needs to know of it.
+fn settled(
+    contact: &mut Contact,
+    colliders: [&Collider; 2],
+    bodies: [&Body; 2],
+    hook: Option<&PreSolveHook>,
+) -> Refresh {
+    if let Some(hook) = hook
+        && contact.pre_solve
+        && !contact.manifold.is_empty()
+    {
+        let shown = PreSolveContact {
+            pair: contact.pair(),
+            manifold: &contact.manifold,
+            colliders,
+            bodies,
+        };
+        if !hook.allows(&shown) {
+            contact.manifold = Manifold::default();
+            contact.frame = ManifoldFrame::default();
+        }
+    }
+    updated(contact, bodies[0], bodies[1])
 }
 
 /// What the bookkeeping after the narrowphase needs to know of a contact of bodies `a` and

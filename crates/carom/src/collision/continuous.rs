@@ -153,8 +153,10 @@ fn sink_allowance(min_extent: Real, target: Real) -> Real {
 
 /// Sweeps every fast body of the awake set (`bodies[awake]`) and moves the ones that would
 /// have tunnelled back to their time of impact. `starts` holds each awake body's pose at the
-/// start of the step, in storage order. Returns the number of impacts and the number of bodies
-/// swept.
+/// start of the step, in storage order. With `hooked` (the world has a pre-solve hook), pairs
+/// that asked for the hook are left to it and their contacts. Returns the number of impacts
+/// and the number of bodies swept.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_continuous(
     bodies: &mut HandleMap<BodyHandle, Body>,
     awake: Range<usize>,
@@ -163,6 +165,7 @@ pub(crate) fn solve_continuous(
     swept: &mut Option<WorldShape>,
     broadphase: &BroadPhase,
     target: Real,
+    hooked: bool,
 ) -> (usize, usize) {
     let mut impacts: Vec<(usize, Vec2, Rot)> = Vec::new();
     let mut sweeps = 0;
@@ -192,7 +195,8 @@ pub(crate) fn solve_continuous(
                 };
                 let other_body = &bodies.as_slice()[other.body_index()];
                 let eligible = other.body() != body.handle()
-                    && (other_body.kind() == BodyKind::Static || body.is_bullet());
+                    && (other_body.kind() == BodyKind::Static || body.is_bullet())
+                    && !(hooked && (collider.pre_solve() || other.pre_solve()));
                 if !eligible {
                     return;
                 }

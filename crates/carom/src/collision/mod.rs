@@ -1,7 +1,7 @@
 //! Collision: which pairs are near (broadphase), how near (narrowphase), where they touch
 //! (manifolds), which pairs may collide at all (filters), the persistent contacts that carry it from step to step, their graph colours
-//! and where each is stored, the hits they report, sensors, and continuous collision for fast
-//! bodies.
+//! and where each is stored, the user's pre-solve say over them, the hits they report,
+//! sensors, and continuous collision for fast bodies.
 
 pub(crate) mod broadphase;
 pub(crate) mod coloring;
@@ -13,5 +13,6 @@ pub(crate) mod filter;
 pub(crate) mod hits;
 pub(crate) mod manifold;
 pub(crate) mod narrowphase;
+pub(crate) mod pre_solve;
 pub(crate) mod recycle;
 pub(crate) mod sensor;

@@ -203,6 +203,15 @@ impl BodyDef {
         self
     }
 
+    /// Shows the contacts of every collider so far to the pre-solve hook, or not (see
+    /// [`ColliderDef::pre_solve`]).
+    pub fn pre_solve(mut self, on: bool) -> Self {
+        for collider in &mut self.colliders {
+            collider.pre_solve = on;
+        }
+        self
+    }
+
     /// Sets the gravity scale.
     pub fn gravity_scale(mut self, scale: Real) -> Self {
         self.gravity_scale = scale;

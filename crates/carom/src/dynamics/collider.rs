@@ -59,6 +59,10 @@ pub struct ColliderDef {
     /// see it. Default off.
     #[cfg_attr(feature = "serde", serde(default))]
     pub sensor: bool,
+    /// Its contacts are shown to the world's pre-solve hook ([`crate::World::set_pre_solve`])
+    /// each step before they are solved, and the hook may disable them. Default off.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub pre_solve: bool,
 }
 
 /// The default friction coefficient.
@@ -90,6 +94,7 @@ impl ColliderDef {
             filter: CollisionFilter::DEFAULT,
             hit_events: false,
             sensor: false,
+            pre_solve: false,
         }
     }
 
@@ -141,6 +146,12 @@ impl ColliderDef {
         self
     }
 
+    /// Shows its contacts to the pre-solve hook, or not (see [`ColliderDef::pre_solve`]).
+    pub fn pre_solve(mut self, on: bool) -> Self {
+        self.pre_solve = on;
+        self
+    }
+
     /// Checks every value.
     ///
     /// # Errors
@@ -188,6 +199,7 @@ pub struct Collider {
     filter: CollisionFilter,
     hit_events: bool,
     sensor: bool,
+    pre_solve: bool,
     world_shape: WorldShape,
     aabb: Aabb,
 }
@@ -214,6 +226,7 @@ impl Collider {
             filter: def.filter,
             hit_events: def.hit_events,
             sensor: def.sensor,
+            pre_solve: def.pre_solve,
             aabb: world_shape.aabb(),
             world_shape,
         };
@@ -277,6 +290,12 @@ impl Collider {
     #[inline]
     pub fn hit_events(&self) -> bool {
         self.hit_events
+    }
+
+    /// True when its contacts are shown to the pre-solve hook (see [`ColliderDef::pre_solve`]).
+    #[inline]
+    pub fn pre_solve(&self) -> bool {
+        self.pre_solve
     }
 
     /// True for a sensor (see [`ColliderDef::sensor`]).

@@ -12,6 +12,7 @@ use crate::collision::broadphase::BroadPhase;
 use crate::collision::contact::{Contact, ContactEvent, ContactSet, ManifoldOptions};
 use crate::collision::continuous::{self, Pose};
 use crate::collision::hits::{HitEvent, find_hits};
+use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::sensor::{SensorEvent, SensorOverlap, Sensors};
 use crate::constants::{
     CONTACTS_PER_TASK, ITEMS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
@@ -82,6 +83,8 @@ pub struct World {
     hit_events: Vec<HitEvent>,
     /// The sensor colliders, which the broadphase does not hold, and what overlaps them.
     sensors: Sensors,
+    /// The user's say over the contacts of colliders that opt in.
+    pre_solve: Option<PreSolveHook>,
 }
 
 /// What the stages of a step work in besides the solver, kept so a step in steady state
@@ -571,6 +574,40 @@ impl World {
         })
     }
 
+    /// Sets the pre-solve hook, replacing any: each step, right after the narrowphase, it is
+    /// shown every contact with points (speculative ones included) of a collider that opted in
+    /// ([`ColliderDef::pre_solve`]), and returning false disables that contact for the step
+    /// (no impulse, nothing warm started from it, no touching). It runs on the narrowphase's
+    /// threads, in no set order: keep it a pure function of what it is shown (and of state
+    /// changed only between steps) and the world stays deterministic. See
+    /// [`PreSolveContact`].
+    ///
+    /// ```
+    /// use carom::{BodyDef, Shape, World, vec2};
+    ///
+    /// let mut world = World::new();
+    /// // A floor that only holds what comes down on its top (its normal points up to B).
+    /// world.add_body(BodyDef::static_body(Shape::rect(5.0, 0.1)).pre_solve(true))?;
+    /// world.set_pre_solve(|contact| contact.manifold.normal.y > 0.7);
+    /// let ball = world.add_body(BodyDef::dynamic(Shape::circle(0.25)).position(vec2(0.0, 2.0)))?;
+    /// for _ in 0..120 {
+    ///     world.step(1.0 / 60.0)?;
+    /// }
+    /// assert!((world.body(ball).unwrap().position().y - 0.35).abs() < 0.01);
+    /// # Ok::<(), carom::CaromError>(())
+    /// ```
+    pub fn set_pre_solve(
+        &mut self,
+        hook: impl Fn(&PreSolveContact) -> bool + Send + Sync + 'static,
+    ) {
+        self.pre_solve = Some(PreSolveHook::new(hook));
+    }
+
+    /// Removes the pre-solve hook: every contact is solved again.
+    pub fn clear_pre_solve(&mut self) {
+        self.pre_solve = None;
+    }
+
     /// The hard hits of the last step on colliders that ask for them
     /// ([`ColliderDef::hit_events`]), in contact storage order (the same from run to run).
     pub fn hit_events(&self) -> &[HitEvent] {
@@ -681,6 +718,7 @@ impl World {
                     &mut scratch.swept,
                     &self.broadphase,
                     LINEAR_SLOP,
+                    self.pre_solve.is_some(),
                 )
             });
         }
@@ -718,6 +756,7 @@ impl World {
                         RECYCLE_DISTANCE_CLASSIC
                     }
                 }),
+                pre_solve: self.pre_solve.as_ref(),
             },
             wake,
         );
