@@ -269,7 +269,8 @@ enum Refresh {
     Updated {
         /// Its deepest overlap (0 if it does not touch).
         depth: Real,
-        /// Its manifold gained its first points or lost its last.
+        /// Its manifold gained its first points or lost its last, or the shapes began or
+        /// stopped touching.
         changed: bool,
         /// Whether the shapes touch now, as events report it.
         in_contact: bool,
@@ -605,12 +606,11 @@ impl ContactSet {
                 Refresh::Updated {
                     depth,
                     changed,
-                    in_contact,
                     wakes,
+                    ..
                 } => {
                     deepest = deepest.max(depth);
-                    let begins_or_ends = in_contact != self.contacts[index].in_contact;
-                    if !(changed || begins_or_ends || wakes) {
+                    if !(changed || wakes) {
                         continue;
                     }
                 }
@@ -956,14 +956,15 @@ fn updated(contact: &Contact, a: &Body, b: &Body) -> Refresh {
     } else {
         TOUCH_BEGIN
     };
+    let in_contact = closest.is_some_and(|s| s <= reach);
     Refresh::Updated {
         depth: if touching {
             -closest.unwrap_or(0.0)
         } else {
             0.0
         },
-        changed: touching != contact.touching,
-        in_contact: closest.is_some_and(|s| s <= reach),
+        changed: touching != contact.touching || in_contact != contact.in_contact,
+        in_contact,
         wakes: touching && (stirred(a, b) || stirred(b, a)),
     }
 }
