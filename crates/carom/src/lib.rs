@@ -48,7 +48,7 @@ mod solver;
 mod stats;
 mod world;
 
-pub use collision::contact::{Contact, ContactEvent, ContactPair};
+pub use collision::contact::{Contact, ContactEvent, ContactPair, PointImpulse};
 pub use collision::filter::CollisionFilter;
 pub use collision::hits::HitEvent;
 pub use collision::manifold::{FeatureId, Manifold, ManifoldPoint, collide};

@@ -29,7 +29,7 @@ fn impulses_on(world: &World, body: BodyHandle) -> (Real, Real) {
     let points = world
         .contacts()
         .filter(|c| c.body_a() == body || c.body_b() == body)
-        .flat_map(|c| c.manifold().points());
+        .flat_map(|c| c.point_impulses());
     points.fold((0.0, 0.0), |(total, max), p| {
         (total + p.total_normal_impulse, max + p.max_normal_impulse)
     })

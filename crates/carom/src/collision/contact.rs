@@ -43,6 +43,10 @@ pub struct Contact {
     body_a: BodyHandle,
     body_b: BodyHandle,
     manifold: Manifold,
+    /// What the solver did at each point over the last step. Kept here, beside the manifold
+    /// rather than in its points, so the narrowphase, which builds and copies manifolds, does
+    /// not carry them.
+    impulses: [PointImpulse; 2],
     /// The manifold has points, speculative ones included: the solver works on it (it has a
     /// colour while awake, and links its bodies' islands). Not what events report.
     touching: bool,
@@ -114,20 +118,26 @@ impl Contact {
         &self.manifold
     }
 
+    /// What the solver did at each point of the manifold over the last step it solved the
+    /// contact, point by point (as many as the manifold has).
+    pub fn point_impulses(&self) -> &[PointImpulse] {
+        &self.impulses[..self.manifold.points().len()]
+    }
+
     /// The normal impulse the last step applied over all the points, N·s (their
-    /// [`crate::ManifoldPoint::total_normal_impulse`]): divided by the step, the force pressing
-    /// the colliders apart.
+    /// [`PointImpulse::total_normal_impulse`]): divided by the step, the force pressing the
+    /// colliders apart.
     pub fn total_normal_impulse(&self) -> Real {
-        self.manifold
-            .points()
+        self.point_impulses()
             .iter()
             .map(|p| p.total_normal_impulse)
             .sum()
     }
 
-    /// The manifold, for the solver to store impulses in.
-    pub(crate) fn manifold_mut(&mut self) -> &mut Manifold {
-        &mut self.manifold
+    /// The manifold and what the solver did at its points, for the solver to store impulses
+    /// in.
+    pub(crate) fn manifold_and_impulses_mut(&mut self) -> (&mut Manifold, &mut [PointImpulse; 2]) {
+        (&mut self.manifold, &mut self.impulses)
     }
 
     /// True while the shapes touch, as begin and end events report it: since a point came
@@ -160,6 +170,23 @@ impl Contact {
     pub(crate) fn color(&self) -> (u8, [bool; 2]) {
         (self.color, self.color_holds)
     }
+}
+
+/// What the solver did at one contact point over a step: Box2D's `totalNormalImpulse`,
+/// `maxNormalImpulse` and `normalVelocity`. Force is impulse over time: divide by the step
+/// (or, for the most in a substep, by the substep).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PointImpulse {
+    /// The normal impulse applied here over the step, N·s: every substep's share, warm start
+    /// and relaxation included, and the restitution pass. Zero where the solver pushed nothing
+    /// (a speculative point never reached) and under push-out, which has no impulses.
+    pub total_normal_impulse: Real,
+    /// The most normal impulse applied here in one substep, N·s (the whole step for the
+    /// solvers without substeps).
+    pub max_normal_impulse: Real,
+    /// Velocity of B relative to A along the normal here as the step began, m/s (negative
+    /// while they approach): how hard a hit was.
+    pub normal_velocity: Real,
 }
 
 /// Which colliders, of which bodies, a contact event is about.
@@ -329,6 +356,7 @@ impl ContactSet {
             body_a: a.1.body(),
             body_b: b.1.body(),
             manifold: Manifold::default(),
+            impulses: [PointImpulse::default(); 2],
             touching: false,
             in_contact: false,
             hit_events: a.1.hit_events() || b.1.hit_events(),

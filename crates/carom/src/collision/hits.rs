@@ -2,7 +2,7 @@
 //!
 //! A collider asks for them ([`crate::ColliderDef::hit_events`]); after each step, every awake
 //! contact of such a collider is looked at, and reports a hit if one of its points pushed
-//! during the step (its [`crate::ManifoldPoint::total_normal_impulse`] is positive, so a
+//! during the step (its [`crate::PointImpulse::total_normal_impulse`] is positive, so a
 //! speculative point the bodies never reached does not count) and was approaching faster than
 //! the world's [`crate::WorldSettings::hit_event_threshold`] as the step began. That is Box2D's
 //! rule: a hit is reported on any step a fast approach is stopped, not only the step a contact
@@ -44,12 +44,11 @@ pub(crate) fn find_hits(
             continue;
         }
         let manifold = contact.manifold();
-        let fastest = manifold
-            .points()
-            .iter()
-            .filter(|p| p.total_normal_impulse > 0.0 && -p.normal_velocity > threshold)
-            .max_by(|p, q| q.normal_velocity.total_cmp(&p.normal_velocity));
-        let Some(fastest) = fastest else {
+        let pushed = manifold.points().iter().zip(contact.point_impulses());
+        let fastest = pushed
+            .filter(|(_, i)| i.total_normal_impulse > 0.0 && -i.normal_velocity > threshold)
+            .max_by(|(_, i), (_, j)| j.normal_velocity.total_cmp(&i.normal_velocity));
+        let Some((fastest, impulse)) = fastest else {
             continue;
         };
         let (a, b) = (&bodies[a as usize], &bodies[b as usize]);
@@ -66,7 +65,7 @@ pub(crate) fn find_hits(
             pair: contact.pair(),
             point,
             normal,
-            approach_speed: -fastest.normal_velocity,
+            approach_speed: -impulse.normal_velocity,
         });
     }
 }

@@ -84,17 +84,6 @@ pub struct ManifoldPoint {
     pub normal_impulse: Real,
     /// Accumulated friction impulse, kept across steps for warm starting.
     pub tangent_impulse: Real,
-    /// The normal impulse the solver applied here over the last step, N·s: every substep's
-    /// share, warm start and relaxation included, and the restitution pass (Box2D's
-    /// `totalNormalImpulse`). Divided by the step it is the mean contact force. Zero where the
-    /// solver pushed nothing (a speculative point never reached) and under push-out.
-    pub total_normal_impulse: Real,
-    /// The most normal impulse applied here in one substep of the last step (the whole step for
-    /// the solvers without substeps), N·s: divided by the substep it is the peak force.
-    pub max_normal_impulse: Real,
-    /// Velocity of B relative to A along the normal here as the last step began, m/s
-    /// (negative while they approach): how hard a hit was.
-    pub normal_velocity: Real,
 }
 
 /// Which shape of a pair.

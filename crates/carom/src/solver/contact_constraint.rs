@@ -1,7 +1,7 @@
 //! A touching contact as the solver sees it: fixed anchors, effective masses, impulses.
 
 use super::BodyState;
-use crate::collision::contact::Contact;
+use crate::collision::contact::{Contact, PointImpulse};
 use crate::collision::manifold::{Manifold, ManifoldPoint};
 use crate::dynamics::body::Body;
 use crate::math::{Real, Vec2, cross, cross_sv, perp_cw};
@@ -226,20 +226,23 @@ impl ContactConstraint {
         (b.v + cross_sv(b.w, point.anchor_b)) - (a.v + cross_sv(a.w, point.anchor_a))
     }
 
-    /// Copies accumulated impulses back into the contact's manifold for warm starting, with
-    /// what the step applied and the approach it started from, for the user.
+    /// Copies accumulated impulses back into the contact's manifold for warm starting, and
+    /// what the step applied and the approach it started from beside it, for the user.
     pub fn store_impulses(&self, contact: &mut Contact) {
-        for (mp, point) in contact
-            .manifold_mut()
+        let (manifold, reports) = contact.manifold_and_impulses_mut();
+        for ((mp, report), point) in manifold
             .points_mut()
             .iter_mut()
+            .zip(reports)
             .zip(self.points())
         {
             mp.normal_impulse = point.normal_impulse;
             mp.tangent_impulse = point.tangent_impulse;
-            mp.total_normal_impulse = point.total_normal_impulse;
-            mp.max_normal_impulse = point.max_normal_impulse;
-            mp.normal_velocity = point.relative_velocity;
+            *report = PointImpulse {
+                total_normal_impulse: point.total_normal_impulse,
+                max_normal_impulse: point.max_normal_impulse,
+                normal_velocity: point.relative_velocity,
+            };
         }
     }
 

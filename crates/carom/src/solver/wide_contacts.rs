@@ -20,7 +20,7 @@ use super::shared_states::SharedStates;
 use super::soft_step::{Bias, apply_restitution, solve_one, warm_start_one};
 use super::stages::{block_count, block_range, run_stages};
 use super::{BodyState, Environment, Softness, SolverParams};
-use crate::collision::contact::{BodyIndices, Contact};
+use crate::collision::contact::{BodyIndices, Contact, PointImpulse};
 use crate::constants::{
     COLOR_COUNT, ITEMS_PER_TASK, JOINT_COLOR_COUNT, MAX_BLOCKS, MIN_BLOCK, MIN_BODY_BLOCK,
     MIN_JOINT_BLOCK, MIN_SHARED,
@@ -1239,7 +1239,7 @@ impl<L: Lanes> Bundle<L> {
     }
 
     /// Copies the lanes' impulses into their contacts' manifolds (`contacts` begin at contact
-    /// `offset`), with what the step applied and the approach it started from.
+    /// `offset`), and what the step applied and the approach it started from beside them.
     #[inline(always)]
     fn store(&self, contacts: &mut [Contact], offset: usize) {
         let mut impulses = [[[0.0; 8]; 5]; 2];
@@ -1258,12 +1258,16 @@ impl<L: Lanes> Bundle<L> {
             else {
                 continue;
             };
-            for (j, point) in contact.manifold_mut().points_mut().iter_mut().enumerate() {
+            let (manifold, reports) = contact.manifold_and_impulses_mut();
+            let points = manifold.points_mut().iter_mut().zip(reports);
+            for (j, (point, report)) in points.enumerate() {
                 point.normal_impulse = impulses[j][0][lane];
                 point.tangent_impulse = impulses[j][1][lane];
-                point.total_normal_impulse = impulses[j][2][lane];
-                point.max_normal_impulse = impulses[j][3][lane];
-                point.normal_velocity = impulses[j][4][lane];
+                *report = PointImpulse {
+                    total_normal_impulse: impulses[j][2][lane],
+                    max_normal_impulse: impulses[j][3][lane],
+                    normal_velocity: impulses[j][4][lane],
+                };
             }
         }
     }
