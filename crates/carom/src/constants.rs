@@ -152,6 +152,10 @@ pub(crate) const CONTACTS_PER_TASK: usize = 256;
 /// query walks the trees in about a microsecond).
 pub(crate) const MOVES_PER_TASK: usize = 64;
 
+/// Sensors per task when their overlap queries are shared among threads (a query and a few
+/// exact overlap tests cost about a microsecond, a fork several).
+pub(crate) const SENSORS_PER_TASK: usize = 32;
+
 /// Blocks a stage (a colour's bundles, the bodies) is cut into, at most, when soft step's
 /// stages are shared among threads.
 pub(crate) const MAX_BLOCKS: usize = 8;

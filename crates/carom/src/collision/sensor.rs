@@ -18,6 +18,7 @@
 
 use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
 use crate::collision::narrowphase::separation;
+use crate::constants::SENSORS_PER_TASK;
 use crate::dynamics::body::{Body, BodyHandle};
 use crate::dynamics::collider::{Collider, ColliderHandle};
 use crate::handle_map::HandleMap;
@@ -75,10 +76,6 @@ pub(crate) struct Sensors {
     /// Events raised between steps (removing a sensor), reported after the next step.
     pending: Vec<SensorEvent>,
 }
-
-/// Sensors per task when their queries are shared among threads (a query and a few exact
-/// overlap tests cost about a microsecond, a fork several).
-const SENSORS_PER_TASK: usize = 32;
 
 impl Sensors {
     /// Starts watching a sensor collider; it sees nothing until the next step.

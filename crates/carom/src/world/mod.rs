@@ -579,8 +579,8 @@ impl World {
     /// ([`ColliderDef::pre_solve`]), and returning false disables that contact for the step
     /// (no impulse, nothing warm started from it, no touching). It runs on the narrowphase's
     /// threads, in no set order: keep it a pure function of what it is shown (and of state
-    /// changed only between steps) and the world stays deterministic. See
-    /// [`PreSolveContact`].
+    /// changed only between steps) and the world stays deterministic. A clone of the world
+    /// shares the hook. See [`PreSolveContact`].
     ///
     /// ```
     /// use carom::{BodyDef, Shape, World, vec2};
