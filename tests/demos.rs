@@ -380,3 +380,112 @@ fn terrain_shapes_roll_downhill_and_none_falls_through_the_chain() {
         mean_x(&start)
     );
 }
+
+/// The one-way platform scene's thrown and dropped bodies (half a metre across) with the top of
+/// the flat platform each should end on (tops at 2.6, 4.6 and 6.6 m).
+const ON_PLATFORMS: [(&str, Real); 7] = [
+    ("box_low", 2.6),
+    ("ball_low", 2.6),
+    ("box_middle", 4.6),
+    ("ball_middle", 4.6),
+    ("box_high", 6.6),
+    ("ball_high", 6.6),
+    ("ball_above", 4.6),
+];
+
+#[test]
+fn bodies_thrown_up_through_one_way_platforms_land_on_top() {
+    let mut scene = demo("one_way_platform");
+    let mut highest = [Real::NEG_INFINITY; ON_PLATFORMS.len()];
+    for _ in 0..480 {
+        scene.step().unwrap();
+        for ((name, _), high) in ON_PLATFORMS.iter().zip(&mut highest) {
+            let y = scene.world.body(scene.names[*name]).unwrap().position().y;
+            *high = high.max(y);
+        }
+    }
+    for ((name, top), high) in ON_PLATFORMS.iter().zip(highest) {
+        let body = scene.world.body(scene.names[*name]).unwrap();
+        // Up through the platform: its bottom cleared the top by over a metre.
+        assert!(high - 0.25 > top + 1.0, "{name} rose to {high}");
+        // Then down onto it, at rest.
+        let y = body.position().y;
+        assert!((y - (top + 0.25)).abs() < 0.005, "{name} ended at {y}");
+        assert!(body.linear_velocity().norm() < 0.01, "{name} still moves");
+    }
+    // The box thrown up through the platform tilted by 0.15 rad rests square on it: 0.1 + 0.25 m
+    // from its centre line along its normal.
+    let tilted = scene.world.body(scene.names["tilted"]).unwrap();
+    let crate_box = scene.world.body(scene.names["box_tilted"]).unwrap();
+    let normal = tilted.rotation() * carom::vec2(0.0, 1.0);
+    let height = (crate_box.position() - tilted.position()).dot(&normal);
+    assert!((height - 0.35).abs() < 0.005, "{height}");
+    assert!(
+        (crate_box.angle() - 0.15).abs() < 0.01,
+        "{}",
+        crate_box.angle()
+    );
+
+    // Without the hook the platforms are solid from below too: the thrown box bounces off the
+    // underside of the low one (its bottom at 2.4 m).
+    let mut solid = demo("one_way_platform");
+    solid.world.clear_pre_solve();
+    let mut highest: Real = 0.0;
+    for _ in 0..240 {
+        solid.step().unwrap();
+        let y = solid
+            .world
+            .body(solid.names["box_low"])
+            .unwrap()
+            .position()
+            .y;
+        highest = highest.max(y);
+    }
+    assert!(highest < 2.4 - 0.25 + 0.01, "rose to {highest}");
+}
+
+#[test]
+fn the_sensor_band_sees_each_falling_body_enter_once_and_leave_once() {
+    let mut scene = demo("sensor");
+    let band = scene.names["band"];
+    let sensor = scene.world.body(band).unwrap().colliders()[0];
+    let falling: Vec<carom::BodyHandle> = scene
+        .world
+        .bodies()
+        .filter(|b| b.is_dynamic())
+        .map(|b| b.handle())
+        .collect();
+    assert_eq!(falling.len(), 20);
+    let mut counts: std::collections::HashMap<carom::BodyHandle, (usize, usize)> =
+        std::collections::HashMap::new();
+    for _ in 0..300 {
+        scene.step().unwrap();
+        for event in scene.world.sensor_events() {
+            let overlap = event.overlap();
+            assert_eq!(overlap.sensor, sensor);
+            let count = counts.entry(overlap.visitor_body).or_default();
+            match event {
+                carom::SensorEvent::Begin(_) => count.0 += 1,
+                carom::SensorEvent::End(_) => count.1 += 1,
+            }
+        }
+        assert!(
+            scene
+                .world
+                .contacts()
+                .all(|c| c.body_a() != band && c.body_b() != band),
+            "the band touches nothing"
+        );
+    }
+    let (begins, ends): (usize, usize) =
+        counts.values().fold((0, 0), |t, c| (t.0 + c.0, t.1 + c.1));
+    assert_eq!((begins, ends), (20, 20), "{counts:?}");
+    assert!(falling.iter().all(|b| counts[b] == (1, 1)), "{counts:?}");
+    assert!(scene.world.sensor_overlaps(sensor).unwrap().is_empty());
+    // All landed on the floor below the band.
+    assert!(
+        falling
+            .iter()
+            .all(|&b| scene.world.body(b).unwrap().position().y < 1.0)
+    );
+}

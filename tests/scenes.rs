@@ -95,6 +95,11 @@ fn semantic_errors_name_the_body_or_event_and_the_reason() {
             "joint 0",
             "spring hertz must be finite",
         ),
+        (
+            "scenes/bad_sensor_one_way.ron",
+            "body 1 (\"trap\")",
+            "a sensor never collides, so it cannot be one_way",
+        ),
     ] {
         let (error, message) = error_of(file);
         assert!(matches!(error, SceneError::Invalid { .. }), "{message}");
@@ -121,11 +126,11 @@ fn the_documented_example_is_a_valid_scene() {
     let scene = carom_scene::parse(&readme[start..end], "demos/README.md")
         .unwrap_or_else(|e| panic!("{e}"));
     let mut built = carom_scene::build(&scene, "demos/README.md").unwrap_or_else(|e| panic!("{e}"));
-    // 17 bodies, a stack of 10, a pyramid of 15, a grid of 8, a joint grid of 3 x 2, 4 walls,
+    // 19 bodies, a stack of 10, a pyramid of 15, a grid of 8, a joint grid of 3 x 2, 4 walls,
     // 20 drops, 2 stacks of 3, a chain of 6 links, 2 groups of 2.
     assert_eq!(
         built.world.body_count(),
-        17 + 10 + 15 + 8 + 6 + 4 + 20 + 6 + 6 + 4
+        19 + 10 + 15 + 8 + 6 + 4 + 20 + 6 + 6 + 4
     );
     // Every kind of shape is there; the chain of 3 points is 2 links.
     let mut shapes: Vec<&str> = built
@@ -154,6 +159,15 @@ fn the_documented_example_is_a_valid_scene() {
             "segment"
         ]
     );
+    // The shelf is a one-way platform (its contacts go to the pre-solve hook), the zone a
+    // sensor, the ball neither.
+    let collider = |name: &str| {
+        let body = built.world.body(built.names[name]).unwrap();
+        built.world.collider(body.colliders()[0]).unwrap()
+    };
+    assert!(collider("shelf").pre_solve() && !collider("shelf").is_sensor());
+    assert!(collider("zone").is_sensor() && !collider("zone").pre_solve());
+    assert!(!collider("ball").is_sensor() && !collider("ball").pre_solve());
     // 8 joints, one of each kind; the joint grid's 3 down its columns and 4 across its rows;
     // the chain's 6; one in each group.
     assert_eq!(built.world.joint_count(), 8 + 3 + 4 + 6 + 2);

@@ -1,6 +1,7 @@
 //! Stepping on several threads changes nothing but the time: a world stepped on one, two or
 //! three threads ends in exactly the same state, bit for bit, also while islands fall asleep
-//! and wake.
+//! and wake, and while a pre-solve hook, called from the narrowphase's threads, disables
+//! contacts.
 
 use carom::{
     BodyDef, Effect, Effects, Shape, SolverKind, SolverParams, World, WorldSettings, vec2,
@@ -8,8 +9,9 @@ use carom::{
 
 /// A pyramid of 92 in the base (4278 boxes, about 12,700 contacts: enough that the
 /// narrowphase, the solver's per-body work and its graph colours are all shared among threads)
-/// and circles and triangles tumbling beside it.
-fn busy_world(solver: SolverKind) -> World {
+/// and circles and triangles tumbling beside it; every collider shows its contacts to the
+/// pre-solve hook if `pre_solve`.
+fn busy_world(solver: SolverKind, pre_solve: bool) -> World {
     let settings = WorldSettings {
         solver: SolverParams::for_kind(solver),
         effects: Effects::ALL.without(Effect::Sleeping),
@@ -26,7 +28,8 @@ fn busy_world(solver: SolverKind) -> World {
                 .add_body(
                     BodyDef::dynamic(Shape::rect(0.5, 0.5))
                         .position(vec2(x, row as f32 + 0.5))
-                        .friction(0.6),
+                        .friction(0.6)
+                        .pre_solve(pre_solve),
                 )
                 .unwrap();
         }
@@ -42,7 +45,12 @@ fn busy_world(solver: SolverKind) -> World {
         let side = if i % 4 < 2 { -1.0 } else { 1.0 };
         let position = vec2(side * rng.range(48.0, 58.0), rng.range(0.5, 8.0));
         world
-            .add_body(BodyDef::dynamic(shape).position(position).restitution(0.3))
+            .add_body(
+                BodyDef::dynamic(shape)
+                    .position(position)
+                    .restitution(0.3)
+                    .pre_solve(pre_solve),
+            )
             .unwrap();
     }
     world
@@ -54,7 +62,7 @@ fn final_hash(solver: SolverKind, threads: usize) -> u64 {
         .build()
         .unwrap();
     pool.install(|| {
-        let mut world = busy_world(solver);
+        let mut world = busy_world(solver, false);
         for _ in 0..60 {
             world.step(1.0 / 60.0).unwrap();
         }
@@ -118,6 +126,38 @@ fn every_thread_count_gives_the_same_world() {
                 solver.name()
             );
         }
+    }
+}
+
+/// The busy world with a pre-solve hook that disables one contact in five, by a rule of the
+/// pair alone, so the pyramid crumbles: the same world on every thread count.
+#[test]
+fn a_pre_solve_hook_gives_the_same_world_on_every_thread_count() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut world = busy_world(SolverKind::SoftStep, true);
+            world.set_pre_solve(|contact| {
+                let pair = contact.pair;
+                (pair.collider_a.index() ^ pair.collider_b.index()) % 5 != 0
+            });
+            for _ in 0..60 {
+                world.step(1.0 / 60.0).unwrap();
+            }
+            world.state_hash()
+        })
+    };
+    let one = run(1);
+    assert_ne!(
+        one,
+        final_hash(SolverKind::SoftStep, 1),
+        "the hook disables contacts"
+    );
+    for threads in [2, 3] {
+        assert_eq!(run(threads), one, "{threads} threads");
     }
 }
 

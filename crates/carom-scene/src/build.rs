@@ -2,6 +2,7 @@
 
 use crate::error::SceneError;
 use crate::events::Events;
+use crate::one_way;
 use crate::scene::{
     Accuracy, BodySpec, Camera, Cells, Generator, JointKindSpec, JointSpec, Material, Pair,
     RevoluteSpec, Scene, ShapeSpec, WorldSpec,
@@ -151,6 +152,9 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
         world
             .add_joint(def)
             .map_err(|e| invalid(what.clone(), e.to_string()))?;
+    }
+    if world.colliders().any(|c| c.pre_solve()) {
+        world.set_pre_solve(one_way::solid_from_above);
     }
     let events = Events::new(&scene.events, &names, initial, &world)
         .map_err(|(index, reason)| invalid(format!("event {index}"), reason))?;
@@ -353,7 +357,27 @@ fn with_material(def: BodyDef, material: &Material) -> BodyDef {
         .damping(material.damping.0, material.damping.1)
 }
 
+/// A body's definition; a collider that is both a sensor and one-way is refused.
 fn body_def(spec: &BodySpec) -> Result<BodyDef, String> {
+    let flags = spec.shape.iter().map(|_| (spec.sensor, spec.one_way));
+    let parts = spec.colliders.iter().map(|part| {
+        (
+            part.sensor.unwrap_or(spec.sensor),
+            part.one_way.unwrap_or(spec.one_way),
+        )
+    });
+    if flags
+        .chain(parts)
+        .any(|(sensor, one_way)| sensor && one_way)
+    {
+        return Err("a sensor never collides, so it cannot be one_way".into());
+    }
+    body_def_of(spec)
+}
+
+/// [`body_def`], its flags checked. A one-way collider is shown to the pre-solve hook, which
+/// [`crate::one_way`] installs.
+fn body_def_of(spec: &BodySpec) -> Result<BodyDef, String> {
     let material = &spec.material;
     let mut colliders = Vec::with_capacity(spec.colliders.len() + 1);
     // Placeholder shapes: `colliders` puts each spec's own in.
@@ -365,7 +389,9 @@ fn body_def(spec: &BodySpec) -> Result<BodyDef, String> {
                 .density(material.density)
                 .friction(material.friction)
                 .restitution(material.restitution)
-                .filter(material.filter),
+                .filter(material.filter)
+                .sensor(spec.sensor)
+                .pre_solve(spec.one_way),
         )?);
     }
     for part in &spec.colliders {
@@ -377,7 +403,9 @@ fn body_def(spec: &BodySpec) -> Result<BodyDef, String> {
                 .density(part.density.unwrap_or(material.density))
                 .friction(part.friction.unwrap_or(material.friction))
                 .restitution(part.restitution.unwrap_or(material.restitution))
-                .filter(part.filter.unwrap_or(material.filter)),
+                .filter(part.filter.unwrap_or(material.filter))
+                .sensor(part.sensor.unwrap_or(spec.sensor))
+                .pre_solve(part.one_way.unwrap_or(spec.one_way)),
         )?);
     }
     let Some(first) = colliders.first() else {

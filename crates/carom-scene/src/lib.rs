@@ -23,6 +23,7 @@ mod build;
 mod error;
 mod events;
 mod load;
+mod one_way;
 pub mod scene;
 
 pub use build::{SceneWorld, build};

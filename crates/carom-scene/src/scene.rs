@@ -352,6 +352,15 @@ pub struct BodySpec {
     /// touches it.
     #[serde(default = "yes")]
     pub awake: bool,
+    /// Its colliders are sensors: they report what overlaps them and never collide (carom's
+    /// `ColliderDef::sensor`). A collider may say otherwise.
+    #[serde(default)]
+    pub sensor: bool,
+    /// Its colliders are one-way platforms: solid to what comes down onto their top (their
+    /// up is the collider's +y, turned with it and its body), passable from below and the
+    /// sides. A collider may say otherwise.
+    #[serde(default)]
+    pub one_way: bool,
 }
 
 /// One more shape of a body, placed in its frame; its material is the body's unless given.
@@ -378,6 +387,12 @@ pub struct ColliderSpec {
     /// What it collides with; the body's if not given.
     #[serde(default)]
     pub filter: Option<CollisionFilter>,
+    /// A sensor; the body's `sensor` if not given.
+    #[serde(default)]
+    pub sensor: Option<bool>,
+    /// A one-way platform; the body's `one_way` if not given.
+    #[serde(default)]
+    pub one_way: Option<bool>,
 }
 
 /// Bodies made in bulk.

@@ -18,6 +18,21 @@ pub const SPECULATIVE_DISTANCE: Real = 4.0 * LINEAR_SLOP;
 /// body can move a little without its tree entry changing.
 pub const AABB_MARGIN: Real = 0.05;
 
+// Contact events.
+
+/// A pair begins to touch, for its begin event, once a point's separation is at most this, m
+/// (a tenth of the slop). Not zero: a body a speculative point stopped at a surface rests
+/// there to within rounding, a few micrometres to either side.
+pub(crate) const TOUCH_BEGIN: Real = 0.1 * LINEAR_SLOP;
+
+/// A touching pair stops touching, for its end event, once every point is farther apart than
+/// this, m (the slop). A resting body rocks by far less, so its contact does not flicker.
+pub(crate) const TOUCH_END: Real = LINEAR_SLOP;
+
+/// The approach speed above which a push is a hit, by default, m/s (Box2D's
+/// `hitEventThreshold`).
+pub(crate) const HIT_EVENT_THRESHOLD: Real = 1.0;
+
 // Shapes.
 
 /// The largest coordinate or radius a shape may have, m (Box2D's `B2_HUGE`): beyond it an f32
@@ -146,6 +161,10 @@ pub(crate) const CONTACTS_PER_TASK: usize = 256;
 /// Moved colliders per task when the broadphase's pair queries are shared among threads (a
 /// query walks the trees in about a microsecond).
 pub(crate) const MOVES_PER_TASK: usize = 64;
+
+/// Sensors per task when their overlap queries are shared among threads (a query and a few
+/// exact overlap tests cost about a microsecond, a fork several).
+pub(crate) const SENSORS_PER_TASK: usize = 32;
 
 /// Blocks a stage (a colour's bundles, the bodies) is cut into, at most, when soft step's
 /// stages are shared among threads.

@@ -512,7 +512,7 @@ impl World {
 
     fn draw_contacts(&self, options: &DrawOptions, out: &mut impl DebugDraw) {
         let flags = options.flags;
-        for contact in self.contacts().filter(|c| c.is_touching()) {
+        for contact in self.contacts().filter(|c| !c.manifold().is_empty()) {
             let manifold = contact.manifold();
             if flags.contains(DrawFlags::CONTACT_EDGES) {
                 for (edge, color) in [

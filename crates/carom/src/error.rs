@@ -114,6 +114,14 @@ pub enum CaromError {
         /// The kind asked for.
         to: &'static str,
     },
+    /// A collider that is not a sensor was asked what overlaps it.
+    #[error("collider {index}v{generation} is not a sensor; make it one with ColliderDef::sensor")]
+    NotASensor {
+        /// The collider handle's slot index.
+        index: u32,
+        /// The collider handle's generation.
+        generation: u32,
+    },
     /// A body needs a collider to have a shape and a mass.
     #[error("a body needs at least one collider (a shape)")]
     NoCollider,

@@ -48,10 +48,13 @@ mod solver;
 mod stats;
 mod world;
 
-pub use collision::contact::{Contact, ContactEvent, ContactPair};
+pub use collision::contact::{Contact, ContactEvent, ContactPair, PointImpulse};
 pub use collision::filter::CollisionFilter;
+pub use collision::hits::HitEvent;
 pub use collision::manifold::{FeatureId, Manifold, ManifoldPoint, collide};
 pub use collision::narrowphase::{Separation, separation};
+pub use collision::pre_solve::PreSolveContact;
+pub use collision::sensor::{SensorEvent, SensorOverlap};
 pub use constants::{LINEAR_SLOP, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_TO_SLEEP};
 pub use debug_draw::{
     ARROW_WIDTH, Color, DebugDraw, DrawFlags, DrawList, DrawOptions, OUTLINE_WIDTH,

@@ -2,9 +2,19 @@
 //!
 //! The broadphase creates a contact when two colliders' fat boxes begin to overlap; each step the
 //! narrowphase rebuilds its manifold (carrying impulses over by feature id) and destroys it
-//! once the boxes part. A contact is *touching* while its manifold has points, speculative
-//! ones included, as in Box2D: the shapes are within the speculative margin. Changes of
-//! touching are reported as begin and end events, readable after the step.
+//! once the boxes part. The solver works on every contact whose manifold has points,
+//! speculative ones included (the shapes are within the speculative margin), as Box2D does;
+//! those take a graph colour and link their bodies' islands.
+//!
+//! Events report something narrower: whether the shapes really touch. A pair begins to touch
+//! when a point's separation is at most [`TOUCH_BEGIN`] (a tenth of the slop, not zero: a body
+//! a speculative point stopped at a surface rests there to within rounding, micrometres to
+//! either side), and stops once every point is farther apart than [`TOUCH_END`] (the slop), or
+//! the contact is destroyed. The gap between the two is hysteresis: a resting body rocks by
+//! far less than the slop, so its contact does not flicker between begin and end. A body that
+//! only comes within the speculative margin and turns back (a speculative point stops it
+//! short, as sequential impulse's restitution can) never touches. Changes of touching are
+//! reported as begin and end events, readable after the step.
 
 use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
 use crate::collision::coloring::{ColorBody, ContactColors, NO_COLOR};
@@ -12,8 +22,9 @@ use crate::collision::contact_layout::{
     ASLEEP, ColorRanges, ContactPartition, NOT_TOUCHING, color_part, color_ranges,
 };
 use crate::collision::manifold::{self, Manifold, Margins};
+use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::recycle::ManifoldFrame;
-use crate::constants::CONTACTS_PER_TASK;
+use crate::constants::{CONTACTS_PER_TASK, TOUCH_BEGIN, TOUCH_END};
 use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
 use crate::geometry::shape::Shape;
@@ -32,7 +43,20 @@ pub struct Contact {
     body_a: BodyHandle,
     body_b: BodyHandle,
     manifold: Manifold,
+    /// What the solver did at each point over the last step. Kept here, beside the manifold
+    /// rather than in its points, so the narrowphase, which builds and copies manifolds, does
+    /// not carry them.
+    impulses: [PointImpulse; 2],
+    /// The manifold has points, speculative ones included: the solver works on it (it has a
+    /// colour while awake, and links its bodies' islands). Not what events report.
     touching: bool,
+    /// The shapes touch, as events report it (see the module's notes): within [`TOUCH_BEGIN`]
+    /// to begin, [`TOUCH_END`] to go on.
+    in_contact: bool,
+    /// A collider of the pair asks for hit events.
+    hit_events: bool,
+    /// A collider of the pair asks for the pre-solve hook.
+    pre_solve: bool,
     /// The colliders' friction mixed: their geometric mean.
     friction: Real,
     /// The colliders' restitution mixed: the larger.
@@ -94,14 +118,45 @@ impl Contact {
         &self.manifold
     }
 
-    /// The manifold, for the solver to store impulses in.
-    pub(crate) fn manifold_mut(&mut self) -> &mut Manifold {
-        &mut self.manifold
+    /// What the solver did at each point of the manifold over the last step it solved the
+    /// contact, point by point (as many as the manifold has).
+    pub fn point_impulses(&self) -> &[PointImpulse] {
+        &self.impulses[..self.manifold.points().len()]
     }
 
-    /// True while the manifold has points.
+    /// The normal impulse the last step applied over all the points, N·s (their
+    /// [`PointImpulse::total_normal_impulse`]): divided by the step, the force pressing the
+    /// colliders apart.
+    pub fn total_normal_impulse(&self) -> Real {
+        self.point_impulses()
+            .iter()
+            .map(|p| p.total_normal_impulse)
+            .sum()
+    }
+
+    /// The manifold and what the solver did at its points, for the solver to store impulses
+    /// in.
+    pub(crate) fn manifold_and_impulses_mut(&mut self) -> (&mut Manifold, &mut [PointImpulse; 2]) {
+        (&mut self.manifold, &mut self.impulses)
+    }
+
+    /// True while the shapes touch, as begin and end events report it: since a point came
+    /// within a tenth of the slop (0.5 mm), until every point is more than the slop apart. A
+    /// contact with only speculative points does not touch, though the solver works on it
+    /// (its manifold has points).
     pub fn is_touching(&self) -> bool {
+        self.in_contact
+    }
+
+    /// True while the manifold has points, speculative ones included: the solver works on it.
+    #[cfg(test)]
+    pub(crate) fn is_solved(&self) -> bool {
         self.touching
+    }
+
+    /// True when a collider of the pair asks for hit events.
+    pub(crate) fn reports_hits(&self) -> bool {
+        self.hit_events
     }
 
     /// How many contacts its set had made before it, for the solvers that take contacts one
@@ -115,6 +170,23 @@ impl Contact {
     pub(crate) fn color(&self) -> (u8, [bool; 2]) {
         (self.color, self.color_holds)
     }
+}
+
+/// What the solver did at one contact point over a step: Box2D's `totalNormalImpulse`,
+/// `maxNormalImpulse` and `normalVelocity`. Force is impulse over time: divide by the step
+/// (or, for the most in a substep, by the substep).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PointImpulse {
+    /// The normal impulse applied here over the step, N·s: every substep's share, warm start
+    /// and relaxation included, and the restitution pass. Zero where the solver pushed nothing
+    /// (a speculative point never reached) and under push-out, which has no impulses.
+    pub total_normal_impulse: Real,
+    /// The most normal impulse applied here in one substep, N·s (the whole step for the
+    /// solvers without substeps).
+    pub max_normal_impulse: Real,
+    /// Velocity of B relative to A along the normal here as the step began, m/s (negative
+    /// while they approach): how hard a hit was.
+    pub normal_velocity: Real,
 }
 
 /// Which colliders, of which bodies, a contact event is about.
@@ -133,9 +205,11 @@ pub struct ContactPair {
 /// A change in whether two colliders touch.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ContactEvent {
-    /// The colliders began to touch.
+    /// The colliders began to touch: a point came within a tenth of the slop (0.5 mm), not
+    /// merely within the speculative margin (see [`Contact::is_touching`]).
     Begin(ContactPair),
-    /// The colliders stopped touching (or one of them, or its body, was removed).
+    /// The colliders stopped touching: every point is more than the slop (5 mm) apart, or
+    /// one of them, or its body, was removed.
     End(ContactPair),
 }
 
@@ -222,8 +296,11 @@ enum Refresh {
     Updated {
         /// Its deepest overlap (0 if it does not touch).
         depth: Real,
-        /// It started or stopped touching.
+        /// Its manifold gained its first points or lost its last, or the shapes began or
+        /// stopped touching.
         changed: bool,
+        /// Whether the shapes touch now, as events report it.
+        in_contact: bool,
         /// It touches a sleeping body that the other body stirs.
         wakes: bool,
     },
@@ -234,7 +311,7 @@ pub(crate) type TouchChanges = (Vec<(BodyHandle, BodyHandle)>, Vec<(BodyHandle, 
 
 /// How the narrowphase builds manifolds this step.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ManifoldOptions {
+pub(crate) struct ManifoldOptions<'a> {
     /// Points are kept up to this far apart, m (the speculative distance).
     pub margin: Real,
     /// How far ahead, s, a face point may look: it is kept while the pair could close its gap
@@ -243,6 +320,8 @@ pub(crate) struct ManifoldOptions {
     /// Carry a manifold along while its pair has moved less than this relative to each other
     /// since it was built, m, instead of building it again (`None`: build every manifold).
     pub recycling: Option<Real>,
+    /// The world's pre-solve hook, asked about the contacts of colliders that opted in.
+    pub pre_solve: Option<&'a PreSolveHook>,
 }
 
 impl ContactSet {
@@ -277,7 +356,11 @@ impl ContactSet {
             body_a: a.1.body(),
             body_b: b.1.body(),
             manifold: Manifold::default(),
+            impulses: [PointImpulse::default(); 2],
             touching: false,
+            in_contact: false,
+            hit_events: a.1.hit_events() || b.1.hit_events(),
+            pre_solve: a.1.pre_solve() || b.1.pre_solve(),
             friction: (a.1.friction() * b.1.friction()).sqrt(),
             restitution: a.1.restitution().max(b.1.restitution()),
             frame: ManifoldFrame::default(),
@@ -463,7 +546,7 @@ impl ContactSet {
             self.lookup
                 .insert(pair_key(moved.collider_a, moved.collider_b), index);
         }
-        if contact.touching {
+        if contact.in_contact {
             let event = ContactEvent::End(contact.pair());
             if events_now {
                 self.events.push(event);
@@ -552,6 +635,7 @@ impl ContactSet {
                     depth,
                     changed,
                     wakes,
+                    ..
                 } => {
                     deepest = deepest.max(depth);
                     if !(changed || wakes) {
@@ -570,8 +654,9 @@ impl ContactSet {
     }
 
     /// Files again the contact at `index`, which the narrowphase found `refresh`: destroys it,
-    /// colours it as it starts touching or takes its colour as it stops, raises the events, and
-    /// adds to `wake` the sleeping islands it stirs.
+    /// colours it as its manifold gains points or takes its colour as it loses them, raises
+    /// the events as the shapes begin or stop touching, and adds to `wake` the sleeping islands
+    /// it stirs.
     fn file(
         &mut self,
         index: usize,
@@ -580,10 +665,12 @@ impl ContactSet {
         colliders: &HandleMap<ColliderHandle, Collider>,
         wake: &mut Vec<u32>,
     ) {
-        let wakes = match refresh {
+        let (wakes, in_contact) = match refresh {
             Refresh::Unchanged => return,
             Refresh::Gone => return self.destroy(index, true),
-            Refresh::Updated { wakes, .. } => wakes,
+            Refresh::Updated {
+                wakes, in_contact, ..
+            } => (wakes, in_contact),
         };
         let contact = &mut self.contacts[index];
         // Both colliders were there a moment ago (else the contact would be gone).
@@ -602,17 +689,20 @@ impl ContactSet {
                 }
             }
         }
+        if in_contact != contact.in_contact {
+            contact.in_contact = in_contact;
+            let pair = contact.pair();
+            self.events.push(if in_contact {
+                ContactEvent::Begin(pair)
+            } else {
+                ContactEvent::End(pair)
+            });
+        }
         let touching = !contact.manifold.is_empty();
         if touching == contact.touching {
             return;
         }
         contact.touching = touching;
-        let pair = contact.pair();
-        self.events.push(if touching {
-            ContactEvent::Begin(pair)
-        } else {
-            ContactEvent::End(pair)
-        });
         let kinds = [(a.handle(), a.kind()), (b.handle(), b.kind())];
         let bodies = (a.handle(), b.handle());
         if touching {
@@ -696,6 +786,13 @@ impl ContactSet {
     /// Where each colour's contacts (then the overflow's) are among the awake contacts.
     pub(crate) fn color_ranges(&self) -> ColorRanges {
         color_ranges(&self.parts)
+    }
+
+    /// The awake contacts and where their bodies are (current from the narrowphase until the
+    /// step ends).
+    pub(crate) fn awake_and_bodies(&self) -> (&[Contact], &[BodyIndices]) {
+        let awake = self.awake_range();
+        (&self.contacts[awake.clone()], &self.body_indices[awake])
     }
 
     /// The awake contacts, mutably, for the solver, where their bodies are, and where each
@@ -803,6 +900,7 @@ fn rebuild_manifold(
         margin,
         prediction,
         recycling,
+        pre_solve,
     } = options;
     let all = bodies.as_slice();
     let (a, b) = (&all[shape_a.body_index()], &all[shape_b.body_index()]);
@@ -828,7 +926,7 @@ fn rebuild_manifold(
     let stopped = a.had_time_of_impact() || b.had_time_of_impact();
     let carried = |distance| contact.frame.carry(&mut contact.manifold, a, b, distance);
     if polygons && !stopped && recycling.is_some_and(carried) {
-        return updated(contact, a, b);
+        return settled(contact, [shape_a, shape_b], [a, b], pre_solve);
     }
     let margins = Margins {
         any: margin,
@@ -844,20 +942,57 @@ fn rebuild_manifold(
         .manifold
         .set_anchors(a.center_of_mass(), b.center_of_mass());
     contact.frame = ManifoldFrame::of(&contact.manifold, (a, shape_a), (b, shape_b));
-    updated(contact, a, b)
+    settled(contact, [shape_a, shape_b], [a, b], pre_solve)
+}
+
+/// Asks the pre-solve `hook`, if the contact's colliders opted in and its manifold has points,
+/// whether it is solved this step; one turned down loses its points (and with them what it
+/// would warm start from) and its recycling frame, so next step builds it afresh. Then what
+/// the bookkeeping needs to know of it.
+fn settled(
+    contact: &mut Contact,
+    colliders: [&Collider; 2],
+    bodies: [&Body; 2],
+    hook: Option<&PreSolveHook>,
+) -> Refresh {
+    if let Some(hook) = hook
+        && contact.pre_solve
+        && !contact.manifold.is_empty()
+    {
+        let shown = PreSolveContact {
+            pair: contact.pair(),
+            manifold: &contact.manifold,
+            colliders,
+            bodies,
+        };
+        if !hook.allows(&shown) {
+            contact.manifold = Manifold::default();
+            contact.frame = ManifoldFrame::default();
+        }
+    }
+    updated(contact, bodies[0], bodies[1])
 }
 
 /// What the bookkeeping after the narrowphase needs to know of a contact of bodies `a` and
 /// `b` whose manifold was just updated.
 fn updated(contact: &Contact, a: &Body, b: &Body) -> Refresh {
     let touching = !contact.manifold.is_empty();
+    let closest = contact.manifold.min_separation();
+    // Hysteresis: closer than TOUCH_BEGIN to begin, within TOUCH_END to go on.
+    let reach = if contact.in_contact {
+        TOUCH_END
+    } else {
+        TOUCH_BEGIN
+    };
+    let in_contact = closest.is_some_and(|s| s <= reach);
     Refresh::Updated {
         depth: if touching {
-            -contact.manifold.min_separation().unwrap_or(0.0)
+            -closest.unwrap_or(0.0)
         } else {
             0.0
         },
-        changed: touching != contact.touching,
+        changed: touching != contact.touching || in_contact != contact.in_contact,
+        in_contact,
         wakes: touching && (stirred(a, b) || stirred(b, a)),
     }
 }

@@ -165,8 +165,10 @@ fn behind_chain(other: &WorldShape, center: Vec2) -> bool {
 
 /// Sweeps every fast body of the awake set (`bodies[awake]`) and moves the ones that would
 /// have tunnelled back to their time of impact. `starts` holds each awake body's pose at the
-/// start of the step, in storage order. Returns the number of impacts and the number of bodies
-/// swept.
+/// start of the step, in storage order. With `hooked` (the world has a pre-solve hook), pairs
+/// that asked for the hook are left to it and their contacts. Returns the number of impacts
+/// and the number of bodies swept.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_continuous(
     bodies: &mut HandleMap<BodyHandle, Body>,
     awake: Range<usize>,
@@ -175,6 +177,7 @@ pub(crate) fn solve_continuous(
     swept: &mut Option<WorldShape>,
     broadphase: &BroadPhase,
     target: Real,
+    hooked: bool,
 ) -> (usize, usize) {
     let mut impacts: Vec<(usize, Vec2, Rot)> = Vec::new();
     let mut sweeps = 0;
@@ -205,7 +208,8 @@ pub(crate) fn solve_continuous(
                 let other_body = &bodies.as_slice()[other.body_index()];
                 let eligible = other.body() != body.handle()
                     && (other_body.kind() == BodyKind::Static || body.is_bullet())
-                    && !behind_chain(other.world_shape(), sweep.start);
+                    && !behind_chain(other.world_shape(), sweep.start)
+                    && !(hooked && (collider.pre_solve() || other.pre_solve()));
                 if !eligible {
                     return;
                 }

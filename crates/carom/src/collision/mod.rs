@@ -1,7 +1,8 @@
 //! Collision: which pairs are near (broadphase), how near (narrowphase), where they touch
 //! (manifolds, with chains' smooth segments apart), which pairs may collide at all (filters),
 //! the persistent contacts that carry it from step to step, their graph colours and where
-//! each is stored, and continuous collision for fast bodies.
+//! each is stored, the user's pre-solve say over them, the hits they report, sensors, and
+//! continuous collision for fast bodies.
 
 pub(crate) mod broadphase;
 pub(crate) mod chain_segment;
@@ -11,6 +12,9 @@ pub(crate) mod contact_layout;
 pub(crate) mod continuous;
 pub(crate) mod dynamic_tree;
 pub(crate) mod filter;
+pub(crate) mod hits;
 pub(crate) mod manifold;
 pub(crate) mod narrowphase;
+pub(crate) mod pre_solve;
 pub(crate) mod recycle;
+pub(crate) mod sensor;

@@ -198,6 +198,31 @@ impl BodyDef {
         self
     }
 
+    /// Asks for hit events on every collider so far (see [`ColliderDef::hit_events`]).
+    pub fn hit_events(mut self, on: bool) -> Self {
+        for collider in &mut self.colliders {
+            collider.hit_events = on;
+        }
+        self
+    }
+
+    /// Makes every collider so far a sensor, or not (see [`ColliderDef::sensor`]).
+    pub fn sensor(mut self, on: bool) -> Self {
+        for collider in &mut self.colliders {
+            collider.sensor = on;
+        }
+        self
+    }
+
+    /// Shows the contacts of every collider so far to the pre-solve hook, or not (see
+    /// [`ColliderDef::pre_solve`]).
+    pub fn pre_solve(mut self, on: bool) -> Self {
+        for collider in &mut self.colliders {
+            collider.pre_solve = on;
+        }
+        self
+    }
+
     /// Sets the gravity scale.
     pub fn gravity_scale(mut self, scale: Real) -> Self {
         self.gravity_scale = scale;

@@ -49,6 +49,20 @@ pub struct ColliderDef {
     /// What it collides with. Default: everything.
     #[cfg_attr(feature = "serde", serde(default))]
     pub filter: CollisionFilter,
+    /// Report hard hits on it as [`crate::HitEvent`]s (its contacts approaching faster than
+    /// [`crate::WorldSettings::hit_event_threshold`]). Default off: a world where no collider
+    /// asks does no work for them.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub hit_events: bool,
+    /// A sensor: it reports what overlaps it ([`crate::SensorEvent`]) and never collides.
+    /// It still adds its density's mass to its body. Queries, ray casts and picking do not
+    /// see it. Default off.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub sensor: bool,
+    /// Its contacts are shown to the world's pre-solve hook ([`crate::World::set_pre_solve`])
+    /// each step before they are solved, and the hook may disable them. Default off.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub pre_solve: bool,
 }
 
 /// The default friction coefficient.
@@ -78,6 +92,9 @@ impl ColliderDef {
             friction: DEFAULT_FRICTION,
             restitution: 0.0,
             filter: CollisionFilter::DEFAULT,
+            hit_events: false,
+            sensor: false,
+            pre_solve: false,
         }
     }
 
@@ -114,6 +131,24 @@ impl ColliderDef {
     /// Sets what it collides with.
     pub fn filter(mut self, filter: CollisionFilter) -> Self {
         self.filter = filter;
+        self
+    }
+
+    /// Asks for hit events on it (see [`ColliderDef::hit_events`]).
+    pub fn hit_events(mut self, on: bool) -> Self {
+        self.hit_events = on;
+        self
+    }
+
+    /// Makes it a sensor, or not (see [`ColliderDef::sensor`]).
+    pub fn sensor(mut self, on: bool) -> Self {
+        self.sensor = on;
+        self
+    }
+
+    /// Shows its contacts to the pre-solve hook, or not (see [`ColliderDef::pre_solve`]).
+    pub fn pre_solve(mut self, on: bool) -> Self {
+        self.pre_solve = on;
         self
     }
 
@@ -162,6 +197,9 @@ pub struct Collider {
     friction: Real,
     restitution: Real,
     filter: CollisionFilter,
+    hit_events: bool,
+    sensor: bool,
+    pre_solve: bool,
     world_shape: WorldShape,
     aabb: Aabb,
 }
@@ -186,6 +224,9 @@ impl Collider {
             friction: def.friction,
             restitution: def.restitution,
             filter: def.filter,
+            hit_events: def.hit_events,
+            sensor: def.sensor,
+            pre_solve: def.pre_solve,
             aabb: world_shape.aabb(),
             world_shape,
         };
@@ -243,6 +284,24 @@ impl Collider {
     #[inline]
     pub fn filter(&self) -> CollisionFilter {
         self.filter
+    }
+
+    /// True when hard hits on it are reported (see [`ColliderDef::hit_events`]).
+    #[inline]
+    pub fn hit_events(&self) -> bool {
+        self.hit_events
+    }
+
+    /// True when its contacts are shown to the pre-solve hook (see [`ColliderDef::pre_solve`]).
+    #[inline]
+    pub fn pre_solve(&self) -> bool {
+        self.pre_solve
+    }
+
+    /// True for a sensor (see [`ColliderDef::sensor`]).
+    #[inline]
+    pub fn is_sensor(&self) -> bool {
+        self.sensor
     }
 
     /// Sets what it collides with; the world ends contacts it no longer allows.

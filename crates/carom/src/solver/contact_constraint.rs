@@ -1,7 +1,7 @@
 //! A touching contact as the solver sees it: fixed anchors, effective masses, impulses.
 
 use super::BodyState;
-use crate::collision::contact::Contact;
+use crate::collision::contact::{Contact, PointImpulse};
 use crate::collision::manifold::{Manifold, ManifoldPoint};
 use crate::dynamics::body::Body;
 use crate::math::{Real, Vec2, cross, cross_sv, perp_cw};
@@ -30,6 +30,9 @@ pub(crate) struct ConstraintPoint {
     /// The normal impulse applied over the step, warm start included (Box2D's
     /// `totalNormalImpulse`): restitution only acts on points that pushed.
     pub total_normal_impulse: Real,
+    /// The most normal impulse applied in one substep (the accumulated impulse at a substep's
+    /// end, when the next one starts over from it), reported with the step's total.
+    pub max_normal_impulse: Real,
     /// Normal velocity of B relative to A at the start of the step (for restitution).
     pub relative_velocity: Real,
 }
@@ -59,6 +62,7 @@ impl ConstraintPoint {
             normal_impulse: mp.normal_impulse,
             tangent_impulse: mp.tangent_impulse,
             total_normal_impulse: 0.0,
+            max_normal_impulse: 0.0,
             relative_velocity: normal.dot(&relative),
         }
     }
@@ -222,16 +226,32 @@ impl ContactConstraint {
         (b.v + cross_sv(b.w, point.anchor_b)) - (a.v + cross_sv(a.w, point.anchor_a))
     }
 
-    /// Copies accumulated impulses back into the contact's manifold for warm starting.
+    /// Copies accumulated impulses back into the contact's manifold for warm starting, and
+    /// what the step applied and the approach it started from beside it, for the user.
     pub fn store_impulses(&self, contact: &mut Contact) {
-        for (mp, point) in contact
-            .manifold_mut()
+        let (manifold, reports) = contact.manifold_and_impulses_mut();
+        for ((mp, report), point) in manifold
             .points_mut()
             .iter_mut()
+            .zip(reports)
             .zip(self.points())
         {
             mp.normal_impulse = point.normal_impulse;
             mp.tangent_impulse = point.tangent_impulse;
+            *report = PointImpulse {
+                total_normal_impulse: point.total_normal_impulse,
+                max_normal_impulse: point.max_normal_impulse,
+                normal_velocity: point.relative_velocity,
+            };
+        }
+    }
+
+    /// Notes, at the end of a substep, each point's accumulated normal impulse (what the
+    /// substep applied, warm start included) as the largest yet if it is.
+    #[inline]
+    pub fn note_substep_impulses(&mut self) {
+        for point in self.points_mut() {
+            point.max_normal_impulse = point.max_normal_impulse.max(point.normal_impulse);
         }
     }
 }

@@ -69,6 +69,10 @@ pub(super) fn solve(
     if environment.restitution {
         work.restitution_impulses = apply_restitution(params, constraints, states);
     }
+    // The step is its one substep: what each point holds now is what the step applied.
+    for c in constraints.iter_mut() {
+        c.note_substep_impulses();
+    }
     integrate_positions(bodies, states, dt);
     // Joints take as many position passes as velocity iterations (at least the contacts'):
     // a chain of light links holding a heavy load needs them to close its drift each step.

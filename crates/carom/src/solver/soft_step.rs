@@ -93,8 +93,12 @@ fn plan_stages(
             pass(plan, Pass::Solve(bias.pass(true), bias_friction));
         }
         plan.push(Stage::IntegratePositions);
-        for _ in 0..params.iterations {
-            pass(plan, Pass::Solve(bias.pass(false), environment.friction));
+        for i in 0..params.iterations {
+            let relax = PassBias {
+                substep_end: i + 1 == params.iterations,
+                ..bias.pass(false)
+            };
+            pass(plan, Pass::Solve(relax, environment.friction));
         }
     }
     if environment.restitution && bouncy {
@@ -134,6 +138,7 @@ impl Bias {
             use_bias,
             inv_h: self.inv_h,
             max_push_speed: self.max_push_speed,
+            substep_end: false,
         }
     }
 }
@@ -252,6 +257,8 @@ pub(super) fn apply_restitution(
             let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
             let impulse = -point.normal_mass * (vn + c.restitution * point.relative_velocity);
             c.add_normal_impulse(i, impulse, a, b);
+            let point = &mut c.points_mut()[i];
+            point.max_normal_impulse = point.max_normal_impulse.max(point.normal_impulse);
         }
     }
     impulses

@@ -26,9 +26,10 @@ pub(super) fn solve(
     // The tutorial's order: its bodies moved, then it found and resolved the contacts; gravity
     // comes after the resolution, so a resting body sinks g dt² a step unless bias lifts it.
     for _ in 0..params.iterations {
-        for c in constraints.iter() {
+        for c in constraints.iter_mut() {
             let (a, b) = pair_mut(states, c.a, c.b);
-            for point in c.points() {
+            for i in 0..c.points().len() {
+                let point = &c.points()[i];
                 let vn = ContactConstraint::relative_velocity(point, a, b).dot(&c.normal);
                 let bias = if point.separation > 0.0 {
                     -point.separation / dt
@@ -38,8 +39,14 @@ pub(super) fn solve(
                 };
                 let j = ((-vn + bias) * point.normal_mass).max(0.0);
                 c.apply(point, c.normal * j, a, b);
+                // Reported, not accumulated: each iteration's impulse stands alone.
+                c.points_mut()[i].total_normal_impulse += j;
             }
         }
+    }
+    // One step, no substeps: the most applied in a substep is the step's total.
+    for point in constraints.iter_mut().flat_map(|c| c.points_mut()) {
+        point.max_normal_impulse = point.total_normal_impulse;
     }
     let work = integrate_velocities(environment, bodies, states, dt, SpeedCaps::new(params, dt));
     integrate_positions(bodies, states, dt);

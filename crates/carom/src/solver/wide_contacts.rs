@@ -20,7 +20,7 @@ use super::shared_states::SharedStates;
 use super::soft_step::{Bias, apply_restitution, solve_one, warm_start_one};
 use super::stages::{block_count, block_range, run_stages};
 use super::{BodyState, Environment, Softness, SolverParams};
-use crate::collision::contact::{BodyIndices, Contact};
+use crate::collision::contact::{BodyIndices, Contact, PointImpulse};
 use crate::constants::{
     COLOR_COUNT, ITEMS_PER_TASK, JOINT_COLOR_COUNT, MAX_BLOCKS, MIN_BLOCK, MIN_BODY_BLOCK,
     MIN_JOINT_BLOCK, MIN_SHARED,
@@ -68,6 +68,7 @@ struct WidePoint<L> {
     normal_impulse: L,
     tangent_impulse: L,
     total_normal_impulse: L,
+    max_normal_impulse: L,
     relative_velocity: L,
 }
 
@@ -86,6 +87,7 @@ impl<L: Lanes> WidePoint<L> {
             p.normal_impulse,
             p.tangent_impulse,
             p.total_normal_impulse,
+            p.max_normal_impulse,
             p.relative_velocity,
         ];
         let fields = [
@@ -99,6 +101,7 @@ impl<L: Lanes> WidePoint<L> {
             &mut self.normal_impulse,
             &mut self.tangent_impulse,
             &mut self.total_normal_impulse,
+            &mut self.max_normal_impulse,
             &mut self.relative_velocity,
         ];
         for (field, value) in fields.into_iter().zip(values) {
@@ -232,6 +235,9 @@ pub(crate) struct PassBias {
     pub use_bias: bool,
     pub inv_h: Real,
     pub max_push_speed: Real,
+    /// The substep's last pass: each point's accumulated normal impulse is then what the
+    /// substep applied, and the largest is kept for the user.
+    pub substep_end: bool,
 }
 
 /// What preparing the constraints reads.
@@ -735,6 +741,9 @@ fn execute_stages<L: Lanes>(
                     Pass::Solve(bias, friction) => {
                         for c in constraints.iter_mut() {
                             solve_one(c, all, inputs.bias, bias.use_bias, friction);
+                            if bias.substep_end {
+                                c.note_substep_impulses();
+                            }
                         }
                     }
                     Pass::Restitution(_) => {
@@ -926,6 +935,7 @@ impl<L: Lanes> Bundle<L> {
             normal_impulse: zero,
             tangent_impulse: zero,
             total_normal_impulse: zero,
+            max_normal_impulse: zero,
             relative_velocity: zero,
         };
         Bundle {
@@ -1113,6 +1123,9 @@ impl<L: Lanes> Bundle<L> {
             let point = &mut self.points[j];
             point.normal_impulse = total;
             point.total_normal_impulse += applied;
+            if pass.substep_end {
+                point.max_normal_impulse = point.max_normal_impulse.max(total);
+            }
             let point = *point;
             self.apply(
                 &point,
@@ -1176,6 +1189,10 @@ impl<L: Lanes> Bundle<L> {
                 point.total_normal_impulse + applied,
                 point.total_normal_impulse,
             );
+            point.max_normal_impulse = bounce.select(
+                point.max_normal_impulse.max(total),
+                point.max_normal_impulse,
+            );
             let point = *point;
             let (old_a, old_b) = (a, b);
             let (p_x, p_y) = (self.normal_x * applied, self.normal_y * applied);
@@ -1222,13 +1239,16 @@ impl<L: Lanes> Bundle<L> {
     }
 
     /// Copies the lanes' impulses into their contacts' manifolds (`contacts` begin at contact
-    /// `offset`).
+    /// `offset`), and what the step applied and the approach it started from beside them.
     #[inline(always)]
     fn store(&self, contacts: &mut [Contact], offset: usize) {
-        let mut impulses = [[[0.0; 8]; 2]; 2];
+        let mut impulses = [[[0.0; 8]; 5]; 2];
         for (j, point) in self.points.iter().enumerate() {
             point.normal_impulse.write_to(&mut impulses[j][0]);
             point.tangent_impulse.write_to(&mut impulses[j][1]);
+            point.total_normal_impulse.write_to(&mut impulses[j][2]);
+            point.max_normal_impulse.write_to(&mut impulses[j][3]);
+            point.relative_velocity.write_to(&mut impulses[j][4]);
         }
         for (lane, &index) in self.contacts.as_ref().iter().enumerate() {
             // Empty lanes name no contact (`u32::MAX`).
@@ -1238,9 +1258,16 @@ impl<L: Lanes> Bundle<L> {
             else {
                 continue;
             };
-            for (j, point) in contact.manifold_mut().points_mut().iter_mut().enumerate() {
+            let (manifold, reports) = contact.manifold_and_impulses_mut();
+            let points = manifold.points_mut().iter_mut().zip(reports);
+            for (j, (point, report)) in points.enumerate() {
                 point.normal_impulse = impulses[j][0][lane];
                 point.tangent_impulse = impulses[j][1][lane];
+                *report = PointImpulse {
+                    total_normal_impulse: impulses[j][2][lane],
+                    max_normal_impulse: impulses[j][3][lane],
+                    normal_velocity: impulses[j][4][lane],
+                };
             }
         }
     }

@@ -11,6 +11,9 @@ pub(crate) mod solver_sets;
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::contact::{Contact, ContactEvent, ContactSet, ManifoldOptions};
 use crate::collision::continuous::{self, Pose};
+use crate::collision::hits::{HitEvent, find_hits};
+use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
+use crate::collision::sensor::{SensorEvent, SensorOverlap, Sensors};
 use crate::constants::{
     CONTACTS_PER_TASK, ITEMS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
 };
@@ -74,6 +77,14 @@ pub struct World {
     solver_workspace: solver::Workspace,
     /// The other stages' memory, reused from step to step.
     scratch: StepScratch,
+    /// How many colliders ask for hit events: with none, a step looks for none.
+    hit_event_colliders: usize,
+    /// The hits of the last step.
+    hit_events: Vec<HitEvent>,
+    /// The sensor colliders, which the broadphase does not hold, and what overlaps them.
+    sensors: Sensors,
+    /// The user's say over the contacts of colliders that opt in.
+    pre_solve: Option<PreSolveHook>,
 }
 
 /// What the stages of a step work in besides the solver, kept so a step in steady state
@@ -101,6 +112,7 @@ fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {
     for (name, value) in [
         ("speculative distance", settings.speculative_distance),
         ("AABB margin", settings.aabb_margin),
+        ("hit event threshold", settings.hit_event_threshold),
     ] {
         if !(value.is_finite() && value >= 0.0) {
             return Err(CaromError::OutOfRange {
@@ -220,6 +232,7 @@ impl World {
         let handle = self.bodies.insert(body);
         for collider in parts {
             let collider = self.colliders.insert(collider);
+            self.note_added(collider);
             self.bodies
                 .get_mut(handle)
                 .expect("just inserted")
@@ -238,6 +251,9 @@ impl World {
         let margin = margin_for(&self.settings, body.kind());
         for &collider in body.colliders() {
             let attached = self.colliders.get(collider).expect("attached");
+            if attached.is_sensor() {
+                continue;
+            }
             self.broadphase
                 .insert(collider, handle, body.kind(), attached.aabb(), margin);
             self.broadphase.set_filter(collider, attached.filter());
@@ -258,7 +274,9 @@ impl World {
         self.contacts.remove_body(handle);
         self.apply_touch_changes();
         for &collider in body.colliders() {
-            self.colliders.remove(collider);
+            if let Some(removed) = self.colliders.remove(collider) {
+                self.note_removed(collider, &removed);
+            }
             self.broadphase.remove(collider);
         }
         // The last body moved into the hole: its colliders follow it.
@@ -293,6 +311,7 @@ impl World {
             .collect();
         updated.rebuild_mass(existing.into_iter().chain(std::iter::once(&collider)))?;
         let handle = self.colliders.insert(collider);
+        self.note_added(handle);
         updated.attach(handle);
         updated.wake_up();
         let kind = updated.kind();
@@ -302,10 +321,12 @@ impl World {
         self.settle_body(index);
         self.place_colliders_of(body);
         let attached = self.colliders.get(handle).expect("just inserted");
-        let (aabb, filter) = (attached.aabb(), attached.filter());
-        self.broadphase
-            .insert(handle, body, kind, aabb, margin_for(&self.settings, kind));
-        self.broadphase.set_filter(handle, filter);
+        if !attached.is_sensor() {
+            let (aabb, filter) = (attached.aabb(), attached.filter());
+            self.broadphase
+                .insert(handle, body, kind, aabb, margin_for(&self.settings, kind));
+            self.broadphase.set_filter(handle, filter);
+        }
         Ok(handle)
     }
 
@@ -344,6 +365,7 @@ impl World {
         self.broadphase.remove(handle);
         self.prepare_collider_removal(handle);
         let removed = self.colliders.remove(handle).expect("checked");
+        self.note_removed(handle, &removed);
         self.place_colliders_of(body);
         Ok(removed)
     }
@@ -440,6 +462,26 @@ impl World {
         Ok(())
     }
 
+    /// Notes a collider just added to the world among those asking for the optional events
+    /// and the sensors, so a step does their work only when some ask.
+    fn note_added(&mut self, handle: ColliderHandle) {
+        let Some(collider) = self.colliders.get(handle) else {
+            return;
+        };
+        self.hit_event_colliders += usize::from(collider.hit_events());
+        if collider.is_sensor() {
+            self.sensors.add(handle);
+        }
+    }
+
+    /// Forgets a collider just removed from the world (as `removed`): a sensor's overlaps end.
+    fn note_removed(&mut self, handle: ColliderHandle, removed: &Collider) {
+        self.hit_event_colliders -= usize::from(removed.hit_events());
+        if removed.is_sensor() {
+            self.sensors.remove(handle);
+        }
+    }
+
     /// Rebuilds a body's mass from its colliders.
     fn rebuild_mass_of(&mut self, handle: BodyHandle) -> Result<(), CaromError> {
         let index = self.bodies.checked_index(handle)?;
@@ -513,6 +555,65 @@ impl World {
         self.contacts.events()
     }
 
+    /// What began and stopped overlapping each sensor during the last step (and the ends of
+    /// sensors removed before it), sensor by sensor in the order they were added, each
+    /// sensor's in visitor handle order.
+    pub fn sensor_events(&self) -> &[SensorEvent] {
+        self.sensors.events()
+    }
+
+    /// What overlaps a sensor as of the last step, in visitor handle order.
+    ///
+    /// # Errors
+    /// A stale handle, or a collider that is not a sensor.
+    pub fn sensor_overlaps(&self, sensor: ColliderHandle) -> Result<&[SensorOverlap], CaromError> {
+        self.colliders.checked_index(sensor)?;
+        self.sensors.overlaps(sensor).ok_or(CaromError::NotASensor {
+            index: sensor.index(),
+            generation: sensor.generation(),
+        })
+    }
+
+    /// Sets the pre-solve hook, replacing any: each step, right after the narrowphase, it is
+    /// shown every contact with points (speculative ones included) of a collider that opted in
+    /// ([`ColliderDef::pre_solve`]), and returning false disables that contact for the step
+    /// (no impulse, nothing warm started from it, no touching). It runs on the narrowphase's
+    /// threads, in no set order: keep it a pure function of what it is shown (and of state
+    /// changed only between steps) and the world stays deterministic. A clone of the world
+    /// shares the hook. See [`PreSolveContact`].
+    ///
+    /// ```
+    /// use carom::{BodyDef, Shape, World, vec2};
+    ///
+    /// let mut world = World::new();
+    /// // A floor that only holds what comes down on its top (its normal points up to B).
+    /// world.add_body(BodyDef::static_body(Shape::rect(5.0, 0.1)).pre_solve(true))?;
+    /// world.set_pre_solve(|contact| contact.manifold.normal.y > 0.7);
+    /// let ball = world.add_body(BodyDef::dynamic(Shape::circle(0.25)).position(vec2(0.0, 2.0)))?;
+    /// for _ in 0..120 {
+    ///     world.step(1.0 / 60.0)?;
+    /// }
+    /// assert!((world.body(ball).unwrap().position().y - 0.35).abs() < 0.01);
+    /// # Ok::<(), carom::CaromError>(())
+    /// ```
+    pub fn set_pre_solve(
+        &mut self,
+        hook: impl Fn(&PreSolveContact) -> bool + Send + Sync + 'static,
+    ) {
+        self.pre_solve = Some(PreSolveHook::new(hook));
+    }
+
+    /// Removes the pre-solve hook: every contact is solved again.
+    pub fn clear_pre_solve(&mut self) {
+        self.pre_solve = None;
+    }
+
+    /// The hard hits of the last step on colliders that ask for them
+    /// ([`ColliderDef::hit_events`]), in contact storage order (the same from run to run).
+    pub fn hit_events(&self) -> &[HitEvent] {
+        &self.hit_events
+    }
+
     /// The broadphase, for inspection (fat boxes, tree shape) by carom's own tests.
     #[cfg(any(test, feature = "testing"))]
     pub fn broadphase(&self) -> &BroadPhase {
@@ -547,9 +648,9 @@ impl World {
     /// build contact manifolds in the narrowphase (waking the sleeping islands a moving body
     /// touched, joining the islands of contacts that started touching); solve (integrate
     /// forces into velocities, resolve contacts and then joints colour by colour, integrate
-    /// positions, in substeps for soft step); remove the joints pulled past their break
-    /// thresholds; continuous collision for fast bodies; place the moved colliders and refresh
-    /// the broadphase from them; put resting islands to sleep.
+    /// positions, in substeps for soft step); report the hard hits, if some collider asks;
+    /// remove the joints pulled past their break thresholds; continuous collision for fast bodies; place the moved colliders and refresh
+    /// the broadphase from them; put resting islands to sleep; find what overlaps each sensor.
     ///
     /// # Errors
     /// A time step that is not finite and positive; the world is left untouched.
@@ -565,6 +666,8 @@ impl World {
         let mut stats = StepStats::default();
         let times = &mut stats.times;
         self.contacts.begin_step();
+        self.sensors.begin_step();
+        self.hit_events.clear();
 
         let mut scratch = std::mem::take(&mut self.scratch);
 
@@ -590,6 +693,18 @@ impl World {
             report
         });
         (stats.contact_points, stats.work) = (solved.points, solved.work);
+        if self.hit_event_colliders > 0 {
+            let (contacts, body_indices) = self.contacts.awake_and_bodies();
+            let threshold = self.settings.hit_event_threshold;
+            let bodies = self.bodies.as_slice();
+            find_hits(
+                contacts,
+                body_indices,
+                bodies,
+                threshold,
+                &mut self.hit_events,
+            );
+        }
         stats.joints = solved.joints;
         self.break_joints(&scratch.awake_joints);
         (times.prepare, times.store) = (solved.prepare, solved.store);
@@ -603,6 +718,7 @@ impl World {
                     &mut scratch.swept,
                     &self.broadphase,
                     LINEAR_SLOP,
+                    self.pre_solve.is_some(),
                 )
             });
         }
@@ -612,6 +728,8 @@ impl World {
         if effects.contains(Effect::Sleeping) {
             stats.work.sleep_checks = timed(&mut times.sleep, || self.update_sleep(dt));
         }
+        self.sensors
+            .update(&self.bodies, &self.colliders, &self.broadphase);
 
         self.scratch = scratch;
         self.record(stats, started);
@@ -638,6 +756,7 @@ impl World {
                         RECYCLE_DISTANCE_CLASSIC
                     }
                 }),
+                pre_solve: self.pre_solve.as_ref(),
             },
             wake,
         );

@@ -1,6 +1,7 @@
 //! Asking the world what is where: colliders whose boxes overlap a box, colliders a shape
 //! overlaps, and colliders a ray enters, each through the broadphase and filtered as
-//! collisions are.
+//! collisions are. Sensors are not in the broadphase, so no query sees them (a sensor lists
+//! what overlaps it itself: [`World::sensor_overlaps`]).
 
 use crate::collision::filter::CollisionFilter;
 use crate::collision::narrowphase::separation;

@@ -1,6 +1,6 @@
 //! World settings and the engine's tuning constants, each named once.
 
-use crate::constants::{AABB_MARGIN, SPECULATIVE_DISTANCE};
+use crate::constants::{AABB_MARGIN, HIT_EVENT_THRESHOLD, SPECULATIVE_DISTANCE};
 use crate::dynamics::drag::DragModel;
 use crate::math::{Real, Vec2};
 use crate::solver::SolverParams;
@@ -31,6 +31,10 @@ pub struct WorldSettings {
     /// solvers 2 × slop, and never more than a tenth of the smaller body's inradius. Default
     /// on.
     pub contact_recycling: bool,
+    /// A contact of a collider that asks for hit events ([`crate::ColliderDef::hit_events`])
+    /// reports a hit when a point that pushed during a step was approaching faster than this
+    /// as the step began, m/s. Default 1 (Box2D's `hitEventThreshold`).
+    pub hit_event_threshold: Real,
 }
 
 impl Default for WorldSettings {
@@ -43,6 +47,7 @@ impl Default for WorldSettings {
             solver: SolverParams::default(),
             effects: Effects::ALL,
             contact_recycling: true,
+            hit_event_threshold: HIT_EVENT_THRESHOLD,
         }
     }
 }

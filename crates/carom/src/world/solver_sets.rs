@@ -237,7 +237,7 @@ impl World {
         for (i, contact) in self.contacts.iter().enumerate() {
             let awake = awake_body(contact.body_a()) || awake_body(contact.body_b());
             assert_eq!(awake, i < self.contacts.awake_len(), "contact {i}");
-            if !awake && contact.is_touching() {
+            if !awake && contact.is_solved() {
                 asleep_touching += 1;
             }
         }
@@ -274,7 +274,7 @@ impl World {
                 .collect();
             assert_eq!(sets.len(), 1, "island {id} in one set");
         }
-        for contact in self.contacts.iter().filter(|c| c.is_touching()) {
+        for contact in self.contacts.iter().filter(|c| c.is_solved()) {
             let (a, b) = (
                 self.bodies.get(contact.body_a()).unwrap(),
                 self.bodies.get(contact.body_b()).unwrap(),
@@ -303,7 +303,7 @@ impl World {
             let awake = i < self.contacts.awake_len();
             assert_eq!(
                 color != NO_COLOR,
-                contact.is_touching() && awake,
+                contact.is_solved() && awake,
                 "contact {i}"
             );
             let part = match (awake, color) {
