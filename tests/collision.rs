@@ -812,3 +812,139 @@ fn ray_casts_agree_with_brute_force() {
     }
     assert!(hits_seen > 50, "the rays hit something: {hits_seen}");
 }
+
+/// A random shape to cast: a circle, a regular polygon, a capsule or a rounded box, at `at`.
+fn random_cast_shape(rng: &mut Rng, at: Vec2) -> WorldShape {
+    let shape = match rng.below(4) {
+        0 => Shape::circle(rng.range(0.1, 1.0)),
+        1 => Shape::regular(3 + rng.below(5), rng.range(0.2, 1.2)).unwrap(),
+        2 => Shape::capsule(vec2(-0.6, 0.0), vec2(0.6, 0.0), rng.range(0.05, 0.5)),
+        _ => Shape::rounded_rect(rng.range(0.1, 0.8), rng.range(0.1, 0.8), 0.1),
+    };
+    WorldShape::at(&shape, at, rng.range(0.0, 6.0))
+}
+
+/// `shape` moved by `fraction` of `translation`.
+fn moved(shape: &WorldShape, translation: Vec2, fraction: Real) -> WorldShape {
+    let mut moved = shape.clone();
+    moved.translate(translation * fraction);
+    moved
+}
+
+/// Shape casts in random worlds agree with sweeping each collider in fine steps: every
+/// collider the sweep reaches is hit, where the shape first touches it (not past it, not far
+/// short of it), with the point on that collider's surface and its normal pushing back; the
+/// closest hit is the first of them; the filter is obeyed.
+#[test]
+fn shape_casts_agree_with_brute_force() {
+    use carom::{CollisionFilter, SHAPE_CAST_TOLERANCE};
+    const SAMPLES: usize = 3000;
+    let mut rng = Rng::new(0x5ca7);
+    let (mut hits_seen, mut overlaps_seen) = (0, 0);
+    for seed in 0..5 {
+        let world = scattered_world(&mut rng, 100, 4, 3);
+        for _ in 0..30 {
+            let at = vec2(rng.range(-18.0, 18.0), rng.range(-18.0, 18.0));
+            let shape = random_cast_shape(&mut rng, at);
+            let translation = vec2(rng.range(-20.0, 20.0), rng.range(-20.0, 20.0));
+            let path = shape.aabb().union(&moved(&shape, translation, 1.0).aabb());
+            for filter in [CollisionFilter::DEFAULT, PLAIN] {
+                let hits = world.cast_shape_all(&shape, translation, filter);
+                let closest = world.cast_shape(&shape, translation, filter);
+                assert_eq!(closest, hits.first().copied(), "seed {seed}");
+                assert!(hits.windows(2).all(|w| w[0].fraction <= w[1].fraction));
+                for c in world.colliders() {
+                    let allowed = filter.collides_with(&c.filter());
+                    let handle = world.body(c.body()).unwrap().colliders()[0];
+                    let found = hits.iter().find(|h| h.collider == handle);
+                    if !allowed || !c.aabb().overlaps(&path) {
+                        assert!(
+                            found.is_none(),
+                            "seed {seed}: {found:?} was not to be found"
+                        );
+                        continue;
+                    }
+                    let gap = |f: Real| separation(&moved(&shape, translation, f), c.world_shape());
+                    // The first sampled time the shape touches the collider.
+                    let touch = (0..=SAMPLES)
+                        .map(|k| k as Real / SAMPLES as Real)
+                        .find(|&f| gap(f).separation <= 0.0);
+                    let Some(hit) = found else {
+                        assert!(touch.is_none(), "seed {seed}: missed a touch at {touch:?}");
+                        continue;
+                    };
+                    // Touching at the hit, not past it (unless overlapping from the start).
+                    let s = gap(hit.fraction).separation;
+                    let deepest = if hit.fraction == 0.0 {
+                        Real::MIN
+                    } else {
+                        -1e-3
+                    };
+                    assert!(
+                        (deepest..=SHAPE_CAST_TOLERANCE + 1e-4).contains(&s),
+                        "seed {seed}: at the hit, {}, the gap is {s}",
+                        hit.fraction
+                    );
+                    if let Some(touch) = touch {
+                        assert!(
+                            hit.fraction <= touch + 1e-4,
+                            "{} after {touch}",
+                            hit.fraction
+                        );
+                    }
+                    // The point is on the collider's surface, the normal a unit vector
+                    // opposing the motion (a shape overlapping at the start has no motion
+                    // to oppose).
+                    let point = WorldShape::Circle {
+                        center: hit.point,
+                        radius: 0.0,
+                    };
+                    let off = separation(&point, c.world_shape()).separation;
+                    assert!((hit.normal.norm() - 1.0).abs() < 1e-4);
+                    if hit.fraction > 0.0 {
+                        assert!(off.abs() < 2.0 * SHAPE_CAST_TOLERANCE, "point {off} off");
+                        assert!(hit.normal.dot(&translation) <= 1e-3 * translation.norm());
+                        hits_seen += 1;
+                    } else {
+                        overlaps_seen += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        hits_seen > 100 && overlaps_seen > 5,
+        "{hits_seen} hits, {overlaps_seen} overlaps"
+    );
+}
+
+/// A chain's link is one-sided for shape casts as for bodies: a shape cast from in front hits
+/// it, from behind passes through.
+#[test]
+fn shape_casts_pass_through_a_chain_from_behind() {
+    use carom::{ChainDef, CollisionFilter};
+    let mut world = World::new();
+    // Solid below, walking right to left.
+    let chain = ChainDef::open([vec2(10.0, 0.0), vec2(0.0, 0.0), vec2(-10.0, 0.0)]);
+    world
+        .add_body(BodyDef::static_chain(&chain).unwrap())
+        .unwrap();
+    world.step(1.0 / 60.0).unwrap();
+    let ball = |y| WorldShape::at(&Shape::circle(0.5), vec2(1.0, y), 0.0);
+    let down = world
+        .cast_shape(&ball(3.0), vec2(0.0, -6.0), CollisionFilter::DEFAULT)
+        .expect("from above, it lands on the chain");
+    assert!(
+        (down.fraction - 2.5 / 6.0).abs() < 1e-3,
+        "{}",
+        down.fraction
+    );
+    assert!((down.normal - vec2(0.0, 1.0)).norm() < 1e-5);
+    assert!(
+        (down.point - vec2(1.0, 0.0)).norm() < 2e-3,
+        "{:?}",
+        down.point
+    );
+    let up = world.cast_shape(&ball(-3.0), vec2(0.0, 6.0), CollisionFilter::DEFAULT);
+    assert_eq!(up, None, "from below it passes through");
+}

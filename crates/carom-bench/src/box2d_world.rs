@@ -576,6 +576,21 @@ impl Box2dWorld {
         self.body(i)?.angular_velocity().map_err(err)
     }
 
+    /// Box2D's explosion (`b2World_Explode`) at `center`, every category, as carom's
+    /// [`carom::World::explode`] takes it.
+    ///
+    /// # Errors
+    /// Box2D refuses the explosion.
+    pub fn explode(&mut self, explosion: &carom::ExplosionDef) -> Result<(), String> {
+        let def = boxdd::ExplosionDef::new()
+            .position([explosion.center.x, explosion.center.y])
+            .radius(explosion.radius)
+            .falloff(explosion.falloff)
+            .impulse_per_length(explosion.impulse_per_length)
+            .mask_bits(explosion.mask);
+        self.world.explode(&def).map_err(err)
+    }
+
     /// Whether the `i`-th body is awake.
     ///
     /// # Errors

@@ -105,6 +105,9 @@ pub(crate) const FAST_FRACTION: Real = 0.5;
 /// The most conservative-advancement iterations per pair (Box2D uses 20 for its root finder).
 pub(crate) const MAX_TIME_OF_IMPACT_ITERATIONS: usize = 30;
 
+/// A shape cast stops when the gap is this small, m (Box2D's quarter of the slop).
+pub const SHAPE_CAST_TOLERANCE: Real = 0.25 * LINEAR_SLOP;
+
 // Sleeping.
 
 /// Bodies whose fastest point moves slower than this may sleep, m/s (Box2D's 5 cm/s).

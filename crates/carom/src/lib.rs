@@ -55,7 +55,9 @@ pub use collision::manifold::{FeatureId, Manifold, ManifoldPoint, collide};
 pub use collision::narrowphase::{Separation, separation};
 pub use collision::pre_solve::PreSolveContact;
 pub use collision::sensor::{SensorEvent, SensorOverlap};
-pub use constants::{LINEAR_SLOP, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_TO_SLEEP};
+pub use constants::{
+    LINEAR_SLOP, SHAPE_CAST_TOLERANCE, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_TO_SLEEP,
+};
 pub use debug_draw::{
     ARROW_WIDTH, Color, DebugDraw, DrawFlags, DrawList, DrawOptions, OUTLINE_WIDTH,
 };
@@ -77,8 +79,9 @@ pub use solver::{SolverKind, SolverParams};
 pub use stats::{StageTimes, StepStats, Work};
 pub use world::body_mut::BodyMut;
 pub use world::effects::{Effect, Effects};
+pub use world::explosion::ExplosionDef;
 pub use world::settings::WorldSettings;
-pub use world::{World, WorldRayHit};
+pub use world::{CastHit, World};
 
 /// Internals for carom's own tests, benchmarks and fuzz targets: reference implementations
 /// and the narrowphase's parts. Not part of the supported interface.

@@ -390,12 +390,23 @@ impl BroadPhase {
         &self,
         origin: Vec2,
         translation: Vec2,
+        visit: impl FnMut(ColliderHandle, Real) -> Real,
+    ) {
+        self.box_cast(&Aabb::new(origin, origin), translation, visit);
+    }
+
+    /// [`BroadPhase::ray_cast`] for a box swept along `translation` (see
+    /// [`DynamicTree::box_cast`]).
+    pub fn box_cast(
+        &self,
+        swept: &Aabb,
+        translation: Vec2,
         mut visit: impl FnMut(ColliderHandle, Real) -> Real,
     ) {
         let mut max_fraction = 1.0;
         for tree in &self.trees {
-            tree.ray_cast(
-                origin,
+            tree.box_cast(
+                swept,
                 translation,
                 max_fraction,
                 |node, current| match self.proxies[tree.payload(node) as usize] {

@@ -151,18 +151,6 @@ fn sink_allowance(min_extent: Real, target: Real) -> Real {
     (0.25 * min_extent).max(2.0 * target)
 }
 
-/// True when `other` is a chain's link and `center` (where a swept body's centre of mass
-/// started) is behind it: chains are one-sided, so a body may pass up through one, and the
-/// sweep must not stop it there (Box2D's rule).
-fn behind_chain(other: &WorldShape, center: Vec2) -> bool {
-    match other {
-        WorldShape::ChainSegment { point1, point2, .. } => {
-            crate::math::perp_cw(point2 - point1).dot(&(center - point1)) < 0.0
-        }
-        _ => false,
-    }
-}
-
 /// Sweeps every fast body of the awake set (`bodies[awake]`) and moves the ones that would
 /// have tunnelled back to their time of impact. `starts` holds each awake body's pose at the
 /// start of the step, in storage order. With `hooked` (the world has a pre-solve hook), pairs
@@ -206,9 +194,10 @@ pub(crate) fn solve_continuous(
                     return;
                 };
                 let other_body = &bodies.as_slice()[other.body_index()];
+                // Chains are one-sided: a body may pass up through one from behind.
                 let eligible = other.body() != body.handle()
                     && (other_body.kind() == BodyKind::Static || body.is_bullet())
-                    && !behind_chain(other.world_shape(), sweep.start)
+                    && !other.world_shape().is_link_behind(sweep.start)
                     && !(hooked && (collider.pre_solve() || other.pre_solve()));
                 if !eligible {
                     return;

@@ -178,12 +178,14 @@ impl DynamicTree {
         }
     }
 
-    /// Walks the leaves whose boxes the segment `origin + t * translation`, `t` in
-    /// `[0, max_fraction]`, passes through. `visit(proxy, max_fraction)` returns the new
-    /// maximum fraction (for closest-hit casts, the hit's fraction clips the rest of the walk).
-    pub fn ray_cast(
+    /// Walks the leaves whose boxes `swept`, moved by `t * translation` for `t` in
+    /// `[0, max_fraction]`, meets on the way: each node's box is grown by the swept box's half
+    /// extents, so that the segment its centre sweeps decides (a ray is a box of no size).
+    /// `visit(proxy, max_fraction)` returns the new maximum fraction (for closest-hit casts,
+    /// the hit's fraction clips the rest of the walk).
+    pub fn box_cast(
         &self,
-        origin: Vec2,
+        swept: &Aabb,
         translation: Vec2,
         mut max_fraction: Real,
         mut visit: impl FnMut(u32, Real) -> Real,
@@ -191,12 +193,13 @@ impl DynamicTree {
         if self.root == NULL {
             return;
         }
+        let (origin, half) = (swept.center(), swept.half_extents());
         let mut stack = NodeStack::default();
         stack.push(self.root);
         while let Some(id) = stack.pop() {
             let node = &self.nodes[id as usize];
-            if node
-                .aabb
+            let grown = Aabb::new(node.aabb.min - half, node.aabb.max + half);
+            if grown
                 .ray_interval(origin, translation, max_fraction)
                 .is_none()
             {
@@ -641,28 +644,38 @@ pub(crate) mod tests {
     }
 
     #[test]
-    fn tree_ray_cast_visits_every_box_on_the_segment() {
+    fn tree_box_cast_visits_every_box_on_the_sweep() {
         let mut rng = Lcg(5);
         let mut tree = DynamicTree::new();
         let boxes: Vec<Aabb> = (0..500).map(|_| random_box(&mut rng, 30.0)).collect();
         for (i, b) in boxes.iter().enumerate() {
             tree.create_proxy(*b, i as u32);
         }
-        let (origin, translation) = (vec2(-40.0, -3.0), vec2(80.0, 7.0));
-        let mut visited = Vec::new();
-        tree.ray_cast(origin, translation, 1.0, |p, max| {
-            visited.push(tree.payload(p));
-            max
-        });
-        visited.sort_unstable();
-        let expected: Vec<u32> = (0..boxes.len() as u32)
-            .filter(|&i| {
-                boxes[i as usize]
-                    .ray_interval(origin, translation, 1.0)
-                    .is_some()
-            })
-            .collect();
-        assert_eq!(visited, expected);
-        assert!(!expected.is_empty());
+        let translation = vec2(80.0, 7.0);
+        let start = vec2(-40.0, -3.0);
+        // A ray (a box of no size) and a box.
+        for half in [vec2(0.0, 0.0), vec2(1.5, 0.5)] {
+            let swept = Aabb::new(start - half, start + half);
+            let mut visited = Vec::new();
+            tree.box_cast(&swept, translation, 1.0, |p, max| {
+                visited.push(tree.payload(p));
+                max
+            });
+            visited.sort_unstable();
+            // Every box the sweep meets at one of many sampled times is visited...
+            let met = |b: &Aabb, t: Real| {
+                let at = Aabb::new(swept.min + translation * t, swept.max + translation * t);
+                at.overlaps(b)
+            };
+            for (i, b) in boxes.iter().enumerate() {
+                if (0..=4000).any(|k| met(b, k as Real / 4000.0)) {
+                    assert!(visited.contains(&(i as u32)), "box {i} missed");
+                }
+            }
+            // ...and only boxes near the swept path are.
+            let path = swept.union(&Aabb::new(swept.min + translation, swept.max + translation));
+            assert!(visited.iter().all(|&i| boxes[i as usize].overlaps(&path)));
+            assert!(!visited.is_empty());
+        }
     }
 }

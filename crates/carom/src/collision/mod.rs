@@ -1,8 +1,8 @@
 //! Collision: which pairs are near (broadphase), how near (narrowphase), where they touch
 //! (manifolds, with chains' smooth segments apart), which pairs may collide at all (filters),
 //! the persistent contacts that carry it from step to step, their graph colours and where
-//! each is stored, the user's pre-solve say over them, the hits they report, sensors, and
-//! continuous collision for fast bodies.
+//! each is stored, the user's pre-solve say over them, the hits they report, sensors, shape
+//! casts, and continuous collision for fast bodies.
 
 pub(crate) mod broadphase;
 pub(crate) mod chain_segment;
@@ -18,3 +18,4 @@ pub(crate) mod narrowphase;
 pub(crate) mod pre_solve;
 pub(crate) mod recycle;
 pub(crate) mod sensor;
+pub(crate) mod shape_cast;

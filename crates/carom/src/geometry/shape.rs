@@ -360,6 +360,33 @@ impl WorldShape {
             WorldShape::ChainSegment { .. } => 0.0,
         }
     }
+
+    /// Moves the shape by `delta`, unturned.
+    pub fn translate(&mut self, delta: Vec2) {
+        match self {
+            WorldShape::Circle { center, .. } => *center += delta,
+            WorldShape::Polygon { vertices, .. } => vertices.iter_mut().for_each(|v| *v += delta),
+            WorldShape::ChainSegment {
+                ghost1,
+                point1,
+                point2,
+                ghost2,
+            } => [ghost1, point1, point2, ghost2]
+                .into_iter()
+                .for_each(|p| *p += delta),
+        }
+    }
+
+    /// True when the shape is a chain's link and `point` is behind it, on the side it lets
+    /// through (Box2D's rule for what a one-sided link ignores).
+    pub(crate) fn is_link_behind(&self, point: Vec2) -> bool {
+        match self {
+            WorldShape::ChainSegment { point1, point2, .. } => {
+                perp_cw(point2 - point1).dot(&(point - point1)) < 0.0
+            }
+            _ => false,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 
 pub(crate) mod body_mut;
 pub(crate) mod effects;
+pub(crate) mod explosion;
 pub(crate) mod islands;
 pub(crate) mod joints;
 pub(crate) mod queries;
@@ -39,18 +40,20 @@ use crate::world::settings::WorldSettings;
 use crate::world::solver_sets::{SetBounds, SolverSet};
 use std::time::Instant;
 
-/// The closest collider a ray enters.
+/// Where a ray, or a shape cast along a translation, meets a collider.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct WorldRayHit {
+pub struct CastHit {
     /// The body hit.
     pub body: BodyHandle,
-    /// Its collider the ray entered.
+    /// Its collider that was met.
     pub collider: ColliderHandle,
-    /// The entry point, in world coordinates.
+    /// Where they meet, in world coordinates: a ray's entry point, or the point a cast shape
+    /// touches, on the collider's surface.
     pub point: Vec2,
     /// The collider's outward unit normal there.
     pub normal: Vec2,
-    /// How far along the ray, in `[0, 1]`.
+    /// How far along the ray or translation, in `[0, 1]`: the cast shape moved by this
+    /// fraction of its translation just touches the collider (0 when it already overlaps it).
     pub fraction: Real,
 }
 

@@ -1,16 +1,19 @@
 //! Asking the world what is where: colliders whose boxes overlap a box, colliders a shape
-//! overlaps, and colliders a ray enters, each through the broadphase and filtered as
-//! collisions are. Sensors are not in the broadphase, so no query sees them (a sensor lists
-//! what overlaps it itself: [`World::sensor_overlaps`]).
+//! overlaps, colliders a ray enters and colliders a shape moved along a line meets, each
+//! through the broadphase and filtered as collisions are. Sensors are not in the broadphase,
+//! so no query sees them (a sensor lists what overlaps it itself:
+//! [`World::sensor_overlaps`]). Chains are one-sided here too: a ray or a cast shape starting
+//! behind a chain's link passes through it.
 
 use crate::collision::filter::CollisionFilter;
 use crate::collision::narrowphase::separation;
+use crate::collision::shape_cast::cast_shape;
 use crate::dynamics::collider::ColliderHandle;
 use crate::geometry::aabb::Aabb;
 use crate::geometry::ray::Ray;
 use crate::geometry::shape::WorldShape;
-use crate::math::Real;
-use crate::world::{World, WorldRayHit};
+use crate::math::{Real, Vec2, is_finite_vec};
+use crate::world::{CastHit, World};
 
 impl World {
     /// Every collider whose box overlaps `aabb` (touching counts) and that `filter` would
@@ -42,13 +45,13 @@ impl World {
     }
 
     /// The first collider the ray enters, if any.
-    pub fn cast_ray(&self, ray: &Ray) -> Option<WorldRayHit> {
+    pub fn cast_ray(&self, ray: &Ray) -> Option<CastHit> {
         self.cast_ray_filtered(ray, CollisionFilter::DEFAULT)
     }
 
     /// The first collider the ray enters that `filter` would collide with, if any.
-    pub fn cast_ray_filtered(&self, ray: &Ray, filter: CollisionFilter) -> Option<WorldRayHit> {
-        let mut best: Option<WorldRayHit> = None;
+    pub fn cast_ray_filtered(&self, ray: &Ray, filter: CollisionFilter) -> Option<CastHit> {
+        let mut best: Option<CastHit> = None;
         self.ray_hits(ray, filter, |hit, reach| {
             if hit.fraction <= reach && best.is_none_or(|b| hit.fraction < b.fraction) {
                 best = Some(hit);
@@ -59,7 +62,7 @@ impl World {
     }
 
     /// Every collider the ray enters that `filter` would collide with, nearest first.
-    pub fn cast_ray_all(&self, ray: &Ray, filter: CollisionFilter) -> Vec<WorldRayHit> {
+    pub fn cast_ray_all(&self, ray: &Ray, filter: CollisionFilter) -> Vec<CastHit> {
         let mut hits = Vec::new();
         self.ray_hits(ray, filter, |hit, reach| {
             hits.push(hit);
@@ -67,6 +70,84 @@ impl World {
         });
         hits.sort_by(|a, b| a.fraction.total_cmp(&b.fraction));
         hits
+    }
+
+    /// Where `shape`, moved along `translation` without turning, first meets a collider that
+    /// `filter` would collide with, if it does: the fraction of the translation it can move
+    /// before touching (stopping within [`crate::SHAPE_CAST_TOLERANCE`] short of it), the
+    /// point it touches and the collider's normal there. A shape that already overlaps a
+    /// collider hits it at fraction 0. A shape or translation that is not finite meets
+    /// nothing.
+    pub fn cast_shape(
+        &self,
+        shape: &WorldShape,
+        translation: Vec2,
+        filter: CollisionFilter,
+    ) -> Option<CastHit> {
+        let mut best: Option<CastHit> = None;
+        self.shape_hits(shape, translation, filter, |hit, reach| {
+            if best.is_none_or(|b| hit.fraction < b.fraction) {
+                best = Some(hit);
+            }
+            best.map_or(reach, |b| b.fraction)
+        });
+        best
+    }
+
+    /// Every collider that `shape`, moved along `translation`, meets and that `filter` would
+    /// collide with (each once, where it first meets it), nearest first; see
+    /// [`World::cast_shape`].
+    pub fn cast_shape_all(
+        &self,
+        shape: &WorldShape,
+        translation: Vec2,
+        filter: CollisionFilter,
+    ) -> Vec<CastHit> {
+        let mut hits = Vec::new();
+        self.shape_hits(shape, translation, filter, |hit, reach| {
+            hits.push(hit);
+            reach
+        });
+        hits.sort_by(|a, b| a.fraction.total_cmp(&b.fraction));
+        hits
+    }
+
+    /// Sweeps `shape`'s box through the broadphase and calls `visit` with each hit on a
+    /// collider `filter` allows and the reach so far, as [`World::ray_hits`] does.
+    fn shape_hits(
+        &self,
+        shape: &WorldShape,
+        translation: Vec2,
+        filter: CollisionFilter,
+        mut visit: impl FnMut(CastHit, Real) -> Real,
+    ) {
+        let aabb = shape.aabb();
+        if !(is_finite_vec(aabb.min) && is_finite_vec(aabb.max) && is_finite_vec(translation)) {
+            return;
+        }
+        let start = aabb.center();
+        let mut scratch = shape.clone();
+        self.broadphase
+            .box_cast(&aabb, translation, |handle, reach| {
+                let Some(collider) = self.colliders.get(handle) else {
+                    return reach;
+                };
+                let other = collider.world_shape();
+                if !filter.collides_with(&collider.filter()) || other.is_link_behind(start) {
+                    return reach;
+                }
+                let Some(hit) = cast_shape(shape, translation, other, reach, &mut scratch) else {
+                    return reach;
+                };
+                let hit = CastHit {
+                    body: collider.body(),
+                    collider: handle,
+                    point: hit.point,
+                    normal: hit.normal,
+                    fraction: hit.fraction,
+                };
+                visit(hit, reach)
+            });
     }
 
     /// Casts the ray through the broadphase and calls `visit` with each hit on a collider
@@ -77,10 +158,9 @@ impl World {
         &self,
         ray: &Ray,
         filter: CollisionFilter,
-        mut visit: impl FnMut(WorldRayHit, Real) -> Real,
+        mut visit: impl FnMut(CastHit, Real) -> Real,
     ) {
-        if !(crate::math::is_finite_vec(ray.origin) && crate::math::is_finite_vec(ray.translation))
-        {
+        if !(is_finite_vec(ray.origin) && is_finite_vec(ray.translation)) {
             return;
         }
         self.broadphase
@@ -99,7 +179,7 @@ impl World {
                 let Some(hit) = collider.ray_cast_body_frame(&local) else {
                     return reach;
                 };
-                let hit = WorldRayHit {
+                let hit = CastHit {
                     body: body.handle(),
                     collider: handle,
                     point: ray.at(hit.fraction),
