@@ -2,9 +2,11 @@
 //!
 //! A 2D rigid-body physics engine: bodies made of circles, capsules, convex polygons (sharp or
 //! rounded), segments and smooth chains ([`ChainDef`]) with mass from density, forces, drag,
-//! queries, collision filters, a dynamic-tree broadphase, SAT narrowphase with clipped contact
-//! manifolds, joints ([`JointDef`]), contact solvers from the tutorial's push-out to Box2D v3's
-//! soft step, continuous collision and sleeping. It has no graphics dependency.
+//! collision filters ([`CollisionFilter`]), sensors, contact and hit events, a pre-solve hook,
+//! queries (boxes, shapes, rays, shape casts) and explosions, a dynamic-tree broadphase, SAT
+//! narrowphase with clipped contact manifolds, joints ([`JointDef`]), contact solvers from the
+//! tutorial's push-out to Box2D v3's soft step, continuous collision and sleeping. It has no
+//! graphics dependency.
 //!
 //! Units are SI: metres, kilograms, seconds, radians. Angles are counter-clockwise. Shapes are
 //! centred on their centroid when built; a body's colliders place them in its frame, whose
