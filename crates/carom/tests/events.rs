@@ -574,3 +574,50 @@ fn the_pre_solve_hook_drops_a_box_through_the_floor_and_brings_it_back() {
     assert_eq!(strays.load(Ordering::Relaxed), 0);
     assert!(world.contacts().any(|c| c.body_b() == bystander));
 }
+
+#[test]
+fn a_capsule_sensor_sweeping_past_a_rounded_box_a_segment_and_a_chain_sees_each_once() {
+    use carom::{ChainDef, Polygon};
+    let mut world = World::with_settings(WorldSettings {
+        gravity: vec2(0.0, 0.0),
+        ..WorldSettings::default()
+    })
+    .unwrap();
+    let rounded = Shape::Polygon(Polygon::rect(0.3, 0.3).rounded(0.2));
+    world
+        .add_body(BodyDef::static_body(rounded).position(vec2(-4.0, 0.0)))
+        .unwrap();
+    world
+        .add_body(BodyDef::static_body(Shape::segment(
+            vec2(0.0, -1.0),
+            vec2(0.0, 1.0),
+        )))
+        .unwrap();
+    // Two links meeting where the sensor passes; the sensor crosses them from behind as well,
+    // which a sensor sees (overlap, not collision).
+    let chain = ChainDef::open([vec2(4.0, -1.0), vec2(4.0, 0.0), vec2(4.0, 1.0)]);
+    world
+        .add_body(BodyDef::static_chain(&chain).unwrap())
+        .unwrap();
+    world
+        .add_body(
+            BodyDef::dynamic(Shape::capsule(vec2(-0.5, 0.0), vec2(0.5, 0.0), 0.3))
+                .sensor(true)
+                .position(vec2(-8.0, 0.0))
+                .linear_velocity(vec2(10.0, 0.0)),
+        )
+        .unwrap();
+    let seen = sensor_events(&mut world, 100);
+    let begins: Vec<_> = seen
+        .iter()
+        .filter(|(_, e)| matches!(e, SensorEvent::Begin(_)))
+        .collect();
+    let ends = seen.len() - begins.len();
+    assert_eq!((begins.len(), ends), (4, 4), "{seen:?}");
+    // In the order it meets them: the rounded box, the segment, the chain's links together.
+    let steps: Vec<usize> = begins.iter().map(|(step, _)| *step).collect();
+    assert!(steps[0] < steps[1] && steps[1] < steps[2] && steps[2] == steps[3]);
+    // The rounded box is met where its rounding begins: the capsule's front (x + 0.8) at
+    // -4 - 0.5, about step 16 at 10 m/s from -8.
+    assert!((15..=17).contains(&steps[0]), "{steps:?}");
+}
