@@ -175,6 +175,22 @@ pub(crate) fn check_finite(what: &str, value: Real) -> Result<Real, CaromError> 
     }
 }
 
+/// Checks that a scalar is finite and not negative (a distance, a rate).
+pub(crate) fn check_finite_not_negative(
+    name: &'static str,
+    value: Real,
+) -> Result<Real, CaromError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(CaromError::OutOfRange {
+            name,
+            expected: "finite and not negative",
+            value,
+        })
+    }
+}
+
 /// Checks that both components of a vector are finite.
 pub(crate) fn check_finite_vec(what: &str, value: Vec2) -> Result<Vec2, CaromError> {
     if crate::math::is_finite_vec(value) {

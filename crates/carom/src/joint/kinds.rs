@@ -1,6 +1,6 @@
 //! What each kind of joint holds, and the settings the kinds share: springs, motors, limits.
 
-use crate::error::CaromError;
+use crate::error::{CaromError, check_finite_not_negative};
 use crate::math::{Real, Vec2, vec2};
 
 /// A soft spring: its natural frequency and damping ratio. Frequency 0 is no spring at all
@@ -350,18 +350,8 @@ fn check_spring(spring: Option<&Spring>) -> Result<(), CaromError> {
     let Some(spring) = spring else {
         return Ok(());
     };
-    for (name, value) in [
-        ("spring hertz", spring.hertz),
-        ("spring damping ratio", spring.damping_ratio),
-    ] {
-        if !(value.is_finite() && value >= 0.0) {
-            return Err(CaromError::OutOfRange {
-                name,
-                expected: "finite and not negative",
-                value,
-            });
-        }
-    }
+    check_finite_not_negative("spring hertz", spring.hertz)?;
+    check_finite_not_negative("spring damping ratio", spring.damping_ratio)?;
     Ok(())
 }
 

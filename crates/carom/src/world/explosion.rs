@@ -11,7 +11,7 @@
 use crate::collision::filter::CollisionFilter;
 use crate::collision::narrowphase::{closest_points, with_core};
 use crate::dynamics::body::{BodyHandle, BodyKind};
-use crate::error::{CaromError, check_finite, check_finite_vec};
+use crate::error::{CaromError, check_finite, check_finite_not_negative, check_finite_vec};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::polygon_centroid;
 use crate::geometry::shape::WorldShape;
@@ -61,18 +61,8 @@ impl ExplosionDef {
     fn validate(&self) -> Result<(), CaromError> {
         check_finite_vec("explosion centre", self.center)?;
         check_finite("explosion impulse per length", self.impulse_per_length)?;
-        for (name, value) in [
-            ("explosion radius", self.radius),
-            ("explosion falloff", self.falloff),
-        ] {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err(CaromError::OutOfRange {
-                    name,
-                    expected: "finite and not negative",
-                    value,
-                });
-            }
-        }
+        check_finite_not_negative("explosion radius", self.radius)?;
+        check_finite_not_negative("explosion falloff", self.falloff)?;
         Ok(())
     }
 }

@@ -24,7 +24,7 @@ use crate::dynamics::collider::{
 };
 use crate::dynamics::drag::DragModel;
 use crate::dynamics::island::Islands;
-use crate::error::{CaromError, check_finite_vec};
+use crate::error::{CaromError, check_finite_not_negative, check_finite_vec};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::shape::WorldShape;
 use crate::handle_map::HandleMap;
@@ -112,19 +112,9 @@ struct StepScratch {
 fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {
     check_finite_vec("gravity", settings.gravity)?;
     settings.solver.validate()?;
-    for (name, value) in [
-        ("speculative distance", settings.speculative_distance),
-        ("AABB margin", settings.aabb_margin),
-        ("hit event threshold", settings.hit_event_threshold),
-    ] {
-        if !(value.is_finite() && value >= 0.0) {
-            return Err(CaromError::OutOfRange {
-                name,
-                expected: "finite and not negative",
-                value,
-            });
-        }
-    }
+    check_finite_not_negative("speculative distance", settings.speculative_distance)?;
+    check_finite_not_negative("AABB margin", settings.aabb_margin)?;
+    check_finite_not_negative("hit event threshold", settings.hit_event_threshold)?;
     Ok(())
 }
 
