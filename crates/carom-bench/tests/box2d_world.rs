@@ -114,34 +114,6 @@ fn friction_off_gives_frictionless_shapes_and_triangles_keep_their_vertices() {
     assert!((box2d.mass(0) - body.mass()).abs() < 1e-4 * body.mass());
 }
 
-/// A timed Box2D run steps the world (the box falls 2 m onto the ground), times all steps but
-/// the first, and reports the drop of the highest dynamic body.
-#[test]
-fn a_timed_box2d_run_measures_the_drop() {
-    let world = box_over_ground();
-    let mut box2d = Box2dWorld::from_carom(&world).unwrap();
-    let run = carom_bench::run_box2d(&mut box2d, DT, 120).unwrap();
-    assert_eq!(run.timed_steps, 119);
-    assert!(run.total_ms > 0.0 && !run.nan);
-    assert!((run.top_drop - 2.0).abs() < 0.01, "drop {}", run.top_drop);
-}
-
-/// Box2D on two workers (its own scheduler) steps the same world to the same place: its
-/// solver gives the same bits on any number of workers.
-#[test]
-fn two_box2d_workers_give_one_workers_result() {
-    let world = box_over_ground();
-    let mut one = Box2dWorld::from_carom(&world).unwrap();
-    let mut two = Box2dWorld::with_workers(&world, 2).unwrap();
-    for _ in 0..90 {
-        one.step(DT).unwrap();
-        two.step(DT).unwrap();
-    }
-    assert_eq!(one.position(1).unwrap(), two.position(1).unwrap());
-    assert!(one.position(1).unwrap()[1] < 0.6, "the box has landed");
-    assert!(Box2dWorld::with_workers(&world, 0).is_err());
-}
-
 /// A body of three colliders: Box2D's compound triangles (the compounds benchmark), each
 /// placed at its centroid, and a box turned by 0.4 rad, denser and slipperier than the body.
 fn compound_body() -> World {
@@ -212,4 +184,32 @@ fn a_compound_body_keeps_each_collider_s_place_density_and_friction() {
             "Box2D box {lo:?} {hi:?}, carom {aabb:?}"
         );
     }
+}
+
+/// A timed Box2D run steps the world (the box falls 2 m onto the ground), times all steps but
+/// the first, and reports the drop of the highest dynamic body.
+#[test]
+fn a_timed_box2d_run_measures_the_drop() {
+    let world = box_over_ground();
+    let mut box2d = Box2dWorld::from_carom(&world).unwrap();
+    let run = carom_bench::run_box2d(&mut box2d, DT, 120).unwrap();
+    assert_eq!(run.timed_steps, 119);
+    assert!(run.total_ms > 0.0 && !run.nan);
+    assert!((run.top_drop - 2.0).abs() < 0.01, "drop {}", run.top_drop);
+}
+
+/// Box2D on two workers (its own scheduler) steps the same world to the same place: its
+/// solver gives the same bits on any number of workers.
+#[test]
+fn two_box2d_workers_give_one_workers_result() {
+    let world = box_over_ground();
+    let mut one = Box2dWorld::from_carom(&world).unwrap();
+    let mut two = Box2dWorld::with_workers(&world, 2).unwrap();
+    for _ in 0..90 {
+        one.step(DT).unwrap();
+        two.step(DT).unwrap();
+    }
+    assert_eq!(one.position(1).unwrap(), two.position(1).unwrap());
+    assert!(one.position(1).unwrap()[1] < 0.6, "the box has landed");
+    assert!(Box2dWorld::with_workers(&world, 0).is_err());
 }
