@@ -21,12 +21,13 @@ static ALLOCATOR: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
 const DT: f32 = 1.0 / 60.0;
 
 /// Box2D's benchmark scenes and step counts, run when no scene is named.
-const DEFAULT_SCENES: [(&str, u32); 5] = [
+const DEFAULT_SCENES: [(&str, u32); 6] = [
     ("demos/joint_grid.ron", 500),
     ("demos/large_pyramid.ron", 500),
     ("demos/many_pyramids.ron", 200),
     ("demos/tumbler.ron", 750),
     ("demos/smash.ron", 300),
+    ("demos/compounds.ron", 500),
 ];
 
 /// Steps for a scene not in [`DEFAULT_SCENES`] when `--steps` is not given.
@@ -41,7 +42,7 @@ struct Args {
     command: Option<Command>,
     /// Scene files (default: Box2D's recipes with its step counts: demos/joint_grid.ron, 500
     /// steps; demos/large_pyramid.ron, 500; demos/many_pyramids.ron, 200; demos/tumbler.ron,
-    /// 750; demos/smash.ron, 300).
+    /// 750; demos/smash.ron, 300; demos/compounds.ron, 500).
     scenes: Vec<PathBuf>,
     /// Steps per run, overriding each scene's default.
     #[arg(long)]

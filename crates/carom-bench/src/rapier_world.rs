@@ -21,7 +21,8 @@ use crate::notes::Notes;
 /// How far a polygon's edge may lean off an axis, in metres, and still count as a rectangle's.
 const AXIS_TOLERANCE: f32 = 1e-6;
 
-/// A Rapier world holding one rigid body and one collider per carom body, in carom's order.
+/// A Rapier world holding one rigid body per carom body, in carom's order, and one collider per
+/// carom collider, placed on its body as carom places it.
 pub struct RapierWorld {
     gravity: Vector,
     params: IntegrationParameters,
@@ -359,8 +360,9 @@ fn rigid_body(body: &Body, drag: bool, can_sleep: bool, ccd: bool) -> RigidBodyB
     rb
 }
 
-/// The collider matching a carom shape, in body space (carom recentres shapes on the centroid,
-/// which is the body's origin, so the collider sits at the body's origin too).
+/// The collider matching a carom shape, in the collider's own frame (carom recentres a shape
+/// on its centroid; the caller places the collider on its body at the carom collider's offset
+/// and angle).
 ///
 /// A chain link becomes a plain segment: Rapier's segments are two-sided and have no ghost
 /// vertices (its polylines smooth their joins, but only within one polyline).

@@ -1,6 +1,6 @@
 //! The Rapier copy of a carom world has the same bodies, masses and shapes, and settles alike.
 
-use carom::{BodyDef, BodyKind, Effect, Shape, World, vec2};
+use carom::{BodyDef, BodyKind, ColliderDef, Effect, Shape, World, vec2};
 use carom_bench::RapierWorld;
 
 const DT: f32 = 1.0 / 60.0;
@@ -149,4 +149,62 @@ fn rotated_box_and_triangle_become_convex_polygons() {
     assert!((body.rotation().angle() - 0.3).abs() < 1e-6);
     let masses: f32 = world.bodies().map(|b| b.mass()).sum();
     assert!((rapier.dynamic_mass() - masses).abs() <= 1e-3 * masses);
+}
+
+/// Each collider of a compound body (Box2D's compound triangles, each at its centroid, and a
+/// box turned by 0.4 rad, denser and slipperier) becomes a Rapier collider in its place, with its
+/// own density and friction: the same mass, centre of mass and inertia.
+#[test]
+fn a_compound_body_keeps_each_collider_s_place_density_and_friction() {
+    let triangle = |points: [(f32, f32); 3]| {
+        let points = points.map(|(x, y)| vec2(x, y));
+        let centroid = (points[0] + points[1] + points[2]) / 3.0;
+        ColliderDef::new(Shape::polygon(&points).unwrap()).offset(centroid)
+    };
+    let mut def = BodyDef::dynamic(Shape::circle(1.0))
+        .position(vec2(3.0, 4.0))
+        .angle(0.2)
+        .friction(0.5);
+    def.colliders = vec![
+        triangle([(-1.0, 0.0), (0.5, 1.0), (0.0, 2.0)]),
+        triangle([(1.0, 0.0), (-0.5, 1.0), (0.0, 2.0)]),
+        ColliderDef::new(Shape::rect(0.5, 0.1))
+            .offset(vec2(0.0, -0.5))
+            .angle(0.4)
+            .density(3.0)
+            .friction(0.2),
+    ];
+    let mut world = World::new();
+    world.add_body(def).unwrap();
+    let rapier = RapierWorld::from_carom(&world, DT).unwrap();
+    let body = world.bodies().next().unwrap();
+    let copy = &rapier.bodies()[rapier.handle(0).unwrap()];
+    assert!((copy.mass() - body.mass()).abs() < 1e-5 * body.mass());
+    let center = copy.local_center_of_mass();
+    assert!(
+        (center.x - body.local_center().x).abs() < 1e-5
+            && (center.y - body.local_center().y).abs() < 1e-5,
+        "Rapier centre {center:?}, carom {:?}",
+        body.local_center()
+    );
+    let inertia = copy.mass_properties().local_mprops.principal_inertia();
+    assert!(
+        (inertia - body.inertia()).abs() < 1e-4 * body.inertia(),
+        "Rapier {inertia} kg m², carom {} kg m²",
+        body.inertia()
+    );
+    assert_eq!(copy.colliders().len(), 3);
+    for (&handle, &collider) in copy.colliders().iter().zip(body.colliders()) {
+        let (part, carom) = (
+            &rapier.colliders()[handle],
+            world.collider(collider).unwrap(),
+        );
+        assert!((part.friction() - carom.friction()).abs() < 1e-6);
+        assert!((part.density() - carom.density()).abs() < 1e-6);
+        let place = part.position_wrt_parent().unwrap();
+        let local = carom.local_transform();
+        assert!((place.translation.x - local.translation.x).abs() < 1e-6);
+        assert!((place.translation.y - local.translation.y).abs() < 1e-6);
+        assert!((place.rotation.angle() - local.rotation.angle()).abs() < 1e-6);
+    }
 }
