@@ -158,11 +158,22 @@ fn only_dynamic_bodies_of_the_masked_categories_are_pushed_and_sleepers_wake() {
     for still in [floor, other, platform] {
         assert_eq!(velocity(&world, still), (vec2(0.0, 0.0), 0.0));
     }
-    // With every category, the other box goes the other way.
+    // With every category, the other box goes the other way; a body that collides with
+    // nothing (mask 0) is still in the blast.
+    let ghost = add(
+        &mut world,
+        BodyDef::dynamic(Shape::circle(0.25))
+            .position(vec2(0.0, 2.0))
+            .filter(CollisionFilter {
+                mask: 0,
+                ..CollisionFilter::DEFAULT
+            }),
+    );
     world
         .explode(&ExplosionDef::new(vec2(0.0, 0.5), 2.0, 5.0))
         .unwrap();
     assert!(velocity(&world, other).0.x < -1.0);
+    assert!(velocity(&world, ghost).0.y > 1.0);
 }
 
 #[test]

@@ -6,9 +6,8 @@
 //! impulse per metre times the width it shows the blast (its extent across that line): a
 //! wide crate takes more than a pebble at the same distance. Full strength within the radius,
 //! fading linearly to nothing over the falloff beyond it. A body of several colliders takes
-//! each one's push.
+//! each one's push; sensors take none (Box2D pushes a sensor's shape too).
 
-use crate::collision::filter::CollisionFilter;
 use crate::collision::narrowphase::{closest_points, with_core};
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::error::{CaromError, check_finite, check_finite_not_negative, check_finite_vec};
@@ -75,9 +74,16 @@ impl World {
         let reach = explosion.radius + explosion.falloff;
         let extent = vec2(reach, reach);
         let around = Aabb::new(explosion.center - extent, explosion.center + extent);
+        // The broadphase itself, not a filtered query: what a collider's own mask lets it
+        // collide with does not shield it from a blast.
+        let mut near = Vec::new();
+        self.broadphase.query(&around, |handle| near.push(handle));
+        near.sort_unstable_by_key(|h| h.index());
         let mut pushes: Vec<(BodyHandle, Vec2, Vec2)> = Vec::new();
-        for handle in self.query_aabb(&around, CollisionFilter::DEFAULT) {
-            let collider = self.colliders.get(handle).expect("just found");
+        for handle in near {
+            let Some(collider) = self.colliders.get(handle) else {
+                continue;
+            };
             let dynamic = self
                 .bodies
                 .get(collider.body())
