@@ -257,6 +257,12 @@ impl RapierWorld {
         Some(([v.x, v.y], body.angvel()))
     }
 
+    /// Sets Rapier's stabilization iterations per substep (its
+    /// `num_internal_stabilization_iterations`, 1 by default), which carom has no setting for.
+    pub fn set_stabilization_iterations(&mut self, iterations: usize) {
+        self.params.num_internal_stabilization_iterations = iterations.max(1);
+    }
+
     /// Advances the world by one time step.
     pub fn step(&mut self) {
         self.pipeline.step(

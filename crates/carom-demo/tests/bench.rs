@@ -16,12 +16,7 @@ fn scene(name: &str) -> (carom_scene::Scene, String) {
 }
 
 fn setting(solver: SolverKind, iterations: u32, substeps: u32) -> Setting {
-    Setting {
-        solver,
-        iterations,
-        substeps,
-        joint_hertz: None,
-    }
+    Setting::carom(solver, iterations, substeps)
 }
 
 #[test]
@@ -115,6 +110,7 @@ fn a_joint_scene_is_swept_without_the_solvers_that_leave_joints_out() {
         substeps: vec![4, 8],
         joint_hertz: vec![60.0, 240.0],
         seconds: 1.0,
+        ..SweepOptions::default()
     };
     let points = sweep(&options, |_, _, _| {}).unwrap();
     let settings: Vec<(SolverKind, u32, Option<f32>)> = points
@@ -149,6 +145,7 @@ fn a_sweep_has_a_point_per_setting_and_substeps_only_for_soft_step() {
         substeps: vec![1, 2],
         joint_hertz: vec![60.0, 240.0],
         seconds: 1.0,
+        ..SweepOptions::default()
     };
     let mut calls = 0;
     let points = sweep(&options, |_, _, _| calls += 1).unwrap();
@@ -167,4 +164,55 @@ fn a_sweep_has_a_point_per_setting_and_substeps_only_for_soft_step() {
         .map(|p| p.setting.substeps)
         .collect();
     assert_eq!(si_substeps, [1, 1]);
+}
+
+#[test]
+fn peers_run_the_same_scene_over_their_own_settings_and_box2d_times_the_pendulum_as_carom() {
+    use carom_demo::bench::Engine;
+    let options = SweepOptions {
+        scenes: vec![PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../demos/pendulum.ron")],
+        runs: 1,
+        solvers: vec![SolverKind::SoftStep],
+        iterations: vec![1],
+        substeps: vec![4],
+        engines: Engine::ALL.to_vec(),
+        box2d_substeps: vec![1, 4],
+        box2d_contact_hertz: vec![30.0],
+        rapier_substeps: vec![1, 4],
+        rapier_stabilization: vec![1, 2],
+        ..SweepOptions::default()
+    };
+    let points = sweep(&options, |_, _, _| {}).unwrap();
+    let of = |engine| points.iter().filter(move |p| p.setting.engine == engine);
+    assert_eq!(of(Engine::Carom).count(), 1);
+    assert_eq!(of(Engine::Box2d).count(), 2);
+    assert_eq!(of(Engine::Rapier).count(), 4);
+    assert!(
+        points
+            .iter()
+            .all(|p| p.error.is_finite() && p.ms_per_step > 0.0)
+    );
+    assert!(of(Engine::Rapier).all(|p| p.setting.stabilization.is_some()));
+    assert!(of(Engine::Carom).all(|p| p.max_penetration.is_finite()));
+    assert!(of(Engine::Box2d).all(|p| p.max_penetration.is_nan()));
+    // Box2D's soft step and carom's at the same 4 substeps time the swing alike: the same
+    // algorithm, rebuilt from the same scene.
+    let carom = of(Engine::Carom).next().unwrap().error;
+    let box2d = of(Engine::Box2d)
+        .find(|p| p.setting.substeps == 4)
+        .unwrap()
+        .error;
+    assert!(carom < 1e-3, "carom's period error {carom} %");
+    assert!(
+        (carom - box2d).abs() < 1e-5,
+        "carom {carom} %, Box2D {box2d} %"
+    );
+    // More substeps make Rapier's swing truer, as they do Box2D's.
+    let rapier = |substeps| {
+        of(Engine::Rapier)
+            .find(|p| p.setting.substeps == substeps)
+            .unwrap()
+            .error
+    };
+    assert!(rapier(4) < rapier(1), "{} against {}", rapier(4), rapier(1));
 }

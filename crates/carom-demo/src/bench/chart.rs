@@ -1,9 +1,8 @@
-//! The sweep as a picture: per scene, error against ms/step on log-log axes, one line per
-//! solver (per substep count for soft step), the iteration count growing along each line.
+//! The sweep as a picture: per scene, error against ms/step on log-log axes, each engine's
+//! Pareto front (the settings no other of its settings beats in both time and error) as a
+//! line in the engine's colour, every other setting a faint dot.
 
-use super::Point;
-use super::report::series_of;
-use carom::SolverKind;
+use super::{Engine, Point, pareto_front};
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 use std::path::Path;
@@ -32,19 +31,16 @@ pub fn draw_chart(points: &[Point]) -> Result<image::RgbImage, String> {
         let root = BitMapBackend::with_buffer(&mut pixels, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(draw_error)?;
         let panels = root.split_evenly((rows as usize, 2));
-        let mut all_series = Vec::new();
         for (panel, scene) in panels.iter().zip(&scenes) {
             let of_scene: Vec<&Point> = points.iter().filter(|p| p.scene == *scene).collect();
             draw_panel(panel, scene, &of_scene)?;
-            for (name, members) in series_of(&of_scene) {
-                if !all_series.iter().any(|(n, _)| *n == name) {
-                    all_series.push((name, color_of(members[0])));
-                }
-            }
         }
         if let Some(panel) = panels.get(scenes.len()) {
+            let mut engines: Vec<Engine> = points.iter().map(|p| p.setting.engine).collect();
+            engines.sort_unstable();
+            engines.dedup();
             let joints = points.iter().any(|p| p.joints);
-            draw_legend(panel, &all_series, joints)?;
+            draw_legend(panel, &engines, joints)?;
         }
         root.present().map_err(draw_error)?;
     }
@@ -75,44 +71,69 @@ fn draw_panel<DB: DrawingBackend>(
         .y_label_formatter(&|y| format!("{y:.0e}"))
         .draw()
         .map_err(draw_error)?;
-    for (_, members) in series_of(points) {
-        let color = color_of(members[0]);
-        // Zero errors sit on the floor; NaN worlds at the top of the panel.
-        let at = |p: &&Point| {
-            let error = if p.error.is_finite() {
-                p.error.max(floor)
-            } else {
-                y_range.end
-            };
-            (p.ms_per_step.max(1e-6), error)
+    // Zero errors sit on the floor; NaN worlds at the top of the panel.
+    let at = |p: &Point| {
+        let error = if p.error.is_finite() {
+            p.error.max(floor)
+        } else {
+            y_range.end
         };
+        (p.ms_per_step.max(1e-6), error)
+    };
+    let mut engines: Vec<Engine> = points.iter().map(|p| p.setting.engine).collect();
+    engines.sort_unstable();
+    engines.dedup();
+    // Every engine's faint points first, so no front is drawn over by another's dots.
+    for &engine in &engines {
+        let faint = faint_color_of(engine);
+        chart
+            .draw_series(
+                points
+                    .iter()
+                    .filter(|p| p.setting.engine == engine)
+                    .map(|p| Circle::new(at(p), 3, faint.filled())),
+            )
+            .map_err(draw_error)?;
+    }
+    for &engine in &engines {
+        let of_engine: Vec<&Point> = points
+            .iter()
+            .copied()
+            .filter(|p| p.setting.engine == engine)
+            .collect();
+        let front = pareto_front(&of_engine);
+        let color = color_of(engine);
         chart
             .draw_series(LineSeries::new(
-                members.iter().map(at),
+                front.iter().map(|p| at(p)),
                 color.stroke_width(2),
             ))
             .map_err(draw_error)?;
         chart
-            .draw_series(
-                members
-                    .iter()
-                    .map(|p| Circle::new(at(p), 3, color.filled())),
-            )
+            .draw_series(front.iter().map(|p| Circle::new(at(p), 4, color.filled())))
             .map_err(draw_error)?;
     }
     Ok(())
 }
 
-/// The legend: how to read a line, what joint scenes leave out (if `joints`), the series.
+/// The legend: how to read a front, what a setting has no counterpart in a peer (when peers
+/// ran), what joint scenes leave out (if `joints`), each engine's colour.
 fn draw_legend<DB: DrawingBackend>(
     panel: &DrawingArea<DB, plotters::coord::Shift>,
-    series: &[(String, RGBColor)],
+    engines: &[Engine],
     joints: bool,
 ) -> Result<(), String> {
     let style = ("sans-serif", 18).into_font();
-    let mut notes = vec!["each line: 1, 2, 4 ... 64 iterations, left to right"];
-    if joints {
-        // Said here, as no line can say why it is missing.
+    let mut notes = vec![
+        "line: the settings nothing beats in both time and error",
+        "faint: every other setting",
+    ];
+    if engines.len() > 1 {
+        // Said here, as no dot can say why it is missing.
+        notes.push("push-out, tutorial and sequential impulse: carom only;");
+        notes.push("Box2D has no iteration count, Rapier no joint stiffness");
+    }
+    if joints && engines.contains(&Engine::Carom) {
         notes.push("joint scenes: push-out and tutorial impulse leave joints out");
     }
     for (index, note) in notes.iter().enumerate() {
@@ -122,16 +143,16 @@ fn draw_legend<DB: DrawingBackend>(
             .map_err(draw_error)?;
     }
     let top = 44 + 26 * notes.len() as i32;
-    for (index, (name, color)) in series.iter().enumerate() {
+    for (index, &engine) in engines.iter().enumerate() {
         let y = top + 32 * index as i32;
         panel
             .draw(&PathElement::new(
                 vec![(30, y), (80, y)],
-                color.stroke_width(3),
+                color_of(engine).stroke_width(3),
             ))
             .map_err(draw_error)?;
         panel
-            .draw(&Text::new(name.as_str(), (95, y - 9), style.clone()))
+            .draw(&Text::new(engine.name(), (95, y - 9), style.clone()))
             .map_err(draw_error)?;
     }
     Ok(())
@@ -166,26 +187,20 @@ fn ranges(points: &[&Point]) -> (std::ops::Range<f64>, std::ops::Range<f64>, f64
     )
 }
 
-/// One colour per solver; soft step darker with more substeps, in reds at the default joint
-/// stiffness and purples at another.
-fn color_of(point: &Point) -> RGBColor {
-    match (point.setting.solver, point.setting.joint_hertz) {
-        (SolverKind::PushOut, _) => RGBColor(130, 130, 130),
-        (SolverKind::TutorialImpulse, _) => RGBColor(235, 150, 30),
-        (SolverKind::SequentialImpulse, _) => RGBColor(40, 100, 220),
-        (SolverKind::SoftStep, None) => match point.setting.substeps {
-            0..=1 => RGBColor(245, 150, 150),
-            2..=3 => RGBColor(225, 90, 90),
-            4..=7 => RGBColor(190, 30, 30),
-            _ => RGBColor(110, 0, 20),
-        },
-        (SolverKind::SoftStep, Some(_)) => match point.setting.substeps {
-            0..=3 => RGBColor(200, 140, 230),
-            4..=7 => RGBColor(150, 70, 200),
-            8..=11 => RGBColor(110, 30, 170),
-            _ => RGBColor(60, 0, 110),
-        },
+/// Each engine's colour: its front and its legend line.
+pub fn color_of(engine: Engine) -> RGBColor {
+    match engine {
+        Engine::Carom => RGBColor(200, 30, 30),
+        Engine::Box2d => RGBColor(30, 150, 60),
+        Engine::Rapier => RGBColor(40, 90, 220),
     }
+}
+
+/// The engine's colour faded three quarters of the way to white: its dominated settings.
+fn faint_color_of(engine: Engine) -> RGBColor {
+    let RGBColor(r, g, b) = color_of(engine);
+    let fade = |c: u8| (c as u16 + 3 * 255).div_ceil(4) as u8;
+    RGBColor(fade(r), fade(g), fade(b))
 }
 
 fn format_tick(x: f64) -> String {
@@ -218,18 +233,16 @@ fn draw_error(error: impl std::fmt::Display) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::report::series_name;
     use crate::bench::{ErrorKind, Setting};
+    use carom::SolverKind;
 
-    fn point(scene: &str, solver: SolverKind, iterations: u32, ms: f64, error: f64) -> Point {
+    fn point(engine: Engine, iterations: u32, ms: f64, error: f64) -> Point {
         Point {
-            scene: scene.into(),
+            scene: "stack".into(),
             error_kind: ErrorKind::Rest,
             setting: Setting {
-                solver,
-                iterations,
-                substeps: 1,
-                joint_hertz: None,
+                engine,
+                ..Setting::carom(SolverKind::SoftStep, iterations, 4)
             },
             ms_per_step: ms,
             error,
@@ -238,42 +251,41 @@ mod tests {
         }
     }
 
-    #[test]
-    fn the_chart_draws_every_series_in_its_colour() {
-        let points = vec![
-            point("stack", SolverKind::SequentialImpulse, 1, 0.01, 0.5),
-            point("stack", SolverKind::SequentialImpulse, 8, 0.05, 0.01),
-            point("stack", SolverKind::PushOut, 1, 0.005, f64::INFINITY),
-            point("stack", SolverKind::PushOut, 8, 0.02, 0.0),
-        ];
-        let image = draw_chart(&points).unwrap();
-        assert_eq!(image.dimensions(), (2 * PANEL.0, PANEL.1));
-        let has = |color: RGBColor| image.pixels().any(|p| p.0 == [color.0, color.1, color.2]);
-        assert!(has(color_of(&points[0])), "no sequential impulse line");
-        assert!(has(color_of(&points[2])), "no push-out line");
-        assert!(
-            !has(RGBColor(235, 150, 30)),
-            "a tutorial line with no points"
-        );
-        assert_eq!(series_name(&points[0]), "sequential impulse");
+    fn has(image: &image::RgbImage, color: RGBColor) -> bool {
+        image.pixels().any(|p| p.0 == [color.0, color.1, color.2])
     }
 
     #[test]
-    fn a_stiffer_joint_setting_has_a_colour_of_its_own() {
-        let mut points = Vec::new();
-        for joint_hertz in [None, Some(120.0)] {
-            for (iterations, ms) in [(1, 0.02), (8, 0.1)] {
-                let mut p = point("chain", SolverKind::SoftStep, iterations, ms, 6.0);
-                p.setting.substeps = 8;
-                p.setting.joint_hertz = joint_hertz;
-                p.joints = true;
-                points.push(p);
-            }
-        }
-        assert_ne!(color_of(&points[0]), color_of(&points[2]));
+    fn each_engine_draws_its_front_in_its_colour_and_the_rest_faint() {
+        let points = vec![
+            point(Engine::Carom, 1, 0.01, 0.5),
+            point(Engine::Carom, 8, 0.05, 0.01),
+            point(Engine::Carom, 16, 0.09, 0.02), // dominated: faint
+            point(Engine::Box2d, 1, 0.005, f64::INFINITY),
+            point(Engine::Box2d, 4, 0.02, 0.0),
+        ];
         let image = draw_chart(&points).unwrap();
-        let has = |color: RGBColor| image.pixels().any(|p| p.0 == [color.0, color.1, color.2]);
-        assert!(has(color_of(&points[0])), "no default joint line");
-        assert!(has(color_of(&points[2])), "no stiffer joint line");
+        assert_eq!(image.dimensions(), (2 * PANEL.0, PANEL.1));
+        assert!(has(&image, color_of(Engine::Carom)), "no carom front");
+        assert!(has(&image, color_of(Engine::Box2d)), "no Box2D front");
+        assert!(
+            has(&image, faint_color_of(Engine::Carom)),
+            "no faint carom point"
+        );
+        assert!(
+            !has(&image, color_of(Engine::Rapier)),
+            "a Rapier line with no points"
+        );
+    }
+
+    #[test]
+    fn faint_colours_are_lighter_and_engines_differ() {
+        for engine in Engine::ALL {
+            let (RGBColor(r, g, b), RGBColor(fr, fg, fb)) =
+                (color_of(engine), faint_color_of(engine));
+            assert!(fr >= r && fg >= g && fb >= b && (fr, fg, fb) != (r, g, b));
+        }
+        assert_ne!(color_of(Engine::Carom), color_of(Engine::Box2d));
+        assert_ne!(color_of(Engine::Box2d), color_of(Engine::Rapier));
     }
 }

@@ -1,26 +1,48 @@
 //! One measurement: a scene run with one solver setting, its step times and its error against
 //! the scene's exact answer (see [`carom_scene::Accuracy`]).
 
+use super::engine::{Engine, Peer};
 use carom::{BodyHandle, BodyKind, Effect, Real, SolverKind, SolverParams, Vec2, World};
 use carom_scene::{Accuracy, Scene, SceneWorld};
 use std::time::Instant;
 
-/// The solver setting a point of the sweep runs.
+/// The engine and solver setting a point of the sweep runs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Setting {
-    /// The solver.
+    /// The engine: carom, or a peer rebuilt from the carom scene.
+    pub engine: Engine,
+    /// carom's solver (soft step for Box2D and Rapier, whose solvers are of its kind).
     pub solver: SolverKind,
-    /// Velocity iterations (per substep for soft step).
+    /// Velocity iterations (per substep for soft step; Rapier's PGS iterations; 1 for
+    /// Box2D, which has none to set).
     pub iterations: u32,
-    /// Substeps (1 for the solvers without them).
+    /// Substeps (1 for the solvers without them; Rapier's solver iterations, which are its
+    /// substeps).
     pub substeps: u32,
     /// Soft step's joint stiffness, Hz, where it is not the default: `None` runs the
     /// solver's 60 Hz (Box2D's), which the solver caps at a quarter of the substep rate.
     /// A scene's own stiffness is replaced either way, as its iterations and substeps are.
     pub joint_hertz: Option<f32>,
+    /// Contact stiffness, Hz, where the sweep sets it (Box2D's); `None` keeps the scene's.
+    pub contact_hertz: Option<f32>,
+    /// Rapier's stabilization iterations per substep, where set.
+    pub stabilization: Option<u32>,
 }
 
 impl Setting {
+    /// carom with `solver`, `iterations` and `substeps`, everything else at its default.
+    pub fn carom(solver: SolverKind, iterations: u32, substeps: u32) -> Self {
+        Setting {
+            engine: Engine::Carom,
+            solver,
+            iterations,
+            substeps,
+            joint_hertz: None,
+            contact_hertz: None,
+            stabilization: None,
+        }
+    }
+
     /// The joint stiffness the solver runs with `hertz` asked for, at `time_step` seconds per
     /// step: at most a quarter of the substep rate, as the solver caps it (Box2D's rule).
     pub fn capped_joint_hertz(&self, hertz: f32, time_step: f32) -> f32 {
@@ -129,9 +151,9 @@ pub fn measure(
         }
         Some(Accuracy::Conservation { seconds }) => {
             run.scene.fire_events();
-            let (momentum, energy) = momentum_and_energy(&run.scene.world);
+            let (momentum, energy) = run.momentum_and_energy();
             run.steps(seconds_to_steps(*seconds))?;
-            let (momentum_end, energy_end) = momentum_and_energy(&run.scene.world);
+            let (momentum_end, energy_end) = run.momentum_and_energy();
             let change = (momentum_end[0] - momentum[0]).hypot(momentum_end[1] - momentum[1]);
             let momentum_error = change / momentum[0].hypot(momentum[1]).max(1e-12);
             let energy_error = (energy_end - energy).abs() / energy.max(1e-12);
@@ -207,6 +229,11 @@ pub fn measure(
 /// A scene being run with a setting, timing every step.
 struct Run {
     scene: SceneWorld,
+    setting: Setting,
+    /// A peer's copy of the world, made at the first step from the carom world as it then is
+    /// (so a tilted gravity and the scene's events at time 0 reach it); `None` before, and
+    /// always for carom itself.
+    peer: Option<Peer>,
     step_ms: Vec<f64>,
     max_penetration: f64,
     nan: bool,
@@ -215,64 +242,114 @@ struct Run {
 impl Run {
     fn new(scene: &Scene, file: &str, setting: Setting) -> Result<Self, String> {
         let mut built = carom_scene::build(scene, file).map_err(|e| e.to_string())?;
+        let defaults = SolverParams::default();
         let mut params = *built.world.solver();
         params.kind = setting.solver;
         params.impulse_resolution = true;
         params.iterations = setting.iterations;
         params.substeps = setting.substeps;
-        params.joint_hertz = setting
-            .joint_hertz
-            .unwrap_or(SolverParams::default().joint_hertz);
+        params.joint_hertz = setting.joint_hertz.unwrap_or(defaults.joint_hertz);
+        if let Some(hertz) = setting.contact_hertz {
+            params.contact_hertz = hertz;
+        }
         built.world.set_solver(params).map_err(|e| e.to_string())?;
         // Every step is solved: a setting that settles sooner would otherwise look cheaper
         // only because its bodies sleep.
         built.world.set_effect(Effect::Sleeping, false);
         Ok(Run {
             scene: built,
+            setting,
+            peer: None,
             step_ms: Vec::new(),
-            max_penetration: 0.0,
+            // The peers' overlap is not measured.
+            max_penetration: if setting.engine == Engine::Carom {
+                0.0
+            } else {
+                f64::NAN
+            },
             nan: false,
         })
     }
 
     fn steps(&mut self, count: usize) -> Result<(), String> {
+        let time_step = self.scene.time_step;
+        if self.setting.engine != Engine::Carom && self.peer.is_none() {
+            // The peers replay no scene events: those due now go into the copy.
+            self.scene.fire_events();
+            self.peer = Peer::of(
+                self.setting.engine,
+                &self.scene.world,
+                time_step,
+                self.setting.stabilization,
+            )?;
+        }
         for _ in 0..count {
             let clock = Instant::now();
-            self.scene.step().map_err(|e| e.to_string())?;
+            match &mut self.peer {
+                Some(peer) => peer.step(time_step)?,
+                None => self.scene.step().map_err(|e| e.to_string())?,
+            }
             self.step_ms.push(clock.elapsed().as_secs_f64() * 1e3);
-            let stats = self.scene.world.stats();
-            self.max_penetration = self.max_penetration.max(stats.max_penetration as f64);
-            self.nan |= !stats.kinetic_energy.is_finite();
+            if self.peer.is_none() {
+                let stats = self.scene.world.stats();
+                self.max_penetration = self.max_penetration.max(stats.max_penetration as f64);
+                self.nan |= !stats.kinetic_energy.is_finite();
+            }
         }
         Ok(())
     }
 
-    fn position(&self, handle: carom::BodyHandle) -> Vec2 {
-        self.scene
-            .world
-            .body(handle)
-            .map(|b| b.position())
-            .unwrap_or_else(Vec2::zeros)
+    /// Where the body's origin is and how it is turned, in whichever engine runs.
+    fn pose(&mut self, handle: BodyHandle) -> (Vec2, Real) {
+        let carom = |world: &World| {
+            world
+                .body(handle)
+                .map_or((Vec2::zeros(), 0.0), |b| (b.position(), b.angle()))
+        };
+        let pose = match &mut self.peer {
+            Some(peer) => peer.pose(handle),
+            None => Some(carom(&self.scene.world)),
+        };
+        let pose = pose.unwrap_or((Vec2::repeat(Real::NAN), Real::NAN));
+        self.nan |= !(pose.0.x.is_finite() && pose.0.y.is_finite());
+        pose
+    }
+
+    fn position(&mut self, handle: BodyHandle) -> Vec2 {
+        self.pose(handle).0
     }
 
     /// Where the body's first joint holds it and where it holds the other body, in the world
     /// (NaN if the joint is gone: the scene's build checked that the body had one).
-    fn joint_anchors(&self, handle: BodyHandle) -> [Vec2; 2] {
+    fn joint_anchors(&mut self, handle: BodyHandle) -> [Vec2; 2] {
         let world = &self.scene.world;
-        let anchors = world
+        let Some(joint) = world
             .joints_of(handle)
             .first()
             .and_then(|&joint| world.joint(joint))
-            .and_then(|joint| {
-                let [a, b] = joint.bodies();
-                let anchors = joint.world_anchors(world.body(a)?, world.body(b)?);
-                Some(if a == handle {
-                    anchors
-                } else {
-                    [anchors[1], anchors[0]]
-                })
-            });
-        anchors.unwrap_or([Vec2::repeat(Real::NAN); 2])
+        else {
+            return [Vec2::repeat(Real::NAN); 2];
+        };
+        let (bodies, locals) = (joint.bodies(), joint.local_anchors());
+        let mut anchors = [Vec2::zeros(); 2];
+        for ((anchor, body), local) in anchors.iter_mut().zip(bodies).zip(locals) {
+            let (origin, angle) = self.pose(body);
+            *anchor = origin + carom::Rot::new(angle) * local;
+        }
+        if bodies[0] == handle {
+            anchors
+        } else {
+            [anchors[1], anchors[0]]
+        }
+    }
+
+    /// Total linear momentum and kinetic energy of the dynamic bodies, in whichever engine
+    /// runs.
+    fn momentum_and_energy(&mut self) -> ([f64; 2], f64) {
+        match &mut self.peer {
+            Some(peer) => peer.momentum_and_energy(&self.scene.world),
+            None => momentum_and_energy(&self.scene.world),
+        }
     }
 }
 
@@ -387,12 +464,7 @@ mod tests {
 
     #[test]
     fn joint_stiffness_is_capped_at_a_quarter_of_the_substep_rate() {
-        let setting = |substeps| Setting {
-            solver: SolverKind::SoftStep,
-            iterations: 1,
-            substeps,
-            joint_hertz: None,
-        };
+        let setting = |substeps| Setting::carom(SolverKind::SoftStep, 1, substeps);
         let step = 1.0 / 60.0;
         assert_eq!(setting(1).capped_joint_hertz(60.0, step), 15.0);
         assert_eq!(setting(4).capped_joint_hertz(240.0, step), 60.0);

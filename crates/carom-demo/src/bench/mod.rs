@@ -1,13 +1,19 @@
 //! `carom bench`: what accuracy costs in time. Every solver setting (solver × iterations ×
 //! substeps, and joint stiffness on scenes with joints) runs each scene a few times, sleeping
 //! off; each point of the sweep is its median ms/step and its error against the scene's exact
-//! answer ([`carom_scene::Accuracy`]). The results go to a CSV, a markdown report and a chart
-//! of error against time.
+//! answer ([`carom_scene::Accuracy`]). With peers, Box2D v3 and Rapier run the same scenes,
+//! rebuilt from carom's world, over their own settings. The results go to a CSV, a markdown
+//! report (which engine is best at each time budget) and a chart of each engine's Pareto
+//! front of error against time.
 
 pub mod chart;
+pub mod engine;
+pub mod front;
 pub mod measure;
 pub mod report;
 
+pub use engine::Engine;
+pub use front::pareto_front;
 pub use measure::{ErrorKind, Measurement, Setting, measure, solves_joints};
 
 use carom::{SolverKind, SolverParams};
@@ -33,6 +39,16 @@ pub struct SweepOptions {
     pub joint_hertz: Vec<f32>,
     /// How long a scene without an accuracy measure runs, s.
     pub seconds: f32,
+    /// The engines: carom runs the settings above, each peer its own below.
+    pub engines: Vec<Engine>,
+    /// Box2D's substep counts.
+    pub box2d_substeps: Vec<u32>,
+    /// Box2D's contact stiffnesses, Hz.
+    pub box2d_contact_hertz: Vec<f32>,
+    /// Rapier's solver iterations (`num_solver_iterations`, which are its substeps).
+    pub rapier_substeps: Vec<u32>,
+    /// Rapier's stabilization iterations per substep.
+    pub rapier_stabilization: Vec<u32>,
 }
 
 impl Default for SweepOptions {
@@ -58,15 +74,54 @@ impl Default for SweepOptions {
             substeps: vec![1, 2, 4, 8],
             joint_hertz: vec![60.0, 240.0],
             seconds: 10.0,
+            engines: vec![Engine::Carom],
+            box2d_substeps: vec![1, 2, 4, 8, 16],
+            box2d_contact_hertz: vec![30.0, 60.0],
+            rapier_substeps: vec![1, 2, 4, 8, 16],
+            rapier_stabilization: vec![1, 2, 4, 8, 16],
         }
     }
 }
 
 impl SweepOptions {
-    /// Every setting the sweep runs on `scene`, solver by solver. On a scene with joints the
-    /// solvers that leave joints out do not run ([`solves_joints`]), and soft step runs once
-    /// per joint stiffness the cap leaves distinct.
+    /// Every setting the sweep runs on `scene`, engine by engine, carom's solver by solver.
+    /// On a scene with joints the solvers that leave joints out do not run
+    /// ([`solves_joints`]), and soft step runs once per joint stiffness the cap leaves
+    /// distinct.
     pub fn settings(&self, scene: &SceneWorld) -> Vec<Setting> {
+        let mut settings = Vec::new();
+        for &engine in &self.engines {
+            match engine {
+                Engine::Carom => settings.extend(self.carom_settings(scene)),
+                Engine::Box2d => {
+                    for &hertz in &self.box2d_contact_hertz {
+                        for &substeps in &self.box2d_substeps {
+                            settings.push(Setting {
+                                engine,
+                                contact_hertz: Some(hertz),
+                                ..Setting::carom(SolverKind::SoftStep, 1, substeps)
+                            });
+                        }
+                    }
+                }
+                Engine::Rapier => {
+                    for &stabilization in &self.rapier_stabilization {
+                        for &substeps in &self.rapier_substeps {
+                            settings.push(Setting {
+                                engine,
+                                stabilization: Some(stabilization),
+                                ..Setting::carom(SolverKind::SoftStep, 1, substeps)
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        settings
+    }
+
+    /// carom's settings of the sweep on `scene`.
+    fn carom_settings(&self, scene: &SceneWorld) -> Vec<Setting> {
         let joints = scene.world.joint_count() > 0;
         let default_hertz = SolverParams::default().joint_hertz;
         let mut settings = Vec::new();
@@ -80,12 +135,7 @@ impl SweepOptions {
                 &[1]
             };
             for &substeps in substeps {
-                let base = Setting {
-                    solver,
-                    iterations: 1,
-                    substeps,
-                    joint_hertz: None,
-                };
+                let base = Setting::carom(solver, 1, substeps);
                 // The stiffnesses this substep count makes distinct, the default first; the
                 // solver caps the default too, so a stiffness capped to it is the default.
                 let mut joint_hertz = vec![None];
@@ -156,16 +206,7 @@ pub fn sweep(
     let mut points = Vec::with_capacity(total / runs);
     for (scene, file, settings, joints) in &scenes {
         for &setting in settings {
-            let joint_hertz = setting
-                .joint_hertz
-                .map_or(String::new(), |hertz| format!(", {hertz} Hz joints"));
-            let what = format!(
-                "{}: {}, {} iterations, {} substeps{joint_hertz}",
-                scene.name,
-                setting.solver.name(),
-                setting.iterations,
-                setting.substeps
-            );
+            let what = format!("{}: {}", scene.name, report::setting_name(&setting));
             let mut medians = Vec::with_capacity(runs);
             let mut first: Option<Measurement> = None;
             for _ in 0..runs {
