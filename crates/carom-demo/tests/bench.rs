@@ -110,6 +110,7 @@ fn a_joint_scene_is_swept_without_the_solvers_that_leave_joints_out() {
         substeps: vec![4, 8],
         joint_hertz: vec![60.0, 240.0],
         seconds: 1.0,
+        contact_hertz: vec![30.0],
         ..SweepOptions::default()
     };
     let points = sweep(&options, |_, _, _| {}).unwrap();
@@ -145,6 +146,7 @@ fn a_sweep_has_a_point_per_setting_and_substeps_only_for_soft_step() {
         substeps: vec![1, 2],
         joint_hertz: vec![60.0, 240.0],
         seconds: 1.0,
+        contact_hertz: vec![30.0],
         ..SweepOptions::default()
     };
     let mut calls = 0;
@@ -177,7 +179,7 @@ fn peers_run_the_same_scene_over_their_own_settings_and_box2d_times_the_pendulum
         substeps: vec![4],
         engines: Engine::ALL.to_vec(),
         box2d_substeps: vec![1, 4],
-        box2d_contact_hertz: vec![30.0],
+        contact_hertz: vec![30.0],
         rapier_substeps: vec![1, 4],
         rapier_stabilization: vec![1, 2],
         ..SweepOptions::default()

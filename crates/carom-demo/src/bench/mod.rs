@@ -41,10 +41,11 @@ pub struct SweepOptions {
     pub seconds: f32,
     /// The engines: carom runs the settings above, each peer its own below.
     pub engines: Vec<Engine>,
+    /// Contact stiffnesses for soft step and Box2D, Hz (the other solvers' contacts are not
+    /// soft).
+    pub contact_hertz: Vec<f32>,
     /// Box2D's substep counts.
     pub box2d_substeps: Vec<u32>,
-    /// Box2D's contact stiffnesses, Hz.
-    pub box2d_contact_hertz: Vec<f32>,
     /// Rapier's solver iterations (`num_solver_iterations`, which are its substeps).
     pub rapier_substeps: Vec<u32>,
     /// Rapier's stabilization iterations per substep.
@@ -52,8 +53,9 @@ pub struct SweepOptions {
 }
 
 impl Default for SweepOptions {
-    /// The sweep over the seven accuracy scenes in `demos/`; joints at Box2D's 60 Hz and at
-    /// 240 Hz, which is as stiff as the substeps allow up to 16 substeps (120 Hz at 8).
+    /// The sweep over the seven accuracy scenes in `demos/`: contacts at 30 Hz (Box2D's
+    /// default) and 60 Hz, joints at Box2D's 60 Hz and at 240 Hz, which is as stiff as the
+    /// substeps allow at 16 substeps (120 Hz at 8).
     fn default() -> Self {
         SweepOptions {
             scenes: [
@@ -71,12 +73,12 @@ impl Default for SweepOptions {
             runs: 3,
             solvers: SolverKind::ALL.to_vec(),
             iterations: vec![1, 2, 4, 8, 16, 32, 64],
-            substeps: vec![1, 2, 4, 8],
+            substeps: vec![1, 2, 4, 8, 16],
             joint_hertz: vec![60.0, 240.0],
             seconds: 10.0,
             engines: vec![Engine::Carom],
+            contact_hertz: vec![30.0, 60.0],
             box2d_substeps: vec![1, 2, 4, 8, 16],
-            box2d_contact_hertz: vec![30.0, 60.0],
             rapier_substeps: vec![1, 2, 4, 8, 16],
             rapier_stabilization: vec![1, 2, 4, 8, 16],
         }
@@ -94,7 +96,7 @@ impl SweepOptions {
             match engine {
                 Engine::Carom => settings.extend(self.carom_settings(scene)),
                 Engine::Box2d => {
-                    for &hertz in &self.box2d_contact_hertz {
+                    for &hertz in &self.contact_hertz {
                         for &substeps in &self.box2d_substeps {
                             settings.push(Setting {
                                 engine,
@@ -148,13 +150,22 @@ impl SweepOptions {
                         }
                     }
                 }
-                for joint_hertz in joint_hertz {
-                    for &iterations in &self.iterations {
-                        settings.push(Setting {
-                            iterations,
-                            joint_hertz,
-                            ..base
-                        });
+                // Soft contacts only in soft step.
+                let contact_hertz: Vec<Option<f32>> = if solver == SolverKind::SoftStep {
+                    self.contact_hertz.iter().map(|&h| Some(h)).collect()
+                } else {
+                    vec![None]
+                };
+                for contact_hertz in contact_hertz {
+                    for &joint_hertz in &joint_hertz {
+                        for &iterations in &self.iterations {
+                            settings.push(Setting {
+                                iterations,
+                                joint_hertz,
+                                contact_hertz,
+                                ..base
+                            });
+                        }
                     }
                 }
             }
@@ -310,6 +321,8 @@ mod tests {
     fn options() -> SweepOptions {
         SweepOptions {
             iterations: vec![1],
+            substeps: vec![1, 2, 4, 8],
+            contact_hertz: vec![30.0],
             ..SweepOptions::default()
         }
     }
@@ -320,6 +333,26 @@ mod tests {
         // Push-out, tutorial and sequential impulse, soft step at 1, 2, 4 and 8 substeps.
         assert_eq!(settings.len(), 3 + 4);
         assert!(settings.iter().all(|s| s.joint_hertz.is_none()));
+        // Soft contacts are soft step's alone.
+        assert!(
+            settings
+                .iter()
+                .all(|s| { (s.solver == SolverKind::SoftStep) == (s.contact_hertz == Some(30.0)) })
+        );
+        // Both contact stiffnesses by default, and each peer over its own axes.
+        let all = SweepOptions {
+            engines: Engine::ALL.to_vec(),
+            ..options()
+        };
+        let settings = SweepOptions {
+            contact_hertz: vec![30.0, 60.0],
+            ..all
+        }
+        .settings(&scene(false));
+        let count = |engine| settings.iter().filter(|s| s.engine == engine).count();
+        assert_eq!(count(Engine::Carom), 3 + 4 * 2);
+        assert_eq!(count(Engine::Box2d), 5 * 2);
+        assert_eq!(count(Engine::Rapier), 5 * 5);
     }
 
     #[test]

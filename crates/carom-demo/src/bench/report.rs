@@ -199,8 +199,9 @@ fn budgets(out: &mut String, points: &[&Point], engines: &[Engine]) {
         let (first, first_error) = describe(best.first());
         let (second, second_error) = describe(best.get(1));
         let ratio = match (best.first(), best.get(1)) {
+            (Some(a), Some(b)) if a.error == b.error => "equal".into(),
             (Some(a), Some(b)) if a.error > 0.0 => format!("{:.1}", b.error / a.error),
-            (Some(_), Some(_)) => "∞ (exact)".into(),
+            (Some(_), Some(_)) => "exact, the other not".into(),
             _ => String::new(),
         };
         let _ = writeln!(
@@ -287,14 +288,17 @@ pub fn series_of<'a>(points: &[&'a Point]) -> Vec<(String, Vec<&'a Point>)> {
     series
 }
 
-/// "soft step, 4 substeps", "soft step, 8 substeps, 120 Hz joints" (a joint stiffness
-/// other than the default), or just the solver's name: carom's series, its iterations along
-/// each.
+/// "soft step, 4 substeps, 30 Hz contacts", "soft step, 8 substeps, 30 Hz contacts, 120 Hz
+/// joints" (a joint stiffness other than the default), or just the solver's name: carom's
+/// series, its iterations along each.
 pub fn series_name(point: &Point) -> String {
     let solver = point.setting.solver;
     let mut name = solver.name().to_string();
     if solver.has_substeps() {
         let _ = write!(name, ", {}", substeps(point.setting.substeps));
+    }
+    if let Some(hertz) = point.setting.contact_hertz {
+        let _ = write!(name, ", {hertz} Hz contacts");
     }
     if let Some(hertz) = point.setting.joint_hertz {
         let _ = write!(name, ", {hertz} Hz joints");
@@ -313,6 +317,9 @@ pub fn setting_name(setting: &Setting) -> String {
                 let _ = write!(name, ", {}", substeps(setting.substeps));
             }
             let _ = write!(name, ", {}", it(setting.iterations));
+            if let Some(hertz) = setting.contact_hertz {
+                let _ = write!(name, ", {hertz} Hz contacts");
+            }
             if let Some(hertz) = setting.joint_hertz {
                 let _ = write!(name, ", {hertz} Hz joints");
             }
