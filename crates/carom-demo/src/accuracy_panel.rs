@@ -400,9 +400,9 @@ pub fn setting_of(params: &SolverParams) -> Setting {
 }
 
 /// Where `params` sit among carom's measured `points`: the point of that very setting, or
-/// else the nearest measured setting of the same solver (fewest doublings of iterations and
-/// substeps apart, a different joint stiffness counting as one). `None` when the solver was
-/// not measured (push-out and tutorial impulse do not run on scenes with joints).
+/// else the nearest measured setting of the same solver (fewest doublings of iterations,
+/// substeps and joint stiffness apart). `None` when the solver was not measured (push-out
+/// and tutorial impulse do not run on scenes with joints).
 ///
 /// Joint stiffness is compared as the solver runs it, capped at a quarter of the substep rate
 /// at `time_step` seconds per step, and only for soft step on a scene with `joints`: a
@@ -420,8 +420,10 @@ pub fn marker(
     let stiffness_matters = joints && wanted.solver.has_substeps();
     let distance = |p: &Point| {
         let doublings = |a: u32, b: u32| (a.max(1) as f64 / b.max(1) as f64).log2().abs();
-        let stiffness = if stiffness_matters && hertz_of(&p.setting) != hertz_of(&wanted) {
-            1.0
+        let stiffness = if stiffness_matters {
+            (hertz_of(&p.setting) as f64 / hertz_of(&wanted) as f64)
+                .log2()
+                .abs()
         } else {
             0.0
         };
@@ -518,14 +520,18 @@ pub fn format_ms(ms: f64) -> String {
     }
 }
 
-/// An error as the panel writes it: three significant digits, `0`, or `inf`.
+/// An error as the panel writes it: three significant digits, plain from 0.01 to 9999 and
+/// in exponent form beyond; `0` or `inf`.
 pub fn format_error(error: f64) -> String {
     if error == 0.0 {
         "0".into()
-    } else if error.is_finite() {
-        format!("{error:.2e}")
-    } else {
+    } else if !error.is_finite() {
         "inf".into()
+    } else if (0.01..10_000.0).contains(&error) {
+        let decimals = (2 - error.log10().floor() as i32).max(0) as usize;
+        format!("{error:.decimals$}")
+    } else {
+        format!("{error:.2e}")
     }
 }
 
@@ -681,6 +687,44 @@ mod tests {
             ["warm starting", "contact Hz"]
         );
         assert!(unmeasured_changes(&scene, &scene).is_empty());
+    }
+
+    #[test]
+    fn numbers_read_as_three_significant_digits() {
+        let errors = [
+            0.0,
+            0.4,
+            0.05,
+            6.25,
+            62.5,
+            1234.0,
+            2.59e-4,
+            3.1e5,
+            f64::INFINITY,
+        ];
+        let written: Vec<String> = errors.into_iter().map(format_error).collect();
+        assert_eq!(
+            written,
+            [
+                "0", "0.400", "0.0500", "6.25", "62.5", "1234", "2.59e-4", "3.10e5", "inf"
+            ]
+        );
+        assert_eq!(format_ms(0.0213), "0.021");
+        assert_eq!(format_ms(12.345), "12.3");
+    }
+
+    #[test]
+    fn a_stiffness_not_swept_is_nearest_the_closest_swept_one() {
+        let points = sweep();
+        // 180 Hz joints at 12 substeps: 8 substeps at 120 Hz is nearer than at the default's
+        // 60 Hz.
+        let chain = SolverParams {
+            joint_hertz: 180.0,
+            ..params(SolverKind::SoftStep, 1, 12)
+        };
+        let near = marker(&points, &chain, STEP, true).unwrap();
+        assert!(!near.exact);
+        assert_eq!(near.point.setting, soft(1, 8, Some(120.0)));
     }
 
     #[test]
