@@ -2,6 +2,7 @@
 //! the fixed-step clock and the live metrics. The window feeds it input events and frame
 //! times and draws what it describes; tests feed it synthetic events the same way.
 
+use crate::accuracy_panel::AccuracyPanel;
 use crate::metrics::Metrics;
 use carom::{BodyHandle, Color, DrawList, DrawOptions, JointDef, JointHandle, Vec2};
 use carom_render::Camera;
@@ -102,6 +103,9 @@ pub struct Demo {
     pub step_budget: std::time::Duration,
     /// Step costs and errors.
     pub metrics: Metrics,
+    /// The measured cost of accuracy of the scene's solver settings, and where the demo's
+    /// setting sits among them; the sidebar keeps it up to date with the scene shown.
+    pub accuracy: AccuracyPanel,
     accumulator: f64,
     grab: Option<Grab>,
     pan_from: Option<Vec2>,
@@ -140,6 +144,7 @@ impl Demo {
             max_steps_per_frame: 4,
             step_budget: std::time::Duration::from_millis(10),
             metrics: Metrics::default(),
+            accuracy: AccuracyPanel::default(),
             accumulator: 0.0,
             grab: None,
             pan_from: None,

@@ -1,9 +1,14 @@
-//! The egui sidebar: scene, solver, effects, drawing, and the live cost of accuracy.
+//! The egui sidebar: scene, solver, effects, drawing, and the cost of accuracy: the scene's
+//! measured front with the demo's setting on it, and the live step cost.
 
+use crate::accuracy_panel::{self, AccuracyPanel, Marker, Source};
+use crate::bench::{Engine, Point, chart};
 use crate::demo::{Demo, HINTS};
 use crate::metrics::{Metrics, STAGES};
 use carom::{DrawFlags, Effect, SolverKind, SolverParams};
-use egui_plot::{Legend, Line, Plot, PlotPoints};
+use egui_plot::{GridMark, HoverPosition, Legend, Line, MarkerShape, Plot, PlotPoint, PlotPoints};
+use egui_plot::{Points, Text};
+use std::ops::RangeInclusive;
 
 /// Sidebar width, points.
 pub const SIDEBAR_WIDTH: f32 = 300.0;
@@ -184,6 +189,7 @@ fn draw_section(ui: &mut egui::Ui, demo: &mut Demo) {
 
 fn cost_section(ui: &mut egui::Ui, demo: &mut Demo) {
     ui.heading("Cost of accuracy");
+    front_section(ui, demo);
     let metrics = &demo.metrics;
     let step = metrics.median(|s| s.step_ms);
     ui.label(format!(
@@ -228,4 +234,238 @@ fn small_plot(ui: &mut egui::Ui, id: &str, line: Line<'_>) {
         .allow_zoom(false)
         .allow_scroll(false)
         .show(ui, |plot| plot.line(line));
+}
+
+/// The colour of "you are here": unlike any engine's.
+const MARKER_COLOR: egui::Color32 = egui::Color32::from_rgb(255, 210, 60);
+
+/// The scene's measured front with the demo's setting on it, or what to do when nothing is
+/// measured: the report's points if one has the scene, else a button to measure them.
+fn front_section(ui: &mut egui::Ui, demo: &mut Demo) {
+    let params = *demo.scene.world.solver();
+    let panel = &mut demo.accuracy;
+    panel.update(&demo.scene_path, &params);
+    if panel.points().is_empty() {
+        let without_answer = panel.scene().is_some_and(|s| !s.has_accuracy);
+        ui.label(if without_answer {
+            "Nothing measured for this scene yet. It has no exact answer, so its error is \
+             the deepest overlap."
+        } else {
+            "Nothing measured for this scene yet."
+        });
+    } else {
+        front_plot(ui, panel.points(), panel.marker());
+        match panel.marker() {
+            Some(marker) => {
+                ui.colored_label(MARKER_COLOR, marker.title());
+                ui.label(marker.numbers());
+            }
+            None => {
+                ui.label(format!(
+                    "{} was not measured on this scene.",
+                    label_of(params.effective_kind())
+                ));
+            }
+        }
+        let changed = panel.unmeasured_changes(&params);
+        if !changed.is_empty() {
+            ui.small(format!(
+                "Measured at the scene's {}, which you changed.",
+                changed.join(", ")
+            ));
+        }
+        let lost = panel
+            .points()
+            .iter()
+            .filter(|p| !p.error.is_finite())
+            .count();
+        let mut source = match panel.source() {
+            Some(Source::Report(path)) => format!("From {} (`carom bench`).", path.display()),
+            Some(Source::Sweep) => "Measured here, one run each, beside the app: times are \
+                                    rough."
+                .into(),
+            _ => String::new(),
+        };
+        if lost > 0 {
+            source.push_str(&format!(" {lost} settings went NaN (not drawn)."));
+        }
+        if !source.is_empty() {
+            ui.small(source.trim_start());
+        }
+    }
+    measure_controls(ui, panel);
+    if let Some(notice) = panel.notice() {
+        ui.colored_label(egui::Color32::from_rgb(255, 120, 100), notice);
+    }
+}
+
+/// The button that measures the scene's front in the background, or its progress bar while
+/// it runs.
+fn measure_controls(ui: &mut egui::Ui, panel: &mut AccuracyPanel) {
+    if let Some((progress, scene)) = panel.progress() {
+        ui.add(
+            egui::ProgressBar::new(progress.fraction())
+                .show_percentage()
+                .text(format!("{}/{} runs", progress.done, progress.total)),
+        );
+        ui.small(format!("measuring {}: {}", scene.display(), progress.what));
+        // The thread reports progress between frames; keep drawing it.
+        ui.ctx().request_repaint();
+        return;
+    }
+    let label = if panel.points().is_empty() {
+        "Measure this scene's front"
+    } else {
+        "Measure it again here"
+    };
+    ui.horizontal(|ui| {
+        if ui
+            .button(label)
+            .on_hover_text(
+                "Runs every solver setting once on this scene in the background, as \
+                 `carom bench` does; the app keeps running meanwhile",
+            )
+            .clicked()
+        {
+            panel.start_sweep();
+        }
+        ui.checkbox(&mut panel.with_peers, "with Box2D, Rapier");
+    });
+}
+
+/// Each engine's front as a line in its colour, its other settings faint, and the marker:
+/// error against ms/step on log-log axes (log10 values plotted, real values labelled).
+fn front_plot(ui: &mut egui::Ui, points: &[Point], marker: Option<&Marker>) {
+    let kind = points[0].error_kind;
+    // Errors of 0 (exact) sit a decade under the smallest error measured.
+    let floor = points
+        .iter()
+        .map(|p| p.error)
+        .filter(|e| e.is_finite() && *e > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let floor = if floor.is_finite() {
+        floor / 10.0
+    } else {
+        1e-9
+    };
+    let at = move |p: &Point| [p.ms_per_step.max(1e-6).log10(), p.error.max(floor).log10()];
+    let fronts = accuracy_panel::fronts(points);
+    // The settings by where they are drawn, for the hover label.
+    let names: Vec<([f64; 2], String)> = points
+        .iter()
+        .filter(|p| p.error.is_finite())
+        .map(|p| (at(p), crate::bench::report::setting_name(&p.setting)))
+        .collect();
+    let unit = kind.unit();
+    let xs = points
+        .iter()
+        .filter(|p| p.error.is_finite())
+        .map(|p| at(p)[0]);
+    let (x_min, x_max) = xs.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+        (lo.min(x), hi.max(x))
+    });
+    Plot::new("accuracy_front")
+        .height(200.0)
+        .allow_drag(false)
+        .allow_zoom(false)
+        .allow_scroll(false)
+        .allow_boxed_zoom(false)
+        .allow_double_click_reset(false)
+        .x_axis_label("ms per step")
+        .y_axis_label(format!("error ({unit})"))
+        .x_axis_formatter(decade_label)
+        .y_axis_formatter(decade_label)
+        .label_formatter(move |position| {
+            let (HoverPosition::NearDataPoint { position, .. }
+            | HoverPosition::Elsewhere { position }) = *position;
+            let name = names
+                .iter()
+                .find(|(xy, _)| *xy == [position.x, position.y])
+                .map(|(_, name)| format!("{name}\n"))
+                .unwrap_or_default();
+            Some(format!(
+                "{name}{} ms/step\nerror {} {unit}",
+                accuracy_panel::format_ms(10f64.powf(position.x)),
+                accuracy_panel::format_error(10f64.powf(position.y))
+            ))
+        })
+        .show(ui, |plot| {
+            for (engine, front, rest) in &fronts {
+                let color = engine_color(*engine);
+                let along = |ps: &[&Point]| ps.iter().map(|p| at(p)).collect::<Vec<[f64; 2]>>();
+                plot.points(
+                    Points::new("", along(rest))
+                        .color(color.gamma_multiply(0.4))
+                        .radius(2.0),
+                );
+                plot.line(
+                    Line::new(engine.name(), PlotPoints::from(along(front)))
+                        .color(color)
+                        .width(2.0),
+                );
+                plot.points(
+                    Points::new(engine.name(), along(front))
+                        .color(color)
+                        .radius(3.0)
+                        .filled(true),
+                );
+            }
+            if let Some(marker) = marker {
+                let [x, y] = at(&marker.point);
+                plot.points(
+                    Points::new("you are here", vec![[x, y]])
+                        .shape(MarkerShape::Diamond)
+                        .color(MARKER_COLOR)
+                        .radius(7.0)
+                        .filled(true),
+                );
+                // The label on the side with room for it.
+                let right_half = x > 0.5 * (x_min + x_max);
+                let (anchor, text) = match (right_half, marker.exact) {
+                    (false, true) => (egui::Align2::LEFT_BOTTOM, "   you are here"),
+                    (false, false) => (egui::Align2::LEFT_BOTTOM, "   nearest measured"),
+                    (true, true) => (egui::Align2::RIGHT_BOTTOM, "you are here   "),
+                    (true, false) => (egui::Align2::RIGHT_BOTTOM, "nearest measured   "),
+                };
+                plot.text(
+                    Text::new("", PlotPoint::new(x, y), text)
+                        .anchor(anchor)
+                        .color(MARKER_COLOR),
+                );
+            }
+        });
+    // The legend under the plot, not on it: in 300 points of width it would hide points.
+    ui.horizontal_wrapped(|ui| {
+        for (engine, _, _) in &fronts {
+            ui.colored_label(engine_color(*engine), format!("— {}", engine.name()));
+        }
+        ui.weak("faint: the other settings");
+    });
+}
+
+/// An engine's colour in the chart, for egui.
+fn engine_color(engine: Engine) -> egui::Color32 {
+    let color = chart::color_of(engine);
+    egui::Color32::from_rgb(color.0, color.1, color.2)
+}
+
+/// An axis label for a log10 value: the real value at whole decades (at every mark when the
+/// axis spans less than a decade), nothing between them.
+fn decade_label(mark: GridMark, range: &RangeInclusive<f64>) -> String {
+    let decade = (mark.value - mark.value.round()).abs() < 1e-6;
+    if !decade && range.end() - range.start() >= 1.0 {
+        return String::new();
+    }
+    let value = 10f64.powf(mark.value);
+    if decade {
+        if (1e-3..=1e4).contains(&value) {
+            // 0.001 … 10000 as plain numbers.
+            let text = format!("{value:.3}");
+            text.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            format!("{value:.0e}")
+        }
+    } else {
+        format!("{value:.2e}")
+    }
 }

@@ -353,6 +353,162 @@ fn format_error(error: f64) -> String {
     }
 }
 
+/// Reads back a CSV that [`csv`] wrote: the points of a sweep, in file order.
+///
+/// Columns are found by their header names, so both this header ([`CSV_HEADER`]) and the
+/// one before peers ran (no `engine`, `contact_hertz` nor `stabilization`: every point is
+/// carom's) are read. Empty `joint_hertz`, `contact_hertz` and `stabilization` fields are
+/// `None`, an empty `max_penetration_m` is NaN (a peer's, not measured), `inf` is a world
+/// gone NaN. The CSV does not say whether a scene has joints, so [`Point::joints`] is
+/// inferred as a sweep leaves it: a scene has joints when a point names a joint stiffness,
+/// or when carom ran on it and only the solvers that solve joints did ([`super::solves_joints`]).
+/// A sweep of soft step alone over a scene without joints therefore reads as one with joints,
+/// which only changes what the report says, not any number.
+///
+/// A line that does not fit is an error naming its line (the header is line 1), the column
+/// and what is wrong with it.
+pub fn parse_csv(text: &str) -> Result<Vec<Point>, String> {
+    const REQUIRED: [&str; 7] = [
+        "scene",
+        "error_kind",
+        "solver",
+        "iterations",
+        "substeps",
+        "ms_per_step",
+        "error",
+    ];
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(|(i, line)| (i + 1, line.trim_end()))
+        .filter(|(_, line)| !line.is_empty());
+    let (_, header) = lines.next().ok_or("empty CSV: no header")?;
+    let columns: Vec<&str> = header.split(',').map(str::trim).collect();
+    let known: Vec<&str> = CSV_HEADER.split(',').collect();
+    if let Some(unknown) = columns.iter().find(|c| !known.contains(c)) {
+        return Err(format!(
+            "line 1: unknown column `{unknown}` (expected the columns of `{CSV_HEADER}`)"
+        ));
+    }
+    if let Some(missing) = REQUIRED.iter().find(|r| !columns.contains(r)) {
+        return Err(format!("line 1: no `{missing}` column in `{header}`"));
+    }
+    let index = |name: &str| columns.iter().position(|c| *c == name);
+    let mut points = Vec::new();
+    for (number, line) in lines {
+        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+        if fields.len() != columns.len() {
+            return Err(format!(
+                "line {number}: {} fields, the header has {}: `{line}`",
+                fields.len(),
+                columns.len()
+            ));
+        }
+        // The field of a column, empty where the file has no such column.
+        let field = |name: &str| index(name).map_or("", |i| fields[i]);
+        let bad = |name: &str, what: &str| {
+            format!("line {number}: column `{name}`: `{}` {what}", field(name))
+        };
+        let number_of = |name: &str| -> Result<f64, String> {
+            field(name)
+                .parse::<f64>()
+                .map_err(|_| bad(name, "is not a number"))
+        };
+        let count_of = |name: &str| -> Result<u32, String> {
+            match field(name).parse::<u32>() {
+                Ok(n) if n > 0 => Ok(n),
+                _ => Err(bad(name, "is not a count of 1 or more")),
+            }
+        };
+        let engine = match field("engine") {
+            "" if index("engine").is_none() => Engine::Carom,
+            name => Engine::from_name(name)
+                .ok_or_else(|| bad("engine", "is no engine (carom, Box2D or Rapier)"))?,
+        };
+        let error_kind = CSV_ERROR_KINDS
+            .into_iter()
+            .find(|kind| format!("{kind:?}") == field("error_kind"))
+            .ok_or_else(|| bad("error_kind", "is no error kind"))?;
+        if index("error_unit").is_some() && field("error_unit") != error_kind.unit() {
+            return Err(bad(
+                "error_unit",
+                &format!("is not the unit of {error_kind:?} ({})", error_kind.unit()),
+            ));
+        }
+        let solver = carom::SolverKind::ALL
+            .into_iter()
+            .find(|kind| kind.name() == field("solver"))
+            .ok_or_else(|| bad("solver", "is no solver"))?;
+        let ms_per_step = number_of("ms_per_step")?;
+        let error = number_of("error")?;
+        if ms_per_step.is_nan() || ms_per_step < 0.0 {
+            return Err(bad("ms_per_step", "is not a time"));
+        }
+        if error.is_nan() || error < 0.0 {
+            return Err(bad("error", "is not an error (0 or more, or inf)"));
+        }
+        let max_penetration = match field("max_penetration_m") {
+            "" => f64::NAN,
+            _ => number_of("max_penetration_m")?,
+        };
+        let hertz_of = |name: &str| -> Result<Option<f32>, String> {
+            match field(name) {
+                "" => Ok(None),
+                text => match text.parse::<f32>() {
+                    Ok(hertz) if hertz.is_finite() && hertz > 0.0 => Ok(Some(hertz)),
+                    _ => Err(bad(name, "is not a stiffness in Hz")),
+                },
+            }
+        };
+        let stabilization = match field("stabilization") {
+            "" => None,
+            _ => Some(count_of("stabilization")?),
+        };
+        points.push(Point {
+            scene: field("scene").to_string(),
+            error_kind,
+            setting: Setting {
+                engine,
+                solver,
+                iterations: count_of("iterations")?,
+                substeps: count_of("substeps")?,
+                joint_hertz: hertz_of("joint_hertz")?,
+                contact_hertz: hertz_of("contact_hertz")?,
+                stabilization,
+            },
+            ms_per_step,
+            error,
+            max_penetration,
+            joints: false,
+        });
+    }
+    // Which scenes have joints, as the sweep's choice of solvers shows it.
+    let joints: Vec<bool> = points
+        .iter()
+        .map(|p| {
+            let of_scene = || points.iter().filter(|q| q.scene == p.scene);
+            let carom = || of_scene().filter(|q| q.setting.engine == Engine::Carom);
+            of_scene().any(|q| q.setting.joint_hertz.is_some())
+                || (carom().next().is_some()
+                    && carom().all(|q| super::solves_joints(q.setting.solver)))
+        })
+        .collect();
+    for (p, joints) in points.iter_mut().zip(joints) {
+        p.joints = joints;
+    }
+    Ok(points)
+}
+
+/// Every [`super::ErrorKind`], as the CSV names them (their `Debug` names).
+const CSV_ERROR_KINDS: [super::ErrorKind; 6] = [
+    super::ErrorKind::Rest,
+    super::ErrorKind::Conservation,
+    super::ErrorKind::SlideAngle,
+    super::ErrorKind::Period,
+    super::ErrorKind::Stretch,
+    super::ErrorKind::Overlap,
+];
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -405,5 +561,203 @@ mod tests {
         assert_eq!(civil_date(0), "1970-01-01");
         assert_eq!(civil_date(11_016), "2000-02-29");
         assert_eq!(civil_date(20_780), "2026-11-23");
+    }
+}
+
+#[cfg(test)]
+mod parse_tests {
+    use super::*;
+    use crate::bench::ErrorKind;
+    use carom::SolverKind;
+
+    fn point(scene: &str, kind: ErrorKind, setting: Setting, ms: f64, error: f64) -> Point {
+        Point {
+            scene: scene.into(),
+            error_kind: kind,
+            setting,
+            ms_per_step: ms,
+            error,
+            max_penetration: if setting.engine == Engine::Carom {
+                0.0125
+            } else {
+                f64::NAN
+            },
+            joints: scene == "chain",
+        }
+    }
+
+    /// A sweep's worth of points: carom's solvers with and without substeps, a stiffer
+    /// joint, a world gone NaN, and both peers.
+    fn points() -> Vec<Point> {
+        let carom = Setting::carom;
+        vec![
+            point(
+                "stack",
+                ErrorKind::Rest,
+                carom(SolverKind::PushOut, 8, 1),
+                0.0051,
+                10.32,
+            ),
+            point(
+                "stack",
+                ErrorKind::Rest,
+                carom(SolverKind::SoftStep, 2, 4),
+                0.0212,
+                f64::INFINITY,
+            ),
+            point(
+                "stack",
+                ErrorKind::Rest,
+                Setting {
+                    engine: Engine::Box2d,
+                    contact_hertz: Some(30.0),
+                    ..carom(SolverKind::SoftStep, 1, 4)
+                },
+                0.0187,
+                1.25e-3,
+            ),
+            point(
+                "stack",
+                ErrorKind::Rest,
+                Setting {
+                    engine: Engine::Rapier,
+                    stabilization: Some(2),
+                    ..carom(SolverKind::SoftStep, 1, 8)
+                },
+                0.034,
+                0.0,
+            ),
+            point(
+                "chain",
+                ErrorKind::Stretch,
+                carom(SolverKind::SequentialImpulse, 16, 1),
+                0.012,
+                6.5,
+            ),
+            point(
+                "chain",
+                ErrorKind::Stretch,
+                Setting {
+                    joint_hertz: Some(120.0),
+                    ..carom(SolverKind::SoftStep, 4, 8)
+                },
+                0.09,
+                1.75,
+            ),
+        ]
+    }
+
+    #[test]
+    fn what_csv_writes_parse_csv_reads_back() {
+        let points = points();
+        let text = csv(&points);
+        let parsed = parse_csv(&text).unwrap();
+        assert_eq!(parsed.len(), points.len());
+        for (read, written) in parsed.iter().zip(&points) {
+            assert_eq!(read.scene, written.scene);
+            assert_eq!(read.error_kind, written.error_kind);
+            assert_eq!(read.setting, written.setting);
+            assert_eq!(read.joints, written.joints, "{}", read.scene);
+            // Written to a microsecond and to three significant digits.
+            assert!((read.ms_per_step - written.ms_per_step).abs() < 1e-6);
+            let relative = (read.error - written.error).abs() / written.error.max(1e-300);
+            assert!(
+                read.error == written.error || relative < 1e-3,
+                "{} for {}",
+                read.error,
+                written.error
+            );
+            assert_eq!(
+                read.max_penetration.is_nan(),
+                written.max_penetration.is_nan()
+            );
+        }
+        assert_eq!(parsed[1].error, f64::INFINITY);
+        // And once read, writing again gives the same text.
+        assert_eq!(csv(&parsed), text);
+    }
+
+    #[test]
+    fn the_header_before_peers_ran_reads_as_carom() {
+        let old = "scene,error_kind,solver,iterations,substeps,ms_per_step,error,error_unit,\
+                   max_penetration_m,joint_hertz\n\
+                   vertical_stack,Rest,push-out,1,1,0.005158,1.032e1,m,0.959006,\n\
+                   chain,Stretch,soft step,1,8,0.061234,9.123e-1,%,0.000000,120\n\
+                   \n";
+        let points = parse_csv(old).unwrap();
+        assert_eq!(points.len(), 2);
+        assert!(points.iter().all(|p| p.setting.engine == Engine::Carom));
+        assert_eq!(points[0].setting, Setting::carom(SolverKind::PushOut, 1, 1));
+        assert_eq!(points[0].error, 10.32);
+        assert_eq!(points[0].max_penetration, 0.959006);
+        assert!(!points[0].joints, "push-out ran on the stack: no joints");
+        assert_eq!(points[1].setting.joint_hertz, Some(120.0));
+        assert_eq!(points[1].setting.substeps, 8);
+        assert!(points[1].joints);
+    }
+
+    #[test]
+    fn the_checked_in_sweep_parses() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../docs/accuracy/accuracy.csv"
+        );
+        let text = std::fs::read_to_string(path).unwrap();
+        let points = parse_csv(&text).unwrap();
+        assert_eq!(points.len(), text.lines().count() - 1);
+        assert!(points.iter().any(|p| p.scene == "pendulum" && p.joints));
+        assert!(points.iter().any(|p| p.scene == "pyramid" && !p.joints));
+    }
+
+    #[test]
+    fn a_malformed_line_is_named_with_what_is_wrong() {
+        let text = csv(&points());
+        let mut lines: Vec<String> = text.lines().map(String::from).collect();
+        let error_of = |lines: &[String]| parse_csv(&lines.join("\n")).unwrap_err();
+
+        let mut short = lines.clone();
+        short[3] = short[3].rsplit_once(',').unwrap().0.to_string();
+        let message = error_of(&short);
+        assert!(
+            message.starts_with("line 4: 12 fields, the header has 13"),
+            "{message}"
+        );
+
+        let mut solver = lines.clone();
+        solver[1] = solver[1].replace("push-out", "push out");
+        let message = error_of(&solver);
+        assert_eq!(message, "line 2: column `solver`: `push out` is no solver");
+
+        let mut iterations = lines.clone();
+        iterations[1] = iterations[1].replace(",push-out,8,", ",push-out,eight,");
+        let message = error_of(&iterations);
+        assert!(
+            message.starts_with("line 2: column `iterations`: `eight`"),
+            "{message}"
+        );
+
+        let mut engine = lines.clone();
+        engine[3] = engine[3].replacen("Box2D", "Bullet", 1);
+        let message = error_of(&engine);
+        assert!(
+            message.starts_with("line 4: column `engine`: `Bullet`"),
+            "{message}"
+        );
+
+        let mut unit = lines.clone();
+        unit[1] = unit[1].replace(",m,", ",%,");
+        let message = error_of(&unit);
+        assert!(
+            message.starts_with("line 2: column `error_unit`"),
+            "{message}"
+        );
+
+        lines[0] = lines[0].replace("substeps", "sub_steps");
+        let message = error_of(&lines);
+        assert!(
+            message.starts_with("line 1: unknown column `sub_steps`"),
+            "{message}"
+        );
+        assert!(parse_csv("").unwrap_err().contains("no header"));
     }
 }
