@@ -171,7 +171,7 @@ fn the_marker_moves_when_the_iteration_count_changes() {
     assert!(!near.exact);
     assert_eq!(near.point.setting.iterations, 4);
     assert!(
-        third.has("nearest measured: soft step, 4 substeps, 4 iterations (you: soft step, 4 substeps, 3 iterations)"),
+        third.has("nearest measured: soft step, 4 substeps, 4 iterations (you: soft step, 4 substeps, 3 iterations, 30 Hz contacts)"),
         "{}",
         third.all()
     );
@@ -299,8 +299,9 @@ fn the_button_measures_a_scene_without_an_answer_in_the_background() {
     assert_eq!(demo.accuracy.source(), Some(&Source::Sweep));
     assert_eq!(demo.accuracy.notice(), None);
     let points = demo.accuracy.points();
-    // Every solver; soft step at 4 substep counts; 7 iteration counts each.
-    assert_eq!(points.len(), (3 + 4) * 7, "{points:?}");
+    // Every solver; soft step at 5 substep counts and 2 contact stiffnesses; 7 iteration
+    // counts each.
+    assert_eq!(points.len(), (3 + 5 * 2) * 7, "{}", points.len());
     assert!(points.iter().all(|p| p.error_kind.unit() == "m"));
     // The scene's own setting, soft step at 4 substeps and 1 iteration, is marked.
     let here = marker_of(&demo);
