@@ -226,8 +226,9 @@ pub fn sweep(
             let mut first: Option<Measurement> = None;
             for _ in 0..runs {
                 progress(done, total, &what);
-                // On one thread, as Box2D (one worker) and Rapier run: a small scene's step
-                // handed to a pool of idle threads pays for waking them.
+                // On one thread, as Box2D (one worker) and Rapier run, so all are timed alike
+                // (on the process's shared pool carom's small scenes timed up to 1.7 times
+                // slower beside the peers' runs).
                 let measurement =
                     one_thread.install(|| measure(scene, file, setting, options.seconds))?;
                 medians.push(median(&measurement.step_ms));
