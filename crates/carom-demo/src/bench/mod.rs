@@ -227,8 +227,8 @@ pub fn sweep(
             for _ in 0..runs {
                 progress(done, total, &what);
                 // On one thread, as Box2D (one worker) and Rapier run, so all are timed alike
-                // (on the process's shared pool carom's small scenes timed up to 1.7 times
-                // slower beside the peers' runs).
+                // (on the process's shared pool carom's small scenes timed slower beside the
+                // peers' runs).
                 let measurement =
                     one_thread.install(|| measure(scene, file, setting, options.seconds))?;
                 medians.push(median(&measurement.step_ms));
