@@ -317,8 +317,14 @@ impl Demo {
         }
     }
 
-    /// The wheel turned by `lines` (positive zooms in) with the cursor at `screen`.
+    /// The wheel turned by `lines` (positive zooms in) with the cursor at `screen`. Outside
+    /// the view (over the sidebar, left of it) the wheel is the sidebar's: it scrolls that,
+    /// and the scene stays as it is.
     pub fn wheel(&mut self, lines: f32, screen: Vec2) {
+        let [width, height] = self.viewport.map(|v| v as f32);
+        if !(0.0..=width).contains(&screen.x) || !(0.0..=height).contains(&screen.y) {
+            return;
+        }
         let factor = 1.1f32.powf(lines.clamp(-10.0, 10.0));
         self.camera.zoom_about(screen, factor, self.viewport);
     }

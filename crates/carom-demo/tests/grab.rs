@@ -123,8 +123,18 @@ fn pressing_on_empty_space_grabs_nothing_and_right_drag_pans() {
     // The wheel zooms about the cursor: the point under it stays put.
     let cursor = vec2(200.0, 150.0);
     let under = demo.camera.screen_to_world(cursor, VIEWPORT);
+    let zoom = demo.camera.zoom;
     demo.wheel(3.0, cursor);
     assert!((demo.camera.screen_to_world(cursor, VIEWPORT) - under).norm() < 1e-3);
+    assert!(
+        demo.camera.zoom > 1.3 * zoom,
+        "three notches zoom in by 1.1³"
+    );
+
+    // Over the sidebar (left of the view) the wheel scrolls the sidebar only.
+    let camera = demo.camera;
+    demo.wheel(3.0, vec2(-120.0, 150.0));
+    assert_eq!(demo.camera, camera);
 }
 
 #[test]
