@@ -204,11 +204,14 @@ fn cost_section(ui: &mut egui::Ui, demo: &mut Demo) {
     ui.small(split.join(" · "));
     if let Some(latest) = metrics.latest() {
         ui.label(format!(
-            "penetration {:.2} mm · rest drift {:.2} mm/s · energy change {:+.2} J",
+            "penetration {:.2} mm · rest drift {:.2} mm/s",
             latest.max_penetration * 1e3,
             latest.rest_drift * 1e3,
-            latest.energy_change
         ));
+        ui.label(energy_label(latest.energy_change)).on_hover_text(
+            "Kinetic plus gravitational energy against the last reset. Landings, \
+                 friction and drag take energy away; a gain means the solver added some.",
+        );
     }
     // Two small plots, not one: milliseconds and millimetres share no scale.
     let samples = metrics.samples();
@@ -223,6 +226,16 @@ fn cost_section(ui: &mut egui::Ui, demo: &mut Demo) {
         "penetration_mm",
         Line::new("penetration mm", penetration_line),
     );
+}
+
+/// The mechanical energy the scene has lost (or, a warning sign, gained) since the last
+/// reset, said as such: a drop of 160 J once a box has landed is physics, not an error.
+pub fn energy_label(change: f32) -> String {
+    if change <= 0.0 {
+        format!("energy lost since reset {:.2} J", change.abs())
+    } else {
+        format!("energy gained since reset {change:.2} J")
+    }
 }
 
 /// A fixed plot of one line over the last seconds, with its legend.
@@ -467,5 +480,17 @@ fn decade_label(mark: GridMark, range: &RangeInclusive<f64>) -> String {
         }
     } else {
         format!("{value:.2e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn energy_is_said_as_lost_or_gained_since_the_reset() {
+        assert_eq!(energy_label(-160.487), "energy lost since reset 160.49 J");
+        assert_eq!(energy_label(0.0), "energy lost since reset 0.00 J");
+        assert_eq!(energy_label(2.5), "energy gained since reset 2.50 J");
     }
 }
