@@ -1,7 +1,7 @@
 //! Contact events: balls dropped onto the ground report when they begin touching it, and a
 //! ball thrown back up reports when it stops.
 //!
-//! `cargo run --example events`
+//! `cargo run -p carom --example events`
 
 use carom::{BodyDef, CaromError, ContactEvent, Shape, World, vec2};
 

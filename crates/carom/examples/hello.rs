@@ -1,6 +1,6 @@
 //! A box falls onto the ground and comes to rest: the smallest carom program.
 //!
-//! `cargo run --example hello`
+//! `cargo run -p carom --example hello`
 
 use carom::{BodyDef, CaromError, Shape, World, vec2};
 

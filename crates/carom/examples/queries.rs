@@ -1,7 +1,7 @@
 //! Queries: cast a ray across a scattered world, pick the body under a point, and find how
 //! far a box can slide before it touches anything.
 //!
-//! `cargo run --example queries`
+//! `cargo run -p carom --example queries`
 
 use carom::{BodyDef, CaromError, CollisionFilter, Ray, Shape, World, WorldShape, vec2};
 
