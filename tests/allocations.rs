@@ -56,11 +56,7 @@ fn hanging_grid(effects: Effects) -> World {
 
 /// Allocations over `steps` steps of `world` after `warm_up` steps, on `threads` threads.
 fn allocations(mut world: World, threads: usize, warm_up: usize, steps: usize) -> usize {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| {
+    carom_tests::on_threads(threads, || {
         for _ in 0..warm_up {
             world.step(1.0 / 60.0).unwrap();
         }

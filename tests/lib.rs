@@ -3,7 +3,7 @@
 pub mod hard_case_worlds;
 pub mod joint_measures;
 
-use carom::{BodyHandle, World, WorldShape};
+use carom::{BodyDef, BodyHandle, ColliderDef, Shape, World, WorldShape, vec2};
 
 /// A small deterministic random number generator (xorshift64*), so every suite sees the same
 /// "random" worlds on every machine without pulling in a dependency.
@@ -121,6 +121,48 @@ pub fn hanging_grid(world: &mut World, origin: carom::Vec2, n: usize) {
             }
         }
     }
+}
+
+/// Runs `work` on a rayon pool of `threads` threads, so what it steps is shared among them.
+///
+/// # Panics
+/// A pool that cannot be built.
+pub fn on_threads<T: Send>(threads: usize, work: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool")
+        .install(work)
+}
+
+/// A world of one dynamic body of three colliders: Box2D's compound triangles (its compounds
+/// benchmark), each placed at its centroid, and a box turned by 0.4 rad, denser and
+/// slipperier than the body.
+///
+/// # Panics
+/// Never: the shapes are valid.
+pub fn compound_body() -> World {
+    let triangle = |points: [(f32, f32); 3]| {
+        let points = points.map(|(x, y)| vec2(x, y));
+        let centroid = (points[0] + points[1] + points[2]) / 3.0;
+        ColliderDef::new(Shape::polygon(&points).expect("a triangle")).offset(centroid)
+    };
+    let mut def = BodyDef::dynamic(Shape::circle(1.0))
+        .position(vec2(3.0, 4.0))
+        .angle(0.2)
+        .friction(0.5);
+    def.colliders = vec![
+        triangle([(-1.0, 0.0), (0.5, 1.0), (0.0, 2.0)]),
+        triangle([(1.0, 0.0), (-0.5, 1.0), (0.0, 2.0)]),
+        ColliderDef::new(Shape::rect(0.5, 0.1))
+            .offset(vec2(0.0, -0.5))
+            .angle(0.4)
+            .density(3.0)
+            .friction(0.2),
+    ];
+    let mut world = World::new();
+    world.add_body(def).expect("a valid body");
+    world
 }
 
 #[cfg(test)]

@@ -57,11 +57,7 @@ fn busy_world(solver: SolverKind, pre_solve: bool) -> World {
 }
 
 fn final_hash(solver: SolverKind, threads: usize) -> u64 {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| {
+    carom_tests::on_threads(threads, || {
         let mut world = busy_world(solver, false);
         for _ in 0..60 {
             world.step(1.0 / 60.0).unwrap();
@@ -73,11 +69,7 @@ fn final_hash(solver: SolverKind, threads: usize) -> u64 {
 /// With sleeping on, 60 small pyramids (2160 boxes) fall asleep island by island (out of the
 /// awake set, their contacts out of the colours); then a ball dropped on one wakes it.
 fn final_hash_with_sleep(threads: usize) -> (u64, usize, usize) {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| {
+    carom_tests::on_threads(threads, || {
         let mut world = World::new();
         world
             .add_body(BodyDef::static_body(Shape::rect(400.0, 1.0)).position(vec2(0.0, -1.0)))
@@ -134,11 +126,7 @@ fn every_thread_count_gives_the_same_world() {
 #[test]
 fn a_pre_solve_hook_gives_the_same_world_on_every_thread_count() {
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        carom_tests::on_threads(threads, || {
             let mut world = busy_world(SolverKind::SoftStep, true);
             world.set_pre_solve(|contact| {
                 let pair = contact.pair;
@@ -180,11 +168,7 @@ fn sleeping_and_waking_give_the_same_world_on_every_thread_count() {
 #[test]
 fn joints_give_the_same_world_on_every_thread_count() {
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        carom_tests::on_threads(threads, || {
             let mut world = World::new();
             let n = 40;
             carom_tests::hanging_grid(&mut world, vec2(0.0, 0.0), n);

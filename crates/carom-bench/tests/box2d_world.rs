@@ -1,6 +1,6 @@
 //! The Box2D copy of a carom world has the same bodies, masses and friction, and settles alike.
 
-use carom::{BodyDef, BodyKind, ColliderDef, Effect, Shape, World, vec2};
+use carom::{BodyDef, BodyKind, Effect, Shape, World, vec2};
 use carom_bench::Box2dWorld;
 
 const DT: f32 = 1.0 / 60.0;
@@ -99,52 +99,15 @@ fn friction_off_gives_frictionless_shapes_and_triangles_keep_their_vertices() {
     let mut box2d = Box2dWorld::from_carom(&world).unwrap();
     assert_eq!(box2d.friction(0).unwrap(), 0.0);
     let body = world.bodies().next().unwrap();
-    let (lo, hi) = box2d.aabb(0).unwrap();
-    let aabb = body.aabb();
-    for (a, b) in [lo, hi]
-        .iter()
-        .flatten()
-        .zip([aabb.min.x, aabb.min.y, aabb.max.x, aabb.max.y])
-    {
-        assert!(
-            (a - b).abs() < 1e-5,
-            "Box2D box {lo:?} {hi:?}, carom {aabb:?}"
-        );
-    }
+    assert_same_bounds(&mut box2d, 0, body);
     assert!((box2d.mass(0) - body.mass()).abs() < 1e-4 * body.mass());
-}
-
-/// A body of three colliders: Box2D's compound triangles (the compounds benchmark), each
-/// placed at its centroid, and a box turned by 0.4 rad, denser and slipperier than the body.
-fn compound_body() -> World {
-    let triangle = |points: [(f32, f32); 3]| {
-        let points = points.map(|(x, y)| vec2(x, y));
-        let centroid = (points[0] + points[1] + points[2]) / 3.0;
-        ColliderDef::new(Shape::polygon(&points).unwrap()).offset(centroid)
-    };
-    let mut def = BodyDef::dynamic(Shape::circle(1.0))
-        .position(vec2(3.0, 4.0))
-        .angle(0.2)
-        .friction(0.5);
-    def.colliders = vec![
-        triangle([(-1.0, 0.0), (0.5, 1.0), (0.0, 2.0)]),
-        triangle([(1.0, 0.0), (-0.5, 1.0), (0.0, 2.0)]),
-        ColliderDef::new(Shape::rect(0.5, 0.1))
-            .offset(vec2(0.0, -0.5))
-            .angle(0.4)
-            .density(3.0)
-            .friction(0.2),
-    ];
-    let mut world = World::new();
-    world.add_body(def).unwrap();
-    world
 }
 
 /// Each collider of a compound body becomes a Box2D shape in its place, with its own density
 /// and friction: the same mass, centre of mass, inertia and bounding box.
 #[test]
 fn a_compound_body_keeps_each_collider_s_place_density_and_friction() {
-    let world = compound_body();
+    let world = carom_tests::compound_body();
     let body = world.bodies().next().unwrap();
     let mut box2d = Box2dWorld::from_carom(&world).unwrap();
     assert!((box2d.mass(0) - body.mass()).abs() < 1e-5 * body.mass());
@@ -172,18 +135,7 @@ fn a_compound_body_keeps_each_collider_s_place_density_and_friction() {
         assert!((shape.friction().unwrap() - carom.friction()).abs() < 1e-6);
         assert!((shape.density().unwrap() - carom.density()).abs() < 1e-6);
     }
-    let (lo, hi) = box2d.aabb(0).unwrap();
-    let aabb = body.aabb();
-    for (a, b) in [lo, hi]
-        .iter()
-        .flatten()
-        .zip([aabb.min.x, aabb.min.y, aabb.max.x, aabb.max.y])
-    {
-        assert!(
-            (a - b).abs() < 1e-5,
-            "Box2D box {lo:?} {hi:?}, carom {aabb:?}"
-        );
-    }
+    assert_same_bounds(&mut box2d, 0, body);
 }
 
 /// A timed Box2D run steps the world (the box falls 2 m onto the ground), times all steps but
@@ -270,4 +222,20 @@ fn an_explosion_pushes_bodies_alike_in_both_engines() {
         moving += usize::from(linear.norm() > 0.1);
     }
     assert_eq!(moving, 4, "every body was pushed");
+}
+
+/// Box2D's tight box of its `i`-th body is carom's `body`'s, within 10 µm.
+fn assert_same_bounds(box2d: &mut Box2dWorld, i: usize, body: &carom::Body) {
+    let (lo, hi) = box2d.aabb(i).unwrap();
+    let aabb = body.aabb();
+    for (a, b) in [lo, hi]
+        .iter()
+        .flatten()
+        .zip([aabb.min.x, aabb.min.y, aabb.max.x, aabb.max.y])
+    {
+        assert!(
+            (a - b).abs() < 1e-5,
+            "Box2D box {lo:?} {hi:?}, carom {aabb:?}"
+        );
+    }
 }

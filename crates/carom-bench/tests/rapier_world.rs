@@ -1,6 +1,6 @@
 //! The Rapier copy of a carom world has the same bodies, masses and shapes, and settles alike.
 
-use carom::{BodyDef, BodyKind, ColliderDef, Effect, Shape, World, vec2};
+use carom::{BodyDef, BodyKind, Effect, Shape, World, vec2};
 use carom_bench::RapierWorld;
 
 const DT: f32 = 1.0 / 60.0;
@@ -156,26 +156,7 @@ fn rotated_box_and_triangle_become_convex_polygons() {
 /// own density and friction: the same mass, centre of mass and inertia.
 #[test]
 fn a_compound_body_keeps_each_collider_s_place_density_and_friction() {
-    let triangle = |points: [(f32, f32); 3]| {
-        let points = points.map(|(x, y)| vec2(x, y));
-        let centroid = (points[0] + points[1] + points[2]) / 3.0;
-        ColliderDef::new(Shape::polygon(&points).unwrap()).offset(centroid)
-    };
-    let mut def = BodyDef::dynamic(Shape::circle(1.0))
-        .position(vec2(3.0, 4.0))
-        .angle(0.2)
-        .friction(0.5);
-    def.colliders = vec![
-        triangle([(-1.0, 0.0), (0.5, 1.0), (0.0, 2.0)]),
-        triangle([(1.0, 0.0), (-0.5, 1.0), (0.0, 2.0)]),
-        ColliderDef::new(Shape::rect(0.5, 0.1))
-            .offset(vec2(0.0, -0.5))
-            .angle(0.4)
-            .density(3.0)
-            .friction(0.2),
-    ];
-    let mut world = World::new();
-    world.add_body(def).unwrap();
+    let world = carom_tests::compound_body();
     let rapier = RapierWorld::from_carom(&world, DT).unwrap();
     let body = world.bodies().next().unwrap();
     let copy = &rapier.bodies()[rapier.handle(0).unwrap()];
