@@ -122,6 +122,19 @@ pub enum CaromError {
         /// The collider handle's generation.
         generation: u32,
     },
+    /// A polygon written around its centroid (as a saved world writes it) must list its
+    /// vertices counter-clockwise with none collinear, or it would not be kept as written.
+    #[error(
+        "a polygon given around its centroid must be counter-clockwise with no collinear vertex"
+    )]
+    SavedPolygon,
+    /// A saved world does not hold together: it was written by another version of carom, or
+    /// changed by hand.
+    #[error("the saved world does not hold together: {reason}")]
+    BadSave {
+        /// What was found wrong first.
+        reason: String,
+    },
     /// A body needs a collider to have a shape and a mass.
     #[error("a body needs at least one collider (a shape)")]
     NoCollider,

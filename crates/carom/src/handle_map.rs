@@ -24,6 +24,7 @@ macro_rules! generational_handle {
     ($(#[$doc:meta])* $name:ident, $what:literal) => {
         $(#[$doc])*
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
         pub struct $name {
             index: u32,
             generation: u32,
@@ -66,6 +67,7 @@ macro_rules! generational_handle {
 pub(crate) use generational_handle;
 
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Slot {
     generation: u32,
     /// Index into `items`, or `None` while the slot is free.
@@ -74,6 +76,7 @@ struct Slot {
 
 /// Items of type `T` behind handles of type `H`.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct HandleMap<H, T> {
     items: Vec<T>,
     /// The handle of each item, in the same order.
@@ -243,6 +246,56 @@ impl<'a, T> Iterator for ByHandle<'a, T> {
 }
 
 impl<T> ExactSizeIterator for ByHandle<'_, T> {}
+
+#[cfg(feature = "serde")]
+impl<H: Handle, T> HandleMap<H, T> {
+    /// Checks a map read from a saved world: every handle's slot points back at it, and every
+    /// free slot is free, once.
+    pub fn check_saved(&self) -> Result<(), String> {
+        let what = H::WHAT;
+        if self.handles.len() != self.items.len() {
+            return Err(format!(
+                "{what}: {} handles for {} items",
+                self.handles.len(),
+                self.items.len()
+            ));
+        }
+        for (dense, handle) in self.handles.iter().enumerate() {
+            if self.dense_index(*handle) != Some(dense) {
+                return Err(format!(
+                    "{what}: the slot of item {dense} does not point at it"
+                ));
+            }
+        }
+        let occupied = self
+            .slots
+            .iter()
+            .filter(|slot| slot.dense.is_some())
+            .count();
+        if occupied != self.items.len() {
+            return Err(format!(
+                "{what}: {occupied} slots in use for {} items",
+                self.items.len()
+            ));
+        }
+        let mut listed = vec![false; self.slots.len()];
+        for &free in &self.free_slots {
+            let free_slot = self
+                .slots
+                .get(free as usize)
+                .is_some_and(|s| s.dense.is_none());
+            let first = listed
+                .get_mut(free as usize)
+                .is_some_and(|listed| !std::mem::replace(listed, true));
+            if !(free_slot && first) {
+                return Err(format!(
+                    "{what}: free slot {free} is not free, or listed twice"
+                ));
+            }
+        }
+        Ok(())
+    }
+}
 
 #[cfg(test)]
 mod tests {

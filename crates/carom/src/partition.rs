@@ -22,6 +22,19 @@ impl<const CUTS: usize> Default for Partition<CUTS> {
 }
 
 impl<const CUTS: usize> Partition<CUTS> {
+    /// Where each part but the last ends.
+    #[cfg(feature = "serde")]
+    pub fn ends(&self) -> &[usize] {
+        &self.ends
+    }
+
+    /// The partition whose parts end at `ends`: `CUTS` of them, in order.
+    #[cfg(feature = "serde")]
+    pub fn from_ends(ends: &[usize]) -> Option<Self> {
+        let ends: [usize; CUTS] = ends.try_into().ok()?;
+        ends.is_sorted().then_some(Partition { ends })
+    }
+
     /// The part of the item at `index`.
     #[inline]
     pub fn part_of(&self, index: usize) -> usize {

@@ -4,6 +4,7 @@
 use crate::debug_draw::DrawFlags;
 use crate::geometry::shape::{ChainSegment, Polygon, Shape};
 use crate::math::{Real, Vec2};
+use crate::partition::Partition;
 use crate::world::effects::{Effect, Effects};
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use serde::ser::{SerializeSeq, Serializer};
@@ -121,6 +122,10 @@ enum ShapeData {
         points: Vec<Vec2>,
         #[serde(default)]
         radius: Real,
+        /// Given, `points` are the vertices around the centroid, counter-clockwise, and this
+        /// is where the centroid was: they are kept exactly as written (a saved world's form).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        centroid: Option<Vec2>,
     },
     Segment {
         point1: Vec2,
@@ -150,6 +155,7 @@ impl Serialize for Shape {
                     .map(|v| v + p.source_centroid())
                     .collect(),
                 radius: p.radius(),
+                centroid: None,
             },
             Shape::Segment(s) => ShapeData::Segment {
                 point1: s.point1(),
@@ -175,8 +181,21 @@ impl<'de> Deserialize<'de> for Shape {
                 center2,
                 radius,
             } => Shape::capsule(center1, center2, radius),
-            ShapeData::Polygon { points, radius } => Shape::Polygon(
+            ShapeData::Polygon {
+                points,
+                radius,
+                centroid: None,
+            } => Shape::Polygon(
                 Polygon::new(&points)
+                    .map_err(de::Error::custom)?
+                    .rounded(radius),
+            ),
+            ShapeData::Polygon {
+                points,
+                radius,
+                centroid: Some(centroid),
+            } => Shape::Polygon(
+                Polygon::from_centred(points, centroid)
                     .map_err(de::Error::custom)?
                     .rounded(radius),
             ),
@@ -190,5 +209,83 @@ impl<'de> Deserialize<'de> for Shape {
         };
         shape.validate().map_err(de::Error::custom)?;
         Ok(shape)
+    }
+}
+
+/// A hash map written as a list of `(key, value)` pairs sorted by key: the same map always
+/// gives the same text, and formats whose map keys must be strings can hold it.
+pub(crate) mod sorted_map {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+    use std::collections::HashMap;
+    use std::hash::{BuildHasher, Hash};
+
+    pub fn serialize<K, V, H, S>(map: &HashMap<K, V, H>, serializer: S) -> Result<S::Ok, S::Error>
+    where
+        K: Serialize + Ord,
+        V: Serialize,
+        S: Serializer,
+    {
+        let mut pairs: Vec<(&K, &V)> = map.iter().collect();
+        pairs.sort_by(|a, b| a.0.cmp(b.0));
+        pairs.serialize(serializer)
+    }
+
+    pub fn deserialize<'de, K, V, H, D>(deserializer: D) -> Result<HashMap<K, V, H>, D::Error>
+    where
+        K: Deserialize<'de> + Eq + Hash,
+        V: Deserialize<'de>,
+        H: BuildHasher + Default,
+        D: Deserializer<'de>,
+    {
+        let pairs = Vec::<(K, V)>::deserialize(deserializer)?;
+        let count = pairs.len();
+        let map: HashMap<K, V, H> = pairs.into_iter().collect();
+        if map.len() != count {
+            return Err(serde::de::Error::custom("a key appears twice"));
+        }
+        Ok(map)
+    }
+}
+
+/// A collider's shape in a saved world, bit for bit: a polygon is written as its vertices
+/// around its centroid with where that centroid was, where the outline of [`Shape`]'s own form
+/// would be centred again and could round differently. Read back, the vertices are checked as
+/// any polygon's are.
+pub(crate) mod exact_shape {
+    use super::ShapeData;
+    use crate::geometry::shape::Shape;
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    pub fn serialize<S: Serializer>(shape: &Shape, serializer: S) -> Result<S::Ok, S::Error> {
+        match shape {
+            Shape::Polygon(p) => ShapeData::Polygon {
+                points: p.vertices().to_vec(),
+                radius: p.radius(),
+                centroid: Some(p.source_centroid()),
+            }
+            .serialize(serializer),
+            other => other.serialize(serializer),
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Shape, D::Error> {
+        Shape::deserialize(deserializer)
+    }
+}
+
+impl<const CUTS: usize> Serialize for Partition<CUTS> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        self.ends().serialize(serializer)
+    }
+}
+
+impl<'de, const CUTS: usize> Deserialize<'de> for Partition<CUTS> {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let ends = Vec::<usize>::deserialize(deserializer)?;
+        Partition::from_ends(&ends).ok_or_else(|| {
+            de::Error::custom(format!(
+                "a partition needs {CUTS} ends in increasing order, got {ends:?}"
+            ))
+        })
     }
 }

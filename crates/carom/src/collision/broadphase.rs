@@ -28,6 +28,7 @@ const STATIC_TREE: usize = 0;
 const MOVING_TREE: usize = 1;
 
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Proxy {
     handle: ColliderHandle,
     /// The slot of the collider's body.
@@ -58,6 +59,7 @@ fn tree_for(kind: BodyKind) -> usize {
 
 /// The broadphase of a world: one proxy per collider, keyed by the collider's handle.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BroadPhase {
     trees: [DynamicTree; 2],
     /// Indexed by collider slot index.
@@ -66,8 +68,10 @@ pub struct BroadPhase {
     move_buffer: Vec<u32>,
     /// New pairs of slots found by the last pair update, one list per task of queries (kept
     /// to reuse the memory).
+    #[cfg_attr(feature = "serde", serde(skip))]
     found: Vec<Vec<(u32, u32)>>,
     /// All of them, sorted (kept to reuse the memory).
+    #[cfg_attr(feature = "serde", serde(skip))]
     candidates: Vec<(u32, u32)>,
 }
 
@@ -449,6 +453,77 @@ pub fn brute_force_pairs(
     }
     pairs.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
     pairs
+}
+
+#[cfg(feature = "serde")]
+impl BroadPhase {
+    /// Checks a broadphase read from a saved world: sound trees, and one proxy for each
+    /// collider that is not a sensor, in its slot, on its own leaf of the right tree.
+    pub(crate) fn check_saved(
+        &self,
+        colliders: &crate::handle_map::HandleMap<
+            ColliderHandle,
+            crate::dynamics::collider::Collider,
+        >,
+        bodies: &crate::handle_map::HandleMap<BodyHandle, crate::dynamics::body::Body>,
+    ) -> Result<(), String> {
+        let mut per_tree = [0; 2];
+        for tree in &self.trees {
+            tree.validate().map_err(|e| format!("broadphase: {e}"))?;
+        }
+        for (slot, proxy) in self.proxies.iter().enumerate() {
+            let Some(proxy) = proxy else { continue };
+            let collider = colliders
+                .get(proxy.handle)
+                .filter(|c| Self::slot(proxy.handle) == slot && !c.is_sensor())
+                .ok_or_else(|| format!("broadphase slot {slot} is not a live collider's"))?;
+            let body = &bodies.as_slice()[collider.body_index()];
+            if proxy.body != collider.body().index() || proxy.kind != body.kind() {
+                return Err(format!("broadphase slot {slot} has another body"));
+            }
+            if self.trees[proxy.tree()].leaf_payload(proxy.node) != Some(slot as u32) {
+                return Err(format!("broadphase slot {slot} is not on its leaf"));
+            }
+            per_tree[proxy.tree()] += 1;
+        }
+        for (tree, count) in self.trees.iter().zip(per_tree) {
+            if tree.proxy_count() != count {
+                return Err("a broadphase tree has leaves without proxies".into());
+            }
+        }
+        let listed = colliders
+            .handles()
+            .iter()
+            .filter(|&&c| self.proxy(c).is_some())
+            .count();
+        let wanted = colliders
+            .as_slice()
+            .iter()
+            .filter(|c| !c.is_sensor())
+            .count();
+        if listed != wanted {
+            return Err("a collider is missing from the broadphase".into());
+        }
+        let queued = self.proxies.iter().flatten().filter(|p| p.queued).count();
+        let mut moved = vec![false; self.proxies.len()];
+        for &slot in &self.move_buffer {
+            let fresh = moved
+                .get_mut(slot as usize)
+                .map(|m| !std::mem::replace(m, true));
+            let is_queued = self
+                .proxies
+                .get(slot as usize)
+                .and_then(Option::as_ref)
+                .is_some_and(|p| p.queued);
+            if fresh != Some(true) || !is_queued {
+                return Err("the broadphase's moved list is broken".into());
+            }
+        }
+        if queued != self.move_buffer.len() {
+            return Err("the broadphase's moved list is broken".into());
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]

@@ -21,6 +21,7 @@ pub(crate) const OVERFLOW: u8 = COLOR_COUNT as u8;
 
 /// One bit per body slot.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct BodyBits(Vec<u64>);
 
 impl BodyBits {
@@ -56,6 +57,7 @@ pub(crate) struct ColorBody {
 /// Which dynamic bodies each colour holds. Each colour's contacts are a part of the contact
 /// array (see `collision::contact_layout`).
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ContactColors {
     bodies: [BodyBits; COLOR_COUNT],
 }

@@ -37,6 +37,7 @@ use std::hash::{BuildHasherDefault, Hasher};
 
 /// A pair of colliders the narrowphase watches.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Contact {
     collider_a: ColliderHandle,
     collider_b: ColliderHandle,
@@ -176,6 +177,7 @@ impl Contact {
 /// `maxNormalImpulse` and `normalVelocity`. Force is impulse over time: divide by the step
 /// (or, for the most in a substep, by the substep).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct PointImpulse {
     /// The normal impulse applied here over the step, N·s: every substep's share, warm start
     /// and relaxation included, and the restitution pass. Zero where the solver pushed nothing
@@ -191,6 +193,7 @@ pub struct PointImpulse {
 
 /// Which colliders, of which bodies, a contact event is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactPair {
     /// First collider of the pair.
     pub collider_a: ColliderHandle,
@@ -204,6 +207,7 @@ pub struct ContactPair {
 
 /// A change in whether two colliders touch.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum ContactEvent {
     /// The colliders began to touch: a point came within a tenth of the slop (0.5 mm), not
     /// merely within the speculative margin (see [`Contact::is_touching`]).
@@ -254,6 +258,7 @@ fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
 /// the awake ones (a body of the pair is awake) colour by colour, then the sleeping ones;
 /// with a lookup by pair and each body's list.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactSet {
     contacts: Vec<Contact>,
     /// Where each part of `contacts` begins and ends.
@@ -266,6 +271,7 @@ pub struct ContactSet {
     /// destroyed while touching), since the world last took them (to link islands).
     began: Vec<(BodyHandle, BodyHandle)>,
     ended: Vec<(BodyHandle, BodyHandle)>,
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_impls::sorted_map"))]
     lookup: HashMap<u64, usize, BuildHasherDefault<PairHasher>>,
     /// Each body's contacts, by the body's slot index, as pair keys: removing a body or a
     /// collider visits its own contacts only.
@@ -275,7 +281,9 @@ pub struct ContactSet {
     pending: Vec<ContactEvent>,
     /// What the last update found for each contact, and the contacts it must then file
     /// again (kept to reuse the memory).
+    #[cfg_attr(feature = "serde", serde(skip))]
     refresh: Vec<(Refresh, BodyIndices)>,
+    #[cfg_attr(feature = "serde", serde(skip))]
     changed: Vec<(u64, Refresh)>,
     /// Where each contact's bodies are among all bodies (dense indices), beside the contacts
     /// so the solver reads them from a compact array (Box2D caches them in its contacts):
@@ -994,5 +1002,74 @@ fn updated(contact: &Contact, a: &Body, b: &Body) -> Refresh {
         changed: touching != contact.touching || in_contact != contact.in_contact,
         in_contact,
         wakes: touching && (stirred(a, b) || stirred(b, a)),
+    }
+}
+
+#[cfg(feature = "serde")]
+impl ContactSet {
+    /// Checks contacts read from a saved world: each is between live colliders of its bodies,
+    /// with at most two finite points and a colour that exists, and the lookups find them.
+    pub(crate) fn check_saved(
+        &self,
+        colliders: &HandleMap<ColliderHandle, Collider>,
+        bodies: &HandleMap<BodyHandle, Body>,
+    ) -> Result<(), String> {
+        use crate::constants::COLOR_COUNT;
+        let count = self.contacts.len();
+        if self.body_indices.len() != count
+            || self.parts.ends().last().is_some_and(|&end| end > count)
+        {
+            return Err("the contact array's parts do not fit it".into());
+        }
+        if self.asleep_touching > count {
+            return Err("more sleeping contacts touch than there are".into());
+        }
+        for (i, contact) in self.contacts.iter().enumerate() {
+            let owner = |c: ColliderHandle| colliders.get(c).map(Collider::body);
+            if owner(contact.collider_a) != Some(contact.body_a)
+                || owner(contact.collider_b) != Some(contact.body_b)
+            {
+                return Err(format!(
+                    "contact {i} is not between live colliders of its bodies"
+                ));
+            }
+            let m = &contact.manifold;
+            let finite = m.is_sound()
+                && m.normal.iter().all(|x| x.is_finite())
+                && m.points().iter().all(|p| {
+                    [p.point, p.anchor_a, p.anchor_b]
+                        .iter()
+                        .flat_map(|v| v.iter())
+                        .all(|x| x.is_finite())
+                        && [p.separation, p.normal_impulse, p.tangent_impulse]
+                            .iter()
+                            .all(|x| x.is_finite())
+                });
+            let colored = (contact.color as usize) < COLOR_COUNT
+                || contact.color == crate::collision::coloring::OVERFLOW
+                || contact.color == NO_COLOR;
+            if !finite || !colored {
+                return Err(format!("contact {i} has a bad manifold or colour"));
+            }
+            if self
+                .lookup
+                .get(&pair_key(contact.collider_a, contact.collider_b))
+                != Some(&i)
+            {
+                return Err(format!("contact {i} is not found by its pair"));
+            }
+        }
+        if self.lookup.len() != count {
+            return Err("the contact lookup holds pairs with no contact".into());
+        }
+        let known = |key: &u64| self.lookup.contains_key(key);
+        if !self.edges.iter().flatten().all(known) {
+            return Err("a body lists a contact that does not exist".into());
+        }
+        let live = |(a, b): &(BodyHandle, BodyHandle)| bodies.contains(*a) && bodies.contains(*b);
+        if !self.began.iter().chain(&self.ended).all(live) {
+            return Err("a contact change names a body that does not exist".into());
+        }
+        Ok(())
     }
 }

@@ -7,6 +7,7 @@ use crate::math::{Real, Vec2};
 const NULL: u32 = u32::MAX;
 
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct TreeNode {
     aabb: Aabb,
     /// Parent node, or (for free nodes) the next free node.
@@ -34,6 +35,7 @@ impl TreeNode {
 /// nodes are rotated whenever swapping a child with a grandchild shrinks the tree, so queries
 /// cost `O(log n + hits)` on average.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DynamicTree {
     nodes: Vec<TreeNode>,
     root: u32,
@@ -125,7 +127,7 @@ impl DynamicTree {
     }
 
     /// How many leaves the tree holds.
-    #[cfg(any(test, feature = "testing"))]
+    #[cfg(any(test, feature = "testing", feature = "serde"))]
     pub fn proxy_count(&self) -> usize {
         self.proxy_count
     }
@@ -481,51 +483,75 @@ impl DynamicTree {
         self.refit(a);
     }
 
-    /// Checks every structural invariant: parent links, heights, boxes containing their
-    /// children, and the leaf count. For tests.
-    #[cfg(any(test, feature = "testing"))]
+    /// Checks every structural invariant: links in range and pointing back, heights, boxes
+    /// containing their children, the leaf count, and the free list. For tests, and for
+    /// reading a saved tree, so it never indexes out of range or loops.
+    #[cfg(any(test, feature = "testing", feature = "serde"))]
     pub fn validate(&self) -> Result<(), String> {
-        if self.root == NULL {
-            return if self.proxy_count == 0 {
-                Ok(())
-            } else {
-                Err("empty tree with proxies".into())
-            };
-        }
-        if self.nodes[self.root as usize].parent != NULL {
-            return Err("root has a parent".into());
-        }
+        let node = |id: u32| {
+            self.nodes
+                .get(id as usize)
+                .ok_or_else(|| format!("node {id} is out of range"))
+        };
+        let mut seen = vec![false; self.nodes.len()];
+        let mut visit = |id: u32| -> Result<(), String> {
+            let seen = seen
+                .get_mut(id as usize)
+                .ok_or_else(|| format!("node {id} is out of range"))?;
+            if std::mem::replace(seen, true) {
+                return Err(format!("node {id} is reached twice"));
+            }
+            Ok(())
+        };
         let mut leaves = 0;
-        let mut stack = vec![self.root];
-        while let Some(id) = stack.pop() {
-            let node = &self.nodes[id as usize];
-            if node.is_leaf() {
-                leaves += 1;
-                if node.height != 0 {
-                    return Err(format!("leaf {id} has height {}", node.height));
+        if self.root != NULL {
+            if node(self.root)?.parent != NULL {
+                return Err("root has a parent".into());
+            }
+            let mut stack = vec![self.root];
+            while let Some(id) = stack.pop() {
+                visit(id)?;
+                let n = node(id)?;
+                if !(n.aabb.min.iter().chain(n.aabb.max.iter())).all(|x| x.is_finite()) {
+                    return Err(format!("node {id} has a box that is not finite"));
                 }
-                continue;
+                if n.is_leaf() {
+                    leaves += 1;
+                    if n.height != 0 || n.child2 != NULL {
+                        return Err(format!("leaf {id} has height {} or a child", n.height));
+                    }
+                    continue;
+                }
+                let (c1, c2) = (node(n.child1)?, node(n.child2)?);
+                if c1.parent != id || c2.parent != id {
+                    return Err(format!("children of {id} do not point back"));
+                }
+                if n.height != 1 + c1.height.max(c2.height) {
+                    return Err(format!("node {id} has a stale height"));
+                }
+                if !n.aabb.contains(&c1.aabb) || !n.aabb.contains(&c2.aabb) {
+                    return Err(format!("node {id} does not contain its children"));
+                }
+                stack.push(n.child1);
+                stack.push(n.child2);
             }
-            let (c1, c2) = (
-                &self.nodes[node.child1 as usize],
-                &self.nodes[node.child2 as usize],
-            );
-            if c1.parent != id || c2.parent != id {
-                return Err(format!("children of {id} do not point back"));
-            }
-            if node.height != 1 + c1.height.max(c2.height) {
-                return Err(format!("node {id} has a stale height"));
-            }
-            if !node.aabb.contains(&c1.aabb) || !node.aabb.contains(&c2.aabb) {
-                return Err(format!("node {id} does not contain its children"));
-            }
-            stack.push(node.child1);
-            stack.push(node.child2);
         }
         if leaves != self.proxy_count {
             return Err(format!("{leaves} leaves but {} proxies", self.proxy_count));
         }
+        let mut free = self.free_list;
+        while free != NULL {
+            visit(free)?;
+            free = node(free)?.parent;
+        }
         Ok(())
+    }
+
+    /// The payload of leaf `node`, if it is one.
+    #[cfg(feature = "serde")]
+    pub fn leaf_payload(&self, node: u32) -> Option<u32> {
+        let n = self.nodes.get(node as usize)?;
+        (n.is_leaf() && n.height == 0).then_some(n.payload)
     }
 }
 

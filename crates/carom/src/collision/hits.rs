@@ -15,6 +15,7 @@ use crate::math::{Real, Vec2};
 
 /// A contact struck hard during the last step.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct HitEvent {
     /// The colliders and bodies struck together.
     pub pair: ContactPair,

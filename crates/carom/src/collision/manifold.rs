@@ -29,6 +29,7 @@ use crate::math::{Real, Vec2};
 /// Built from the reference and incident vertex indices (and whether B held the reference
 /// face); equal ids on consecutive steps mean the same point, so impulses can carry over.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FeatureId(u32);
 
 impl FeatureId {
@@ -67,6 +68,7 @@ impl FeatureId {
 
 /// One point of contact.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ManifoldPoint {
     /// World position, midway between the two surfaces.
     pub point: Vec2,
@@ -89,6 +91,7 @@ pub struct ManifoldPoint {
 
 /// Which shape of a pair.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum PairSide {
     /// The first shape.
     A,
@@ -98,6 +101,7 @@ pub enum PairSide {
 
 /// An edge taking part in a contact, for drawing and inspection.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactEdge {
     /// Which shape it belongs to.
     pub side: PairSide,
@@ -121,6 +125,7 @@ impl ContactEdge {
 
 /// Where two shapes touch: a normal from A to B and up to two points.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Manifold {
     /// Unit normal from A to B.
     pub normal: Vec2,
@@ -133,6 +138,12 @@ pub struct Manifold {
 }
 
 impl Manifold {
+    /// At most two points: a manifold read from a saved world is checked for it.
+    #[cfg(feature = "serde")]
+    pub(crate) fn is_sound(&self) -> bool {
+        self.point_count <= self.points.len()
+    }
+
     /// The contact points (0, 1 or 2).
     #[inline]
     pub fn points(&self) -> &[ManifoldPoint] {

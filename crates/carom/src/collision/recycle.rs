@@ -17,6 +17,7 @@ use crate::math::{Real, Rot, Vec2};
 
 /// What a manifold was built against: the bodies' poses and each point's separation then.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ManifoldFrame {
     /// False until a manifold is built (a new contact has nothing to recycle).
     valid: bool,

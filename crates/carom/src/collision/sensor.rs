@@ -26,6 +26,7 @@ use crate::parallel::map_mut_into;
 
 /// A collider overlapping a sensor: which sensor, which visitor, and their bodies.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SensorOverlap {
     /// The sensor collider.
     pub sensor: ColliderHandle,
@@ -39,6 +40,7 @@ pub struct SensorOverlap {
 
 /// A change in what overlaps a sensor.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SensorEvent {
     /// A collider began to overlap a sensor.
     Begin(SensorOverlap),
@@ -58,19 +60,23 @@ impl SensorEvent {
 
 /// One sensor and what overlaps it.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Sensor {
     collider: ColliderHandle,
     /// What overlaps it now, sorted by visitor handle.
     overlaps: Vec<SensorOverlap>,
     /// What overlapped it a step ago (kept to reuse the memory).
+    #[cfg_attr(feature = "serde", serde(skip))]
     previous: Vec<SensorOverlap>,
 }
 
 /// The sensors of a world, in the order they were added, and their events.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Sensors {
     sensors: Vec<Sensor>,
     /// Whether each sensor's overlaps changed in the last update (kept to reuse the memory).
+    #[cfg_attr(feature = "serde", serde(skip))]
     changed: Vec<bool>,
     events: Vec<SensorEvent>,
     /// Events raised between steps (removing a sensor), reported after the next step.
@@ -202,5 +208,29 @@ fn diff(before: &[SensorOverlap], after: &[SensorOverlap], events: &mut Vec<Sens
                 j += 1;
             }
         }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl Sensors {
+    /// Checks sensors read from a saved world: each is a live sensor collider, listed once,
+    /// and so is every sensor collider.
+    pub(crate) fn check_saved(
+        &self,
+        colliders: &HandleMap<ColliderHandle, Collider>,
+    ) -> Result<(), String> {
+        let mut listed: Vec<ColliderHandle> = self.sensors.iter().map(|s| s.collider).collect();
+        listed.sort_unstable();
+        let mut sensors: Vec<ColliderHandle> = colliders
+            .handles()
+            .iter()
+            .copied()
+            .filter(|&c| colliders.get(c).is_some_and(Collider::is_sensor))
+            .collect();
+        sensors.sort_unstable();
+        if listed != sensors {
+            return Err("the sensors listed are not the sensor colliders".into());
+        }
+        Ok(())
     }
 }

@@ -184,11 +184,13 @@ pub(crate) fn check_non_negative(name: &'static str, value: Real) -> Result<Real
 /// A shape attached to a body: its geometry, placement in the body's frame and material, and
 /// where it is in the world as of the last step or edit.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Collider {
     body: BodyHandle,
     /// Where the body sits in the world's body storage, kept current by the world, so the hot
     /// loops reach the body without a handle lookup.
     body_index: u32,
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_impls::exact_shape"))]
     shape: Shape,
     /// Placement in the body's frame; `None` at the origin, unturned (the common case, which
     /// then costs no transform product).
@@ -443,4 +445,28 @@ pub(crate) fn colliders_aabb(body: &Body, colliders: &HandleMap<ColliderHandle, 
         .next()
         .unwrap_or_else(|| Aabb::new(body.position(), body.position()));
     boxes.fold(first, |all, aabb| all.union(&aabb))
+}
+
+#[cfg(feature = "serde")]
+impl Collider {
+    /// Checks a collider read from a saved world (its shape was checked as it was read): its
+    /// material, placement and place in the world are finite.
+    pub(crate) fn check_saved(&self) -> Result<(), CaromError> {
+        check_non_negative("density", self.density)?;
+        check_non_negative("friction", self.friction)?;
+        check_non_negative("restitution", self.restitution)?;
+        if let Some(local) = &self.local {
+            check_finite_vec("collider offset", local.translation.vector)?;
+            check_finite("collider angle", local.rotation.angle())?;
+        }
+        let placed = WorldShape::new(&self.shape, &Isometry::identity());
+        if !self.world_shape.fits(&placed) {
+            return Err(CaromError::BadSave {
+                reason: "a collider's placed shape is not its shape".into(),
+            });
+        }
+        check_finite_vec("collider box", self.aabb.min)?;
+        check_finite_vec("collider box", self.aabb.max)?;
+        Ok(())
+    }
 }

@@ -12,10 +12,15 @@
 //! island wakes when an awake dynamic body or a moving kinematic one touches it; a still
 //! kinematic platform lets what rests on it sleep.
 
+#[cfg(feature = "serde")]
+use crate::dynamics::body::Body;
 use crate::dynamics::body::BodyHandle;
+#[cfg(feature = "serde")]
+use crate::handle_map::HandleMap;
 
 /// One island's record.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Island {
     /// The first and last bodies of its list.
     pub head: Option<BodyHandle>,
@@ -34,6 +39,7 @@ pub(crate) struct Island {
 
 /// Every island's record, by island id.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Islands {
     records: Vec<Island>,
     free: Vec<u32>,
@@ -80,5 +86,52 @@ impl Islands {
     #[cfg(test)]
     pub fn live_ids(&self) -> impl Iterator<Item = u32> + '_ {
         (0..self.records.len() as u32).filter(|&id| self.records[id as usize].live)
+    }
+}
+
+#[cfg(feature = "serde")]
+impl Islands {
+    /// Checks islands read from a saved world: each live island's list runs through dynamic
+    /// bodies of that island, from its head to its tail, as long as it says; every dynamic
+    /// body is in a live island; freed records are not live.
+    pub fn check_saved(&self, bodies: &HandleMap<BodyHandle, Body>) -> Result<(), String> {
+        for &id in &self.free {
+            if self.records.get(id as usize).is_none_or(|r| r.live) {
+                return Err(format!("island {id} is free but live, or does not exist"));
+            }
+        }
+        for (id, record) in self.records.iter().enumerate() {
+            if !record.live {
+                continue;
+            }
+            let (mut at, mut previous, mut count) = (record.head, None, 0u32);
+            while let Some(handle) = at {
+                let body = bodies
+                    .get(handle)
+                    .filter(|b| b.is_dynamic() && b.island() == Some(id as u32))
+                    .ok_or_else(|| format!("island {id} lists a body not in it"))?;
+                let (prev, next) = body.island_neighbours();
+                count += 1;
+                if prev != previous || count > record.len {
+                    return Err(format!("island {id}'s list is broken"));
+                }
+                (previous, at) = (Some(handle), next);
+            }
+            if count != record.len || previous != record.tail {
+                return Err(format!("island {id}'s list is broken"));
+            }
+        }
+        for body in bodies.as_slice() {
+            let live = body
+                .island()
+                .is_some_and(|id| self.records.get(id as usize).is_some_and(|r| r.live));
+            if body.is_dynamic() != live {
+                return Err(format!(
+                    "body {} is not in a live island, or is not dynamic",
+                    body.handle().index()
+                ));
+            }
+        }
+        Ok(())
     }
 }

@@ -4,6 +4,7 @@ use crate::math::{Real, Vec2};
 
 /// An axis-aligned box from `min` to `max` (inclusive).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Aabb {
     /// The lower-left corner.
     pub min: Vec2,

@@ -216,6 +216,28 @@ impl Polygon {
         for v in &mut vertices {
             *v -= source_centroid;
         }
+        Self::around_centroid(vertices, source_centroid)
+    }
+
+    /// A polygon from vertices already around their centroid, kept exactly as they are (as a
+    /// saved world holds them), with where that centroid was. They are checked as
+    /// [`Polygon::new`] checks its points, and must already be counter-clockwise with no
+    /// collinear vertex (which [`Polygon::new`] would change).
+    #[cfg(feature = "serde")]
+    pub(crate) fn from_centred(
+        vertices: Vec<Vec2>,
+        source_centroid: Vec2,
+    ) -> Result<Self, CaromError> {
+        check_point("polygon centroid", source_centroid)?;
+        let checked = Polygon::new(&vertices)?;
+        if checked.vertices.len() != vertices.len() || mass::polygon_area(&vertices) <= 0.0 {
+            return Err(CaromError::SavedPolygon);
+        }
+        Self::around_centroid(vertices, source_centroid)
+    }
+
+    /// Finishes a polygon from its vertices around the centroid.
+    fn around_centroid(mut vertices: Vec<Vec2>, source_centroid: Vec2) -> Result<Self, CaromError> {
         // Recentring rounds: points a hair apart far from the centroid can land on one
         // another. Merge them, so no edge is too short to have a normal.
         let weld = weld_distance(&vertices);

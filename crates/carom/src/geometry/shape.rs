@@ -205,6 +205,7 @@ fn massless(center: Vec2) -> MassProperties {
 /// line facing both ways, and a capsule's radius rounds it. Collision then treats every
 /// convex shape but the circle alike.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum WorldShape {
     /// A circle in world coordinates.
     Circle {
@@ -384,6 +385,45 @@ impl WorldShape {
             WorldShape::ChainSegment { point1, point2, .. } => {
                 perp_cw(point2 - point1).dot(&(point - point1)) < 0.0
             }
+            _ => false,
+        }
+    }
+
+    /// True when `other` is the same kind of shape with as many vertices, and every value
+    /// of this one is finite: what a placed shape read from a saved world must be beside its
+    /// collider's shape placed anew.
+    #[cfg(feature = "serde")]
+    pub(crate) fn fits(&self, other: &WorldShape) -> bool {
+        let finite = |points: &[Vec2]| points.iter().all(|p| p.x.is_finite() && p.y.is_finite());
+        match (self, other) {
+            (WorldShape::Circle { center, radius }, WorldShape::Circle { .. }) => {
+                finite(&[*center]) && radius.is_finite()
+            }
+            (
+                WorldShape::Polygon {
+                    vertices,
+                    normals,
+                    radius,
+                },
+                WorldShape::Polygon {
+                    vertices: theirs, ..
+                },
+            ) => {
+                vertices.len() == theirs.len()
+                    && normals.len() == theirs.len()
+                    && finite(vertices)
+                    && finite(normals)
+                    && radius.is_finite()
+            }
+            (
+                WorldShape::ChainSegment {
+                    ghost1,
+                    point1,
+                    point2,
+                    ghost2,
+                },
+                WorldShape::ChainSegment { .. },
+            ) => finite(&[*ghost1, *point1, *point2, *ghost2]),
             _ => false,
         }
     }

@@ -39,7 +39,10 @@ pub use kinds::{
 };
 
 use crate::dynamics::body::{Body, BodyHandle};
+#[cfg(feature = "serde")]
+use crate::error::check_finite;
 use crate::error::{CaromError, check_finite_vec};
+use crate::geometry::checks::check_extent;
 use crate::handle_map::generational_handle;
 use crate::math::{Real, Rot, Vec2};
 
@@ -78,6 +81,7 @@ pub enum Anchors {
 /// Everything needed to create a joint: build one with a constructor ([`JointDef::revolute`],
 /// [`JointDef::distance`], ...) and the chained setters; checked when added to a world.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct JointDef {
     /// The first body.
     pub body_a: BodyHandle,
@@ -363,6 +367,8 @@ impl JointDef {
         if let Some(axis) = kind.axis_mut() {
             *axis = axis.normalize();
         }
+        check_anchor(local_a)?;
+        check_anchor(local_b)?;
         Ok(Joint {
             handle,
             body_a: self.body_a,
@@ -384,6 +390,7 @@ impl JointDef {
 /// A joint's accumulated impulses, kept from step to step to warm start the next. Each kind
 /// uses the ones it needs.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointImpulses {
     /// The point constraint's (revolute, weld, mouse, motor), or the prismatic and wheel
     /// joints' perpendicular one (x) and the prismatic's angular one (y).
@@ -399,6 +406,7 @@ pub(crate) struct JointImpulses {
 
 /// A joint in a world.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Joint {
     handle: JointHandle,
     body_a: BodyHandle,
@@ -505,6 +513,7 @@ impl Joint {
 
 /// Something that happened to a joint during a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum JointEvent {
     /// The joint applied more than its break force or torque and was removed.
     Broken {
@@ -517,4 +526,55 @@ pub enum JointEvent {
         /// The torque it applied in its last step, N·m.
         torque: Real,
     },
+}
+
+/// Checks an anchor in its body's frame: farther than a shape may reach, its lever arm would
+/// overflow the solver's effective mass.
+fn check_anchor(anchor: Vec2) -> Result<(), CaromError> {
+    check_extent("joint anchor, from its body", anchor.x)?;
+    check_extent("joint anchor, from its body", anchor.y)
+}
+
+#[cfg(feature = "serde")]
+impl Joint {
+    /// Checks a joint read from a saved world: its settings as adding it checks them, and
+    /// finite anchors, impulses and reactions.
+    pub(crate) fn check_saved(&self) -> Result<(), CaromError> {
+        self.kind.validate()?;
+        check_anchor(self.local_anchor_a)?;
+        check_anchor(self.local_anchor_b)?;
+        let i = &self.impulses;
+        for (name, value) in [
+            ("joint anchor", self.local_anchor_a),
+            ("joint anchor", self.local_anchor_b),
+            ("joint force", self.force),
+            ("joint impulse", i.linear),
+        ] {
+            check_finite_vec(name, value)?;
+        }
+        for (name, value) in [
+            ("joint reference angle", self.reference_angle),
+            ("joint torque", self.torque),
+            ("joint impulse", i.angular),
+            ("joint impulse", i.axial),
+            ("joint impulse", i.motor),
+            ("joint impulse", i.lower),
+            ("joint impulse", i.upper),
+        ] {
+            check_finite(name, value)?;
+        }
+        for (name, value) in [
+            ("break force", self.break_force),
+            ("break torque", self.break_torque),
+        ] {
+            if value.is_nan() || value < 0.0 {
+                return Err(CaromError::OutOfRange {
+                    name,
+                    expected: "zero or positive",
+                    value,
+                });
+            }
+        }
+        Ok(())
+    }
 }

@@ -8,12 +8,15 @@ use std::collections::HashMap;
 
 /// Every joint of a world.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointStore {
     joints: HandleMap<JointHandle, Joint>,
     /// Each body's joints, in the order they were added.
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_impls::sorted_map"))]
     by_body: HashMap<BodyHandle, Vec<JointHandle>>,
     /// Joints that keep their bodies from colliding: how many join each pair of bodies (the
     /// lower handle first).
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_impls::sorted_map"))]
     filters: HashMap<(BodyHandle, BodyHandle), u32>,
     /// What happened to joints in the last step.
     pub events: Vec<JointEvent>,
@@ -120,5 +123,62 @@ impl JointStore {
                 out.push(other);
             }
         }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl JointStore {
+    /// Checks joints read from a saved world: each joins live bodies with sound settings, and
+    /// the lists by body and the pair filters are the ones its joints make.
+    pub(crate) fn check_saved(
+        &self,
+        bodies: &HandleMap<BodyHandle, crate::dynamics::body::Body>,
+    ) -> Result<(), String> {
+        self.joints.check_saved()?;
+        let mut expected = JointStore::default();
+        for (joint, &handle) in self.joints.as_slice().iter().zip(self.joints.handles()) {
+            let i = handle.index();
+            if joint.handle() != handle || !joint.bodies().iter().all(|&b| bodies.contains(b)) {
+                return Err(format!("joint {i} does not join live bodies"));
+            }
+            joint.check_saved().map_err(|e| format!("joint {i}: {e}"))?;
+            let [a, b] = joint.bodies();
+            let listed = |body| {
+                self.by_body
+                    .get(&body)
+                    .is_some_and(|list| list.contains(&handle))
+            };
+            if !listed(a) || !listed(b) {
+                return Err(format!("joint {i} is missing from its bodies' lists"));
+            }
+            if joint.collide_connected() || a == b {
+                continue;
+            }
+            *expected.filters.entry(pair(a, b)).or_default() += 1;
+        }
+        if expected.filters != self.filters {
+            return Err("the joints' collision filters are not the joints'".into());
+        }
+        for (body, joints) in &self.by_body {
+            let joined = |j: &JointHandle| {
+                self.joints
+                    .get(*j)
+                    .is_some_and(|j| j.bodies().contains(body))
+            };
+            if !joints.iter().all(joined) {
+                return Err("a body lists a joint that does not join it".into());
+            }
+        }
+        let listed: usize = self.by_body.values().map(Vec::len).sum();
+        let ends: usize = self
+            .joints
+            .as_slice()
+            .iter()
+            .map(|j| if j.bodies()[0] == j.bodies()[1] { 1 } else { 2 })
+            .sum();
+        if listed != ends {
+            return Err("the joints by body are not the joints".into());
+        }
+        Ok(())
     }
 }

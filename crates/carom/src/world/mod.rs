@@ -6,6 +6,8 @@ pub(crate) mod explosion;
 pub(crate) mod islands;
 pub(crate) mod joints;
 pub(crate) mod queries;
+#[cfg(feature = "serde")]
+mod saved;
 pub(crate) mod settings;
 pub(crate) mod solver_sets;
 
@@ -58,7 +60,17 @@ pub struct CastHit {
 }
 
 /// A physics world: create bodies in it, step it, query it.
+///
+/// With the `serde` feature a world saves and restores whole, in any serde format: a restored
+/// world steps on exactly as the saved one would have (the same state, bit for bit). The
+/// pre-solve hook is code and is not saved; set it again after restoring. Reading checks that
+/// the saved world holds together and answers [`CaromError::BadSave`] when it does not.
 #[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    serde(into = "saved::SavedWorld", try_from = "saved::SavedWorld")
+)]
 pub struct World {
     /// Stored in solver sets: static, awake, asleep (see [`solver_sets`]).
     bodies: HandleMap<BodyHandle, Body>,

@@ -31,6 +31,7 @@ pub(crate) enum SolverSet {
 
 /// Where the sets of one dense array begin and end: static, then awake, then asleep.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct SetBounds(Partition<2>);
 
 impl SetBounds {
@@ -331,6 +332,17 @@ impl World {
                 assert_eq!(colors.holds(color as u8, slot), held.contains(&slot));
             }
         }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl SetBounds {
+    /// Checks bounds read from a saved world against the array they divide.
+    pub fn check_saved(&self, what: &str, len: usize) -> Result<(), String> {
+        if self.asleep_start() > len {
+            return Err(format!("the {what} sets reach past the {len} {what}s"));
+        }
+        Ok(())
     }
 }
 
