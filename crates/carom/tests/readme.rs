@@ -1,5 +1,6 @@
-//! The README's code examples, compiled and run as they are written there. A test checks that
-//! every Rust example in the README appears here line for line, so the two cannot drift apart.
+//! The code examples of the README and of `docs/features.md`, compiled and run as they are
+//! written there. A test checks that every Rust example in those two pages appears here line
+//! for line, so they cannot drift apart.
 
 #[rustfmt::skip]
 fn joint_example() -> Result<(), carom::CaromError> {
@@ -18,7 +19,7 @@ fn joint_example() -> Result<(), carom::CaromError> {
 }
 
 #[rustfmt::skip]
-fn hello_example() -> Result<(), carom::CaromError> {
+fn sensor_example() -> Result<(), carom::CaromError> {
     use carom::{BodyDef, SensorEvent, Shape, World, vec2};
 
     let mut world = World::new();
@@ -40,7 +41,7 @@ fn hello_example() -> Result<(), carom::CaromError> {
 }
 
 #[rustfmt::skip]
-fn sensor_example() -> Result<(), carom::CaromError> {
+fn shape_cast_example() -> Result<(), carom::CaromError> {
     use carom::{BodyDef, CollisionFilter, Shape, World, WorldShape, vec2};
 
     let mut world = World::new();
@@ -55,21 +56,38 @@ fn sensor_example() -> Result<(), carom::CaromError> {
     Ok(())
 }
 
+/// The README's example: a program of one's own crate, its `main` nested here.
 #[rustfmt::skip]
-fn shape_cast_example() -> Result<(), carom::CaromError> {
-    use carom::{BodyDef, Shape, World, vec2};
+fn own_crate_example() -> Result<(), carom::CaromError> {
+    use carom::{BodyDef, CaromError, ContactEvent, Shape, World, vec2};
 
-    let mut world = World::new(); // gravity (0, -10) m/s²
-    let ball = world.add_body(BodyDef::dynamic(Shape::circle(0.5)).position(vec2(0.0, 10.0)))?;
-    world.step(1.0 / 60.0)?;
-    println!("{:?}", world.body(ball).unwrap().position());
-    Ok(())
+    fn main() -> Result<(), CaromError> {
+        let mut world = World::new(); // gravity (0, -10) m/s², Box2D v3's soft step solver
+        // Static ground 20 m wide with its top at y = 0, and a bouncy ball dropped from 3 m.
+        world.add_body(BodyDef::static_body(Shape::rect(10.0, 0.5)).position(vec2(0.0, -0.5)))?;
+        let ball = world.add_body(
+            BodyDef::dynamic(Shape::circle(0.25)).position(vec2(0.0, 3.0)).restitution(0.5),
+        )?;
+        for step in 0..180 {
+            world.step(1.0 / 60.0)?;
+            for event in world.contact_events() {
+                if let ContactEvent::Begin(_) = event {
+                    println!("the ball lands at t = {:.2} s", (step + 1) as f32 / 60.0);
+                }
+            }
+        }
+        let ball = world.body(ball).expect("the ball is in the world");
+        println!("after 3 s: y = {:.3} m, asleep: {}", ball.position().y, ball.is_sleeping());
+        Ok(())
+    }
+
+    main()
 }
 
 #[test]
 fn the_readme_examples_run() {
+    own_crate_example().unwrap();
     joint_example().unwrap();
-    hello_example().unwrap();
     sensor_example().unwrap();
     shape_cast_example().unwrap();
 }
@@ -82,19 +100,38 @@ fn trimmed(text: &str) -> Vec<&str> {
         .collect()
 }
 
-#[test]
-fn every_rust_example_in_the_readme_is_one_of_these() {
-    let readme = include_str!("../../../README.md");
+/// How many Rust examples a page has, checking each is in this file line for line.
+fn examples_in(page: &str, text: &str) -> usize {
     let here = trimmed(include_str!("readme.rs"));
     let mut examples = 0;
-    for block in readme.split("```rust\n").skip(1) {
+    for block in text.split("```rust\n").skip(1) {
         let code = block.split("```").next().unwrap();
         let lines = trimmed(code);
         assert!(
             here.windows(lines.len()).any(|w| w == lines.as_slice()),
-            "this README example is not in crates/carom/tests/readme.rs:\n{code}"
+            "this {page} example is not in crates/carom/tests/readme.rs:\n{code}"
         );
         examples += 1;
     }
-    assert_eq!(examples, 4, "a new README example: add it here");
+    examples
+}
+
+#[test]
+fn every_rust_example_in_the_readme_is_one_of_these() {
+    let readme = include_str!("../../../README.md");
+    assert_eq!(
+        examples_in("README", readme),
+        1,
+        "a new README example: add it here"
+    );
+}
+
+#[test]
+fn every_rust_example_in_the_features_guide_is_one_of_these() {
+    let guide = include_str!("../../../docs/features.md");
+    assert_eq!(
+        examples_in("docs/features.md", guide),
+        3,
+        "a new example in docs/features.md: add it here"
+    );
 }
