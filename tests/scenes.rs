@@ -335,3 +335,30 @@ fn definitions_and_settings_survive_a_round_trip_through_ron() {
         ron::from_str::<BodyDef>("(kind: dynamic, colliders: [(shape: circle(radius: -1.0))])");
     assert!(bad.unwrap_err().to_string().contains("radius"));
 }
+
+#[test]
+fn the_front_page_scene_rolls_its_ball_into_the_boxes() {
+    // The scene the top-level README offers to start from must load and do what it says.
+    let readme = std::fs::read_to_string(path("../README.md")).unwrap();
+    let start = readme.find("```ron\n").expect("the README has a RON scene") + 7;
+    let end = start + readme[start..].find("```").unwrap();
+    let scene =
+        carom_scene::parse(&readme[start..end], "README.md").unwrap_or_else(|e| panic!("{e}"));
+    let mut built = carom_scene::build(&scene, "README.md").unwrap_or_else(|e| panic!("{e}"));
+    let ball = built.names["ball"];
+    let boxes: Vec<_> = built
+        .world
+        .bodies()
+        .filter(|b| b.is_dynamic() && b.handle() != ball)
+        .map(|b| (b.handle(), b.position()))
+        .collect();
+    assert_eq!(boxes.len(), 6, "a column of six boxes");
+    for _ in 0..600 {
+        built.step().unwrap();
+    }
+    let moved = boxes
+        .iter()
+        .filter(|(h, start)| (built.world.body(*h).unwrap().position() - start).norm() > 0.05)
+        .count();
+    assert!(moved > 0, "the ball reached the column and moved a box");
+}

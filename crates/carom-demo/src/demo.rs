@@ -8,7 +8,7 @@ use carom::{BodyHandle, Color, DrawList, DrawOptions, JointDef, JointHandle, Vec
 use carom_render::Camera;
 use carom_scene::SceneWorld;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::time::{Instant, SystemTime};
 
 /// A scene file found in the scenes folder.
 #[derive(Debug, Clone, PartialEq)]
@@ -67,13 +67,16 @@ pub enum Key {
     Step,
     /// Reload the scene.
     Reset,
+    /// Save the running scene as it is now, to a scene file beside its own.
+    Save,
     /// Scene by number: 1 is the first, 0 the tenth.
     Digit(u8),
 }
 
 /// The key hints the sidebar shows.
 pub const HINTS: &str = "Left drag: grab and throw · Right/middle drag: pan · Wheel: zoom\n\
-                         Space: pause · S: step · R: reset · 1-9, 0: scenes";
+                         Space: pause · S: step · R: reset · W: save state · 1-9, 0: scenes\n\
+                         Editing the open scene's file reloads it.";
 
 /// The demo, minus the window.
 pub struct Demo {
@@ -106,6 +109,10 @@ pub struct Demo {
     /// The measured cost of accuracy of the scene's solver settings, and where the demo's
     /// setting sits among them; the sidebar keeps it up to date with the scene shown.
     pub accuracy: AccuracyPanel,
+    /// What the demo last did that the user should know of ("saved to …", "reloaded").
+    pub notice: Option<String>,
+    /// When the open scene's file was last changed, as last seen: a later change reloads it.
+    file_changed: Option<SystemTime>,
     accumulator: f64,
     grab: Option<Grab>,
     pan_from: Option<Vec2>,
@@ -145,6 +152,8 @@ impl Demo {
             step_budget: std::time::Duration::from_millis(10),
             metrics: Metrics::default(),
             accuracy: AccuracyPanel::default(),
+            notice: None,
+            file_changed: modified(scene),
             accumulator: 0.0,
             grab: None,
             pan_from: None,
@@ -179,7 +188,10 @@ impl Demo {
     }
 
     fn load(&mut self, path: &Path) -> Result<(), String> {
+        let changed = modified(path);
         let loaded = carom_scene::load(path).map_err(|e| e.to_string())?;
+        self.file_changed = changed;
+        self.notice = None;
         self.camera = scene_camera(&loaded, self.viewport);
         self.draw.flags = loaded.draw;
         self.scene = loaded;
@@ -189,6 +201,64 @@ impl Demo {
         self.grab = None;
         self.pan_from = None;
         Ok(())
+    }
+
+    /// Saves the running scene as it is now, camera included, to `NAME-saved.ron` beside its
+    /// file (a saved scene saves over itself), and lists it among the scenes. Opened again, it
+    /// goes on exactly as this one would have.
+    pub fn save(&mut self) -> Result<PathBuf, String> {
+        let mut scene = carom_scene::read(&self.scene_path).map_err(|e| e.to_string())?;
+        let stem = self
+            .scene_path
+            .file_stem()
+            .unwrap_or_default()
+            .to_string_lossy();
+        let stem = stem.strip_suffix("-saved").unwrap_or(&stem);
+        let path = self.scene_path.with_file_name(format!("{stem}-saved.ron"));
+        let scale = carom_scene::Camera::view_scale(self.viewport[0], self.viewport[1]);
+        scene.camera = carom_scene::Camera {
+            center: (self.camera.center.x, self.camera.center.y),
+            zoom: self.camera.zoom / scale,
+        };
+        scene.draw = self.draw.flags;
+        if !scene.name.ends_with("(saved)") {
+            scene.name = format!("{} (saved)", scene.name);
+        }
+        // The grab's spring is the cursor's, not the scene's: let go before saving.
+        self.let_go();
+        let saved = self.scene.save(&scene);
+        carom_scene::write(&saved, &path).map_err(|e| e.to_string())?;
+        if same_file(&path, &self.scene_path) {
+            self.file_changed = modified(&path);
+        }
+        let folder = path.parent().unwrap_or(Path::new("."));
+        let (scenes, _) = find_scenes(folder);
+        if let Some(current) = self.current.and_then(|i| self.scenes.get(i)) {
+            self.current = scenes
+                .iter()
+                .position(|s| same_file(&s.path, &current.path));
+        }
+        self.scenes = scenes;
+        self.notice = Some(format!("saved to {}", path.display()));
+        Ok(path)
+    }
+
+    /// Reloads the open scene if its file changed since it was loaded, keeping the camera
+    /// and what is drawn; true if it did. A file that does not load (saved half-edited, say)
+    /// is an error naming its line and column, and the scene runs on until the next change.
+    pub fn reload_if_changed(&mut self) -> Result<bool, String> {
+        let changed = modified(&self.scene_path);
+        if changed.is_none() || changed == self.file_changed {
+            return Ok(false);
+        }
+        self.file_changed = changed;
+        let (camera, draw) = (self.camera, self.draw);
+        let path = self.scene_path.clone();
+        self.load(&path)?;
+        self.camera = camera;
+        self.draw = draw;
+        self.notice = Some(format!("reloaded {}", path.display()));
+        Ok(true)
     }
 
     /// The view changed size: the camera keeps its centre and scales its zoom as the scene's
@@ -253,6 +323,9 @@ impl Demo {
                 self.step()?;
             }
             Key::Reset => self.reset()?,
+            Key::Save => {
+                self.save()?;
+            }
             Key::Digit(digit) => {
                 let index = if digit == 0 { 9 } else { digit as usize - 1 };
                 if index < self.scenes.len() {
@@ -351,6 +424,11 @@ impl Demo {
             carom::DebugDraw::point(out, mouse.target, 4.0, spring);
         }
     }
+}
+
+/// When a file was last changed, if it can be told.
+fn modified(path: &Path) -> Option<SystemTime> {
+    std::fs::metadata(path).and_then(|m| m.modified()).ok()
 }
 
 /// The scene's camera for a view `viewport` pixels in size.

@@ -28,6 +28,9 @@ pub fn sidebar(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>) {
         draw_section(ui, demo);
         ui.separator();
         ui.small(HINTS);
+        if let Some(notice) = &demo.notice {
+            ui.small(notice.as_str());
+        }
         if let Some(message) = error {
             ui.colored_label(egui::Color32::from_rgb(255, 120, 100), message.as_str());
         }

@@ -289,6 +289,7 @@ impl Running {
                     PhysicalKey::Code(KeyCode::Space) => Some(Key::Space),
                     PhysicalKey::Code(KeyCode::KeyS) => Some(Key::Step),
                     PhysicalKey::Code(KeyCode::KeyR) => Some(Key::Reset),
+                    PhysicalKey::Code(KeyCode::KeyW) => Some(Key::Save),
                     PhysicalKey::Code(code) => digit(code).map(Key::Digit),
                     _ => None,
                 };
@@ -309,6 +310,12 @@ impl Running {
         self.frame_seconds += (elapsed - self.frame_seconds) * 0.05;
         if self.frames > 0 {
             self.frame_ms.push(elapsed * 1e3);
+        }
+        // Editing the open scene's file shows the edit at once (a bad edit says where).
+        match self.demo.reload_if_changed() {
+            Ok(true) => self.error = None,
+            Ok(false) => {}
+            Err(message) => self.error = Some(message),
         }
         if let Err(message) = self.demo.frame(elapsed) {
             self.error = Some(message);

@@ -2,7 +2,7 @@
 //! ([`carom::DrawList`]) with wgpu: to a window's surface through [`Renderer`], or to an
 //! offscreen texture read back as an image through [`Offscreen`], so tests and CI render real
 //! pixels with no window and no GPU (Mesa's lavapipe or llvmpipe do). WGSL lives in the
-//! workspace's `shaders/` folder and is built in. The physics core does not depend on this crate.
+//! crate's `shaders/` folder and is built in. The physics core does not depend on this crate.
 
 mod camera;
 mod error;

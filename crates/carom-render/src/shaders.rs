@@ -1,11 +1,11 @@
-//! The WGSL sources, from the workspace's `shaders/` folder, built into the binary.
+//! The WGSL sources, from the crate's `shaders/` folder, built into the binary.
 
 /// Filled polygons.
-pub const POLYGONS_WGSL: &str = include_str!("../../../shaders/polygons.wgsl");
+pub const POLYGONS_WGSL: &str = include_str!("../shaders/polygons.wgsl");
 /// Instanced discs: circles and points.
-pub const DISCS_WGSL: &str = include_str!("../../../shaders/discs.wgsl");
+pub const DISCS_WGSL: &str = include_str!("../shaders/discs.wgsl");
 /// Instanced thick segments: outlines, lines, arrows.
-pub const SEGMENTS_WGSL: &str = include_str!("../../../shaders/segments.wgsl");
+pub const SEGMENTS_WGSL: &str = include_str!("../shaders/segments.wgsl");
 
 /// Every shader, with its file name.
 pub const ALL: [(&str, &str); 3] = [

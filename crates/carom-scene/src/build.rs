@@ -34,7 +34,7 @@ pub struct SceneWorld {
     pub draw: DrawFlags,
     /// How `carom bench` measures the scene's error, its body names checked.
     pub accuracy: Option<Accuracy>,
-    events: Events,
+    pub(crate) events: Events,
 }
 
 impl SceneWorld {
@@ -79,6 +79,16 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
             "world".into(),
             format!("time_step must be finite and positive, got {time_step}"),
         ));
+    }
+    if let Some(state) = &scene.state {
+        let mut saved = state
+            .parts()
+            .map_err(|reason| invalid("state".into(), reason))?;
+        if saved.world.colliders().any(|c| c.pre_solve()) {
+            saved.world.set_pre_solve(one_way::solid_from_above);
+        }
+        let (world, names, colors, events) = (saved.world, saved.names, saved.colors, saved.events);
+        return finish(scene, world, names, colors, events, time_step, &invalid);
     }
     let mut world =
         World::with_settings(settings).map_err(|e| invalid("world".into(), e.to_string()))?;
@@ -158,6 +168,19 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
     }
     let events = Events::new(&scene.events, &names, initial, &world)
         .map_err(|(index, reason)| invalid(format!("event {index}"), reason))?;
+    finish(scene, world, names, colors, events, time_step, &invalid)
+}
+
+/// The scene's world with what the scene adds on top, its accuracy measure checked.
+fn finish(
+    scene: &Scene,
+    world: World,
+    names: HashMap<String, BodyHandle>,
+    colors: HashMap<BodyHandle, (f32, f32, f32)>,
+    events: Events,
+    time_step: Real,
+    invalid: &dyn Fn(String, String) -> SceneError,
+) -> Result<SceneWorld, SceneError> {
     if let Some(accuracy) = &scene.accuracy {
         check_accuracy(accuracy, &names, &world)
             .map_err(|reason| invalid("accuracy".into(), reason))?;

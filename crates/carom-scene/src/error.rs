@@ -34,4 +34,12 @@ pub enum SceneError {
         /// Why it cannot be built.
         reason: String,
     },
+    /// A scene could not be written.
+    #[error("{file}: cannot write it: {reason}")]
+    Write {
+        /// The file.
+        file: String,
+        /// Why.
+        reason: String,
+    },
 }

@@ -3,9 +3,10 @@
 
 use crate::scene::EventSpec;
 use carom::{BodyDef, BodyHandle, BodyKind, World, vec2};
+use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
-#[derive(Debug)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 enum Action {
     Launch {
         at: f64,
@@ -29,7 +30,7 @@ enum Action {
 }
 
 /// A scene's events, ready to fire.
-#[derive(Debug, Default)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub(crate) struct Events {
     actions: Vec<Action>,
 }
@@ -113,6 +114,20 @@ impl Events {
             });
         }
         Ok(Events { actions })
+    }
+
+    /// Every body the events move.
+    pub fn bodies(&self) -> impl Iterator<Item = &BodyHandle> {
+        self.actions
+            .iter()
+            .flat_map(|action| -> Box<dyn Iterator<Item = &BodyHandle>> {
+                match action {
+                    Action::Launch { body, .. } | Action::Respawn { body, .. } => {
+                        Box::new(std::iter::once(body))
+                    }
+                    Action::Spin { bodies, .. } => Box::new(bodies.iter().map(|(body, _, _)| body)),
+                }
+            })
     }
 
     /// Fires every event due at the world's current time, before a step of `dt` seconds.

@@ -24,11 +24,13 @@ mod error;
 mod events;
 mod load;
 mod one_way;
+mod saved;
 pub mod scene;
 
 pub use build::{SceneWorld, build};
 pub use error::SceneError;
 pub use load::{parse, read};
+pub use saved::{SavedState, write};
 pub use scene::{Accuracy, Camera, Scene};
 
 /// Reads, parses and builds a scene file.

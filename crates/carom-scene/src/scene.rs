@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 pub type Pair = (f32, f32);
 
 /// One scene: a world to build, how to look at it, and what happens over time.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
     /// Short name, shown in menus.
@@ -43,6 +43,11 @@ pub struct Scene {
     /// exact answer; the bench reports the deepest overlap.
     #[serde(default)]
     pub accuracy: Option<Accuracy>,
+    /// A running scene saved whole (see [`crate::SavedState`]): the scene opens on it as it
+    /// was, and its `world`, `effects`, `bodies`, `generators`, `joints` and `events` are not
+    /// built again. Written by [`crate::SceneWorld::save`]; not meant to be written by hand.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub state: Option<crate::SavedState>,
 }
 
 /// An error a scene can be measured by, each against an exact or ideal answer.
