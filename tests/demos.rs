@@ -5,14 +5,7 @@ use carom_scene::load;
 use std::path::PathBuf;
 
 fn demos() -> Vec<PathBuf> {
-    let folder = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&folder)
-        .unwrap()
-        .map(|entry| entry.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|e| e == "ron"))
-        .collect();
-    files.sort();
-    files
+    carom_tests::demo_files()
 }
 
 /// Every dynamic body's centre in half metres, sorted: exact for boxes laid on a 0.5 m grid.

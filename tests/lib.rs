@@ -36,6 +36,18 @@ impl Rng {
     }
 }
 
+/// Every scene file in `demos/`, sorted by name.
+pub fn demo_files() -> Vec<std::path::PathBuf> {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../demos");
+    let mut files: Vec<_> = std::fs::read_dir(&folder)
+        .expect("the demos folder is there")
+        .map(|entry| entry.expect("a readable folder entry").path())
+        .filter(|path| path.extension().is_some_and(|e| e == "ron"))
+        .collect();
+    files.sort();
+    files
+}
+
 /// Box2D's Skinny Box course, shared by the continuous-collision and stability suites: a 4 x
 /// 0.1 m plank dropped fast and spinning onto a thin floor beside a thin post.
 pub mod skinny_box {

@@ -6,14 +6,7 @@ use carom_scene::load;
 use std::path::PathBuf;
 
 fn demos() -> Vec<PathBuf> {
-    let folder = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&folder)
-        .unwrap()
-        .map(|entry| entry.unwrap().path())
-        .filter(|path| path.extension().is_some_and(|e| e == "ron"))
-        .collect();
-    files.sort();
-    files
+    carom_tests::demo_files()
 }
 
 fn save(world: &World) -> String {
@@ -196,13 +189,8 @@ fn an_edited_save_is_refused_or_steps_cleanly() {
         "1e30",
         "-3.5",
     ];
-    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
-    let mut next = |below: usize| {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed % below as u64) as usize
-    };
+    let mut rng = carom_tests::Rng::new(0x2545_f491_4f6c_dd1d);
+    let mut next = |below: usize| rng.below(below);
     let (mut refused, mut stepped) = (0, 0);
     let trials: usize = std::env::var("CAROM_SAVE_TRIALS")
         .ok()

@@ -450,8 +450,9 @@ pub(crate) fn colliders_aabb(body: &Body, colliders: &HandleMap<ColliderHandle, 
 #[cfg(feature = "serde")]
 impl Collider {
     /// Checks a collider read from a saved world (its shape was checked as it was read): its
-    /// material, placement and place in the world are finite.
-    pub(crate) fn check_saved(&self) -> Result<(), CaromError> {
+    /// material and placement are finite, and its placed shape and box are, bit for bit, its
+    /// shape placed where its body is (`body_transform`).
+    pub(crate) fn check_saved(&self, body_transform: &Isometry) -> Result<(), CaromError> {
         check_non_negative("density", self.density)?;
         check_non_negative("friction", self.friction)?;
         check_non_negative("restitution", self.restitution)?;
@@ -459,14 +460,13 @@ impl Collider {
             check_finite_vec("collider offset", local.translation.vector)?;
             check_finite("collider angle", local.rotation.angle())?;
         }
-        let placed = WorldShape::new(&self.shape, &Isometry::identity());
-        if !self.world_shape.fits(&placed) {
+        let mut placed = WorldShape::new(&self.shape, &Isometry::identity());
+        self.place_shape(&mut placed, body_transform);
+        if placed != self.world_shape || placed.aabb() != self.aabb {
             return Err(CaromError::BadSave {
-                reason: "a collider's placed shape is not its shape".into(),
+                reason: "a collider is not where its body is".into(),
             });
         }
-        check_finite_vec("collider box", self.aabb.min)?;
-        check_finite_vec("collider box", self.aabb.max)?;
         Ok(())
     }
 }

@@ -388,45 +388,6 @@ impl WorldShape {
             _ => false,
         }
     }
-
-    /// True when `other` is the same kind of shape with as many vertices, and every value
-    /// of this one is finite: what a placed shape read from a saved world must be beside its
-    /// collider's shape placed anew.
-    #[cfg(feature = "serde")]
-    pub(crate) fn fits(&self, other: &WorldShape) -> bool {
-        let finite = |points: &[Vec2]| points.iter().all(|p| p.x.is_finite() && p.y.is_finite());
-        match (self, other) {
-            (WorldShape::Circle { center, radius }, WorldShape::Circle { .. }) => {
-                finite(&[*center]) && radius.is_finite()
-            }
-            (
-                WorldShape::Polygon {
-                    vertices,
-                    normals,
-                    radius,
-                },
-                WorldShape::Polygon {
-                    vertices: theirs, ..
-                },
-            ) => {
-                vertices.len() == theirs.len()
-                    && normals.len() == theirs.len()
-                    && finite(vertices)
-                    && finite(normals)
-                    && radius.is_finite()
-            }
-            (
-                WorldShape::ChainSegment {
-                    ghost1,
-                    point1,
-                    point2,
-                    ghost2,
-                },
-                WorldShape::ChainSegment { .. },
-            ) => finite(&[*ghost1, *point1, *point2, *ghost2]),
-            _ => false,
-        }
-    }
 }
 
 #[cfg(test)]

@@ -139,8 +139,9 @@ impl World {
             if self.bodies.dense_index(collider.body()) != Some(collider.body_index()) {
                 return Err(format!("collider {index} does not know where its body is"));
             }
+            let body = &self.bodies.as_slice()[collider.body_index()];
             collider
-                .check_saved()
+                .check_saved(&body.transform())
                 .map_err(|e| format!("collider {index}: {e}"))?;
         }
         for (index, body) in self.bodies.as_slice().iter().enumerate() {
