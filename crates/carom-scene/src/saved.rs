@@ -24,7 +24,7 @@ pub struct SavedState {
 
 impl SceneWorld {
     /// `scene` (the one this was built from) with this moment's state in it: written out
-    /// ([`write`]) and opened again, it goes on exactly as this one would. The pre-solve rule
+    /// ([`write()`]) and opened again, it goes on exactly as this one would. The pre-solve rule
     /// of one-way platforms is set again on opening, as for any scene.
     pub fn save(&self, scene: &Scene) -> Scene {
         let mut colors: Vec<_> = self.colors.iter().map(|(&h, &c)| (h, c)).collect();
