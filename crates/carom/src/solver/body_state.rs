@@ -11,7 +11,7 @@ use crate::stats::Work;
 
 /// One body as the solver sees it: eight floats in one 32-byte line (Box2D's `b2BodyState`),
 /// so the SIMD solver loads a body with one or two vector loads and transposes bodies into
-/// lanes: `[v.x, v.y, w, 0, dp.x, dp.y, dq.cos, dq.sin]`.
+/// lanes: `[v.x, v.y, w, held, dp.x, dp.y, dq.cos, dq.sin]`.
 #[derive(Debug, Clone, Copy)]
 #[repr(C, align(32))]
 pub(crate) struct BodyState {
@@ -19,9 +19,11 @@ pub(crate) struct BodyState {
     pub v: Vec2,
     /// Angular velocity.
     pub w: Real,
-    /// Unused: keeps the velocities in the first half of the line and the motion in the
-    /// second. Always 0.
-    pub pad: Real,
+    /// 1 if the speed caps cut the velocities since the body's joints last warm started,
+    /// else 0 (see [`SpeedCaps::hold`]). A `u32`, not a `bool`, so every byte of the line is
+    /// set (the SIMD solver loads it whole, and leaves this word as it was when it stores the
+    /// velocities).
+    pub held: u32,
     /// Translation since the start of the step.
     pub dp: Vec2,
     /// Rotation since the start of the step.
@@ -33,7 +35,7 @@ const _: () = {
     use std::mem::{align_of, offset_of, size_of};
     assert!(size_of::<BodyState>() == 32 && align_of::<BodyState>() == 32);
     assert!(offset_of!(BodyState, v) == 0 && offset_of!(BodyState, w) == 8);
-    assert!(offset_of!(BodyState, pad) == 12 && offset_of!(BodyState, dp) == 16);
+    assert!(offset_of!(BodyState, held) == 12 && offset_of!(BodyState, dp) == 16);
     assert!(offset_of!(BodyState, dq) == 24 && size_of::<Rot>() == 8);
 };
 
@@ -42,7 +44,7 @@ impl BodyState {
         BodyState {
             v: body.linear_velocity(),
             w: body.angular_velocity(),
-            pad: 0.0,
+            held: 0,
             dp: Vec2::zeros(),
             dq: Rot::identity(),
         }
@@ -53,18 +55,32 @@ impl BodyState {
         BodyState {
             v: Vec2::zeros(),
             w: 0.0,
-            pad: 0.0,
+            held: 0,
             dp: Vec2::zeros(),
             dq: Rot::identity(),
         }
     }
 
-    /// Commits the step: the body moves by `dp` and `dq` and takes the new velocities.
-    pub fn write_back(&self, body: &mut Body) {
+    /// Commits the step: the body moves by `dp` and `dq` and takes the new velocities, a
+    /// dynamic body's held to `caps` (the passes after the last position integration may
+    /// have pushed them past).
+    pub fn write_back(&self, body: &mut Body, caps: SpeedCaps) {
         if !body.moves() {
             return;
         }
-        body.finish_step(self.v, self.w, self.dp, self.dq);
+        let (v, w) = if body.kind() == BodyKind::Dynamic {
+            let (v, w, _) = caps.hold(self.v, self.w);
+            (v, w)
+        } else {
+            (self.v, self.w)
+        };
+        body.finish_step(v, w, self.dp, self.dq);
+    }
+
+    /// Whether the caps cut this body's velocities since its joints last warm started, or
+    /// would cut them now.
+    pub fn is_held(&self, caps: SpeedCaps) -> bool {
+        self.held != 0 || caps.hold(self.v, self.w).2
     }
 }
 
@@ -87,6 +103,20 @@ impl SpeedCaps {
             linear: params.max_linear_speed,
             angular: params.max_rotation / dt,
         }
+    }
+
+    /// Velocities `v` and `w` held to the caps, and whether either had to be cut.
+    ///
+    /// A cut takes away velocity that the joints' accumulated impulses gave, so a joint with
+    /// a body cut since its last warm start starts cold (see `held`). Warm starting it anyway
+    /// is how a joint anchored far from a light body ran away: its impulse, re-applied
+    /// through a lever that had turned since, gave more velocity than the cut took, and the
+    /// impulse grew tenfold a substep to NaN (Box2D 3.2 does the same).
+    #[inline]
+    pub fn hold(&self, v: Vec2, w: Real) -> (Vec2, Real, bool) {
+        let held_v = clamp_magnitude(v, self.linear);
+        let held_w = w.clamp(-self.angular, self.angular);
+        (held_v, held_w, held_v != v || held_w != w)
     }
 }
 
@@ -130,25 +160,39 @@ pub(crate) fn integrate_velocity(
         w = model.apply_angular(w, body.angular_damping(), h);
         work.drag_terms += 1;
     }
-    state.v = clamp_magnitude(v, caps.linear);
-    state.w = w.clamp(-caps.angular, caps.angular);
+    let (v, w, cut) = caps.hold(v, w);
+    (state.v, state.w) = (v, w);
+    // Added to a cut at the last position integration, which the warm start to come has not
+    // seen yet.
+    state.held |= u32::from(cut);
     work
 }
 
 /// Positions from velocities over `h` (accumulated in `dp` and `dq`), dynamic bodies' velocities
-/// first held to the speed caps (after the contacts had their say, as Box2D 3.2 does, so the
-/// cap bounds the motion itself). Kinematic bodies move as they are told.
-pub(crate) fn integrate_positions(bodies: &[Body], states: &mut [BodyState], h: Real) {
+/// first held to the speed caps (after the contacts and joints had their say, as Box2D 3.2
+/// does, so the cap bounds the motion itself). Kinematic bodies move as they are told.
+pub(crate) fn integrate_positions(
+    bodies: &[Body],
+    states: &mut [BodyState],
+    h: Real,
+    caps: SpeedCaps,
+) {
     for_each_with(bodies, states, ITEMS_PER_TASK, |body, state| {
-        integrate_position(body, state, h)
+        integrate_position(body, state, h, caps)
     });
 }
 
 /// [`integrate_positions`] of one body.
 #[inline]
-pub(crate) fn integrate_position(body: &Body, state: &mut BodyState, h: Real) {
+pub(crate) fn integrate_position(body: &Body, state: &mut BodyState, h: Real, caps: SpeedCaps) {
     if !body.moves() {
         return;
+    }
+    if body.kind() == BodyKind::Dynamic {
+        let (v, w, cut) = caps.hold(state.v, state.w);
+        (state.v, state.w) = (v, w);
+        // The warm start since the last position integration has seen the cuts before it.
+        state.held = u32::from(cut);
     }
     state.dp += state.v * h;
     state.dq = Rot::new(state.w * h) * state.dq;

@@ -65,12 +65,13 @@ pub(crate) trait Lanes:
     /// One bit per lane of a mask, lane 0 the lowest.
     fn bits(self) -> u32;
 
-    /// The states of bodies `indices`, transposed: `[v.x, v.y, w, 0, dp.x, dp.y, cos, sin]`,
-    /// each a vector of one value of every body.
+    /// The states of bodies `indices`, transposed: `[v.x, v.y, w, held, dp.x, dp.y, cos, sin]`
+    /// (`held`'s bits, unused), each a vector of one value of every body.
     fn gather(states: &SharedStates, indices: &Self::Indices) -> [Self; 8];
 
     /// Writes the velocities `(v.x, v.y, w)` of the lanes whose bit is set in `lanes` back to
-    /// their bodies' states (no two set lanes may name the same state).
+    /// their bodies' states (no two set lanes may name the same state), leaving the rest of
+    /// each state as it was.
     fn scatter(states: &SharedStates, indices: &Self::Indices, lanes: u32, velocity: [Self; 3]);
 }
 
@@ -152,11 +153,11 @@ impl Lanes for f32x4 {
     fn gather(states: &SharedStates, indices: &[u32; 4]) -> [Self; 8] {
         let [r0, r1, r2, r3] = [0, 1, 2, 3].map(|lane| states.read(indices[lane]));
         let half = |row: &[f32; 8], from: usize| Self::from_slice(&row[from..]);
-        let [v_x, v_y, w, pad] =
+        let [v_x, v_y, w, held] =
             f32x4::transpose([half(&r0, 0), half(&r1, 0), half(&r2, 0), half(&r3, 0)]);
         let [dp_x, dp_y, cos, sin] =
             f32x4::transpose([half(&r0, 4), half(&r1, 4), half(&r2, 4), half(&r3, 4)]);
-        [v_x, v_y, w, pad, dp_x, dp_y, cos, sin]
+        [v_x, v_y, w, held, dp_x, dp_y, cos, sin]
     }
 
     #[inline(always)]
@@ -177,7 +178,7 @@ pub(crate) mod tests {
     use crate::math::{Rot, Vec2};
     use crate::solver::BodyState;
 
-    /// Body `i`'s state holds `10 i + k` in float `k` (and 0 in the padding).
+    /// Body `i`'s state holds `10 i + k` in float `k` (and `held` is `i % 2`).
     pub(crate) fn numbered_states(count: usize) -> Vec<BodyState> {
         (0..count)
             .map(|i| {
@@ -185,7 +186,7 @@ pub(crate) mod tests {
                 BodyState {
                     v: Vec2::new(x(0), x(1)),
                     w: x(2),
-                    pad: 0.0,
+                    held: (i % 2) as u32,
                     dp: Vec2::new(x(4), x(5)),
                     dq: Rot::from_cos_sin_unchecked(x(6), x(7)),
                 }
@@ -208,7 +209,7 @@ pub(crate) mod tests {
         for (k, vector) in gathered.iter().enumerate() {
             for (lane, &index) in indices.as_ref().iter().enumerate() {
                 let expected = if k == 3 {
-                    0.0
+                    f32::from_bits(index % 2)
                 } else {
                     (10 * index) as f32 + k as f32
                 };
@@ -227,6 +228,7 @@ pub(crate) mod tests {
                 (Vec2::new(x, x + 1.0), x + 2.0)
             };
             assert_eq!((state.v, state.w), expected, "lane {lane}");
+            assert_eq!(state.held, index % 2, "held untouched");
             assert_eq!(state.dp.x, (10 * index) as f32 + 4.0, "positions untouched");
         }
     }

@@ -27,6 +27,7 @@ mod tutorial_impulse;
 mod wide_contacts;
 
 pub(crate) use body_state::BodyState;
+use body_state::SpeedCaps;
 use contact_constraint::BodyMass;
 pub(crate) use contact_constraint::ContactConstraint;
 pub(crate) use joints::{JointBody, JointColors, JointConstraint, JointStates};
@@ -577,10 +578,11 @@ pub(crate) fn step(
     };
     let storing = Instant::now();
     let solved_joints = matches!(kind, SolverKind::SequentialImpulse | SolverKind::SoftStep);
+    let caps = SpeedCaps::new(params, dt);
     for c in joint_constraints.iter() {
         let joint = &mut joints[c.joint];
         if solved_joints {
-            joint.impulses = c.impulses;
+            joint.impulses = c.impulses_to_keep(states, caps);
             let (force, torque) = c.reaction(1.0 / h);
             joint.set_reaction(force, torque);
         }
@@ -590,7 +592,7 @@ pub(crate) fn step(
         constraint.store_impulses(&mut contacts[constraint.contact_index]);
     }
     for_each_with(states, bodies, ITEMS_PER_TASK, |state, body| {
-        state.write_back(body)
+        state.write_back(body, caps)
     });
     let points: usize = constraints.iter().map(|c| c.points().len()).sum();
     StepReport {

@@ -48,6 +48,6 @@ pub(super) fn solve(
         }
     }
     let work = integrate_velocities(environment, bodies, states, dt, SpeedCaps::new(params, dt));
-    integrate_positions(bodies, states, dt);
+    integrate_positions(bodies, states, dt, SpeedCaps::new(params, dt));
     work
 }

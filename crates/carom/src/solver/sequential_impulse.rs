@@ -73,7 +73,7 @@ pub(super) fn solve(
     for c in constraints.iter_mut() {
         c.note_substep_impulses();
     }
-    integrate_positions(bodies, states, dt);
+    integrate_positions(bodies, states, dt, SpeedCaps::new(params, dt));
     // Joints take as many position passes as velocity iterations (at least the contacts'):
     // a chain of light links holding a heavy load needs them to close its drift each step.
     let joint_passes = (params.iterations as usize).max(POSITION_ITERATIONS);

@@ -50,7 +50,8 @@ impl<'a> SharedStates<'a> {
         }
     }
 
-    /// State `index` as eight floats: `[v.x, v.y, w, 0, dp.x, dp.y, dq.cos, dq.sin]`.
+    /// State `index` as eight floats: `[v.x, v.y, w, held, dp.x, dp.y, dq.cos, dq.sin]`
+    /// (`held`'s bits, which the solver ignores).
     #[inline(always)]
     pub fn read(&self, index: u32) -> [f32; 8] {
         let index = index as usize;
@@ -91,14 +92,16 @@ impl<'a> SharedStates<'a> {
         unsafe { std::slice::from_raw_parts_mut(self.states.add(range.start), range.len()) }
     }
 
-    /// Sets state `index`'s velocities: `[v.x, v.y, w, 0]`.
+    /// Sets state `index`'s velocities from `[v.x, v.y, w, _]`; its `held` stays as it was
+    /// (the joints' warm start reads it after the contacts have solved).
     #[inline(always)]
     pub fn write_velocity(&self, index: u32, velocity: [f32; 4]) {
         let index = index as usize;
         assert!(index < self.len, "state {index} of {}", self.len);
-        // SAFETY: in bounds (checked), aligned, the first four floats of a `BodyState` are
-        // `v.x, v.y, w, pad`; no other thread touches it (promised in `new`).
-        unsafe { std::ptr::write(self.states.add(index).cast::<[f32; 4]>(), velocity) }
+        let [v_x, v_y, w, _] = velocity;
+        // SAFETY: in bounds (checked), aligned, the first three floats of a `BodyState` are
+        // `v.x, v.y, w`; no other thread touches it (promised in `new`).
+        unsafe { std::ptr::write(self.states.add(index).cast::<[f32; 3]>(), [v_x, v_y, w]) }
     }
 }
 
@@ -113,16 +116,18 @@ mod tests {
         states[1] = BodyState {
             v: Vec2::new(1.0, 2.0),
             w: 3.0,
-            pad: 0.0,
+            held: 1,
             dp: Vec2::new(5.0, 6.0),
             dq: Rot::from_cos_sin_unchecked(0.6, 0.8),
         };
         // SAFETY: one thread.
         let shared = unsafe { SharedStates::new(&mut states) };
-        assert_eq!(shared.read(1), [1.0, 2.0, 3.0, 0.0, 5.0, 6.0, 0.6, 0.8]);
-        shared.write_velocity(2, [7.0, 8.0, 9.0, 0.0]);
-        assert_eq!((states[2].v, states[2].w), (Vec2::new(7.0, 8.0), 9.0));
-        assert_eq!(states[2].dq, Rot::identity());
+        let held = f32::from_bits(1);
+        assert_eq!(shared.read(1), [1.0, 2.0, 3.0, held, 5.0, 6.0, 0.6, 0.8]);
+        shared.write_velocity(1, [7.0, 8.0, 9.0, 0.0]);
+        assert_eq!((states[1].v, states[1].w), (Vec2::new(7.0, 8.0), 9.0));
+        assert_eq!(states[1].held, 1, "the velocities' store leaves `held` be");
+        assert_eq!(states[1].dp, Vec2::new(5.0, 6.0));
     }
 
     #[test]

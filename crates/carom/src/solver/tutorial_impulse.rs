@@ -49,6 +49,6 @@ pub(super) fn solve(
         point.max_normal_impulse = point.total_normal_impulse;
     }
     let work = integrate_velocities(environment, bodies, states, dt, SpeedCaps::new(params, dt));
-    integrate_positions(bodies, states, dt);
+    integrate_positions(bodies, states, dt, SpeedCaps::new(params, dt));
     work
 }

@@ -713,7 +713,7 @@ fn execute_stages<L: Lanes>(
                 #[allow(unsafe_code)]
                 let block_states = unsafe { states.range_mut(range.clone()) };
                 for (body, state) in bodies[range].iter().zip(block_states) {
-                    integrate_position(body, state, inputs.h);
+                    integrate_position(body, state, inputs.h, inputs.caps);
                 }
             }
             Stage::Color(color, pass) => {

@@ -234,8 +234,13 @@ impl JointConstraint {
         c
     }
 
-    /// Applies the accumulated impulses.
+    /// Applies the accumulated impulses; or, if the speed caps cut either body's velocities
+    /// since the last warm start, forgets them and starts cold ([`super::SpeedCaps::hold`]).
     pub fn warm_start(&mut self, a: &mut BodyState, b: &mut BodyState) {
+        if a.held != 0 || b.held != 0 {
+            self.impulses = JointImpulses::default();
+            return;
+        }
         match self.data {
             JointData::Distance(p) => distance::warm_start(self, &p, a, b),
             JointData::Revolute(_) => revolute::warm_start(self, a, b),
@@ -280,6 +285,18 @@ impl JointConstraint {
         for (state, pushed) in [(a, pa), (b, pb)] {
             state.dp += pushed.v * dt;
             state.dq = Rot::new(pushed.w * dt) * state.dq;
+        }
+    }
+
+    /// The impulses for the next step's warm start: none if the speed caps cut either body's
+    /// velocities since the last warm start, or would cut them now (`states` as the step left
+    /// them), as [`JointConstraint::warm_start`] would forget them.
+    pub fn impulses_to_keep(&self, states: &[BodyState], caps: super::SpeedCaps) -> JointImpulses {
+        let held = |moves: bool, state: usize| moves && states[state].is_held(caps);
+        if held(self.moves_a, self.a) || held(self.moves_b, self.b) {
+            JointImpulses::default()
+        } else {
+            self.impulses
         }
     }
 
