@@ -4,7 +4,8 @@
 //! `cargo run -p carom-render --example window` (`-- --frames 120` closes it after 120 frames).
 
 use carom::{BodyDef, Color, DrawList, DrawOptions, Shape, World, vec2};
-use carom_render::{Camera, Renderer, clear_color};
+use carom_render::{Camera, Screen};
+use std::error::Error;
 use std::sync::Arc;
 use std::time::Instant;
 use winit::application::ApplicationHandler;
@@ -15,7 +16,7 @@ use winit::window::{Window, WindowId};
 /// The physics time step, s. A fixed step keeps the simulation the same at any frame rate.
 const STEP: f32 = 1.0 / 60.0;
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
+fn main() -> Result<(), Box<dyn Error>> {
     let mut args = std::env::args().skip(1);
     let frames = match (args.next().as_deref(), args.next()) {
         (None, _) => None,
@@ -34,8 +35,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         world,
         frames,
         gfx: None,
+        error: None,
     };
     EventLoop::new()?.run_app(&mut app)?;
+    if let Some(error) = app.error {
+        return Err(error);
+    }
     println!("{:.2} s simulated", app.world.time());
     Ok(())
 }
@@ -46,16 +51,15 @@ struct App {
     frames: Option<u64>,
     /// None until winit says the app may open its window (`resumed`).
     gfx: Option<Gfx>,
+    /// Why the window could not be opened or drawn into; `main` returns it.
+    error: Option<Box<dyn Error>>,
 }
 
 /// The window, what draws into it, and the clock that paces the physics.
 struct Gfx {
     window: Arc<Window>,
-    surface: wgpu::Surface<'static>,
-    device: wgpu::Device,
-    queue: wgpu::Queue,
-    config: wgpu::SurfaceConfiguration,
-    renderer: Renderer,
+    /// The surface, device and renderer: everything wgpu needs to draw the world.
+    screen: Screen,
     /// Filled by the world each frame; kept so its memory is reused.
     list: DrawList,
     last_frame: Instant,
@@ -67,7 +71,13 @@ impl ApplicationHandler for App {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         // Some platforms resume more than once; the window is made the first time.
         if self.gfx.is_none() {
-            self.gfx = Some(Gfx::open(event_loop));
+            match Gfx::open(event_loop) {
+                Ok(gfx) => self.gfx = Some(gfx),
+                Err(error) => {
+                    self.error = Some(error);
+                    event_loop.exit();
+                }
+            }
         }
     }
 
@@ -75,12 +85,7 @@ impl ApplicationHandler for App {
         let Some(gfx) = &mut self.gfx else { return };
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
-            WindowEvent::Resized(size) => {
-                // A zero-sized surface is invalid (a minimised window): keep at least 1 x 1.
-                gfx.config.width = size.width.max(1);
-                gfx.config.height = size.height.max(1);
-                gfx.surface.configure(&gfx.device, &gfx.config);
-            }
+            WindowEvent::Resized(size) => gfx.screen.resize(size.width, size.height),
             WindowEvent::RedrawRequested => {
                 gfx.frame(&mut self.world);
                 self.frames = self.frames.map(|left| left.saturating_sub(1));
@@ -94,51 +99,23 @@ impl ApplicationHandler for App {
 }
 
 impl Gfx {
-    /// Opens the window and a wgpu device that can draw into it.
-    fn open(event_loop: &ActiveEventLoop) -> Gfx {
+    /// Opens the window and a device that can draw into it.
+    fn open(event_loop: &ActiveEventLoop) -> Result<Gfx, Box<dyn Error>> {
         let attributes = Window::default_attributes().with_title("carom");
-        let window = Arc::new(event_loop.create_window(attributes).expect("no window"));
+        let window = Arc::new(event_loop.create_window(attributes)?);
         // The display handle lets wgpu's GL backend reach the window's display. Every backend
         // is tried (software rasterisers too) unless WGPU_BACKEND=vulkan|gl names one.
-        let display = Box::new(event_loop.owned_display_handle());
-        let mut descriptor = wgpu::InstanceDescriptor::new_with_display_handle(display);
-        descriptor.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
-        let instance = wgpu::Instance::new(descriptor);
-        // Owning an Arc of the window makes the surface 'static, so it can live in `Gfx`.
-        let surface = instance.create_surface(window.clone()).expect("no surface");
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            compatible_surface: Some(&surface),
-            ..Default::default()
-        }))
-        .expect("no graphics adapter can draw into the window");
-        Renderer::check(&adapter).unwrap_or_else(|e| panic!("{e}"));
-        println!("drawing on {}", adapter.get_info().name);
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            // Downlevel limits, so GL and software adapters qualify as well as GPUs.
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
-            ..Default::default()
-        }))
-        .expect("cannot open the graphics device");
+        let display = event_loop.owned_display_handle();
         let size = window.inner_size();
-        // The surface's preferred format: the renderer and `clear_color` handle sRGB or not.
-        let (width, height) = (size.width.max(1), size.height.max(1)); // 0 is invalid
-        let mut config = (surface.get_default_config(&adapter, width, height))
-            .expect("the adapter cannot draw into this window");
-        config.present_mode = wgpu::PresentMode::AutoVsync;
-        surface.configure(&device, &config);
-        let renderer = Renderer::new(&device, config.format);
-        let (list, last_frame, behind) = (DrawList::new(), Instant::now(), 0.0);
-        Gfx {
+        let screen = Screen::new(window.clone(), display, [size.width, size.height])?;
+        println!("drawing on {}", screen.gpu().describe());
+        Ok(Gfx {
             window,
-            surface,
-            device,
-            queue,
-            config,
-            renderer,
-            list,
-            last_frame,
-            behind,
-        }
+            screen,
+            list: DrawList::new(),
+            last_frame: Instant::now(),
+            behind: 0.0,
+        })
     }
 
     /// Steps the world up to now, then draws it.
@@ -152,44 +129,21 @@ impl Gfx {
             world.step(STEP).expect("the world's settings are valid");
             self.behind -= STEP;
         }
-        // No frame (resized under us, hidden, timed out): set the surface up, try next time.
-        let wgpu::CurrentSurfaceTexture::Success(frame) = self.surface.get_current_texture() else {
-            return self.surface.configure(&self.device, &self.config);
-        };
         self.list.clear(); // `debug_draw` appends
         world.debug_draw(&DrawOptions::default(), |_| None, &mut self.list);
         // Frame a 24 m x 12 m region above the ground, whatever the window's shape.
-        let viewport = [self.config.width, self.config.height];
-        let zoom = (viewport[0] as f32 / 24.0).min(viewport[1] as f32 / 12.0);
+        let [width, height] = self.screen.size().map(|side| side as f32);
         let camera = Camera {
             center: vec2(0.0, 5.0),
-            zoom,
+            zoom: (width / 24.0).min(height / 12.0),
         };
-        let (device, queue) = (&self.device, &self.queue);
-        self.renderer
-            .prepare(device, queue, &self.list, &camera, viewport);
-
-        let view = frame.texture.create_view(&Default::default());
-        let mut encoder = device.create_command_encoder(&Default::default());
-        let clear = clear_color(Color::BACKGROUND, self.config.format);
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(clear),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            ..Default::default()
-        });
-        self.renderer.render(&mut pass);
-        drop(pass); // the pass borrows the encoder until it ends
-        queue.submit([encoder.finish()]);
-        self.window.pre_present_notify();
-        queue.present(frame);
+        let window = &self.window;
+        let notify = || window.pre_present_notify(); // tells winit a frame is coming
         // Ask for the next frame at once: with vsync, presenting paces the loop to the display.
-        self.window.request_redraw();
+        // No frame (hidden, resized under us): the screen is set up again, and winit asks
+        // for a redraw when the window shows.
+        if (self.screen).draw_with(&self.list, &camera, Color::BACKGROUND, notify) {
+            window.request_redraw();
+        }
     }
 }

@@ -15,6 +15,12 @@ pub enum RenderError {
          polygon shader needs; Mesa's lavapipe (mesa-vulkan-drivers) and llvmpipe can"
     )]
     Unsupported(String),
+    /// No surface could be made for the window.
+    #[error("cannot make a drawing surface for the window: {0}")]
+    Surface(String),
+    /// The adapter found cannot present to the window's surface.
+    #[error("the graphics adapter {0} cannot draw into this window")]
+    Incompatible(String),
     /// The adapter refused to open a device.
     #[error("cannot open the graphics device: {0}")]
     Device(String),

@@ -1,14 +1,16 @@
 //! `carom-render` draws the description a [`carom::World`] gives of itself
-//! ([`carom::DrawList`]) with wgpu: to a window's surface through [`Renderer`], or to an
-//! offscreen texture read back as an image through [`Offscreen`], so tests and CI render real
-//! pixels with no window and no GPU (Mesa's lavapipe or llvmpipe do). WGSL lives in the
-//! crate's `shaders/` folder and is built in. The physics core does not depend on this crate.
+//! ([`carom::DrawList`]) with wgpu: to a window through [`Screen`], into a render pass of your
+//! own through [`Renderer`], or to an offscreen texture read back as an image through
+//! [`Offscreen`], so tests and CI render real pixels with no window and no GPU (Mesa's
+//! lavapipe or llvmpipe do). WGSL lives in the crate's `shaders/` folder and is built in. The
+//! physics core does not depend on this crate.
 
 mod camera;
 mod error;
 mod gpu;
 mod offscreen;
 mod renderer;
+mod screen;
 pub mod shaders;
 
 pub use camera::Camera;
@@ -16,3 +18,4 @@ pub use error::RenderError;
 pub use gpu::Gpu;
 pub use offscreen::Offscreen;
 pub use renderer::{Renderer, clear_color};
+pub use screen::Screen;
