@@ -19,11 +19,13 @@ fn restore(text: &str) -> World {
 
 #[test]
 fn every_demo_restores_to_the_same_state() {
+    let mut checked = 0;
     for file in demos() {
         let mut scene = load(&file).unwrap();
         if scene.world.body_count() > 1500 {
             continue;
         }
+        checked += 1;
         let name = file.display();
         let dt = scene.time_step;
         for _ in 0..100 {
@@ -52,6 +54,11 @@ fn every_demo_restores_to_the_same_state() {
             "{name}: the restored state differs"
         );
     }
+    println!("{checked} scenes restored exactly");
+    assert!(
+        checked >= 25,
+        "only {checked} scenes were small enough to check"
+    );
 }
 
 /// A running scene saved to a file and opened again goes on exactly as it would have: timed
