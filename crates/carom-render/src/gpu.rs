@@ -3,6 +3,12 @@
 use crate::error::RenderError;
 use crate::renderer::Renderer;
 
+/// The backends to try: the one `WGPU_BACKEND` names (`vulkan`, `gl`, ...), else every one,
+/// software rasterisers included.
+pub(crate) fn backends() -> wgpu::Backends {
+    wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all())
+}
+
 /// A device ready to draw offscreen.
 pub struct Gpu {
     /// The adapter the device came from.
@@ -18,16 +24,28 @@ impl Gpu {
     /// names, software rasterisers included, and opens a device on it.
     pub fn headless() -> Result<Gpu, RenderError> {
         let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle();
-        descriptor.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
+        descriptor.backends = backends();
         let instance = wgpu::Instance::new(descriptor);
+        Gpu::open(&instance, None, "carom offscreen")
+    }
+
+    /// Finds an adapter of `instance` that the renderer can use (and that can draw into
+    /// `surface`, when one is given) and opens a device named `label` on it.
+    pub(crate) fn open(
+        instance: &wgpu::Instance,
+        surface: Option<&wgpu::Surface<'_>>,
+        label: &str,
+    ) -> Result<Gpu, RenderError> {
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
             power_preference: wgpu::PowerPreference::HighPerformance,
+            compatible_surface: surface,
             ..Default::default()
         }))
         .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
         Renderer::check(&adapter)?;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("carom offscreen"),
+            label: Some(label),
+            // Downlevel limits, so GL and software adapters qualify as well as GPUs.
             required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
             ..Default::default()
         }))

@@ -69,22 +69,8 @@ impl Offscreen {
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("offscreen"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(clear_color(background, FORMAT)),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                ..Default::default()
-            });
-            self.renderer.render(&mut pass);
-        }
+        let clear = clear_color(background, FORMAT);
+        (self.renderer).render_cleared(&mut encoder, &view, clear, "offscreen");
         let padded_row = padded_row(self.width);
         encoder.copy_texture_to_buffer(
             wgpu::TexelCopyTextureInfo {

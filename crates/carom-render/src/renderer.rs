@@ -365,6 +365,31 @@ impl Renderer {
             .upload(device, queue, bytemuck::cast_slice(&self.disc_instances));
     }
 
+    /// [`Renderer::render`] in a pass of its own on `encoder`, into `target` cleared to `clear`
+    /// first: a whole frame, for a window or an offscreen image.
+    pub(crate) fn render_cleared(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        target: &wgpu::TextureView,
+        clear: wgpu::Color,
+        label: &str,
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(label),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(clear),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            ..Default::default()
+        });
+        self.render(&mut pass);
+    }
+
     /// Draws what the last [`Renderer::prepare`] uploaded: polygons, circles, lines and arrows,
     /// then points on top.
     pub fn render(&self, pass: &mut wgpu::RenderPass<'_>) {

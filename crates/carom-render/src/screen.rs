@@ -3,7 +3,7 @@
 
 use crate::camera::Camera;
 use crate::error::RenderError;
-use crate::gpu::Gpu;
+use crate::gpu::{Gpu, backends};
 use crate::renderer::{Renderer, clear_color};
 use carom::{Color, DrawList};
 use std::sync::Arc;
@@ -33,38 +33,20 @@ impl Screen {
         D: wgpu::rwh::HasDisplayHandle + std::fmt::Debug + Send + Sync + 'static,
     {
         let mut descriptor = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(display));
-        descriptor.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
+        descriptor.backends = backends();
         let instance = wgpu::Instance::new(descriptor);
         // Owning an Arc of the window makes the surface 'static, so it can live in `Screen`.
         let surface = instance
             .create_surface(wgpu::SurfaceTarget::Window(Box::new(window)))
             .map_err(|e| RenderError::Surface(e.to_string()))?;
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            compatible_surface: Some(&surface),
-            ..Default::default()
-        }))
-        .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
-        Renderer::check(&adapter)?;
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("carom window"),
-            // Downlevel limits, so GL and software adapters qualify as well as GPUs.
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
-            ..Default::default()
-        }))
-        .map_err(|e| RenderError::Device(e.to_string()))?;
+        let gpu = Gpu::open(&instance, Some(&surface), "carom window")?;
         // The surface's preferred format: the renderer and `clear_color` handle sRGB or not.
         let [width, height] = size.map(|side| side.max(1));
-        let mut config = (surface.get_default_config(&adapter, width, height))
-            .ok_or_else(|| RenderError::Incompatible(adapter.get_info().name))?;
+        let mut config = (surface.get_default_config(&gpu.adapter, width, height))
+            .ok_or_else(|| RenderError::Incompatible(gpu.adapter.get_info().name))?;
         config.present_mode = wgpu::PresentMode::AutoVsync;
-        surface.configure(&device, &config);
-        let renderer = Renderer::new(&device, config.format);
-        let gpu = Gpu {
-            adapter,
-            device,
-            queue,
-        };
+        surface.configure(&gpu.device, &config);
+        let renderer = Renderer::new(&gpu.device, config.format);
         Ok(Screen {
             gpu,
             surface,
@@ -116,21 +98,8 @@ impl Screen {
         (self.renderer).prepare(device, queue, list, camera, self.size());
         let view = frame.texture.create_view(&Default::default());
         let mut encoder = device.create_command_encoder(&Default::default());
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("carom window"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(clear_color(clear, self.config.format)),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            ..Default::default()
-        });
-        self.renderer.render(&mut pass);
-        drop(pass); // the pass borrows the encoder until it ends
+        let clear = clear_color(clear, self.config.format);
+        (self.renderer).render_cleared(&mut encoder, &view, clear, "carom window");
         queue.submit([encoder.finish()]);
         before_present();
         queue.present(frame);
