@@ -117,17 +117,17 @@ impl Events {
     }
 
     /// Every body the events move.
-    pub fn bodies(&self) -> impl Iterator<Item = &BodyHandle> {
-        self.actions
-            .iter()
-            .flat_map(|action| -> Box<dyn Iterator<Item = &BodyHandle>> {
-                match action {
-                    Action::Launch { body, .. } | Action::Respawn { body, .. } => {
-                        Box::new(std::iter::once(body))
-                    }
-                    Action::Spin { bodies, .. } => Box::new(bodies.iter().map(|(body, _, _)| body)),
+    pub fn bodies(&self) -> Vec<BodyHandle> {
+        let mut moved = Vec::new();
+        for action in &self.actions {
+            match action {
+                Action::Launch { body, .. } | Action::Respawn { body, .. } => moved.push(*body),
+                Action::Spin { bodies, .. } => {
+                    moved.extend(bodies.iter().map(|(body, _, _)| *body))
                 }
-            })
+            }
+        }
+        moved
     }
 
     /// Fires every event due at the world's current time, before a step of `dt` seconds.

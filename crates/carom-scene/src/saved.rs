@@ -49,7 +49,7 @@ impl SavedState {
         let colors: HashMap<BodyHandle, (f32, f32, f32)> = self.colors.iter().copied().collect();
         let handles = names.values().chain(colors.keys());
         if let Some(gone) = handles
-            .chain(self.events.bodies())
+            .chain(&self.events.bodies())
             .find(|&&h| world.body(h).is_none())
         {
             return Err(format!(
