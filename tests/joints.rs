@@ -743,15 +743,16 @@ mod random_chains {
 
     /// The worst chain the search below found for sequential impulse: a light link welded to
     /// the hook holding a body 100 times heavier. Its position passes lift the heavy body once
-    /// as the load comes on (a fifth of the fall's energy), and no more after; soft step gains
-    /// nothing.
+    /// as the load comes on (up to a fifth of the fall's energy; when, and how much, changes
+    /// with the last bit of rounding), and no more after: what it gained in the first 10 s it
+    /// has not exceeded after a minute. Soft step gains nothing.
     #[test]
     fn a_heavy_body_on_a_light_welded_link_gains_energy_once_at_most() {
         let (masses, kinds) = ([0.1, 9.8, 0.1, 0.1, 0.1], [2, 0, 0, 0, 0]);
-        let (soft, _, _) = chain(SolverKind::SoftStep, &masses, &kinds, 1800);
+        let (soft, _, _) = chain(SolverKind::SoftStep, &masses, &kinds, 3600);
         assert!(soft < 0.01, "soft step gained {soft}");
-        let (early, _, _) = chain(SolverKind::SequentialImpulse, &masses, &kinds, 180);
-        let (late, _, _) = chain(SolverKind::SequentialImpulse, &masses, &kinds, 1800);
+        let (early, _, _) = chain(SolverKind::SequentialImpulse, &masses, &kinds, 600);
+        let (late, _, _) = chain(SolverKind::SequentialImpulse, &masses, &kinds, 3600);
         assert!(early < 0.3, "sequential impulse gained {early}");
         assert!(
             late < early + 0.02,

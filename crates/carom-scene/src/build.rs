@@ -874,7 +874,7 @@ fn chain(
     let step = (to - from) / count as f32;
     let length = step.norm();
     let link = checked(Shape::rect(0.5 * length, 0.5 * thickness)).map_err(|e| e.to_string())?;
-    let angle = step.y.atan2(step.x);
+    let angle = carom::atan2(step.y, step.x);
     let defs: Vec<BodyDef> = (0..count)
         .map(|i| {
             let at = from + step * (i as f32 + 0.5);

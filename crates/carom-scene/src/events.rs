@@ -175,7 +175,7 @@ impl Events {
                     // Aim at the exact pose at the end of the step, so the frame stays
                     // rigid however long it turns (velocities alone would spiral out).
                     let turn = (*angular_velocity * (world.time() + dt as f64)) as f32;
-                    let rotation = carom::Rot::new(turn);
+                    let rotation = carom::rotation(turn);
                     for (handle, offset, angle) in bodies.iter() {
                         if let Some(mut b) = world.body_mut(*handle) {
                             let _ =

@@ -76,7 +76,7 @@ pub use joint::{
     Anchors, DistanceJoint, Joint, JointDef, JointEvent, JointHandle, JointKind, Limits, Motor,
     MotorJoint, MouseJoint, PrismaticJoint, RevoluteJoint, Spring, WeldJoint, WheelJoint,
 };
-pub use math::{Isometry, Mat3, Real, Rot, Vec2, vec2};
+pub use math::{Isometry, Mat3, Real, Rot, Vec2, angle_of, atan2, rotation, vec2};
 pub use solver::{SolverKind, SolverParams};
 pub use stats::{StageTimes, StepStats, Work};
 pub use world::body_mut::BodyMut;

@@ -69,9 +69,63 @@ pub fn unwind_angle(angle: Real) -> Real {
     }
 }
 
+// Sines, cosines and arctangents are carom's own (the `libm` crate's ports of musl's), not
+// the platform's C library's: glibc, other C libraries and a browser's WebAssembly round a
+// few results differently in the last bit, and one bit grows into a different simulation.
+// With these a world steps to the same bits on every platform.
+
+/// The rotation by `angle` radians, computed the same on every platform.
+#[inline]
+pub fn rotation(angle: Real) -> Rot {
+    let (sin, cos) = sin_cos(angle);
+    Rot::from_cos_sin_unchecked(cos, sin)
+}
+
+/// The angle of `rotation` in `[-π, π]`, computed the same on every platform.
+#[inline]
+pub fn angle_of(rotation: &Rot) -> Real {
+    libm::atan2f(rotation.im, rotation.re)
+}
+
+/// Sine and cosine of `x`, computed the same on every platform.
+#[inline]
+pub fn sin_cos(x: Real) -> (Real, Real) {
+    (libm::sinf(x), libm::cosf(x))
+}
+
+/// `atan2(y, x)`, computed the same on every platform.
+#[inline]
+pub fn atan2(y: Real, x: Real) -> Real {
+    libm::atan2f(y, x)
+}
+
+/// Sine and cosine of `x` in double precision, computed the same on every platform.
+#[inline]
+pub fn sin_cos_f64(x: f64) -> (f64, f64) {
+    (libm::sin(x), libm::cos(x))
+}
+
+/// `atan2(y, x)` in double precision, computed the same on every platform.
+#[inline]
+pub fn atan2_f64(y: f64, x: f64) -> f64 {
+    libm::atan2(y, x)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rotations_from_and_to_angles_agree_with_the_standard_library() {
+        for i in -40..=40 {
+            let angle = i as Real * 0.1;
+            let ours = rotation(angle);
+            let std = Rot::new(angle);
+            assert!((ours.re - std.re).abs() <= 1e-7 && (ours.im - std.im).abs() <= 1e-7);
+            let back = angle_of(&ours);
+            assert!((back - unwind_angle(angle)).abs() < 1e-5, "{angle}: {back}");
+        }
+    }
 
     #[test]
     fn perpendiculars_and_crosses_agree() {

@@ -3,6 +3,13 @@
 use crate::math::Real;
 use std::time::Duration;
 
+/// The clock steps are timed by. In a browser (wasm32 with no operating system) the standard
+/// clock panics, so there the page's clock (`performance.now()`) stands in.
+#[cfg(not(all(target_arch = "wasm32", target_os = "unknown")))]
+pub(crate) use std::time::Instant;
+#[cfg(all(target_arch = "wasm32", target_os = "unknown"))]
+pub(crate) use web_time::Instant;
+
 /// Wall-clock time spent in each stage of one step.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StageTimes {

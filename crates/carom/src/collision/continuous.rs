@@ -20,7 +20,7 @@ use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};
 use crate::geometry::shape::WorldShape;
 use crate::handle_map::HandleMap;
-use crate::math::{Isometry, Real, Rot, Vec2};
+use crate::math::{Isometry, Real, Rot, Vec2, angle_of, rotation};
 use std::ops::Range;
 
 /// Where a body's centre of mass was at the start of the step, and how it was turned.
@@ -75,7 +75,7 @@ impl Sweep {
             start: from.center,
             translation: body.center_of_mass() - from.center,
             start_rotation: from.rotation,
-            turn: (body.rotation() * from.rotation.inverse()).angle(),
+            turn: angle_of(&(body.rotation() * from.rotation.inverse())),
             local_center: body.local_center(),
         }
     }
@@ -84,7 +84,7 @@ impl Sweep {
     fn pose_at(&self, t: Real) -> (Vec2, Rot) {
         (
             self.start + self.translation * t,
-            Rot::new(self.turn * t) * self.start_rotation,
+            rotation(self.turn * t) * self.start_rotation,
         )
     }
 

@@ -13,7 +13,7 @@ use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::MassProperties;
 use crate::geometry::shape::Shape;
 use crate::handle_map::generational_handle;
-use crate::math::{Isometry, Mat3, Real, Rot, Vec2, cross, cross_sv};
+use crate::math::{Isometry, Mat3, Real, Rot, Vec2, angle_of, cross, cross_sv, rotation};
 
 /// How a body moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -334,7 +334,7 @@ impl Body {
             kind: def.kind,
             colliders: Vec::with_capacity(def.colliders.len()),
             position: def.position,
-            rotation: Rot::new(def.angle),
+            rotation: rotation(def.angle),
             center: def.position,
             local_center: Vec2::zeros(),
             reach: 0.0,
@@ -483,7 +483,7 @@ impl Body {
     /// The angle in radians, in `(-π, π]`.
     #[inline]
     pub fn angle(&self) -> Real {
-        self.rotation.angle()
+        angle_of(&self.rotation)
     }
 
     /// The body's transform: local to world.
@@ -701,7 +701,7 @@ impl Body {
 
     /// Turns the body about its origin to `angle` radians.
     pub(crate) fn set_angle(&mut self, angle: Real) -> Result<(), CaromError> {
-        self.rotation = Rot::new(check_finite("body angle", angle)?);
+        self.rotation = rotation(check_finite("body angle", angle)?);
         self.center = self.position + self.rotation * self.local_center;
         self.wake_up();
         Ok(())
@@ -750,8 +750,8 @@ impl Body {
             return Ok(());
         }
         // The shortest turn: the body's angle is kept as a rotation, not a winding count.
-        let rotation = Rot::new(angle);
-        let turn = (rotation * self.rotation.inverse()).angle();
+        let rotation = rotation(angle);
+        let turn = angle_of(&(rotation * self.rotation.inverse()));
         let center = position + rotation * self.local_center;
         self.linear_velocity = (center - self.center) / dt;
         self.angular_velocity = turn / dt;

@@ -8,7 +8,7 @@
 //! keep the centroid exact enough to recentre large coordinates.
 
 use crate::error::CaromError;
-use crate::math::{Real, Vec2};
+use crate::math::{Real, Vec2, atan2_f64, sin_cos_f64};
 use std::f64::consts::PI;
 
 /// Mass, centre of mass and rotational inertia of a shape.
@@ -219,11 +219,11 @@ pub fn rounded_mass(core: &[Vec2], radius: Real, density: Real) -> MassPropertie
         // The sector's angle, from the previous edge's normal round to the next one's; the
         // turn is counter-clockwise, so the cross product is never negative (a two-vertex
         // core turns half round, where it is zero).
-        let angle = (px * qy - py * qx).abs().atan2(px * qx + py * qy);
+        let angle = atan2_f64((px * qy - py * qx).abs(), px * qx + py * qy);
         let a = 0.5 * angle * r * r;
         // Its centroid lies on the bisector, 2 r sin(α) / (3 α) from the vertex, α = angle / 2.
         let half = 0.5 * angle;
-        let (sin, cos) = half.sin_cos();
+        let (sin, cos) = sin_cos_f64(half);
         let bisector = [px * cos - py * sin, px * sin + py * cos];
         let reach = 2.0 * r * sin / (3.0 * half);
         let [vx, vy] = point(vertex);

@@ -5,7 +5,7 @@ use crate::error::{CaromError, check_finite};
 use crate::geometry::checks::{check_extent, check_point};
 use crate::geometry::mass;
 use crate::geometry::segment::distance_to_segment;
-use crate::math::{Real, Vec2, cross, perp_cw};
+use crate::math::{Real, Vec2, atan2_f64, cross, perp_cw, sin_cos_f64};
 use std::f64::consts::TAU;
 
 /// A convex polygon, counter-clockwise, recentred so that its centroid is the local origin,
@@ -200,11 +200,8 @@ impl Polygon {
         let start = -0.25 * TAU - 0.5 * TAU / n;
         let vertices = (0..sides)
             .map(|i| {
-                let angle = start + TAU * i as f64 / n;
-                Vec2::new(
-                    (radius as f64 * angle.cos()) as Real,
-                    (radius as f64 * angle.sin()) as Real,
-                )
+                let (sin, cos) = sin_cos_f64(start + TAU * i as f64 / n);
+                Vec2::new((radius as f64 * cos) as Real, (radius as f64 * sin) as Real)
             })
             .collect();
         Self::from_convex_ccw(vertices)
@@ -442,7 +439,7 @@ fn winding_turns(vertices: &[Vec2]) -> i32 {
         .map(|i| {
             let e = vertices[(i + 1) % n] - vertices[i];
             let f = vertices[(i + 2) % n] - vertices[(i + 1) % n];
-            (cross(e, f) as f64).atan2(e.dot(&f) as f64)
+            atan2_f64(cross(e, f) as f64, e.dot(&f) as f64)
         })
         .sum();
     (total / TAU).round() as i32

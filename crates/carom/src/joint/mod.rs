@@ -44,7 +44,7 @@ use crate::error::check_finite;
 use crate::error::{CaromError, check_finite_vec};
 use crate::geometry::checks::check_extent;
 use crate::handle_map::generational_handle;
-use crate::math::{Real, Rot, Vec2};
+use crate::math::{Real, Vec2, angle_of, rotation};
 
 generational_handle!(
     /// A stable reference to a joint in a [`crate::World`].
@@ -479,8 +479,8 @@ impl Joint {
 
     /// The angle of B relative to A less the reference angle, rad, in `(-π, π]`.
     pub fn angle(&self, a: &Body, b: &Body) -> Real {
-        let relative = a.rotation().inverse() * b.rotation() * Rot::new(-self.reference_angle);
-        relative.angle()
+        let relative = a.rotation().inverse() * b.rotation() * rotation(-self.reference_angle);
+        angle_of(&relative)
     }
 
     /// Replaces its settings with a checked `kind` of the same kind, axis in A's frame.

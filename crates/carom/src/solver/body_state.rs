@@ -5,7 +5,7 @@
 use super::{Environment, SolverParams};
 use crate::constants::ITEMS_PER_TASK;
 use crate::dynamics::body::{Body, BodyKind};
-use crate::math::{Real, Rot, Vec2, clamp_magnitude};
+use crate::math::{Real, Rot, Vec2, clamp_magnitude, rotation};
 use crate::parallel::{for_each_with, sum_with};
 use crate::stats::Work;
 
@@ -195,5 +195,5 @@ pub(crate) fn integrate_position(body: &Body, state: &mut BodyState, h: Real, ca
         state.held = u32::from(cut);
     }
     state.dp += state.v * h;
-    state.dq = Rot::new(state.w * h) * state.dq;
+    state.dq = rotation(state.w * h) * state.dq;
 }

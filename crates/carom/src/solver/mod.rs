@@ -40,10 +40,10 @@ use crate::dynamics::drag::DragModel;
 use crate::joint::{Joint, JointKind};
 use crate::math::{Real, Vec2};
 use crate::parallel::{for_each_with, map_into};
-use crate::stats::Work;
+use crate::stats::{Instant, Work};
 use contact_graph::ContactGraph;
 use std::ops::Range;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 use wide_contacts::{BundleInputs, WideContacts};
 
 /// Which contact solver runs. Scene files and the command line name it in snake case

@@ -18,7 +18,7 @@ use super::joints::{JointConstraint, JointPass};
 use super::soft_step::{apply_restitution, forget_impulses, solve_friction, warm_start};
 use super::{BodyState, ContactConstraint, SolverContext, SolverParams};
 use crate::constants::{LINEAR_SLOP, MAX_CONDITION, MAX_CORRECTION, POSITION_ITERATIONS};
-use crate::math::{Real, Rot, cross};
+use crate::math::{Real, cross, rotation};
 use crate::stats::Work;
 
 pub(super) fn solve(
@@ -221,9 +221,9 @@ fn correct_positions(
             }
             let push = c.normal * (-correction / k);
             a.dp -= push * c.inv_mass_a;
-            a.dq = Rot::new(-c.inv_inertia_a * cross(ra, push)) * a.dq;
+            a.dq = rotation(-c.inv_inertia_a * cross(ra, push)) * a.dq;
             b.dp += push * c.inv_mass_b;
-            b.dq = Rot::new(c.inv_inertia_b * cross(rb, push)) * b.dq;
+            b.dq = rotation(c.inv_inertia_b * cross(rb, push)) * b.dq;
         }
     }
 }

@@ -269,7 +269,7 @@ mod tests {
     use super::*;
     use crate::dynamics::body::BodyDef;
     use crate::geometry::shape::Shape;
-    use crate::math::{Rot, vec2};
+    use crate::math::{rotation, vec2};
     use crate::solver::contact_constraint::BodyMass;
     use crate::solver::contact_graph::ContactGraph;
     use crate::solver::wide_contacts::{BundleInputs, Width};
@@ -334,7 +334,7 @@ mod tests {
                 let mut state = BodyState::from_body(body);
                 if body.moves() {
                     state.dp = state.v * h;
-                    state.dq = Rot::new(state.w * h);
+                    state.dq = rotation(state.w * h);
                 }
                 state
             })

@@ -34,13 +34,12 @@ use crate::joint::store::JointStore;
 use crate::math::{Real, Vec2};
 use crate::parallel::{for_each_mut, map_zip_into};
 use crate::solver::{self, Environment, SolverKind, SolverParams};
-use crate::stats::StepStats;
+use crate::stats::{Instant, StepStats};
 use crate::world::body_mut::BodyMut;
 use crate::world::effects::{Effect, Effects};
 use crate::world::islands::IslandScratch;
 use crate::world::settings::WorldSettings;
 use crate::world::solver_sets::{SetBounds, SolverSet};
-use std::time::Instant;
 
 /// Where a ray, or a shape cast along a translation, meets a collider.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -22,7 +22,7 @@ use super::{BodyState, Softness, SolverParams};
 use crate::constants::JOINT_COLOR_COUNT;
 use crate::dynamics::body::Body;
 use crate::joint::{Joint, JointImpulses, JointKind};
-use crate::math::{Real, Rot, Vec2, cross};
+use crate::math::{Real, Rot, Vec2, angle_of, cross, rotation};
 
 /// A joint prepared for one step.
 #[derive(Debug, Clone)]
@@ -180,7 +180,7 @@ impl JointConstraint {
             side.body.rotation() * (local - side.body.local_center())
         };
         let frame_b = offset(&b, local_b);
-        let rot_b = b.body.rotation() * Rot::new(-joint.reference_angle());
+        let rot_b = b.body.rotation() * rotation(-joint.reference_angle());
         let (frame_a, rot_a, delta_center, a_state, moves_a) = match joint.kind() {
             // A mouse joint holds B to a point of the world: A is the world, at rest.
             JointKind::Mouse(settings) => (
@@ -284,7 +284,7 @@ impl JointConstraint {
         scratch.solve(&mut pa, &mut pb, &pass);
         for (state, pushed) in [(a, pa), (b, pb)] {
             state.dp += pushed.v * dt;
-            state.dq = Rot::new(pushed.w * dt) * state.dq;
+            state.dq = rotation(pushed.w * dt) * state.dq;
         }
     }
 
@@ -348,7 +348,7 @@ impl JointConstraint {
     /// The joint's angle now: B's rotation relative to A's, less the reference angle.
     #[inline]
     fn angle(&self, a: &BodyState, b: &BodyState) -> Real {
-        ((a.dq * self.rot_a).inverse() * (b.dq * self.rot_b)).angle()
+        angle_of(&((a.dq * self.rot_a).inverse() * (b.dq * self.rot_b)))
     }
 
     /// Applies impulse `p` at the anchors (to B, and its opposite to A).
