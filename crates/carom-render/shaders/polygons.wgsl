@@ -1,11 +1,12 @@
 // Convex polygons, filled and outlined in one pass, one instance each.
 //
-// Every polygon's vertices sit in a storage buffer beside the outward normal of the edge that
-// starts there. The vertex shader fans the polygon, pushed out by the outline's half width and
-// a pixel of smoothing; the fragment shader takes the signed distance to the polygon (the
-// largest distance to an edge line, exact inside a convex polygon) and shades fill, outline and
-// the smooth rim from it. Outlines drawn as separate thick segments cost five times the
-// triangles, which is what a software rasteriser pays for.
+// Every polygon's vertices sit in a float texture beside the outward normal of the edge that
+// starts there (a texture, not a storage buffer, so WebGL2 draws them too). The vertex shader
+// fans the polygon, pushed out by the outline's half width and a pixel of smoothing; the
+// fragment shader takes the signed distance to the polygon (the largest distance to an edge
+// line, exact inside a convex polygon) and shades fill, outline and the smooth rim from it.
+// Outlines drawn as separate thick segments cost five times the triangles, which is what a
+// software rasteriser pays for.
 
 struct View {
     center: vec2<f32>,   // world point at the middle of the view, m
@@ -16,8 +17,14 @@ struct View {
 };
 
 @group(0) @binding(0) var<uniform> view: View;
-// xy: a vertex, m; zw: the outward unit normal of the edge from it to the next vertex.
-@group(0) @binding(1) var<storage, read> corners: array<vec4<f32>>;
+// Texel i % CORNER_ROW, i / CORNER_ROW is corner i. xy: a vertex, m; zw: the outward unit
+// normal of the edge from it to the next vertex.
+@group(0) @binding(1) var corners: texture_2d<f32>;
+const CORNER_ROW: u32 = 1024u; // corners::WIDTH
+
+fn corner(i: u32) -> vec4<f32> {
+    return textureLoad(corners, vec2<i32>(i32(i % CORNER_ROW), i32(i / CORNER_ROW)), 0);
+}
 
 struct Polygon {
     @location(0) first: u32,
@@ -52,9 +59,9 @@ fn vs(@builtin(vertex_index) index: u32, polygon: Polygon) -> VertexOut {
     // Triangle t of the fan is (0, t + 1, t + 2).
     let triangle = index / 3u;
     let k = index % 3u;
-    let corner = select(0u, triangle + k, k > 0u);
-    let here = corners[polygon.first + corner];
-    let before = corners[polygon.first + (corner + polygon.count - 1u) % polygon.count];
+    let at = select(0u, triangle + k, k > 0u);
+    let here = corner(polygon.first + at);
+    let before = corner(polygon.first + (at + polygon.count - 1u) % polygon.count);
     // The mitre: the offset one unit away from both edges that meet here. Sharp corners are
     // capped so a needle does not throw a long spike.
     let sum = before.zw + here.zw;
@@ -77,7 +84,7 @@ fn vs(@builtin(vertex_index) index: u32, polygon: Polygon) -> VertexOut {
 fn fs(in: VertexOut) -> @location(0) vec4<f32> {
     var distance = -1e30;
     for (var i = 0u; i < in.count; i = i + 1u) {
-        let edge = corners[in.first + i];
+        let edge = corner(in.first + i);
         distance = max(distance, dot(in.world - edge.xy, edge.zw));
     }
     let pixels = distance * view.zoom; // negative inside

@@ -11,8 +11,8 @@ pub enum RenderError {
     NoAdapter(String),
     /// The adapter lacks something the renderer's shaders use.
     #[error(
-        "the graphics adapter {0} cannot read storage buffers in vertex shaders, which the \
-         polygon shader needs; Mesa's lavapipe (mesa-vulkan-drivers) and llvmpipe can"
+        "the graphics adapter {0} cannot read 32-bit float textures, which the polygon \
+         shader needs; Mesa's lavapipe (mesa-vulkan-drivers) and llvmpipe can"
     )]
     Unsupported(String),
     /// No surface could be made for the window.

@@ -36,20 +36,40 @@ impl Gpu {
         surface: Option<&wgpu::Surface<'_>>,
         label: &str,
     ) -> Result<Gpu, RenderError> {
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            compatible_surface: surface,
-            ..Default::default()
-        }))
-        .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
+        pollster::block_on(Gpu::request(instance, surface, label))
+    }
+
+    /// [`Gpu::open`] as the web needs it, where finding an adapter and opening a device are
+    /// promises to await (elsewhere, block on it with any executor). The limits asked for
+    /// are downlevel ones, so GL and software adapters qualify as well as GPUs, and on the
+    /// web WebGL2's.
+    pub async fn request(
+        instance: &wgpu::Instance,
+        surface: Option<&wgpu::Surface<'_>>,
+        label: &str,
+    ) -> Result<Gpu, RenderError> {
+        let adapter = instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                compatible_surface: surface,
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
         Renderer::check(&adapter)?;
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some(label),
-            // Downlevel limits, so GL and software adapters qualify as well as GPUs.
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
-            ..Default::default()
-        }))
-        .map_err(|e| RenderError::Device(e.to_string()))?;
+        let limits = if cfg!(target_arch = "wasm32") {
+            wgpu::Limits::downlevel_webgl2_defaults()
+        } else {
+            wgpu::Limits::downlevel_defaults()
+        };
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some(label),
+                required_limits: limits.using_resolution(adapter.limits()),
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| RenderError::Device(e.to_string()))?;
         Ok(Gpu {
             adapter,
             device,

@@ -6,6 +6,7 @@
 //! physics core does not depend on this crate.
 
 mod camera;
+mod corners;
 mod error;
 mod gpu;
 mod offscreen;

@@ -3,6 +3,7 @@
 //! fits.
 
 use crate::camera::Camera;
+use crate::corners::{self, Corner, CornerTexture};
 use crate::error::RenderError;
 use crate::shaders;
 use bytemuck::{Pod, Zeroable};
@@ -21,7 +22,7 @@ struct View {
     _pad: [f32; 2],
 }
 
-/// One polygon: its corners in the corner buffer and its colours.
+/// One polygon: its corners in the corner texture and its colours.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
 struct PolygonInstance {
@@ -31,10 +32,6 @@ struct PolygonInstance {
     outline: [f32; 4],
     outline_width: f32,
 }
-
-/// A polygon corner for the shader: the vertex and the outward unit normal of the edge that
-/// starts there.
-type Corner = [f32; 4];
 
 /// Polygons are drawn in one call per vertex count (a fan of `count - 2` triangles each).
 struct PolygonBatch {
@@ -118,7 +115,7 @@ pub struct Renderer {
     view: wgpu::Buffer,
     bind_group_layout: wgpu::BindGroupLayout,
     bind_group: wgpu::BindGroup,
-    corner_buffer: GrowingBuffer,
+    corner_texture: CornerTexture,
     polygon_buffer: GrowingBuffer,
     disc_buffer: GrowingBuffer,
     segment_buffer: GrowingBuffer,
@@ -136,11 +133,13 @@ pub struct Renderer {
 }
 
 impl Renderer {
-    /// Whether `adapter` can run the renderer's shaders (polygon corners are read from a storage
-    /// buffer in the vertex stage, which some downlevel GL and WebGL adapters cannot).
+    /// Whether `adapter` can run the renderer's shaders: polygon corners are read from a
+    /// 32-bit float texture, which WebGL2 and downlevel GL have as well as Vulkan and WebGPU.
     pub fn check(adapter: &wgpu::Adapter) -> Result<(), RenderError> {
-        let flags = adapter.get_downlevel_capabilities().flags;
-        if flags.contains(wgpu::DownlevelFlags::VERTEX_STORAGE) {
+        let usages = adapter
+            .get_texture_format_features(corners::FORMAT)
+            .allowed_usages;
+        if usages.contains(wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST) {
             Ok(())
         } else {
             Err(RenderError::Unsupported(adapter.get_info().name))
@@ -156,26 +155,24 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let buffer_entry = |binding, ty| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty,
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("view and polygon corners"),
             entries: &[
-                buffer_entry(0, wgpu::BufferBindingType::Uniform),
-                buffer_entry(1, wgpu::BufferBindingType::Storage { read_only: true }),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::VERTEX | wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                corners::layout_entry(1),
             ],
         });
-        let corner_buffer =
-            GrowingBuffer::new(device, "polygon corners", wgpu::BufferUsages::STORAGE);
-        let bind_group = bind_group(device, &layout, &view, &corner_buffer.buffer);
+        let corner_texture = CornerTexture::new(device, 1);
+        let bind_group = bind_group(device, &layout, &view, corner_texture.view());
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("carom"),
             bind_group_layouts: &[Some(&layout)],
@@ -255,7 +252,7 @@ impl Renderer {
             view,
             bind_group_layout: layout,
             bind_group,
-            corner_buffer,
+            corner_texture,
             polygon_buffer: GrowingBuffer::new(device, "polygon instances", instance),
             disc_buffer: GrowingBuffer::new(device, "disc instances", instance),
             segment_buffer: GrowingBuffer::new(device, "segment instances", instance),
@@ -273,7 +270,7 @@ impl Renderer {
 
     /// Bytes of GPU buffer held for geometry, for checking that frames reuse them.
     pub fn buffer_capacity(&self) -> u64 {
-        self.corner_buffer.buffer.size()
+        self.corner_texture.size()
             + self.polygon_buffer.buffer.size()
             + self.disc_buffer.buffer.size()
             + self.segment_buffer.buffer.size()
@@ -345,16 +342,13 @@ impl Renderer {
         }
         self.circle_range = 0..circles;
         self.point_range = circles..self.disc_instances.len() as u32;
-        if self
-            .corner_buffer
-            .upload(device, queue, bytemuck::cast_slice(&self.corners))
-        {
-            // The bind group names the corner buffer, so a new buffer needs a new group.
+        if self.corner_texture.upload(device, queue, &mut self.corners) {
+            // The bind group names the corner texture, so a new texture needs a new group.
             self.bind_group = bind_group(
                 device,
                 &self.bind_group_layout,
                 &self.view,
-                &self.corner_buffer.buffer,
+                self.corner_texture.view(),
             );
         }
         self.polygon_buffer
@@ -396,9 +390,9 @@ impl Renderer {
         pass.set_bind_group(0, &self.bind_group, &[]);
         if !self.polygon_batches.is_empty() {
             pass.set_pipeline(&self.polygons);
-            pass.set_vertex_buffer(0, self.polygon_buffer.buffer.slice(..));
             for batch in &self.polygon_batches {
-                pass.draw(0..batch.vertex_count, batch.instances.clone());
+                set_instances::<PolygonInstance>(pass, &self.polygon_buffer, &batch.instances);
+                pass.draw(0..batch.vertex_count, 0..batch.instances.len() as u32);
             }
         }
         self.draw_discs(pass, self.circle_range.clone());
@@ -473,16 +467,16 @@ impl Renderer {
     fn draw_segments(&self, pass: &mut wgpu::RenderPass<'_>, range: Range<u32>) {
         if !range.is_empty() {
             pass.set_pipeline(&self.segments);
-            pass.set_vertex_buffer(0, self.segment_buffer.buffer.slice(..));
-            pass.draw(0..6, range);
+            set_instances::<SegmentInstance>(pass, &self.segment_buffer, &range);
+            pass.draw(0..6, 0..range.len() as u32);
         }
     }
 
     fn draw_discs(&self, pass: &mut wgpu::RenderPass<'_>, range: Range<u32>) {
         if !range.is_empty() {
             pass.set_pipeline(&self.discs);
-            pass.set_vertex_buffer(0, self.disc_buffer.buffer.slice(..));
-            pass.draw(0..6, range);
+            set_instances::<DiscInstance>(pass, &self.disc_buffer, &range);
+            pass.draw(0..6, 0..range.len() as u32);
         }
     }
 }
@@ -528,11 +522,23 @@ fn outward_normals(vertices: &[Vec2]) -> Option<impl Iterator<Item = Vec2> + '_>
     }))
 }
 
+/// Binds `instances` of `buffer` as the instance data, so the draw counts them from 0: a
+/// first instance other than 0 is beyond WebGL2.
+fn set_instances<T>(
+    pass: &mut wgpu::RenderPass<'_>,
+    buffer: &GrowingBuffer,
+    instances: &Range<u32>,
+) {
+    let stride = std::mem::size_of::<T>() as u64;
+    let bytes = instances.start as u64 * stride..instances.end as u64 * stride;
+    pass.set_vertex_buffer(0, buffer.buffer.slice(bytes));
+}
+
 fn bind_group(
     device: &wgpu::Device,
     layout: &wgpu::BindGroupLayout,
     view: &wgpu::Buffer,
-    corners: &wgpu::Buffer,
+    corners: &wgpu::TextureView,
 ) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("view and polygon corners"),
@@ -544,7 +550,7 @@ fn bind_group(
             },
             wgpu::BindGroupEntry {
                 binding: 1,
-                resource: corners.as_entire_binding(),
+                resource: wgpu::BindingResource::TextureView(corners),
             },
         ],
     })
