@@ -15,6 +15,14 @@ use std::thread::JoinHandle;
 /// Where a report is, relative to the working directory or to the scene folder's parent.
 pub const REPORT_CSV: &str = "docs/accuracy/accuracy.csv";
 
+/// Whether this build can measure a scene from the panel. A sweep runs on a thread of its
+/// own so the app keeps running, and the web build has no threads: it shows the report it was
+/// built with.
+pub const CAN_MEASURE: bool = cfg!(not(target_arch = "wasm32"));
+
+/// Whether this build can measure Box2D and Rapier beside carom (the web build cannot).
+pub const CAN_MEASURE_PEERS: bool = CAN_MEASURE && cfg!(feature = "peers");
+
 /// The scene the panel shows, as read from its file.
 #[derive(Debug, Clone)]
 pub struct SceneInfo {
@@ -38,7 +46,7 @@ impl SceneInfo {
     /// sweep starts from them).
     pub fn read(path: &Path) -> Result<SceneInfo, String> {
         let file = path.display().to_string();
-        let scene = carom_scene::read(path).map_err(|e| e.to_string())?;
+        let scene = crate::files::read_scene(path).map_err(|e| e.to_string())?;
         let built = carom_scene::build(&scene, &file).map_err(|e| e.to_string())?;
         Ok(SceneInfo {
             path: path.to_path_buf(),
@@ -210,7 +218,7 @@ impl AccuracyPanel {
         }
         let name = self.scene.as_ref().map_or("", |s| s.name.as_str());
         for path in report_paths(scene_path) {
-            let Ok(text) = std::fs::read_to_string(&path) else {
+            let Ok(text) = crate::files::read_to_string(&path) else {
                 continue;
             };
             match report::parse_csv(&text) {
@@ -243,7 +251,7 @@ impl AccuracyPanel {
             runs: 1,
             ..SweepOptions::default()
         };
-        if self.with_peers {
+        if self.with_peers && CAN_MEASURE_PEERS {
             options.engines = Engine::ALL.to_vec();
         }
         let progress = Arc::new(Mutex::new(Progress::default()));

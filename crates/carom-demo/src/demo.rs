@@ -3,12 +3,14 @@
 //! times and draws what it describes; tests feed it synthetic events the same way.
 
 use crate::accuracy_panel::AccuracyPanel;
+use crate::files;
 use crate::metrics::Metrics;
 use carom::{BodyHandle, Color, DrawList, DrawOptions, JointDef, JointHandle, Vec2};
 use carom_render::Camera;
 use carom_scene::SceneWorld;
 use std::path::{Path, PathBuf};
-use std::time::{Instant, SystemTime};
+use std::time::SystemTime;
+use web_time::Instant;
 
 /// A scene file found in the scenes folder.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,18 +26,9 @@ pub struct SceneEntry {
 /// Every `*.ron` scene in `folder` that parses, sorted by file name, and the files that do not
 /// parse with the reason (shown, not fatal: one broken scene must not hide the others).
 pub fn find_scenes(folder: &Path) -> (Vec<SceneEntry>, Vec<String>) {
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(folder)
-        .map(|entries| {
-            entries
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| p.extension().is_some_and(|e| e == "ron"))
-                .collect()
-        })
-        .unwrap_or_default();
-    paths.sort();
     let (mut found, mut broken) = (Vec::new(), Vec::new());
-    for path in paths {
-        match carom_scene::read(&path) {
+    for path in files::scene_files(folder) {
+        match files::read_scene(&path) {
             Ok(scene) => found.push(SceneEntry {
                 path,
                 name: scene.name,
@@ -133,7 +126,7 @@ impl Demo {
     /// Opens `scene` (a file), listing the scenes of `folder` for the menu.
     pub fn open(folder: &Path, scene: &Path, viewport: [u32; 2]) -> Result<Demo, String> {
         let (scenes, _) = find_scenes(folder);
-        let loaded = carom_scene::load(scene).map_err(|e| e.to_string())?;
+        let loaded = files::load_scene(scene).map_err(|e| e.to_string())?;
         let current = scenes.iter().position(|s| same_file(&s.path, scene));
         let mut demo = Demo {
             scenes,
@@ -189,7 +182,7 @@ impl Demo {
 
     fn load(&mut self, path: &Path) -> Result<(), String> {
         let changed = modified(path);
-        let loaded = carom_scene::load(path).map_err(|e| e.to_string())?;
+        let loaded = files::load_scene(path).map_err(|e| e.to_string())?;
         self.file_changed = changed;
         self.notice = None;
         self.camera = scene_camera(&loaded, self.viewport);
@@ -203,11 +196,11 @@ impl Demo {
         Ok(())
     }
 
-    /// Saves the running scene as it is now, camera included, to `NAME-saved.ron` beside its
-    /// file (a saved scene saves over itself), and lists it among the scenes. Opened again, it
-    /// goes on exactly as this one would have.
-    pub fn save(&mut self) -> Result<PathBuf, String> {
-        let mut scene = carom_scene::read(&self.scene_path).map_err(|e| e.to_string())?;
+    /// The running scene as it is now, camera included, as a scene file, and the file it
+    /// saves to: `NAME-saved.ron` beside its own (a saved scene saves over itself). Opened
+    /// again, it goes on exactly as this one would have.
+    pub fn saved(&mut self) -> Result<(PathBuf, carom_scene::Scene), String> {
+        let mut scene = files::read_scene(&self.scene_path).map_err(|e| e.to_string())?;
         let stem = self
             .scene_path
             .file_stem()
@@ -226,7 +219,12 @@ impl Demo {
         }
         // The grab's spring is the cursor's, not the scene's: let go before saving.
         self.let_go();
-        let saved = self.scene.save(&scene);
+        Ok((path, self.scene.save(&scene)))
+    }
+
+    /// Saves the running scene ([`Demo::saved`]) to its file and lists it among the scenes.
+    pub fn save(&mut self) -> Result<PathBuf, String> {
+        let (path, saved) = self.saved()?;
         carom_scene::write(&saved, &path).map_err(|e| e.to_string())?;
         if same_file(&path, &self.scene_path) {
             self.file_changed = modified(&path);

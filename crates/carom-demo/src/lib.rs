@@ -4,12 +4,14 @@
 //! renders a scene offscreen to an image; [`bench`](mod@bench) sweeps solver settings against
 //! their error, and [`accuracy_panel`] holds what the sidebar shows of it for the scene
 //! running. The window itself is [`window`], its egui sidebar
-//! [`ui`], and [`capture`] reads the window's pixels back for screenshots.
+//! [`ui`], and [`capture`] reads the window's pixels back for screenshots. [`files`] is where
+//! scenes and reports are read: the disk, or, in the web build, files built into the program.
 
 pub mod accuracy_panel;
 pub mod bench;
 pub mod capture;
 pub mod demo;
+pub mod files;
 pub mod metrics;
 pub mod run;
 pub mod snapshot;

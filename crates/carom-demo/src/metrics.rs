@@ -107,6 +107,34 @@ impl Metrics {
         recent.sort_by(f64::total_cmp);
         recent[recent.len() / 2]
     }
+
+    /// Mean over the last [`Metrics::WINDOW`] steps of what `value` picks.
+    pub fn mean(&self, value: impl Fn(&StepSample) -> f64) -> f64 {
+        let recent = self.samples.iter().rev().take(Self::WINDOW);
+        let count = recent.len();
+        if count == 0 {
+            return 0.0;
+        }
+        recent.map(value).sum::<f64>() / count as f64
+    }
+
+    /// The typical step cost: the median, or in a browser the mean. A browser's clock ticks
+    /// in steps of 0.1 ms, blurred by noise so pages cannot time other sites; the median of
+    /// a fast scene's steps is then 0, the mean still close to the truth.
+    pub fn typical(&self, value: impl Fn(&StepSample) -> f64) -> f64 {
+        if cfg!(target_arch = "wasm32") {
+            self.mean(value)
+        } else {
+            self.median(value)
+        }
+    }
+
+    /// What [`Metrics::typical`] takes, for labels.
+    pub const TYPICAL: &str = if cfg!(target_arch = "wasm32") {
+        "mean"
+    } else {
+        "median"
+    };
 }
 
 /// Kinetic energy plus gravity's potential energy (zero at height zero), J.

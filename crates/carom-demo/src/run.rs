@@ -3,7 +3,7 @@
 use carom::{Effect, SolverKind};
 use carom_scene::SceneWorld;
 use std::path::Path;
-use std::time::Instant;
+use web_time::Instant;
 
 /// How to run a scene, beyond what the scene file says.
 #[derive(Debug, Clone, Default)]
@@ -127,7 +127,7 @@ pub fn run(file: &Path, options: &RunOptions) -> Result<RunReport, String> {
 
 /// [`run`] on the calling thread's pool.
 fn run_here(file: &Path, options: &RunOptions) -> Result<RunReport, String> {
-    let mut scene = carom_scene::load(file).map_err(|e| e.to_string())?;
+    let mut scene = crate::files::load_scene(file).map_err(|e| e.to_string())?;
     apply(&mut scene, options)?;
     let mut times = Vec::with_capacity(options.steps);
     let (mut max_penetration, mut max_speed, mut nan) = (0.0f32, 0.0f32, false);

@@ -6,7 +6,7 @@ use carom_render::Offscreen;
 use carom_scene::SceneWorld;
 use image::RgbaImage;
 use std::path::Path;
-use std::time::Instant;
+use web_time::Instant;
 
 /// What to render and how big.
 #[derive(Debug, Clone)]

@@ -2,7 +2,7 @@
 //! measured front with the demo's setting on it, and the live step cost.
 
 use crate::accuracy_panel::{self, AccuracyPanel, Marker, Source};
-use crate::bench::{Engine, Point, chart};
+use crate::bench::{Engine, Point};
 use crate::demo::{Demo, HINTS};
 use crate::metrics::{Metrics, STAGES};
 use carom::{DrawFlags, Effect, SolverKind, SolverParams};
@@ -194,15 +194,16 @@ fn cost_section(ui: &mut egui::Ui, demo: &mut Demo) {
     ui.heading("Cost of accuracy");
     front_section(ui, demo);
     let metrics = &demo.metrics;
-    let step = metrics.median(|s| s.step_ms);
+    let step = metrics.typical(|s| s.step_ms);
     ui.label(format!(
-        "step {step:.3} ms (median of the last {})",
+        "step {step:.3} ms ({} of the last {})",
+        Metrics::TYPICAL,
         Metrics::WINDOW
     ));
     let split: Vec<String> = STAGES
         .iter()
         .enumerate()
-        .map(|(i, name)| format!("{name} {:.3}", metrics.median(|s| s.stage_ms[i])))
+        .map(|(i, name)| format!("{name} {:.3}", metrics.typical(|s| s.stage_ms[i])))
         .collect();
     ui.small(split.join(" · "));
     if let Some(latest) = metrics.latest() {
@@ -329,6 +330,10 @@ fn measure_controls(ui: &mut egui::Ui, panel: &mut AccuracyPanel) {
         ui.ctx().request_repaint();
         return;
     }
+    if !accuracy_panel::CAN_MEASURE {
+        ui.small("The desktop app measures scenes here, and `carom bench` writes the report.");
+        return;
+    }
     let label = if panel.points().is_empty() {
         "Measure this scene's front"
     } else {
@@ -345,7 +350,9 @@ fn measure_controls(ui: &mut egui::Ui, panel: &mut AccuracyPanel) {
         {
             panel.start_sweep();
         }
-        ui.checkbox(&mut panel.with_peers, "with Box2D, Rapier");
+        if accuracy_panel::CAN_MEASURE_PEERS {
+            ui.checkbox(&mut panel.with_peers, "with Box2D, Rapier");
+        }
     });
 }
 
@@ -461,8 +468,8 @@ fn front_plot(ui: &mut egui::Ui, points: &[Point], marker: Option<&Marker>) {
 
 /// An engine's colour in the chart, for egui.
 fn engine_color(engine: Engine) -> egui::Color32 {
-    let color = chart::color_of(engine);
-    egui::Color32::from_rgb(color.0, color.1, color.2)
+    let [r, g, b] = engine.color();
+    egui::Color32::from_rgb(r, g, b)
 }
 
 /// An axis label for a log10 value: the real value at whole decades (at every mark when the

@@ -1,16 +1,20 @@
 //! The window: winit events in, a wgpu surface out, the scene drawn by `carom-render` and the
 //! sidebar by egui on top. Everything else lives in [`Demo`], which knows nothing of windows.
+//!
+//! The same window runs natively ([`run`]) and in a web page's canvas (`start_in_canvas`, in
+//! the wasm build), where the graphics device arrives asynchronously and a [`Host`] (the
+//! page) hears of each frame, of failures and of saves.
 
 use crate::capture::copy_to_buffer;
 use crate::demo::{Button, Demo, Key};
 use crate::ui::{SIDEBAR_WIDTH, sidebar};
 use carom::{Color, DrawList, vec2};
-use carom_render::{Renderer, clear_color};
+use carom_render::{Gpu, Renderer, clear_color};
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
+use web_time::Instant;
 use winit::application::ApplicationHandler;
-use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
+use winit::event::{ElementState, MouseButton, MouseScrollDelta, Touch, TouchPhase, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
@@ -22,7 +26,7 @@ pub struct WindowOptions {
     pub scene: PathBuf,
     /// The folder whose scenes the menu lists.
     pub scenes_folder: PathBuf,
-    /// Inner size, logical pixels.
+    /// Inner size, logical pixels (the web page sizes its canvas itself).
     pub size: (u32, u32),
     /// Close after this many frames (for screenshots and tests).
     pub frames: Option<u64>,
@@ -30,14 +34,48 @@ pub struct WindowOptions {
     pub screenshot: Option<PathBuf>,
 }
 
+/// A frame just shown, as a [`Host`] hears of it.
+#[derive(Debug, Clone, Copy)]
+pub struct FrameInfo<'a> {
+    /// Frames shown so far, this one included.
+    pub frames: u64,
+    /// Frames a second, smoothed over the last few dozen.
+    pub frames_per_second: f64,
+    /// Physical pixels per logical pixel.
+    pub scale_factor: f64,
+    /// Where the scene's view starts, physical pixels from the left (right of the sidebar).
+    pub scene_left: f32,
+    /// The adapter drawing and its backend (WebGPU or WebGL2 on the web).
+    pub adapter: &'a str,
+}
+
+/// What the window's surroundings hear of it: the native app prints and writes files; a web
+/// page shows errors in the page and offers saves as downloads.
+pub trait Host {
+    /// A frame was shown.
+    fn frame(&mut self, _demo: &Demo, _frame: &FrameInfo<'_>) {}
+    /// The window could not start, or stopped with an error.
+    fn failed(&mut self, _message: &str) {}
+    /// The user asked to save the running scene (W). Natively it is written beside its file.
+    fn save(&mut self, demo: &mut Demo) -> Result<(), String> {
+        demo.save().map(|_| ())
+    }
+}
+
+/// The native app's host: everything as [`Host`]'s defaults do it.
+#[cfg(not(target_arch = "wasm32"))]
+struct Native;
+
+#[cfg(not(target_arch = "wasm32"))]
+impl Host for Native {}
+
 /// Opens the window and runs until it is closed (or `frames` have been shown).
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run(options: WindowOptions) -> Result<(), String> {
-    let event_loop = EventLoop::new().map_err(|e| format!("cannot open a window: {e}"))?;
-    let mut app = App {
-        options,
-        running: None,
-        failure: None,
-    };
+    let event_loop = EventLoop::<Started>::with_user_event()
+        .build()
+        .map_err(|e| format!("cannot open a window: {e}"))?;
+    let mut app = App::new(options, Box::new(Native));
     event_loop
         .run_app(&mut app)
         .map_err(|e| format!("the event loop failed: {e}"))?;
@@ -50,10 +88,161 @@ pub fn run(options: WindowOptions) -> Result<(), String> {
     Ok(())
 }
 
+/// Starts the demo in `canvas`, a canvas of the page, and returns at once: the browser runs
+/// the frames from then on, and `host` hears of them.
+#[cfg(target_arch = "wasm32")]
+pub fn start_in_canvas(
+    options: WindowOptions,
+    canvas: web_sys::HtmlCanvasElement,
+    host: Box<dyn Host>,
+) -> Result<(), String> {
+    use winit::platform::web::EventLoopExtWebSys;
+    let event_loop = EventLoop::<Started>::with_user_event()
+        .build()
+        .map_err(|e| format!("cannot start the event loop: {e}"))?;
+    let mut app = App::new(options, host);
+    app.canvas = Some(canvas);
+    app.proxy = Some(event_loop.create_proxy());
+    event_loop.spawn_app(app);
+    Ok(())
+}
+
+/// The window's graphics, ready or not: what starting sends back to the event loop.
+struct Started(Result<Running, String>);
+
 struct App {
     options: WindowOptions,
     running: Option<Running>,
+    /// Asked for the graphics device and waiting for it (the web answers asynchronously).
+    starting: bool,
     failure: Option<String>,
+    host: Box<dyn Host>,
+    /// The page's canvas to draw in, and the way back into the event loop for the device
+    /// found asynchronously.
+    #[cfg(target_arch = "wasm32")]
+    canvas: Option<web_sys::HtmlCanvasElement>,
+    #[cfg(target_arch = "wasm32")]
+    proxy: Option<winit::event_loop::EventLoopProxy<Started>>,
+}
+
+impl App {
+    fn new(options: WindowOptions, host: Box<dyn Host>) -> App {
+        App {
+            options,
+            running: None,
+            starting: false,
+            failure: None,
+            host,
+            #[cfg(target_arch = "wasm32")]
+            canvas: None,
+            #[cfg(target_arch = "wasm32")]
+            proxy: None,
+        }
+    }
+
+    fn fail(&mut self, event_loop: &ActiveEventLoop, message: String) {
+        self.host.failed(&message);
+        self.failure = Some(message);
+        event_loop.exit();
+    }
+
+    fn window_attributes(&self) -> winit::window::WindowAttributes {
+        let attributes = Window::default_attributes().with_title("carom");
+        #[cfg(not(target_arch = "wasm32"))]
+        let attributes = attributes.with_inner_size(winit::dpi::LogicalSize::new(
+            self.options.size.0,
+            self.options.size.1,
+        ));
+        #[cfg(target_arch = "wasm32")]
+        let attributes = {
+            use winit::platform::web::WindowAttributesExtWebSys;
+            attributes.with_canvas(self.canvas.clone())
+        };
+        attributes
+    }
+}
+
+impl ApplicationHandler<Started> for App {
+    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
+        if self.running.is_some() || self.starting {
+            return;
+        }
+        let window = match event_loop.create_window(self.window_attributes()) {
+            Ok(window) => Arc::new(window),
+            Err(e) => return self.fail(event_loop, format!("cannot create the window: {e}")),
+        };
+        let display = event_loop.owned_display_handle();
+        let options = self.options.clone();
+        let starting = Running::new(window, display, options);
+        self.starting = true;
+        #[cfg(not(target_arch = "wasm32"))]
+        self.user_event(event_loop, Started(pollster::block_on(starting)));
+        #[cfg(target_arch = "wasm32")]
+        {
+            let proxy = self.proxy.clone();
+            wasm_bindgen_futures::spawn_local(async move {
+                let started = Started(starting.await);
+                // Fails only once the event loop is gone, and then nobody is left to tell.
+                if let Some(proxy) = proxy {
+                    let _ = proxy.send_event(started);
+                }
+            });
+        }
+    }
+
+    fn user_event(&mut self, event_loop: &ActiveEventLoop, started: Started) {
+        self.starting = false;
+        match started.0 {
+            Ok(running) => {
+                running.window.request_redraw();
+                self.running = Some(running);
+            }
+            Err(message) => self.fail(event_loop, message),
+        }
+    }
+
+    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
+        let Some(running) = &mut self.running else {
+            return;
+        };
+        let response = running.egui_input.on_window_event(&running.window, &event);
+        match event {
+            WindowEvent::CloseRequested => event_loop.exit(),
+            WindowEvent::Resized(size) => running.resize(size.width, size.height),
+            WindowEvent::RedrawRequested => match running.redraw(&self.options) {
+                Ok(true) => self.host.frame(&running.demo, &running.frame_info()),
+                Ok(false) => event_loop.exit(),
+                Err(message) => self.fail(event_loop, message),
+            },
+            // Saving is the host's: a file natively, a download on the web.
+            WindowEvent::KeyboardInput { event: ref key, .. }
+                if !response.consumed
+                    && key.state.is_pressed()
+                    && key.physical_key == PhysicalKey::Code(KeyCode::KeyW) =>
+            {
+                running.error = self.host.save(&mut running.demo).err();
+            }
+            // The cursor's position and a button's release always reach the demo, so a grab
+            // or a pan ends even when the button comes up over the sidebar; touches likewise.
+            WindowEvent::CursorMoved { .. }
+            | WindowEvent::MouseInput {
+                state: ElementState::Released,
+                ..
+            }
+            | WindowEvent::Touch(Touch {
+                phase: TouchPhase::Moved | TouchPhase::Ended | TouchPhase::Cancelled,
+                ..
+            }) => running.input(&event),
+            other if !response.consumed => running.input(&other),
+            _ => {}
+        }
+    }
+
+    fn about_to_wait(&mut self, _: &ActiveEventLoop) {
+        if let Some(running) = &self.running {
+            running.window.request_redraw();
+        }
+    }
 }
 
 /// Everything that exists while the window is open.
@@ -71,6 +260,8 @@ struct Running {
     list: DrawList,
     error: Option<String>,
     cursor: egui::Pos2,
+    /// The touch that grabs, while a finger is down.
+    touch: Option<u64>,
     last_frame: Instant,
     frames: u64,
     /// Seconds of wall time per frame, smoothed, for the sidebar's frame rate.
@@ -81,95 +272,37 @@ struct Running {
     adapter: String,
 }
 
-impl ApplicationHandler for App {
-    fn resumed(&mut self, event_loop: &ActiveEventLoop) {
-        if self.running.is_some() {
-            return;
-        }
-        match Running::new(event_loop, &self.options) {
-            Ok(running) => self.running = Some(running),
-            Err(message) => {
-                self.failure = Some(message);
-                event_loop.exit();
-            }
-        }
-    }
-
-    fn window_event(&mut self, event_loop: &ActiveEventLoop, _: WindowId, event: WindowEvent) {
-        let Some(running) = &mut self.running else {
-            return;
-        };
-        let response = running.egui_input.on_window_event(&running.window, &event);
-        match event {
-            WindowEvent::CloseRequested => event_loop.exit(),
-            WindowEvent::Resized(size) => running.resize(size.width, size.height),
-            WindowEvent::RedrawRequested => match running.redraw(&self.options) {
-                Ok(true) => {}
-                Ok(false) => event_loop.exit(),
-                Err(message) => {
-                    self.failure = Some(message);
-                    event_loop.exit();
-                }
-            },
-            // The cursor's position and a button's release always reach the demo, so a grab
-            // or a pan ends even when the button comes up over the sidebar.
-            WindowEvent::CursorMoved { .. }
-            | WindowEvent::MouseInput {
-                state: ElementState::Released,
-                ..
-            } => running.input(&event),
-            other if !response.consumed => running.input(&other),
-            _ => {}
-        }
-    }
-
-    fn about_to_wait(&mut self, _: &ActiveEventLoop) {
-        if let Some(running) = &self.running {
-            running.window.request_redraw();
-        }
-    }
-}
-
 impl Running {
-    fn new(event_loop: &ActiveEventLoop, options: &WindowOptions) -> Result<Running, String> {
-        let attributes = Window::default_attributes()
-            .with_title("carom")
-            .with_inner_size(winit::dpi::LogicalSize::new(options.size.0, options.size.1));
-        let window = Arc::new(
-            event_loop
-                .create_window(attributes)
-                .map_err(|e| format!("cannot create the window: {e}"))?,
-        );
-        let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
-        let mut descriptor = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(
-            event_loop.owned_display_handle(),
-        ));
-        descriptor.backends = backends;
-        let instance = wgpu::Instance::new(descriptor);
+    /// The window's graphics and the demo in it. Asynchronous for the web, where the adapter
+    /// and device are promises; natively it is blocked on.
+    async fn new(
+        window: Arc<Window>,
+        display: winit::event_loop::OwnedDisplayHandle,
+        options: WindowOptions,
+    ) -> Result<Running, String> {
+        let mut descriptor = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(display));
+        descriptor.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
+        // WebGPU where the browser has it, WebGL2 otherwise.
+        let instance = wgpu::util::new_instance_with_webgpu_detection(descriptor).await;
         let surface = instance
             .create_surface(window.clone())
             .map_err(|e| format!("cannot draw into the window: {e}"))?;
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            force_fallback_adapter: false,
-            compatible_surface: Some(&surface),
-            ..Default::default()
-        }))
-        .map_err(|e| {
-            format!(
-                "no graphics adapter can draw into the window ({e}); on Debian install \
-                 mesa-vulkan-drivers (Vulkan) or libegl1 libegl-mesa0 libgl1-mesa-dri (GL)"
-            )
-        })?;
-        Renderer::check(&adapter).map_err(|e| e.to_string())?;
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("carom"),
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
-            ..Default::default()
-        }))
-        .map_err(|e| format!("cannot open the graphics device: {e}"))?;
+        let gpu = Gpu::request(&instance, Some(&surface), "carom")
+            .await
+            .map_err(|e| e.to_string())?;
+        let Gpu {
+            adapter,
+            device,
+            queue,
+        } = gpu;
         let size = window.inner_size();
         let capabilities = surface.get_capabilities(&adapter);
+        if capabilities.formats.is_empty() {
+            return Err(format!(
+                "the graphics adapter {} cannot draw into this window",
+                adapter.get_info().name
+            ));
+        }
         // A non-sRGB format when there is one: egui blends in gamma space and expects it.
         let format = capabilities
             .formats
@@ -178,6 +311,7 @@ impl Running {
             .find(|f| !f.is_srgb())
             .unwrap_or(capabilities.formats[0]);
         let copy_src = capabilities.usages.contains(wgpu::TextureUsages::COPY_SRC);
+        let largest = device.limits().max_texture_dimension_2d;
         let config = wgpu::SurfaceConfiguration {
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT
                 | if copy_src {
@@ -186,8 +320,8 @@ impl Running {
                     wgpu::TextureUsages::empty()
                 },
             format,
-            width: size.width.max(1),
-            height: size.height.max(1),
+            width: size.width.clamp(1, largest),
+            height: size.height.clamp(1, largest),
             present_mode: wgpu::PresentMode::AutoVsync,
             desired_maximum_frame_latency: 2,
             alpha_mode: capabilities.alpha_modes[0],
@@ -203,14 +337,15 @@ impl Running {
             &window,
             Some(window.scale_factor() as f32),
             None,
-            Some(device.limits().max_texture_dimension_2d as usize),
+            Some(largest as usize),
         );
         let egui_renderer =
             egui_wgpu::Renderer::new(&device, format, egui_wgpu::RendererOptions::default());
         let scale = window.scale_factor() as f32;
-        let viewport = scene_viewport(size.width, size.height, scale);
+        let viewport = scene_viewport(config.width, config.height, scale);
         let demo = Demo::open(&options.scenes_folder, &options.scene, viewport)?;
         window.set_title(&format!("carom: {}", demo.scene_path.display()));
+        let info = adapter.get_info();
         Ok(Running {
             window,
             surface,
@@ -225,21 +360,30 @@ impl Running {
             list: DrawList::new(),
             error: None,
             cursor: egui::Pos2::ZERO,
+            touch: None,
             last_frame: Instant::now(),
             frames: 0,
             frame_seconds: 1.0 / 60.0,
             frame_ms: Vec::new(),
-            adapter: format!(
-                "{} on {:?}",
-                adapter.get_info().name,
-                adapter.get_info().backend
-            ),
+            adapter: format!("{} on {:?}", info.name, info.backend),
         })
     }
 
+    /// The frame just shown, for the host.
+    fn frame_info(&self) -> FrameInfo<'_> {
+        FrameInfo {
+            frames: self.frames,
+            frames_per_second: 1.0 / self.frame_seconds.max(1e-6),
+            scale_factor: self.window.scale_factor(),
+            scene_left: self.scene_left(),
+            adapter: &self.adapter,
+        }
+    }
+
     fn resize(&mut self, width: u32, height: u32) {
-        self.config.width = width.max(1);
-        self.config.height = height.max(1);
+        let largest = self.device.limits().max_texture_dimension_2d;
+        self.config.width = width.clamp(1, largest);
+        self.config.height = height.clamp(1, largest);
         self.surface.configure(&self.device, &self.config);
         let scale = self.window.scale_factor() as f32;
         self.demo
@@ -275,6 +419,34 @@ impl Running {
                 }
                 Ok(())
             }
+            // One finger grabs and throws as the left button does; further fingers are
+            // ignored until it lifts.
+            WindowEvent::Touch(Touch {
+                phase,
+                location,
+                id,
+                ..
+            }) => {
+                let at = egui::pos2(location.x as f32, location.y as f32);
+                let local = vec2(at.x - self.scene_left(), at.y);
+                match phase {
+                    TouchPhase::Started if self.touch.is_none() && local.x >= 0.0 => {
+                        self.touch = Some(*id);
+                        self.cursor = at;
+                        self.demo.press(Button::Left, local);
+                    }
+                    TouchPhase::Moved if self.touch == Some(*id) => {
+                        self.cursor = at;
+                        self.demo.move_to(local);
+                    }
+                    TouchPhase::Ended | TouchPhase::Cancelled if self.touch == Some(*id) => {
+                        self.touch = None;
+                        self.demo.release(Button::Left);
+                    }
+                    _ => {}
+                }
+                Ok(())
+            }
             WindowEvent::MouseWheel { delta, .. } => {
                 let lines = match delta {
                     MouseScrollDelta::LineDelta(_, y) => *y,
@@ -289,7 +461,6 @@ impl Running {
                     PhysicalKey::Code(KeyCode::Space) => Some(Key::Space),
                     PhysicalKey::Code(KeyCode::KeyS) => Some(Key::Step),
                     PhysicalKey::Code(KeyCode::KeyR) => Some(Key::Reset),
-                    PhysicalKey::Code(KeyCode::KeyW) => Some(Key::Save),
                     PhysicalKey::Code(code) => digit(code).map(Key::Digit),
                     _ => None,
                 };
@@ -420,6 +591,7 @@ impl Running {
 
 impl Running {
     /// What the frames cost: the median frame time and rate, and the median physics step.
+    #[cfg(not(target_arch = "wasm32"))]
     fn report(&self) -> String {
         let mut frame_ms = self.frame_ms.clone();
         frame_ms.sort_by(f64::total_cmp);

@@ -30,7 +30,7 @@ pub mod scene;
 pub use build::{SceneWorld, build};
 pub use error::SceneError;
 pub use load::{parse, read};
-pub use saved::{SavedState, write};
+pub use saved::{SavedState, to_text, write};
 pub use scene::{Accuracy, Camera, Scene};
 
 /// Reads, parses and builds a scene file.

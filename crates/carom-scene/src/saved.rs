@@ -74,16 +74,23 @@ pub(crate) struct Parts {
     pub events: Events,
 }
 
-/// Writes a scene to `path` in the scene format (RON): the hand-written part laid out for
-/// reading, a saved state compactly.
-pub fn write(scene: &Scene, path: &Path) -> Result<(), SceneError> {
+/// A scene as scene-file text (RON): the hand-written part laid out for reading, a saved
+/// state compactly. `file` names it in the error.
+pub fn to_text(scene: &Scene, file: &str) -> Result<String, SceneError> {
     let config = ron::ser::PrettyConfig::new().depth_limit(3);
     let text = ron::ser::to_string_pretty(scene, config).map_err(|e| SceneError::Write {
-        file: path.display().to_string(),
+        file: file.to_string(),
         reason: e.to_string(),
     })?;
-    std::fs::write(path, text + "\n").map_err(|e| SceneError::Write {
-        file: path.display().to_string(),
+    Ok(text + "\n")
+}
+
+/// Writes a scene to `path` in the scene format ([`to_text`]).
+pub fn write(scene: &Scene, path: &Path) -> Result<(), SceneError> {
+    let file = path.display().to_string();
+    let text = to_text(scene, &file)?;
+    std::fs::write(path, text).map_err(|e| SceneError::Write {
+        file,
         reason: e.to_string(),
     })
 }

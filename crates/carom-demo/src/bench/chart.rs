@@ -187,13 +187,10 @@ fn ranges(points: &[&Point]) -> (std::ops::Range<f64>, std::ops::Range<f64>, f64
     )
 }
 
-/// Each engine's colour: its front and its legend line.
+/// Each engine's colour ([`Engine::color`]): its front and its legend line.
 pub fn color_of(engine: Engine) -> RGBColor {
-    match engine {
-        Engine::Carom => RGBColor(200, 30, 30),
-        Engine::Box2d => RGBColor(30, 150, 60),
-        Engine::Rapier => RGBColor(40, 90, 220),
-    }
+    let [r, g, b] = engine.color();
+    RGBColor(r, g, b)
 }
 
 /// The engine's colour faded three quarters of the way to white: its dominated settings.

@@ -1,10 +1,11 @@
 //! One measurement: a scene run with one solver setting, its step times and its error against
 //! the scene's exact answer (see [`carom_scene::Accuracy`]).
 
-use super::engine::{Engine, Peer};
+use super::engine::Engine;
+use super::peer::Peer;
 use carom::{BodyHandle, BodyKind, Effect, Real, SolverKind, SolverParams, Vec2, World};
 use carom_scene::{Accuracy, Scene, SceneWorld};
-use std::time::Instant;
+use web_time::Instant;
 
 /// The engine and solver setting a point of the sweep runs.
 #[derive(Debug, Clone, Copy, PartialEq)]

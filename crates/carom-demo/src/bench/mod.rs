@@ -6,10 +6,13 @@
 //! report (which engine is best at each time budget) and a chart of each engine's Pareto
 //! front of error against time.
 
+// The PNG chart is the command line's; plotters' text has no fonts on wasm32.
+#[cfg(not(target_arch = "wasm32"))]
 pub mod chart;
 pub mod engine;
 pub mod front;
 pub mod measure;
+pub mod peer;
 pub mod report;
 
 pub use engine::Engine;
@@ -269,6 +272,7 @@ pub fn median(values: &[f64]) -> f64 {
 /// Runs the sweep with a progress bar on the terminal and writes `accuracy.csv`,
 /// `README.md` (the report; `command` is how it was made) and `accuracy.png` to `out`.
 /// Returns the points.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn sweep_to_folder(
     options: &SweepOptions,
     out: &std::path::Path,

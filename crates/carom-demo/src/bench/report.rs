@@ -2,7 +2,7 @@
 
 use super::{Engine, Point, Setting, front};
 use std::fmt::Write as _;
-use std::time::{SystemTime, UNIX_EPOCH};
+use web_time::{SystemTime, UNIX_EPOCH};
 
 /// The CSV header, in the order [`csv`] writes the columns.
 pub const CSV_HEADER: &str = "engine,scene,error_kind,solver,iterations,substeps,ms_per_step,\
