@@ -39,10 +39,11 @@ impl Gpu {
         pollster::block_on(Gpu::request(instance, surface, label))
     }
 
-    /// [`Gpu::open`] as the web needs it, where finding an adapter and opening a device are
-    /// promises to await (elsewhere, block on it with any executor). The limits asked for
-    /// are downlevel ones, so GL and software adapters qualify as well as GPUs, and on the
-    /// web WebGL2's.
+    /// Finds an adapter of `instance` that the renderer can use (and that can draw into
+    /// `surface`, when one is given) and opens a device named `label` on it. Asynchronous as
+    /// the web needs it, where both are promises; elsewhere block on it with any executor.
+    /// The limits asked for are downlevel ones, so GL and software adapters qualify as well
+    /// as GPUs, and on the web WebGL2's.
     pub async fn request(
         instance: &wgpu::Instance,
         surface: Option<&wgpu::Surface<'_>>,

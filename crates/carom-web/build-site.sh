@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Builds the carom demo as a static web site in one folder (default target/web): index.html,
+# the demo compiled to WebAssembly and its JavaScript glue. Any static server serves it, e.g.
+#   python3 -m http.server -d target/web 8000    and open http://127.0.0.1:8000
+# It adds the wasm32 target with rustup and installs the wasm-bindgen command line the
+# version Cargo.lock names (through cargo, into target/tools) when they are missing.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+out="${1:-target/web}"
+target_dir="${CARGO_TARGET_DIR:-target}"
+
+rustup target list --installed | grep -qx wasm32-unknown-unknown \
+    || rustup target add wasm32-unknown-unknown
+
+# wasm-bindgen's command line must be the exact version of the wasm-bindgen crate built in.
+version=$(awk '$0 == "name = \"wasm-bindgen\"" { getline; gsub(/version = |"/, ""); print; exit }' Cargo.lock)
+bindgen="$target_dir/tools/bin/wasm-bindgen"
+if [ "$("$bindgen" --version 2>/dev/null)" != "wasm-bindgen $version" ]; then
+    echo "installing wasm-bindgen-cli $version into $target_dir/tools"
+    cargo install wasm-bindgen-cli --version "$version" --root "$target_dir/tools"
+fi
+
+cargo build --release --target wasm32-unknown-unknown -p carom-web
+rm -rf "$out"
+mkdir -p "$out"
+"$bindgen" --target web --no-typescript --out-dir "$out" \
+    "$target_dir/wasm32-unknown-unknown/release/carom_web.wasm"
+cp crates/carom-web/index.html "$out/"
+echo "built $out: serve it with any static server, for example"
+echo "  python3 -m http.server -d $out 8000    and open http://127.0.0.1:8000"

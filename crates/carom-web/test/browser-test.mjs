@@ -1,0 +1,322 @@
+// The web build in a real browser: Debian's Chromium, headless, drawing through SwiftShader
+// (WebGL2 in software), driven through the DevTools protocol by playwright-core.
+//
+//   node crates/carom-web/test/browser-test.mjs [--site target/web] [--out target/web-test]
+//       [--carom target/debug/carom] [--steps 200] [--frame-rates]
+//
+// It serves the site on 127.0.0.1, opens it, and checks that
+//   - the demo draws: frames arrive, the sidebar has text and the scene has shapes;
+//   - a body dragged with the mouse, and another with a finger, follows the drag;
+//   - every built-in scene run in the page ends in the same state hash as the native `carom run`;
+//   - the page logs no error.
+// Screenshots and results.json go to the output folder. --frame-rates also measures the frame
+// rate of three scenes (frames 30 to 300). Exits 1 with the reason on the first failure.
+
+import { chromium } from "playwright-core";
+import { execFileSync } from "node:child_process";
+import fs from "node:fs";
+import http from "node:http";
+import path from "node:path";
+
+const options = parseArguments(process.argv.slice(2), {
+    site: "target/web",
+    out: "target/web-test",
+    carom: process.env.CAROM ?? "target/debug/carom",
+    chromium: process.env.CHROMIUM ?? "/usr/bin/chromium",
+    steps: "200",
+    "frame-rates": false,
+});
+const VIEW = { width: 1280, height: 720 };
+
+class Failure extends Error {}
+const check = (ok, message) => {
+    if (!ok) throw new Failure(message);
+};
+
+const results = { started: new Date().toISOString(), checks: [] };
+const passed = (what) => {
+    console.log(`ok   ${what}`);
+    results.checks.push(what);
+};
+
+fs.mkdirSync(options.out, { recursive: true });
+const server = await serve(options.site);
+const address = `http://127.0.0.1:${server.address().port}/`;
+const browser = await chromium.launch({
+    executablePath: options.chromium,
+    args: [
+        // As root (CI) Chromium needs no sandbox; this machine's network is closed, so
+        // nothing may phone home.
+        "--no-sandbox",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        // WebGL2 through SwiftShader, the software rasteriser Chromium ships.
+        "--use-angle=swiftshader",
+        "--enable-unsafe-swiftshader",
+    ],
+});
+const errors = [];
+let status = 0;
+try {
+    const page = await open(browser, address, errors);
+    results.browser = browser.version();
+    await drawsTheDemo(page);
+    await dragsWithTheMouse(page);
+    await dragsWithAFinger(page);
+    await sameHashesAsNative(page);
+    // One page at a time: a second one drawing beside it would halve its frame rate.
+    await page.close();
+    if (options["frame-rates"]) await frameRates(browser, address, errors);
+    check(errors.length === 0, `the page logged errors:\n  ${errors.join("\n  ")}`);
+    passed("the page logged no error");
+} catch (error) {
+    status = 1;
+    results.failure = error.message;
+    console.error(`FAILED: ${error instanceof Failure ? error.message : error.stack}`);
+    if (errors.length) console.error(`the page logged:\n  ${errors.join("\n  ")}`);
+} finally {
+    fs.writeFileSync(path.join(options.out, "results.json"), JSON.stringify(results, null, 2));
+    await browser.close();
+    server.close();
+}
+console.log(status === 0 ? `web build passed; screenshots in ${options.out}` : "web build FAILED");
+process.exit(status);
+
+// ---------------------------------------------------------------------------------------------
+
+/// Opens the site (with `query`) in a new page of 1280x720 with touch, collecting its errors,
+/// and waits for 30 frames.
+async function open(browser, address, errors, query = "") {
+    const page = await browser.newPage({ viewport: VIEW, hasTouch: true });
+    page.on("console", (message) => {
+        if (message.type() === "error") errors.push(`console: ${message.text()}`);
+    });
+    page.on("pageerror", (error) => errors.push(`uncaught: ${error.message}`));
+    page.on("requestfailed", (request) => errors.push(`request failed: ${request.url()}`));
+    await page.goto(address + query);
+    await waitForFrames(page, 30, 90_000);
+    return page;
+}
+
+/// What the demo showed last ({} before the first frame).
+async function probe(page) {
+    const text = await page.evaluate(() => window.carom?.probe() ?? "");
+    return text === "" ? {} : JSON.parse(text);
+}
+
+async function waitForFrames(page, count, timeout) {
+    const start = (await probe(page)).frames ?? 0;
+    const deadline = Date.now() + timeout;
+    for (;;) {
+        const state = await probe(page);
+        if ((state.frames ?? 0) >= start + count) return state;
+        if (errors.length) throw new Failure(`the page failed before drawing ${count} frames`);
+        check(Date.now() < deadline, `fewer than ${count} frames in ${timeout / 1000} s`);
+        await page.waitForTimeout(100);
+    }
+}
+
+async function drawsTheDemo(page) {
+    const state = await probe(page);
+    results.adapter = state.adapter;
+    console.log(`     drawing with ${state.adapter}`);
+    check(state.scene === "demos/grabbing.ron", `opened ${state.scene}, not the grabbing scene`);
+    const shot = await screenshot(page, "grabbing.png");
+    const sidebar = await pixelStats(page, shot, [0, 0, state.sidebar_css, VIEW.height]);
+    const scene = await pixelStats(page, shot, [state.sidebar_css, 0, VIEW.width, VIEW.height]);
+    results.pixels = { sidebar, scene };
+    // Text is many small light marks on the dark panel; shapes are areas in several colours.
+    check(sidebar.light > 0.01, `the sidebar shows no text (${pct(sidebar.light)} light pixels)`);
+    check(scene.colors >= 8, `the scene is nearly blank (${scene.colors} colours)`);
+    check(scene.changed > 0.02, `the scene is nearly blank (${pct(scene.changed)} drawn)`);
+    passed(`draws: sidebar ${pct(sidebar.light)} text, scene ${scene.colors} colours, ` +
+        `${pct(scene.changed)} drawn`);
+}
+
+/// Presses on a body, drags it `by` CSS pixels in `moves` steps and holds it there; checks it is
+/// held and followed the pointer, then lets go. `pointer` does the pressing and moving.
+async function drag(page, body, by, pointer, what) {
+    const from = { x: body.x, y: body.y };
+    const to = { x: from.x + by.x, y: from.y + by.y };
+    await pointer.down(from);
+    const moves = 30;
+    for (let i = 1; i <= moves; i++) {
+        await pointer.move({ x: from.x + (by.x * i) / moves, y: from.y + (by.y * i) / moves });
+        await page.waitForTimeout(20);
+    }
+    // Let the spring pull it to the pointer: a second of frames.
+    await page.waitForTimeout(1000);
+    const held = (await probe(page)).held;
+    check(held, `${what}: no body is held after pressing on one at ${fmt(from)}`);
+    const travelled = { x: held.x - from.x, y: held.y - from.y };
+    const along = (travelled.x * by.x + travelled.y * by.y) / Math.hypot(by.x, by.y);
+    const miss = Math.hypot(held.x - to.x, held.y - to.y);
+    await screenshot(page, `${what.replaceAll(" ", "-")}.png`);
+    await pointer.up(to);
+    check(along > 0.8 * Math.hypot(by.x, by.y),
+        `${what}: the body moved ${along.toFixed(0)} px along a ${Math.hypot(by.x, by.y)} px drag`);
+    check(miss < 40, `${what}: the body is ${miss.toFixed(0)} px from the pointer`);
+    await page.waitForTimeout(200);
+    check(!(await probe(page)).held, `${what}: the body is still held after letting go`);
+    passed(`${what}: the body followed the drag ${fmt(from)} -> ${fmt(to)} (held ${fmt(held)})`);
+}
+
+async function dragsWithTheMouse(page) {
+    const state = await probe(page);
+    const body = nearest(state.bodies, { x: (state.sidebar_css + VIEW.width) / 2, y: 540 });
+    const mouse = {
+        down: async (at) => { await page.mouse.move(at.x, at.y); await page.mouse.down(); },
+        move: (at) => page.mouse.move(at.x, at.y),
+        up: async (at) => { await page.mouse.move(at.x, at.y); await page.mouse.up(); },
+    };
+    await drag(page, body, { x: 120, y: -220 }, mouse, "mouse drag");
+}
+
+async function dragsWithAFinger(page) {
+    // Wait for the thrown body to come down, then take another one.
+    await page.waitForTimeout(1500);
+    const state = await probe(page);
+    const body = nearest(state.bodies, { x: state.sidebar_css + 300, y: 560 });
+    const cdp = await page.context().newCDPSession(page);
+    const touch = (type, at) => cdp.send("Input.dispatchTouchEvent", {
+        type,
+        touchPoints: type === "touchEnd" ? [] : [{ x: at.x, y: at.y, id: 1 }],
+    });
+    const finger = {
+        down: (at) => touch("touchStart", at),
+        move: (at) => touch("touchMove", at),
+        up: (at) => touch("touchEnd", at),
+    };
+    await drag(page, body, { x: 150, y: -180 }, finger, "touch drag");
+}
+
+async function sameHashesAsNative(page) {
+    check(fs.existsSync(options.carom), `no native carom at ${options.carom} (build it or pass --carom)`);
+    const steps = Number(options.steps);
+    const files = (await page.evaluate(() => window.carom.scene_files())).split("\n");
+    check(files.length >= 10, `only ${files.length} built-in scenes`);
+    const rows = [];
+    for (const file of files) {
+        const web = JSON.parse(await page.evaluate(([f, s]) => window.carom.run_scene(f, s), [file, steps]));
+        const native = JSON.parse(execFileSync(options.carom,
+            ["run", file, "--steps", String(steps), "--json", "--threads", "1"]).toString());
+        rows.push({ file, web: web.hash, native: native.hash, web_ms: web.ms_per_step,
+            native_ms: native.ms_per_step });
+    }
+    results.hashes = { steps, rows };
+    const differ = rows.filter((row) => row.web !== row.native);
+    check(differ.length === 0, `${differ.length} of ${rows.length} scenes end differently in the ` +
+        `browser after ${steps} steps:\n  ` +
+        differ.map((r) => `${r.file}: browser ${r.web}, native ${r.native}`).join("\n  "));
+    passed(`all ${rows.length} built-in scenes end in the native state hash after ${steps} steps`);
+}
+
+async function frameRates(browser, address, errors) {
+    results.frame_rates = [];
+    for (const scene of ["grabbing", "pyramid", "mixed_1000"]) {
+        // Frames 30 to 300, as the native window's `--frames 300` report spans them.
+        const page = await open(browser, address, errors, `?scene=${scene}`);
+        const first = await probe(page);
+        const started = Date.now();
+        const last = await waitForFrames(page, 300 - first.frames, 180_000);
+        const seconds = (Date.now() - started) / 1000;
+        const fps = (last.frames - first.frames) / seconds;
+        const physics = JSON.parse(await page.evaluate(
+            (f) => window.carom.run_scene(f, 120), `demos/${scene}.ron`));
+        results.frame_rates.push({ scene, fps, simulated_seconds: last.time - first.time, seconds,
+            ms_per_step: physics.ms_per_step });
+        console.log(`     ${scene}: ${fps.toFixed(1)} frames/s over ${seconds.toFixed(1)} s, ` +
+            `${(last.time - first.time).toFixed(2)} s simulated, physics ` +
+            `${physics.ms_per_step.toFixed(3)} ms/step`);
+        await screenshot(page, `${scene}.png`);
+        await page.close();
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+async function screenshot(page, name) {
+    const file = path.join(options.out, name);
+    const png = await page.screenshot({ path: file });
+    return png.toString("base64");
+}
+
+/// Of the screenshot's `box` [left, top, right, bottom] (CSS pixels): the share of light
+/// pixels (text), of pixels unlike the most common colour (drawn), and how many colours
+/// cover at least 20 pixels.
+async function pixelStats(page, pngBase64, box) {
+    return page.evaluate(async ([png, [left, top, right, bottom]]) => {
+        const bytes = Uint8Array.from(atob(png), (c) => c.charCodeAt(0));
+        const bitmap = await createImageBitmap(new Blob([bytes], { type: "image/png" }));
+        const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
+        const context = canvas.getContext("2d");
+        context.drawImage(bitmap, 0, 0);
+        const width = Math.round(right - left), height = Math.round(bottom - top);
+        const data = context.getImageData(Math.round(left), Math.round(top), width, height).data;
+        const counts = new Map();
+        let light = 0;
+        for (let i = 0; i < data.length; i += 4) {
+            const key = (data[i] << 16) | (data[i + 1] << 8) | data[i + 2];
+            counts.set(key, (counts.get(key) ?? 0) + 1);
+            if (data[i] + data[i + 1] + data[i + 2] > 3 * 150) light++;
+        }
+        const pixels = width * height;
+        const background = Math.max(...counts.values());
+        return {
+            light: light / pixels,
+            changed: 1 - background / pixels,
+            colors: [...counts.values()].filter((n) => n >= 20).length,
+        };
+    }, [pngBase64, box]);
+}
+
+function nearest(bodies, to) {
+    check(bodies?.length, "the probe lists no body in view");
+    return bodies.reduce((best, b) =>
+        Math.hypot(b.x - to.x, b.y - to.y) < Math.hypot(best.x - to.x, best.y - to.y) ? b : best);
+}
+
+/// A static server for `root` on 127.0.0.1 and a free port, wasm served as wasm.
+async function serve(root) {
+    check(fs.existsSync(path.join(root, "index.html")),
+        `no site in ${root}: build it with crates/carom-web/build-site.sh`);
+    const types = { ".html": "text/html", ".js": "text/javascript", ".wasm": "application/wasm" };
+    const server = http.createServer((request, response) => {
+        const wanted = new URL(request.url, "http://x").pathname.replace(/\/$/, "/index.html");
+        const file = path.resolve(root, `.${decodeURIComponent(wanted)}`);
+        fs.readFile(file, (error, data) => {
+            if (error || !file.startsWith(path.resolve(root) + path.sep)) {
+                response.writeHead(404);
+                response.end();
+                return;
+            }
+            response.writeHead(200, { "content-type": types[path.extname(file)] ?? "application/octet-stream" });
+            response.end(data);
+        });
+    });
+    await new Promise((resolve) => server.listen(0, "127.0.0.1", resolve));
+    return server;
+}
+
+function parseArguments(args, defaults) {
+    const parsed = { ...defaults };
+    for (let i = 0; i < args.length; i++) {
+        const name = args[i].replace(/^--/, "");
+        if (!(name in defaults)) {
+            console.error(`unknown option ${args[i]}; options: ${Object.keys(defaults).join(", ")}`);
+            process.exit(2);
+        }
+        parsed[name] = typeof defaults[name] === "boolean" ? true : args[++i];
+    }
+    return parsed;
+}
+
+function pct(share) {
+    return `${(100 * share).toFixed(1)} %`;
+}
+
+function fmt(point) {
+    return `(${point.x.toFixed(0)}, ${point.y.toFixed(0)})`;
+}
