@@ -60,8 +60,6 @@ pub enum Key {
     Step,
     /// Reload the scene.
     Reset,
-    /// Save the running scene as it is now, to a scene file beside its own.
-    Save,
     /// Scene by number: 1 is the first, 0 the tenth.
     Digit(u8),
 }
@@ -321,9 +319,6 @@ impl Demo {
                 self.step()?;
             }
             Key::Reset => self.reset()?,
-            Key::Save => {
-                self.save()?;
-            }
             Key::Digit(digit) => {
                 let index = if digit == 0 { 9 } else { digit as usize - 1 };
                 if index < self.scenes.len() {

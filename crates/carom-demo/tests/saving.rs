@@ -2,7 +2,7 @@
 //! scene when its file changes.
 
 use carom::vec2;
-use carom_demo::demo::{Button, Demo, Key};
+use carom_demo::demo::{Button, Demo};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, SystemTime};
 
@@ -43,7 +43,7 @@ fn a_saved_scene_opens_as_it_was_and_goes_on_the_same() {
     demo.press(Button::Left, held);
     frames(&mut demo, 10);
     demo.camera.center += vec2(1.5, -0.5);
-    demo.key(Key::Save).unwrap();
+    demo.save().unwrap();
     let saved = folder.join("grabbing-saved.ron");
     assert!(
         demo.notice
@@ -79,7 +79,7 @@ fn a_saved_scene_opens_as_it_was_and_goes_on_the_same() {
     );
 
     // A saved scene saves over itself rather than stacking "-saved" names.
-    reopened.key(Key::Save).unwrap();
+    reopened.save().unwrap();
     assert!(
         reopened
             .notice

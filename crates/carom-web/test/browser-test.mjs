@@ -60,7 +60,7 @@ const browser = await chromium.launch({
 const errors = [];
 let status = 0;
 try {
-    const page = await open(browser, address, errors);
+    const page = await open();
     results.browser = browser.version();
     await drawsTheDemo(page);
     await dragsWithTheMouse(page);
@@ -68,7 +68,7 @@ try {
     await sameHashesAsNative(page);
     // One page at a time: a second one drawing beside it would halve its frame rate.
     await page.close();
-    if (options["frame-rates"]) await frameRates(browser, address, errors);
+    if (options["frame-rates"]) await frameRates();
     check(errors.length === 0, `the page logged errors:\n  ${errors.join("\n  ")}`);
     passed("the page logged no error");
 } catch (error) {
@@ -86,9 +86,9 @@ process.exit(status);
 
 // ---------------------------------------------------------------------------------------------
 
-/// Opens the site (with `query`) in a new page of 1280x720 with touch, collecting its errors,
-/// and waits for 30 frames.
-async function open(browser, address, errors, query = "") {
+/// Opens the site (with `query`) in a new page of 1280x720 with touch, collecting its errors
+/// in `errors`, and waits for 30 frames.
+async function open(query = "") {
     const page = await browser.newPage({ viewport: VIEW, hasTouch: true });
     page.on("console", (message) => {
         if (message.type() === "error") errors.push(`console: ${message.text()}`);
@@ -213,11 +213,11 @@ async function sameHashesAsNative(page) {
     passed(`all ${rows.length} built-in scenes end in the native state hash after ${steps} steps`);
 }
 
-async function frameRates(browser, address, errors) {
+async function frameRates() {
     results.frame_rates = [];
     for (const scene of ["grabbing", "pyramid", "mixed_1000"]) {
         // Frames 30 to 300, as the native window's `--frames 300` report spans them.
-        const page = await open(browser, address, errors, `?scene=${scene}`);
+        const page = await open(`?scene=${scene}`);
         const first = await probe(page);
         const started = Date.now();
         const last = await waitForFrames(page, 300 - first.frames, 180_000);
