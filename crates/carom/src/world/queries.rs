@@ -1,4 +1,4 @@
-//! Asking the world what is where: colliders whose boxes overlap a box, colliders a shape
+//! Asking the world what is where: bodies under a point, colliders whose boxes overlap a box, colliders a shape
 //! overlaps, colliders a ray enters and colliders a shape moved along a line meets, each
 //! through the broadphase and filtered as collisions are. Sensors are not in the broadphase,
 //! so no query sees them (a sensor lists what overlaps it itself:
@@ -8,6 +8,7 @@
 use crate::collision::filter::CollisionFilter;
 use crate::collision::narrowphase::separation;
 use crate::collision::shape_cast::cast_shape;
+use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
 use crate::geometry::aabb::Aabb;
 use crate::geometry::ray::Ray;
@@ -188,5 +189,135 @@ impl World {
                 };
                 visit(hit, reach)
             });
+    }
+
+    /// The body under a world point, for grabbing with the mouse.
+    ///
+    /// Dynamic bodies win over kinematic ones and those over static ones; among equals the one
+    /// latest in handle order (drawn on top) wins.
+    pub fn body_at(&self, point: Vec2) -> Option<BodyHandle> {
+        let rank = |kind: BodyKind| match kind {
+            BodyKind::Static => 0,
+            BodyKind::Kinematic => 1,
+            BodyKind::Dynamic => 2,
+        };
+        self.bodies_at(point)
+            .into_iter()
+            .filter_map(|h| Some((self.bodies.get(h)?.kind(), h)))
+            .max_by_key(|&(kind, h)| (rank(kind), h.index()))
+            .map(|(_, h)| h)
+    }
+
+    /// Every body with a collider containing the point, in handle order.
+    pub fn bodies_at(&self, point: Vec2) -> Vec<BodyHandle> {
+        let probe = Aabb::new(point, point);
+        let mut found = Vec::new();
+        self.broadphase.query(&probe, |handle| {
+            let Some(collider) = self.colliders.get(handle) else {
+                return;
+            };
+            let Some(body) = self.bodies.get(collider.body()) else {
+                return;
+            };
+            if collider.contains(point, body.local_point(point)) {
+                found.push(collider.body());
+            }
+        });
+        found.sort_unstable_by_key(|h| h.index());
+        found.dedup();
+        found
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::body::BodyDef;
+    use crate::geometry::shape::Shape;
+    use crate::math::vec2;
+
+    #[test]
+    fn body_at_prefers_dynamic_and_topmost() {
+        let mut world = World::new();
+        let floor = world
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 5.0)))
+            .unwrap();
+        let low = world
+            .add_body(BodyDef::dynamic(Shape::circle(1.0)))
+            .unwrap();
+        let high = world
+            .add_body(BodyDef::dynamic(Shape::circle(0.5)))
+            .unwrap();
+        assert_eq!(world.body_at(vec2(0.0, 0.0)), Some(high));
+        assert_eq!(world.body_at(vec2(0.8, 0.0)), Some(low));
+        assert_eq!(world.body_at(vec2(3.0, 3.0)), Some(floor));
+        assert_eq!(world.body_at(vec2(30.0, 3.0)), None);
+        assert_eq!(world.bodies_at(vec2(0.0, 0.0)), vec![floor, low, high]);
+    }
+
+    #[test]
+    fn queries_see_bodies_moved_since_the_last_step() {
+        let mut world = World::new();
+        let ball = world
+            .add_body(BodyDef::dynamic(Shape::circle(0.5)))
+            .unwrap();
+        world
+            .body_mut(ball)
+            .unwrap()
+            .set_position(vec2(20.0, 0.0))
+            .unwrap();
+        assert_eq!(world.body_at(vec2(20.0, 0.2)), Some(ball));
+        assert_eq!(world.body_at(vec2(0.0, 0.0)), None);
+        let hit = world
+            .cast_ray(&Ray::new(vec2(10.0, 0.0), vec2(20.0, 0.0)))
+            .unwrap();
+        assert_eq!(hit.body, ball);
+        world.step(1.0 / 60.0).unwrap();
+        assert!(world.body_at(vec2(20.0, 0.0)).is_some());
+        assert!(
+            world
+                .broadphase()
+                .fat_aabb(world.body(ball).unwrap().colliders()[0])
+                .unwrap()
+                .contains_point(vec2(20.0, 0.0))
+        );
+    }
+
+    #[test]
+    fn cast_ray_finds_the_closest_body() {
+        let mut world = World::new();
+        let near = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(2.0, 0.0)))
+            .unwrap();
+        let far = world
+            .add_body(
+                BodyDef::dynamic(Shape::circle(0.5))
+                    .position(vec2(5.0, 0.0))
+                    .angle(1.0),
+            )
+            .unwrap();
+        let hit = world
+            .cast_ray(&Ray::new(vec2(0.0, 0.0), vec2(10.0, 0.0)))
+            .unwrap();
+        assert_eq!(hit.body, near);
+        assert!((hit.point - vec2(1.5, 0.0)).norm() < 1e-6);
+        assert!((hit.normal - vec2(-1.0, 0.0)).norm() < 1e-6);
+        assert!((hit.fraction - 0.15).abs() < 1e-6);
+        world.remove_body(near).unwrap();
+        let hit = world
+            .cast_ray(&Ray::new(vec2(0.0, 0.0), vec2(10.0, 0.0)))
+            .unwrap();
+        assert_eq!(hit.body, far);
+        assert!((hit.point - vec2(4.5, 0.0)).norm() < 1e-5);
+        assert!(
+            world
+                .cast_ray(&Ray::new(vec2(0.0, 3.0), vec2(10.0, 0.0)))
+                .is_none()
+        );
+        assert!(
+            world
+                .cast_ray(&Ray::new(vec2(Real::NAN, 0.0), vec2(1.0, 0.0)))
+                .is_none()
+        );
     }
 }

@@ -1,0 +1,323 @@
+//! One step of the world, stage by stage.
+
+use super::{World, margin_for};
+use crate::collision::contact::ManifoldOptions;
+use crate::collision::continuous::{self, Pose};
+use crate::collision::hits::find_hits;
+use crate::constants::{
+    CONTACTS_PER_TASK, ITEMS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
+};
+use crate::dynamics::body::{Body, BodyKind};
+use crate::dynamics::collider::{ColliderHandle, colliders_aabb};
+use crate::error::CaromError;
+use crate::geometry::aabb::Aabb;
+use crate::geometry::shape::WorldShape;
+use crate::math::Real;
+use crate::parallel::{for_each_mut, map_zip_into};
+use crate::solver::{self, Environment, SolverKind};
+use crate::stats::{Instant, StepStats};
+use crate::world::effects::Effect;
+use crate::world::solver_sets::SolverSet;
+
+/// What the stages of a step work in besides the solver, kept so a step in steady state
+/// allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub(super) struct StepScratch {
+    /// New pairs from the broadphase.
+    pairs: Vec<(ColliderHandle, ColliderHandle)>,
+    /// Awake bodies' poses at the start of the step (for continuous collision).
+    starts: Vec<Pose>,
+    /// The shape a sweep places along its path (its memory reused from step to step).
+    swept: Option<WorldShape>,
+    /// Sleeping islands a moving body touched.
+    wake: Vec<u32>,
+    /// The joints solved this step.
+    awake_joints: Vec<solver::AwakeJoint>,
+    /// Per awake collider, its predicted box if it left its fat box (or its body changed
+    /// kind), to re-fit in the broadphase.
+    refits: Vec<Option<(Aabb, BodyKind)>>,
+}
+
+impl World {
+    /// Advances the world by `dt` seconds.
+    ///
+    /// The stages, in order, each over the awake set only: find new pairs in the broadphase;
+    /// build contact manifolds in the narrowphase (waking the sleeping islands a moving body
+    /// touched, joining the islands of contacts that started touching); solve (integrate
+    /// forces into velocities, resolve contacts and then joints colour by colour, integrate
+    /// positions, in substeps for soft step); report the hard hits, if some collider asks;
+    /// remove the joints pulled past their break thresholds; continuous collision for fast bodies; place the moved colliders and refresh
+    /// the broadphase from them; put resting islands to sleep; find what overlaps each sensor.
+    ///
+    /// # Errors
+    /// A time step that is not finite and positive; the world is left untouched.
+    pub fn step(&mut self, dt: Real) -> Result<(), CaromError> {
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(CaromError::OutOfRange {
+                name: "time step",
+                expected: "finite and positive",
+                value: dt,
+            });
+        }
+        let started = Instant::now();
+        let mut stats = StepStats::default();
+        let times = &mut stats.times;
+        self.contacts.begin_step();
+        self.sensors.begin_step();
+        self.hit_events.clear();
+
+        let mut scratch = std::mem::take(&mut self.scratch);
+
+        timed(&mut times.broadphase, || {
+            self.find_pairs(&mut scratch.pairs)
+        });
+        let effects = self.settings.effects;
+        let continuous = effects.contains(Effect::Continuous);
+        // With continuous collision, contacts look a step ahead: a face point's margin reaches
+        // as far as the pair can close in a step, and moving bodies' boxes cover where they
+        // are going, so an impact at any speed has its contact before it happens.
+        let prediction = if continuous { dt } else { 0.0 };
+        stats.max_penetration = timed(&mut times.narrowphase, || {
+            self.build_manifolds(prediction, &mut scratch.wake)
+        });
+        if continuous {
+            self.poses(&mut scratch.starts);
+        }
+        self.awake_joints(&mut scratch.awake_joints);
+        let solved = timed(&mut times.solve, || {
+            let report = self.solve(dt, &scratch.awake_joints);
+            self.place_moved_colliders();
+            report
+        });
+        (stats.contact_points, stats.work) = (solved.points, solved.work);
+        if self.hit_event_colliders > 0 {
+            let (contacts, body_indices) = self.contacts.awake_and_bodies();
+            let threshold = self.settings.hit_event_threshold;
+            let bodies = self.bodies.as_slice();
+            find_hits(
+                contacts,
+                body_indices,
+                bodies,
+                threshold,
+                &mut self.hit_events,
+            );
+        }
+        stats.joints = solved.joints;
+        self.break_joints(&scratch.awake_joints);
+        (times.prepare, times.store) = (solved.prepare, solved.store);
+        if continuous {
+            (stats.continuous_impacts, stats.work.sweeps) = timed(&mut times.continuous, || {
+                continuous::solve_continuous(
+                    &mut self.bodies,
+                    self.body_sets.awake(),
+                    &mut self.colliders,
+                    &scratch.starts,
+                    &mut scratch.swept,
+                    &self.broadphase,
+                    LINEAR_SLOP,
+                    self.pre_solve.is_some(),
+                )
+            });
+        }
+        timed(&mut times.broadphase, || {
+            self.refresh_broadphase(prediction, &mut scratch.refits)
+        });
+        if effects.contains(Effect::Sleeping) {
+            stats.work.sleep_checks = timed(&mut times.sleep, || self.update_sleep(dt));
+        }
+        self.sensors
+            .update(&self.bodies, &self.colliders, &self.broadphase);
+
+        self.scratch = scratch;
+        self.record(stats, started);
+        self.time += dt as f64;
+        self.step_count += 1;
+        Ok(())
+    }
+
+    /// Rebuilds the manifolds of every pair where something moves, and wakes the sleeping
+    /// islands a moving body touched so they join this step; returns the deepest overlap.
+    fn build_manifolds(&mut self, prediction: Real, wake: &mut Vec<u32>) -> Real {
+        wake.clear();
+        let deepest = self.contacts.update(
+            &self.bodies,
+            &self.colliders,
+            &self.broadphase,
+            ManifoldOptions {
+                margin: self.settings.speculative_distance,
+                prediction,
+                recycling: self.settings.contact_recycling.then(|| {
+                    if self.settings.solver.effective_kind() == SolverKind::SoftStep {
+                        RECYCLE_DISTANCE
+                    } else {
+                        RECYCLE_DISTANCE_CLASSIC
+                    }
+                }),
+                pre_solve: self.pre_solve.as_ref(),
+            },
+            wake,
+        );
+        wake.sort_unstable();
+        wake.dedup();
+        for &island in wake.iter() {
+            self.wake_island(island);
+        }
+        if !wake.is_empty() {
+            let bodies = &self.bodies;
+            self.contacts.find_body_indices(|body| {
+                bodies
+                    .dense_index(body)
+                    .expect("contacts only join live bodies")
+            });
+        }
+        // Islands join as their contacts start touching (after the waking, so a sleeping
+        // island that is touched joins awake).
+        self.apply_touch_changes();
+        deepest
+    }
+
+    /// Completes a step's statistics with counts taken after it, and keeps them.
+    fn record(&mut self, mut stats: StepStats, started: Instant) {
+        stats.bodies = self.bodies.len();
+        stats.contacts = self.contacts.len();
+        stats.touching_contacts = self.contacts.touching_count();
+        stats.sleeping_bodies = self.bodies.len() - self.body_sets.asleep_start();
+        stats.kinetic_energy = self.awake_bodies().iter().map(Body::kinetic_energy).sum();
+        stats.times.total = started.elapsed();
+        self.stats = stats;
+    }
+
+    /// The awake set of bodies: what a step moves.
+    fn awake_bodies(&self) -> &[Body] {
+        &self.bodies.as_slice()[self.body_sets.awake()]
+    }
+
+    /// Every awake body's pose, in storage order, into `poses`.
+    fn poses(&self, poses: &mut Vec<Pose>) {
+        poses.clear();
+        poses.extend(self.awake_bodies().iter().map(Pose::of));
+    }
+
+    /// Runs the configured solver over every moving body and touching contact; returns how
+    /// many contact points it solved and the work its effects did.
+    fn solve(&mut self, dt: Real, awake_joints: &[solver::AwakeJoint]) -> solver::StepReport {
+        let effects = self.settings.effects;
+        let environment = Environment {
+            gravity: effects
+                .contains(Effect::Gravity)
+                .then_some(self.settings.gravity),
+            drag: effects.contains(Effect::Drag).then_some(self.settings.drag),
+            friction: effects.contains(Effect::Friction),
+            restitution: effects.contains(Effect::Restitution),
+        };
+        let (contacts, body_indices, colors) = self.contacts.awake_mut_and_colors();
+        let set = solver::AwakeSet {
+            bodies: self.bodies.as_mut_slice(),
+            awake: self.body_sets.awake(),
+            contacts,
+            body_indices,
+            colors: &colors,
+            joints: self.joints.as_mut_slice(),
+            awake_joints,
+        };
+        solver::step(
+            &self.settings.solver,
+            environment,
+            set,
+            dt,
+            &mut self.solver_workspace,
+        )
+    }
+
+    /// Creates contacts for pairs of colliders whose enlarged boxes began to overlap.
+    fn find_pairs(&mut self, pairs: &mut Vec<(ColliderHandle, ColliderHandle)>) {
+        let contacts = &self.contacts;
+        self.broadphase
+            .update_pairs_into(|a, b| contacts.contains(a, b), pairs);
+        for &(a, b) in pairs.iter() {
+            let (Some(collider_a), Some(collider_b)) =
+                (self.colliders.get(a), self.colliders.get(b))
+            else {
+                continue;
+            };
+            // Collision filters were applied by the broadphase; joints are a world matter.
+            if self.joints.filters(collider_a.body(), collider_b.body()) {
+                continue;
+            }
+            let sets = self.body_sets;
+            let awake = [collider_a, collider_b]
+                .iter()
+                .any(|c| sets.set_of(c.body_index()) == SolverSet::Awake);
+            self.contacts.add((a, collider_a), (b, collider_b), awake);
+        }
+    }
+
+    /// Places the colliders of the awake set, which moved this step, and their bodies' boxes.
+    fn place_moved_colliders(&mut self) {
+        let bodies = self.bodies.as_slice();
+        for_each_mut(
+            &mut self.colliders.as_mut_slice()[self.collider_sets.awake()],
+            CONTACTS_PER_TASK,
+            |collider| collider.place(&bodies[collider.body_index()].transform()),
+        );
+        let colliders = &self.colliders;
+        for_each_mut(
+            &mut self.bodies.as_mut_slice()[self.body_sets.awake()],
+            ITEMS_PER_TASK,
+            |body| body.set_aabb(colliders_aabb(body, colliders)),
+        );
+    }
+
+    /// Re-fits the broadphase entries of colliders that moved this step, each box covering
+    /// where its collider can get to in `prediction` seconds at its body's present velocity:
+    /// which ones left their fat boxes is found on all threads (into `refits`), then only
+    /// those are re-fitted, in collider order.
+    fn refresh_broadphase(&mut self, prediction: Real, refits: &mut Vec<Option<(Aabb, BodyKind)>>) {
+        let bodies = self.bodies.as_slice();
+        let awake = self.collider_sets.awake();
+        let handles = &self.colliders.handles()[awake.clone()];
+        let broadphase = &self.broadphase;
+        map_zip_into(
+            handles,
+            &self.colliders.as_slice()[awake],
+            refits,
+            CONTACTS_PER_TASK,
+            |&handle, collider| {
+                let body = &bodies[collider.body_index()];
+                if body.kind() == BodyKind::Static {
+                    return None;
+                }
+                let aabb = predicted_aabb(body, collider.aabb(), prediction);
+                broadphase
+                    .needs_update(handle, body.kind(), &aabb)
+                    .then_some((aabb, body.kind()))
+            },
+        );
+        for (&handle, refit) in handles.iter().zip(refits.iter()) {
+            if let &Some((aabb, kind)) = refit {
+                let margin = margin_for(&self.settings, kind);
+                self.broadphase.update(handle, kind, aabb, margin);
+            }
+        }
+    }
+}
+
+/// A collider's box, grown to cover where its body can take it in `time` at its present
+/// velocity.
+fn predicted_aabb(body: &Body, aabb: Aabb, time: Real) -> Aabb {
+    if time == 0.0 {
+        return aabb;
+    }
+    let shift = body.linear_velocity() * time;
+    let moved = Aabb::new(aabb.min + shift, aabb.max + shift);
+    let turn = body.angular_velocity().abs() * time * body.reach();
+    aabb.union(&moved).fattened(turn)
+}
+
+/// Runs a stage and adds its wall time to `slot`.
+fn timed<T>(slot: &mut std::time::Duration, stage: impl FnOnce() -> T) -> T {
+    let clock = Instant::now();
+    let result = stage();
+    *slot += clock.elapsed();
+    result
+}
