@@ -51,10 +51,10 @@ mod stats;
 mod world;
 
 pub use collision::contact::{Contact, ContactEvent, ContactPair, PointImpulse};
+pub use collision::distance::{Separation, separation};
 pub use collision::filter::CollisionFilter;
 pub use collision::hits::HitEvent;
 pub use collision::manifold::{FeatureId, Manifold, ManifoldPoint, collide};
-pub use collision::narrowphase::{Separation, separation};
 pub use collision::pre_solve::PreSolveContact;
 pub use collision::sensor::{SensorEvent, SensorOverlap};
 pub use constants::{
@@ -90,9 +90,9 @@ pub use world::{CastHit, World};
 #[cfg(feature = "testing")]
 pub mod testing {
     pub use crate::collision::broadphase::{BroadPhase, brute_force_pairs};
+    pub use crate::collision::distance::polygon_circle;
     pub use crate::collision::dynamic_tree::DynamicTree;
     pub use crate::collision::manifold::PairSide;
-    pub use crate::collision::narrowphase::polygon_circle;
     pub use crate::constants::{COINCIDENT_NORMAL, SPURIOUS_TOLERANCE};
     pub use crate::geometry::mass::{
         polygon_area, polygon_centroid, polygon_inertia_about_origin, polygon_mass,

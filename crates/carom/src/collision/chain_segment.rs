@@ -18,8 +18,8 @@
 //! face is, and the other side's edge is clipped against it. A shape whose centre is behind
 //! the link (and behind its convex neighbours) does not collide at all: chains are one-sided.
 
+use super::distance;
 use super::manifold::{Core, FeatureId, Manifold, Margins};
-use super::narrowphase;
 use crate::constants::{CHAIN_CONVEX_SINE, CHAIN_NORMAL_SINE, LINEAR_SLOP};
 use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Vec2, cross, perp_cw};
@@ -207,7 +207,7 @@ fn collide_polygon(link: &ChainLink, polygon: Core, margins: Margins) -> Manifol
     if behind1 && behind0 && behind2 {
         return empty;
     }
-    let pp = narrowphase::polygon_polygon_within(
+    let pp = distance::polygon_polygon_within(
         &[p1, p2],
         &[normal1, -normal1],
         polygon.vertices,

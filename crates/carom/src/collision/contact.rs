@@ -16,21 +16,19 @@
 //! short, as sequential impulse's restitution can) never touches. Changes of touching are
 //! reported as begin and end events, readable after the step.
 
-use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
 use crate::collision::coloring::{ColorBody, ContactColors, NO_COLOR};
 use crate::collision::contact_layout::{
     ASLEEP, ColorRanges, ContactPartition, NOT_TOUCHING, color_part, color_ranges,
 };
-use crate::collision::manifold::{self, Manifold, Margins};
-use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
+use crate::collision::manifold::Manifold;
 use crate::collision::recycle::ManifoldFrame;
-use crate::constants::{CONTACTS_PER_TASK, TOUCH_BEGIN, TOUCH_END};
-use crate::dynamics::body::{Body, BodyHandle, BodyKind};
+#[cfg(feature = "serde")]
+use crate::dynamics::body::Body;
+use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
-use crate::geometry::shape::Shape;
+#[cfg(feature = "serde")]
 use crate::handle_map::HandleMap;
 use crate::math::Real;
-use crate::parallel::map_mut_into;
 use crate::world::solver_sets::SolverSet;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
@@ -39,31 +37,31 @@ use std::hash::{BuildHasherDefault, Hasher};
 #[derive(Debug, Clone)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Contact {
-    collider_a: ColliderHandle,
-    collider_b: ColliderHandle,
+    pub(super) collider_a: ColliderHandle,
+    pub(super) collider_b: ColliderHandle,
     body_a: BodyHandle,
     body_b: BodyHandle,
-    manifold: Manifold,
+    pub(super) manifold: Manifold,
     /// What the solver did at each point over the last step. Kept here, beside the manifold
     /// rather than in its points, so the narrowphase, which builds and copies manifolds, does
     /// not carry them.
     impulses: [PointImpulse; 2],
     /// The manifold has points, speculative ones included: the solver works on it (it has a
     /// colour while awake, and links its bodies' islands). Not what events report.
-    touching: bool,
+    pub(super) touching: bool,
     /// The shapes touch, as events report it (see the module's notes): within [`TOUCH_BEGIN`]
     /// to begin, [`TOUCH_END`] to go on.
-    in_contact: bool,
+    pub(super) in_contact: bool,
     /// A collider of the pair asks for hit events.
     hit_events: bool,
     /// A collider of the pair asks for the pre-solve hook.
-    pre_solve: bool,
+    pub(super) pre_solve: bool,
     /// The colliders' friction mixed: their geometric mean.
-    friction: Real,
+    pub(super) friction: Real,
     /// The colliders' restitution mixed: the larger.
-    restitution: Real,
+    pub(super) restitution: Real,
     /// What the manifold was built against, to carry it along while the bodies barely move.
-    frame: ManifoldFrame,
+    pub(super) frame: ManifoldFrame,
     /// Its graph colour while touching in the awake set ([`NO_COLOR`] otherwise).
     color: u8,
     /// Which of its bodies the colour holds (the dynamic ones when it was coloured).
@@ -229,7 +227,7 @@ impl ContactEvent {
 /// A cheap hasher for pair keys (two slot indices packed in a `u64`), which need no
 /// protection against adversarial input.
 #[derive(Default)]
-struct PairHasher(u64);
+pub(super) struct PairHasher(u64);
 
 impl Hasher for PairHasher {
     fn finish(&self) -> u64 {
@@ -245,7 +243,7 @@ impl Hasher for PairHasher {
     }
 }
 
-fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
+pub(super) fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
     let (low, high) = if a.index() < b.index() {
         (a, b)
     } else {
@@ -260,7 +258,7 @@ fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
 #[derive(Debug, Clone, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactSet {
-    contacts: Vec<Contact>,
+    pub(super) contacts: Vec<Contact>,
     /// Where each part of `contacts` begins and ends.
     parts: ContactPartition,
     /// How many sleeping contacts touch (they cannot change while asleep).
@@ -269,68 +267,26 @@ pub struct ContactSet {
     colors: ContactColors,
     /// The bodies of contacts that started touching, and of those that stopped (or were
     /// destroyed while touching), since the world last took them (to link islands).
-    began: Vec<(BodyHandle, BodyHandle)>,
-    ended: Vec<(BodyHandle, BodyHandle)>,
+    pub(super) began: Vec<(BodyHandle, BodyHandle)>,
+    pub(super) ended: Vec<(BodyHandle, BodyHandle)>,
     #[cfg_attr(feature = "serde", serde(with = "crate::serde_impls::sorted_map"))]
-    lookup: HashMap<u64, usize, BuildHasherDefault<PairHasher>>,
+    pub(super) lookup: HashMap<u64, usize, BuildHasherDefault<PairHasher>>,
     /// Each body's contacts, by the body's slot index, as pair keys: removing a body or a
     /// collider visits its own contacts only.
     edges: Vec<Vec<u64>>,
-    events: Vec<ContactEvent>,
+    pub(super) events: Vec<ContactEvent>,
     /// Events raised between steps (removing a body), reported after the next step.
     pending: Vec<ContactEvent>,
-    /// What the last update found for each contact, and the contacts it must then file
-    /// again (kept to reuse the memory).
-    #[cfg_attr(feature = "serde", serde(skip))]
-    refresh: Vec<(Refresh, BodyIndices)>,
-    #[cfg_attr(feature = "serde", serde(skip))]
-    changed: Vec<(u64, Refresh)>,
     /// Where each contact's bodies are among all bodies (dense indices), beside the contacts
     /// so the solver reads them from a compact array (Box2D caches them in its contacts):
     /// found by the narrowphase, current for the awake contacts until the step ends.
-    body_indices: Vec<BodyIndices>,
+    pub(super) body_indices: Vec<BodyIndices>,
     /// How many contacts have been made.
     made: u64,
 }
 
-/// What updating one contact's manifold found.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Refresh {
-    /// Nothing moves: left as it was.
-    Unchanged,
-    /// A body is gone, or the pair can no longer touch: the contact ends.
-    Gone,
-    /// The manifold was rebuilt (or carried along).
-    Updated {
-        /// Its deepest overlap (0 if it does not touch).
-        depth: Real,
-        /// Its manifold gained its first points or lost its last, or the shapes began or
-        /// stopped touching.
-        changed: bool,
-        /// Whether the shapes touch now, as events report it.
-        in_contact: bool,
-        /// It touches a sleeping body that the other body stirs.
-        wakes: bool,
-    },
-}
-
 /// The bodies of the contacts that started touching, and of those that stopped.
 pub(crate) type TouchChanges = (Vec<(BodyHandle, BodyHandle)>, Vec<(BodyHandle, BodyHandle)>);
-
-/// How the narrowphase builds manifolds this step.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct ManifoldOptions<'a> {
-    /// Points are kept up to this far apart, m (the speculative distance).
-    pub margin: Real,
-    /// How far ahead, s, a face point may look: it is kept while the pair could close its gap
-    /// within that time at their present speeds (0 keeps points within `margin` only).
-    pub prediction: Real,
-    /// Carry a manifold along while its pair has moved less than this relative to each other
-    /// since it was built, m, instead of building it again (`None`: build every manifold).
-    pub recycling: Option<Real>,
-    /// The world's pre-solve hook, asked about the contacts of colliders that opted in.
-    pub pre_solve: Option<&'a PreSolveHook>,
-}
 
 impl ContactSet {
     /// True when the pair already has a contact.
@@ -415,7 +371,7 @@ impl ContactSet {
 
     /// Gives the awake touching contact at `index` a colour and moves it into the colour's
     /// part; returns its new index.
-    fn paint(&mut self, index: usize, kinds: &impl Fn(BodyHandle) -> BodyKind) -> usize {
+    pub(super) fn paint(&mut self, index: usize, kinds: &impl Fn(BodyHandle) -> BodyKind) -> usize {
         let contact = &self.contacts[index];
         debug_assert!(contact.touching && contact.color == NO_COLOR);
         let side = |body: BodyHandle| ColorBody {
@@ -433,7 +389,7 @@ impl ContactSet {
     /// Takes the contact at `index` out of its colour, if it has one, freeing there the
     /// bodies it held (whatever their kind is now), into the awake part that does not touch;
     /// returns its new index.
-    fn unpaint(&mut self, index: usize) -> usize {
+    pub(super) fn unpaint(&mut self, index: usize) -> usize {
         let contact = &mut self.contacts[index];
         if contact.color == NO_COLOR {
             return index;
@@ -533,7 +489,7 @@ impl ContactSet {
     }
 
     /// Drops the contact at `index`, ending it if it touched.
-    fn destroy(&mut self, index: usize, events_now: bool) {
+    pub(super) fn destroy(&mut self, index: usize, events_now: bool) {
         // From the sleeping part, the last, a removal moves only another sleeper.
         let index = self.move_to(index, SolverSet::Asleep, &|_| BodyKind::Static);
         let contact = self.contacts.swap_remove(index);
@@ -606,134 +562,13 @@ impl ContactSet {
         self.events.append(&mut self.pending);
     }
 
-    /// The narrowphase stage, over the awake set: rebuilds every manifold from the bodies'
-    /// world shapes, carries impulses over by feature id, reports touching changes, and drops
-    /// contacts whose fat boxes no longer overlap (or whose bodies can no longer collide).
-    /// Sleeping contacts are not visited. Sleeping islands touched by a moving body are added
-    /// to `wake`. Returns the deepest penetration seen.
-    pub(crate) fn update(
-        &mut self,
-        bodies: &HandleMap<BodyHandle, Body>,
-        colliders: &HandleMap<ColliderHandle, Collider>,
-        broadphase: &BroadPhase,
-        options: ManifoldOptions,
-        wake: &mut Vec<u32>,
-    ) -> Real {
-        // First every manifold, on as many threads as rayon gives (each contact on its own),
-        // then the bookkeeping that touches the whole set, in order, for the contacts that
-        // need it: those that end, start or stop touching, or wake a sleeper.
-        let awake = self.awake_range();
-        map_mut_into(
-            &mut self.contacts[awake.clone()],
-            &mut self.refresh,
-            CONTACTS_PER_TASK,
-            |contact| refresh_manifold(contact, bodies, colliders, broadphase, options),
-        );
-        let mut deepest: Real = 0.0;
-        let mut changed = std::mem::take(&mut self.changed);
-        changed.clear();
-        // Listed by pair first, as filing them again moves contacts; backwards, the order they
-        // are filed in (which decides the colours they take).
-        for (index, &(refresh, indices)) in self.refresh.iter().enumerate().rev() {
-            self.body_indices[index] = indices;
-            match refresh {
-                Refresh::Unchanged => continue,
-                Refresh::Gone => {}
-                Refresh::Updated {
-                    depth,
-                    changed,
-                    wakes,
-                    ..
-                } => {
-                    deepest = deepest.max(depth);
-                    if !(changed || wakes) {
-                        continue;
-                    }
-                }
-            }
-            let contact = &self.contacts[index];
-            changed.push((pair_key(contact.collider_a, contact.collider_b), refresh));
-        }
-        for &(key, refresh) in &changed {
-            self.file(self.lookup[&key], refresh, bodies, colliders, wake);
-        }
-        self.changed = changed;
-        deepest
-    }
-
-    /// Files again the contact at `index`, which the narrowphase found `refresh`: destroys it,
-    /// colours it as its manifold gains points or takes its colour as it loses them, raises
-    /// the events as the shapes begin or stop touching, and adds to `wake` the sleeping islands
-    /// it stirs.
-    fn file(
-        &mut self,
-        index: usize,
-        refresh: Refresh,
-        bodies: &HandleMap<BodyHandle, Body>,
-        colliders: &HandleMap<ColliderHandle, Collider>,
-        wake: &mut Vec<u32>,
-    ) {
-        let (wakes, in_contact) = match refresh {
-            Refresh::Unchanged => return,
-            Refresh::Gone => return self.destroy(index, true),
-            Refresh::Updated {
-                wakes, in_contact, ..
-            } => (wakes, in_contact),
-        };
-        let contact = &mut self.contacts[index];
-        // Both colliders were there a moment ago (else the contact would be gone).
-        let (Some(a), Some(b)) = (
-            colliders.get(contact.collider_a),
-            colliders.get(contact.collider_b),
-        ) else {
-            return;
-        };
-        let all = bodies.as_slice();
-        let (a, b) = (&all[a.body_index()], &all[b.body_index()]);
-        if wakes {
-            for (sleeper, other) in [(a, b), (b, a)] {
-                if stirred(sleeper, other) {
-                    wake.extend(sleeper.island());
-                }
-            }
-        }
-        if in_contact != contact.in_contact {
-            contact.in_contact = in_contact;
-            let pair = contact.pair();
-            self.events.push(if in_contact {
-                ContactEvent::Begin(pair)
-            } else {
-                ContactEvent::End(pair)
-            });
-        }
-        let touching = !contact.manifold.is_empty();
-        if touching == contact.touching {
-            return;
-        }
-        contact.touching = touching;
-        let kinds = [(a.handle(), a.kind()), (b.handle(), b.kind())];
-        let bodies = (a.handle(), b.handle());
-        if touching {
-            self.began.push(bodies);
-            self.paint(index, &|body| {
-                kinds
-                    .iter()
-                    .find(|k| k.0 == body)
-                    .map_or(BodyKind::Static, |k| k.1)
-            });
-        } else {
-            self.ended.push(bodies);
-            self.unpaint(index);
-        }
-    }
-
     /// Every contact.
     pub fn iter(&self) -> impl ExactSizeIterator<Item = &Contact> {
         self.contacts.iter()
     }
 
     /// The indices of the awake contacts (a body of the pair is awake): the first ones.
-    fn awake_range(&self) -> std::ops::Range<usize> {
+    pub(super) fn awake_range(&self) -> std::ops::Range<usize> {
         0..self.parts.start(ASLEEP)
     }
 
@@ -841,7 +676,7 @@ impl ContactSet {
 pub(crate) type BodyIndices = [u32; 2];
 
 /// A new contact's [`BodyIndices`], until the narrowphase finds them.
-const NO_BODIES: BodyIndices = [u32::MAX; 2];
+pub(super) const NO_BODIES: BodyIndices = [u32::MAX; 2];
 
 /// Where `contact`'s bodies are, by `dense_index`.
 pub(crate) fn body_indices_of(
@@ -849,160 +684,6 @@ pub(crate) fn body_indices_of(
     dense_index: impl Fn(BodyHandle) -> usize,
 ) -> BodyIndices {
     [contact.body_a, contact.body_b].map(|b| dense_index(b) as u32)
-}
-
-/// True when `body` can disturb a sleeping body it touches: it is awake and dynamic, or
-/// kinematic and moving. A still kinematic platform lets what rests on it sleep.
-fn stirs(body: &Body) -> bool {
-    match body.kind() {
-        BodyKind::Dynamic => !body.is_sleeping(),
-        BodyKind::Kinematic => {
-            body.linear_velocity() != crate::math::Vec2::zeros() || body.angular_velocity() != 0.0
-        }
-        BodyKind::Static => false,
-    }
-}
-
-/// True when `sleeper` sleeps and `other`, touching it, should wake it.
-fn stirred(sleeper: &Body, other: &Body) -> bool {
-    sleeper.is_sleeping() && stirs(other)
-}
-
-/// The fastest two bodies' surfaces can close on each other: their relative speed, and each
-/// one's spin times its farthest point.
-fn closing_speed(a: &Body, b: &Body) -> Real {
-    let turning = |body: &Body| body.angular_velocity().abs() * body.reach();
-    (b.linear_velocity() - a.linear_velocity()).norm() + turning(a) + turning(b)
-}
-
-/// Rebuilds one contact's manifold if either body moves (or, `recycling`, carries the last one
-/// along if they barely moved relative to each other); says whether the contact lives on, and
-/// where its bodies are.
-fn refresh_manifold(
-    contact: &mut Contact,
-    bodies: &HandleMap<BodyHandle, Body>,
-    colliders: &HandleMap<ColliderHandle, Collider>,
-    broadphase: &BroadPhase,
-    options: ManifoldOptions,
-) -> (Refresh, BodyIndices) {
-    let (Some(shape_a), Some(shape_b)) = (
-        colliders.get(contact.collider_a),
-        colliders.get(contact.collider_b),
-    ) else {
-        return (Refresh::Gone, NO_BODIES);
-    };
-    let indices = [shape_a.body_index(), shape_b.body_index()].map(|i| i as u32);
-    let refresh = rebuild_manifold(contact, (shape_a, shape_b), bodies, broadphase, options);
-    (refresh, indices)
-}
-
-/// [`refresh_manifold`] of a contact between colliders `shape_a` and `shape_b`.
-fn rebuild_manifold(
-    contact: &mut Contact,
-    (shape_a, shape_b): (&Collider, &Collider),
-    bodies: &HandleMap<BodyHandle, Body>,
-    broadphase: &BroadPhase,
-    options: ManifoldOptions,
-) -> Refresh {
-    let ManifoldOptions {
-        margin,
-        prediction,
-        recycling,
-        pre_solve,
-    } = options;
-    let all = bodies.as_slice();
-    let (a, b) = (&all[shape_a.body_index()], &all[shape_b.body_index()]);
-    if !a.moves() && !b.moves() {
-        return Refresh::Unchanged;
-    }
-    // Mixed each step, so a collider's friction or restitution changed by the user applies.
-    contact.friction = (shape_a.friction() * shape_b.friction()).sqrt();
-    contact.restitution = shape_a.restitution().max(shape_b.restitution());
-    if !kinds_can_collide(a.kind(), b.kind())
-        || !broadphase.fat_aabbs_overlap(contact.collider_a, contact.collider_b)
-    {
-        return Refresh::Gone;
-    }
-    // Only polygon pairs: their manifold is the expensive one (SAT and clipping); a circle's
-    // is a few multiplications, and its normal follows the centres, not the body's turn.
-    let polygons = matches!(
-        (shape_a.shape(), shape_b.shape()),
-        (Shape::Polygon(_), Shape::Polygon(_))
-    );
-    // A body stopped by continuous collision barely moved, but only because it was put back:
-    // its manifold may lack the points its motion was about to meet.
-    let stopped = a.had_time_of_impact() || b.had_time_of_impact();
-    let carried = |distance| contact.frame.carry(&mut contact.manifold, a, b, distance);
-    if polygons && !stopped && recycling.is_some_and(carried) {
-        return settled(contact, [shape_a, shape_b], [a, b], pre_solve);
-    }
-    let margins = Margins {
-        any: margin,
-        face: margin + closing_speed(a, b) * prediction,
-    };
-    contact.manifold = manifold::update(
-        shape_a.world_shape(),
-        shape_b.world_shape(),
-        margins,
-        &contact.manifold,
-    );
-    contact
-        .manifold
-        .set_anchors(a.center_of_mass(), b.center_of_mass());
-    contact.frame = ManifoldFrame::of(&contact.manifold, (a, shape_a), (b, shape_b));
-    settled(contact, [shape_a, shape_b], [a, b], pre_solve)
-}
-
-/// Asks the pre-solve `hook`, if the contact's colliders opted in and its manifold has points,
-/// whether it is solved this step; one turned down loses its points (and with them what it
-/// would warm start from) and its recycling frame, so next step builds it afresh. Then what
-/// the bookkeeping needs to know of it.
-fn settled(
-    contact: &mut Contact,
-    colliders: [&Collider; 2],
-    bodies: [&Body; 2],
-    hook: Option<&PreSolveHook>,
-) -> Refresh {
-    if let Some(hook) = hook
-        && contact.pre_solve
-        && !contact.manifold.is_empty()
-    {
-        let shown = PreSolveContact {
-            pair: contact.pair(),
-            manifold: &contact.manifold,
-            colliders,
-            bodies,
-        };
-        if !hook.allows(&shown) {
-            contact.manifold = Manifold::default();
-            contact.frame = ManifoldFrame::default();
-        }
-    }
-    updated(contact, bodies[0], bodies[1])
-}
-
-/// What the bookkeeping after the narrowphase needs to know of a contact of bodies `a` and
-/// `b` whose manifold was just updated.
-fn updated(contact: &Contact, a: &Body, b: &Body) -> Refresh {
-    let touching = !contact.manifold.is_empty();
-    let closest = contact.manifold.min_separation();
-    // Hysteresis: closer than TOUCH_BEGIN to begin, within TOUCH_END to go on.
-    let reach = if contact.in_contact {
-        TOUCH_END
-    } else {
-        TOUCH_BEGIN
-    };
-    let in_contact = closest.is_some_and(|s| s <= reach);
-    Refresh::Updated {
-        depth: if touching {
-            -closest.unwrap_or(0.0)
-        } else {
-            0.0
-        },
-        changed: touching != contact.touching || in_contact != contact.in_contact,
-        in_contact,
-        wakes: touching && (stirred(a, b) || stirred(b, a)),
-    }
 }
 
 #[cfg(feature = "serde")]

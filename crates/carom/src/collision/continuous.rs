@@ -14,7 +14,7 @@
 //! there and the solver stops it at the surface.
 
 use crate::collision::broadphase::BroadPhase;
-use crate::collision::narrowphase::separation;
+use crate::collision::distance::separation;
 use crate::constants::{FAST_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS};
 use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};

@@ -18,7 +18,7 @@
 //! collision).
 
 use super::chain_segment::{self, ChainLink};
-use super::narrowphase::{self, PolygonFeature};
+use super::distance::{self, PolygonFeature};
 use crate::constants::LINEAR_SLOP;
 use crate::constants::{REFERENCE_TOLERANCE, SPURIOUS_TOLERANCE};
 use crate::geometry::shape::WorldShape;
@@ -343,7 +343,7 @@ impl<'a> Core<'a> {
 }
 
 fn collide_circles(ca: Vec2, ra: Real, cb: Vec2, rb: Real, margin: Real) -> Manifold {
-    let s = narrowphase::circle_circle(ca, ra, cb, rb);
+    let s = distance::circle_circle(ca, ra, cb, rb);
     let mut manifold = Manifold::with_normal(s.normal);
     if s.separation <= margin {
         let offset = s.normal.dot(&(cb - ca));
@@ -392,7 +392,7 @@ fn collide_polygon_circle(
     margins: Margins,
 ) -> Manifold {
     // A rounded polygon against a circle is its core against a circle as much larger.
-    let pc = narrowphase::polygon_circle(vertices, normals, center, radius + rounding);
+    let pc = distance::polygon_circle(vertices, normals, center, radius + rounding);
     let s = pc.separation;
     let mut manifold = Manifold::with_normal(s.normal);
     let margin = match pc.feature {
@@ -435,7 +435,7 @@ fn collide_polygons(
 ) -> Manifold {
     let margin = margins.any;
     let rounding = a.radius + b.radius;
-    let pp = narrowphase::polygon_polygon_within(
+    let pp = distance::polygon_polygon_within(
         a.vertices,
         a.normals,
         b.vertices,

@@ -1,8 +1,9 @@
-//! Collision: which pairs are near (broadphase), how near (narrowphase), where they touch
-//! (manifolds, with chains' smooth segments apart), which pairs may collide at all (filters),
-//! the persistent contacts that carry it from step to step, their graph colours and where
-//! each is stored, the user's pre-solve say over them, the hits they report, sensors, shape
-//! casts, and continuous collision for fast bodies.
+//! Collision: which pairs are near (broadphase), how far apart two shapes are (distance),
+//! where they touch (manifolds, with chains' smooth segments apart), which pairs may collide at
+//! all (filters), the persistent contacts that carry it from step to step and the stage that
+//! updates them each step (narrowphase), their graph colours and where each is stored, the
+//! user's pre-solve say over them, the hits they report, sensors, shape casts, and continuous
+//! collision for fast bodies.
 
 pub(crate) mod broadphase;
 pub(crate) mod chain_segment;
@@ -10,6 +11,7 @@ pub(crate) mod coloring;
 pub(crate) mod contact;
 pub(crate) mod contact_layout;
 pub(crate) mod continuous;
+pub(crate) mod distance;
 pub(crate) mod dynamic_tree;
 pub(crate) mod filter;
 pub(crate) mod hits;

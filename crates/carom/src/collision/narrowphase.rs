@@ -1,462 +1,344 @@
-//! The narrowphase: how far apart two shapes are, or how deep they overlap.
-//!
-//! Every query answers with a [`Separation`]: a unit `normal` pointing **from shape A to
-//! shape B** and a signed `separation` along it, the distance between the shapes when they
-//! are apart and minus the penetration depth when they overlap. Moving B by the minimum
-//! translation vector [`Separation::mtv`] (`normal × depth`) leaves the pair just touching.
-//!
-//! Polygon pairs use the separating axis theorem over both polygons' edge normals, which is
-//! exact for overlap. Apart, SAT only gives a lower bound (two corners facing each other are
-//! farther apart than either face says), so the exact distance between closest features is
-//! computed too. Polygon–circle is exact in every Voronoi region: inside, across an edge, or
-//! off a corner.
+//! The narrowphase stage: each step, every awake contact's manifold is rebuilt from its
+//! bodies' world shapes (or carried along while the pair barely moved), on as many threads as
+//! rayon gives; then, serially and in a fixed order, the contacts whose state changed are
+//! filed again: destroyed when their boxes parted, coloured as they start touching, and
+//! reported as events, with the sleeping islands a moving body stirred listed to wake.
+//! Box2D's `b2Collide` and `b2UpdateContact`.
 
-use crate::constants::COINCIDENT_NORMAL;
-use crate::geometry::segment::closest_on_segment;
-use crate::geometry::shape::WorldShape;
-use crate::math::{Real, Vec2, perp_cw};
+use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
+use crate::collision::contact::{
+    BodyIndices, Contact, ContactEvent, ContactSet, NO_BODIES, pair_key,
+};
+use crate::collision::manifold::{self, Manifold, Margins};
+use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
+use crate::collision::recycle::ManifoldFrame;
+use crate::constants::{CONTACTS_PER_TASK, TOUCH_BEGIN, TOUCH_END};
+use crate::dynamics::body::{Body, BodyHandle, BodyKind};
+use crate::dynamics::collider::{Collider, ColliderHandle};
+use crate::geometry::shape::Shape;
+use crate::handle_map::HandleMap;
+use crate::math::Real;
+use crate::parallel::map_mut_into;
 
-/// Where B stands relative to A along the direction that separates them best.
+/// How the narrowphase builds manifolds this step.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ManifoldOptions<'a> {
+    /// Points are kept up to this far apart, m (the speculative distance).
+    pub margin: Real,
+    /// How far ahead, s, a face point may look: it is kept while the pair could close its gap
+    /// within that time at their present speeds (0 keeps points within `margin` only).
+    pub prediction: Real,
+    /// Carry a manifold along while its pair has moved less than this relative to each other
+    /// since it was built, m, instead of building it again (`None`: build every manifold).
+    pub recycling: Option<Real>,
+    /// The world's pre-solve hook, asked about the contacts of colliders that opted in.
+    pub pre_solve: Option<&'a PreSolveHook>,
+}
+
+/// What updating one contact's manifold found.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Separation {
-    /// Unit direction from A to B.
-    pub normal: Vec2,
-    /// Distance along `normal`: positive apart, negative overlapping (minus the depth).
-    pub separation: Real,
+enum Refresh {
+    /// Nothing moves: left as it was.
+    Unchanged,
+    /// A body is gone, or the pair can no longer touch: the contact ends.
+    Gone,
+    /// The manifold was rebuilt (or carried along).
+    Updated {
+        /// Its deepest overlap (0 if it does not touch).
+        depth: Real,
+        /// Its manifold gained its first points or lost its last, or the shapes began or
+        /// stopped touching.
+        changed: bool,
+        /// Whether the shapes touch now, as events report it.
+        in_contact: bool,
+        /// It touches a sleeping body that the other body stirs.
+        wakes: bool,
+    },
 }
 
-impl Separation {
-    /// True when the shapes overlap (or touch).
-    #[inline]
-    pub fn is_overlapping(&self) -> bool {
-        self.separation <= 0.0
-    }
-
-    /// The minimum translation vector: moving B by it separates the pair. Zero when apart.
-    #[inline]
-    pub fn mtv(&self) -> Vec2 {
-        self.normal * (-self.separation).max(0.0)
-    }
-
-    /// The same separation seen from B.
-    #[inline]
-    pub fn flipped(self) -> Self {
-        Separation {
-            normal: -self.normal,
-            separation: self.separation,
-        }
-    }
+/// The narrowphase's memory, kept from step to step so a step allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Narrowphase {
+    /// What the last update found for each awake contact.
+    refresh: Vec<(Refresh, BodyIndices)>,
+    /// The contacts it must then file again, by pair.
+    changed: Vec<(u64, Refresh)>,
 }
 
-/// Signed separation of two placed shapes; see the module documentation. A chain segment
-/// counts as a plain segment here, both sides solid: a query asks where shapes are, not which
-/// way they may collide.
-pub fn separation(a: &WorldShape, b: &WorldShape) -> Separation {
-    match (a, b) {
-        (
-            WorldShape::Circle {
-                center: ca,
-                radius: ra,
-            },
-            WorldShape::Circle {
-                center: cb,
-                radius: rb,
-            },
-        ) => circle_circle(*ca, *ra, *cb, *rb),
-        (WorldShape::Circle { .. }, _) => separation(b, a).flipped(),
-        (_, WorldShape::Circle { center, radius }) => {
-            with_core(a, |vertices, normals, rounding| {
-                polygon_circle(vertices, normals, *center, radius + rounding).separation
-            })
-        }
-        _ => with_core(a, |va, na, ra| {
-            with_core(b, |vb, nb, rb| {
-                let mut s = polygon_polygon(va, na, vb, nb).separation;
-                s.separation -= ra + rb;
-                s
-            })
-        }),
-    }
-}
-
-/// Calls `f` with a polygon's or chain segment's core (vertices and outward normals) and its
-/// rounding; a chain segment is a two-vertex core, both sides solid, and a circle a
-/// one-vertex core rounded by its radius.
-pub(crate) fn with_core<R>(shape: &WorldShape, f: impl FnOnce(&[Vec2], &[Vec2], Real) -> R) -> R {
-    match shape {
-        WorldShape::Polygon {
-            vertices,
-            normals,
-            radius,
-        } => f(vertices, normals, *radius),
-        WorldShape::ChainSegment { point1, point2, .. } => {
-            let normal = perp_cw(point2 - point1).normalize();
-            f(&[*point1, *point2], &[normal, -normal], 0.0)
-        }
-        WorldShape::Circle { center, radius } => f(&[*center], &[], *radius),
-    }
-}
-
-/// Two circles. Coincident centres separate along [`COINCIDENT_NORMAL`] by the sum of radii.
-pub fn circle_circle(center_a: Vec2, radius_a: Real, center_b: Vec2, radius_b: Real) -> Separation {
-    let offset = center_b - center_a;
-    let distance = offset.norm();
-    if distance > Real::EPSILON * (1.0 + center_a.norm()) {
-        Separation {
-            normal: offset / distance,
-            separation: distance - radius_a - radius_b,
-        }
-    } else {
-        // No direction to prefer: push B the full sum of radii along the fixed fallback.
-        Separation {
-            normal: COINCIDENT_NORMAL,
-            separation: -(radius_a + radius_b),
-        }
-    }
-}
-
-/// Which feature of a polygon is closest to a circle's centre.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PolygonFeature {
-    /// The edge with this index (its Voronoi region, or the centre is inside the polygon).
-    Edge(usize),
-    /// The vertex with this index.
-    Vertex(usize),
-}
-
-/// Polygon A against circle B.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PolygonCircle {
-    /// Normal from the polygon to the circle and signed separation.
-    pub separation: Separation,
-    /// The point of the polygon's boundary nearest the circle.
-    pub polygon_point: Vec2,
-    /// The feature that point lies on.
-    pub feature: PolygonFeature,
-}
-
-/// Polygon A (world vertices and normals) against circle B.
-pub fn polygon_circle(
-    vertices: &[Vec2],
-    normals: &[Vec2],
-    center: Vec2,
-    radius: Real,
-) -> PolygonCircle {
-    let n = vertices.len();
-    // The edge the centre is farthest in front of.
-    let (mut best_edge, mut best_distance) = (0, Real::NEG_INFINITY);
-    for i in 0..n {
-        let d = normals[i].dot(&(center - vertices[i]));
-        if d > best_distance {
-            best_edge = i;
-            best_distance = d;
-        }
-    }
-    // A two-vertex core (a capsule's or segment's) has no inside: a centre on its line may
-    // still lie beyond its ends.
-    if best_distance <= 0.0 && n >= 3 {
-        // Inside: the nearest way out is through the nearest edge.
-        let normal = normals[best_edge];
-        return PolygonCircle {
-            separation: Separation {
-                normal,
-                separation: best_distance - radius,
-            },
-            polygon_point: center - normal * best_distance,
-            feature: PolygonFeature::Edge(best_edge),
-        };
-    }
-    // Outside: the nearest boundary point, over every edge, decides the Voronoi region.
-    let mut best = (Real::INFINITY, Vec2::zeros(), PolygonFeature::Edge(0));
-    for i in 0..n {
-        let (start, end) = (vertices[i], vertices[(i + 1) % n]);
-        let edge = end - start;
-        let length_sq = edge.norm_squared();
-        // A zero-length edge (a hairline polygon far from the origin rounds to one) is its
-        // start vertex.
-        let t = if length_sq > 0.0 {
-            (center - start).dot(&edge) / length_sq
-        } else {
-            0.0
-        };
-        let (point, feature) = if t <= 0.0 {
-            (start, PolygonFeature::Vertex(i))
-        } else if t >= 1.0 {
-            (end, PolygonFeature::Vertex((i + 1) % n))
-        } else if normals[i].dot(&(center - start)) < 0.0 {
-            // The edge faces away: the same line facing the centre is the other edge of a
-            // two-vertex core (a polygon's nearest edge from outside always faces the centre).
-            continue;
-        } else {
-            (start + edge * t, PolygonFeature::Edge(i))
-        };
-        let distance_sq = (center - point).norm_squared();
-        if distance_sq < best.0 {
-            best = (distance_sq, point, feature);
-        }
-    }
-    let (distance_sq, polygon_point, feature) = best;
-    let normal = match feature {
-        PolygonFeature::Vertex(_) if distance_sq > 0.0 => {
-            (center - polygon_point) / distance_sq.sqrt()
-        }
-        // On the vertex itself (outside only by rounding): the edge it was outside of.
-        PolygonFeature::Vertex(_) => normals[best_edge],
-        PolygonFeature::Edge(i) => normals[i],
-    };
-    PolygonCircle {
-        separation: Separation {
-            normal,
-            separation: normal.dot(&(center - polygon_point)) - radius,
-        },
-        polygon_point,
-        feature,
-    }
-}
-
-/// The edge of polygon A that B's vertices are farthest in front of, and by how much: the
-/// separating-axis test over A's edge normals.
-pub fn max_separation(
-    a_vertices: &[Vec2],
-    a_normals: &[Vec2],
-    b_vertices: &[Vec2],
-) -> (usize, Real) {
-    let mut best = (0, Real::NEG_INFINITY);
-    for (i, (v, n)) in a_vertices.iter().zip(a_normals).enumerate() {
-        let deepest = b_vertices
-            .iter()
-            .map(|b| n.dot(&(b - v)))
-            .fold(Real::INFINITY, Real::min);
-        if deepest > best.1 {
-            best = (i, deepest);
-        }
-    }
-    best
-}
-
-/// Closest points of two disjoint convex polygons.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ClosestPoints {
-    /// On A.
-    pub point_a: Vec2,
-    /// On B.
-    pub point_b: Vec2,
-    /// Their distance.
-    pub distance: Real,
-    /// The vertex of A at `point_a`, when `point_a` is a vertex.
-    pub vertex_a: Option<usize>,
-    /// The vertex of B at `point_b`, when `point_b` is a vertex.
-    pub vertex_b: Option<usize>,
-}
-
-/// Closest points of two convex polygons that do not overlap: the nearest pair among every
-/// vertex of one against every edge of the other.
-pub fn closest_points(a: &[Vec2], b: &[Vec2]) -> ClosestPoints {
-    let mut best = ClosestPoints {
-        point_a: a[0],
-        point_b: b[0],
-        distance: Real::INFINITY,
-        vertex_a: None,
-        vertex_b: None,
-    };
-    // `from` are vertices, `onto` the polygon whose edges they are projected on.
-    let mut search = |from: &[Vec2], onto: &[Vec2], from_is_a: bool| {
-        for (i, &p) in from.iter().enumerate() {
-            for j in 0..onto.len() {
-                let (start, end) = (onto[j], onto[(j + 1) % onto.len()]);
-                let (q, t) = closest_on_segment(p, start, end);
-                let distance = (p - q).norm();
-                if distance < best.distance {
-                    let onto_vertex = if t <= 0.0 {
-                        Some(j)
-                    } else if t >= 1.0 {
-                        Some((j + 1) % onto.len())
-                    } else {
-                        None
-                    };
-                    best = if from_is_a {
-                        ClosestPoints {
-                            point_a: p,
-                            point_b: q,
-                            distance,
-                            vertex_a: Some(i),
-                            vertex_b: onto_vertex,
-                        }
-                    } else {
-                        ClosestPoints {
-                            point_a: q,
-                            point_b: p,
-                            distance,
-                            vertex_a: onto_vertex,
-                            vertex_b: Some(i),
-                        }
-                    };
+impl Narrowphase {
+    /// The narrowphase stage, over the awake set: rebuilds every manifold from the bodies'
+    /// world shapes, carries impulses over by feature id, reports touching changes, and drops
+    /// contacts whose fat boxes no longer overlap (or whose bodies can no longer collide).
+    /// Sleeping contacts are not visited. Sleeping islands touched by a moving body are added
+    /// to `wake`. Returns the deepest penetration seen.
+    pub(crate) fn update(
+        &mut self,
+        set: &mut ContactSet,
+        bodies: &HandleMap<BodyHandle, Body>,
+        colliders: &HandleMap<ColliderHandle, Collider>,
+        broadphase: &BroadPhase,
+        options: ManifoldOptions,
+        wake: &mut Vec<u32>,
+    ) -> Real {
+        // First every manifold, on as many threads as rayon gives (each contact on its own),
+        // then the bookkeeping that touches the whole set, in order, for the contacts that
+        // need it: those that end, start or stop touching, or wake a sleeper.
+        let awake = set.awake_range();
+        map_mut_into(
+            &mut set.contacts[awake.clone()],
+            &mut self.refresh,
+            CONTACTS_PER_TASK,
+            |contact| refresh_manifold(contact, bodies, colliders, broadphase, options),
+        );
+        let mut deepest: Real = 0.0;
+        let mut changed = std::mem::take(&mut self.changed);
+        changed.clear();
+        // Listed by pair first, as filing them again moves contacts; backwards, the order they
+        // are filed in (which decides the colours they take).
+        for (index, &(refresh, indices)) in self.refresh.iter().enumerate().rev() {
+            set.body_indices[index] = indices;
+            match refresh {
+                Refresh::Unchanged => continue,
+                Refresh::Gone => {}
+                Refresh::Updated {
+                    depth,
+                    changed,
+                    wakes,
+                    ..
+                } => {
+                    deepest = deepest.max(depth);
+                    if !(changed || wakes) {
+                        continue;
+                    }
                 }
             }
+            let contact = &set.contacts[index];
+            changed.push((pair_key(contact.collider_a, contact.collider_b), refresh));
         }
+        for &(key, refresh) in &changed {
+            file(set, set.lookup[&key], refresh, bodies, colliders, wake);
+        }
+        self.changed = changed;
+        deepest
+    }
+}
+
+/// Files again the contact at `index`, which the narrowphase found `refresh`: destroys it,
+/// colours it as its manifold gains points or takes its colour as it loses them, raises
+/// the events as the shapes begin or stop touching, and adds to `wake` the sleeping islands
+/// it stirs.
+fn file(
+    set: &mut ContactSet,
+    index: usize,
+    refresh: Refresh,
+    bodies: &HandleMap<BodyHandle, Body>,
+    colliders: &HandleMap<ColliderHandle, Collider>,
+    wake: &mut Vec<u32>,
+) {
+    let (wakes, in_contact) = match refresh {
+        Refresh::Unchanged => return,
+        Refresh::Gone => return set.destroy(index, true),
+        Refresh::Updated {
+            wakes, in_contact, ..
+        } => (wakes, in_contact),
     };
-    search(a, b, true);
-    search(b, a, false);
-    best
-}
-
-/// Polygon A against polygon B.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PolygonPolygon {
-    /// Normal from A to B and signed separation.
-    pub separation: Separation,
-    /// SAT's best edge on A and its separation.
-    pub edge_a: (usize, Real),
-    /// SAT's best edge on B and its separation.
-    pub edge_b: (usize, Real),
-    /// When apart, the exact closest points.
-    pub closest: Option<ClosestPoints>,
-}
-
-/// Polygon A against polygon B (world vertices and normals).
-pub fn polygon_polygon(
-    a_vertices: &[Vec2],
-    a_normals: &[Vec2],
-    b_vertices: &[Vec2],
-    b_normals: &[Vec2],
-) -> PolygonPolygon {
-    polygon_polygon_within(a_vertices, a_normals, b_vertices, b_normals, 0.0)
-}
-
-/// [`polygon_polygon`], except that polygons apart by no more than `sat_is_enough` keep SAT's
-/// axis and distance without searching for the exact closest points. Two polygons that barely
-/// touch (a tenth of the slop, Box2D's rule) differ from the exact answer by less than anything
-/// a contact can tell, and resting contacts are nearly all like that.
-pub fn polygon_polygon_within(
-    a_vertices: &[Vec2],
-    a_normals: &[Vec2],
-    b_vertices: &[Vec2],
-    b_normals: &[Vec2],
-    sat_is_enough: Real,
-) -> PolygonPolygon {
-    let edge_a = max_separation(a_vertices, a_normals, b_vertices);
-    let edge_b = max_separation(b_vertices, b_normals, a_vertices);
-    let mut sat = if edge_b.1 > edge_a.1 {
-        Separation {
-            normal: -b_normals[edge_b.0],
-            separation: edge_b.1,
+    let contact = &mut set.contacts[index];
+    // Both colliders were there a moment ago (else the contact would be gone).
+    let (Some(a), Some(b)) = (
+        colliders.get(contact.collider_a),
+        colliders.get(contact.collider_b),
+    ) else {
+        return;
+    };
+    let all = bodies.as_slice();
+    let (a, b) = (&all[a.body_index()], &all[b.body_index()]);
+    if wakes {
+        for (sleeper, other) in [(a, b), (b, a)] {
+            if stirred(sleeper, other) {
+                wake.extend(sleeper.island());
+            }
         }
+    }
+    if in_contact != contact.in_contact {
+        contact.in_contact = in_contact;
+        let pair = contact.pair();
+        set.events.push(if in_contact {
+            ContactEvent::Begin(pair)
+        } else {
+            ContactEvent::End(pair)
+        });
+    }
+    let touching = !contact.manifold.is_empty();
+    if touching == contact.touching {
+        return;
+    }
+    contact.touching = touching;
+    let kinds = [(a.handle(), a.kind()), (b.handle(), b.kind())];
+    let bodies = (a.handle(), b.handle());
+    if touching {
+        set.began.push(bodies);
+        set.paint(index, &|body| {
+            kinds
+                .iter()
+                .find(|k| k.0 == body)
+                .map_or(BodyKind::Static, |k| k.1)
+        });
     } else {
-        Separation {
-            normal: a_normals[edge_a.0],
-            separation: edge_a.1,
+        set.ended.push(bodies);
+        set.unpaint(index);
+    }
+}
+
+/// True when `body` can disturb a sleeping body it touches: it is awake and dynamic, or
+/// kinematic and moving. A still kinematic platform lets what rests on it sleep.
+fn stirs(body: &Body) -> bool {
+    match body.kind() {
+        BodyKind::Dynamic => !body.is_sleeping(),
+        BodyKind::Kinematic => {
+            body.linear_velocity() != crate::math::Vec2::zeros() || body.angular_velocity() != 0.0
         }
+        BodyKind::Static => false,
+    }
+}
+
+/// True when `sleeper` sleeps and `other`, touching it, should wake it.
+fn stirred(sleeper: &Body, other: &Body) -> bool {
+    sleeper.is_sleeping() && stirs(other)
+}
+
+/// The fastest two bodies' surfaces can close on each other: their relative speed, and each
+/// one's spin times its farthest point.
+fn closing_speed(a: &Body, b: &Body) -> Real {
+    let turning = |body: &Body| body.angular_velocity().abs() * body.reach();
+    (b.linear_velocity() - a.linear_velocity()).norm() + turning(a) + turning(b)
+}
+
+/// Rebuilds one contact's manifold if either body moves (or, `recycling`, carries the last one
+/// along if they barely moved relative to each other); says whether the contact lives on, and
+/// where its bodies are.
+fn refresh_manifold(
+    contact: &mut Contact,
+    bodies: &HandleMap<BodyHandle, Body>,
+    colliders: &HandleMap<ColliderHandle, Collider>,
+    broadphase: &BroadPhase,
+    options: ManifoldOptions,
+) -> (Refresh, BodyIndices) {
+    let (Some(shape_a), Some(shape_b)) = (
+        colliders.get(contact.collider_a),
+        colliders.get(contact.collider_b),
+    ) else {
+        return (Refresh::Gone, NO_BODIES);
     };
-    if let ([a0, a1], [b0, b1]) = (a_vertices, b_vertices) {
-        // Two segments' cores: their normals miss the gap between two on one line, end to end
-        // (the Minkowski difference is then a segment along that line), so the line is an
-        // axis too.
-        let along = (a1 - a0).normalize();
-        let (a_lo, a_hi) = min_max(along.dot(a0), along.dot(a1));
-        let (b_lo, b_hi) = min_max(along.dot(b0), along.dot(b1));
-        let (ahead, behind) = (b_lo - a_hi, a_lo - b_hi);
-        if ahead.max(behind) > sat.separation {
-            sat = Separation {
-                normal: if ahead >= behind { along } else { -along },
-                separation: ahead.max(behind),
-            };
-        }
+    let indices = [shape_a.body_index(), shape_b.body_index()].map(|i| i as u32);
+    let refresh = rebuild_manifold(contact, (shape_a, shape_b), bodies, broadphase, options);
+    (refresh, indices)
+}
+
+/// [`refresh_manifold`] of a contact between colliders `shape_a` and `shape_b`.
+fn rebuild_manifold(
+    contact: &mut Contact,
+    (shape_a, shape_b): (&Collider, &Collider),
+    bodies: &HandleMap<BodyHandle, Body>,
+    broadphase: &BroadPhase,
+    options: ManifoldOptions,
+) -> Refresh {
+    let ManifoldOptions {
+        margin,
+        prediction,
+        recycling,
+        pre_solve,
+    } = options;
+    let all = bodies.as_slice();
+    let (a, b) = (&all[shape_a.body_index()], &all[shape_b.body_index()]);
+    if !a.moves() && !b.moves() {
+        return Refresh::Unchanged;
     }
-    if sat.separation <= sat_is_enough {
-        return PolygonPolygon {
-            separation: sat,
-            edge_a,
-            edge_b,
-            closest: None,
+    // Mixed each step, so a collider's friction or restitution changed by the user applies.
+    contact.friction = (shape_a.friction() * shape_b.friction()).sqrt();
+    contact.restitution = shape_a.restitution().max(shape_b.restitution());
+    if !kinds_can_collide(a.kind(), b.kind())
+        || !broadphase.fat_aabbs_overlap(contact.collider_a, contact.collider_b)
+    {
+        return Refresh::Gone;
+    }
+    // Only polygon pairs: their manifold is the expensive one (SAT and clipping); a circle's
+    // is a few multiplications, and its normal follows the centres, not the body's turn.
+    let polygons = matches!(
+        (shape_a.shape(), shape_b.shape()),
+        (Shape::Polygon(_), Shape::Polygon(_))
+    );
+    // A body stopped by continuous collision barely moved, but only because it was put back:
+    // its manifold may lack the points its motion was about to meet.
+    let stopped = a.had_time_of_impact() || b.had_time_of_impact();
+    let carried = |distance| contact.frame.carry(&mut contact.manifold, a, b, distance);
+    if polygons && !stopped && recycling.is_some_and(carried) {
+        return settled(contact, [shape_a, shape_b], [a, b], pre_solve);
+    }
+    let margins = Margins {
+        any: margin,
+        face: margin + closing_speed(a, b) * prediction,
+    };
+    contact.manifold = manifold::update(
+        shape_a.world_shape(),
+        shape_b.world_shape(),
+        margins,
+        &contact.manifold,
+    );
+    contact
+        .manifold
+        .set_anchors(a.center_of_mass(), b.center_of_mass());
+    contact.frame = ManifoldFrame::of(&contact.manifold, (a, shape_a), (b, shape_b));
+    settled(contact, [shape_a, shape_b], [a, b], pre_solve)
+}
+
+/// Asks the pre-solve `hook`, if the contact's colliders opted in and its manifold has points,
+/// whether it is solved this step; one turned down loses its points (and with them what it
+/// would warm start from) and its recycling frame, so next step builds it afresh. Then what
+/// the bookkeeping needs to know of it.
+fn settled(
+    contact: &mut Contact,
+    colliders: [&Collider; 2],
+    bodies: [&Body; 2],
+    hook: Option<&PreSolveHook>,
+) -> Refresh {
+    if let Some(hook) = hook
+        && contact.pre_solve
+        && !contact.manifold.is_empty()
+    {
+        let shown = PreSolveContact {
+            pair: contact.pair(),
+            manifold: &contact.manifold,
+            colliders,
+            bodies,
         };
-    }
-    let closest = closest_points(a_vertices, b_vertices);
-    // Facing features: the SAT axis is the true normal. Corner to corner: the line between
-    // the closest points is.
-    let separation = if closest.distance > sat.separation * (1.0 + 1e-5) + 1e-7 {
-        Separation {
-            normal: (closest.point_b - closest.point_a) / closest.distance,
-            separation: closest.distance,
+        if !hook.allows(&shown) {
+            contact.manifold = Manifold::default();
+            contact.frame = ManifoldFrame::default();
         }
+    }
+    updated(contact, bodies[0], bodies[1])
+}
+
+/// What the bookkeeping after the narrowphase needs to know of a contact of bodies `a` and
+/// `b` whose manifold was just updated.
+fn updated(contact: &Contact, a: &Body, b: &Body) -> Refresh {
+    let touching = !contact.manifold.is_empty();
+    let closest = contact.manifold.min_separation();
+    // Hysteresis: closer than TOUCH_BEGIN to begin, within TOUCH_END to go on.
+    let reach = if contact.in_contact {
+        TOUCH_END
     } else {
-        sat
+        TOUCH_BEGIN
     };
-    PolygonPolygon {
-        separation,
-        edge_a,
-        edge_b,
-        closest: Some(closest),
-    }
-}
-
-/// The smaller and the larger of two numbers.
-#[inline]
-fn min_max(p: Real, q: Real) -> (Real, Real) {
-    if p <= q { (p, q) } else { (q, p) }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geometry::shape::Shape;
-    use crate::math::vec2;
-
-    fn placed(shape: Shape, x: Real, y: Real, angle: Real) -> WorldShape {
-        WorldShape::at(&shape, vec2(x, y), angle)
-    }
-
-    #[test]
-    fn circles_apart_touching_overlapping_and_coincident() {
-        let s = circle_circle(vec2(0.0, 0.0), 1.0, vec2(3.0, 0.0), 1.0);
-        assert_eq!((s.normal, s.separation), (vec2(1.0, 0.0), 1.0));
-        let s = circle_circle(vec2(0.0, 0.0), 1.0, vec2(0.0, 1.5), 1.0);
-        assert_eq!((s.normal, s.separation), (vec2(0.0, 1.0), -0.5));
-        assert!((s.mtv() - vec2(0.0, 0.5)).norm() < 1e-6);
-        let s = circle_circle(vec2(2.0, 2.0), 0.5, vec2(2.0, 2.0), 0.25);
-        assert_eq!(s.normal, COINCIDENT_NORMAL);
-        assert_eq!(s.separation, -0.75);
-    }
-
-    #[test]
-    fn polygon_circle_in_every_region() {
-        let square = placed(Shape::rect(1.0, 1.0), 0.0, 0.0, 0.0);
-        let WorldShape::Polygon {
-            vertices, normals, ..
-        } = &square
-        else {
-            unreachable!()
-        };
-        // Across an edge.
-        let pc = polygon_circle(vertices, normals, vec2(0.3, 1.5), 1.0);
-        assert_eq!(pc.feature, PolygonFeature::Edge(2));
-        assert!((pc.separation.separation + 0.5).abs() < 1e-6);
-        assert_eq!(pc.separation.normal, vec2(0.0, 1.0));
-        // Off a corner: the tutorial's "closest vertex" axis, and only there.
-        let pc = polygon_circle(vertices, normals, vec2(2.0, 2.0), 1.0);
-        assert_eq!(pc.feature, PolygonFeature::Vertex(2));
-        assert!((pc.separation.separation - (2.0_f32.sqrt() - 1.0)).abs() < 1e-6);
-        // Near a corner but in the edge's region: the vertex axis would be wrong here.
-        let pc = polygon_circle(vertices, normals, vec2(0.9, 1.2), 0.5);
-        assert_eq!(pc.feature, PolygonFeature::Edge(2));
-        assert!((pc.separation.separation - (0.2 - 0.5)).abs() < 1e-6);
-        // Centre inside: out through the nearest edge, depth plus radius.
-        let pc = polygon_circle(vertices, normals, vec2(0.8, 0.1), 0.5);
-        assert_eq!(pc.separation.normal, vec2(1.0, 0.0));
-        assert!((pc.separation.separation + 0.7).abs() < 1e-6);
-    }
-
-    #[test]
-    fn corner_to_corner_distance_is_exact() {
-        let a = placed(Shape::rect(0.5, 0.5), 0.0, 0.0, 0.0);
-        let b = placed(Shape::rect(0.5, 0.5), 1.3, 1.4, 0.0);
-        let s = separation(&a, &b);
-        // SAT alone would say 0.4; the corners are sqrt(0.3² + 0.4²) = 0.5 apart.
-        assert!((s.separation - 0.5).abs() < 1e-6);
-        assert!((s.normal - vec2(0.6, 0.8)).norm() < 1e-5);
-        // Facing: the face distance.
-        let c = placed(Shape::rect(0.5, 0.5), 0.2, 1.25, 0.0);
-        let s = separation(&a, &c);
-        assert!((s.separation - 0.25).abs() < 1e-6);
-        assert_eq!(s.normal, vec2(0.0, 1.0));
+    let in_contact = closest.is_some_and(|s| s <= reach);
+    Refresh::Updated {
+        depth: if touching {
+            -closest.unwrap_or(0.0)
+        } else {
+            0.0
+        },
+        changed: touching != contact.touching || in_contact != contact.in_contact,
+        in_contact,
+        wakes: touching && (stirred(a, b) || stirred(b, a)),
     }
 }

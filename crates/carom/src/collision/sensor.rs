@@ -17,7 +17,7 @@
 //! next step as removals' contact ends are.
 
 use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
-use crate::collision::narrowphase::separation;
+use crate::collision::distance::separation;
 use crate::constants::SENSORS_PER_TASK;
 use crate::dynamics::body::{Body, BodyHandle};
 use crate::dynamics::collider::{Collider, ColliderHandle};

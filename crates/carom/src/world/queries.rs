@@ -5,8 +5,8 @@
 //! [`World::sensor_overlaps`]). Chains are one-sided here too: a ray or a cast shape starting
 //! behind a chain's link passes through it.
 
+use crate::collision::distance::separation;
 use crate::collision::filter::CollisionFilter;
-use crate::collision::narrowphase::separation;
 use crate::collision::shape_cast::cast_shape;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;

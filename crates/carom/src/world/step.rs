@@ -1,9 +1,9 @@
 //! One step of the world, stage by stage.
 
 use super::{World, margin_for};
-use crate::collision::contact::ManifoldOptions;
 use crate::collision::continuous::{self, Pose};
 use crate::collision::hits::find_hits;
+use crate::collision::narrowphase::{ManifoldOptions, Narrowphase};
 use crate::constants::{
     CONTACTS_PER_TASK, ITEMS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
 };
@@ -29,6 +29,8 @@ pub(super) struct StepScratch {
     starts: Vec<Pose>,
     /// The shape a sweep places along its path (its memory reused from step to step).
     swept: Option<WorldShape>,
+    /// The narrowphase's memory.
+    narrowphase: Narrowphase,
     /// Sleeping islands a moving body touched.
     wake: Vec<u32>,
     /// The joints solved this step.
@@ -78,7 +80,7 @@ impl World {
         // are going, so an impact at any speed has its contact before it happens.
         let prediction = if continuous { dt } else { 0.0 };
         stats.max_penetration = timed(&mut times.narrowphase, || {
-            self.build_manifolds(prediction, &mut scratch.wake)
+            self.build_manifolds(prediction, &mut scratch.narrowphase, &mut scratch.wake)
         });
         if continuous {
             self.poses(&mut scratch.starts);
@@ -137,9 +139,15 @@ impl World {
 
     /// Rebuilds the manifolds of every pair where something moves, and wakes the sleeping
     /// islands a moving body touched so they join this step; returns the deepest overlap.
-    fn build_manifolds(&mut self, prediction: Real, wake: &mut Vec<u32>) -> Real {
+    fn build_manifolds(
+        &mut self,
+        prediction: Real,
+        narrowphase: &mut Narrowphase,
+        wake: &mut Vec<u32>,
+    ) -> Real {
         wake.clear();
-        let deepest = self.contacts.update(
+        let deepest = narrowphase.update(
+            &mut self.contacts,
             &self.bodies,
             &self.colliders,
             &self.broadphase,
