@@ -39,6 +39,7 @@ mod debug_draw;
 mod dynamics;
 mod error;
 mod geometry;
+mod graph;
 mod handle_map;
 mod joint;
 mod math;
@@ -63,7 +64,8 @@ pub use constants::{
 pub use debug_draw::{
     ARROW_WIDTH, Color, DebugDraw, DrawFlags, DrawList, DrawOptions, OUTLINE_WIDTH,
 };
-pub use dynamics::body::{Body, BodyDef, BodyHandle, BodyKind};
+pub use dynamics::body::{Body, BodyHandle, BodyKind};
+pub use dynamics::body_def::BodyDef;
 pub use dynamics::chain::ChainDef;
 pub use dynamics::collider::{Collider, ColliderDef, ColliderHandle};
 pub use dynamics::drag::DragModel;

@@ -1,6 +1,6 @@
 //! One dense array kept in consecutive parts, so each part is a slice: the solver sets of
 //! bodies, colliders and contacts, and the touching contacts' graph colours (see
-//! `world::solver_sets` and `collision::contact_layout`).
+//! `world::solver_sets` and `graph::layout`).
 //!
 //! An item changes part by trading places with the first or last item of each part it crosses,
 //! so a move costs one swap per non-empty part crossed, whatever the size of the array. New

@@ -16,16 +16,16 @@
 //! short, as sequential impulse's restitution can) never touches. Changes of touching are
 //! reported as begin and end events, readable after the step.
 
-use crate::collision::coloring::{ColorBody, ContactColors, NO_COLOR};
-use crate::collision::contact_layout::{
-    ASLEEP, ColorRanges, ContactPartition, NOT_TOUCHING, color_part, color_ranges,
-};
 use crate::collision::manifold::Manifold;
 use crate::collision::recycle::ManifoldFrame;
 #[cfg(feature = "serde")]
 use crate::dynamics::body::Body;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
+use crate::graph::colors::{ColorBody, ContactColors, NO_COLOR};
+use crate::graph::layout::{
+    ASLEEP, ColorRanges, ContactPartition, NOT_TOUCHING, color_part, color_ranges,
+};
 #[cfg(feature = "serde")]
 use crate::handle_map::HandleMap;
 use crate::math::Real;
@@ -252,7 +252,7 @@ pub(super) fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
     (low.index() as u64) << 32 | high.index() as u64
 }
 
-/// The contacts of a world, stored contiguously in parts (see `collision::contact_layout`):
+/// The contacts of a world, stored contiguously in parts (see `graph::layout`):
 /// the awake ones (a body of the pair is awake) colour by colour, then the sleeping ones;
 /// with a lookup by pair and each body's list.
 #[derive(Debug, Clone, Default)]
@@ -727,7 +727,7 @@ impl ContactSet {
                             .all(|x| x.is_finite())
                 });
             let colored = (contact.color as usize) < COLOR_COUNT
-                || contact.color == crate::collision::coloring::OVERFLOW
+                || contact.color == crate::graph::colors::OVERFLOW
                 || contact.color == NO_COLOR;
             if !finite || !colored {
                 return Err(format!("contact {i} has a bad manifold or colour"));

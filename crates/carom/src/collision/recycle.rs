@@ -112,7 +112,7 @@ mod tests {
     use super::*;
     use crate::collision::manifold;
     use crate::constants::{RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC};
-    use crate::dynamics::body::BodyDef;
+    use crate::dynamics::body_def::BodyDef;
     use crate::geometry::shape::Shape;
     use crate::math::vec2;
     use crate::world::World;

@@ -2,6 +2,7 @@
 //! islands that sleep.
 
 pub(crate) mod body;
+pub(crate) mod body_def;
 pub(crate) mod chain;
 pub(crate) mod collider;
 pub(crate) mod drag;

@@ -11,40 +11,32 @@
 //! - [`SolverKind::SequentialImpulse`]: Catto's 2006 accumulated impulses with warm starting.
 //! - [`SolverKind::SoftStep`]: Box2D v3's substepped soft-constraint solver (the default).
 
-#[cfg(target_arch = "x86_64")]
-mod avx_lanes;
 mod body_state;
+mod classic;
 mod contact_constraint;
-mod contact_graph;
 mod joints;
-mod lanes;
-mod push_out;
-mod sequential_impulse;
-mod shared_states;
 mod soft_step;
-mod stages;
-mod tutorial_impulse;
-mod wide_contacts;
+mod step;
 
+use crate::graph::joints::JointColors;
 pub(crate) use body_state::BodyState;
 use body_state::SpeedCaps;
 use contact_constraint::BodyMass;
 pub(crate) use contact_constraint::ContactConstraint;
-pub(crate) use joints::{JointBody, JointColors, JointConstraint, JointStates};
+pub(crate) use joints::{JointBody, JointConstraint};
+pub(crate) use step::step;
 
 use crate::collision::contact::{BodyIndices, Contact};
-use crate::collision::contact_layout::ColorRanges;
-use crate::constants::{COLOR_COUNT, ITEMS_PER_TASK};
 use crate::dynamics::body::Body;
 use crate::dynamics::drag::DragModel;
-use crate::joint::{Joint, JointKind};
+use crate::graph::layout::ColorRanges;
+use crate::graph::order::ContactGraph;
+use crate::joint::Joint;
 use crate::math::{Real, Vec2};
-use crate::parallel::{for_each_with, map_into};
-use crate::stats::{Instant, Work};
-use contact_graph::ContactGraph;
+use crate::stats::Work;
+use soft_step::WideContacts;
 use std::ops::Range;
 use std::time::Duration;
-use wide_contacts::{BundleInputs, WideContacts};
 
 /// Which contact solver runs. Scene files and the command line name it in snake case
 /// ([`SolverKind::id`]).
@@ -317,7 +309,7 @@ pub(crate) struct Workspace {
     graph: ContactGraph,
     /// Soft step's coloured constraints, in SIMD bundles, and its list of stages.
     wide: WideContacts,
-    plan: Vec<wide_contacts::Stage>,
+    plan: Vec<soft_step::Stage>,
     /// The order the touching contacts are solved in (indices into the awake contacts).
     order: Vec<usize>,
     /// While the order is checked: the colour (plus one) that last claimed each awake body,
@@ -327,81 +319,6 @@ pub(crate) struct Workspace {
     /// The awake joints prepared for the step, sorted by colour for soft step.
     joints: Vec<JointConstraint>,
     joint_colors: JointColors,
-}
-
-/// The colouring's promise, checked: no two contacts of a colour share a body the solver
-/// moves (a dynamic body of the awake set). The solver's SIMD passes write bodies in place on
-/// several threads on the strength of it.
-struct ColorCheck<'a> {
-    /// The awake bodies' masses (which are dynamic), and where they are among all bodies.
-    masses: &'a [BodyMass],
-    awake: Range<usize>,
-    /// Where each awake contact's bodies are among all bodies.
-    body_indices: &'a [BodyIndices],
-    claims: &'a mut Vec<u8>,
-}
-
-impl ColorCheck<'_> {
-    /// Claims contact `contact`'s moving bodies for colour `color`; false (claiming nothing)
-    /// if the colour holds one already.
-    fn claim(&mut self, contact: usize, color: usize) -> bool {
-        let [a, b] = self.body_indices[contact].map(|i| i as usize);
-        let mark = color as u8 + 1;
-        let moving = |index: usize| {
-            let i = index.checked_sub(self.awake.start)?;
-            (self.awake.contains(&index) && self.masses[i].dynamic).then_some(i)
-        };
-        let (a, b) = (moving(a), moving(b));
-        if [a, b].iter().flatten().any(|&i| self.claims[i] == mark) {
-            return false;
-        }
-        for i in [a, b].into_iter().flatten() {
-            self.claims[i] = mark;
-        }
-        true
-    }
-}
-
-/// The order the touching contacts are solved in, into `order`: colour by colour, then the
-/// overflow (`colors` are where each colour's contacts are among `contacts`), laid out in
-/// `graph`, and a contact whose colour already holds one of its moving bodies (which the
-/// colouring never allows) is solved in the overflow. Without `check`, every touching contact
-/// is solved one by one, oldest first (the order sequential impulses were tuned in: a stack
-/// built from the bottom is solved from the bottom).
-fn order_constraints(
-    contacts: &[Contact],
-    colors: &ColorRanges,
-    check: Option<ColorCheck>,
-    order: &mut Vec<usize>,
-    graph: &mut ContactGraph,
-    demoted: &mut Vec<usize>,
-) {
-    order.clear();
-    let Some(mut check) = check else {
-        order.extend(colors.iter().flat_map(Range::clone));
-        order.sort_unstable_by_key(|&i| contacts[i].serial());
-        graph.leave_uncolored(order.len());
-        return;
-    };
-    check.claims.clear();
-    check.claims.resize(check.awake.len(), 0);
-    demoted.clear();
-    let (ranges, overflow) = colors.split_at(COLOR_COUNT);
-    let mut counts = [0; COLOR_COUNT];
-    for (color, (count, range)) in counts.iter_mut().zip(ranges).enumerate() {
-        let before = order.len();
-        for i in range.clone() {
-            if check.claim(i, color) {
-                order.push(i);
-            } else {
-                demoted.push(i);
-            }
-        }
-        *count = order.len() - before;
-    }
-    order.extend(overflow[0].clone());
-    order.extend_from_slice(demoted);
-    graph.lay_out(counts, overflow[0].len() + demoted.len());
 }
 
 /// The awake set's bodies and contacts as the solver takes them.
@@ -435,226 +352,4 @@ pub(crate) struct StepReport {
     pub work: Work,
     pub prepare: Duration,
     pub store: Duration,
-}
-
-/// Runs one step of the chosen solver over the awake set.
-pub(crate) fn step(
-    params: &SolverParams,
-    environment: Environment,
-    set: AwakeSet,
-    dt: Real,
-    workspace: &mut Workspace,
-) -> StepReport {
-    let started = Instant::now();
-    let AwakeSet {
-        bodies,
-        awake,
-        contacts,
-        body_indices,
-        colors,
-        joints,
-        awake_joints,
-    } = set;
-    debug_assert!(
-        contacts.iter().zip(body_indices).all(|(c, &[a, b])| {
-            let is = |index: u32, body| {
-                let body_at = bodies.get(index as usize);
-                body_at.is_some_and(|x| x.handle() == body)
-            };
-            is(a, c.body_a()) && is(b, c.body_b())
-        }),
-        "every awake contact's bodies are where the narrowphase found them"
-    );
-    let Workspace {
-        states,
-        masses,
-        constraints,
-        graph,
-        wide,
-        plan,
-        order,
-        claims,
-        demoted,
-        joints: joint_constraints,
-        joint_colors,
-    } = workspace;
-    // Soft step solves colour by colour; the classic solvers, and soft step without colours,
-    // one by one in contact order.
-    let kind = params.effective_kind();
-    let colored = kind == SolverKind::SoftStep && params.graph_coloring;
-    // The awake bodies as the solver sees them, and a spare state past them: static bodies'
-    // (at rest, immovable), and empty SIMD lanes'.
-    let awake_bodies = &bodies[awake.clone()];
-    map_into(awake_bodies, states, ITEMS_PER_TASK, BodyState::from_body);
-    states.push(BodyState::spare());
-    map_into(awake_bodies, masses, ITEMS_PER_TASK, BodyMass::of);
-    masses.push(BodyMass::default());
-    let check = ColorCheck {
-        masses,
-        awake: awake.clone(),
-        body_indices,
-        claims,
-    };
-    order_constraints(
-        contacts,
-        colors,
-        colored.then_some(check),
-        order,
-        graph,
-        demoted,
-    );
-    // Soft step's softness, which its bundles are prepared with.
-    let bias = soft_step::Bias::new(params, dt / params.substeps.max(1) as Real);
-    let inputs = BundleInputs {
-        awake: awake.clone(),
-        states,
-        masses,
-        contacts,
-        body_indices,
-        order,
-        graph,
-        soft: bias.soft,
-        static_soft: bias.static_soft,
-        warm_starting: params.warm_starting,
-    };
-    let one_by_one: &[usize] = if colored {
-        wide.prepare(&inputs);
-        &wide.overflow
-    } else {
-        wide.clear();
-        order
-    };
-    map_into(one_by_one, constraints, ITEMS_PER_TASK, |&i| {
-        inputs.constraint(i)
-    });
-    // The joints, prepared for the step's substeps (soft step) or the whole step.
-    let h = if kind.has_substeps() {
-        dt / params.substeps.max(1) as Real
-    } else {
-        dt
-    };
-    let joint_inputs = JointInputs {
-        bodies,
-        awake: awake.clone(),
-        joints,
-        awake_joints,
-    };
-    joint_colors.order(
-        awake_joints.len(),
-        |i| joint_inputs.states(i),
-        colored,
-        states.len(),
-    );
-    map_into(
-        &joint_colors.order,
-        joint_constraints,
-        ITEMS_PER_TASK,
-        |&i| joint_inputs.prepare(i, h, params.warm_starting),
-    );
-    let prepare = started.elapsed();
-    let bodies = &mut bodies[awake];
-    let context = SolverContext {
-        params,
-        environment,
-        bodies,
-        dt,
-    };
-    // Push-out and the tutorial's impulses predate joints: they leave them out.
-    let work = match kind {
-        SolverKind::PushOut => push_out::solve(&context, states, constraints),
-        SolverKind::TutorialImpulse => tutorial_impulse::solve(&context, states, constraints),
-        SolverKind::SequentialImpulse => {
-            sequential_impulse::solve(&context, states, constraints, joint_constraints)
-        }
-        SolverKind::SoftStep => soft_step::solve(
-            &context,
-            states,
-            constraints,
-            (joint_constraints, joint_colors),
-            wide,
-            plan,
-            &bias,
-        ),
-    };
-    let storing = Instant::now();
-    let solved_joints = matches!(kind, SolverKind::SequentialImpulse | SolverKind::SoftStep);
-    let caps = SpeedCaps::new(params, dt);
-    for c in joint_constraints.iter() {
-        let joint = &mut joints[c.joint];
-        if solved_joints {
-            joint.impulses = c.impulses_to_keep(states, caps);
-            let (force, torque) = c.reaction(1.0 / h);
-            joint.set_reaction(force, torque);
-        }
-    }
-    wide.store(contacts);
-    for constraint in constraints.iter() {
-        constraint.store_impulses(&mut contacts[constraint.contact_index]);
-    }
-    for_each_with(states, bodies, ITEMS_PER_TASK, |state, body| {
-        state.write_back(body, caps)
-    });
-    let points: usize = constraints.iter().map(|c| c.points().len()).sum();
-    StepReport {
-        joints: if solved_joints {
-            joint_constraints.len()
-        } else {
-            0
-        },
-        points: points + wide.point_count(),
-        work,
-        prepare,
-        store: storing.elapsed(),
-    }
-}
-
-/// What preparing the step's joints reads.
-struct JointInputs<'a> {
-    /// Every body; the awake ones are `bodies[awake]`, whose states come first, then the
-    /// spare state (a body outside the awake set).
-    bodies: &'a [Body],
-    awake: Range<usize>,
-    joints: &'a [Joint],
-    awake_joints: &'a [AwakeJoint],
-}
-
-impl JointInputs<'_> {
-    /// A joint's body at dense index `index`, as the solver takes it.
-    fn side(&self, index: u32) -> JointBody<'_> {
-        let index = index as usize;
-        let body = &self.bodies[index];
-        let is_awake = self.awake.contains(&index);
-        JointBody {
-            body,
-            state: if is_awake {
-                index - self.awake.start
-            } else {
-                self.awake.len()
-            },
-            moves: is_awake && body.is_dynamic(),
-        }
-    }
-
-    /// The states awake joint `i` touches and which it moves; `None` for a filter joint,
-    /// which has nothing to solve. A mouse joint moves only its one body.
-    fn states(&self, i: usize) -> Option<JointStates> {
-        let AwakeJoint { index, bodies } = self.awake_joints[i];
-        let kind = self.joints[index as usize].kind();
-        if matches!(kind, JointKind::Filter) {
-            return None;
-        }
-        let [a, b] = bodies.map(|body| self.side(body));
-        if matches!(kind, JointKind::Mouse(_)) {
-            return Some([(b.state, false), (b.state, b.moves)]);
-        }
-        Some([(a.state, a.moves), (b.state, b.moves)])
-    }
-
-    /// Awake joint `i` prepared for (sub)steps of `h`.
-    fn prepare(&self, i: usize, h: Real, warm_starting: bool) -> JointConstraint {
-        let AwakeJoint { index, bodies } = self.awake_joints[i];
-        let joint = &self.joints[index as usize];
-        let [a, b] = bodies.map(|body| self.side(body));
-        JointConstraint::prepare(index as usize, joint, a, b, h, warm_starting)
-    }
 }

@@ -20,7 +20,8 @@ use crate::collision::contact::{Contact, ContactEvent, ContactSet};
 use crate::collision::hits::HitEvent;
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::sensor::{SensorEvent, SensorOverlap, Sensors};
-use crate::dynamics::body::{Body, BodyDef, BodyHandle, BodyKind};
+use crate::dynamics::body::{Body, BodyHandle, BodyKind};
+use crate::dynamics::body_def::BodyDef;
 use crate::dynamics::collider::{Collider, ColliderDef, ColliderHandle, place_colliders};
 use crate::dynamics::drag::DragModel;
 use crate::dynamics::island::Islands;
@@ -649,7 +650,7 @@ pub(crate) type SolverInputs<'a> = (
     std::ops::Range<usize>,
     &'a [Contact],
     Vec<crate::collision::contact::BodyIndices>,
-    crate::collision::contact_layout::ColorRanges,
+    crate::graph::layout::ColorRanges,
 );
 
 /// What the solver starts a step from, for tests of the solver's parts.

@@ -232,7 +232,7 @@ impl World {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dynamics::body::BodyDef;
+    use crate::dynamics::body_def::BodyDef;
     use crate::geometry::shape::Shape;
     use crate::math::vec2;
 

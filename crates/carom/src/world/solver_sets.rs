@@ -5,7 +5,7 @@
 //! awake set (dynamic and kinematic bodies the step moves), then the sleeping bodies. A
 //! body's colliders are stored in the same three sets in the colliders' array, and contacts in
 //! two: awake (a body of the pair is awake, kept colour by colour, see
-//! `collision::contact_layout`) and asleep. Each stage of a step takes the awake set as one
+//! `graph::layout`) and asleep. Each stage of a step takes the awake set as one
 //! slice; a static or sleeping body is never visited.
 //!
 //! Falling asleep moves an island's bodies (and their colliders and contacts) out of the awake
@@ -294,9 +294,9 @@ impl World {
     /// sleeping one), no dynamic body is twice in a colour, and each colour holds exactly the
     /// bodies of its contacts.
     fn check_colors(&self) {
-        use crate::collision::coloring::{NO_COLOR, OVERFLOW};
-        use crate::collision::contact_layout::{ASLEEP, NOT_TOUCHING, color_part};
         use crate::constants::COLOR_COUNT;
+        use crate::graph::colors::{NO_COLOR, OVERFLOW};
+        use crate::graph::layout::{ASLEEP, NOT_TOUCHING, color_part};
         use std::collections::HashSet;
         let mut held: [HashSet<u32>; COLOR_COUNT] = std::array::from_fn(|_| HashSet::new());
         for (i, contact) in self.contacts.iter().enumerate() {
@@ -349,7 +349,7 @@ impl SetBounds {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dynamics::body::BodyDef;
+    use crate::dynamics::body_def::BodyDef;
     use crate::dynamics::collider::ColliderDef;
     use crate::geometry::shape::Shape;
     use crate::math::{Real, vec2};

@@ -6,7 +6,7 @@
 //!
 //! Soft step solves the joints after the contacts in each pass, in colours of their own: no
 //! two joints of a colour share a dynamic body, so a colour's joints are solved on several
-//! threads at once ([`JointColors::order`]). Sequential impulse solves them one by one,
+//! threads at once ([`crate::graph::joints::JointColors::order`]). Sequential impulse solves them one by one,
 //! rigidly, and closes their drift in its position passes
 //! ([`JointConstraint::correct_positions`]).
 
@@ -19,7 +19,6 @@ mod weld;
 mod wheel;
 
 use super::{BodyState, Softness, SolverParams};
-use crate::constants::JOINT_COLOR_COUNT;
 use crate::dynamics::body::Body;
 use crate::joint::{Joint, JointImpulses, JointKind};
 use crate::math::{Real, Rot, Vec2, angle_of, cross, rotation};
@@ -421,87 +420,4 @@ fn spring_softness(spring: Option<crate::joint::Spring>, h: Real) -> Softness {
 #[inline]
 fn inverse_or_zero(k: Real) -> Real {
     if k > 0.0 { 1.0 / k } else { 0.0 }
-}
-
-/// The joint colouring of a step: the order the joints are prepared and solved in, colour by
-/// colour, no two of a colour sharing a body that moves (the last range, the overflow's, is
-/// solved alone, one by one).
-#[derive(Debug, Clone, Default)]
-pub(crate) struct JointColors {
-    /// Per colour, then the overflow: the range of the order it holds.
-    pub ranges: Vec<std::ops::Range<usize>>,
-    /// The joints to solve (indices into the step's awake joints), colour by colour.
-    pub order: Vec<usize>,
-    /// Per state, the colours that already hold it (a bit each).
-    claims: Vec<u32>,
-    /// Each joint's colour, or `u8::MAX` for one with nothing to solve.
-    colors: Vec<u8>,
-}
-
-/// Which states a joint touches, and whether it moves each (dynamic and awake).
-pub(crate) type JointStates = [(usize, bool); 2];
-
-impl JointColors {
-    /// Colours `count` joints greedily in order, each into the first colour that holds
-    /// neither of the states it moves (up to [`JOINT_COLOR_COUNT`], then the overflow), or
-    /// all into the overflow unless `colored`; `states(i)` says which states joint `i`
-    /// touches (`None`: nothing to solve, left out). `state_count` is how many states there
-    /// are. Within a colour the joints keep their order.
-    pub fn order(
-        &mut self,
-        count: usize,
-        states: impl Fn(usize) -> Option<JointStates>,
-        colored: bool,
-        state_count: usize,
-    ) {
-        let overflow = JOINT_COLOR_COUNT as u8;
-        self.claims.clear();
-        if colored {
-            self.claims.resize(state_count, 0);
-        }
-        self.colors.clear();
-        let mut counts = [0usize; JOINT_COLOR_COUNT + 1];
-        for i in 0..count {
-            let Some(touched) = states(i) else {
-                self.colors.push(u8::MAX);
-                continue;
-            };
-            let color = if colored {
-                let taken = touched
-                    .iter()
-                    .filter(|(_, moves)| *moves)
-                    .fold(0u32, |taken, &(state, _)| taken | self.claims[state]);
-                let color = (!taken).trailing_zeros().min(overflow as u32) as u8;
-                if color < overflow {
-                    for &(state, moves) in &touched {
-                        if moves {
-                            self.claims[state] |= 1 << color;
-                        }
-                    }
-                }
-                color
-            } else {
-                overflow
-            };
-            counts[color as usize] += 1;
-            self.colors.push(color);
-        }
-        self.ranges.clear();
-        let mut next = [0; JOINT_COLOR_COUNT + 1];
-        let mut start = 0;
-        for (count, next) in counts.iter().zip(&mut next) {
-            self.ranges.push(start..start + count);
-            *next = start;
-            start += count;
-        }
-        self.order.clear();
-        self.order.resize(start, 0);
-        for (i, &color) in self.colors.iter().enumerate() {
-            if color != u8::MAX {
-                let slot = &mut next[color as usize];
-                self.order[*slot] = i;
-                *slot += 1;
-            }
-        }
-    }
 }

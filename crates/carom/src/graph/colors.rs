@@ -55,7 +55,7 @@ pub(crate) struct ColorBody {
 }
 
 /// Which dynamic bodies each colour holds. Each colour's contacts are a part of the contact
-/// array (see `collision::contact_layout`).
+/// array (see `graph::layout`).
 #[derive(Debug, Clone, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ContactColors {

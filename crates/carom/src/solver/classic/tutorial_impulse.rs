@@ -6,13 +6,13 @@
 //! lacked) gets the bias `-s / dt`, so the bodies may close the gap but not pass it; without it
 //! continuous collision would leave fast bodies frozen just short of a surface.
 
-use super::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
-use super::contact_constraint::pair_mut;
-use super::{BodyState, ContactConstraint, SolverContext};
 use crate::constants::TUTORIAL_SLOP;
+use crate::solver::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
+use crate::solver::contact_constraint::pair_mut;
+use crate::solver::{BodyState, ContactConstraint, SolverContext};
 use crate::stats::Work;
 
-pub(super) fn solve(
+pub(crate) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],

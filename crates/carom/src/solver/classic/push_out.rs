@@ -3,13 +3,13 @@
 //! is removed. No rotation, friction or bounce: it shows why impulses are needed. Bodies still
 //! apart (speculative points) may close the gap but not pass it.
 
-use super::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
-use super::contact_constraint::pair_mut;
-use super::{BodyState, ContactConstraint, SolverContext};
 use crate::math::Real;
+use crate::solver::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
+use crate::solver::contact_constraint::pair_mut;
+use crate::solver::{BodyState, ContactConstraint, SolverContext};
 use crate::stats::Work;
 
-pub(super) fn solve(
+pub(crate) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],

@@ -1,15 +1,15 @@
 //! Eight SIMD lanes on x86-64 CPUs with AVX, chosen at run time.
 //!
 //! [`Avx8`] wraps AVX's 256-bit vector. AVX instructions fault on a CPU without them, so the
-//! solver makes `Avx8`s only after [`detected`] said yes (`wide_contacts::WideContacts::new`),
+//! solver makes `Avx8`s only after [`detected`] said yes (`bundles::WideContacts::new`),
 //! and works on them inside `Lanes::run`, which checks again and runs the work compiled for
 //! AVX. Each operation is the
 //! same IEEE operation, lane by lane, as the four-lane `f32x4` path's (max and min handle NaN as
 //! `wide` does), so both widths give the same bits.
 #![allow(unsafe_code)]
 
-use super::lanes::{Kernel, Lanes};
-use super::shared_states::SharedStates;
+use crate::solver::soft_step::lanes::{Kernel, Lanes};
+use crate::solver::soft_step::shared_states::SharedStates;
 use std::arch::x86_64::*;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 
@@ -278,7 +278,7 @@ unsafe fn transpose(rows: [__m256; 8]) -> [__m256; 8] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::solver::lanes::tests::{check_gather_and_scatter, check_operations};
+    use crate::solver::soft_step::lanes::tests::{check_gather_and_scatter, check_operations};
 
     #[test]
     fn eight_lanes_gather_and_scatter() {

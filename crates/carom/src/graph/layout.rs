@@ -9,8 +9,8 @@
 //! to the part that does not touch, so a contact that starts or stops touching usually crosses
 //! one or two parts (see `partition`).
 
-use crate::collision::coloring::OVERFLOW;
 use crate::constants::COLOR_COUNT;
+use crate::graph::colors::OVERFLOW;
 use crate::partition::Partition;
 use std::ops::Range;
 

@@ -11,17 +11,19 @@
 //! many passes for joints as velocity iterations. (A
 //! Baumgarte bias on velocities instead feeds energy into a long chain until it flies apart.)
 
-use super::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
-use super::contact_constraint::ConstraintPoint;
-use super::contact_constraint::pair_mut;
-use super::joints::{JointConstraint, JointPass};
-use super::soft_step::{apply_restitution, forget_impulses, solve_friction, warm_start};
-use super::{BodyState, ContactConstraint, SolverContext, SolverParams};
 use crate::constants::{LINEAR_SLOP, MAX_CONDITION, MAX_CORRECTION, POSITION_ITERATIONS};
 use crate::math::{Real, cross, rotation};
+use crate::solver::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
+use crate::solver::contact_constraint::ConstraintPoint;
+use crate::solver::contact_constraint::pair_mut;
+use crate::solver::joints::{JointConstraint, JointPass};
+use crate::solver::soft_step::scalar::{
+    apply_restitution, forget_impulses, solve_friction, warm_start,
+};
+use crate::solver::{BodyState, ContactConstraint, SolverContext, SolverParams};
 use crate::stats::Work;
 
-pub(super) fn solve(
+pub(crate) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],

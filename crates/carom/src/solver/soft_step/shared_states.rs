@@ -2,24 +2,26 @@
 //! solve it.
 //!
 //! The threads write the states in place, as Box2D's do: no two constraints of one colour
-//! share a body the solver moves (the colouring guarantees it, and [`super::wide_contacts`]
-//! checks it again as it builds the bundles, sending any constraint that would break it to the
-//! overflow, solved on one thread), static and kinematic bodies are only read, and a colour
-//! starts only once the one before it is finished (an acquire-release barrier between
-//! colours, `super::color_passes`). So within a colour each state has at most one writer
-//! and no other reader: plain loads and stores, no atomics, which lets the solver load a body
-//! in one or two vector loads instead of eight scalar ones.
+//! share a body the solver moves (the colouring guarantees it, and
+//! [`crate::graph::order::ColorCheck`] checks it again as the step's order is built, sending
+//! any constraint that would break it to the overflow, solved on one thread), static and
+//! kinematic bodies are only read, and a colour starts only once the one before it is finished
+//! (an acquire-release barrier between stages, [`super::scheduler::run_stages`]). So within a
+//! colour each state has at most one writer and no other reader: plain loads and stores, no
+//! atomics, which lets the solver load a body in one or two vector loads instead of eight
+//! scalar ones.
 //!
 //! The promise is made once per step, where the solver's stages borrow the states
-//! ([`SharedStates::new`]); the loads and stores of single states are then safe to call. A
-//! stage that changes whole runs of states (integration, or the overflow solved one by one)
-//! borrows them with [`SharedStates::range_mut`], promising that no other thread touches them
-//! meanwhile (the stages around it are over, and no other block of it holds them). This
-//! module, `wide_contacts`'s executor of the stages, which makes those promises, and
-//! `avx_lanes` are the only `unsafe` code in carom.
+//! ([`SharedStates::new`], in `WideContacts::execute`); the loads and stores of single states
+//! are then safe to call. A stage that changes whole runs of states (integration, or the
+//! overflow solved one by one) borrows them with [`SharedStates::range_mut`], promising that no
+//! other thread touches them meanwhile (the stages around it are over, and no other block of it
+//! holds them). All of carom's `unsafe` code is in this folder: this module, the executor of
+//! the stages (`super::executor`), which makes those promises, its entry
+//! (`WideContacts::execute`), and the AVX lanes (`super::lanes::avx`).
 #![allow(unsafe_code)]
 
-use super::BodyState;
+use crate::solver::BodyState;
 use std::marker::PhantomData;
 
 /// A mutable borrow of the body states, readable and writable from several threads under the

@@ -2,12 +2,15 @@
 //! how bodies are gathered into lanes and scattered back.
 //!
 //! Two widths: four lanes everywhere, through `wide`'s `f32x4` (SSE2 on x86-64, Neon, WASM's
-//! SIMD, or plain arrays), and eight where the CPU has AVX (`avx_lanes`, chosen at run time,
+//! SIMD, or plain arrays), and eight where the CPU has AVX (`avx`, chosen at run time,
 //! as Box2D's AVX2 build solves eight contacts at a time). Every operation is the same IEEE
 //! operation in every lane at either width (no fused multiply-add), so both widths, and the
 //! scalar solver, give the same bits.
 
-use super::shared_states::SharedStates;
+use crate::solver::soft_step::shared_states::SharedStates;
+
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod avx;
 use std::fmt::Debug;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
 use wide::f32x4;

@@ -1,0 +1,86 @@
+//! Checks on a body read from a saved world: it must hold together as a body built through
+//! the API would, or the whole save is refused.
+
+use super::{Body, BodyHandle, BodyKind};
+use crate::dynamics::collider::Collider;
+
+impl Body {
+    /// True when the body's mass, centre of mass and reach are, bit for bit, what its
+    /// colliders give: a saved body's are checked so.
+    pub(crate) fn mass_matches<'c>(
+        &self,
+        colliders: impl Iterator<Item = &'c Collider> + Clone,
+    ) -> bool {
+        let mut rebuilt = self.clone();
+        rebuilt.rebuild_mass(colliders).is_ok()
+            && rebuilt.mass == self.mass
+            && rebuilt.local_center == self.local_center
+            && rebuilt.reach == self.reach
+            && rebuilt.min_extent == self.min_extent
+    }
+
+    /// Checks a body read from a saved world: its handle, finite values, a unit rotation, and
+    /// a mass that fits its kind.
+    pub(crate) fn check_saved(&self, handle: BodyHandle) -> Result<(), String> {
+        if self.handle != handle {
+            return Err("a body's handle is not its slot's".into());
+        }
+        if self.colliders.is_empty() {
+            return Err("a body has no collider".into());
+        }
+        let vectors = [
+            self.position,
+            self.center,
+            self.local_center,
+            self.linear_velocity,
+            self.force,
+            self.aabb.min,
+            self.aabb.max,
+        ];
+        let scalars = [
+            self.angular_velocity,
+            self.torque,
+            self.reach,
+            self.min_extent,
+            self.gravity_scale,
+            self.linear_damping,
+            self.angular_damping,
+            self.last_motion,
+            self.sleep_time,
+            self.mass.mass,
+            self.mass.inv_mass,
+            self.mass.inertia,
+            self.mass.inv_inertia,
+        ];
+        let finite = vectors
+            .iter()
+            .flat_map(|v| v.iter())
+            .chain(&scalars)
+            .all(|x| x.is_finite());
+        if !finite {
+            return Err(format!(
+                "body {} has a value that is not finite",
+                handle.index()
+            ));
+        }
+        if (self.rotation.norm() - 1.0).abs() > 1e-3 {
+            return Err(format!(
+                "body {} has a rotation that is not a unit",
+                handle.index()
+            ));
+        }
+        let m = &self.mass;
+        let fits = if self.kind == BodyKind::Dynamic {
+            m.inv_mass > 0.0 && m.inv_inertia >= 0.0
+        } else {
+            m.inv_mass == 0.0 && m.inv_inertia == 0.0
+        };
+        if !fits || m.mass < 0.0 || m.inertia < 0.0 {
+            return Err(format!(
+                "body {} has a mass that does not fit its kind",
+                handle.index()
+            ));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,168 @@
+//! Box2D v3's soft step: substeps with soft contacts, relaxation and a restitution pass.
+//!
+//! Per substep: integrate velocities, warm start, solve with a soft-constraint bias (a stiff,
+//! heavily damped spring pulls overlap out at a bounded speed), integrate positions, then
+//! relax (solve again without bias, so the push-out leaves no energy behind). Anchors stay
+//! fixed for the step; each point's separation is updated from the bodies' motion. Joints are
+//! solved the same way, after the contacts in each pass ([`super::joints`]).
+//!
+//! This file plans a step's stages; the rest of the folder runs them:
+//! - `bundles`: the coloured contacts in SIMD bundles, prepared and stored;
+//! - `kernels`: one bundle's passes, four or eight lanes at a time;
+//! - `scalar`: the same passes one constraint at a time, for the overflow;
+//! - `executor`: the stages run over bundles, overflow, joints and bodies on all threads;
+//! - `scheduler`: blocks of a stage handed to threads, with a barrier between stages;
+//! - `shared_states`: the body states the threads write in place (with all of carom's
+//!   `unsafe` code, here and in `lanes::avx`, saying why it is sound);
+//! - `lanes`: the SIMD lanes, `wide`'s four or AVX's eight.
+
+mod bundles;
+mod executor;
+mod kernels;
+mod lanes;
+pub(crate) mod scalar;
+mod scheduler;
+mod shared_states;
+#[cfg(test)]
+mod tests;
+
+pub(crate) use bundles::{BundleInputs, WideContacts};
+pub(crate) use executor::Stage;
+
+use super::body_state::SpeedCaps;
+use super::joints::JointConstraint;
+use super::{BodyState, ContactConstraint, Environment, Softness, SolverContext, SolverParams};
+use crate::graph::joints::JointColors;
+use crate::math::Real;
+use crate::stats::Work;
+use bundles::PassBias;
+use executor::{Pass, StageInputs};
+
+/// One step in Box2D's stage order: per substep, integrate velocities, warm start, solve
+/// (biased), integrate positions, relax (unbiased); then restitution. Each contact pass runs
+/// colour by colour over `wide`'s SIMD bundles, already prepared, then over `constraints`,
+/// the overflow's, one by one. The stage list is built here and run by
+/// [`WideContacts::execute`] on as many threads as rayon gives, in one parallel region.
+/// `bias` is for the step's substeps (the bundles were prepared with its softness).
+pub(super) fn solve(
+    context: &SolverContext,
+    states: &mut [BodyState],
+    constraints: &mut [ContactConstraint],
+    (joints, joint_colors): (&mut [JointConstraint], &JointColors),
+    wide: &mut WideContacts,
+    plan: &mut Vec<Stage>,
+    bias: &Bias,
+) -> Work {
+    let SolverContext {
+        params,
+        environment,
+        bodies,
+        dt,
+    } = *context;
+    let substeps = params.substeps.max(1);
+    let h = dt / substeps as Real;
+    let bias_friction = environment.friction && params.friction_in_bias_pass;
+    let bouncy = wide.bouncy() || constraints.iter().any(|c| c.restitution > 0.0);
+    let shape = (wide.color_count(), !constraints.is_empty(), bouncy);
+    plan_stages(plan, params, environment, bias, joint_colors, shape);
+    let inputs = StageInputs {
+        bodies,
+        environment,
+        h,
+        caps: SpeedCaps::new(params, dt),
+        bias,
+        params,
+    };
+    let (mut work, bounces) =
+        wide.execute(plan, states, constraints, (joints, joint_colors), &inputs);
+    let points = wide.point_count() + constraints.iter().map(|c| c.points().len()).sum::<usize>();
+    let friction_passes = u32::from(bias_friction) + u32::from(environment.friction);
+    work.friction_impulses = points * (friction_passes * params.iterations * substeps) as usize;
+    work.restitution_impulses = bounces;
+    work
+}
+
+/// The stages of one step, into `plan`: each pass over the contacts' `colors` colours in turn,
+/// then the contacts' overflow if it has constraints, then the joint colours that have joints
+/// (the last being their overflow); the restitution pass (contacts only) only if `bouncy`
+/// (some contact has restitution: the pass does nothing for the others). Joints have the last
+/// word in each pass, as contacts with the ground have among contacts: a limb struck in a pile
+/// is pulled back onto its joint before the pass ends. (Box2D solves joints first; in a pile
+/// of ragdolls that parts their joints about twice as far.)
+fn plan_stages(
+    plan: &mut Vec<Stage>,
+    params: &SolverParams,
+    environment: Environment,
+    bias: &Bias,
+    joint_colors: &JointColors,
+    (colors, overflow, bouncy): (usize, bool, bool),
+) {
+    plan.clear();
+    let pass = |plan: &mut Vec<Stage>, pass: Pass| {
+        plan.extend((0..colors).map(|color| Stage::Color(color, pass)));
+        if overflow {
+            plan.push(Stage::Overflow(pass));
+        }
+        if !matches!(pass, Pass::Restitution(_)) {
+            let joints = joint_colors.ranges.iter().enumerate();
+            let used = joints.filter(|(_, range)| !range.is_empty());
+            plan.extend(used.map(|(color, _)| Stage::Joints(color, pass)));
+        }
+    };
+    let bias_friction = environment.friction && params.friction_in_bias_pass;
+    for _ in 0..params.substeps.max(1) {
+        plan.push(Stage::IntegrateVelocities);
+        pass(plan, Pass::WarmStart);
+        for _ in 0..params.iterations {
+            pass(plan, Pass::Solve(bias.pass(true), bias_friction));
+        }
+        plan.push(Stage::IntegratePositions);
+        for i in 0..params.iterations {
+            let relax = PassBias {
+                substep_end: i + 1 == params.iterations,
+                ..bias.pass(false)
+            };
+            pass(plan, Pass::Solve(relax, environment.friction));
+        }
+    }
+    if environment.restitution && bouncy {
+        pass(plan, Pass::Restitution(params.restitution_threshold));
+    }
+}
+
+/// How the biased pass pushes overlap out in one substep.
+pub(super) struct Bias {
+    /// Softness of contacts between moving bodies.
+    pub soft: Softness,
+    /// Softness of contacts with static bodies (stiffer).
+    pub static_soft: Softness,
+    /// One over the substep.
+    inv_h: Real,
+    /// The fastest push-out, m/s.
+    max_push_speed: Real,
+}
+
+impl Bias {
+    /// The biases of `params` for substeps of `h`.
+    pub fn new(params: &SolverParams, h: Real) -> Self {
+        let inv_h = 1.0 / h;
+        // Stiffer than a quarter of the substep rate would ring.
+        let hertz = params.contact_hertz.min(0.25 * inv_h);
+        Bias {
+            soft: Softness::new(hertz, params.damping_ratio, h),
+            static_soft: Softness::new(params.static_stiffness * hertz, params.damping_ratio, h),
+            inv_h,
+            max_push_speed: params.max_push_speed,
+        }
+    }
+
+    /// What the wide solver needs of it for one pass, biased or relaxing.
+    pub fn pass(&self, use_bias: bool) -> PassBias {
+        PassBias {
+            use_bias,
+            inv_h: self.inv_h,
+            max_push_speed: self.max_push_speed,
+            substep_end: false,
+        }
+    }
+}
