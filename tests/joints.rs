@@ -269,6 +269,68 @@ fn a_slider_stays_on_its_axis_within_its_limits() {
     }
 }
 
+/// A slider flung along its axis stops at its limit, however far from the limit it starts and
+/// however fast it goes: every limit is solved in every pass, so a stop not yet reached
+/// catches a slide that would cross it within a substep, and does not slow one that would not.
+#[test]
+fn a_slider_flung_at_a_far_limit_stops_there() {
+    // (lower, upper, speed along the axis, m/s): a short slot crossed in under a substep, and
+    // a long one crossed at the speed cap.
+    let cases = [
+        (-0.25, 0.25, 100.0),
+        (-0.25, 40.0, 300.0),
+        (-40.0, 0.25, -300.0),
+    ];
+    for kind in SOLVERS {
+        for (lower, upper, speed) in cases {
+            let mut world = World::with_settings(WorldSettings {
+                gravity: Vec2::zeros(),
+                solver: SolverParams::for_kind(kind),
+                effects: Effects::ALL.switched(Effect::Sleeping, false),
+                ..WorldSettings::default()
+            })
+            .unwrap();
+            let ground = anchor(&mut world, Vec2::zeros());
+            let start = vec2(1.0, 1.0);
+            let block = world
+                .add_body(
+                    BodyDef::dynamic(Shape::rect(0.2, 0.2))
+                        .position(start)
+                        .linear_velocity(vec2(speed, 0.0)),
+                )
+                .unwrap();
+            world
+                .add_joint(
+                    JointDef::prismatic(ground, block, start, vec2(1.0, 0.0)).limits(lower, upper),
+                )
+                .unwrap();
+            let (mut least, mut most): (Real, Real) = (0.0, 0.0);
+            let mut top_speed: Real = 0.0;
+            for _ in 0..120 {
+                world.step(DT).unwrap();
+                let body = world.body(block).unwrap();
+                let along = body.position().x - start.x;
+                (least, most) = (least.min(along), most.max(along));
+                let at_stop = along <= lower + 0.01 || along >= upper - 0.01;
+                if !at_stop {
+                    top_speed = top_speed.max(body.linear_velocity().x.abs());
+                }
+            }
+            let slop = 0.01;
+            assert!(
+                least >= lower - slop && most <= upper + slop,
+                "{kind:?}, limits {lower}..{upper} at {speed} m/s: reached {least}..{most}"
+            );
+            // Away from its stops a long slide keeps its speed (nothing brakes it early); a
+            // short one is at a stop after the first step.
+            assert!(
+                upper - lower < 1.0 || top_speed >= 0.99 * speed.abs(),
+                "{kind:?}, limits {lower}..{upper} at {speed} m/s: slowed to {top_speed} m/s"
+            );
+        }
+    }
+}
+
 /// A plank welded to a wall by its end stays level (a rigid weld), and a soft weld sags
 /// further.
 #[test]

@@ -4,7 +4,7 @@
 //! `C = |d| - L` along the unit `u = d / |d|`, `d` from A's anchor to B's; `J = [-u, -rA × u,
 //! u, rB × u]`. The axis is taken once per step (the anchors move little in one).
 
-use super::{JointConstraint, JointPass, inverse_or_zero, spring_softness};
+use super::{JointConstraint, JointPass, inverse_or_zero, solve_limits, spring_softness};
 use crate::joint::DistanceJoint;
 use crate::math::{Real, Vec2, cross};
 use crate::solver::{BodyState, Softness};
@@ -92,19 +92,24 @@ pub(super) fn solve(
         c.apply_linear(a, b, ra, rb, axis * impulse);
     }
     if let Some(limits) = settings.limits {
-        // Lower: C = length - lower >= 0.
-        let (bias, mass_scale, impulse_scale) = pass.limit(length - limits.lower);
-        let old = c.impulses.lower;
-        let impulse = -mass_scale * p.axial_mass * (speed(a, b) + bias) - impulse_scale * old;
-        c.impulses.lower = (old + impulse).max(0.0);
-        let applied = c.impulses.lower - old;
-        c.apply_linear(a, b, ra, rb, axis * applied);
-        // Upper: C = upper - length >= 0, the signs flipped.
-        let (bias, mass_scale, impulse_scale) = pass.limit(limits.upper - length);
-        let old = c.impulses.upper;
-        let impulse = -mass_scale * p.axial_mass * (-speed(a, b) + bias) - impulse_scale * old;
-        c.impulses.upper = (old + impulse).max(0.0);
-        let applied = c.impulses.upper - old;
-        c.apply_linear(a, b, ra, rb, axis * -applied);
+        let mut impulses = (c.impulses.lower, c.impulses.upper);
+        let (lower, upper) = (&mut impulses.0, &mut impulses.1);
+        solve_limits(
+            length,
+            limits,
+            (lower, upper),
+            pass,
+            |scales, accumulated, upper| {
+                // The upper stop is the lower one with the signs flipped.
+                let (bias, mass_scale, impulse_scale) = scales;
+                let old = *accumulated;
+                let closing = if upper { -speed(a, b) } else { speed(a, b) };
+                let impulse = -mass_scale * p.axial_mass * (closing + bias) - impulse_scale * old;
+                *accumulated = (old + impulse).max(0.0);
+                let applied = *accumulated - old;
+                c.apply_linear(a, b, ra, rb, axis * if upper { -applied } else { applied });
+            },
+        );
+        (c.impulses.lower, c.impulses.upper) = impulses;
     }
 }

@@ -20,7 +20,7 @@ mod wheel;
 
 use super::{BodyState, Softness, SolverParams};
 use crate::dynamics::body::Body;
-use crate::joint::{Joint, JointImpulses, JointKind};
+use crate::joint::{Joint, JointImpulses, JointKind, Limits};
 use crate::math::{Real, Rot, Vec2, angle_of, cross, rotation};
 
 /// A joint prepared for one step.
@@ -144,6 +144,23 @@ impl JointPass {
             self.rigid(c)
         }
     }
+}
+
+/// A joint's lower and upper limits on one coordinate, `position` (an angle, a length, a
+/// translation): the lower stop holds `position >= limits.lower`, the upper `position <=
+/// limits.upper`. Both are solved in every pass, however far away, as Box2D does: a stop not
+/// yet reached is speculative and acts only if this (sub)step would carry the joint past it.
+/// `stop(scales, impulse, upper)` solves one stop with the pass's `(bias, mass scale,
+/// impulse scale)` in the joint's own terms, keeping its accumulated `impulse` pushing only.
+pub(super) fn solve_limits(
+    position: Real,
+    limits: Limits,
+    (lower, upper): (&mut Real, &mut Real),
+    pass: &JointPass,
+    mut stop: impl FnMut((Real, Real, Real), &mut Real, bool),
+) {
+    stop(pass.limit(position - limits.lower), lower, false);
+    stop(pass.limit(limits.upper - position), upper, true);
 }
 
 /// What a joint needs of one of its bodies: its pose and mass, and where its state is.

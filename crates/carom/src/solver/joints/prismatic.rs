@@ -6,7 +6,7 @@
 //! The axis and lever arms are taken from the bodies' motion so far in the step, at every
 //! pass: `d` from A's anchor to B's, lever arms `a1 = (rA + d) × axis`, `a2 = rB × axis`.
 
-use super::{JointConstraint, JointPass, inverse_or_zero, solve22, spring_softness};
+use super::{JointConstraint, JointPass, inverse_or_zero, solve_limits, solve22, spring_softness};
 use crate::joint::PrismaticJoint;
 use crate::math::{Real, Vec2, cross, cross_sv};
 use crate::solver::{BodyState, Softness};
@@ -183,31 +183,14 @@ pub(super) fn solve(
         );
     }
     if let Some(limits) = settings.limits {
-        // Only near a limit: further away, a stop would only slow the slide.
-        let near = 0.25 * (limits.upper - limits.lower);
-        let lower = translation - limits.lower;
-        if lower < near {
-            let scales = pass.limit(lower.min(1.0));
-            stop(
-                c,
-                a,
-                b,
-                slide.axis,
-                arms,
-                scales,
-                &mut impulses.lower,
-                false,
-            );
-        } else {
-            impulses.lower = 0.0;
-        }
-        let upper = limits.upper - translation;
-        if upper < near {
-            let scales = pass.limit(upper.min(1.0));
-            stop(c, a, b, slide.axis, arms, scales, &mut impulses.upper, true);
-        } else {
-            impulses.upper = 0.0;
-        }
+        let (lower, upper) = (&mut impulses.lower, &mut impulses.upper);
+        solve_limits(
+            translation,
+            limits,
+            (lower, upper),
+            pass,
+            |scales, impulse, upper| stop(c, a, b, slide.axis, arms, scales, impulse, upper),
+        );
     }
     // Perpendicular offset and angle, as one block.
     let (s1, s2) = slide.arms(slide.perp);

@@ -3,7 +3,7 @@
 //! Box2D's order: spring, motor, limits, then the point, so the point constraint, which
 //! matters most, has the last word.
 
-use super::{JointConstraint, JointPass, inverse_or_zero, solve22, spring_softness};
+use super::{JointConstraint, JointPass, inverse_or_zero, solve_limits, solve22, spring_softness};
 use crate::joint::RevoluteJoint;
 use crate::math::{Real, unwind_angle};
 use crate::solver::{BodyState, Softness};
@@ -59,18 +59,25 @@ pub(super) fn solve(
     }
     if let (true, Some(limits)) = (turns, settings.limits) {
         let angle = c.angle(a, b);
-        // Lower: C = angle - lower >= 0.
-        let (bias, mass_scale, impulse_scale) = pass.limit(angle - limits.lower);
-        let old = c.impulses.lower;
-        let impulse = -mass_scale * p.axial_mass * (b.w - a.w + bias) - impulse_scale * old;
-        c.impulses.lower = (old + impulse).max(0.0);
-        c.apply_angular(a, b, c.impulses.lower - old);
-        // Upper: C = upper - angle >= 0, the signs flipped.
-        let (bias, mass_scale, impulse_scale) = pass.limit(limits.upper - angle);
-        let old = c.impulses.upper;
-        let impulse = -mass_scale * p.axial_mass * (a.w - b.w + bias) - impulse_scale * old;
-        c.impulses.upper = (old + impulse).max(0.0);
-        c.apply_angular(a, b, -(c.impulses.upper - old));
+        let mut impulses = (c.impulses.lower, c.impulses.upper);
+        let (lower, upper) = (&mut impulses.0, &mut impulses.1);
+        solve_limits(
+            angle,
+            limits,
+            (lower, upper),
+            pass,
+            |scales, accumulated, upper| {
+                // The upper stop is the lower one with the signs flipped.
+                let (bias, mass_scale, impulse_scale) = scales;
+                let old = *accumulated;
+                let speed = if upper { a.w - b.w } else { b.w - a.w };
+                let impulse = -mass_scale * p.axial_mass * (speed + bias) - impulse_scale * old;
+                *accumulated = (old + impulse).max(0.0);
+                let applied = *accumulated - old;
+                c.apply_angular(a, b, if upper { -applied } else { applied });
+            },
+        );
+        (c.impulses.lower, c.impulses.upper) = impulses;
     }
     // The point.
     let (ra, rb) = c.anchors(a, b);

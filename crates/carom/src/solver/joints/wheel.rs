@@ -3,7 +3,7 @@
 //! a motor. Solved in Box2D's order: motor, spring, limits, then the line.
 
 use super::prismatic::{Slide, axial_impulse, stop};
-use super::{JointConstraint, JointPass, inverse_or_zero, spring_softness};
+use super::{JointConstraint, JointPass, inverse_or_zero, solve_limits, spring_softness};
 use crate::joint::WheelJoint;
 use crate::math::Real;
 use crate::solver::{BodyState, Softness};
@@ -64,19 +64,14 @@ pub(super) fn solve(
         axial_impulse(c, a, b, slide.axis, arms, scales, &mut impulses.axial, free);
     }
     if let Some(limits) = settings.limits {
-        let scales = pass.limit(translation - limits.lower);
-        stop(
-            c,
-            a,
-            b,
-            slide.axis,
-            arms,
-            scales,
-            &mut impulses.lower,
-            false,
+        let (lower, upper) = (&mut impulses.lower, &mut impulses.upper);
+        solve_limits(
+            translation,
+            limits,
+            (lower, upper),
+            pass,
+            |scales, impulse, upper| stop(c, a, b, slide.axis, arms, scales, impulse, upper),
         );
-        let scales = pass.limit(limits.upper - translation);
-        stop(c, a, b, slide.axis, arms, scales, &mut impulses.upper, true);
     }
     // On the line.
     let perp_arms = slide.arms(slide.perp);
