@@ -126,14 +126,14 @@ pub struct SolverParams {
     /// by one. Off solves one by one, oldest contact first. Default on.
     pub graph_coloring: bool,
     /// Soft step: solve friction in the biased pass too, not only in the relaxation, as Box2D
-    /// v3.1 does. Friction then converges twice as often, so piles spread less (the top of
-    /// Box2D's 5050-box pyramid sinks 0.78 m in 500 steps instead of 0.89 m) and resting piles
-    /// jitter less; Box2D 3.2 and Rapier solve it in the relaxation only, saying friction that
-    /// reacts to push-out velocity pumps lean into tall stacks. Default on.
+    /// v3.1 does. Friction then converges twice as often, so large pyramids spread and sink
+    /// less and resting piles jitter less; Box2D 3.2 and Rapier solve it in the relaxation
+    /// only, saying friction that reacts to push-out velocity pumps lean into tall stacks.
+    /// Default on.
     pub friction_in_bias_pass: bool,
     /// Soft step: contact stiffness in Hz, capped at a quarter of the substep rate. Default 30,
-    /// as in Box2D. Soft contacts give a little under load (about 13 mm under 19 stacked 1 m
-    /// boxes at 30 Hz, 13 cm over a column of 20); stiffer contacts give less.
+    /// as in Box2D. Soft contacts give a little under load, more the taller the stack (the
+    /// stacks of `docs/hard-cases.md` measure it); stiffer contacts give less.
     pub contact_hertz: Real,
     /// Soft step: contact damping ratio. Default 10 (heavily over-damped: no bounce from bias).
     pub damping_ratio: Real,
@@ -141,8 +141,9 @@ pub struct SolverParams {
     pub static_stiffness: Real,
     /// Soft step: how stiffly a joint's drift is pushed back in the biased pass, Hz, at most
     /// a quarter of the substep rate. Default 60, as Box2D. A soft joint gives under load,
-    /// most where a heavy body hangs from light ones: a chain of 0.5 kg links holding 50 kg
-    /// stretches about 6 % at 60 Hz and 4 substeps, under 2 % at 120 Hz and 8 substeps.
+    /// most where a heavy body hangs from light ones (a chain of light links holding a heavy
+    /// load: `docs/hard-cases.md` measures its stretch, and `docs/accuracy.md` what stiffer
+    /// joints and more substeps buy, at what cost).
     pub joint_hertz: Real,
     /// Soft step: the joints' damping ratio. Default 2, as Box2D.
     pub joint_damping_ratio: Real,

@@ -485,8 +485,8 @@ impl World {
         self.bodies.get(handle)
     }
 
-    /// The body behind a handle, to change, unless it was removed. When the borrow ends, its
-    /// colliders follow wherever it was moved, so the next step and queries see it there.
+    /// The body behind a handle, to change, unless it was removed. Each change that moves it
+    /// places its colliders at once, so the next step and queries see it there.
     pub fn body_mut(&mut self, handle: BodyHandle) -> Option<BodyMut<'_>> {
         let index = self.bodies.dense_index(handle)?;
         Some(BodyMut::new(self, index))

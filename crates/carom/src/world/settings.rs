@@ -1,4 +1,5 @@
-//! World settings and the engine's tuning constants, each named once.
+//! World settings: what a world is created with and can change between steps (the tuning
+//! constants behind their defaults are in `constants`).
 
 use crate::constants::{AABB_MARGIN, HIT_EVENT_THRESHOLD, SPECULATIVE_DISTANCE};
 use crate::dynamics::drag::DragModel;

@@ -43,13 +43,16 @@ pub(super) struct StepScratch {
 impl World {
     /// Advances the world by `dt` seconds.
     ///
-    /// The stages, in order, each over the awake set only: find new pairs in the broadphase;
-    /// build contact manifolds in the narrowphase (waking the sleeping islands a moving body
-    /// touched, joining the islands of contacts that started touching); solve (integrate
-    /// forces into velocities, resolve contacts and then joints colour by colour, integrate
-    /// positions, in substeps for soft step); report the hard hits, if some collider asks;
-    /// remove the joints pulled past their break thresholds; continuous collision for fast bodies; place the moved colliders and refresh
-    /// the broadphase from them; put resting islands to sleep; find what overlaps each sensor.
+    /// The stages, in order (`docs/architecture.md` names the file of each): find new pairs in
+    /// the broadphase; build contact manifolds in the narrowphase (waking the sleeping islands a
+    /// moving body touched, joining the islands of contacts that started touching); solve
+    /// (integrate forces into velocities, resolve contacts and then joints colour by colour,
+    /// integrate positions, in substeps for soft step) and place the moved colliders; report
+    /// the hard hits, if some collider asks; remove the joints pulled past their break
+    /// thresholds; continuous collision for fast bodies; refresh the broadphase from the moved
+    /// colliders; put resting islands to sleep; find what overlaps each sensor. The stages walk
+    /// the awake set of bodies, colliders and contacts; the joints to solve and the sensors to
+    /// update are found by a walk over all of them.
     ///
     /// # Errors
     /// A time step that is not finite and positive; the world is left untouched.
