@@ -2,7 +2,7 @@
 
 use crate::math::Real;
 
-/// Which parts of the world [`World::debug_draw`] describes. Combine with `|`.
+/// Which parts of the world [`crate::World::debug_draw`] describes. Combine with `|`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct DrawFlags(u32);
 

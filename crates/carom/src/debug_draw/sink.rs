@@ -6,7 +6,7 @@ use crate::math::{Real, Vec2};
 /// A sink for drawing primitives. Widths and sizes are screen pixels; everything else is metres.
 pub trait DebugDraw {
     /// A convex polygon, vertices counter-clockwise, filled and outlined
-    /// [`OUTLINE_WIDTH`] pixels thick.
+    /// [`super::OUTLINE_WIDTH`] pixels thick.
     fn polygon(&mut self, vertices: &[Vec2], fill: Color, outline: Color);
     /// A disc, filled and outlined.
     fn circle(&mut self, center: Vec2, radius: Real, fill: Color, outline: Color);
