@@ -16,28 +16,12 @@
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::distance::separation;
 use crate::constants::{FAST_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS};
-use crate::dynamics::body::{Body, BodyHandle, BodyKind};
+use crate::dynamics::body::{Body, BodyHandle, BodyKind, Pose};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};
 use crate::geometry::shape::WorldShape;
 use crate::handle_map::HandleMap;
 use crate::math::{Isometry, Real, Rot, Vec2, angle_of, rotation};
 use std::ops::Range;
-
-/// Where a body's centre of mass was at the start of the step, and how it was turned.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Pose {
-    pub center: Vec2,
-    pub rotation: Rot,
-}
-
-impl Pose {
-    pub fn of(body: &Body) -> Self {
-        Pose {
-            center: body.center_of_mass(),
-            rotation: body.rotation(),
-        }
-    }
-}
 
 /// How far any point of `body` can have moved since `from`: at least the sweep's reach
 /// (translation plus turn times reach), without the arctangent the turn costs.
@@ -152,8 +136,8 @@ fn sink_allowance(min_extent: Real, target: Real) -> Real {
 }
 
 /// Sweeps every fast body of the awake set (`bodies[awake]`) and moves the ones that would
-/// have tunnelled back to their time of impact. `starts` holds each awake body's pose at the
-/// start of the step, in storage order. With `hooked` (the world has a pre-solve hook), pairs
+/// have tunnelled back to their time of impact, from their poses at the start of the step
+/// ([`Body::start_pose`]). With `hooked` (the world has a pre-solve hook), pairs
 /// that asked for the hook are left to it and their contacts. Returns the number of impacts
 /// and the number of bodies swept.
 #[allow(clippy::too_many_arguments)]
@@ -161,7 +145,6 @@ pub(crate) fn solve_continuous(
     bodies: &mut HandleMap<BodyHandle, Body>,
     awake: Range<usize>,
     colliders: &mut HandleMap<ColliderHandle, Collider>,
-    starts: &[Pose],
     swept: &mut Option<WorldShape>,
     broadphase: &BroadPhase,
     target: Real,
@@ -170,7 +153,8 @@ pub(crate) fn solve_continuous(
     let mut impacts: Vec<(usize, Vec2, Rot)> = Vec::new();
     let mut sweeps = 0;
     let awake_bodies = &bodies.as_slice()[awake.clone()];
-    for ((index, body), &start) in awake.clone().zip(awake_bodies).zip(starts) {
+    for (index, body) in awake.clone().zip(awake_bodies) {
+        let start = body.start_pose();
         if body.kind() != BodyKind::Dynamic {
             continue;
         }

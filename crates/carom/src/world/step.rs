@@ -1,7 +1,7 @@
 //! One step of the world, stage by stage.
 
 use super::{World, margin_for};
-use crate::collision::continuous::{self, Pose};
+use crate::collision::continuous;
 use crate::collision::hits::find_hits;
 use crate::collision::narrowphase::{ManifoldOptions, Narrowphase};
 use crate::constants::{
@@ -25,8 +25,6 @@ use crate::world::solver_sets::SolverSet;
 pub(super) struct StepScratch {
     /// New pairs from the broadphase.
     pairs: Vec<(ColliderHandle, ColliderHandle)>,
-    /// Awake bodies' poses at the start of the step (for continuous collision).
-    starts: Vec<Pose>,
     /// The shape a sweep places along its path (its memory reused from step to step).
     swept: Option<WorldShape>,
     /// The narrowphase's memory.
@@ -86,7 +84,7 @@ impl World {
             self.build_manifolds(prediction, &mut scratch.narrowphase, &mut scratch.wake)
         });
         if continuous {
-            self.poses(&mut scratch.starts);
+            self.record_start_poses();
         }
         self.awake_joints(&mut scratch.awake_joints);
         let solved = timed(&mut times.solve, || {
@@ -116,7 +114,6 @@ impl World {
                     &mut self.bodies,
                     self.body_sets.awake(),
                     &mut self.colliders,
-                    &scratch.starts,
                     &mut scratch.swept,
                     &self.broadphase,
                     LINEAR_SLOP,
@@ -203,10 +200,12 @@ impl World {
         &self.bodies.as_slice()[self.body_sets.awake()]
     }
 
-    /// Every awake body's pose, in storage order, into `poses`.
-    fn poses(&self, poses: &mut Vec<Pose>) {
-        poses.clear();
-        poses.extend(self.awake_bodies().iter().map(Pose::of));
+    /// Records every awake body's pose at the start of the step, for continuous collision.
+    fn record_start_poses(&mut self) {
+        let awake = self.body_sets.awake();
+        for body in &mut self.bodies.as_mut_slice()[awake] {
+            body.record_start_pose();
+        }
     }
 
     /// Runs the configured solver over every moving body and touching contact; returns how

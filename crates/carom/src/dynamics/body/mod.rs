@@ -80,6 +80,10 @@ pub struct Body {
     aabb: Aabb,
     /// Continuous collision cut this step's motion short.
     had_time_of_impact: bool,
+    /// Where the centre of mass was at the start of the step, and how the body was turned
+    /// (recorded for continuous collision only), as Box2D keeps `center0` in its bodies.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    start: Pose,
     /// How far the body's farthest point moved in the last step, m: the solver's position
     /// correction moves bodies without leaving them a velocity, and sleep must see that.
     last_motion: Real,
@@ -92,6 +96,22 @@ pub struct Body {
     island: Option<u32>,
     island_prev: Option<BodyHandle>,
     island_next: Option<BodyHandle>,
+}
+
+/// Where a body's centre of mass was at the start of the step, and how it was turned.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Pose {
+    pub center: Vec2,
+    pub rotation: Rot,
+}
+
+impl Default for Pose {
+    fn default() -> Self {
+        Pose {
+            center: Vec2::zeros(),
+            rotation: Rot::identity(),
+        }
+    }
 }
 
 impl Body {
@@ -137,6 +157,7 @@ impl Body {
             user_tag: def.user_tag,
             aabb: Aabb::new(def.position, def.position),
             had_time_of_impact: false,
+            start: Pose::default(),
             last_motion: 0.0,
             sleep_time: 0.0,
             sleeping: false,
@@ -650,6 +671,19 @@ impl Body {
     /// about how much its contacts changed.
     pub(crate) fn had_time_of_impact(&self) -> bool {
         self.had_time_of_impact
+    }
+
+    /// Records where the body starts the step, for continuous collision to sweep from.
+    pub(crate) fn record_start_pose(&mut self) {
+        self.start = Pose {
+            center: self.center,
+            rotation: self.rotation,
+        };
+    }
+
+    /// Where the body started the step ([`Body::record_start_pose`]).
+    pub(crate) fn start_pose(&self) -> Pose {
+        self.start
     }
 
     /// Commits a solved step: velocities, and the motion of the centre of mass accumulated
