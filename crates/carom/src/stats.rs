@@ -17,10 +17,10 @@ pub struct StageTimes {
     pub broadphase: Duration,
     /// Building contact manifolds.
     pub narrowphase: Duration,
-    /// Integrating and resolving contacts, [`StageTimes::prepare`] and [`StageTimes::store`]
-    /// included.
+    /// Integrating and resolving contacts and joints, then placing the moved colliders,
+    /// [`StageTimes::prepare`] and [`StageTimes::store`] included.
     pub solve: Duration,
-    /// Of `solve`: taking the bodies in and preparing the contact constraints.
+    /// Of `solve`: taking the bodies in and preparing the contact and joint constraints.
     pub prepare: Duration,
     /// Of `solve`: storing the impulses for the next step and writing the bodies back.
     pub store: Duration,
