@@ -18,6 +18,7 @@
 
 use crate::collision::manifold::Manifold;
 use crate::collision::recycle::ManifoldFrame;
+use crate::constants::CONTACTS_PER_TASK;
 #[cfg(feature = "serde")]
 use crate::dynamics::body::Body;
 use crate::dynamics::body::{BodyHandle, BodyKind};
@@ -29,6 +30,7 @@ use crate::graph::layout::{
 #[cfg(feature = "serde")]
 use crate::handle_map::HandleMap;
 use crate::math::Real;
+use crate::parallel::for_each_with;
 use crate::world::solver_sets::SolverSet;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
@@ -280,7 +282,7 @@ pub struct ContactSet {
     /// Where each contact's bodies are among all bodies (dense indices), beside the contacts
     /// so the solver reads them from a compact array (Box2D caches them in its contacts):
     /// found by the narrowphase, current for the awake contacts until the step ends.
-    pub(super) body_indices: Vec<BodyIndices>,
+    body_indices: Vec<BodyIndices>,
     /// How many contacts have been made.
     made: u64,
 }
@@ -596,15 +598,15 @@ impl ContactSet {
         &self.contacts[self.awake_range()]
     }
 
-    /// Finds again where the awake contacts' bodies are among all bodies (`dense_index`), after
-    /// bodies woke between the narrowphase and the solver: the woken contacts were not
-    /// refreshed, and their bodies moved.
-    pub(crate) fn find_body_indices(&mut self, dense_index: impl Fn(BodyHandle) -> usize) {
+    /// Finds where the awake contacts' bodies are among all bodies (`dense_index`), on all
+    /// threads: once a step, after the narrowphase and the wakes and links it caused, when
+    /// no body changes set again before the solver reads them.
+    pub(crate) fn find_body_indices(&mut self, dense_index: impl Fn(BodyHandle) -> usize + Sync) {
         let awake = self.awake_range();
         let (contacts, indices) = (&self.contacts[awake.clone()], &mut self.body_indices[awake]);
-        for (contact, indices) in contacts.iter().zip(indices) {
+        for_each_with(contacts, indices, CONTACTS_PER_TASK, |contact, indices| {
             *indices = body_indices_of(contact, &dense_index);
-        }
+        });
     }
 
     /// Takes the bodies of the contacts that started and stopped touching since the last call;
@@ -676,7 +678,7 @@ impl ContactSet {
 pub(crate) type BodyIndices = [u32; 2];
 
 /// A new contact's [`BodyIndices`], until the narrowphase finds them.
-pub(super) const NO_BODIES: BodyIndices = [u32::MAX; 2];
+const NO_BODIES: BodyIndices = [u32::MAX; 2];
 
 /// Where `contact`'s bodies are, by `dense_index`.
 pub(crate) fn body_indices_of(

@@ -6,9 +6,7 @@
 //! Box2D's `b2Collide` and `b2UpdateContact`.
 
 use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
-use crate::collision::contact::{
-    BodyIndices, Contact, ContactEvent, ContactSet, NO_BODIES, pair_key,
-};
+use crate::collision::contact::{Contact, ContactEvent, ContactSet, pair_key};
 use crate::collision::manifold::{self, Manifold, Margins};
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::recycle::ManifoldFrame;
@@ -60,7 +58,7 @@ enum Refresh {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Narrowphase {
     /// What the last update found for each awake contact.
-    refresh: Vec<(Refresh, BodyIndices)>,
+    refresh: Vec<Refresh>,
     /// The contacts it must then file again, by pair.
     changed: Vec<(u64, Refresh)>,
 }
@@ -95,8 +93,7 @@ impl Narrowphase {
         changed.clear();
         // Listed by pair first, as filing them again moves contacts; backwards, the order they
         // are filed in (which decides the colours they take).
-        for (index, &(refresh, indices)) in self.refresh.iter().enumerate().rev() {
-            set.body_indices[index] = indices;
+        for (index, &refresh) in self.refresh.iter().enumerate().rev() {
             match refresh {
                 Refresh::Unchanged => continue,
                 Refresh::Gone => {}
@@ -214,24 +211,21 @@ fn closing_speed(a: &Body, b: &Body) -> Real {
 }
 
 /// Rebuilds one contact's manifold if either body moves (or, `recycling`, carries the last one
-/// along if they barely moved relative to each other); says whether the contact lives on, and
-/// where its bodies are.
+/// along if they barely moved relative to each other); says whether the contact lives on.
 fn refresh_manifold(
     contact: &mut Contact,
     bodies: &HandleMap<BodyHandle, Body>,
     colliders: &HandleMap<ColliderHandle, Collider>,
     broadphase: &BroadPhase,
     options: ManifoldOptions,
-) -> (Refresh, BodyIndices) {
+) -> Refresh {
     let (Some(shape_a), Some(shape_b)) = (
         colliders.get(contact.collider_a),
         colliders.get(contact.collider_b),
     ) else {
-        return (Refresh::Gone, NO_BODIES);
+        return Refresh::Gone;
     };
-    let indices = [shape_a.body_index(), shape_b.body_index()].map(|i| i as u32);
-    let refresh = rebuild_manifold(contact, (shape_a, shape_b), bodies, broadphase, options);
-    (refresh, indices)
+    rebuild_manifold(contact, (shape_a, shape_b), bodies, broadphase, options)
 }
 
 /// [`refresh_manifold`] of a contact between colliders `shape_a` and `shape_b`.

@@ -170,17 +170,17 @@ impl World {
         for &island in wake.iter() {
             self.wake_island(island);
         }
-        if !wake.is_empty() {
-            let bodies = &self.bodies;
-            self.contacts.find_body_indices(|body| {
-                bodies
-                    .dense_index(body)
-                    .expect("contacts only join live bodies")
-            });
-        }
         // Islands join as their contacts start touching (after the waking, so a sleeping
         // island that is touched joins awake).
         self.apply_touch_changes();
+        // No body changes set again before the solver: where each awake contact's bodies
+        // are can be found once.
+        let bodies = &self.bodies;
+        self.contacts.find_body_indices(|body| {
+            bodies
+                .dense_index(body)
+                .expect("contacts only join live bodies")
+        });
         deepest
     }
 
