@@ -210,7 +210,7 @@ pub(crate) fn solve_continuous(
     for &(index, center, rotation) in &impacts {
         let body = &mut moved[index];
         body.move_to_time_of_impact(center, rotation);
-        body.set_aabb(place_colliders(body, colliders));
+        place_colliders(body, colliders);
     }
     (impacts.len(), sweeps)
 }

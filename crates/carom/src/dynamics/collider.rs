@@ -8,6 +8,7 @@
 //! mass, centre of mass and inertia are summed over its colliders.
 
 use crate::collision::filter::CollisionFilter;
+use crate::constants::{CONTACTS_PER_TASK, ITEMS_PER_TASK};
 use crate::dynamics::body::{Body, BodyHandle};
 use crate::error::{CaromError, check_finite, check_finite_vec};
 use crate::geometry::aabb::Aabb;
@@ -16,6 +17,8 @@ use crate::geometry::ray::{Ray, RayHit};
 use crate::geometry::shape::{Shape, WorldShape};
 use crate::handle_map::{HandleMap, generational_handle};
 use crate::math::{Isometry, Real, Vec2};
+use crate::parallel::for_each_mut;
+use std::ops::Range;
 
 generational_handle!(
     /// A stable reference to a collider in a [`crate::World`]; generational, as [`BodyHandle`].
@@ -420,22 +423,45 @@ impl Collider {
     }
 }
 
-/// Places `body`'s colliders where it is; returns the box around them all.
+/// Places `body`'s colliders where it is, and its box around them all. Every move of a body
+/// ends here or in [`place_awake_colliders`], which does the same for the whole awake set.
 pub(crate) fn place_colliders(
-    body: &Body,
+    body: &mut Body,
     colliders: &mut HandleMap<ColliderHandle, Collider>,
-) -> Aabb {
+) {
     let transform = body.transform();
     for &handle in body.colliders() {
         if let Some(collider) = colliders.get_mut(handle) {
             collider.place(&transform);
         }
     }
-    colliders_aabb(body, colliders)
+    body.set_aabb(colliders_aabb(body, colliders));
+}
+
+/// [`place_colliders`] for every body of the awake set (`awake_bodies`, whose colliders are
+/// `awake_colliders`), on all threads: the colliders first, then each body's box.
+pub(crate) fn place_awake_colliders(
+    bodies: &mut HandleMap<BodyHandle, Body>,
+    awake_bodies: Range<usize>,
+    colliders: &mut HandleMap<ColliderHandle, Collider>,
+    awake_colliders: Range<usize>,
+) {
+    let all = bodies.as_slice();
+    for_each_mut(
+        &mut colliders.as_mut_slice()[awake_colliders],
+        CONTACTS_PER_TASK,
+        |collider| collider.place(&all[collider.body_index()].transform()),
+    );
+    let colliders = &*colliders;
+    for_each_mut(
+        &mut bodies.as_mut_slice()[awake_bodies],
+        ITEMS_PER_TASK,
+        |body| body.set_aabb(colliders_aabb(body, colliders)),
+    );
 }
 
 /// The box around all of `body`'s colliders, as placed.
-pub(crate) fn colliders_aabb(body: &Body, colliders: &HandleMap<ColliderHandle, Collider>) -> Aabb {
+fn colliders_aabb(body: &Body, colliders: &HandleMap<ColliderHandle, Collider>) -> Aabb {
     let mut boxes = body
         .colliders()
         .iter()

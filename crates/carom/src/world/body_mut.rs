@@ -41,8 +41,7 @@ impl<'w> BodyMut<'w> {
     fn follow(&mut self) {
         let world = &mut *self.world;
         let body = &mut world.bodies.as_mut_slice()[self.index];
-        let aabb = place_colliders(body, &mut world.colliders);
-        body.set_aabb(aabb);
+        place_colliders(body, &mut world.colliders);
         let kind = body.kind();
         let margin = margin_for(&world.settings, kind);
         for &collider in body.colliders() {

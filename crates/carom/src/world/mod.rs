@@ -477,7 +477,7 @@ impl World {
         let Some(body) = self.bodies.get_mut(handle) else {
             return;
         };
-        body.set_aabb(place_colliders(body, &mut self.colliders));
+        place_colliders(body, &mut self.colliders);
     }
 
     /// The body behind a handle, unless it was removed.

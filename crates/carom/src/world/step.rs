@@ -5,15 +5,15 @@ use crate::collision::continuous;
 use crate::collision::hits::find_hits;
 use crate::collision::narrowphase::{ManifoldOptions, Narrowphase};
 use crate::constants::{
-    CONTACTS_PER_TASK, ITEMS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
+    CONTACTS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
 };
 use crate::dynamics::body::{Body, BodyKind};
-use crate::dynamics::collider::{ColliderHandle, colliders_aabb};
+use crate::dynamics::collider::{ColliderHandle, place_awake_colliders};
 use crate::error::CaromError;
 use crate::geometry::aabb::Aabb;
 use crate::geometry::shape::WorldShape;
 use crate::math::Real;
-use crate::parallel::{for_each_mut, map_zip_into};
+use crate::parallel::map_zip_into;
 use crate::solver::{self, Environment, SolverKind};
 use crate::stats::{Instant, StepStats};
 use crate::world::effects::Effect;
@@ -264,17 +264,11 @@ impl World {
 
     /// Places the colliders of the awake set, which moved this step, and their bodies' boxes.
     fn place_moved_colliders(&mut self) {
-        let bodies = self.bodies.as_slice();
-        for_each_mut(
-            &mut self.colliders.as_mut_slice()[self.collider_sets.awake()],
-            CONTACTS_PER_TASK,
-            |collider| collider.place(&bodies[collider.body_index()].transform()),
-        );
-        let colliders = &self.colliders;
-        for_each_mut(
-            &mut self.bodies.as_mut_slice()[self.body_sets.awake()],
-            ITEMS_PER_TASK,
-            |body| body.set_aabb(colliders_aabb(body, colliders)),
+        place_awake_colliders(
+            &mut self.bodies,
+            self.body_sets.awake(),
+            &mut self.colliders,
+            self.collider_sets.awake(),
         );
     }
 
