@@ -9,3 +9,31 @@
 pub(crate) mod push_out;
 pub(crate) mod sequential_impulse;
 pub(crate) mod tutorial_impulse;
+
+use crate::solver::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
+use crate::solver::{BodyState, SolverContext};
+use crate::stats::Work;
+
+/// The tutorial's order, which its two solvers keep: its bodies moved, then it found and
+/// resolved the contacts (`resolve`, once per iteration), and only then integrated forces into
+/// velocities and velocities into positions. Gravity comes after the resolution, so a resting
+/// body sinks g dt² a step unless a bias lifts it. Returns the work the effects did.
+fn in_tutorial_order(
+    context: &SolverContext,
+    states: &mut [BodyState],
+    mut resolve: impl FnMut(&mut [BodyState]),
+) -> Work {
+    let SolverContext {
+        params,
+        environment,
+        bodies,
+        dt,
+    } = *context;
+    for _ in 0..params.iterations {
+        resolve(states);
+    }
+    let caps = SpeedCaps::new(params, dt);
+    let work = integrate_velocities(environment, bodies, states, dt, caps);
+    integrate_positions(bodies, states, dt, caps);
+    work
+}

@@ -3,8 +3,8 @@
 //! is removed. No rotation, friction or bounce: it shows why impulses are needed. Bodies still
 //! apart (speculative points) may close the gap but not pass it.
 
+use super::in_tutorial_order;
 use crate::math::Real;
-use crate::solver::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
 use crate::solver::contact_constraint::pair_mut;
 use crate::solver::{BodyState, ContactConstraint, SolverContext};
 use crate::stats::Work;
@@ -14,15 +14,8 @@ pub(crate) fn solve(
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
 ) -> Work {
-    let SolverContext {
-        params,
-        environment,
-        bodies,
-        dt,
-    } = *context;
-    // The tutorial's order: its bodies moved, then it found and resolved the contacts; gravity
-    // comes after the resolution, so a resting body sinks g dt² a step unless bias lifts it.
-    for _ in 0..params.iterations {
+    let dt = context.dt;
+    in_tutorial_order(context, states, |states| {
         for c in constraints.iter() {
             let total = c.inv_mass_a + c.inv_mass_b;
             if total == 0.0 {
@@ -46,8 +39,5 @@ pub(crate) fn solve(
                 b.v -= c.normal * (excess * c.inv_mass_b / total);
             }
         }
-    }
-    let work = integrate_velocities(environment, bodies, states, dt, SpeedCaps::new(params, dt));
-    integrate_positions(bodies, states, dt, SpeedCaps::new(params, dt));
-    work
+    })
 }

@@ -6,8 +6,8 @@
 //! lacked) gets the bias `-s / dt`, so the bodies may close the gap but not pass it; without it
 //! continuous collision would leave fast bodies frozen just short of a surface.
 
+use super::in_tutorial_order;
 use crate::constants::TUTORIAL_SLOP;
-use crate::solver::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
 use crate::solver::contact_constraint::pair_mut;
 use crate::solver::{BodyState, ContactConstraint, SolverContext};
 use crate::stats::Work;
@@ -17,15 +17,8 @@ pub(crate) fn solve(
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
 ) -> Work {
-    let SolverContext {
-        params,
-        environment,
-        bodies,
-        dt,
-    } = *context;
-    // The tutorial's order: its bodies moved, then it found and resolved the contacts; gravity
-    // comes after the resolution, so a resting body sinks g dt² a step unless bias lifts it.
-    for _ in 0..params.iterations {
+    let (params, dt) = (context.params, context.dt);
+    let work = in_tutorial_order(context, states, |states| {
         for c in constraints.iter_mut() {
             let (a, b) = pair_mut(states, c.a, c.b);
             for i in 0..c.points().len() {
@@ -43,12 +36,10 @@ pub(crate) fn solve(
                 c.points_mut()[i].total_normal_impulse += j;
             }
         }
-    }
+    });
     // One step, no substeps: the most applied in a substep is the step's total.
     for point in constraints.iter_mut().flat_map(|c| c.points_mut()) {
         point.max_normal_impulse = point.total_normal_impulse;
     }
-    let work = integrate_velocities(environment, bodies, states, dt, SpeedCaps::new(params, dt));
-    integrate_positions(bodies, states, dt, SpeedCaps::new(params, dt));
     work
 }

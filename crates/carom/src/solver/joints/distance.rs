@@ -4,7 +4,9 @@
 //! `C = |d| - L` along the unit `u = d / |d|`, `d` from A's anchor to B's; `J = [-u, -rA × u,
 //! u, rB × u]`. The axis is taken once per step (the anchors move little in one).
 
-use super::{JointConstraint, JointPass, inverse_or_zero, solve_limits, spring_softness};
+use super::{
+    JointConstraint, JointPass, inverse_or_zero, push_only, solve_limits, spring_softness,
+};
 use crate::joint::DistanceJoint;
 use crate::math::{Real, Vec2, cross};
 use crate::solver::{BodyState, Softness};
@@ -101,12 +103,8 @@ pub(super) fn solve(
             pass,
             |scales, accumulated, upper| {
                 // The upper stop is the lower one with the signs flipped.
-                let (bias, mass_scale, impulse_scale) = scales;
-                let old = *accumulated;
                 let closing = if upper { -speed(a, b) } else { speed(a, b) };
-                let impulse = -mass_scale * p.axial_mass * (closing + bias) - impulse_scale * old;
-                *accumulated = (old + impulse).max(0.0);
-                let applied = *accumulated - old;
+                let applied = push_only(scales, accumulated, p.axial_mass, closing);
                 c.apply_linear(a, b, ra, rb, axis * if upper { -applied } else { applied });
             },
         );

@@ -163,6 +163,21 @@ pub(super) fn solve_limits(
     stop(pass.limit(limits.upper - position), upper, true);
 }
 
+/// One stop's impulse on a coordinate whose effective mass is `mass`, closing at `closing`
+/// (positive: moving away from the stop), with a pass's `(bias, mass scale, impulse scale)`:
+/// the accumulated impulse only ever pushes. Returns the impulse to apply.
+fn push_only(
+    (bias, mass_scale, impulse_scale): (Real, Real, Real),
+    accumulated: &mut Real,
+    mass: Real,
+    closing: Real,
+) -> Real {
+    let old = *accumulated;
+    let impulse = -mass_scale * mass * (closing + bias) - impulse_scale * old;
+    *accumulated = (old + impulse).max(0.0);
+    *accumulated - old
+}
+
 /// What a joint needs of one of its bodies: its pose and mass, and where its state is.
 pub(crate) struct JointBody<'a> {
     pub body: &'a Body,

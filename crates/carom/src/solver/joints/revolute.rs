@@ -3,7 +3,9 @@
 //! Box2D's order: spring, motor, limits, then the point, so the point constraint, which
 //! matters most, has the last word.
 
-use super::{JointConstraint, JointPass, inverse_or_zero, solve_limits, solve22, spring_softness};
+use super::{
+    JointConstraint, JointPass, inverse_or_zero, push_only, solve_limits, solve22, spring_softness,
+};
 use crate::joint::RevoluteJoint;
 use crate::math::{Real, unwind_angle};
 use crate::solver::{BodyState, Softness};
@@ -68,12 +70,8 @@ pub(super) fn solve(
             pass,
             |scales, accumulated, upper| {
                 // The upper stop is the lower one with the signs flipped.
-                let (bias, mass_scale, impulse_scale) = scales;
-                let old = *accumulated;
                 let speed = if upper { a.w - b.w } else { b.w - a.w };
-                let impulse = -mass_scale * p.axial_mass * (speed + bias) - impulse_scale * old;
-                *accumulated = (old + impulse).max(0.0);
-                let applied = *accumulated - old;
+                let applied = push_only(scales, accumulated, p.axial_mass, speed);
                 c.apply_angular(a, b, if upper { -applied } else { applied });
             },
         );
