@@ -121,6 +121,7 @@
 
 pub mod cases;
 pub mod notes;
+pub mod sweep;
 
 #[cfg(feature = "peers")]
 pub mod box2d_world;
@@ -140,3 +141,19 @@ pub use compare::{RunResult, run_box2d, run_carom, run_rapier};
 pub use notes::Notes;
 #[cfg(feature = "peers")]
 pub use rapier_world::RapierWorld;
+
+/// Gives plotters' charts their one font, "sans-serif" (Ubuntu Light, as egui draws text):
+/// plotters' bitmap backend has no system fonts to fall back on.
+#[cfg(feature = "native")]
+fn register_fonts() {
+    use plotters::style::{FontStyle, register_font};
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        // The font is compiled in and known to parse.
+        let _ = register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            epaint_default_fonts::UBUNTU_LIGHT,
+        );
+    });
+}

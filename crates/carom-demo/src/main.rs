@@ -6,7 +6,7 @@
 //! `carom bench` sweeps solver settings and shows what accuracy costs in time.
 
 use carom::{Effect, SolverKind};
-use carom_demo::bench::{Engine, SweepOptions, sweep_to_folder};
+use carom_bench::sweep::{Engine, SweepOptions, sweep_to_folder};
 use carom_demo::run::{RunOptions, run};
 use carom_demo::snapshot::{self, SnapshotOptions, parse_size};
 use carom_demo::window::{self, WindowOptions};

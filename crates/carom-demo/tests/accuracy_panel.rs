@@ -2,8 +2,8 @@
 //! without a window or GPU, and the test reads what it drew.
 
 use carom::SolverKind;
+use carom_bench::sweep::report;
 use carom_demo::accuracy_panel::{Marker, Source};
-use carom_demo::bench::report;
 use carom_demo::demo::Demo;
 use carom_demo::ui::{SIDEBAR_WIDTH, sidebar};
 use std::path::PathBuf;

@@ -513,7 +513,7 @@ const CSV_ERROR_KINDS: [super::ErrorKind; 6] = [
 mod tests {
     use super::*;
 
-    use crate::bench::ErrorKind;
+    use crate::sweep::ErrorKind;
     use carom::SolverKind;
 
     fn point(substeps: u32, joint_hertz: Option<f32>) -> Point {
@@ -567,7 +567,7 @@ mod tests {
 #[cfg(test)]
 mod parse_tests {
     use super::*;
-    use crate::bench::ErrorKind;
+    use crate::sweep::ErrorKind;
     use carom::SolverKind;
 
     fn point(scene: &str, kind: ErrorKind, setting: Setting, ms: f64, error: f64) -> Point {
