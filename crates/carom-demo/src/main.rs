@@ -158,21 +158,8 @@ struct EffectChanges(Vec<(Effect, bool)>);
 
 /// Parses `+continuous,-drag` into effects to switch on and off.
 fn parse_effects(text: &str) -> Result<EffectChanges, String> {
-    text.split(',')
-        .filter(|part| !part.is_empty())
-        .map(|part| {
-            let (on, name) = match part.split_at(1) {
-                ("+", name) => (true, name),
-                ("-", name) => (false, name),
-                _ => return Err(format!("`{part}`: start each effect with + or -")),
-            };
-            let effect = Effect::from_name(name).ok_or_else(|| {
-                let known: Vec<&str> = Effect::ALL.iter().map(|e| e.name()).collect();
-                format!("unknown effect `{name}`; known: {}", known.join(", "))
-            })?;
-            Ok((effect, on))
-        })
-        .collect::<Result<_, _>>()
+    let known: Vec<&str> = Effect::ALL.iter().map(|e| e.name()).collect();
+    snapshot::parse_toggles(text, ("effect", "effect"), &known, Effect::from_name)
         .map(EffectChanges)
 }
 
