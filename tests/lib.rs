@@ -1,4 +1,5 @@
-//! Helpers shared by carom's cross-crate test suites.
+//! Helpers shared by the suites in `tests/`. What they share with `carom-bench` (the hard
+//! cases' worlds, the joint measures, `Rng`) is in `carom_bench::cases`.
 
 use carom::{BodyHandle, World, WorldShape};
 
