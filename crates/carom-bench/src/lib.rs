@@ -15,11 +15,15 @@
 //! [`Box2dWorld::from_carom`] rebuilds a carom world in Box2D, and [`hard_cases`] measures each
 //! case the same way in both engines (`carom-bench hard-cases`).
 //!
+//! [`sweep`] is the accuracy sweep behind the demo's `carom bench` and its accuracy panel:
+//! every solver setting's time against its error on scenes with an exact answer.
+//!
 //! [`cases`] holds what the stability suite and the hard cases share: their worlds, the joint
 //! measures, a seeded random number generator. Box2D and Rapier sit behind the default feature
-//! `peers`, and the command line and the PNG charts behind the default feature `native`;
-//! without them the library is carom's side alone, which builds on the core and the scene
-//! crate only (the test package `carom-tests` uses it so).
+//! `peers`, the command line and the PNG charts behind the default feature `native`, the sweep
+//! behind the default feature `sweep`; without them the library is [`cases`] and [`notes`],
+//! which build on the core and the scene crate only (the test package `carom-tests` uses it
+//! so).
 //!
 //! ## Parameter mapping, carom → Rapier
 //!
@@ -121,6 +125,7 @@
 
 pub mod cases;
 pub mod notes;
+#[cfg(feature = "sweep")]
 pub mod sweep;
 
 #[cfg(feature = "peers")]
