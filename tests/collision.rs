@@ -5,7 +5,7 @@ use carom::collide;
 use carom::separation;
 use carom::testing::PairSide;
 use carom::{BodyDef, Polygon, Real, Shape, Vec2, World, WorldSettings, WorldShape, vec2};
-use carom_tests::Rng;
+use carom_bench::cases::Rng;
 use proptest::prelude::*;
 
 /// A polygon in world coordinates exactly where its points say (not recentred).

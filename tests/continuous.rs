@@ -4,7 +4,8 @@ use carom::{
     BodyDef, BodyHandle, Effect, Effects, Real, Shape, SolverParams, Vec2, World, WorldSettings,
     vec2,
 };
-use carom_tests::{skinny_box, world_shape};
+use carom_bench::cases::skinny_box;
+use carom_tests::world_shape;
 
 const DT: Real = 1.0 / 60.0;
 

@@ -2,7 +2,7 @@
 //! and what they accept is a well-formed shape.
 
 use carom::{BodyDef, CaromError, ColliderDef, Polygon, Real, Shape, Vec2, World, vec2};
-use carom_tests::Rng;
+use carom_bench::cases::Rng;
 
 /// A polygon carom accepted must be convex, counter-clockwise, centred, with unit outward
 /// normals.

@@ -196,7 +196,7 @@ fn an_edited_save_is_refused_or_steps_cleanly() {
         "1e30",
         "-3.5",
     ];
-    let mut rng = carom_tests::Rng::new(0x2545_f491_4f6c_dd1d);
+    let mut rng = carom_bench::cases::Rng::new(0x2545_f491_4f6c_dd1d);
     let mut next = |below: usize| rng.below(below);
     let (mut refused, mut stepped) = (0, 0);
     let trials: usize = std::env::var("CAROM_SAVE_TRIALS")

@@ -7,23 +7,23 @@
 //! `target/stability/CASE.md`.
 //!
 //! Where a bound solver misses a bar today, the case lists it as a known miss: shown in the
-//! table, explained in the README and the issue notes, and the test fails once it is met, so
-//! the list can only shrink.
+//! table, explained in `docs/hard-cases.md`, and the test fails once it is met, so the list
+//! can only shrink.
 //!
 //! Unless a case says otherwise: 60 Hz steps, the solver's defaults (soft step: 4 substeps,
 //! 30 Hz contacts, as Box2D), every effect the scene names. The worlds come from
-//! `carom_tests::hard_case_worlds`, which `carom-bench hard-cases` also runs in Box2D.
+//! `carom_bench::cases::worlds`, which `carom-bench hard-cases` also runs in Box2D.
 
 use carom::{BodyHandle, Effect, Real, Shape, SolverKind, SolverParams, Vec2, World, vec2};
-use carom_tests::hard_case_worlds::{
+use carom_bench::cases::joint_measures::{
+    period, total_hinge_separation, worst_hinge_separation, worst_limit_violation,
+};
+use carom_bench::cases::skinny_box;
+use carom_bench::cases::worlds::{
     TINY_BOX_SIZE, big_box_on, bullet_shot, coincident_circles, gravity_work, outside_the_box,
     pyramid_world, random_world, scene, skinny_plank, small_triangle, tiny_pyramid, vertical_stack,
     workspace,
 };
-use carom_tests::joint_measures::{
-    period, total_hinge_separation, worst_hinge_separation, worst_limit_violation,
-};
-use carom_tests::skinny_box;
 use std::fmt::Write as _;
 
 const DT: Real = 1.0 / 60.0;
@@ -84,7 +84,7 @@ fn check(case: &str, run: impl Fn(SolverParams) -> Run) {
 /// [`check`] for a case where a bound solver is known to miss a bar today: `known` names the
 /// solver and the bar. Those misses are shown in the table as known, not failed; a known miss
 /// that is met fails the test, so the list only ever shrinks and never hides a fix. Each entry
-/// is explained, with its figures, in the issue note of the session that added it.
+/// is explained, with its figures, in `docs/hard-cases.md`.
 fn check_known(case: &str, known: &[(SolverKind, &str)], run: impl Fn(SolverParams) -> Run) {
     let mut table = format!("### {case}\n\n| solver | figures | bars |\n|---|---|---|\n");
     let mut failures = Vec::new();
@@ -485,7 +485,7 @@ fn a_skinny_plank_relaunched_500_times_never_ends_on_the_wrong_side() {
     check("skinny_box", |params| {
         let mut run = Run::default();
         let (mut world, plank) = skinny_plank(params);
-        let mut rng = carom_tests::Rng::new(500);
+        let mut rng = carom_bench::cases::Rng::new(500);
         let (mut under_floor, mut through_post) = (0usize, 0usize);
         let mut lowest: f64 = 0.0;
         for _ in 0..500 {

@@ -34,7 +34,7 @@ fn busy_world(solver: SolverKind, pre_solve: bool) -> World {
                 .unwrap();
         }
     }
-    let mut rng = carom_tests::Rng::new(7);
+    let mut rng = carom_bench::cases::Rng::new(7);
     for i in 0..200 {
         let shape = if i % 2 == 0 {
             Shape::circle(rng.range(0.1, 0.4))

@@ -16,7 +16,9 @@
 //! | gravity (zero when the `Gravity` effect is off) | world `gravity` | yes |
 //! | linear / angular drag (the `Drag` effect with [`carom::DragModel::Exponential`]) | `linearDamping` / `angularDamping` | yes: the same law, `v /= 1 + h c`; with `Drag` off, or the tutorial drag model, no damping is set |
 //! | `Shape::Circle` | `b2Circle` at the body origin | yes |
-//! | `Shape::Polygon` (convex, CCW, centred on its centroid, radius 0) | `b2Polygon` with carom's own vertices and normals, centroid 0, radius 0 | yes, vertex for vertex: no hull is recomputed, as Box2D's would weld points closer than 4 slop (2 cm) and drop the 2 mm cards of the card house; at most 8 vertices (Box2D's limit) |
+//! | `Shape::Polygon` (convex, CCW, centred on its centroid, sharp or rounded) | `b2Polygon` with carom's own vertices and normals, centroid 0, carom's radius | yes, vertex for vertex: no hull is recomputed, as Box2D's would weld points closer than 4 slop (2 cm) and drop the 2 mm cards of the card house; at most 8 vertices (Box2D's limit) |
+//! | `Shape::Capsule` / `Shape::Segment` | `b2Capsule` / `b2Segment`, moved into the body's frame | yes |
+//! | `Shape::ChainSegment` (a chain's link) | `b2ChainSegment` with the link's ghost vertices | yes: one-sided and smooth across joins in both |
 //! | density | shape `density` (mass and inertia from the shape) | yes |
 //! | friction, mixed by geometric mean (`Friction` effect; 0 when off) | shape material `friction`, Box2D's default mixing `sqrt(a b)` | yes |
 //! | restitution, mixed by max (`Restitution` effect; 0 when off) | shape material `restitution`, Box2D's default mixing `max(a, b)` | yes |

@@ -1,6 +1,6 @@
 //! The hard cases of `tests/stability.rs`, run in carom and in Box2D and measured the same way.
 //!
-//! Each case builds its carom world with the builders of [`carom_tests::hard_case_worlds`] (the
+//! Each case builds its carom world with the builders of [`crate::cases::worlds`] (the
 //! geometry the stability suite uses) and soft step at its defaults (4 substeps, 30 Hz contacts,
 //! damping ratio 10, push speed 3 m/s, which are Box2D's); Box2D runs the copy
 //! [`Box2dWorld::from_carom`] makes of it. Every measure is written once, against
@@ -11,9 +11,9 @@
 use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
+use crate::cases::skinny_box;
+use crate::cases::worlds;
 use carom::{BodyHandle, BodyKind, Effect, Real, SolverKind, SolverParams, World, vec2};
-use carom_tests::hard_case_worlds as worlds;
-use carom_tests::skinny_box;
 
 use crate::box2d_world::Box2dWorld;
 
@@ -760,7 +760,7 @@ fn skinny(engine: Engine, o: &mut Outcome) -> Res<()> {
     let (world, plank) = worlds::skinny_plank(soft_step());
     let plank = index(&world, plank)?;
     on(engine, world, |w| {
-        let mut rng = carom_tests::Rng::new(500);
+        let mut rng = crate::cases::Rng::new(500);
         let (mut under_floor, mut through_post) = (0usize, 0usize);
         let mut lowest: f64 = 0.0;
         for _ in 0..500 {
@@ -866,7 +866,7 @@ fn soak(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
 
 /// The seeds and body counts of the random worlds, fixed so both engines see the same ones.
 pub fn random_seeds() -> Vec<(u64, usize)> {
-    let mut rng = carom_tests::Rng::new(0x5eed);
+    let mut rng = crate::cases::Rng::new(0x5eed);
     (0..RANDOM_WORLDS)
         .map(|_| (rng.next_u64().max(1), 5 + rng.below(35)))
         .collect()

@@ -15,6 +15,16 @@
 //! [`Box2dWorld::from_carom`] rebuilds a carom world in Box2D, and [`hard_cases`] measures each
 //! case the same way in both engines (`carom-bench hard-cases`).
 //!
+//! [`sweep`] is the accuracy sweep behind the demo's `carom bench` and its accuracy panel:
+//! every solver setting's time against its error on scenes with an exact answer.
+//!
+//! [`cases`] holds what the stability suite and the hard cases share: their worlds, the joint
+//! measures, a seeded random number generator. Box2D and Rapier sit behind the default feature
+//! `peers`, the command line and the PNG charts behind the default feature `native`, the sweep
+//! behind the default feature `sweep`; without them the library is [`cases`] and [`notes`],
+//! which build on the core and the scene crate only (the test package `carom-tests` uses it
+//! so).
+//!
 //! ## Parameter mapping, carom → Rapier
 //!
 //! | carom | Rapier | exact? |
@@ -24,8 +34,11 @@
 //! | `gravity_scale` | `gravity_scale` | yes |
 //! | linear / angular damping (the `Drag` effect with [`carom::DragModel::Exponential`]) | `linear_damping` / `angular_damping` | yes: both apply `v /= 1 + dt c`; with `Drag` off, or the tutorial drag model, no damping is set |
 //! | `Shape::Circle` | `ColliderBuilder::ball(radius)` | yes |
-//! | `Shape::Polygon`, an axis-aligned rectangle in body space | `ColliderBuilder::cuboid(hx, hy)` | yes |
-//! | any other `Shape::Polygon` (convex, CCW, centred on its centroid) | `convex_polyline` (no hull recomputed), `convex_hull` as a fallback | yes |
+//! | `Shape::Polygon`, an axis-aligned rectangle in body space | `ColliderBuilder::cuboid(hx, hy)`, or `round_cuboid(hx, hy, radius)` when it is rounded | yes |
+//! | any other `Shape::Polygon` (convex, CCW, centred on its centroid) | `convex_polyline` (no hull recomputed), `convex_hull` as a fallback; `round_convex_polyline` when it is rounded | yes |
+//! | `Shape::Capsule` | `capsule_from_endpoints(center1, center2, radius)` | yes |
+//! | `Shape::Segment` | `segment(point1, point2)` | yes |
+//! | `Shape::ChainSegment` (a chain's link) | `segment(point1, point2)` | no: Rapier's segment is two-sided and has no ghost vertices, so its joins are not smoothed |
 //! | each collider: density, offset and angle | a collider with `density` and `position` relative to its body (mass and inertia from the shapes) | yes |
 //! | friction, mixed by geometric mean (`Friction` effect; 0 when off) | collider `friction` + `CoefficientCombineRule::GeometricMean` | yes |
 //! | restitution, mixed by max (`Restitution` effect; 0 when off) | collider `restitution` + `CoefficientCombineRule::Max` | rule yes; carom does not bounce below 1 m/s approach, Rapier has no such threshold |
@@ -56,8 +69,9 @@
 //!
 //! ## What does not map
 //!
-//! - Polygon radius: carom polygons have no rounding (radius 0); the Rapier shapes built here
-//!   have none either (no `round_*` builders), so both are sharp.
+//! - Chain links: carom's are one-sided and smooth across their joins (ghost vertices, as
+//!   Box2D's); Rapier's segments are two-sided, so a body sliding along a chain may catch on
+//!   a join in Rapier that it glides over in carom.
 //! - Rapier 0.36 uses Box2D-like soft contacts but has its own block solver for two-point
 //!   manifolds (`block-solver` feature, on by default), contact clustering and contact recycling;
 //!   carom solves the points one by one.
@@ -81,7 +95,9 @@
 //! | gravity (zero when the `Gravity` effect is off) | world `gravity` | yes |
 //! | linear / angular drag (`Drag` effect, exponential model) | `linearDamping` / `angularDamping` | yes; none set with `Drag` off or the tutorial model |
 //! | `Shape::Circle` | `b2Circle` | yes |
-//! | `Shape::Polygon` (convex, CCW, centred on its centroid) | `b2Polygon` from carom's vertices and normals, radius 0 | yes, up to Box2D's 8 vertices; no hull recomputed |
+//! | `Shape::Polygon` (convex, CCW, centred on its centroid, sharp or rounded) | `b2Polygon` from carom's vertices and normals, with carom's radius | yes, up to Box2D's 8 vertices; no hull recomputed |
+//! | `Shape::Capsule` / `Shape::Segment` | `b2Capsule` / `b2Segment` | yes |
+//! | `Shape::ChainSegment` (a chain's link) | `b2ChainSegment` with the link's ghost vertices | yes: one-sided and smooth in both |
 //! | density | shape `density` | yes |
 //! | friction (geometric mean) / restitution (max); 0 when the effect is off | shape material `friction` / `restitution`, Box2D's default mixing (the same rules) | yes |
 //! | `restitution_threshold` (1 m/s) | world `restitutionThreshold` (1 m/s) | yes |
@@ -107,14 +123,42 @@
 //! Box2D's default (on); the tutorial drag model has no counterpart; scene events are not
 //! replayed. Details in [`box2d_world`].
 
-pub mod box2d_world;
-pub mod compare;
-pub mod hard_cases;
+pub mod cases;
 pub mod notes;
+#[cfg(feature = "sweep")]
+pub mod sweep;
+
+#[cfg(feature = "peers")]
+pub mod box2d_world;
+#[cfg(all(feature = "peers", feature = "native"))]
+pub mod compare;
+#[cfg(feature = "peers")]
+pub mod hard_cases;
+#[cfg(feature = "peers")]
 pub mod rapier_world;
+#[cfg(feature = "native")]
 pub mod scaling;
 
+#[cfg(feature = "peers")]
 pub use box2d_world::Box2dWorld;
+#[cfg(all(feature = "peers", feature = "native"))]
 pub use compare::{RunResult, run_box2d, run_carom, run_rapier};
 pub use notes::Notes;
+#[cfg(feature = "peers")]
 pub use rapier_world::RapierWorld;
+
+/// Gives plotters' charts their one font, "sans-serif" (Ubuntu Light, as egui draws text):
+/// plotters' bitmap backend has no system fonts to fall back on.
+#[cfg(feature = "native")]
+fn register_fonts() {
+    use plotters::style::{FontStyle, register_font};
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        // The font is compiled in and known to parse.
+        let _ = register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            epaint_default_fonts::UBUNTU_LIGHT,
+        );
+    });
+}

@@ -4,10 +4,8 @@
 //! axes.
 
 use plotters::prelude::*;
-use plotters::style::{FontStyle, register_font};
 use std::fmt::Write as _;
 use std::path::Path;
-use std::sync::Once;
 
 /// The sizes measured: (rows of pyramids, pyramids per row), about 1k, 5k, 20k and 100k boxes.
 pub const SIZES: [(usize, usize); 4] = [(1, 18), (5, 20), (18, 20), (91, 20)];
@@ -108,7 +106,7 @@ pub fn write_chart(points: &[Point], path: &Path) -> Result<(), String> {
     if points.is_empty() {
         return Err("no points to draw".into());
     }
-    register_fonts();
+    crate::register_fonts();
     let (width, height) = SIZE;
     let mut pixels = vec![0u8; (width * height * 3) as usize];
     {
@@ -175,18 +173,6 @@ pub fn write_chart(points: &[Point], path: &Path) -> Result<(), String> {
     image
         .save(path)
         .map_err(|e| format!("{}: {e}", path.display()))
-}
-
-fn register_fonts() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        // The font is compiled in and known to parse.
-        let _ = register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            epaint_default_fonts::UBUNTU_LIGHT,
-        );
-    });
 }
 
 fn draw_error(error: impl std::fmt::Display) -> String {

@@ -107,7 +107,7 @@ fn friction_off_gives_frictionless_shapes_and_triangles_keep_their_vertices() {
 /// and friction: the same mass, centre of mass, inertia and bounding box.
 #[test]
 fn a_compound_body_keeps_each_collider_s_place_density_and_friction() {
-    let world = carom_tests::compound_body();
+    let world = carom_bench::cases::compound_body();
     let body = world.bodies().next().unwrap();
     let mut box2d = Box2dWorld::from_carom(&world).unwrap();
     assert!((box2d.mass(0) - body.mass()).abs() < 1e-5 * body.mass());

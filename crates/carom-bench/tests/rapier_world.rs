@@ -156,7 +156,7 @@ fn rotated_box_and_triangle_become_convex_polygons() {
 /// own density and friction: the same mass, centre of mass and inertia.
 #[test]
 fn a_compound_body_keeps_each_collider_s_place_density_and_friction() {
-    let world = carom_tests::compound_body();
+    let world = carom_bench::cases::compound_body();
     let rapier = RapierWorld::from_carom(&world, DT).unwrap();
     let body = world.bodies().next().unwrap();
     let copy = &rapier.bodies()[rapier.handle(0).unwrap()];

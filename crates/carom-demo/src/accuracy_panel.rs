@@ -5,8 +5,8 @@
 //! Nothing here draws: [`crate::ui`] draws what [`AccuracyPanel`] holds, so tests can drive
 //! the panel and read what the sidebar showed.
 
-use crate::bench::{self, Engine, Point, Setting, SweepOptions, pareto_front, report};
 use carom::{SolverKind, SolverParams};
+use carom_bench::sweep::{self, Engine, Point, Setting, SweepOptions, pareto_front, report};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -259,7 +259,7 @@ impl AccuracyPanel {
         let spawned = std::thread::Builder::new()
             .name("accuracy sweep".into())
             .spawn(move || {
-                bench::sweep(&options, |done, total, what| {
+                sweep::sweep(&options, |done, total, what| {
                     // A poisoned lock only means a reader panicked; the numbers are still good.
                     let mut progress = shared.lock().unwrap_or_else(|e| e.into_inner());
                     *progress = Progress {
@@ -550,8 +550,8 @@ pub fn format_error(error: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::ErrorKind;
     use carom::SolverKind;
+    use carom_bench::sweep::ErrorKind;
 
     fn point(setting: Setting, ms: f64, error: f64) -> Point {
         Point {

@@ -1,14 +1,13 @@
 //! The carom demo app's library. Most of it knows nothing of windows, so tests can drive it:
 //! [`run`] runs a scene headless and measures it; [`demo`] is the interactive demo's state
 //! (scene, camera, grab, fixed-step clock) and [`metrics`] what it measures live; [`snapshot`]
-//! renders a scene offscreen to an image; [`bench`](mod@bench) sweeps solver settings against
-//! their error, and [`accuracy_panel`] holds what the sidebar shows of it for the scene
-//! running. The window itself is [`window`], its egui sidebar
-//! [`ui`], and [`capture`] reads the window's pixels back for screenshots. [`files`] is where
+//! renders a scene offscreen to an image; [`accuracy_panel`] holds what the sidebar shows of
+//! the accuracy sweep (`carom_bench::sweep`, which `carom bench` runs) for the scene running.
+//! The window itself is [`window`], its egui sidebar [`ui`], and [`capture`] reads the
+//! window's pixels back for screenshots. [`files`] is where
 //! scenes and reports are read: the disk, or, in the web build, files built into the program.
 
 pub mod accuracy_panel;
-pub mod bench;
 pub mod capture;
 pub mod demo;
 pub mod files;

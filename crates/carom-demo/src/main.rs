@@ -6,7 +6,7 @@
 //! `carom bench` sweeps solver settings and shows what accuracy costs in time.
 
 use carom::{Effect, SolverKind};
-use carom_demo::bench::{Engine, SweepOptions, sweep_to_folder};
+use carom_bench::sweep::{Engine, SweepOptions, sweep_to_folder};
 use carom_demo::run::{RunOptions, run};
 use carom_demo::snapshot::{self, SnapshotOptions, parse_size};
 use carom_demo::window::{self, WindowOptions};
@@ -158,21 +158,8 @@ struct EffectChanges(Vec<(Effect, bool)>);
 
 /// Parses `+continuous,-drag` into effects to switch on and off.
 fn parse_effects(text: &str) -> Result<EffectChanges, String> {
-    text.split(',')
-        .filter(|part| !part.is_empty())
-        .map(|part| {
-            let (on, name) = match part.split_at(1) {
-                ("+", name) => (true, name),
-                ("-", name) => (false, name),
-                _ => return Err(format!("`{part}`: start each effect with + or -")),
-            };
-            let effect = Effect::from_name(name).ok_or_else(|| {
-                let known: Vec<&str> = Effect::ALL.iter().map(|e| e.name()).collect();
-                format!("unknown effect `{name}`; known: {}", known.join(", "))
-            })?;
-            Ok((effect, on))
-        })
-        .collect::<Result<_, _>>()
+    let known: Vec<&str> = Effect::ALL.iter().map(|e| e.name()).collect();
+    snapshot::parse_toggles(text, ("effect", "effect"), &known, Effect::from_name)
         .map(EffectChanges)
 }
 

@@ -124,19 +124,31 @@ fn median(values: &mut [f64]) -> f64 {
 
 /// Parses `+aabbs,-shapes` into draw layers to switch on and off.
 pub fn parse_draw_changes(text: &str) -> Result<Vec<(DrawFlags, bool)>, String> {
+    let known: Vec<&str> = DrawFlags::NAMED.iter().map(|(n, _)| *n).collect();
+    parse_toggles(text, ("layer", "draw layer"), &known, DrawFlags::from_name)
+}
+
+/// Parses `+a,-b` into things to switch on (`true`) and off, in order: each a name that
+/// `find` knows. `what` names one in the errors, short and in full (`layer`, `draw layer`);
+/// `known` lists the names an unknown one is told.
+pub fn parse_toggles<T>(
+    text: &str,
+    what: (&str, &str),
+    known: &[&str],
+    find: impl Fn(&str) -> Option<T>,
+) -> Result<Vec<(T, bool)>, String> {
+    let (short, full) = what;
     text.split(',')
         .filter(|part| !part.is_empty())
         .map(|part| {
             let (on, name) = match part.split_at(1) {
                 ("+", name) => (true, name),
                 ("-", name) => (false, name),
-                _ => return Err(format!("`{part}`: start each layer with + or -")),
+                _ => return Err(format!("`{part}`: start each {short} with + or -")),
             };
-            let flag = DrawFlags::from_name(name).ok_or_else(|| {
-                let known: Vec<&str> = DrawFlags::NAMED.iter().map(|(n, _)| *n).collect();
-                format!("unknown draw layer `{name}`; known: {}", known.join(", "))
-            })?;
-            Ok((flag, on))
+            let found = find(name)
+                .ok_or_else(|| format!("unknown {full} `{name}`; known: {}", known.join(", ")))?;
+            Ok((found, on))
         })
         .collect()
 }

@@ -2,10 +2,10 @@
 //! measured front with the demo's setting on it, and the live step cost.
 
 use crate::accuracy_panel::{self, AccuracyPanel, Marker, Source};
-use crate::bench::{Engine, Point};
 use crate::demo::{Demo, HINTS};
 use crate::metrics::{Metrics, STAGES};
 use carom::{DrawFlags, Effect, SolverKind, SolverParams};
+use carom_bench::sweep::{Engine, Point};
 use egui_plot::{GridMark, HoverPosition, Legend, Line, MarkerShape, Plot, PlotPoint, PlotPoints};
 use egui_plot::{Points, Text};
 use std::ops::RangeInclusive;
@@ -377,7 +377,7 @@ fn front_plot(ui: &mut egui::Ui, points: &[Point], marker: Option<&Marker>) {
     let names: Vec<([f64; 2], String)> = points
         .iter()
         .filter(|p| p.error.is_finite())
-        .map(|p| (at(p), crate::bench::report::setting_name(&p.setting)))
+        .map(|p| (at(p), carom_bench::sweep::report::setting_name(&p.setting)))
         .collect();
     let unit = kind.unit();
     let xs = points

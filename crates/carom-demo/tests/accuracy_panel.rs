@@ -2,8 +2,8 @@
 //! without a window or GPU, and the test reads what it drew.
 
 use carom::SolverKind;
+use carom_bench::sweep::report;
 use carom_demo::accuracy_panel::{Marker, Source};
-use carom_demo::bench::report;
 use carom_demo::demo::Demo;
 use carom_demo::ui::{SIDEBAR_WIDTH, sidebar};
 use std::path::PathBuf;
@@ -17,13 +17,13 @@ fn demos() -> PathBuf {
 /// A CSV of the pendulum's points as `carom bench` writes them: soft step at 4 substeps over
 /// 1, 2 and 4 iterations, a slower 8-substep setting, sequential impulse, and Box2D.
 const PENDULUM: &str = "\
-engine,scene,error_kind,solver,iterations,substeps,ms_per_step,error,error_unit,max_penetration_m,joint_hertz,contact_hertz,stabilization
-carom,pendulum,Period,sequential impulse,8,1,0.004000,9.000e-1,%,0.000000,,,
-carom,pendulum,Period,soft step,1,4,0.010000,4.000e-1,%,0.000000,,,
-carom,pendulum,Period,soft step,2,4,0.020000,2.000e-1,%,0.000000,,,
-carom,pendulum,Period,soft step,4,4,0.040000,5.000e-2,%,0.000000,,,
-carom,pendulum,Period,soft step,1,8,0.080000,1.000e-2,%,0.000000,,,
-Box2D,pendulum,Period,soft step,1,4,0.012000,4.000e-1,%,,,30,
+engine,scene,error_kind,solver,iterations,substeps,ms_per_step,error,error_unit,max_penetration_m,joint_hertz,contact_hertz,stabilization,joints
+carom,pendulum,Period,sequential impulse,8,1,0.004000,9.000e-1,%,0.000000,,,,true
+carom,pendulum,Period,soft step,1,4,0.010000,4.000e-1,%,0.000000,,,,true
+carom,pendulum,Period,soft step,2,4,0.020000,2.000e-1,%,0.000000,,,,true
+carom,pendulum,Period,soft step,4,4,0.040000,5.000e-2,%,0.000000,,,,true
+carom,pendulum,Period,soft step,1,8,0.080000,1.000e-2,%,0.000000,,,,true
+Box2D,pendulum,Period,soft step,1,4,0.012000,4.000e-1,%,,,30,,true
 ";
 
 /// What one frame of the sidebar showed.

@@ -2,8 +2,8 @@
 //! ([`carom::DrawList`]) with wgpu: to a window through [`Screen`], into a render pass of your
 //! own through [`Renderer`], or to an offscreen texture read back as an image through
 //! [`Offscreen`], so tests and CI render real pixels with no window and no GPU (Mesa's
-//! lavapipe or llvmpipe do). WGSL lives in the crate's `shaders/` folder and is built in. The
-//! physics core does not depend on this crate.
+//! lavapipe or llvmpipe do). WGSL lives in the workspace's top-level `shaders/` and is built
+//! in. The physics core does not depend on this crate.
 
 mod camera;
 mod corners;

@@ -1,4 +1,5 @@
-//! The WGSL sources, from the crate's `shaders/` folder, built into the binary.
+//! The WGSL sources, built into the binary. They live in the workspace's top-level `shaders/`;
+//! the crate's `shaders/` is a symlink to it, which `cargo package` follows.
 
 /// Filled polygons.
 pub const POLYGONS_WGSL: &str = include_str!("../shaders/polygons.wgsl");

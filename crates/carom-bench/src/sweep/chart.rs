@@ -4,9 +4,7 @@
 
 use super::{Engine, Point, pareto_front};
 use plotters::prelude::*;
-use plotters::style::{FontStyle, register_font};
 use std::path::Path;
-use std::sync::Once;
 
 /// Size of one scene's panel, pixels.
 const PANEL: (u32, u32) = (640, 420);
@@ -21,7 +19,7 @@ pub fn write_chart(points: &[Point], path: &Path) -> Result<(), String> {
 
 /// Draws the chart of `points`: a panel per scene and one for the legend, two columns.
 pub fn draw_chart(points: &[Point]) -> Result<image::RgbImage, String> {
-    register_fonts();
+    crate::register_fonts();
     let mut scenes: Vec<&str> = points.iter().map(|p| p.scene.as_str()).collect();
     scenes.dedup();
     let rows = (scenes.len() + 1).div_ceil(2) as u32;
@@ -211,18 +209,6 @@ fn format_tick(x: f64) -> String {
 }
 
 /// Plotters draws text with a font registered by name; egui's default font serves.
-fn register_fonts() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        // The font is compiled in and known to parse.
-        let _ = register_font(
-            "sans-serif",
-            FontStyle::Normal,
-            epaint_default_fonts::UBUNTU_LIGHT,
-        );
-    });
-}
-
 fn draw_error(error: impl std::fmt::Display) -> String {
     format!("drawing the chart: {error}")
 }
@@ -230,7 +216,7 @@ fn draw_error(error: impl std::fmt::Display) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::{ErrorKind, Setting};
+    use crate::sweep::{ErrorKind, Setting};
     use carom::SolverKind;
 
     fn point(engine: Engine, iterations: u32, ms: f64, error: f64) -> Point {

@@ -19,7 +19,7 @@ pub const BULLET_STACK_BOXES: usize = 12;
 
 /// The workspace root, where `demos/` is.
 pub fn workspace() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
 /// A demo scene with `params`' solver, keeping the scene's own substeps and contact stiffness.
@@ -202,8 +202,8 @@ pub fn coincident_circles(params: SolverParams) -> (World, Vec<BodyHandle>) {
 /// A solver the world refuses.
 pub fn skinny_plank(params: SolverParams) -> (World, BodyHandle) {
     let mut world = world(params, &RESTING);
-    crate::skinny_box::add_course(&mut world);
-    let plank = world.add_body(crate::skinny_box::plank()).unwrap();
+    super::skinny_box::add_course(&mut world);
+    let plank = world.add_body(super::skinny_box::plank()).unwrap();
     (world, plank)
 }
 
@@ -233,7 +233,7 @@ pub fn bullet_shot(params: SolverParams, shot: usize) -> (World, BodyHandle) {
 /// # Panics
 /// A solver the world refuses.
 pub fn random_world(params: SolverParams, seed: u64, count: usize) -> World {
-    let mut rng = crate::Rng::new(seed);
+    let mut rng = super::Rng::new(seed);
     let mut world = world(
         params,
         &[

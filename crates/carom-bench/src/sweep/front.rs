@@ -38,7 +38,7 @@ pub fn best_within<'a>(points: &[&'a Point], engine: Engine, budget: f64) -> Opt
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::{ErrorKind, Setting};
+    use crate::sweep::{ErrorKind, Setting};
     use carom::SolverKind;
 
     fn point(engine: Engine, ms: f64, error: f64) -> Point {

@@ -1,46 +1,114 @@
 //! The sweep written down: a CSV of every point and a markdown report with one table per scene.
 
 use super::{Engine, Point, Setting, front};
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
 use std::fmt::Write as _;
 use web_time::{SystemTime, UNIX_EPOCH};
 
-/// The CSV header, in the order [`csv`] writes the columns.
+/// The CSV header, in the order [`csv()`] writes the columns.
 pub const CSV_HEADER: &str = "engine,scene,error_kind,solver,iterations,substeps,ms_per_step,\
                               error,error_unit,max_penetration_m,joint_hertz,contact_hertz,\
-                              stabilization";
+                              stabilization,joints";
+
+/// One line of the CSV, column for column as [`CSV_HEADER`] names them. Numbers are written
+/// as the report prints them (a microsecond, three significant digits), so a sweep read back
+/// and written again gives the same text.
+#[derive(Debug, Serialize, Deserialize)]
+struct Row {
+    /// Absent in files written before peers ran: every point is then carom's.
+    #[serde(default)]
+    engine: Option<String>,
+    scene: String,
+    error_kind: String,
+    solver: String,
+    iterations: u32,
+    substeps: u32,
+    #[serde(serialize_with = "micro")]
+    ms_per_step: f64,
+    #[serde(serialize_with = "three_digits")]
+    error: f64,
+    #[serde(default)]
+    error_unit: Option<String>,
+    #[serde(default, serialize_with = "micro_or_empty")]
+    max_penetration_m: Option<f64>,
+    #[serde(default, serialize_with = "shortest_or_empty")]
+    joint_hertz: Option<f32>,
+    #[serde(default, serialize_with = "shortest_or_empty")]
+    contact_hertz: Option<f32>,
+    #[serde(default)]
+    stabilization: Option<u32>,
+    /// Absent in files written before it was a column: then inferred (see [`parse_csv`]).
+    #[serde(default)]
+    joints: Option<bool>,
+}
+
+fn micro<S: serde::Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(&format!("{value:.6}"))
+}
+
+fn three_digits<S: serde::Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(&format_error(*value))
+}
+
+fn micro_or_empty<S: serde::Serializer>(
+    value: &Option<f64>,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    match value {
+        Some(value) => micro(value, serializer),
+        None => serializer.serialize_none(),
+    }
+}
+
+/// `120`, not `120.0`: the shortest text that reads back as the same number.
+fn shortest_or_empty<S: serde::Serializer>(
+    value: &Option<f32>,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    match value {
+        Some(value) => serializer.serialize_str(&value.to_string()),
+        None => serializer.serialize_none(),
+    }
+}
 
 /// Every point as one CSV line. NaN worlds have the error `inf`; `joint_hertz` is empty for
 /// the solver's default (60 Hz, capped at a quarter of the substep rate), `contact_hertz`
 /// where the scene's own contact stiffness ran, `stabilization` for all but Rapier, and
-/// `max_penetration_m` for the peers, whose overlap is not measured.
+/// `max_penetration_m` for the peers, whose overlap is not measured; `joints` says whether
+/// the scene has joints.
 pub fn csv(points: &[Point]) -> String {
-    let mut out = String::from(CSV_HEADER);
-    out.push('\n');
-    let or_empty = |value: Option<String>| value.unwrap_or_default();
-    for p in points {
-        let _ = writeln!(
-            out,
-            "{},{},{:?},{},{},{},{:.6},{},{},{},{},{},{}",
-            p.setting.engine.name(),
-            p.scene,
-            p.error_kind,
-            p.setting.solver.name(),
-            p.setting.iterations,
-            p.setting.substeps,
-            p.ms_per_step,
-            format_error(p.error),
-            p.error_kind.unit(),
-            or_empty(
-                p.max_penetration
-                    .is_finite()
-                    .then(|| format!("{:.6}", p.max_penetration))
-            ),
-            or_empty(p.setting.joint_hertz.map(|h| h.to_string())),
-            or_empty(p.setting.contact_hertz.map(|h| h.to_string())),
-            or_empty(p.setting.stabilization.map(|k| k.to_string())),
-        );
-    }
-    out
+    // The header is written even for no points, so the columns are always named.
+    let mut writer = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    let mut write = || -> csv::Result<()> {
+        writer.write_record(CSV_HEADER.split(','))?;
+        for p in points {
+            writer.serialize(Row {
+                engine: Some(p.setting.engine.name().to_string()),
+                scene: p.scene.clone(),
+                error_kind: format!("{:?}", p.error_kind),
+                solver: p.setting.solver.name().to_string(),
+                iterations: p.setting.iterations,
+                substeps: p.setting.substeps,
+                ms_per_step: p.ms_per_step,
+                error: p.error,
+                error_unit: Some(p.error_kind.unit().to_string()),
+                max_penetration_m: p.max_penetration.is_finite().then_some(p.max_penetration),
+                joint_hertz: p.setting.joint_hertz,
+                contact_hertz: p.setting.contact_hertz,
+                stabilization: p.setting.stabilization,
+                joints: Some(p.joints),
+            })?;
+        }
+        Ok(())
+    };
+    write().expect("writing to memory does not fail");
+    let bytes = writer
+        .into_inner()
+        .expect("flushing to memory does not fail");
+    String::from_utf8(bytes).expect("every field is text")
 }
 
 /// Where and when the sweep ran.
@@ -353,17 +421,16 @@ fn format_error(error: f64) -> String {
     }
 }
 
-/// Reads back a CSV that [`csv`] wrote: the points of a sweep, in file order.
+/// Reads back a CSV that [`csv()`] wrote: the points of a sweep, in file order.
 ///
-/// Columns are found by their header names, so both this header ([`CSV_HEADER`]) and the
-/// one before peers ran (no `engine`, `contact_hertz` nor `stabilization`: every point is
-/// carom's) are read. Empty `joint_hertz`, `contact_hertz` and `stabilization` fields are
-/// `None`, an empty `max_penetration_m` is NaN (a peer's, not measured), `inf` is a world
-/// gone NaN. The CSV does not say whether a scene has joints, so [`Point::joints`] is
-/// inferred as a sweep leaves it: a scene has joints when a point names a joint stiffness,
-/// or when carom ran on it and only the solvers that solve joints did ([`super::solves_joints`]).
-/// A sweep of soft step alone over a scene without joints therefore reads as one with joints,
-/// which only changes what the report says, not any number.
+/// Columns are found by their header names, so this header ([`CSV_HEADER`]) and older ones
+/// are read: the one before peers ran (no `engine`, `contact_hertz` nor `stabilization`: every
+/// point is carom's) and the one before `joints`. Empty `joint_hertz`, `contact_hertz` and
+/// `stabilization` fields are `None`, an empty `max_penetration_m` is NaN (a peer's, not
+/// measured), `inf` is a world gone NaN. Without a `joints` column, whether a scene has joints
+/// is inferred as a sweep leaves it: when a point names a joint stiffness, or when carom ran on
+/// it and only the solvers that solve joints did ([`super::solves_joints`]); that changes only
+/// what the report says, not any number.
 ///
 /// A line that does not fit is an error naming its line (the header is line 1), the column
 /// and what is wrong with it.
@@ -377,13 +444,16 @@ pub fn parse_csv(text: &str) -> Result<Vec<Point>, String> {
         "ms_per_step",
         "error",
     ];
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, line)| (i + 1, line.trim_end()))
-        .filter(|(_, line)| !line.is_empty());
-    let (_, header) = lines.next().ok_or("empty CSV: no header")?;
-    let columns: Vec<&str> = header.split(',').map(str::trim).collect();
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        // Lines of the wrong length are read, to be named with what is wrong.
+        .flexible(true)
+        .from_reader(text.as_bytes());
+    let headers = reader.headers().map_err(|e| e.to_string())?.clone();
+    if headers.is_empty() {
+        return Err("empty CSV: no header".into());
+    }
+    let columns: Vec<&str> = headers.iter().collect();
     let known: Vec<&str> = CSV_HEADER.split(',').collect();
     if let Some(unknown) = columns.iter().find(|c| !known.contains(c)) {
         return Err(format!(
@@ -391,112 +461,149 @@ pub fn parse_csv(text: &str) -> Result<Vec<Point>, String> {
         ));
     }
     if let Some(missing) = REQUIRED.iter().find(|r| !columns.contains(r)) {
-        return Err(format!("line 1: no `{missing}` column in `{header}`"));
+        return Err(format!(
+            "line 1: no `{missing}` column in `{}`",
+            columns.join(",")
+        ));
     }
-    let index = |name: &str| columns.iter().position(|c| *c == name);
+    let has = |name: &str| columns.contains(&name);
     let mut points = Vec::new();
-    for (number, line) in lines {
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        if fields.len() != columns.len() {
+    for record in reader.records() {
+        let record = record.map_err(|e| e.to_string())?;
+        let number = record.position().map_or(0, |p| p.line());
+        if record.len() != columns.len() {
             return Err(format!(
-                "line {number}: {} fields, the header has {}: `{line}`",
-                fields.len(),
-                columns.len()
+                "line {number}: {} fields, the header has {}: `{}`",
+                record.len(),
+                columns.len(),
+                record.iter().collect::<Vec<_>>().join(",")
             ));
         }
-        // The field of a column, empty where the file has no such column.
-        let field = |name: &str| index(name).map_or("", |i| fields[i]);
         let bad = |name: &str, what: &str| {
-            format!("line {number}: column `{name}`: `{}` {what}", field(name))
+            let field = columns
+                .iter()
+                .position(|c| *c == name)
+                .map_or("", |i| &record[i]);
+            format!("line {number}: column `{name}`: `{field}` {what}")
         };
-        let number_of = |name: &str| -> Result<f64, String> {
-            field(name)
-                .parse::<f64>()
-                .map_err(|_| bad(name, "is not a number"))
-        };
-        let count_of = |name: &str| -> Result<u32, String> {
-            match field(name).parse::<u32>() {
-                Ok(n) if n > 0 => Ok(n),
-                _ => Err(bad(name, "is not a count of 1 or more")),
+        let row: Row = record.deserialize(Some(&headers)).map_err(|e| {
+            let column = match e.kind() {
+                csv::ErrorKind::Deserialize { err, .. } => {
+                    err.field().and_then(|i| columns.get(i as usize).copied())
+                }
+                _ => None,
+            };
+            match column {
+                Some(name) => bad(name, not_a(name)),
+                None => format!("line {number}: {e}"),
             }
-        };
-        let engine = match field("engine") {
-            "" if index("engine").is_none() => Engine::Carom,
-            name => Engine::from_name(name)
-                .ok_or_else(|| bad("engine", "is no engine (carom, Box2D or Rapier)"))?,
-        };
-        let error_kind = CSV_ERROR_KINDS
-            .into_iter()
-            .find(|kind| format!("{kind:?}") == field("error_kind"))
-            .ok_or_else(|| bad("error_kind", "is no error kind"))?;
-        if index("error_unit").is_some() && field("error_unit") != error_kind.unit() {
-            return Err(bad(
-                "error_unit",
-                &format!("is not the unit of {error_kind:?} ({})", error_kind.unit()),
-            ));
-        }
-        let solver = carom::SolverKind::ALL
-            .into_iter()
-            .find(|kind| kind.name() == field("solver"))
-            .ok_or_else(|| bad("solver", "is no solver"))?;
-        let ms_per_step = number_of("ms_per_step")?;
-        let error = number_of("error")?;
-        if ms_per_step.is_nan() || ms_per_step < 0.0 {
-            return Err(bad("ms_per_step", "is not a time"));
-        }
-        if error.is_nan() || error < 0.0 {
-            return Err(bad("error", "is not an error (0 or more, or inf)"));
-        }
-        let max_penetration = match field("max_penetration_m") {
-            "" => f64::NAN,
-            _ => number_of("max_penetration_m")?,
-        };
-        let hertz_of = |name: &str| -> Result<Option<f32>, String> {
-            match field(name) {
-                "" => Ok(None),
-                text => match text.parse::<f32>() {
-                    Ok(hertz) if hertz.is_finite() && hertz > 0.0 => Ok(Some(hertz)),
-                    _ => Err(bad(name, "is not a stiffness in Hz")),
-                },
-            }
-        };
-        let stabilization = match field("stabilization") {
-            "" => None,
-            _ => Some(count_of("stabilization")?),
-        };
-        points.push(Point {
-            scene: field("scene").to_string(),
-            error_kind,
-            setting: Setting {
-                engine,
-                solver,
-                iterations: count_of("iterations")?,
-                substeps: count_of("substeps")?,
-                joint_hertz: hertz_of("joint_hertz")?,
-                contact_hertz: hertz_of("contact_hertz")?,
-                stabilization,
-            },
-            ms_per_step,
-            error,
-            max_penetration,
-            joints: false,
-        });
+        })?;
+        points.push(point_of(row, &has, &bad)?);
     }
-    // Which scenes have joints, as the sweep's choice of solvers shows it.
-    let joints: Vec<bool> = points
-        .iter()
-        .map(|p| {
-            let of_scene = || points.iter().filter(|q| q.scene == p.scene);
-            let carom = || of_scene().filter(|q| q.setting.engine == Engine::Carom);
-            of_scene().any(|q| q.setting.joint_hertz.is_some())
-                || (carom().next().is_some()
-                    && carom().all(|q| super::solves_joints(q.setting.solver)))
-        })
-        .collect();
-    for (p, joints) in points.iter_mut().zip(joints) {
-        p.joints = joints;
+    if !has("joints") {
+        infer_joints(&mut points);
     }
     Ok(points)
+}
+
+/// What a field of `column` that does not parse is not.
+fn not_a(column: &str) -> &'static str {
+    match column {
+        "iterations" | "substeps" | "stabilization" => "is not a count of 1 or more",
+        "joint_hertz" | "contact_hertz" => "is not a stiffness in Hz",
+        "joints" => "is not true or false",
+        _ => "is not a number",
+    }
+}
+
+/// The point a row holds, checked: `bad(column, what)` says what is wrong where.
+/// `has(column)` says whether the file has the column.
+fn point_of(
+    row: Row,
+    has: &dyn Fn(&str) -> bool,
+    bad: &dyn Fn(&str, &str) -> String,
+) -> Result<Point, String> {
+    let engine = match &row.engine {
+        None if !has("engine") => Engine::Carom,
+        name => Engine::from_name(name.as_deref().unwrap_or(""))
+            .ok_or_else(|| bad("engine", "is no engine (carom, Box2D or Rapier)"))?,
+    };
+    let error_kind = CSV_ERROR_KINDS
+        .into_iter()
+        .find(|kind| format!("{kind:?}") == row.error_kind)
+        .ok_or_else(|| bad("error_kind", "is no error kind"))?;
+    if has("error_unit") && row.error_unit.as_deref() != Some(error_kind.unit()) {
+        return Err(bad(
+            "error_unit",
+            &format!("is not the unit of {error_kind:?} ({})", error_kind.unit()),
+        ));
+    }
+    let solver = carom::SolverKind::ALL
+        .into_iter()
+        .find(|kind| kind.name() == row.solver)
+        .ok_or_else(|| bad("solver", "is no solver"))?;
+    if row.ms_per_step.is_nan() || row.ms_per_step < 0.0 {
+        return Err(bad("ms_per_step", "is not a time"));
+    }
+    if row.error.is_nan() || row.error < 0.0 {
+        return Err(bad("error", "is not an error (0 or more, or inf)"));
+    }
+    let count = |n: u32, name: &str| {
+        if n > 0 {
+            Ok(n)
+        } else {
+            Err(bad(name, not_a(name)))
+        }
+    };
+    let hertz = |hertz: Option<f32>, name: &str| match hertz {
+        Some(h) if !(h.is_finite() && h > 0.0) => Err(bad(name, not_a(name))),
+        other => Ok(other),
+    };
+    Ok(Point {
+        scene: row.scene,
+        error_kind,
+        setting: Setting {
+            engine,
+            solver,
+            iterations: count(row.iterations, "iterations")?,
+            substeps: count(row.substeps, "substeps")?,
+            joint_hertz: hertz(row.joint_hertz, "joint_hertz")?,
+            contact_hertz: hertz(row.contact_hertz, "contact_hertz")?,
+            stabilization: row
+                .stabilization
+                .map(|k| count(k, "stabilization"))
+                .transpose()?,
+        },
+        ms_per_step: row.ms_per_step,
+        error: row.error,
+        max_penetration: row.max_penetration_m.unwrap_or(f64::NAN),
+        joints: match row.joints {
+            // Inferred for the whole file afterwards.
+            None if !has("joints") => false,
+            None => return Err(bad("joints", not_a("joints"))),
+            Some(joints) => joints,
+        },
+    })
+}
+
+/// Which scenes have joints, for a file without the `joints` column, as the sweep's choice of
+/// solvers shows it: a point names a joint stiffness, or carom ran only solvers that solve
+/// joints on the scene.
+fn infer_joints(points: &mut [Point]) {
+    // Per scene: a joint stiffness named, carom ran, carom ran a solver without joints.
+    let mut seen: HashMap<String, (bool, bool, bool)> = HashMap::new();
+    for p in points.iter() {
+        let entry = seen.entry(p.scene.clone()).or_default();
+        entry.0 |= p.setting.joint_hertz.is_some();
+        if p.setting.engine == Engine::Carom {
+            entry.1 = true;
+            entry.2 |= !super::solves_joints(p.setting.solver);
+        }
+    }
+    for p in points.iter_mut() {
+        let (stiffness, carom, without_joints) = seen[&p.scene];
+        p.joints = stiffness || (carom && !without_joints);
+    }
 }
 
 /// Every [`super::ErrorKind`], as the CSV names them (their `Debug` names).
@@ -513,7 +620,7 @@ const CSV_ERROR_KINDS: [super::ErrorKind; 6] = [
 mod tests {
     use super::*;
 
-    use crate::bench::ErrorKind;
+    use crate::sweep::ErrorKind;
     use carom::SolverKind;
 
     fn point(substeps: u32, joint_hertz: Option<f32>) -> Point {
@@ -550,9 +657,12 @@ mod tests {
         let csv = csv(&points);
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines[0], CSV_HEADER);
-        assert!(CSV_HEADER.ends_with("max_penetration_m,joint_hertz,contact_hertz,stabilization"));
-        assert!(lines[2].ends_with(",%,0.000000,,,"), "{}", lines[2]);
-        assert!(lines[3].ends_with(",%,0.000000,120,,"), "{}", lines[3]);
+        assert!(
+            CSV_HEADER
+                .ends_with("max_penetration_m,joint_hertz,contact_hertz,stabilization,joints")
+        );
+        assert!(lines[2].ends_with(",%,0.000000,,,,true"), "{}", lines[2]);
+        assert!(lines[3].ends_with(",%,0.000000,120,,,true"), "{}", lines[3]);
         assert!(lines[3].starts_with("carom,chain,"), "{}", lines[3]);
     }
 
@@ -567,7 +677,7 @@ mod tests {
 #[cfg(test)]
 mod parse_tests {
     use super::*;
-    use crate::bench::ErrorKind;
+    use crate::sweep::ErrorKind;
     use carom::SolverKind;
 
     fn point(scene: &str, kind: ErrorKind, setting: Setting, ms: f64, error: f64) -> Point {
@@ -707,6 +817,8 @@ mod parse_tests {
         assert_eq!(points.len(), text.lines().count() - 1);
         assert!(points.iter().any(|p| p.scene == "pendulum" && p.joints));
         assert!(points.iter().any(|p| p.scene == "pyramid" && !p.joints));
+        // The file is exactly what the writer writes.
+        assert_eq!(csv(&points), text);
     }
 
     #[test]
@@ -719,7 +831,7 @@ mod parse_tests {
         short[3] = short[3].rsplit_once(',').unwrap().0.to_string();
         let message = error_of(&short);
         assert!(
-            message.starts_with("line 4: 12 fields, the header has 13"),
+            message.starts_with("line 4: 13 fields, the header has 14"),
             "{message}"
         );
 

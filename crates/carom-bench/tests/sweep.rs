@@ -2,7 +2,7 @@
 //! setting from a bad one, against the exact answer.
 
 use carom::SolverKind;
-use carom_demo::bench::{ErrorKind, Setting, SweepOptions, measure, sweep};
+use carom_bench::sweep::{ErrorKind, Setting, SweepOptions, measure, sweep};
 use std::path::PathBuf;
 
 fn scene(name: &str) -> (carom_scene::Scene, String) {
@@ -168,9 +168,10 @@ fn a_sweep_has_a_point_per_setting_and_substeps_only_for_soft_step() {
     assert_eq!(si_substeps, [1, 1]);
 }
 
+#[cfg(feature = "peers")]
 #[test]
 fn peers_run_the_same_scene_over_their_own_settings_and_box2d_times_the_pendulum_as_carom() {
-    use carom_demo::bench::Engine;
+    use carom_bench::sweep::Engine;
     let options = SweepOptions {
         scenes: vec![PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../demos/pendulum.ron")],
         runs: 1,

@@ -1,5 +1,5 @@
 //! Snapshot images: scenes rendered offscreen after fixed steps, compared with the golden PNGs
-//! in `tests/snapshots/`.
+//! in `crates/carom-demo/tests/snapshots/`.
 //!
 //! Rendering needs a wgpu adapter: Mesa's GL (llvmpipe, through EGL) or Vulkan (lavapipe). The
 //! adapter is requested across all backends, Vulkan first; `WGPU_BACKEND=gl|vulkan` picks one.
@@ -50,7 +50,7 @@ const CASES: [(&str, usize); 9] = [
 ];
 
 fn workspace() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
 /// How two images differ.
@@ -107,7 +107,8 @@ fn scenes_render_as_their_golden_images() {
         };
         let actual =
             render_scene(&scene, &options, &mut renderer).unwrap_or_else(|e| panic!("{e}"));
-        let golden_path = workspace().join(format!("tests/snapshots/{name}.png"));
+        let golden_path =
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("tests/snapshots/{name}.png"));
         if update {
             actual.save(&golden_path).unwrap();
             continue;

@@ -1,13 +1,14 @@
-//! `carom bench`: what accuracy costs in time. Every solver setting (solver × iterations ×
-//! substeps, and joint stiffness on scenes with joints) runs each scene a few times, sleeping
-//! off; each point of the sweep is its median ms/step and its error against the scene's exact
-//! answer ([`carom_scene::Accuracy`]). With peers, Box2D v3 and Rapier run the same scenes,
-//! rebuilt from carom's world, over their own settings. The results go to a CSV, a markdown
-//! report (which engine is best at each time budget) and a chart of each engine's Pareto
-//! front of error against time.
+//! The accuracy sweep behind `carom bench` (the demo's command line is its front, and the
+//! demo's accuracy panel runs it on the scene open): what accuracy costs in time. Every solver
+//! setting (solver × iterations × substeps, and joint stiffness on scenes with joints) runs
+//! each scene a few times, sleeping off; each point of the sweep is its median ms/step and its
+//! error against the scene's exact answer ([`carom_scene::Accuracy`]). With peers, Box2D v3
+//! and Rapier run the same scenes, rebuilt from carom's world, over their own settings. The
+//! results go to a CSV, a markdown report (which engine is best at each time budget) and a
+//! chart of each engine's Pareto front of error against time.
 
 // The PNG chart is the command line's; plotters' text has no fonts on wasm32.
-#[cfg(not(target_arch = "wasm32"))]
+#[cfg(feature = "native")]
 pub mod chart;
 pub mod engine;
 pub mod front;
@@ -272,7 +273,7 @@ pub fn median(values: &[f64]) -> f64 {
 /// Runs the sweep with a progress bar on the terminal and writes `accuracy.csv`,
 /// `README.md` (the report; `command` is how it was made) and `accuracy.png` to `out`.
 /// Returns the points.
-#[cfg(not(target_arch = "wasm32"))]
+#[cfg(feature = "native")]
 pub fn sweep_to_folder(
     options: &SweepOptions,
     out: &std::path::Path,

@@ -55,15 +55,47 @@ pub fn total_hinge_separation(world: &World) -> Real {
 }
 
 /// The mean period of a signal's upward zero crossings, linearly interpolated, from samples
-/// `(t, x)`; `None` with fewer than three crossings.
-pub fn period(samples: &[(Real, Real)]) -> Option<Real> {
+/// `(t, x)`; `None` with fewer than three crossings. The stability suite measures in carom's
+/// `Real`, the accuracy sweep in double precision.
+pub fn period<T: Sample>(samples: &[(T, T)]) -> Option<T> {
     let mut crossings = Vec::new();
     for pair in samples.windows(2) {
         let ((t0, x0), (t1, x1)) = (pair[0], pair[1]);
-        if x0 < 0.0 && x1 >= 0.0 {
+        if x0 < T::ZERO && x1 >= T::ZERO {
             crossings.push(t0 + (t1 - t0) * (-x0 / (x1 - x0)));
         }
     }
-    (crossings.len() >= 3)
-        .then(|| (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as Real)
+    (crossings.len() >= 3).then(|| {
+        (crossings[crossings.len() - 1] - crossings[0]) / T::from_count(crossings.len() - 1)
+    })
+}
+
+/// A number [`period`] measures in: `f32` or `f64`.
+pub trait Sample:
+    Copy
+    + PartialOrd
+    + std::ops::Add<Output = Self>
+    + std::ops::Sub<Output = Self>
+    + std::ops::Mul<Output = Self>
+    + std::ops::Div<Output = Self>
+    + std::ops::Neg<Output = Self>
+{
+    /// Zero.
+    const ZERO: Self;
+    /// A count as this type.
+    fn from_count(count: usize) -> Self;
+}
+
+impl Sample for f32 {
+    const ZERO: Self = 0.0;
+    fn from_count(count: usize) -> Self {
+        count as f32
+    }
+}
+
+impl Sample for f64 {
+    const ZERO: Self = 0.0;
+    fn from_count(count: usize) -> Self {
+        count as f64
+    }
 }

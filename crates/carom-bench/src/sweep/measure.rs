@@ -3,6 +3,7 @@
 
 use super::engine::Engine;
 use super::peer::Peer;
+use crate::cases::joint_measures::period;
 use carom::{BodyHandle, BodyKind, Effect, Real, SolverKind, SolverParams, Vec2, World};
 use carom_scene::{Accuracy, Scene, SceneWorld};
 use web_time::Instant;
@@ -352,21 +353,6 @@ impl Run {
             None => momentum_and_energy(&self.scene.world),
         }
     }
-}
-
-/// The mean period of a signal's upward zero crossings, linearly interpolated, from samples
-/// `(t, x)`; `None` with fewer than three crossings (as `tests/joint_measures.rs` measures
-/// the pendulum scene, in double precision).
-pub fn period(samples: &[(f64, f64)]) -> Option<f64> {
-    let mut crossings = Vec::new();
-    for pair in samples.windows(2) {
-        let ((t0, x0), (t1, x1)) = (pair[0], pair[1]);
-        if x0 < 0.0 && x1 >= 0.0 {
-            crossings.push(t0 + (t1 - t0) * (-x0 / (x1 - x0)));
-        }
-    }
-    (crossings.len() >= 3)
-        .then(|| (crossings[crossings.len() - 1] - crossings[0]) / (crossings.len() - 1) as f64)
 }
 
 /// The dynamic body whose centre is highest (the top box of a stack or pyramid).

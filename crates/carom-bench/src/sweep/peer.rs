@@ -1,5 +1,5 @@
-//! A peer's copy of a carom world: Box2D v3 or Rapier, rebuilt from it by `carom-bench`
-//! and stepped in its place. Without the `peers` feature (the web build, which cannot compile
+//! A peer's copy of a carom world: Box2D v3 or Rapier, rebuilt from it by
+//! `Box2dWorld::from_carom` or `RapierWorld::from_carom` and stepped in its place. Without the `peers` feature (the web build, which cannot compile
 //! Box2D's C) there are no peers, and asking for one is an error.
 
 use super::Engine;
@@ -13,8 +13,8 @@ pub use without_peers::Peer;
 #[cfg(feature = "peers")]
 mod with_peers {
     use super::*;
+    use crate::{Box2dWorld, RapierWorld};
     use carom::vec2;
-    use carom_bench::{Box2dWorld, RapierWorld};
     use std::collections::HashMap;
 
     /// A peer's copy of a carom world, stepped in its place.
