@@ -60,8 +60,10 @@
 //! - `max_rotation`: both turn a body at most π/4 per step (47 rad/s at 60 Hz); Box2D's is a
 //!   constant, so a carom world that changes it is not followed. Box2D's per-body
 //!   `allowFastRotation` is left off, as Box2D's default.
-//! - carom's `aabb_margin` (0.05 m) is Box2D's margin of a tenth of the shape's size, capped at
-//!   0.1 m: only the broadphase's work differs.
+//! - carom's `aabb_margin` (0.05 m for every moving collider) against Box2D's per-shape
+//!   margin, `min(0.05 m, 0.125 × the shape's largest extent from its centre)`
+//!   (`b2ComputeShapeMargin`); static shapes take the 0.02 m speculative distance in both:
+//!   only the broadphase's work differs.
 //! - `contact_recycling`: Box2D recycles contacts too (on per body by default); the switch is
 //!   left at Box2D's default.
 //! - Box2D's extras are left off or at their defaults: rolling resistance 0, tangent speed 0,
