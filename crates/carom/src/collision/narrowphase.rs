@@ -89,8 +89,7 @@ impl Narrowphase {
             |contact| refresh_manifold(contact, bodies, colliders, broadphase, options),
         );
         let mut deepest: Real = 0.0;
-        let mut changed = std::mem::take(&mut self.changed);
-        changed.clear();
+        self.changed.clear();
         // Listed by pair first, as filing them again moves contacts; backwards, the order they
         // are filed in (which decides the colours they take).
         for (index, &refresh) in self.refresh.iter().enumerate().rev() {
@@ -110,12 +109,12 @@ impl Narrowphase {
                 }
             }
             let contact = &set.contacts[index];
-            changed.push((pair_key(contact.collider_a, contact.collider_b), refresh));
+            let key = pair_key(contact.collider_a, contact.collider_b);
+            self.changed.push((key, refresh));
         }
-        for &(key, refresh) in &changed {
+        for &(key, refresh) in &self.changed {
             file(set, set.lookup[&key], refresh, bodies, colliders, wake);
         }
-        self.changed = changed;
         deepest
     }
 }
