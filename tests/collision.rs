@@ -658,7 +658,9 @@ fn collision_filters_pick_the_pairs_that_collide() {
         ),
     ] {
         let mut world = World::new();
-        world.set_effects(Effects::NONE);
+        world
+            .update_settings(|s| s.effects = Effects::NONE)
+            .unwrap();
         let first = world
             .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).filter(a))
             .unwrap();
@@ -673,7 +675,7 @@ fn collision_filters_pick_the_pairs_that_collide() {
         assert_eq!(world.contacts().len() == 1, collide, "{a:?} and {b:?}");
         // Swap the second's filter for the first's: a limb with a limb never collides.
         let collider = world.body(second).unwrap().colliders()[0];
-        world.set_collider_filter(collider, a).unwrap();
+        world.collider_mut(collider).unwrap().set_filter(a);
         world.step(1.0 / 60.0).unwrap();
         let same = a.collides_with(&a);
         assert_eq!(world.contacts().len() == 1, same, "{a:?} twice");
@@ -681,8 +683,8 @@ fn collision_filters_pick_the_pairs_that_collide() {
     }
 }
 
-/// A filter that only category-1 colliders collide with ("odd" ones), and one that finds only
-/// category-1 colliders.
+/// A filter that only category-1 colliders collide with ("odd" ones), and one that collides
+/// only with category-1 colliders.
 const ODD: carom::CollisionFilter = carom::CollisionFilter {
     category: 2,
     mask: 1,
@@ -694,13 +696,28 @@ const PLAIN: carom::CollisionFilter = carom::CollisionFilter {
     group: 0,
 };
 
+/// The filters the query tests try: every collider, what a [`PLAIN`] collider collides with
+/// (no odd ones), odd ones only, and every collider but the first body's.
+fn query_filters(world: &World) -> [carom::QueryFilter; 4] {
+    use carom::QueryFilter;
+    let first = world.bodies().next().expect("a body").handle();
+    [
+        QueryFilter::ALL,
+        QueryFilter::like(PLAIN),
+        QueryFilter::mask(ODD.category),
+        QueryFilter::ALL.excluding(first),
+    ]
+}
+
 /// `count` circles and regular polygons scattered over 30 x 30 m at random angles, every
 /// `odd_every`th [`ODD`], every `static_every`th static (0: none), stepped once so their
 /// boxes are placed; nothing simulated.
 fn scattered_world(rng: &mut Rng, count: usize, odd_every: usize, static_every: usize) -> World {
     use carom::{CollisionFilter, Effects};
     let mut world = World::new();
-    world.set_effects(Effects::NONE);
+    world
+        .update_settings(|s| s.effects = Effects::NONE)
+        .unwrap();
     for i in 0..count {
         let shape = if i % 2 == 0 {
             Shape::circle(rng.range(0.1, 0.8))
@@ -730,7 +747,7 @@ fn scattered_world(rng: &mut Rng, count: usize, odd_every: usize, static_every: 
 /// random worlds, for random boxes and shapes, with and without a filter.
 #[test]
 fn box_and_shape_queries_agree_with_brute_force() {
-    use carom::{Aabb, CollisionFilter};
+    use carom::Aabb;
     let mut rng = Rng::new(0x9e7);
     for seed in 0..8 {
         let world = scattered_world(&mut rng, 120, 5, 3);
@@ -744,8 +761,8 @@ fn box_and_shape_queries_agree_with_brute_force() {
                 vec2(x, y),
                 rng.range(0.0, 6.0),
             );
-            for filter in [CollisionFilter::DEFAULT, PLAIN] {
-                let wanted = |c: &carom::Collider| filter.collides_with(&c.filter());
+            for filter in query_filters(&world) {
+                let wanted = |c: &carom::Collider| filter.sees(&c.filter(), c.body());
                 let mut boxes: Vec<_> = world
                     .colliders()
                     .filter(|c| wanted(c) && c.aabb().overlaps(&probe))
@@ -771,7 +788,7 @@ fn box_and_shape_queries_agree_with_brute_force() {
 /// allowed by a filter, as casting against every collider does, in random worlds.
 #[test]
 fn ray_casts_agree_with_brute_force() {
-    use carom::{CollisionFilter, Ray};
+    use carom::Ray;
     let mut rng = Rng::new(0x4a7);
     let mut hits_seen = 0;
     for seed in 0..6 {
@@ -779,12 +796,12 @@ fn ray_casts_agree_with_brute_force() {
         for _ in 0..60 {
             let origin = vec2(rng.range(-18.0, 18.0), rng.range(-18.0, 18.0));
             let ray = Ray::new(origin, vec2(rng.range(-30.0, 30.0), rng.range(-30.0, 30.0)));
-            for filter in [CollisionFilter::DEFAULT, PLAIN] {
+            for filter in query_filters(&world) {
                 // Every collider, cast in its body's frame (each body is one shape at its
                 // origin).
                 let mut expected: Vec<(f32, carom::BodyHandle)> = world
                     .colliders()
-                    .filter(|c| filter.collides_with(&c.filter()))
+                    .filter(|c| filter.sees(&c.filter(), c.body()))
                     .filter_map(|c| {
                         let body = world.body(c.body()).unwrap();
                         let inverse = body.rotation().inverse();
@@ -802,9 +819,7 @@ fn ray_casts_agree_with_brute_force() {
                     .map(|h| (h.fraction, h.body))
                     .collect();
                 assert_eq!(all, expected, "seed {seed}");
-                let closest = world
-                    .cast_ray_filtered(&ray, filter)
-                    .map(|h| (h.fraction, h.body));
+                let closest = world.cast_ray(&ray, filter).map(|h| (h.fraction, h.body));
                 assert_eq!(closest, expected.first().copied(), "seed {seed}");
                 hits_seen += all.len();
             }
@@ -837,7 +852,7 @@ fn moved(shape: &WorldShape, translation: Vec2, fraction: Real) -> WorldShape {
 /// closest hit is the first of them; the filter is obeyed.
 #[test]
 fn shape_casts_agree_with_brute_force() {
-    use carom::{CollisionFilter, SHAPE_CAST_TOLERANCE};
+    use carom::SHAPE_CAST_TOLERANCE;
     const SAMPLES: usize = 3000;
     let mut rng = Rng::new(0x5ca7);
     let (mut hits_seen, mut overlaps_seen) = (0, 0);
@@ -848,13 +863,13 @@ fn shape_casts_agree_with_brute_force() {
             let shape = random_cast_shape(&mut rng, at);
             let translation = vec2(rng.range(-20.0, 20.0), rng.range(-20.0, 20.0));
             let path = shape.aabb().union(&moved(&shape, translation, 1.0).aabb());
-            for filter in [CollisionFilter::DEFAULT, PLAIN] {
+            for filter in query_filters(&world) {
                 let hits = world.cast_shape_all(&shape, translation, filter);
                 let closest = world.cast_shape(&shape, translation, filter);
                 assert_eq!(closest, hits.first().copied(), "seed {seed}");
                 assert!(hits.windows(2).all(|w| w[0].fraction <= w[1].fraction));
                 for c in world.colliders() {
-                    let allowed = filter.collides_with(&c.filter());
+                    let allowed = filter.sees(&c.filter(), c.body());
                     let handle = world.body(c.body()).unwrap().colliders()[0];
                     let found = hits.iter().find(|h| h.collider == handle);
                     if !allowed || !c.aabb().overlaps(&path) {
@@ -922,7 +937,7 @@ fn shape_casts_agree_with_brute_force() {
 /// it, from behind passes through.
 #[test]
 fn shape_casts_pass_through_a_chain_from_behind() {
-    use carom::{ChainDef, CollisionFilter};
+    use carom::{ChainDef, QueryFilter};
     let mut world = World::new();
     // Solid below, walking right to left.
     let chain = ChainDef::open([vec2(10.0, 0.0), vec2(0.0, 0.0), vec2(-10.0, 0.0)]);
@@ -932,7 +947,7 @@ fn shape_casts_pass_through_a_chain_from_behind() {
     world.step(1.0 / 60.0).unwrap();
     let ball = |y| WorldShape::at(&Shape::circle(0.5), vec2(1.0, y), 0.0);
     let down = world
-        .cast_shape(&ball(3.0), vec2(0.0, -6.0), CollisionFilter::DEFAULT)
+        .cast_shape(&ball(3.0), vec2(0.0, -6.0), QueryFilter::ALL)
         .expect("from above, it lands on the chain");
     assert!(
         (down.fraction - 2.5 / 6.0).abs() < 1e-3,
@@ -945,6 +960,6 @@ fn shape_casts_pass_through_a_chain_from_behind() {
         "{:?}",
         down.point
     );
-    let up = world.cast_shape(&ball(-3.0), vec2(0.0, 6.0), CollisionFilter::DEFAULT);
+    let up = world.cast_shape(&ball(-3.0), vec2(0.0, 6.0), QueryFilter::ALL);
     assert_eq!(up, None, "from below it passes through");
 }

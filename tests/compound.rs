@@ -2,7 +2,8 @@
 //! world's collider API (add, remove, density, kind).
 
 use carom::{
-    BodyDef, BodyKind, CaromError, ColliderDef, Effect, Ray, Real, Shape, Vec2, World, vec2,
+    BodyDef, BodyKind, CaromError, ColliderDef, Effect, QueryFilter, Ray, Real, Shape, Vec2, World,
+    vec2,
 };
 use std::f32::consts::PI;
 
@@ -133,7 +134,9 @@ fn a_compound_body_lands_and_rests_on_its_colliders() {
 #[test]
 fn colliders_of_one_body_never_collide_with_each_other() {
     let mut world = World::new();
-    world.set_effect(Effect::Gravity, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Gravity, false))
+        .unwrap();
     let body = world
         .add_body(
             BodyDef::dynamic(Shape::rect(1.0, 1.0))
@@ -157,7 +160,10 @@ fn queries_find_a_body_by_any_of_its_colliders() {
     assert_eq!(world.body_at(vec2(0.0, 0.2)), None, "between bar and balls");
     let right_ball = world.body(bell).unwrap().colliders()[2];
     let hit = world
-        .cast_ray(&Ray::new(vec2(5.0, 0.0), vec2(-10.0, 0.0)))
+        .cast_ray(
+            &Ray::new(vec2(5.0, 0.0), vec2(-10.0, 0.0)),
+            QueryFilter::ALL,
+        )
         .unwrap();
     assert_eq!((hit.body, hit.collider), (bell, right_ball));
     assert!((hit.point - vec2(1.3, 0.0)).norm() < 1e-5);
@@ -188,14 +194,14 @@ fn adding_and_removing_colliders_keeps_the_mass_right() {
     assert_close("mass of two", two.mass(), 2.0);
     assert_close("centre of two", two.local_center().x, 0.5);
     assert_close("inertia of two", two.inertia(), 2.0 / 6.0 + 2.0 * 0.25);
-    world.set_collider_density(extra, 3.0).unwrap();
+    world.collider_mut(extra).unwrap().set_density(3.0).unwrap();
     assert_close("heavier", world.body(body).unwrap().mass(), 4.0);
     // A dynamic body may not lose all its mass.
     let first = world.body(body).unwrap().colliders()[0];
-    world.set_collider_density(first, 0.0).unwrap();
-    assert!(world.set_collider_density(extra, 0.0).is_err());
+    world.collider_mut(first).unwrap().set_density(0.0).unwrap();
+    assert!(world.collider_mut(extra).unwrap().set_density(0.0).is_err());
     assert_close("unchanged", world.body(body).unwrap().mass(), 3.0);
-    world.set_collider_density(first, 1.0).unwrap();
+    world.collider_mut(first).unwrap().set_density(1.0).unwrap();
     let removed = world.remove_collider(extra).unwrap();
     assert_eq!(removed.body(), body);
     let one = world.body(body).unwrap();
@@ -219,7 +225,11 @@ fn a_kind_change_rebuilds_the_mass() {
         .unwrap();
     assert_eq!(world.body(body).unwrap().mass(), 0.0);
     assert_eq!(world.body(body).unwrap().local_center(), Vec2::zeros());
-    world.set_body_kind(body, BodyKind::Dynamic).unwrap();
+    world
+        .body_mut(body)
+        .unwrap()
+        .set_kind(BodyKind::Dynamic)
+        .unwrap();
     let moving = world.body(body).unwrap();
     let disc = PI * 0.25;
     assert_close("mass", moving.mass(), 1.0 + disc);
@@ -233,7 +243,9 @@ fn a_kind_change_rebuilds_the_mass() {
 fn removing_a_body_keeps_the_others_colliders_with_them() {
     // The last body moves into the removed one's place; its colliders must follow it.
     let mut world = World::new();
-    world.set_effect(Effect::Gravity, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Gravity, false))
+        .unwrap();
     let first = world
         .add_body(BodyDef::dynamic(Shape::circle(0.5)))
         .unwrap();
@@ -257,7 +269,9 @@ fn removing_a_body_keeps_the_others_colliders_with_them() {
 #[test]
 fn a_collider_added_to_a_spinning_body_keeps_every_point_moving_as_it_was() {
     let mut world = World::new();
-    world.set_effect(Effect::Gravity, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Gravity, false))
+        .unwrap();
     let body = world
         .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).angular_velocity(2.0))
         .unwrap();

@@ -58,7 +58,8 @@ fn the_tunneling_demo_tunnels_until_continuous_collision_is_on() {
         let mut scene = load(&file).unwrap();
         scene
             .world
-            .set_effect(carom::Effect::Continuous, continuous);
+            .update_settings(|s| s.effects.set(carom::Effect::Continuous, continuous))
+            .unwrap();
         for _ in 0..30 {
             scene.step().unwrap();
         }

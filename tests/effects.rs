@@ -93,7 +93,9 @@ fn effects_switch_at_run_time() {
     let mut world = busy_world(Effects::ALL);
     world.step(DT).unwrap();
     assert!(world.stats().work.gravity_terms > 0);
-    world.set_effect(Effect::Gravity, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Gravity, false))
+        .unwrap();
     world.step(DT).unwrap();
     assert_eq!(world.stats().work.gravity_terms, 0);
     assert!(!world.effects().contains(Effect::Gravity));
@@ -102,6 +104,8 @@ fn effects_switch_at_run_time() {
         world.step(DT).unwrap();
     }
     assert!(world.stats().sleeping_bodies > 0);
-    world.set_effect(Effect::Sleeping, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+        .unwrap();
     assert!(world.bodies().all(|b| !b.is_sleeping()));
 }

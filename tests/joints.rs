@@ -139,7 +139,9 @@ fn a_rod_holds_its_length_and_a_rope_only_its_maximum() {
 #[test]
 fn a_distance_spring_rings_at_its_frequency() {
     let mut world = world(SolverKind::SoftStep);
-    world.set_gravity(Vec2::zeros()).unwrap();
+    world
+        .update_settings(|s| s.gravity = Vec2::zeros())
+        .unwrap();
     let pivot = anchor(&mut world, Vec2::zeros());
     let bob = ball(&mut world, vec2(0.0, -1.2), 0.1, 1.0);
     let mut def = JointDef::distance(pivot, bob, Vec2::zeros(), vec2(0.0, -1.2)).spring(2.0, 0.0);
@@ -261,7 +263,9 @@ fn a_slider_stays_on_its_axis_within_its_limits() {
             max_force: 100.0,
         });
         world
-            .set_joint_kind(slider, JointKind::Prismatic(settings))
+            .joint_mut(slider)
+            .unwrap()
+            .set_kind(JointKind::Prismatic(settings))
             .unwrap();
         step(&mut world, 30);
         let v = world.body(block).unwrap().linear_velocity().dot(&axis);
@@ -396,7 +400,9 @@ fn a_wheel_rides_its_suspension_and_turns() {
 fn a_motor_joint_drives_to_its_offset() {
     for kind in SOLVERS {
         let mut world = world(kind);
-        world.set_gravity(Vec2::zeros()).unwrap();
+        world
+            .update_settings(|s| s.gravity = Vec2::zeros())
+            .unwrap();
         let base = anchor(&mut world, Vec2::zeros());
         let puck = world
             .add_body(BodyDef::dynamic(Shape::rect(0.3, 0.3)).position(vec2(1.0, 0.0)))
@@ -410,7 +416,9 @@ fn a_motor_joint_drives_to_its_offset() {
         settings.linear_offset = vec2(-1.0, 2.0);
         settings.angular_offset = 1.0;
         world
-            .set_joint_kind(motor, JointKind::Motor(settings))
+            .joint_mut(motor)
+            .unwrap()
+            .set_kind(JointKind::Motor(settings))
             .unwrap();
         step(&mut world, 300);
         let body = world.body(puck).unwrap();
@@ -439,7 +447,11 @@ fn a_mouse_joint_pulls_within_its_force() {
         let grab = world
             .add_joint(JointDef::mouse(crate_, vec2(0.25, 0.25), 1000.0))
             .unwrap();
-        world.set_mouse_target(grab, vec2(3.25, 2.25)).unwrap();
+        world
+            .joint_mut(grab)
+            .unwrap()
+            .set_mouse_target(vec2(3.25, 2.25))
+            .unwrap();
         step(&mut world, 240);
         let point = world.body(crate_).unwrap().world_point(vec2(0.25, 0.25));
         assert!(
@@ -479,7 +491,9 @@ fn joined_bodies_collide_only_if_allowed() {
         (a, b)
     };
     let mut world = world(SolverKind::SoftStep);
-    world.set_gravity(Vec2::zeros()).unwrap();
+    world
+        .update_settings(|s| s.gravity = Vec2::zeros())
+        .unwrap();
     let (a, b) = overlapping(&mut world);
     let filter = world.add_joint(JointDef::filter(a, b)).unwrap();
     step(&mut world, 30);
@@ -492,7 +506,9 @@ fn joined_bodies_collide_only_if_allowed() {
     assert!(gap > 0.99, "pushed apart once free: {gap}");
 
     let mut world = self::world(SolverKind::SoftStep);
-    world.set_gravity(Vec2::zeros()).unwrap();
+    world
+        .update_settings(|s| s.gravity = Vec2::zeros())
+        .unwrap();
     let (a, b) = overlapping(&mut world);
     world
         .add_joint(JointDef::revolute(a, b, vec2(0.25, 0.0)).collide_connected(true))
@@ -625,9 +641,19 @@ fn bad_joints_are_refused() {
     let hinge = world
         .add_joint(JointDef::revolute(a, b, vec2(1.0, 0.0)))
         .unwrap();
-    let error = world.set_joint_kind(hinge, JointKind::Filter).unwrap_err();
+    let error = world
+        .joint_mut(hinge)
+        .unwrap()
+        .set_kind(JointKind::Filter)
+        .unwrap_err();
     assert!(matches!(error, CaromError::JointKindChange { .. }));
-    assert!(world.set_mouse_target(hinge, Vec2::zeros()).is_err());
+    assert!(
+        world
+            .joint_mut(hinge)
+            .unwrap()
+            .set_mouse_target(Vec2::zeros())
+            .is_err()
+    );
     world.remove_joint(hinge).unwrap();
     assert!(matches!(
         world.remove_joint(hinge),
@@ -664,7 +690,9 @@ fn a_kinematic_body_carries_what_hangs_from_it() {
 /// through a lever `far` long.
 fn far_anchor_world(solver: SolverKind, kind: &str, far: Real) -> World {
     let mut world = World::new();
-    world.set_solver(SolverParams::for_kind(solver)).unwrap();
+    world
+        .update_settings(|s| s.solver = SolverParams::for_kind(solver))
+        .unwrap();
     let pin = vec2(3.0, 5.0);
     let anchor = world
         .add_body(BodyDef::static_body(Shape::circle(0.1)).position(pin))

@@ -197,14 +197,18 @@ fn bodies_with_bad_values_are_refused_at_the_door() {
     let bad_collider = ColliderDef::new(Shape::circle(Real::NAN));
     assert!(world.add_collider(floor, bad_collider).is_err());
     let only = world.body(floor).unwrap().colliders()[0];
-    assert!(world.set_collider_density(only, -1.0).is_err());
+    assert!(world.collider_mut(only).unwrap().set_density(-1.0).is_err());
     assert!(matches!(
         world.remove_collider(only),
         Err(CaromError::NoCollider)
     ));
     assert_eq!(world.body(floor).unwrap().colliders(), &[only]);
     assert_eq!(world.collider(only).unwrap().shape(), &square());
-    assert!(world.set_gravity(vec2(0.0, Real::NAN)).is_err());
+    assert!(
+        world
+            .update_settings(|s| s.gravity = vec2(0.0, Real::NAN))
+            .is_err()
+    );
     assert_eq!(world.gravity(), vec2(0.0, -10.0));
 }
 

@@ -259,7 +259,10 @@ fn pyramid_of_20_stands_for_20_s_without_sinking() {
     check("pyramid_20", |params| {
         let mut run = Run::default();
         let mut scene = scene("pyramid", params);
-        scene.world.set_effect(Effect::Sleeping, false);
+        scene
+            .world
+            .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+            .unwrap();
         let top = highest(&scene.world);
         let start = position(&scene.world, top);
         let mut deepest: f64 = 0.0;
@@ -317,7 +320,10 @@ fn heavy_boxes_on_pyramids_stay_up() {
     check("high_mass_ratio_pyramids", |params| {
         let mut run = Run::default();
         let mut scene = scene("high_mass_ratio", params);
-        scene.world.set_effect(Effect::Sleeping, false);
+        scene
+            .world
+            .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+            .unwrap();
         settles(&mut scene.world, 4.0, 2.0, &mut run);
         run
     });

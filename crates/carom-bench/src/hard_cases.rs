@@ -587,7 +587,10 @@ fn stack_sleeps(engine: Engine, count: usize, o: &mut Outcome) -> Res<()> {
 
 fn pyramid_20(engine: Engine, o: &mut Outcome) -> Res<()> {
     let mut scene = worlds::scene("pyramid", soft_step());
-    scene.world.set_effect(Effect::Sleeping, false);
+    scene
+        .world
+        .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+        .expect("switching an effect keeps the settings valid");
     let slop = f64::from(carom::LINEAR_SLOP);
     on(engine, scene.world, |w| {
         let top = highest(w)?;
@@ -632,7 +635,10 @@ fn settles(w: &mut dyn CaseWorld, seconds: f64, settle: f64, o: &mut Outcome) ->
 
 fn heavy_tops(engine: Engine, o: &mut Outcome) -> Res<()> {
     let mut scene = worlds::scene("high_mass_ratio", soft_step());
-    scene.world.set_effect(Effect::Sleeping, false);
+    scene
+        .world
+        .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+        .expect("switching an effect keeps the settings valid");
     on(engine, scene.world, |w| settles(w, 4.0, 2.0, o))
 }
 
@@ -1005,7 +1011,7 @@ fn joint_scene(name: &str) -> Res<(carom_scene::SceneWorld, Vec<JointInfo>)> {
     let mut scene = worlds::scene(name, soft_step());
     scene
         .world
-        .set_solver(soft_step())
+        .update_settings(|s| s.solver = soft_step())
         .map_err(|e| e.to_string())?;
     let world = &scene.world;
     let mut joints = Vec::new();

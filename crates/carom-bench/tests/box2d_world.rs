@@ -86,7 +86,9 @@ fn mapping_keeps_bodies_masses_and_friction() {
 #[test]
 fn friction_off_gives_frictionless_shapes_and_triangles_keep_their_vertices() {
     let mut world = World::new();
-    world.set_effect(Effect::Friction, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Friction, false))
+        .unwrap();
     let triangle = Shape::polygon(&[vec2(-0.5, -0.5), vec2(0.5, -0.5), vec2(0.0, 0.5)]).unwrap();
     world
         .add_body(

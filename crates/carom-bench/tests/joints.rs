@@ -62,7 +62,9 @@ fn same_periods(periods: [f32; 3], tolerance: f32, what: &str) {
 /// A static pivot at the origin and a 0.1 m ball hung 1 m from it at 10° from the vertical.
 fn pendulum() -> (World, BodyHandle, BodyHandle, Vec2) {
     let mut world = World::new();
-    world.set_effect(Effect::Sleeping, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+        .unwrap();
     let pivot = world
         .add_body(BodyDef::static_body(Shape::rect(0.1, 0.1)))
         .unwrap();
@@ -112,7 +114,9 @@ fn a_rope_and_a_spring_hold_as_carom_s_do() {
     // A ball on a slack rope of 1.5 m drops and hangs at the rope's length; a ball on a 2 Hz
     // undamped spring of 1 m bounces at 2 Hz (no gravity for this one: `gravity_scale` 0).
     let mut world = World::new();
-    world.set_effect(Effect::Sleeping, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+        .unwrap();
     let hook = world
         .add_body(BodyDef::static_body(Shape::rect(0.1, 0.1)))
         .unwrap();
@@ -148,7 +152,7 @@ fn a_rope_and_a_spring_hold_as_carom_s_do() {
     if let carom::JointKind::Distance(d) = &mut kind {
         d.length = 1.0;
     }
-    world.set_joint_kind(spring, kind).unwrap();
+    world.joint_mut(spring).unwrap().set_kind(kind).unwrap();
     let hung = tracks(&mut world.clone(), 1, 180);
     for (engine, t) in ["carom", "Box2D", "Rapier"].iter().zip(&hung) {
         let y = t.last().unwrap().0[1];
@@ -169,7 +173,9 @@ fn hinge_limits_and_reference_angles_map_to_the_peers_frames() {
     // Body A (static) at 0.3 rad, body B at 1.0 rad, hinged at B's left end: gravity turns B
     // down until its limit, 0.1 rad below where it started relative to A.
     let mut world = World::new();
-    world.set_effect(Effect::Sleeping, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+        .unwrap();
     let a = world
         .add_body(BodyDef::static_body(Shape::rect(0.5, 0.1)).angle(0.3))
         .unwrap();
@@ -203,7 +209,9 @@ fn a_hinge_motor_and_a_hinge_spring_act_alike() {
     // A wheel on a static hub driven at 3 rad/s; beside it a disc on a 1 Hz undamped
     // torsion spring, started turning.
     let mut world = World::new();
-    world.set_effect(Effect::Sleeping, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+        .unwrap();
     let hub = world
         .add_body(BodyDef::static_body(Shape::circle(0.05)))
         .unwrap();
@@ -259,7 +267,9 @@ fn sliders_follow_their_axis_to_their_limits_and_spring_at_their_rate() {
     // A box on a slider tilted 30° below the horizontal slides down it to its limit at 0.5 m;
     // beside it, one on a 1.5 Hz undamped spring along a 60° axis, no gravity, started off.
     let mut world = World::new();
-    world.set_effect(Effect::Sleeping, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+        .unwrap();
     let ground = world
         .add_body(BodyDef::static_body(Shape::rect(0.1, 0.1)).position(vec2(0.0, 5.0)))
         .unwrap();
@@ -291,7 +301,7 @@ fn sliders_follow_their_axis_to_their_limits_and_spring_at_their_rate() {
     if let carom::JointKind::Prismatic(p) = &mut kind {
         p.target_translation = -0.3;
     }
-    world.set_joint_kind(handle, kind).unwrap();
+    world.joint_mut(handle).unwrap().set_kind(kind).unwrap();
     let slid = tracks(&mut world.clone(), 1, 120);
     for (engine, t) in ["carom", "Box2D", "Rapier"].iter().zip(&slid) {
         let ([x, y], th) = *t.last().unwrap();
@@ -320,7 +330,9 @@ fn sliders_follow_their_axis_to_their_limits_and_spring_at_their_rate() {
 fn wheels_sag_on_their_suspension_and_turn_at_their_motor_s_speed() {
     // A 2 Hz, ζ 0.7 suspension holds a wheel under gravity: it sags g / ω² = 6.3 cm.
     let mut world = World::new();
-    world.set_effect(Effect::Sleeping, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+        .unwrap();
     let chassis = world
         .add_body(BodyDef::static_body(Shape::rect(1.0, 0.1)).position(vec2(0.0, 1.0)))
         .unwrap();
@@ -360,7 +372,9 @@ fn a_weld_holds_a_beam_out_and_a_soft_one_bends_alike() {
     // Two 2 m beams welded at one end to a wall: one rigidly, one through a 2 Hz angular
     // spring (ζ 1), which lets it droop to about the same angle in every engine.
     let mut world = World::new();
-    world.set_effect(Effect::Sleeping, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+        .unwrap();
     let wall = world
         .add_body(BodyDef::static_body(Shape::rect(0.1, 2.0)))
         .unwrap();
@@ -407,7 +421,9 @@ fn a_weld_holds_a_beam_out_and_a_soft_one_bends_alike() {
 /// a filter joint: where the joint keeps them from colliding the box falls through.
 fn box_on_floor(join: impl Fn(BodyHandle, BodyHandle) -> JointDef) -> [f32; 3] {
     let mut world = World::new();
-    world.set_effect(Effect::Sleeping, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+        .unwrap();
     let floor = world
         .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)).position(vec2(0.0, -0.5)))
         .unwrap();
@@ -440,7 +456,9 @@ fn collide_connected_and_filter_joints_decide_contacts_in_the_peers() {
 /// `filter`: how many pairs Box2D and Rapier track after a few steps.
 fn pairs_in_grid(filter: CollisionFilter) -> (usize, usize) {
     let mut world = World::new();
-    world.set_effect(Effect::Gravity, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Gravity, false))
+        .unwrap();
     for k in 0..10 {
         for i in 0..10 {
             world

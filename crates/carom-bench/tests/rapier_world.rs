@@ -72,7 +72,9 @@ fn pyramid_converts_with_same_bodies_and_mass() {
 #[test]
 fn sleeping_off_means_no_rapier_body_can_sleep() {
     let mut world = pyramid(3);
-    world.set_effect(Effect::Sleeping, false);
+    world
+        .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+        .unwrap();
     let rapier = RapierWorld::from_carom(&world, DT).unwrap();
     for (_, body) in rapier.bodies().iter() {
         assert!(body.activation().normalized_linear_threshold < 0.0);

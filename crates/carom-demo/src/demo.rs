@@ -170,9 +170,11 @@ impl Demo {
         self.load(&path)?;
         self.scene
             .world
-            .set_solver(solver)
+            .update_settings(|s| {
+                s.solver = solver;
+                s.effects = effects;
+            })
             .map_err(|e| e.to_string())?;
-        self.scene.world.set_effects(effects);
         self.draw = draw;
         self.camera = camera;
         Ok(())
@@ -359,7 +361,9 @@ impl Demo {
         if let Some(grab) = self.grab {
             let point = self.camera.screen_to_world(screen, self.viewport);
             // Screen points map to finite world points; a failure would leave the old target.
-            let _ = self.scene.world.set_mouse_target(grab.joint, point);
+            if let Some(mut joint) = self.scene.world.joint_mut(grab.joint) {
+                let _ = joint.set_mouse_target(point);
+            }
         }
         if let Some(from) = self.pan_from {
             self.camera.pan_by_pixels(screen - from);

@@ -194,9 +194,13 @@ fn apply(scene: &mut SceneWorld, options: &RunOptions) -> Result<(), String> {
     }
     solver.iterations = options.iterations.unwrap_or(solver.iterations);
     solver.substeps = options.substeps.unwrap_or(solver.substeps);
-    scene.world.set_solver(solver).map_err(|e| e.to_string())?;
-    for &(effect, on) in &options.effects {
-        scene.world.set_effect(effect, on);
-    }
-    Ok(())
+    scene
+        .world
+        .update_settings(|s| {
+            s.solver = solver;
+            for &(effect, on) in &options.effects {
+                s.effects.set(effect, on);
+            }
+        })
+        .map_err(|e| e.to_string())
 }

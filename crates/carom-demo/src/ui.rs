@@ -152,7 +152,7 @@ fn solver_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>
         ui.add(egui::Slider::new(&mut params.damping_ratio, 0.1..=20.0).text("damping ratio"));
     }
     if params != before
-        && let Err(e) = demo.scene.world.set_solver(params)
+        && let Err(e) = demo.scene.world.update_settings(|s| s.solver = params)
     {
         *error = Some(e.to_string());
     }
@@ -172,7 +172,10 @@ fn effects_section(ui: &mut egui::Ui, demo: &mut Demo) {
         for effect in Effect::ALL {
             let mut on = demo.scene.world.effects().contains(effect);
             if ui.checkbox(&mut on, effect.name()).changed() {
-                demo.scene.world.set_effect(effect, on);
+                demo.scene
+                    .world
+                    .update_settings(|s| s.effects.set(effect, on))
+                    .expect("switching an effect keeps the settings valid");
             }
         }
     });

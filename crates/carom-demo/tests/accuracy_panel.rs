@@ -92,7 +92,10 @@ fn set_solver(demo: &mut Demo, kind: SolverKind, iterations: u32, substeps: u32)
     params.kind = kind;
     params.iterations = iterations;
     params.substeps = substeps;
-    demo.scene.world.set_solver(params).unwrap();
+    demo.scene
+        .world
+        .update_settings(|s| s.solver = params)
+        .unwrap();
 }
 
 fn marker_of(demo: &Demo) -> Marker {

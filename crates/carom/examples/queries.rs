@@ -3,7 +3,7 @@
 //!
 //! `cargo run -p carom --example queries`
 
-use carom::{BodyDef, CaromError, CollisionFilter, Ray, Shape, World, WorldShape, vec2};
+use carom::{BodyDef, CaromError, QueryFilter, Ray, Shape, World, WorldShape, vec2};
 
 fn main() -> Result<(), CaromError> {
     let mut world = World::new();
@@ -17,13 +17,13 @@ fn main() -> Result<(), CaromError> {
 
     // The closest body a ray from the left meets, then every body along it.
     let ray = Ray::new(vec2(-12.0, 1.0), vec2(24.0, 0.0));
-    if let Some(hit) = world.cast_ray(&ray) {
+    if let Some(hit) = world.cast_ray(&ray, QueryFilter::ALL) {
         println!(
             "the ray first enters {:?} at {:?}, normal {:?}",
             hit.body, hit.point, hit.normal
         );
     }
-    let all = world.cast_ray_all(&ray, CollisionFilter::DEFAULT);
+    let all = world.cast_ray_all(&ray, QueryFilter::ALL);
     println!("it enters {} bodies in all", all.len());
 
     // The body under a point (a mouse click, say).
@@ -34,7 +34,7 @@ fn main() -> Result<(), CaromError> {
 
     // How far a box at the left can slide right before it touches the first ball.
     let crate_box = WorldShape::at(&Shape::rect(0.5, 0.5), vec2(-10.0, 1.0), 0.0);
-    if let Some(hit) = world.cast_shape(&crate_box, vec2(20.0, 0.0), CollisionFilter::DEFAULT) {
+    if let Some(hit) = world.cast_shape(&crate_box, vec2(20.0, 0.0), QueryFilter::ALL) {
         println!(
             "the box can move {:.3} m before touching {:?} at {:?}",
             hit.fraction * 20.0,

@@ -57,6 +57,7 @@ pub use collision::filter::CollisionFilter;
 pub use collision::hits::HitEvent;
 pub use collision::manifold::{FeatureId, Manifold, ManifoldPoint, collide};
 pub use collision::pre_solve::PreSolveContact;
+pub use collision::query_filter::QueryFilter;
 pub use collision::sensor::{SensorEvent, SensorOverlap};
 pub use constants::{
     LINEAR_SLOP, SHAPE_CAST_TOLERANCE, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_TO_SLEEP,
@@ -82,8 +83,10 @@ pub use math::{Isometry, Mat3, Real, Rot, Vec2, angle_of, atan2, rotation, vec2}
 pub use solver::{SolverKind, SolverParams};
 pub use stats::{StageTimes, StepStats, Work};
 pub use world::body_mut::BodyMut;
+pub use world::collider_mut::ColliderMut;
 pub use world::effects::{Effect, Effects};
 pub use world::explosion::ExplosionDef;
+pub use world::joint_mut::JointMut;
 pub use world::settings::WorldSettings;
 pub use world::{CastHit, World};
 

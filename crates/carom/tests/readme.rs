@@ -42,13 +42,13 @@ fn sensor_example() -> Result<(), carom::CaromError> {
 
 #[rustfmt::skip]
 fn shape_cast_example() -> Result<(), carom::CaromError> {
-    use carom::{BodyDef, CollisionFilter, Shape, World, WorldShape, vec2};
+    use carom::{BodyDef, QueryFilter, Shape, World, WorldShape, vec2};
 
     let mut world = World::new();
     world.add_body(BodyDef::static_body(Shape::rect(0.5, 2.0)).position(vec2(5.0, 0.0)))?;
     let crate_box = WorldShape::at(&Shape::rect(0.5, 0.5), vec2(0.0, 0.0), 0.0);
     let hit = world
-        .cast_shape(&crate_box, vec2(10.0, 0.0), CollisionFilter::DEFAULT)
+        .cast_shape(&crate_box, vec2(10.0, 0.0), QueryFilter::ALL)
         .expect("the wall is in the way");
     // The box's right side reaches the wall's left side, x = 4.5, after 4 m of the 10.
     assert!((hit.fraction - 0.4).abs() < 1e-3);

@@ -1,7 +1,7 @@
 //! The seed tutorial's worked numbers and experiments, reproduced against the public API.
 
 use carom::testing::{polygon_area, polygon_centroid, polygon_inertia_about_origin, polygon_mass};
-use carom::{BodyDef, Polygon, Ray, Real, Shape, Vec2, World, vec2};
+use carom::{BodyDef, Polygon, QueryFilter, Ray, Real, Shape, Vec2, World, vec2};
 
 fn pts(coords: &[(Real, Real)]) -> Vec<Vec2> {
     coords.iter().map(|&(x, y)| vec2(x, y)).collect()
@@ -179,10 +179,10 @@ fn rays_through_vertices_and_along_edges() {
         // Straight at the corner from outside, along the bisector of its two normals.
         let outward = (prev_normal + next_normal).normalize();
         let hit = world
-            .cast_ray(&Ray::between(
-                corner + outward * 3.0,
-                corner - outward * 3.0,
-            ))
+            .cast_ray(
+                &Ray::between(corner + outward * 3.0, corner - outward * 3.0),
+                QueryFilter::ALL,
+            )
             .unwrap_or_else(|| panic!("ray at corner {k} missed"));
         assert_eq!(hit.body, pentagon);
         assert!(
@@ -199,7 +199,7 @@ fn rays_through_vertices_and_along_edges() {
         let next_corner = corners[(k + 1) % n];
         let edge = next_corner - corner;
         let hit = world
-            .cast_ray(&Ray::new(corner - edge, edge * 3.0))
+            .cast_ray(&Ray::new(corner - edge, edge * 3.0), QueryFilter::ALL)
             .unwrap_or_else(|| panic!("ray along edge {k} missed"));
         assert!(
             (hit.point - corner).norm() < 1e-5,
@@ -211,7 +211,7 @@ fn rays_through_vertices_and_along_edges() {
 
         // Backwards along the same line: enters at the edge's end through edge k + 1.
         let hit = world
-            .cast_ray(&Ray::new(next_corner + edge, -edge * 3.0))
+            .cast_ray(&Ray::new(next_corner + edge, -edge * 3.0), QueryFilter::ALL)
             .unwrap_or_else(|| panic!("reverse ray along edge {k} missed"));
         assert!((hit.point - next_corner).norm() < 1e-5);
         assert!((hit.normal - normals[(k + 1) % n]).norm() < 1e-5);
@@ -219,10 +219,10 @@ fn rays_through_vertices_and_along_edges() {
         // Grazing the corner from the side: touches only that point.
         let tangent = vec2(-outward.y, outward.x);
         let hit = world
-            .cast_ray(&Ray::between(
-                corner - tangent * 2.0,
-                corner + tangent * 2.0,
-            ))
+            .cast_ray(
+                &Ray::between(corner - tangent * 2.0, corner + tangent * 2.0),
+                QueryFilter::ALL,
+            )
             .unwrap_or_else(|| panic!("grazing ray at corner {k} missed"));
         assert!(
             (hit.point - corner).norm() < 1e-4,
@@ -234,10 +234,10 @@ fn rays_through_vertices_and_along_edges() {
         let off = outward * 1e-3;
         assert!(
             world
-                .cast_ray(&Ray::between(
-                    corner + off - tangent * 2.0,
-                    corner + off + tangent * 2.0
-                ))
+                .cast_ray(
+                    &Ray::between(corner + off - tangent * 2.0, corner + off + tangent * 2.0),
+                    QueryFilter::ALL
+                )
                 .is_none(),
             "ray beside corner {k} hit"
         );

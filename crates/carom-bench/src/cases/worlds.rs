@@ -32,11 +32,13 @@ pub fn scene(name: &str, params: SolverParams) -> SceneWorld {
     let own = *scene.world.solver();
     scene
         .world
-        .set_solver(SolverParams {
-            substeps: own.substeps,
-            contact_hertz: own.contact_hertz,
-            joint_hertz: own.joint_hertz,
-            ..params
+        .update_settings(|s| {
+            s.solver = SolverParams {
+                substeps: own.substeps,
+                contact_hertz: own.contact_hertz,
+                joint_hertz: own.joint_hertz,
+                ..params
+            }
         })
         .unwrap();
     scene
@@ -48,11 +50,12 @@ pub fn scene(name: &str, params: SolverParams) -> SceneWorld {
 /// A solver the world refuses.
 pub fn world(params: SolverParams, effects: &[Effect]) -> World {
     let mut world = World::new();
-    world.set_solver(params).unwrap();
-    world.set_effects(carom::Effects::NONE);
-    for &effect in effects {
-        world.set_effect(effect, true);
-    }
+    world
+        .update_settings(|s| {
+            s.solver = params;
+            s.effects = carom::Effects::of(effects);
+        })
+        .unwrap();
     world
 }
 

@@ -254,10 +254,16 @@ impl Run {
         if let Some(hertz) = setting.contact_hertz {
             params.contact_hertz = hertz;
         }
-        built.world.set_solver(params).map_err(|e| e.to_string())?;
+        built
+            .world
+            .update_settings(|s| s.solver = params)
+            .map_err(|e| e.to_string())?;
         // Every step is solved: a setting that settles sooner would otherwise look cheaper
         // only because its bodies sleep.
-        built.world.set_effect(Effect::Sleeping, false);
+        built
+            .world
+            .update_settings(|s| s.effects.set(Effect::Sleeping, false))
+            .expect("switching an effect keeps the settings valid");
         Ok(Run {
             scene: built,
             setting,
@@ -402,7 +408,7 @@ fn slide_angle(
         trial
             .scene
             .world
-            .set_gravity(gravity)
+            .update_settings(|s| s.gravity = gravity)
             .map_err(|e| e.to_string())?;
         let start = trial.position(handle);
         trial.steps(steps)?;

@@ -15,6 +15,7 @@ pub(crate) mod hits;
 pub(crate) mod manifold;
 pub(crate) mod narrowphase;
 pub(crate) mod pre_solve;
+pub(crate) mod query_filter;
 pub(crate) mod recycle;
 pub(crate) mod sensor;
 pub(crate) mod shape_cast;

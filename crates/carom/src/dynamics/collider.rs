@@ -327,13 +327,13 @@ impl Collider {
     }
 
     /// Sets the friction coefficient (finite, not negative).
-    pub fn set_friction(&mut self, friction: Real) -> Result<(), CaromError> {
+    pub(crate) fn set_friction(&mut self, friction: Real) -> Result<(), CaromError> {
         self.friction = check_non_negative("friction", friction)?;
         Ok(())
     }
 
     /// Sets the restitution (finite, not negative).
-    pub fn set_restitution(&mut self, restitution: Real) -> Result<(), CaromError> {
+    pub(crate) fn set_restitution(&mut self, restitution: Real) -> Result<(), CaromError> {
         self.restitution = check_non_negative("restitution", restitution)?;
         Ok(())
     }

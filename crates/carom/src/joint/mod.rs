@@ -193,7 +193,7 @@ impl JointDef {
     /// Drives `b` toward its present pose relative to `a` with at most `max_force` and
     /// `max_torque`, through world point `anchor` (usually `b`'s centre): with no offset
     /// set, it holds `b` where it is; an offset moves the target (change it with
-    /// [`crate::World::set_joint_kind`]).
+    /// [`crate::JointMut::set_kind`]).
     pub fn motor(
         a: BodyHandle,
         b: BodyHandle,
@@ -210,7 +210,7 @@ impl JointDef {
     }
 
     /// Grabs `body` at world point `point` and pulls that point toward `point` (move it with
-    /// [`crate::World::set_mouse_target`]) with at most `max_force`.
+    /// [`crate::JointMut::set_mouse_target`]) with at most `max_force`.
     pub fn mouse(body: BodyHandle, point: Vec2, max_force: Real) -> Self {
         let kind = JointKind::Mouse(MouseJoint {
             target: point,

@@ -1,6 +1,6 @@
 //! A body lent out to be changed, so that moving it takes its colliders along.
 
-use crate::dynamics::body::Body;
+use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::place_colliders;
 use crate::error::CaromError;
 use crate::math::{Real, Vec2};
@@ -145,6 +145,20 @@ impl<'w> BodyMut<'w> {
     /// Applies an angular impulse, N·m·s.
     pub fn apply_angular_impulse(&mut self, impulse: Real) -> Result<(), CaromError> {
         self.edit(|body| body.apply_angular_impulse(impulse))
+    }
+
+    /// Changes how the body moves: its mass is rebuilt, a static body stops, and its
+    /// colliders move to the broadphase tree of the new kind. Its island wakes.
+    ///
+    /// # Errors
+    /// A dynamic body without mass (no collider with a positive density); the kind is then
+    /// left as it was.
+    pub fn set_kind(&mut self, kind: BodyKind) -> Result<(), CaromError> {
+        let handle = self.handle();
+        self.world.set_body_kind(handle, kind)?;
+        // The body moved to its new kind's set.
+        self.index = self.world.bodies.dense_index(handle).expect("live");
+        Ok(())
     }
 
     /// Forgets the accumulated force and torque.

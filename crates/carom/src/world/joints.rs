@@ -4,10 +4,10 @@
 
 use crate::dynamics::body::BodyHandle;
 use crate::error::CaromError;
-use crate::joint::{Joint, JointDef, JointEvent, JointHandle, JointKind};
-use crate::math::Vec2;
+use crate::joint::{Joint, JointDef, JointEvent, JointHandle};
 use crate::solver::AwakeJoint;
 use crate::world::World;
+use crate::world::joint_mut::JointMut;
 
 fn stale(handle: JointHandle) -> CaromError {
     CaromError::StaleHandle {
@@ -104,40 +104,14 @@ impl World {
         self.joints.of_body(body)
     }
 
-    /// Replaces a joint's settings (a motor's speed, a spring's stiffness, limits) with a
-    /// `kind` of the same kind, checked first; an axis is in body A's frame. Its bodies wake.
-    pub fn set_joint_kind(
-        &mut self,
-        handle: JointHandle,
-        kind: JointKind,
-    ) -> Result<(), CaromError> {
-        let joint = self.joints.get_mut(handle).ok_or_else(|| stale(handle))?;
-        joint.set_kind(kind)?;
-        self.wake_joint_bodies(handle);
-        Ok(())
+    /// The joint behind a handle, to change, unless it was removed.
+    pub fn joint_mut(&mut self, handle: JointHandle) -> Option<JointMut<'_>> {
+        self.joints.get(handle)?;
+        Some(JointMut::new(self, handle))
     }
 
-    /// Moves a mouse joint's target; its body wakes.
-    ///
-    /// # Errors
-    /// A stale handle, a joint that is not a mouse joint, or a target that is not finite.
-    pub fn set_mouse_target(
-        &mut self,
-        handle: JointHandle,
-        target: Vec2,
-    ) -> Result<(), CaromError> {
-        let joint = self.joints.get(handle).ok_or_else(|| stale(handle))?;
-        let JointKind::Mouse(mut mouse) = *joint.kind() else {
-            return Err(CaromError::JointKindChange {
-                from: joint.kind().name(),
-                to: "mouse",
-            });
-        };
-        mouse.target = target;
-        self.set_joint_kind(handle, JointKind::Mouse(mouse))
-    }
-
-    fn wake_joint_bodies(&mut self, handle: JointHandle) {
+    /// Wakes a joint's bodies, so they feel a change to it.
+    pub(crate) fn wake_joint_bodies(&mut self, handle: JointHandle) {
         let Some(joint) = self.joints.get(handle) else {
             return;
         };

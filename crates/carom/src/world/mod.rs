@@ -1,9 +1,11 @@
 //! The world: bodies and their colliders, global settings, the step, and queries.
 
 pub(crate) mod body_mut;
+pub(crate) mod collider_mut;
 pub(crate) mod effects;
 pub(crate) mod explosion;
 pub(crate) mod islands;
+pub(crate) mod joint_mut;
 pub(crate) mod joints;
 pub(crate) mod queries;
 #[cfg(feature = "serde")]
@@ -23,7 +25,6 @@ use crate::collision::sensor::{SensorEvent, SensorOverlap, Sensors};
 use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::body_def::BodyDef;
 use crate::dynamics::collider::{Collider, ColliderDef, ColliderHandle, place_colliders};
-use crate::dynamics::drag::DragModel;
 use crate::dynamics::island::Islands;
 use crate::error::{CaromError, check_finite_not_negative, check_finite_vec};
 use crate::handle_map::HandleMap;
@@ -32,6 +33,7 @@ use crate::math::{Real, Vec2};
 use crate::solver::{self, SolverParams};
 use crate::stats::StepStats;
 use crate::world::body_mut::BodyMut;
+use crate::world::collider_mut::ColliderMut;
 use crate::world::effects::{Effect, Effects};
 use crate::world::islands::IslandScratch;
 use crate::world::settings::WorldSettings;
@@ -136,33 +138,30 @@ impl World {
         &self.settings
     }
 
-    /// Replaces the settings (checked first). Turning sleeping off wakes every body.
-    pub fn set_settings(&mut self, settings: WorldSettings) -> Result<(), CaromError> {
+    /// Changes the settings: `change` edits a copy, which is checked and then takes effect
+    /// at the next step (turning sleeping off wakes every body at once). This is the one way
+    /// to change gravity, the solver, the effects simulated or any other setting.
+    ///
+    /// # Errors
+    /// A value out of range (the first one found is named); the settings are then left as
+    /// they were.
+    pub fn update_settings(
+        &mut self,
+        change: impl FnOnce(&mut WorldSettings),
+    ) -> Result<(), CaromError> {
+        let mut settings = self.settings;
+        change(&mut settings);
         check_settings(&settings)?;
         self.settings = settings;
-        self.set_effects(settings.effects);
+        if !settings.effects.contains(Effect::Sleeping) {
+            self.wake_all();
+        }
         Ok(())
     }
 
     /// The effects simulated.
     pub fn effects(&self) -> Effects {
         self.settings.effects
-    }
-
-    /// Chooses the effects simulated; the rest are not computed at all. Turning sleeping off
-    /// wakes every body.
-    pub fn set_effects(&mut self, effects: Effects) {
-        self.settings.effects = effects;
-        if !effects.contains(Effect::Sleeping) {
-            self.wake_all();
-        }
-    }
-
-    /// Switches one effect on or off.
-    pub fn set_effect(&mut self, effect: Effect, on: bool) {
-        let mut effects = self.settings.effects;
-        effects.set(effect, on);
-        self.set_effects(effects);
     }
 
     /// Wakes every sleeping body.
@@ -178,17 +177,6 @@ impl World {
     /// Gravity, m/s².
     pub fn gravity(&self) -> Vec2 {
         self.settings.gravity
-    }
-
-    /// Sets gravity (finite).
-    pub fn set_gravity(&mut self, gravity: Vec2) -> Result<(), CaromError> {
-        self.settings.gravity = check_finite_vec("gravity", gravity)?;
-        Ok(())
-    }
-
-    /// Chooses the drag law.
-    pub fn set_drag_model(&mut self, model: DragModel) {
-        self.settings.drag = model;
     }
 
     /// Adds a body with its colliders; the definition is checked first, and nothing is added
@@ -351,69 +339,12 @@ impl World {
         Ok(removed)
     }
 
-    /// Changes what a collider collides with: its contacts the new filter forbids end (reported
-    /// after the next step), and it is looked at again for pairs the filter now allows.
-    ///
-    /// # Errors
-    /// A stale handle.
-    pub fn set_collider_filter(
+    /// Changes how a body moves ([`BodyMut::set_kind`]).
+    pub(crate) fn set_body_kind(
         &mut self,
-        handle: ColliderHandle,
-        filter: crate::CollisionFilter,
+        handle: BodyHandle,
+        kind: BodyKind,
     ) -> Result<(), CaromError> {
-        let index = self.colliders.checked_index(handle)?;
-        let collider = &mut self.colliders.as_mut_slice()[index];
-        collider.set_filter(filter);
-        let body = collider.body();
-        let colliders = &self.colliders;
-        self.contacts.remove_where(body, |c| {
-            let (Some(a), Some(b)) = (colliders.get(c.collider_a()), colliders.get(c.collider_b()))
-            else {
-                return false;
-            };
-            !a.filter().collides_with(&b.filter())
-        });
-        let index = self.bodies.checked_index(body).expect("live");
-        self.wake_body(index);
-        self.apply_touch_changes();
-        self.broadphase.set_filter(handle, filter);
-        Ok(())
-    }
-
-    /// Changes a collider's density; its body's mass, centre of mass and inertia follow.
-    ///
-    /// # Errors
-    /// A stale handle, a density that is negative or not finite, or a dynamic body left
-    /// without mass; the density is then left as it was.
-    pub fn set_collider_density(
-        &mut self,
-        handle: ColliderHandle,
-        density: Real,
-    ) -> Result<(), CaromError> {
-        crate::dynamics::collider::check_non_negative("density", density)?;
-        let index = self.colliders.checked_index(handle)?;
-        let collider = &mut self.colliders.as_mut_slice()[index];
-        let previous = collider.density();
-        collider.set_density(density);
-        let body = collider.body();
-        if let Err(e) = self.rebuild_mass_of(body) {
-            self.colliders
-                .get_mut(handle)
-                .expect("live")
-                .set_density(previous);
-            return Err(e);
-        }
-        let index = self.bodies.checked_index(body).expect("live");
-        self.wake_body(index);
-        Ok(())
-    }
-
-    /// Changes how a body moves: its mass is rebuilt, a static body stops, and its colliders
-    /// move to the broadphase tree of the new kind.
-    ///
-    /// # Errors
-    /// A stale handle, or a dynamic body without mass; the kind is then left as it was.
-    pub fn set_body_kind(&mut self, handle: BodyHandle, kind: BodyKind) -> Result<(), CaromError> {
         let index = self.bodies.checked_index(handle)?;
         let previous = self.bodies.as_slice()[index].clone();
         self.bodies.as_mut_slice()[index].set_kind_unchecked(kind);
@@ -464,7 +395,7 @@ impl World {
     }
 
     /// Rebuilds a body's mass from its colliders.
-    fn rebuild_mass_of(&mut self, handle: BodyHandle) -> Result<(), CaromError> {
+    pub(crate) fn rebuild_mass_of(&mut self, handle: BodyHandle) -> Result<(), CaromError> {
         let index = self.bodies.checked_index(handle)?;
         let colliders = &self.colliders;
         let body = &mut self.bodies.as_mut_slice()[index];
@@ -497,10 +428,12 @@ impl World {
         self.colliders.get(handle)
     }
 
-    /// The collider behind a handle, to change its friction or restitution (its density
-    /// through [`World::set_collider_density`], as the body's mass depends on it).
-    pub fn collider_mut(&mut self, handle: ColliderHandle) -> Option<&mut Collider> {
-        self.colliders.get_mut(handle)
+    /// The collider behind a handle, to change, unless it was removed. Each change that other
+    /// state depends on (the body's mass, its contacts) updates that state at once.
+    pub fn collider_mut(&mut self, handle: ColliderHandle) -> Option<ColliderMut<'_>> {
+        self.colliders
+            .contains(handle)
+            .then(|| ColliderMut::new(self, handle))
     }
 
     /// Every collider, in handle order: the order they were added, a removed collider's
@@ -616,13 +549,6 @@ impl World {
         &self.settings.solver
     }
 
-    /// Replaces the solver settings (checked first); takes effect at the next step.
-    pub fn set_solver(&mut self, params: SolverParams) -> Result<(), CaromError> {
-        params.validate()?;
-        self.settings.solver = params;
-        Ok(())
-    }
-
     /// A fingerprint of the simulation state: FNV-1a over every body's position, rotation and
     /// velocities, bit for bit, in handle order. Equal runs give equal hashes.
     pub fn state_hash(&self) -> u64 {
@@ -703,7 +629,7 @@ mod tests {
             ..WorldSettings::default()
         };
         assert!(World::with_settings(bad).is_err());
-        assert!(world.set_settings(bad).is_err());
+        assert!(world.update_settings(|s| *s = bad).is_err());
     }
 
     #[test]

@@ -1,12 +1,13 @@
-//! Asking the world what is where: bodies under a point, colliders whose boxes overlap a box, colliders a shape
-//! overlaps, colliders a ray enters and colliders a shape moved along a line meets, each
-//! through the broadphase and filtered as collisions are. Sensors are not in the broadphase,
+//! Asking the world what is where: bodies under a point, colliders whose boxes overlap a box,
+//! colliders a shape overlaps, colliders a ray enters and colliders a shape moved along a line
+//! meets, each through the broadphase and each but the point queries taking a
+//! [`QueryFilter`]. Sensors are not in the broadphase,
 //! so no query sees them (a sensor lists what overlaps it itself:
 //! [`World::sensor_overlaps`]). Chains are one-sided here too: a ray or a cast shape starting
 //! behind a chain's link passes through it.
 
 use crate::collision::distance::separation;
-use crate::collision::filter::CollisionFilter;
+use crate::collision::query_filter::QueryFilter;
 use crate::collision::shape_cast::cast_shape;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
@@ -17,14 +18,13 @@ use crate::math::{Real, Vec2, is_finite_vec};
 use crate::world::{CastHit, World};
 
 impl World {
-    /// Every collider whose box overlaps `aabb` (touching counts) and that `filter` would
-    /// collide with (as two colliders' filters decide; [`CollisionFilter::DEFAULT`] takes
-    /// every collider), in handle order. Boxes are as of the last step or edit.
-    pub fn query_aabb(&self, aabb: &Aabb, filter: CollisionFilter) -> Vec<ColliderHandle> {
+    /// Every collider whose box overlaps `aabb` (touching counts) and that `filter` sees
+    /// ([`QueryFilter::ALL`] sees every collider), in handle order. Boxes are as of the last step or edit.
+    pub fn query_aabb(&self, aabb: &Aabb, filter: QueryFilter) -> Vec<ColliderHandle> {
         let mut found = Vec::new();
         self.broadphase.query(aabb, |handle| {
             if let Some(collider) = self.colliders.get(handle)
-                && filter.collides_with(&collider.filter())
+                && filter.sees(&collider.filter(), collider.body())
                 && collider.aabb().overlaps(aabb)
             {
                 found.push(handle);
@@ -35,8 +35,8 @@ impl World {
     }
 
     /// Every collider `shape` (placed in the world) overlaps or touches, exactly, that
-    /// `filter` would collide with, in handle order.
-    pub fn query_shape(&self, shape: &WorldShape, filter: CollisionFilter) -> Vec<ColliderHandle> {
+    /// `filter` sees, in handle order.
+    pub fn query_shape(&self, shape: &WorldShape, filter: QueryFilter) -> Vec<ColliderHandle> {
         let mut found = self.query_aabb(&shape.aabb(), filter);
         found.retain(|&handle| {
             let collider = self.colliders.get(handle).expect("just found");
@@ -45,13 +45,8 @@ impl World {
         found
     }
 
-    /// The first collider the ray enters, if any.
-    pub fn cast_ray(&self, ray: &Ray) -> Option<CastHit> {
-        self.cast_ray_filtered(ray, CollisionFilter::DEFAULT)
-    }
-
-    /// The first collider the ray enters that `filter` would collide with, if any.
-    pub fn cast_ray_filtered(&self, ray: &Ray, filter: CollisionFilter) -> Option<CastHit> {
+    /// The first collider the ray enters that `filter` sees, if any.
+    pub fn cast_ray(&self, ray: &Ray, filter: QueryFilter) -> Option<CastHit> {
         let mut best: Option<CastHit> = None;
         self.ray_hits(ray, filter, |hit, reach| {
             if hit.fraction <= reach && best.is_none_or(|b| hit.fraction < b.fraction) {
@@ -62,8 +57,8 @@ impl World {
         best
     }
 
-    /// Every collider the ray enters that `filter` would collide with, nearest first.
-    pub fn cast_ray_all(&self, ray: &Ray, filter: CollisionFilter) -> Vec<CastHit> {
+    /// Every collider the ray enters that `filter` sees, nearest first.
+    pub fn cast_ray_all(&self, ray: &Ray, filter: QueryFilter) -> Vec<CastHit> {
         let mut hits = Vec::new();
         self.ray_hits(ray, filter, |hit, reach| {
             hits.push(hit);
@@ -74,7 +69,7 @@ impl World {
     }
 
     /// Where `shape`, moved along `translation` without turning, first meets a collider that
-    /// `filter` would collide with, if it does: the fraction of the translation it can move
+    /// `filter` sees, if it does: the fraction of the translation it can move
     /// before touching (stopping within [`crate::SHAPE_CAST_TOLERANCE`] short of it), the
     /// point it touches and the collider's normal there. A shape that already overlaps a
     /// collider hits it at fraction 0. A shape or translation that is not finite meets
@@ -83,7 +78,7 @@ impl World {
         &self,
         shape: &WorldShape,
         translation: Vec2,
-        filter: CollisionFilter,
+        filter: QueryFilter,
     ) -> Option<CastHit> {
         let mut best: Option<CastHit> = None;
         self.shape_hits(shape, translation, filter, |hit, reach| {
@@ -102,7 +97,7 @@ impl World {
         &self,
         shape: &WorldShape,
         translation: Vec2,
-        filter: CollisionFilter,
+        filter: QueryFilter,
     ) -> Vec<CastHit> {
         let mut hits = Vec::new();
         self.shape_hits(shape, translation, filter, |hit, reach| {
@@ -119,7 +114,7 @@ impl World {
         &self,
         shape: &WorldShape,
         translation: Vec2,
-        filter: CollisionFilter,
+        filter: QueryFilter,
         mut visit: impl FnMut(CastHit, Real) -> Real,
     ) {
         let aabb = shape.aabb();
@@ -134,7 +129,8 @@ impl World {
                     return reach;
                 };
                 let other = collider.world_shape();
-                if !filter.collides_with(&collider.filter()) || other.is_link_behind(start) {
+                if !filter.sees(&collider.filter(), collider.body()) || other.is_link_behind(start)
+                {
                     return reach;
                 }
                 let Some(hit) = cast_shape(shape, translation, other, reach, &mut scratch) else {
@@ -158,7 +154,7 @@ impl World {
     fn ray_hits(
         &self,
         ray: &Ray,
-        filter: CollisionFilter,
+        filter: QueryFilter,
         mut visit: impl FnMut(CastHit, Real) -> Real,
     ) {
         if !(is_finite_vec(ray.origin) && is_finite_vec(ray.translation)) {
@@ -172,7 +168,7 @@ impl World {
                 let Some(body) = self.bodies.get(collider.body()) else {
                     return reach;
                 };
-                if !filter.collides_with(&collider.filter()) {
+                if !filter.sees(&collider.filter(), collider.body()) {
                     return reach;
                 }
                 let inverse = body.rotation().inverse();
@@ -269,7 +265,10 @@ mod tests {
         assert_eq!(world.body_at(vec2(20.0, 0.2)), Some(ball));
         assert_eq!(world.body_at(vec2(0.0, 0.0)), None);
         let hit = world
-            .cast_ray(&Ray::new(vec2(10.0, 0.0), vec2(20.0, 0.0)))
+            .cast_ray(
+                &Ray::new(vec2(10.0, 0.0), vec2(20.0, 0.0)),
+                QueryFilter::ALL,
+            )
             .unwrap();
         assert_eq!(hit.body, ball);
         world.step(1.0 / 60.0).unwrap();
@@ -297,7 +296,7 @@ mod tests {
             )
             .unwrap();
         let hit = world
-            .cast_ray(&Ray::new(vec2(0.0, 0.0), vec2(10.0, 0.0)))
+            .cast_ray(&Ray::new(vec2(0.0, 0.0), vec2(10.0, 0.0)), QueryFilter::ALL)
             .unwrap();
         assert_eq!(hit.body, near);
         assert!((hit.point - vec2(1.5, 0.0)).norm() < 1e-6);
@@ -305,18 +304,21 @@ mod tests {
         assert!((hit.fraction - 0.15).abs() < 1e-6);
         world.remove_body(near).unwrap();
         let hit = world
-            .cast_ray(&Ray::new(vec2(0.0, 0.0), vec2(10.0, 0.0)))
+            .cast_ray(&Ray::new(vec2(0.0, 0.0), vec2(10.0, 0.0)), QueryFilter::ALL)
             .unwrap();
         assert_eq!(hit.body, far);
         assert!((hit.point - vec2(4.5, 0.0)).norm() < 1e-5);
         assert!(
             world
-                .cast_ray(&Ray::new(vec2(0.0, 3.0), vec2(10.0, 0.0)))
+                .cast_ray(&Ray::new(vec2(0.0, 3.0), vec2(10.0, 0.0)), QueryFilter::ALL)
                 .is_none()
         );
         assert!(
             world
-                .cast_ray(&Ray::new(vec2(Real::NAN, 0.0), vec2(1.0, 0.0)))
+                .cast_ray(
+                    &Ray::new(vec2(Real::NAN, 0.0), vec2(1.0, 0.0)),
+                    QueryFilter::ALL
+                )
                 .is_none()
         );
     }

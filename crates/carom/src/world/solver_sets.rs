@@ -446,7 +446,11 @@ mod tests {
                 }
                 (6, Some(h)) => {
                     let kinds = [BodyKind::Static, BodyKind::Kinematic, BodyKind::Dynamic];
-                    world.set_body_kind(h, kinds[rng.below(3)]).unwrap();
+                    world
+                        .body_mut(h)
+                        .unwrap()
+                        .set_kind(kinds[rng.below(3)])
+                        .unwrap();
                 }
                 (7, Some(h)) => {
                     world
@@ -510,7 +514,7 @@ mod tests {
         world.check_sets();
         assert!(!world.body(body).unwrap().is_sleeping());
         settle(&mut world);
-        world.set_collider_density(added, 2.0).unwrap();
+        world.collider_mut(added).unwrap().set_density(2.0).unwrap();
         world.check_sets();
         assert!(!world.body(body).unwrap().is_sleeping());
     }
@@ -525,7 +529,7 @@ mod tests {
             .effects()
             .without(crate::Effect::Gravity)
             .without(crate::Effect::Sleeping);
-        world.set_effects(effects);
+        world.update_settings(|s| s.effects = effects).unwrap();
         let mut grid = Vec::new();
         for column in 0..20 {
             for row in 0..5 {
@@ -594,7 +598,11 @@ mod tests {
     #[test]
     fn a_support_turned_dynamic_wakes_what_slept_on_it() {
         let (mut world, block, top) = box_asleep_on(BodyDef::static_body(Shape::rect(0.5, 0.5)));
-        world.set_body_kind(block, BodyKind::Dynamic).unwrap();
+        world
+            .body_mut(block)
+            .unwrap()
+            .set_kind(BodyKind::Dynamic)
+            .unwrap();
         world.check_sets();
         let (block, top) = (world.body(block).unwrap(), world.body(top).unwrap());
         assert!(!top.is_sleeping());

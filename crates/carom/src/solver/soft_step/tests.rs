@@ -278,7 +278,9 @@ fn wide_restitution_gives_the_scalar_bits() {
 #[test]
 fn a_deep_overlap_rises_at_the_push_cap() {
     let mut world = World::new();
-    world.set_effects(crate::Effects::NONE);
+    world
+        .update_settings(|s| s.effects = crate::Effects::NONE)
+        .unwrap();
     world
         .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)).position(vec2(0.0, -0.5)))
         .unwrap();

@@ -1,0 +1,96 @@
+//! A collider lent out to be changed, so that what depends on it (its body's mass, its
+//! contacts, the broadphase) follows at once.
+
+use crate::collision::filter::CollisionFilter;
+use crate::dynamics::collider::{Collider, ColliderHandle, check_non_negative};
+use crate::error::CaromError;
+use crate::math::Real;
+use crate::world::World;
+use std::ops::Deref;
+
+/// A collider borrowed from its world to be changed ([`crate::World::collider_mut`]). It reads
+/// as a [`Collider`] and has the collider's setters; each change that other state depends on
+/// (its body's mass, which contacts may exist) updates that state before it returns.
+#[derive(Debug)]
+pub struct ColliderMut<'w> {
+    world: &'w mut World,
+    handle: ColliderHandle,
+}
+
+impl<'w> ColliderMut<'w> {
+    pub(crate) fn new(world: &'w mut World, handle: ColliderHandle) -> Self {
+        ColliderMut { world, handle }
+    }
+
+    fn collider(&mut self) -> &mut Collider {
+        self.world
+            .colliders
+            .get_mut(self.handle)
+            .expect("lent live")
+    }
+
+    /// Sets the friction coefficient (finite, not negative); its contacts use it from the
+    /// next step.
+    ///
+    /// # Errors
+    /// A negative or non-finite friction; it is then left as it was.
+    pub fn set_friction(&mut self, friction: Real) -> Result<(), CaromError> {
+        self.collider().set_friction(friction)
+    }
+
+    /// Sets the restitution (finite, not negative); its contacts use it from the next step.
+    ///
+    /// # Errors
+    /// A negative or non-finite restitution; it is then left as it was.
+    pub fn set_restitution(&mut self, restitution: Real) -> Result<(), CaromError> {
+        self.collider().set_restitution(restitution)
+    }
+
+    /// Sets the density; the body's mass, centre of mass and inertia follow, and it wakes.
+    ///
+    /// # Errors
+    /// A density that is negative or not finite, or a dynamic body left without mass; the
+    /// density is then left as it was.
+    pub fn set_density(&mut self, density: Real) -> Result<(), CaromError> {
+        check_non_negative("density", density)?;
+        let previous = self.density();
+        self.collider().set_density(density);
+        let body = self.body();
+        if let Err(e) = self.world.rebuild_mass_of(body) {
+            self.collider().set_density(previous);
+            return Err(e);
+        }
+        let index = self.world.bodies.checked_index(body).expect("live");
+        self.world.wake_body(index);
+        Ok(())
+    }
+
+    /// Changes what the collider collides with: its contacts the new filter forbids end
+    /// (reported after the next step), its body wakes, and the broadphase looks at it again
+    /// for pairs the filter now allows.
+    pub fn set_filter(&mut self, filter: CollisionFilter) {
+        self.collider().set_filter(filter);
+        let world = &mut *self.world;
+        let body = world.colliders.get(self.handle).expect("lent live").body();
+        let colliders = &world.colliders;
+        world.contacts.remove_where(body, |c| {
+            let (Some(a), Some(b)) = (colliders.get(c.collider_a()), colliders.get(c.collider_b()))
+            else {
+                return false;
+            };
+            !a.filter().collides_with(&b.filter())
+        });
+        let index = world.bodies.checked_index(body).expect("live");
+        world.wake_body(index);
+        world.apply_touch_changes();
+        world.broadphase.set_filter(self.handle, filter);
+    }
+}
+
+impl Deref for ColliderMut<'_> {
+    type Target = Collider;
+
+    fn deref(&self) -> &Collider {
+        self.world.colliders.get(self.handle).expect("lent live")
+    }
+}
