@@ -207,7 +207,7 @@ fn a_spun_frame_turns_rigidly_about_its_pivot() {
     // exactly where the analytic rotation puts it, however many steps it took.
     let text = r#"(
         name: "spin",
-        effects: [],
+        world: (effects: []),
         bodies: [
             (name: Some("east"), kind: kinematic, shape: Box(width: 1.0, height: 0.2), position: (3.0, 1.0)),
             (name: Some("west"), kind: kinematic, shape: Box(width: 1.0, height: 0.2), position: (-1.0, 1.0)),
@@ -361,4 +361,64 @@ fn the_front_page_scene_rolls_its_ball_into_the_boxes() {
         .filter(|(h, start)| (built.world.body(*h).unwrap().position() - start).norm() > 0.05)
         .count();
     assert!(moved > 0, "the ball reached the column and moved a box");
+}
+
+#[test]
+fn a_scene_file_sets_every_world_setting() {
+    // Every field of the world's and the solver's settings, each away from its default,
+    // written out and read back: the built world has exactly these settings.
+    use carom::{DragModel, Effect, Effects, SolverKind, SolverParams, WorldSettings, vec2};
+    let defaults = WorldSettings::default();
+    let wanted = WorldSettings {
+        gravity: vec2(1.0, -3.0),
+        drag: DragModel::Tutorial,
+        speculative_distance: 0.03,
+        aabb_margin: 0.07,
+        solver: SolverParams {
+            kind: SolverKind::SequentialImpulse,
+            impulse_resolution: false,
+            iterations: Some(12),
+            substeps: 6,
+            warm_starting: false,
+            graph_coloring: false,
+            friction_in_bias_pass: false,
+            contact_hertz: 45.0,
+            damping_ratio: 5.0,
+            static_stiffness: 3.0,
+            joint_hertz: 90.0,
+            joint_damping_ratio: 1.5,
+            max_push_speed: 2.0,
+            baumgarte: 0.3,
+            restitution_threshold: 0.5,
+            max_linear_speed: 300.0,
+            max_rotation: 0.5,
+        },
+        effects: Effects::of(&[Effect::Gravity, Effect::Drag]),
+        contact_recycling: false,
+        hit_event_threshold: 2.0,
+    };
+    // A field added later but not set here would keep its default and fail below.
+    let differs = format!("{wanted:?}");
+    for (field, default) in format!("{defaults:?}")
+        .split([',', '{', '}'])
+        .zip(differs.split([',', '{', '}']))
+    {
+        let value = field.contains(':') && !field.contains("SolverParams");
+        assert!(!value || field != default, "{field} keeps its default");
+    }
+    let mut scene = carom_scene::parse("(name: \"every setting\")", "inline").unwrap();
+    scene.world = wanted;
+    let text = carom_scene::to_text(&scene, "inline").unwrap();
+    let read = carom_scene::parse(&text, "inline").unwrap_or_else(|e| panic!("{e}\n{text}"));
+    let built = carom_scene::build(&read, "inline").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(*built.world.settings(), wanted, "{text}");
+    // A solver named alone takes its own iteration count.
+    let classic = carom_scene::parse(
+        "(name: \"classic\", world: (solver: (kind: sequential_impulse)))",
+        "inline",
+    )
+    .unwrap();
+    assert_eq!(classic.world.solver.effective_iterations(), 8);
+    let unknown = carom_scene::parse("(name: \"typo\", world: (solver: (substep: 8)))", "inline");
+    assert!(unknown.unwrap_err().to_string().contains("substep"));
 }

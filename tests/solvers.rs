@@ -221,7 +221,7 @@ fn warm_starting_cuts_the_iterations_a_stack_needs() {
     let needed = |warm_starting: bool| {
         (1..=64).find(|&iterations| {
             let params = SolverParams {
-                iterations,
+                iterations: Some(iterations),
                 warm_starting,
                 ..SolverParams::for_kind(SolverKind::SequentialImpulse)
             };

@@ -124,10 +124,10 @@ impl RapierWorld {
         // substeps: they run one Rapier substep of `iterations` PGS sweeps.
         if solver.effective_kind().has_substeps() {
             params.num_solver_iterations = solver.substeps.max(1) as usize;
-            params.num_internal_pgs_iterations = solver.iterations.max(1) as usize;
+            params.num_internal_pgs_iterations = solver.effective_iterations() as usize;
         } else {
             params.num_solver_iterations = 1;
-            params.num_internal_pgs_iterations = solver.iterations.max(1) as usize;
+            params.num_internal_pgs_iterations = solver.effective_iterations() as usize;
         }
         if !solver.warm_starting {
             params.warmstart_coefficient = 0.0;

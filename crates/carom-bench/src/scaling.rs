@@ -18,7 +18,7 @@ pub fn pyramid_rows(rows: usize, columns: usize) -> String {
     format!(
         "(name: \"pyramids_{rows}x{columns}\", \
          description: \"{rows} rows of {columns} base-10 pyramids\", \
-         effects: [gravity, friction, restitution, continuous], \
+         world: (effects: [gravity, friction, restitution, continuous]), \
          generators: [\
            Grid(origin: (0.0, -0.05), columns: 1, rows: {rows}, spacing: (0.0, 11.0), \
                 shape: Box(width: {width:.1}, height: 0.1), kind: static), \

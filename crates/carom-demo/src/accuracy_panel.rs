@@ -405,7 +405,7 @@ pub fn setting_of(params: &SolverParams) -> Setting {
         joint_hertz: (params.joint_hertz != default_hertz).then_some(params.joint_hertz),
         // Soft contacts are soft step's alone, and the sweep names their stiffness.
         contact_hertz: (solver == SolverKind::SoftStep).then_some(params.contact_hertz),
-        ..Setting::carom(solver, params.iterations, substeps)
+        ..Setting::carom(solver, params.effective_iterations(), substeps)
     }
 }
 
@@ -574,7 +574,7 @@ mod tests {
 
     fn params(kind: SolverKind, iterations: u32, substeps: u32) -> SolverParams {
         SolverParams {
-            iterations,
+            iterations: Some(iterations),
             substeps,
             ..SolverParams::for_kind(kind)
         }
@@ -691,7 +691,7 @@ mod tests {
         let mine = SolverParams {
             contact_hertz: 60.0,
             warm_starting: false,
-            iterations: 8,
+            iterations: Some(8),
             ..scene
         };
         // Contact stiffness is swept: the marker finds the nearest measured one.

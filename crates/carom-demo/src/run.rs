@@ -188,11 +188,11 @@ fn run_here(file: &Path, options: &RunOptions) -> Result<RunReport, String> {
 fn apply(scene: &mut SceneWorld, options: &RunOptions) -> Result<(), String> {
     let mut solver = *scene.world.solver();
     if let Some(kind) = options.solver {
-        let defaults = carom::SolverParams::for_kind(kind);
+        // Another solver starts from its own iteration count.
         solver.kind = kind;
-        solver.iterations = defaults.iterations;
+        solver.iterations = None;
     }
-    solver.iterations = options.iterations.unwrap_or(solver.iterations);
+    solver.iterations = options.iterations.or(solver.iterations);
     solver.substeps = options.substeps.unwrap_or(solver.substeps);
     scene
         .world

@@ -4,7 +4,7 @@
 use crate::accuracy_panel::{self, AccuracyPanel, Marker, Source};
 use crate::demo::{Demo, HINTS};
 use crate::metrics::{Metrics, STAGES};
-use carom::{DrawFlags, Effect, SolverKind, SolverParams};
+use carom::{DrawFlags, Effect, SolverKind};
 use carom_bench::sweep::{Engine, Point};
 use egui_plot::{GridMark, HoverPosition, Legend, Line, MarkerShape, Plot, PlotPoint, PlotPoints};
 use egui_plot::{Points, Text};
@@ -112,15 +112,20 @@ fn solver_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>
                         .clicked()
                         && kind != params.kind
                     {
-                        // Each solver starts from its own defaults (iterations differ).
-                        let defaults = SolverParams::for_kind(kind);
+                        // Each solver starts from its own iteration count.
                         params.kind = kind;
-                        params.iterations = defaults.iterations;
+                        params.iterations = None;
                     }
                 }
             });
     });
-    ui.add(egui::Slider::new(&mut params.iterations, 1..=64).text("iterations"));
+    let mut iterations = params.effective_iterations();
+    if ui
+        .add(egui::Slider::new(&mut iterations, 1..=64).text("iterations"))
+        .changed()
+    {
+        params.iterations = Some(iterations);
+    }
     let soft = params.impulse_resolution && params.kind == SolverKind::SoftStep;
     ui.add_enabled(
         soft,

@@ -90,7 +90,7 @@ fn collect_texts(shape: &egui::Shape, out: &mut Vec<(String, egui::Pos2)>) {
 fn set_solver(demo: &mut Demo, kind: SolverKind, iterations: u32, substeps: u32) {
     let mut params = *demo.scene.world.solver();
     params.kind = kind;
-    params.iterations = iterations;
+    params.iterations = Some(iterations);
     params.substeps = substeps;
     demo.scene
         .world
@@ -257,7 +257,7 @@ fn a_scene_with_nothing_measured_offers_the_button_and_no_marker() {
 const DROP: &str = r#"(
     name: "drop",
     description: "Two boxes fall on a floor.",
-    effects: [gravity],
+    world: (effects: [gravity]),
     bodies: [
         (kind: static, shape: Box(width: 10.0, height: 1.0), position: (0.0, -0.5)),
         (shape: Box(width: 1.0, height: 1.0), position: (0.0, 0.6)),

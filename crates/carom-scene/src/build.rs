@@ -5,13 +5,12 @@ use crate::events::Events;
 use crate::one_way;
 use crate::scene::{
     Accuracy, BodySpec, Camera, Cells, Generator, JointKindSpec, JointSpec, Material, Pair,
-    RevoluteSpec, Scene, ShapeSpec, WorldSpec,
+    RevoluteSpec, Scene, ShapeSpec,
 };
 use carom::{
     BodyDef, BodyHandle, BodyKind, CaromError, ChainDef, ColliderDef, Color, DebugDraw,
-    DistanceJoint, DrawFlags, DrawOptions, Effects, JointDef, JointKind, Limits, MotorJoint,
-    MouseJoint, PrismaticJoint, Real, RevoluteJoint, Shape, SolverParams, Vec2, WeldJoint,
-    WheelJoint, World, WorldSettings, vec2,
+    DistanceJoint, DrawFlags, DrawOptions, JointDef, JointKind, Limits, MotorJoint, MouseJoint,
+    PrismaticJoint, Real, RevoluteJoint, Shape, Vec2, WeldJoint, WheelJoint, World, vec2,
 };
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -71,12 +70,10 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
         what,
         reason,
     };
-    let settings = world_settings(&scene.world, scene.effects)
-        .map_err(|e| invalid("world".into(), e.to_string()))?;
-    let time_step = scene.world.time_step;
+    let time_step = scene.time_step;
     if !(time_step.is_finite() && time_step > 0.0) {
         return Err(invalid(
-            "world".into(),
+            "time_step".into(),
             format!("time_step must be finite and positive, got {time_step}"),
         ));
     }
@@ -91,7 +88,7 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
         return finish(scene, world, names, colors, events, time_step, &invalid);
     }
     let mut world =
-        World::with_settings(settings).map_err(|e| invalid("world".into(), e.to_string()))?;
+        World::with_settings(scene.world).map_err(|e| invalid("world".into(), e.to_string()))?;
     let mut names = HashMap::new();
     let mut colors = HashMap::new();
     let mut initial = HashMap::new();
@@ -254,27 +251,6 @@ fn check_accuracy(
         }
     }
     Ok(())
-}
-
-fn world_settings(spec: &WorldSpec, effects: Effects) -> Result<WorldSettings, CaromError> {
-    let mut solver = SolverParams::for_kind(spec.solver);
-    solver.iterations = spec.iterations.unwrap_or(solver.iterations);
-    solver.substeps = spec.substeps.unwrap_or(solver.substeps);
-    solver.warm_starting = spec.warm_starting.unwrap_or(solver.warm_starting);
-    solver.contact_hertz = spec.contact_hertz.unwrap_or(solver.contact_hertz);
-    solver.damping_ratio = spec.damping_ratio.unwrap_or(solver.damping_ratio);
-    solver.max_push_speed = spec.max_push_speed.unwrap_or(solver.max_push_speed);
-    solver.joint_hertz = spec.joint_hertz.unwrap_or(solver.joint_hertz);
-    solver.joint_damping_ratio = spec
-        .joint_damping_ratio
-        .unwrap_or(solver.joint_damping_ratio);
-    solver.validate()?;
-    Ok(WorldSettings {
-        gravity: vec2(spec.gravity.0, spec.gravity.1),
-        solver,
-        effects,
-        ..WorldSettings::default()
-    })
 }
 
 /// The shape of a single collider (a chain makes several: [`colliders_of`] builds those), or

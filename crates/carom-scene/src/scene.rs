@@ -1,6 +1,6 @@
 //! The scene format: what a RON file in `demos/` holds. Every field but `name` has a default.
 
-use carom::{BodyKind, CollisionFilter, DrawFlags, Effects, Motor, SolverKind, Spring};
+use carom::{BodyKind, CollisionFilter, DrawFlags, Motor, Spring, WorldSettings};
 use serde::{Deserialize, Serialize};
 
 /// A 2D vector written `(x, y)`.
@@ -18,12 +18,15 @@ pub struct Scene {
     /// Where the camera starts.
     #[serde(default)]
     pub camera: Camera,
-    /// World settings.
+    /// The world's settings, every field of [`carom::WorldSettings`] and each optional: gravity,
+    /// the solver and its tuning (`solver: (kind: sequential_impulse, substeps: 8, ..)`), the
+    /// effects simulated (anything not named is not computed; default all), margins, contact
+    /// recycling and the hit-event threshold.
     #[serde(default)]
-    pub world: WorldSpec,
-    /// The effects simulated; anything not named is not computed. Default: all.
-    #[serde(default = "all_effects")]
-    pub effects: Effects,
+    pub world: WorldSettings,
+    /// Seconds per step. Default 1/60.
+    #[serde(default = "default_time_step")]
+    pub time_step: f32,
     /// Bodies listed one by one.
     #[serde(default)]
     pub bodies: Vec<BodySpec>,
@@ -121,8 +124,8 @@ fn default_draw() -> DrawFlags {
     DrawFlags::SHAPES | DrawFlags::SLEEPING
 }
 
-fn all_effects() -> Effects {
-    Effects::ALL
+fn default_time_step() -> f32 {
+    1.0 / 60.0
 }
 
 /// Where the camera looks and how close.
@@ -158,52 +161,6 @@ impl Default for Camera {
         Camera {
             center: (0.0, 5.0),
             zoom: 30.0,
-        }
-    }
-}
-
-/// World settings; unset solver fields take the solver's defaults.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct WorldSpec {
-    /// Gravity, m/s².
-    pub gravity: Pair,
-    /// Seconds per step.
-    pub time_step: f32,
-    /// The contact solver.
-    pub solver: SolverKind,
-    /// Velocity iterations.
-    pub iterations: Option<u32>,
-    /// Substeps (soft step).
-    pub substeps: Option<u32>,
-    /// Warm starting.
-    pub warm_starting: Option<bool>,
-    /// Contact stiffness, Hz (soft step).
-    pub contact_hertz: Option<f32>,
-    /// Contact damping ratio (soft step).
-    pub damping_ratio: Option<f32>,
-    /// Fastest push-out, m/s (soft step).
-    pub max_push_speed: Option<f32>,
-    /// Joint stiffness, Hz (soft step).
-    pub joint_hertz: Option<f32>,
-    /// Joint damping ratio (soft step).
-    pub joint_damping_ratio: Option<f32>,
-}
-
-impl Default for WorldSpec {
-    fn default() -> Self {
-        WorldSpec {
-            gravity: (0.0, -10.0),
-            time_step: 1.0 / 60.0,
-            solver: SolverKind::default(),
-            iterations: None,
-            substeps: None,
-            warm_starting: None,
-            contact_hertz: None,
-            damping_ratio: None,
-            max_push_speed: None,
-            joint_hertz: None,
-            joint_damping_ratio: None,
         }
     }
 }

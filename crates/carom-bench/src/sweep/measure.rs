@@ -248,7 +248,7 @@ impl Run {
         let mut params = *built.world.solver();
         params.kind = setting.solver;
         params.impulse_resolution = true;
-        params.iterations = setting.iterations;
+        params.iterations = Some(setting.iterations);
         params.substeps = setting.substeps;
         params.joint_hertz = setting.joint_hertz.unwrap_or(defaults.joint_hertz);
         if let Some(hertz) = setting.contact_hertz {

@@ -112,9 +112,9 @@ pub struct SolverParams {
     /// `kind` says. Default on.
     pub impulse_resolution: bool,
     /// Velocity iterations: per step for the classic solvers, per substep (solve and relax
-    /// each) for soft step. Default 1 (soft step's); [`SolverParams::for_kind`] picks 8 for the
-    /// classic solvers.
-    pub iterations: u32,
+    /// each) for soft step. Default `None`: the count suited to `kind`, 1 for soft step and 8
+    /// for the classic solvers ([`SolverParams::effective_iterations`]).
+    pub iterations: Option<u32>,
     /// Substeps per step (soft step only). Default 4.
     pub substeps: u32,
     /// Start each step from last step's impulses (sequential impulse and soft step). Default on.
@@ -167,7 +167,7 @@ impl Default for SolverParams {
         SolverParams {
             kind: SolverKind::SoftStep,
             impulse_resolution: true,
-            iterations: 1,
+            iterations: None,
             substeps: 4,
             warm_starting: true,
             graph_coloring: true,
@@ -187,14 +187,23 @@ impl Default for SolverParams {
 }
 
 impl SolverParams {
-    /// Defaults suited to a solver: 8 iterations for the classic ones, soft step as Box2D.
+    /// The defaults, with `kind`'s solver.
     pub fn for_kind(kind: SolverKind) -> Self {
-        let iterations = if kind == SolverKind::SoftStep { 1 } else { 8 };
         SolverParams {
             kind,
-            iterations,
             ..SolverParams::default()
         }
+    }
+
+    /// The velocity iterations that run: [`SolverParams::iterations`], or when it is `None`
+    /// the count suited to `kind`: 1 per substep for soft step, 8 per step for the others.
+    pub fn effective_iterations(&self) -> u32 {
+        let suited = if self.kind == SolverKind::SoftStep {
+            1
+        } else {
+            8
+        };
+        self.iterations.unwrap_or(suited)
     }
 
     /// The solver that actually runs, given the impulse-resolution toggle.
@@ -219,7 +228,10 @@ impl SolverParams {
                 })
             }
         };
-        let counts = [("iterations", self.iterations), ("substeps", self.substeps)];
+        let counts = [
+            ("iterations", self.effective_iterations()),
+            ("substeps", self.substeps),
+        ];
         for (name, value) in counts {
             if !(1..=1024).contains(&value) {
                 return Err(crate::CaromError::OutOfRange {

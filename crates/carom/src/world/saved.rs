@@ -22,8 +22,9 @@ use crate::world::solver_sets::{SetBounds, SolverSet};
 use crate::world::{World, check_settings};
 use serde::{Deserialize, Serialize};
 
-/// The version of the saved form; a world saved in another is refused.
-const SAVE_FORMAT: u32 = 1;
+/// The version of the saved form; a world saved in another is refused. Format 2: the solver's
+/// `iterations` became optional.
+const SAVE_FORMAT: u32 = 2;
 
 /// What a saved world holds: every field of [`World`] that outlives a step.
 #[derive(Serialize, Deserialize)]

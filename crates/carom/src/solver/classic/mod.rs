@@ -29,7 +29,7 @@ fn in_tutorial_order(
         bodies,
         dt,
     } = *context;
-    for _ in 0..params.iterations {
+    for _ in 0..params.effective_iterations() {
         resolve(states);
     }
     let caps = SpeedCaps::new(params, dt);

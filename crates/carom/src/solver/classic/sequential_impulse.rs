@@ -47,7 +47,7 @@ pub(crate) fn solve(
     } else {
         forget_impulses(constraints);
     }
-    for _ in 0..params.iterations {
+    for _ in 0..params.effective_iterations() {
         for joint in joints.iter_mut() {
             with_joint_states(joint, states, |j, a, b| j.solve(a, b, &joint_pass));
         }
@@ -78,7 +78,7 @@ pub(crate) fn solve(
     integrate_positions(bodies, states, dt, SpeedCaps::new(params, dt));
     // Joints take as many position passes as velocity iterations (at least the contacts'):
     // a chain of light links holding a heavy load needs them to close its drift each step.
-    let joint_passes = (params.iterations as usize).max(POSITION_ITERATIONS);
+    let joint_passes = (params.effective_iterations() as usize).max(POSITION_ITERATIONS);
     for pass in 0..joint_passes {
         if pass < joint_passes {
             for joint in joints.iter_mut() {

@@ -77,7 +77,8 @@ pub(super) fn solve(
         wide.execute(plan, states, constraints, (joints, joint_colors), &inputs);
     let points = wide.point_count() + constraints.iter().map(|c| c.points().len()).sum::<usize>();
     let friction_passes = u32::from(bias_friction) + u32::from(environment.friction);
-    work.friction_impulses = points * (friction_passes * params.iterations * substeps) as usize;
+    work.friction_impulses =
+        points * (friction_passes * params.effective_iterations() * substeps) as usize;
     work.restitution_impulses = bounces;
     work
 }
@@ -110,16 +111,17 @@ fn plan_stages(
         }
     };
     let bias_friction = environment.friction && params.friction_in_bias_pass;
+    let iterations = params.effective_iterations();
     for _ in 0..params.substeps.max(1) {
         plan.push(Stage::IntegrateVelocities);
         pass(plan, Pass::WarmStart);
-        for _ in 0..params.iterations {
+        for _ in 0..iterations {
             pass(plan, Pass::Solve(bias.pass(true), bias_friction));
         }
         plan.push(Stage::IntegratePositions);
-        for i in 0..params.iterations {
+        for i in 0..iterations {
             let relax = PassBias {
-                substep_end: i + 1 == params.iterations,
+                substep_end: i + 1 == iterations,
                 ..bias.pass(false)
             };
             pass(plan, Pass::Solve(relax, environment.friction));
