@@ -63,7 +63,8 @@ pub use constants::{
     LINEAR_SLOP, SHAPE_CAST_TOLERANCE, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_TO_SLEEP,
 };
 pub use debug_draw::{
-    ARROW_WIDTH, Color, DebugDraw, DrawFlags, DrawList, DrawOptions, OUTLINE_WIDTH,
+    ARROW_WIDTH, Color, DebugDraw, DrawCircle, DrawFlags, DrawList, DrawOptions, DrawPoint,
+    DrawPolygon, DrawSegment, OUTLINE_WIDTH,
 };
 pub use dynamics::body::{Body, BodyHandle, BodyKind};
 pub use dynamics::body_def::BodyDef;

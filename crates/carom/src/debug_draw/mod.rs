@@ -19,7 +19,7 @@ mod sink;
 
 pub use color::{Color, palette};
 pub use options::{DrawFlags, DrawOptions};
-pub use sink::{DebugDraw, DrawList};
+pub use sink::{DebugDraw, DrawCircle, DrawList, DrawPoint, DrawPolygon, DrawSegment};
 
 use crate::collision::manifold::PairSide;
 use crate::dynamics::body::{Body, BodyKind};
@@ -39,7 +39,7 @@ const CONTACT_EDGE_WIDTH: f32 = 4.0;
 const CONTACT_POINT_SIZE: f32 = 7.0;
 
 /// The colour a body is drawn in when the caller has none for it.
-pub fn default_color(body: &Body) -> Color {
+pub(crate) fn default_color(body: &Body) -> Color {
     match body.kind() {
         BodyKind::Static => palette::STATIC,
         BodyKind::Kinematic => palette::KINEMATIC,
