@@ -31,7 +31,9 @@ impl World {
         )?;
         let [a, b] = joint.bodies();
         let filters = !joint.collide_connected() && a != b;
-        let handle = self.joints.insert(joint);
+        let set = self.joint_set_for(&joint);
+        // Waking its bodies moves it on to the awake set if it has a dynamic body.
+        let handle = self.joints.insert(joint, set);
         for body in [a, b] {
             let index = self.bodies.checked_index(body).expect("checked");
             self.wake_body(index);
@@ -154,23 +156,22 @@ impl World {
         &self.joints.events
     }
 
-    /// The joints a step solves, into `awake`: those with a body in the awake set (the
-    /// other is then awake too, or static or kinematic).
+    /// The joints a step solves, into `awake`: the awake set of joints (those with an awake
+    /// dynamic body), in storage order, with where their bodies are.
     pub(crate) fn awake_joints(&self, awake: &mut Vec<AwakeJoint>) {
         awake.clear();
-        let range = self.body_sets.awake();
-        for (index, joint) in self.joints.as_slice().iter().enumerate() {
-            let [a, b] = joint.bodies().map(|body| {
+        let range = self.joints.awake();
+        let joints = &self.joints.as_slice()[range.clone()];
+        for (index, joint) in range.zip(joints) {
+            let bodies = joint.bodies().map(|body| {
                 self.bodies
                     .dense_index(body)
-                    .expect("joints join live bodies")
+                    .expect("joints join live bodies") as u32
             });
-            if range.contains(&a) || range.contains(&b) {
-                awake.push(AwakeJoint {
-                    index: index as u32,
-                    bodies: [a as u32, b as u32],
-                });
-            }
+            awake.push(AwakeJoint {
+                index: index as u32,
+                bodies,
+            });
         }
     }
 

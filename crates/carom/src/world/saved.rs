@@ -23,7 +23,7 @@ use crate::world::{World, check_settings};
 use serde::{Deserialize, Serialize};
 
 /// The version of the saved form; a world saved in another is refused.
-const SAVE_FORMAT: u32 = 1;
+const SAVE_FORMAT: u32 = 2;
 
 /// What a saved world holds: every field of [`World`] that outlives a step.
 #[derive(Serialize, Deserialize)]
@@ -159,6 +159,11 @@ impl World {
         self.check_saved_sets()?;
         self.islands.check_saved(&self.bodies)?;
         self.joints.check_saved(&self.bodies)?;
+        for (index, joint) in self.joints.as_slice().iter().enumerate() {
+            if self.joints.set_of(index) != self.joint_set_for(joint) {
+                return Err(format!("joint {index} is stored in the wrong set"));
+            }
+        }
         self.broadphase.check_saved(&self.colliders, &self.bodies)?;
         self.contacts.check_saved(&self.colliders, &self.bodies)?;
         self.sensors.check_saved(&self.colliders)?;
