@@ -254,3 +254,118 @@ fn the_small_world_restores() {
     let restored = restore(&save(&world));
     assert_eq!(restored.state_hash(), world.state_hash());
 }
+
+/// Jointed islands asleep and awake, a joint hanging from a kinematic body and one between two
+/// static bodies: restored, the world keeps each joint in its set (reading checks it) and
+/// steps on, through the sleeping islands' waking, bit for bit as the saved one.
+#[test]
+fn jointed_islands_asleep_and_awake_restore_exactly() {
+    use carom::{BodyDef, JointDef, Shape, vec2};
+    let mut world = World::new();
+    let ground = world
+        .add_body(BodyDef::static_body(Shape::rect(30.0, 0.5)).position(vec2(0.0, -0.5)))
+        .unwrap();
+    let post = world
+        .add_body(BodyDef::static_body(Shape::rect(0.2, 1.0)).position(vec2(-20.0, 1.0)))
+        .unwrap();
+    world
+        .add_joint(JointDef::weld(ground, post, vec2(-20.0, 0.0)))
+        .unwrap();
+    let crane = world
+        .add_body(BodyDef::kinematic(Shape::rect(0.5, 0.2)).position(vec2(20.0, 6.0)))
+        .unwrap();
+    let load = world
+        .add_body(BodyDef::dynamic(Shape::rect(0.4, 0.4)).position(vec2(20.0, 4.0)))
+        .unwrap();
+    world
+        .add_joint(JointDef::distance(
+            crane,
+            load,
+            vec2(20.0, 5.8),
+            vec2(20.0, 4.4),
+        ))
+        .unwrap();
+    let mut firsts = Vec::new();
+    for i in 0..6 {
+        let x = -12.0 + 4.0 * i as f32;
+        let a = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x, 0.5)))
+            .unwrap();
+        let b = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x + 1.0, 0.5)))
+            .unwrap();
+        world
+            .add_joint(JointDef::revolute(a, b, vec2(x + 0.5, 0.5)))
+            .unwrap();
+        firsts.push(a);
+    }
+    for _ in 0..120 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    assert!(world.body(load).unwrap().is_sleeping());
+    assert!(firsts.iter().all(|&a| world.body(a).unwrap().is_sleeping()));
+    // Two pairs wake, in an order that shuffles the awake joints.
+    for &a in [firsts[4], firsts[1]].iter() {
+        world
+            .body_mut(a)
+            .unwrap()
+            .apply_impulse_at_center(vec2(0.5, 3.0))
+            .unwrap();
+    }
+    world.step(1.0 / 60.0).unwrap();
+    let mut restored = restore(&save(&world));
+    for step in 0..120 {
+        if step == 30 {
+            for w in [&mut world, &mut restored] {
+                w.body_mut(firsts[2])
+                    .unwrap()
+                    .apply_impulse_at_center(vec2(-0.5, 3.0))
+                    .unwrap();
+            }
+        }
+        world.step(1.0 / 60.0).unwrap();
+        restored.step(1.0 / 60.0).unwrap();
+        assert_eq!(restored.state_hash(), world.state_hash(), "step {step}");
+        assert_eq!(restored.stats().joints, world.stats().joints, "step {step}");
+    }
+}
+
+/// A save whose joints are moved to another set (the awake pair's joint filed as asleep) is
+/// refused as it is read.
+#[test]
+fn a_save_with_a_joint_in_the_wrong_set_is_refused() {
+    use carom::{BodyDef, JointDef, Shape, vec2};
+    let mut world = World::new();
+    world
+        .add_body(BodyDef::static_body(Shape::rect(30.0, 0.5)).position(vec2(0.0, -0.5)))
+        .unwrap();
+    let mut pairs = Vec::new();
+    for x in [-5.0, 5.0] {
+        let a = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x, 0.5)))
+            .unwrap();
+        let b = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x + 1.0, 0.5)))
+            .unwrap();
+        world
+            .add_joint(JointDef::revolute(a, b, vec2(x + 0.5, 0.5)))
+            .unwrap();
+        pairs.push(a);
+    }
+    for _ in 0..120 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    world
+        .body_mut(pairs[1])
+        .unwrap()
+        .apply_impulse_at_center(vec2(0.0, 1.0))
+        .unwrap();
+    let text = save(&world);
+    restore(&text);
+    // One joint awake, none static, one asleep.
+    let sets = "sets:([1,1])";
+    assert_eq!(text.matches(sets).count(), 1, "the joints' sets in {text}");
+    let edited = text.replace(sets, "sets:([0,0])");
+    let error = ron::from_str::<World>(&edited).expect_err("a joint in the wrong set");
+    assert!(error.to_string().contains("wrong set"), "{error}");
+}

@@ -1,16 +1,22 @@
-//! The world's joints: stored contiguously behind handles, with each body's list of joints
-//! (for removing a body, linking islands and filtering pairs).
+//! The world's joints: stored contiguously behind handles in solver sets (awake, static,
+//! asleep, see `world::solver_sets`), with each body's list of joints (for removing a body,
+//! linking islands, moving a body's joints between sets and filtering pairs).
 
 use super::{Joint, JointEvent, JointHandle};
 use crate::dynamics::body::BodyHandle;
 use crate::handle_map::HandleMap;
+use crate::world::solver_sets::{JointSetBounds, SolverSet};
 use std::collections::HashMap;
+use std::ops::Range;
 
 /// Every joint of a world.
 #[derive(Debug, Clone, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointStore {
+    /// Stored in solver sets: those the step solves, then joints with no dynamic body, then
+    /// those of sleeping islands.
     joints: HandleMap<JointHandle, Joint>,
+    sets: JointSetBounds,
     /// Each body's joints, in the order they were added.
     #[cfg_attr(feature = "serde", serde(with = "crate::serde_impls::sorted_map"))]
     by_body: HashMap<BodyHandle, Vec<JointHandle>>,
@@ -33,11 +39,13 @@ impl JointStore {
         self.joints.next_handle()
     }
 
-    /// Stores a joint (made for [`JointStore::next_handle`]).
-    pub fn insert(&mut self, joint: Joint) -> JointHandle {
+    /// Stores a joint (made for [`JointStore::next_handle`]) in set `set`.
+    pub fn insert(&mut self, joint: Joint, set: SolverSet) -> JointHandle {
         let [a, b] = joint.bodies();
         let filters = !joint.collide_connected() && a != b;
         let handle = self.joints.insert(joint);
+        // Stored last, in the sleeping set; then moved into its own.
+        self.move_to(self.joints.len() - 1, set);
         self.by_body.entry(a).or_default().push(handle);
         if b != a {
             self.by_body.entry(b).or_default().push(handle);
@@ -50,6 +58,10 @@ impl JointStore {
 
     /// Removes a joint.
     pub fn remove(&mut self, handle: JointHandle) -> Option<Joint> {
+        // To the end of the sleeping set, the last of the array: the removal then moves only
+        // another sleeper into its place, and every set stays contiguous.
+        let index = self.joints.dense_index(handle)?;
+        self.move_to(index, SolverSet::Asleep);
         let joint = self.joints.remove(handle)?;
         let [a, b] = joint.bodies();
         for body in [a, b] {
@@ -80,7 +92,31 @@ impl JointStore {
         self.joints.get_mut(handle)
     }
 
-    /// Every joint, in storage order.
+    /// Moves the joint at dense `index` into set `to` by swaps at the set boundaries; returns
+    /// its new index.
+    fn move_to(&mut self, index: usize, to: SolverSet) -> usize {
+        let joints = &mut self.joints;
+        self.sets.move_item(index, to, |i, j| joints.swap(i, j))
+    }
+
+    /// Moves a joint into set `to` (a no-op when it is there already).
+    pub fn refile(&mut self, handle: JointHandle, to: SolverSet) {
+        let index = self.joints.dense_index(handle).expect("listed joints live");
+        self.move_to(index, to);
+    }
+
+    /// The dense indices of the joints a step solves.
+    pub fn awake(&self) -> Range<usize> {
+        self.sets.awake()
+    }
+
+    /// The set of the joint at dense `index`.
+    #[cfg(any(test, feature = "serde"))]
+    pub fn set_of(&self, index: usize) -> SolverSet {
+        self.sets.set_of(index)
+    }
+
+    /// Every joint, in storage order: set by set.
     pub fn as_slice(&self) -> &[Joint] {
         self.joints.as_slice()
     }
@@ -135,6 +171,7 @@ impl JointStore {
         bodies: &HandleMap<BodyHandle, crate::dynamics::body::Body>,
     ) -> Result<(), String> {
         self.joints.check_saved()?;
+        self.sets.check_saved(self.joints.len())?;
         let mut expected = JointStore::default();
         for (joint, &handle) in self.joints.as_slice().iter().zip(self.joints.handles()) {
             let i = handle.index();

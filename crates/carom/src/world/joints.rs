@@ -31,7 +31,9 @@ impl World {
         )?;
         let [a, b] = joint.bodies();
         let filters = !joint.collide_connected() && a != b;
-        let handle = self.joints.insert(joint);
+        let set = self.joint_set_for(&joint);
+        // Waking its bodies moves it on to the awake set if it has a dynamic body.
+        let handle = self.joints.insert(joint, set);
         for body in [a, b] {
             let index = self.bodies.checked_index(body).expect("checked");
             self.wake_body(index);
@@ -128,23 +130,22 @@ impl World {
         &self.joints.events
     }
 
-    /// The joints a step solves, into `awake`: those with a body in the awake set (the
-    /// other is then awake too, or static or kinematic).
+    /// The joints a step solves, into `awake`: the awake set of joints (those with an awake
+    /// dynamic body), in storage order, with where their bodies are.
     pub(crate) fn awake_joints(&self, awake: &mut Vec<AwakeJoint>) {
         awake.clear();
-        let range = self.body_sets.awake();
-        for (index, joint) in self.joints.as_slice().iter().enumerate() {
-            let [a, b] = joint.bodies().map(|body| {
+        let range = self.joints.awake();
+        let joints = &self.joints.as_slice()[range.clone()];
+        for (index, joint) in range.zip(joints) {
+            let bodies = joint.bodies().map(|body| {
                 self.bodies
                     .dense_index(body)
-                    .expect("joints join live bodies")
+                    .expect("joints join live bodies") as u32
             });
-            if range.contains(&a) || range.contains(&b) {
-                awake.push(AwakeJoint {
-                    index: index as u32,
-                    bodies: [a as u32, b as u32],
-                });
-            }
+            awake.push(AwakeJoint {
+                index: index as u32,
+                bodies,
+            });
         }
     }
 
@@ -173,5 +174,284 @@ impl World {
     /// The bodies joined to `body`, into `out` (for islands).
     pub(crate) fn joint_partners(&self, body: BodyHandle, out: &mut Vec<BodyHandle>) {
         self.joints.partners(body, out);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::body::BodyKind;
+    use crate::dynamics::body_def::BodyDef;
+    use crate::geometry::shape::Shape;
+    use crate::math::{Real, vec2};
+
+    const DT: Real = 1.0 / 60.0;
+
+    /// A ground and `count` pairs of boxes resting on it, far apart, each pair hinged
+    /// together and one of its boxes hinged to the ground: one island and two joints a pair.
+    /// Returns the world and each pair's first box.
+    fn hinged_pairs(count: usize) -> (World, Vec<BodyHandle>) {
+        let mut world = World::new();
+        let ground = world
+            .add_body(BodyDef::static_body(Shape::rect(200.0, 0.5)).position(vec2(0.0, -0.5)))
+            .unwrap();
+        let mut firsts = Vec::new();
+        for i in 0..count {
+            let x = i as Real * 5.0 - 100.0;
+            let a = world
+                .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x, 0.5)))
+                .unwrap();
+            let b = world
+                .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x + 1.0, 0.5)))
+                .unwrap();
+            world
+                .add_joint(JointDef::revolute(a, b, vec2(x + 0.5, 0.5)))
+                .unwrap();
+            world
+                .add_joint(JointDef::revolute(ground, a, vec2(x, 0.0)))
+                .unwrap();
+            firsts.push(a);
+        }
+        (world, firsts)
+    }
+
+    /// How many joints are stored in each set: static, awake, asleep.
+    fn joints_by_set(world: &World) -> [usize; 3] {
+        let mut counts = [0; 3];
+        for i in 0..world.joints.len() {
+            counts[world.joints.set_of(i) as usize] += 1;
+        }
+        counts
+    }
+
+    /// Many sleeping jointed islands and one awake: the step looks at the awake island's
+    /// joints alone, and sleeping and waking move only an island's own joints.
+    #[test]
+    fn only_the_awake_islands_joints_are_visited() {
+        let (mut world, firsts) = hinged_pairs(40);
+        for _ in 0..120 {
+            world.step(DT).unwrap();
+        }
+        world.check_sets();
+        assert_eq!(world.stats().sleeping_bodies, 80, "every pair sleeps");
+        assert_eq!(joints_by_set(&world), [0, 0, 80]);
+        assert_eq!(world.stats().joints, 0);
+        world
+            .body_mut(firsts[17])
+            .unwrap()
+            .apply_impulse_at_center(vec2(0.0, 1.0))
+            .unwrap();
+        world.check_sets();
+        assert_eq!(joints_by_set(&world), [0, 2, 78]);
+        let mut awake = Vec::new();
+        world.awake_joints(&mut awake);
+        let woken: Vec<JointHandle> = world.joints_of(firsts[17]).to_vec();
+        let mut solved: Vec<JointHandle> = awake
+            .iter()
+            .map(|j| world.joints.as_slice()[j.index as usize].handle())
+            .collect();
+        solved.sort();
+        let mut expected = woken.clone();
+        expected.sort();
+        assert_eq!(solved, expected, "the woken pair's joints, and only those");
+        world.step(DT).unwrap();
+        world.check_sets();
+        assert_eq!(world.stats().joints, 2);
+        for _ in 0..120 {
+            world.step(DT).unwrap();
+        }
+        world.check_sets();
+        assert_eq!(joints_by_set(&world), [0, 0, 80], "asleep again");
+    }
+
+    /// While no island sleeps, joints are solved in the order they were added, removals
+    /// moving the last one into the hole, whatever joints with no dynamic body come between:
+    /// the order before joints were kept in sets, so no result changed for worlds that do not
+    /// sleep.
+    #[test]
+    fn awake_joints_keep_the_order_they_were_added_in() {
+        let (mut world, firsts) = hinged_pairs(6);
+        let ground = world.bodies().next().unwrap().handle();
+        let post = world
+            .add_body(BodyDef::static_body(Shape::rect(0.5, 0.5)).position(vec2(0.0, 3.0)))
+            .unwrap();
+        let never_solved = world
+            .add_joint(JointDef::weld(ground, post, vec2(0.0, 2.5)))
+            .unwrap();
+        world
+            .add_joint(JointDef::distance(
+                firsts[0],
+                firsts[1],
+                vec2(-100.0, 0.5),
+                vec2(-95.0, 0.5),
+            ))
+            .unwrap();
+        let added: Vec<JointHandle> = world
+            .joints()
+            .map(Joint::handle)
+            .filter(|&h| h != never_solved)
+            .collect();
+        let order = |world: &World| -> Vec<JointHandle> {
+            let mut awake = Vec::new();
+            world.awake_joints(&mut awake);
+            awake
+                .iter()
+                .map(|j| world.joints.as_slice()[j.index as usize].handle())
+                .collect()
+        };
+        assert_eq!(order(&world), added);
+        world.remove_joint(added[3]).unwrap();
+        let mut expected = added.clone();
+        expected.swap_remove(3);
+        assert_eq!(order(&world), expected);
+        world.check_sets();
+    }
+
+    /// A joint sleeps with its dynamic body's island even when its other body is kinematic
+    /// (so it is not solved while its island sleeps), and a joint with no dynamic body is
+    /// never solved; changing kinds moves the joints to their new sets.
+    #[test]
+    fn joints_follow_their_bodies_kinds_and_sleep() {
+        let mut world = World::new();
+        let ground = world
+            .add_body(BodyDef::static_body(Shape::rect(20.0, 0.5)).position(vec2(0.0, -0.5)))
+            .unwrap();
+        let crane = world
+            .add_body(BodyDef::kinematic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 5.0)))
+            .unwrap();
+        let load = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 3.0)))
+            .unwrap();
+        let rope = world
+            .add_joint(JointDef::distance(
+                crane,
+                load,
+                vec2(0.0, 4.5),
+                vec2(0.0, 3.5),
+            ))
+            .unwrap();
+        let anchor = world
+            .add_joint(JointDef::weld(ground, crane, vec2(0.0, 5.0)))
+            .unwrap();
+        world.check_sets();
+        assert_eq!(
+            joints_by_set(&world),
+            [1, 1, 0],
+            "the weld has no dynamic body"
+        );
+        world.step(DT).unwrap();
+        assert_eq!(world.stats().joints, 1, "only the rope is solved");
+        for _ in 0..120 {
+            world.step(DT).unwrap();
+            world.check_sets();
+        }
+        assert!(world.body(load).unwrap().is_sleeping());
+        assert_eq!(joints_by_set(&world), [1, 0, 1]);
+        assert_eq!(
+            world.stats().joints,
+            0,
+            "the sleeping load's rope is not solved"
+        );
+        // The crane turned dynamic joins the load's island, which wakes; the weld now holds
+        // a dynamic body.
+        world.set_body_kind(crane, BodyKind::Dynamic).unwrap();
+        world.check_sets();
+        assert!(!world.body(load).unwrap().is_sleeping());
+        assert_eq!(joints_by_set(&world), [0, 2, 0]);
+        world.set_body_kind(load, BodyKind::Static).unwrap();
+        world.check_sets();
+        world.set_body_kind(crane, BodyKind::Kinematic).unwrap();
+        world.check_sets();
+        assert_eq!(joints_by_set(&world), [2, 0, 0]);
+        world.set_body_kind(load, BodyKind::Dynamic).unwrap();
+        world.check_sets();
+        assert_eq!(joints_by_set(&world), [1, 1, 0]);
+        world.remove_body(crane).unwrap();
+        world.check_sets();
+        assert!(world.joint(rope).is_none() && world.joint(anchor).is_none());
+        assert_eq!(world.joints.len(), 0);
+    }
+
+    /// Joints added, removed, broken and carried along by every edit a user can make, among
+    /// islands that fall asleep and wake: after every edit and every step, each joint is in the
+    /// set its bodies call for.
+    #[test]
+    fn random_edits_keep_every_joint_in_its_set() {
+        let mut world = World::new();
+        world
+            .add_body(BodyDef::static_body(Shape::rect(30.0, 0.5)).position(vec2(0.0, -0.5)))
+            .unwrap();
+        let mut seed: u32 = 99;
+        let mut below = move |n: usize| {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (seed >> 8) as usize % n
+        };
+        let mut bodies: Vec<BodyHandle> = Vec::new();
+        let (mut most_asleep, mut broken) = (0, 0);
+        for round in 0..500 {
+            let edit = below(12);
+            let pick = |below: &mut dyn FnMut(usize) -> usize| {
+                (!bodies.is_empty()).then(|| bodies[below(bodies.len())])
+            };
+            let (a, b) = (pick(&mut below), pick(&mut below));
+            match (edit, a, b) {
+                (0..=2, ..) | (_, None, _) => {
+                    let x = below(40) as Real - 20.0;
+                    let y = 0.5 + below(4) as Real;
+                    let def = match below(8) {
+                        0 => BodyDef::static_body(Shape::rect(0.5, 0.5)),
+                        1 => BodyDef::kinematic(Shape::rect(0.5, 0.5)),
+                        _ => BodyDef::dynamic(Shape::rect(0.5, 0.5)),
+                    };
+                    bodies.push(world.add_body(def.position(vec2(x, y))).unwrap());
+                }
+                (3..=5, Some(a), Some(b)) if a != b => {
+                    let (pa, pb) = (
+                        world.body(a).unwrap().position(),
+                        world.body(b).unwrap().position(),
+                    );
+                    let def = match below(3) {
+                        0 => JointDef::distance(a, b, pa, pb),
+                        1 => JointDef::revolute(a, b, (pa + pb) * 0.5).break_force(50.0),
+                        _ => JointDef::filter(a, b),
+                    };
+                    world.add_joint(def).unwrap();
+                }
+                (6, Some(a), _) => {
+                    if let Some(&joint) = world.joints_of(a).first() {
+                        world.remove_joint(joint).unwrap();
+                    }
+                }
+                (7, Some(a), _) if round % 5 == 0 => {
+                    world.remove_body(a).unwrap();
+                    bodies.retain(|&h| h != a);
+                }
+                (8, Some(a), _) => {
+                    let kinds = [BodyKind::Static, BodyKind::Kinematic, BodyKind::Dynamic];
+                    world.set_body_kind(a, kinds[below(3)]).unwrap();
+                }
+                (9, Some(a), _) => {
+                    let point = world.body(a).unwrap().position();
+                    if world.body(a).unwrap().is_dynamic() {
+                        world.add_joint(JointDef::mouse(a, point, 100.0)).unwrap();
+                    }
+                }
+                (10, ..) if round % 40 == 0 => world.wake_all(),
+                _ => {
+                    for _ in 0..30 {
+                        world.step(DT).unwrap();
+                        world.check_sets();
+                        broken += world.joint_events().len();
+                        most_asleep = most_asleep.max(joints_by_set(&world)[2]);
+                    }
+                }
+            }
+            world.check_sets();
+        }
+        assert!(
+            most_asleep > 5,
+            "joints fell asleep ({most_asleep} at most)"
+        );
+        assert!(broken > 0, "some joints broke");
     }
 }

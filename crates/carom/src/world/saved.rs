@@ -23,7 +23,7 @@ use crate::world::{World, check_settings};
 use serde::{Deserialize, Serialize};
 
 /// The version of the saved form; a world saved in another is refused. Format 2: the solver's
-/// `iterations` became optional.
+/// `iterations` became optional and joints are stored in solver sets.
 const SAVE_FORMAT: u32 = 2;
 
 /// What a saved world holds: every field of [`World`] that outlives a step.
@@ -160,6 +160,11 @@ impl World {
         self.check_saved_sets()?;
         self.islands.check_saved(&self.bodies)?;
         self.joints.check_saved(&self.bodies)?;
+        for (index, joint) in self.joints.as_slice().iter().enumerate() {
+            if self.joints.set_of(index) != self.joint_set_for(joint) {
+                return Err(format!("joint {index} is stored in the wrong set"));
+            }
+        }
         self.broadphase.check_saved(&self.colliders, &self.bodies)?;
         self.contacts.check_saved(&self.colliders, &self.bodies)?;
         self.sensors.check_saved(&self.colliders)?;

@@ -1,5 +1,6 @@
 //! The sleep stage: islands whose bodies have all rested long enough leave the awake set
-//! (bodies, colliders, contacts), and wake as a whole when something touches or moves them.
+//! (bodies, colliders, contacts, joints), and wake as a whole when something touches or moves
+//! them.
 
 use crate::constants::{SLEEP_THRESHOLD, TIME_TO_SLEEP};
 use crate::dynamics::body::BodyKind;
@@ -67,8 +68,8 @@ impl World {
         checked
     }
 
-    /// Puts every body of island `id` to sleep: they, their colliders and contacts leave the
-    /// awake set.
+    /// Puts every body of island `id` to sleep: they, their colliders, contacts and joints
+    /// leave the awake set.
     pub(crate) fn sleep_island(&mut self, id: u32) {
         let mut next = self.islands.get(id).head;
         while let Some(handle) = next {
@@ -80,8 +81,8 @@ impl World {
         }
     }
 
-    /// Wakes every body of island `id`: they, their colliders and contacts go back to the
-    /// awake set. An island already awake is left alone.
+    /// Wakes every body of island `id`: they, their colliders, contacts and joints go back to
+    /// the awake set. An island already awake is left alone.
     pub(crate) fn wake_island(&mut self, id: u32) {
         let mut next = self.islands.get(id).head;
         while let Some(handle) = next {

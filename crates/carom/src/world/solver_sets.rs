@@ -5,15 +5,23 @@
 //! awake set (dynamic and kinematic bodies the step moves), then the sleeping bodies. A
 //! body's colliders are stored in the same three sets in the colliders' array, and contacts in
 //! two: awake (a body of the pair is awake, kept colour by colour, see
-//! `graph::layout`) and asleep. Each stage of a step takes the awake set as one
-//! slice; a static or sleeping body is never visited.
+//! `graph::layout`) and asleep. Joints are stored in three sets as Box2D keeps them: static
+//! (no dynamic body: nothing to solve), awake (a dynamic body is awake) and asleep (their
+//! island sleeps; a kinematic or static partner does not keep a joint awake). Each stage of a
+//! step takes the awake set as one slice; a static or sleeping body, or a joint that is not
+//! awake, is never visited.
 //!
-//! Falling asleep moves an island's bodies (and their colliders and contacts) out of the awake
-//! set; waking moves them back (see `world::islands`). Each move is a swap at a set boundary,
-//! so it costs the island's own bodies and contacts, whatever the size of the world.
+//! Falling asleep moves an island's bodies (and their colliders, contacts and joints) out of
+//! the awake set; waking moves them back (see `world::islands`). Each move is a swap at a set
+//! boundary, so it costs the island's own bodies, contacts and joints, whatever the size of
+//! the world. The awake joints are solved in storage order: the order they were added while no
+//! island sleeps, and otherwise shuffled by the swaps (the same way on every run). The joints'
+//! array keeps its awake set first, before the static one, so that joints never solved do not
+//! shuffle it either.
 
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
+use crate::joint::Joint;
 use crate::partition::Partition;
 use crate::world::World;
 use std::ops::Range;
@@ -69,6 +77,60 @@ impl SetBounds {
     }
 }
 
+/// Where the joint sets of the joints' dense array begin and end: awake, then static, then
+/// asleep. Unlike bodies', the static set follows the awake one, so a joint that is never
+/// solved, added or moved there, leaves the order of the solved ones alone.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct JointSetBounds(Partition<2>);
+
+impl JointSetBounds {
+    /// The part of the array each set is kept in.
+    fn part(set: SolverSet) -> usize {
+        match set {
+            SolverSet::Awake => 0,
+            SolverSet::Static => 1,
+            SolverSet::Asleep => 2,
+        }
+    }
+
+    /// The set of the joint at `index`.
+    #[cfg(any(test, feature = "serde"))]
+    pub fn set_of(&self, index: usize) -> SolverSet {
+        match self.0.part_of(index) {
+            0 => SolverSet::Awake,
+            1 => SolverSet::Static,
+            _ => SolverSet::Asleep,
+        }
+    }
+
+    /// The dense indices of the awake set.
+    #[inline]
+    pub fn awake(&self) -> Range<usize> {
+        self.0.range(Self::part(SolverSet::Awake))
+    }
+
+    /// Moves the joint at `index` into set `to` by swapping it across each boundary on the
+    /// way (`swap(i, j)` swaps two joints of the array); returns its new index.
+    pub fn move_item(
+        &mut self,
+        index: usize,
+        to: SolverSet,
+        swap: impl FnMut(usize, usize),
+    ) -> usize {
+        self.0.move_item(index, Self::part(to), swap)
+    }
+
+    /// Checks bounds read from a saved world against the joints they divide.
+    #[cfg(feature = "serde")]
+    pub fn check_saved(&self, len: usize) -> Result<(), String> {
+        if self.0.start(Self::part(SolverSet::Asleep)) > len {
+            return Err(format!("the joint sets reach past the {len} joints"));
+        }
+        Ok(())
+    }
+}
+
 impl World {
     /// The set a body belongs in, by its kind and state.
     pub(crate) fn set_for(&self, index: usize) -> SolverSet {
@@ -82,13 +144,47 @@ impl World {
         }
     }
 
-    /// Moves the body at dense `index`, its colliders and its contacts, into set `to`; returns
-    /// the body's new index. The colliders of every body that changes place follow it.
+    /// The set a joint belongs in, by its bodies' kinds and sets: with no dynamic body it is
+    /// never solved (static); otherwise it is awake while a dynamic body of it is, and sleeps
+    /// with their island (a static or kinematic partner does not keep it awake).
+    pub(crate) fn joint_set_for(&self, joint: &Joint) -> SolverSet {
+        let mut set = SolverSet::Static;
+        for handle in joint.bodies() {
+            let index = self
+                .bodies
+                .dense_index(handle)
+                .expect("joints join live bodies");
+            if self.bodies.as_slice()[index].kind() != BodyKind::Dynamic {
+                continue;
+            }
+            match self.body_sets.set_of(index) {
+                SolverSet::Awake => return SolverSet::Awake,
+                _ => set = SolverSet::Asleep,
+            }
+        }
+        set
+    }
+
+    /// Moves the body at dense `index`, its colliders, its contacts and its joints, into the
+    /// sets they then belong in (the body into `to`); returns the body's new index. The
+    /// colliders of every body that changes place follow it.
     pub(crate) fn move_body(&mut self, index: usize, to: SolverSet) -> usize {
         let index = self.move_body_and_colliders(index, to);
         let handle = self.bodies.handles()[index];
         self.refile_contacts(handle);
+        self.refile_joints(handle);
         index
+    }
+
+    /// Puts each of a body's joints in the set its bodies call for (after the body changed
+    /// set or kind): the cost is the body's own joints.
+    fn refile_joints(&mut self, body: BodyHandle) {
+        for k in 0..self.joints.of_body(body).len() {
+            let handle = self.joints.of_body(body)[k];
+            let joint = self.joints.get(handle).expect("listed joints live");
+            let to = self.joint_set_for(joint);
+            self.joints.refile(handle, to);
+        }
     }
 
     /// [`World::move_body`] without refiling the contacts (for a body whose contacts are about
@@ -201,8 +297,8 @@ impl World {
 impl World {
     /// Checks every invariant of the sets, panicking on the first broken one: each body is in
     /// the set its kind and state call for, its colliders in the same set and pointing at it,
-    /// each contact awake exactly when one of its bodies is, and each sleeping island's list
-    /// holds exactly the bodies that name it.
+    /// each contact awake exactly when one of its bodies is, each joint in the set its bodies
+    /// call for, and each sleeping island's list holds exactly the bodies that name it.
     pub(crate) fn check_sets(&self) {
         let bodies = self.bodies.as_slice();
         for (index, body) in bodies.iter().enumerate() {
@@ -243,13 +339,17 @@ impl World {
             }
         }
         assert_eq!(asleep_touching, self.contacts.asleep_touching());
+        for (i, joint) in self.joints.as_slice().iter().enumerate() {
+            let set = self.joints.set_of(i);
+            assert_eq!(set, self.joint_set_for(joint), "joint {i}");
+        }
         self.check_colors();
         self.check_islands();
     }
 
     /// Checks the islands: each live island's list, walked both ways, is exactly the bodies
-    /// that name it, all in one set; every touching contact between dynamic bodies joins two
-    /// bodies of one island.
+    /// that name it, all in one set; every touching contact and every joint between dynamic
+    /// bodies joins two bodies of one island.
     fn check_islands(&self) {
         for id in self.islands.live_ids() {
             let island = self.islands.get(id);
@@ -282,6 +382,12 @@ impl World {
             );
             if a.is_dynamic() && b.is_dynamic() {
                 assert_eq!(a.island(), b.island(), "touching bodies share an island");
+            }
+        }
+        for joint in self.joints.as_slice() {
+            let [a, b] = joint.bodies().map(|h| self.bodies.get(h).unwrap());
+            if a.is_dynamic() && b.is_dynamic() {
+                assert_eq!(a.island(), b.island(), "joined bodies share an island");
             }
         }
     }

@@ -49,8 +49,8 @@ impl World {
     /// the hard hits, if some collider asks; remove the joints pulled past their break
     /// thresholds; continuous collision for fast bodies; refresh the broadphase from the moved
     /// colliders; put resting islands to sleep; find what overlaps each sensor. The stages walk
-    /// the awake set of bodies, colliders and contacts; the joints to solve and the sensors to
-    /// update are found by a walk over all of them.
+    /// the awake set of bodies, colliders, contacts and joints; the sensors to update are found
+    /// by a walk over all of them.
     ///
     /// # Errors
     /// A time step that is not finite and positive; the world is left untouched.
