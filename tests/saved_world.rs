@@ -288,16 +288,7 @@ fn jointed_islands_asleep_and_awake_restore_exactly() {
     let mut firsts = Vec::new();
     for i in 0..6 {
         let x = -12.0 + 4.0 * i as f32;
-        let a = world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x, 0.5)))
-            .unwrap();
-        let b = world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x + 1.0, 0.5)))
-            .unwrap();
-        world
-            .add_joint(JointDef::revolute(a, b, vec2(x + 0.5, 0.5)))
-            .unwrap();
-        firsts.push(a);
+        firsts.push(hinged_pair(&mut world, x));
     }
     for _ in 0..120 {
         world.step(1.0 / 60.0).unwrap();
@@ -334,23 +325,14 @@ fn jointed_islands_asleep_and_awake_restore_exactly() {
 /// refused as it is read.
 #[test]
 fn a_save_with_a_joint_in_the_wrong_set_is_refused() {
-    use carom::{BodyDef, JointDef, Shape, vec2};
+    use carom::{BodyDef, Shape, vec2};
     let mut world = World::new();
     world
         .add_body(BodyDef::static_body(Shape::rect(30.0, 0.5)).position(vec2(0.0, -0.5)))
         .unwrap();
     let mut pairs = Vec::new();
     for x in [-5.0, 5.0] {
-        let a = world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x, 0.5)))
-            .unwrap();
-        let b = world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x + 1.0, 0.5)))
-            .unwrap();
-        world
-            .add_joint(JointDef::revolute(a, b, vec2(x + 0.5, 0.5)))
-            .unwrap();
-        pairs.push(a);
+        pairs.push(hinged_pair(&mut world, x));
     }
     for _ in 0..120 {
         world.step(1.0 / 60.0).unwrap();
@@ -368,4 +350,20 @@ fn a_save_with_a_joint_in_the_wrong_set_is_refused() {
     let edited = text.replace(sets, "sets:([0,0])");
     let error = ron::from_str::<World>(&edited).expect_err("a joint in the wrong set");
     assert!(error.to_string().contains("wrong set"), "{error}");
+}
+
+/// Two unit boxes resting side by side on the ground from `x`, hinged where they meet;
+/// returns the first.
+fn hinged_pair(world: &mut World, x: f32) -> carom::BodyHandle {
+    use carom::{BodyDef, JointDef, Shape, vec2};
+    let a = world
+        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x, 0.5)))
+        .unwrap();
+    let b = world
+        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x + 1.0, 0.5)))
+        .unwrap();
+    world
+        .add_joint(JointDef::revolute(a, b, vec2(x + 0.5, 0.5)))
+        .unwrap();
+    a
 }
