@@ -213,6 +213,7 @@ fn collide_polygon(link: &ChainLink, polygon: Core, margins: Margins) -> Manifol
         polygon.vertices,
         polygon.normals,
         0.1 * LINEAR_SLOP,
+        |separation| separation - polygon.radius > margins.face,
     );
     if pp.separation.separation - polygon.radius > margins.face {
         return empty;

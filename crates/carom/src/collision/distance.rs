@@ -321,19 +321,22 @@ pub fn polygon_polygon(
     b_vertices: &[Vec2],
     b_normals: &[Vec2],
 ) -> PolygonPolygon {
-    polygon_polygon_within(a_vertices, a_normals, b_vertices, b_normals, 0.0)
+    polygon_polygon_within(a_vertices, a_normals, b_vertices, b_normals, 0.0, |_| false)
 }
 
 /// [`polygon_polygon`], except that polygons apart by no more than `sat_is_enough` keep SAT's
 /// axis and distance without searching for the exact closest points. Two polygons that barely
 /// touch (a tenth of the slop, Box2D's rule) differ from the exact answer by less than anything
-/// a contact can tell, and resting contacts are nearly all like that.
+/// a contact can tell, and resting contacts are nearly all like that. Nor are polygons that
+/// SAT already puts `too_far` apart searched: the exact distance is never less than SAT's, so
+/// they are too far either way, and most pairs a moving scene watches are.
 pub fn polygon_polygon_within(
     a_vertices: &[Vec2],
     a_normals: &[Vec2],
     b_vertices: &[Vec2],
     b_normals: &[Vec2],
     sat_is_enough: Real,
+    too_far: impl Fn(Real) -> bool,
 ) -> PolygonPolygon {
     let edge_a = max_separation(a_vertices, a_normals, b_vertices);
     let edge_b = max_separation(b_vertices, b_normals, a_vertices);
@@ -363,7 +366,7 @@ pub fn polygon_polygon_within(
             };
         }
     }
-    if sat.separation <= sat_is_enough {
+    if sat.separation <= sat_is_enough || too_far(sat.separation) {
         return PolygonPolygon {
             separation: sat,
             edge_a,

@@ -441,6 +441,7 @@ fn collide_polygons(
         b.vertices,
         b.normals,
         0.1 * LINEAR_SLOP,
+        |separation| separation - rounding > margins.face,
     );
     let (edge_a, separation_a) = pp.edge_a;
     let (edge_b, separation_b) = pp.edge_b;

@@ -24,6 +24,9 @@ pub struct Polygon {
     source_centroid: Vec2,
     /// Distance from the centroid to the farthest vertex of the core.
     circumradius: Real,
+    /// Distance from the centroid to the nearest edge of the core: kept because contacts ask
+    /// for it every time they build a manifold.
+    inradius: Real,
     /// How far the shape reaches beyond its core (0: sharp corners).
     radius: Real,
     /// Why the arguments of an infallible constructor ([`Polygon::rect`]) made no polygon;
@@ -262,12 +265,18 @@ impl Polygon {
             return Err(CaromError::ZeroArea);
         }
         let circumradius = vertices.iter().map(|v| v.norm()).fold(0.0, Real::max);
+        let inradius = vertices
+            .iter()
+            .zip(&normals)
+            .map(|(v, n)| n.dot(v))
+            .fold(Real::INFINITY, Real::min);
         Ok(Polygon {
             vertices,
             edges,
             normals,
             source_centroid,
             circumradius,
+            inradius,
             radius: 0.0,
             problem: None,
         })
@@ -314,6 +323,11 @@ impl Polygon {
     #[inline]
     pub fn circumradius(&self) -> Real {
         self.circumradius
+    }
+
+    /// Distance from the centroid to the nearest edge of the core.
+    pub(crate) fn inradius(&self) -> Real {
+        self.inradius
     }
 
     /// How far the shape reaches beyond its core: 0 for a sharp polygon.

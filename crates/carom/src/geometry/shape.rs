@@ -177,14 +177,7 @@ impl Shape {
         match self {
             Shape::Circle(c) => c.radius(),
             Shape::Capsule(c) => c.radius(),
-            Shape::Polygon(p) => {
-                p.vertices()
-                    .iter()
-                    .zip(p.normals())
-                    .map(|(v, n)| n.dot(v))
-                    .fold(Real::INFINITY, Real::min)
-                    + p.radius()
-            }
+            Shape::Polygon(p) => p.inradius() + p.radius(),
             Shape::Segment(_) | Shape::ChainSegment(_) => 0.0,
         }
     }
