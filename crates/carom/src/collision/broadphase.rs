@@ -35,7 +35,6 @@ struct Proxy {
     body: u32,
     kind: BodyKind,
     node: u32,
-    queued: bool,
     /// Its fat box, as its tree holds it: the narrowphase reads it for every contact, and
     /// here it costs one memory access instead of two.
     fat: Aabb,
@@ -66,6 +65,9 @@ pub struct BroadPhase {
     proxies: Vec<Option<Proxy>>,
     /// Slots whose fat box changed since the last pair update.
     move_buffer: Vec<u32>,
+    /// Per slot, whether it is in `move_buffer`: the pair queries ask it of every candidate,
+    /// so it lives apart from the proxies, one byte a slot.
+    moved: Vec<bool>,
     /// New pairs of slots found by the last pair update, one list per task of queries (kept
     /// to reuse the memory).
     #[cfg_attr(feature = "serde", serde(skip))]
@@ -107,6 +109,7 @@ impl BroadPhase {
         let slot = Self::slot(handle);
         if self.proxies.len() <= slot {
             self.proxies.resize(slot + 1, None);
+            self.moved.resize(slot + 1, false);
         }
         debug_assert!(self.proxies[slot].is_none(), "slot already has a proxy");
         let fat = aabb.fattened(margin);
@@ -116,7 +119,6 @@ impl BroadPhase {
             body: body.index(),
             kind,
             node,
-            queued: false,
             fat,
             filter: CollisionFilter::DEFAULT,
         });
@@ -138,7 +140,8 @@ impl BroadPhase {
         if let Some(proxy) = self.proxy(handle).copied() {
             self.trees[proxy.tree()].destroy_proxy(proxy.node);
             self.proxies[Self::slot(handle)] = None;
-            // A queued slot is skipped at the next pair update.
+            // A queued slot is skipped at the next pair update (or, if another collider takes
+            // the slot first, queries for that one).
         }
     }
 
@@ -189,10 +192,7 @@ impl BroadPhase {
     }
 
     fn enqueue(&mut self, slot: usize) {
-        if let Some(p) = self.proxies[slot].as_mut()
-            && !p.queued
-        {
-            p.queued = true;
+        if self.proxies[slot].is_some() && !std::mem::replace(&mut self.moved[slot], true) {
             self.move_buffer.push(slot as u32);
         }
     }
@@ -214,7 +214,7 @@ impl BroadPhase {
     #[cfg(any(test, feature = "testing"))]
     pub fn update_pairs(
         &mut self,
-        exists: impl Fn(ColliderHandle, ColliderHandle) -> bool + Sync,
+        exists: impl Fn(u32, u32) -> bool + Sync,
     ) -> Vec<(ColliderHandle, ColliderHandle)> {
         let mut pairs = Vec::new();
         self.update_pairs_into(exists, &mut pairs);
@@ -224,11 +224,12 @@ impl BroadPhase {
     /// Pairs whose fat boxes began to overlap because one of them moved since the last call,
     /// each ordered `(lower slot, higher slot)`, sorted, without duplicates, and only where
     /// one body is dynamic, into `out` (cleared first), allocating nothing once the buffers
-    /// have grown. Pairs for which `exists` answers true are left out. The moved colliders'
+    /// have grown. Pairs for which `exists(lower slot, higher slot)` answers true are left
+    /// out. The moved colliders'
     /// queries run on all threads when there are enough of them.
     pub fn update_pairs_into(
         &mut self,
-        exists: impl Fn(ColliderHandle, ColliderHandle) -> bool + Sync,
+        exists: impl Fn(u32, u32) -> bool + Sync,
         out: &mut Vec<(ColliderHandle, ColliderHandle)>,
     ) {
         out.clear();
@@ -258,9 +259,7 @@ impl BroadPhase {
             query(moved, &mut found[0]);
         }
         for &slot in &self.move_buffer {
-            if let Some(p) = self.proxies[slot as usize].as_mut() {
-                p.queued = false;
-            }
+            self.moved[slot as usize] = false;
         }
         self.move_buffer.clear();
         let pairs = &mut self.candidates;
@@ -270,8 +269,7 @@ impl BroadPhase {
         }
         self.found = found;
         pairs.sort_unstable();
-        // A slot queued twice (its collider removed and another added in its place) finds
-        // its pairs twice.
+        // Both sides of a pair of moved proxies may report it.
         pairs.dedup();
         out.extend(pairs.iter().filter_map(|&(a, b)| {
             Some((
@@ -283,11 +281,12 @@ impl BroadPhase {
 
     /// The pairs the queued proxy in `slot` makes with the proxies its fat box overlaps, into
     /// `found`, leaving out those `exists` knows. Where both moved, only the lower slot's
-    /// query keeps the pair.
+    /// query keeps the pair. Most candidates are pairs that already exist, so the cheap tests
+    /// come first and the other proxy is read only for a pair that is new.
     fn new_pairs_of(
         &self,
         slot: u32,
-        exists: &impl Fn(ColliderHandle, ColliderHandle) -> bool,
+        exists: &impl Fn(u32, u32) -> bool,
         found: &mut Vec<(u32, u32)>,
     ) {
         let Some(proxy) = self.proxies[slot as usize] else {
@@ -302,25 +301,20 @@ impl BroadPhase {
         for &tree in trees {
             self.trees[tree].query(&proxy.fat, |node| {
                 let other_slot = self.trees[tree].payload(node);
-                let Some(other) = self.proxies[other_slot as usize] else {
-                    return;
-                };
-                let (low, high) = (slot.min(other_slot), slot.max(other_slot));
-                let lower_also_moved = other.queued && other_slot < slot;
-                if other_slot == slot
-                    || lower_also_moved
-                    || other.body == proxy.body
-                    || !kinds_can_collide(proxy.kind, other.kind)
-                    || !proxy.filter.collides_with(&other.filter)
-                {
+                if other_slot == slot || (other_slot < slot && self.moved[other_slot as usize]) {
                     return;
                 }
-                let (a, b) = if low == slot {
-                    (proxy.handle, other.handle)
-                } else {
-                    (other.handle, proxy.handle)
+                let (low, high) = (slot.min(other_slot), slot.max(other_slot));
+                if exists(low, high) {
+                    return;
+                }
+                let Some(other) = &self.proxies[other_slot as usize] else {
+                    return;
                 };
-                if !exists(a, b) {
+                if other.body != proxy.body
+                    && kinds_can_collide(proxy.kind, other.kind)
+                    && proxy.filter.collides_with(&other.filter)
+                {
                     found.push((low, high));
                 }
             });
@@ -504,22 +498,16 @@ impl BroadPhase {
         if listed != wanted {
             return Err("a collider is missing from the broadphase".into());
         }
-        let queued = self.proxies.iter().flatten().filter(|p| p.queued).count();
-        let mut moved = vec![false; self.proxies.len()];
+        let mut listed = vec![false; self.proxies.len()];
         for &slot in &self.move_buffer {
-            let fresh = moved
+            let fresh = listed
                 .get_mut(slot as usize)
-                .map(|m| !std::mem::replace(m, true));
-            let is_queued = self
-                .proxies
-                .get(slot as usize)
-                .and_then(Option::as_ref)
-                .is_some_and(|p| p.queued);
-            if fresh != Some(true) || !is_queued {
+                .is_some_and(|seen| !std::mem::replace(seen, true));
+            if !fresh {
                 return Err("the broadphase's moved list is broken".into());
             }
         }
-        if queued != self.move_buffer.len() {
+        if listed != self.moved {
             return Err("the broadphase's moved list is broken".into());
         }
         Ok(())
@@ -585,7 +573,7 @@ mod tests {
         // The pairs a world would hold: created by `update_pairs`, dropped when fat boxes part.
         let mut held: Vec<(ColliderHandle, ColliderHandle)> = Vec::new();
         for round in 0..6 {
-            let new = broadphase.update_pairs(|a, b| held.contains(&(a, b)));
+            let new = broadphase.update_pairs(|a, b| held.contains(&(handle(a), handle(b))));
             let mut sorted_new = new.clone();
             sorted_new.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
             assert_eq!(new, sorted_new, "pairs come out in a deterministic order");

@@ -291,9 +291,10 @@ pub struct ContactSet {
 pub(crate) type TouchChanges = (Vec<(BodyHandle, BodyHandle)>, Vec<(BodyHandle, BodyHandle)>);
 
 impl ContactSet {
-    /// True when the pair already has a contact.
-    pub fn contains(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
-        self.lookup.contains_key(&pair_key(a, b))
+    /// True when the pair of colliders in slots `low < high` already has a contact.
+    pub fn contains(&self, low: u32, high: u32) -> bool {
+        self.lookup
+            .contains_key(&((low as u64) << 32 | high as u64))
     }
 
     /// Starts watching a pair of colliders (of two bodies), in the awake set if `awake` (a
