@@ -787,4 +787,13 @@ impl Box2dWorld {
     pub fn profile(&self) -> Result<boxdd::Profile, String> {
         self.world.profile().map_err(err)
     }
+
+    /// Box2D's counters after the last step (contacts, awake and recycled contacts, graph
+    /// colours).
+    ///
+    /// # Errors
+    /// A world Box2D no longer holds.
+    pub fn counters(&self) -> Result<boxdd::Counters, String> {
+        self.world.counters().map_err(err)
+    }
 }

@@ -22,6 +22,136 @@ pub struct RunResult {
     /// Heap allocations during the timed steps (counted only where the program's global
     /// allocator is [`stats_alloc::INSTRUMENTED_SYSTEM`], as in the `carom-bench` binary).
     pub allocations: usize,
+    /// What the stages took and did, per timed step (carom's and Box2D's; none for Rapier).
+    pub stages: Option<StageProfile>,
+}
+
+/// The mean per timed step of each stage's time and of the work behind it, in carom's
+/// stages. Box2D's profile maps onto them: broadphase = pairs + refit, narrowphase =
+/// collide, continuous = bullets, sleep = sleep islands, solve = the rest of its solve.
+/// A count an engine does not report is NaN.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StageProfile {
+    /// The whole step, ms.
+    pub step_ms: f64,
+    /// Finding new pairs and keeping the trees, ms.
+    pub broadphase_ms: f64,
+    /// Building manifolds and the bookkeeping after, ms.
+    pub narrowphase_ms: f64,
+    /// Integrating and solving (with placing the moved shapes), ms.
+    pub solve_ms: f64,
+    /// Sweeping fast bodies, ms.
+    pub continuous_ms: f64,
+    /// Sleep timers and islands, ms.
+    pub sleep_ms: f64,
+    /// Contacts held (touching or not).
+    pub contacts: f64,
+    /// Contacts whose manifolds the narrowphase updated (the awake ones).
+    pub awake_contacts: f64,
+    /// Of those, manifolds carried along instead of built.
+    pub recycled: f64,
+    /// Contacts with points.
+    pub touching: f64,
+    /// Contacts created and destroyed.
+    pub created: f64,
+    /// Contacts destroyed.
+    pub destroyed: f64,
+    /// Colliders moved in the broadphase.
+    pub proxies_moved: f64,
+    /// Candidate pairs the broadphase's queries met.
+    pub candidates: f64,
+    /// Islands split.
+    pub island_splits: f64,
+}
+
+impl StageProfile {
+    fn zero() -> Self {
+        StageProfile {
+            step_ms: 0.0,
+            broadphase_ms: 0.0,
+            narrowphase_ms: 0.0,
+            solve_ms: 0.0,
+            continuous_ms: 0.0,
+            sleep_ms: 0.0,
+            contacts: 0.0,
+            awake_contacts: 0.0,
+            recycled: 0.0,
+            touching: 0.0,
+            created: 0.0,
+            destroyed: 0.0,
+            proxies_moved: 0.0,
+            candidates: 0.0,
+            island_splits: 0.0,
+        }
+    }
+
+    /// Every field divided by `steps` (the sums over steps become means).
+    fn mean(self, steps: u32) -> Self {
+        let n = f64::from(steps.max(1));
+        StageProfile {
+            step_ms: self.step_ms / n,
+            broadphase_ms: self.broadphase_ms / n,
+            narrowphase_ms: self.narrowphase_ms / n,
+            solve_ms: self.solve_ms / n,
+            continuous_ms: self.continuous_ms / n,
+            sleep_ms: self.sleep_ms / n,
+            contacts: self.contacts / n,
+            awake_contacts: self.awake_contacts / n,
+            recycled: self.recycled / n,
+            touching: self.touching / n,
+            created: self.created / n,
+            destroyed: self.destroyed / n,
+            proxies_moved: self.proxies_moved / n,
+            candidates: self.candidates / n,
+            island_splits: self.island_splits / n,
+        }
+    }
+
+    /// Adds carom's statistics of one step.
+    fn add_carom(&mut self, stats: &carom::StepStats) {
+        let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+        let (t, w) = (&stats.times, &stats.collision);
+        self.step_ms += ms(t.total);
+        self.broadphase_ms += ms(t.broadphase);
+        self.narrowphase_ms += ms(t.narrowphase);
+        self.solve_ms += ms(t.solve);
+        self.continuous_ms += ms(t.continuous);
+        self.sleep_ms += ms(t.sleep);
+        self.contacts += stats.contacts as f64;
+        self.awake_contacts += (w.manifolds_built + w.manifolds_recycled) as f64;
+        self.recycled += w.manifolds_recycled as f64;
+        self.touching += stats.touching_contacts as f64;
+        self.created += w.contacts_created as f64;
+        self.destroyed += w.contacts_destroyed as f64;
+        self.proxies_moved += w.proxies_moved as f64;
+        self.candidates += w.pair_candidates as f64;
+        self.island_splits += w.island_splits as f64;
+    }
+
+    /// Adds Box2D's profile and counters of one step.
+    fn add_box2d(&mut self, profile: &boxdd::Profile, counters: &boxdd::Counters) {
+        let p = |x: f32| f64::from(x);
+        self.step_ms += p(profile.step);
+        self.broadphase_ms += p(profile.pairs) + p(profile.refit);
+        self.narrowphase_ms += p(profile.collide);
+        self.solve_ms +=
+            p(profile.solve) - p(profile.refit) - p(profile.bullets) - p(profile.sleep_islands);
+        self.continuous_ms += p(profile.bullets);
+        self.sleep_ms += p(profile.sleep_islands);
+        self.contacts += f64::from(counters.contact_count);
+        self.awake_contacts += f64::from(counters.awake_contact_count);
+        self.recycled += f64::from(counters.recycled_contact_count);
+        for unknown in [
+            &mut self.touching,
+            &mut self.created,
+            &mut self.destroyed,
+            &mut self.proxies_moved,
+            &mut self.candidates,
+            &mut self.island_splits,
+        ] {
+            *unknown = f64::NAN;
+        }
+    }
 }
 
 impl RunResult {
@@ -89,12 +219,14 @@ pub fn run_carom(world: &mut World, dt: f32, steps: u32) -> Result<RunResult, St
     let start = carom_positions(world);
     let top = top_body(&start, &carom_dynamic_flags(world));
     let (mut total_ms, mut allocations) = (0.0, 0);
+    let mut stages = StageProfile::zero();
     if steps > 0 {
         world.step(dt).map_err(|e| e.to_string())?;
         let region = Region::new(&INSTRUMENTED_SYSTEM);
         let t0 = Instant::now();
         for _ in 1..steps {
             world.step(dt).map_err(|e| e.to_string())?;
+            stages.add_carom(world.stats());
         }
         total_ms = t0.elapsed().as_secs_f64() * 1e3;
         allocations = region.change().allocations;
@@ -106,6 +238,7 @@ pub fn run_carom(world: &mut World, dt: f32, steps: u32) -> Result<RunResult, St
         top_drop: drop_of(top, &start, &end),
         nan: any_nan(&end),
         allocations,
+        stages: Some(stages.mean(steps.saturating_sub(1))),
     })
 }
 
@@ -124,11 +257,13 @@ pub fn run_box2d(world: &mut Box2dWorld, dt: f32, steps: u32) -> Result<RunResul
         .collect();
     let top = top_body(&start, &dynamic);
     let mut total_ms = 0.0;
+    let mut stages = StageProfile::zero();
     if steps > 0 {
         world.step(dt)?;
         let t0 = Instant::now();
         for _ in 1..steps {
             world.step(dt)?;
+            stages.add_box2d(&world.profile()?, &world.counters()?);
         }
         total_ms = t0.elapsed().as_secs_f64() * 1e3;
     }
@@ -139,6 +274,7 @@ pub fn run_box2d(world: &mut Box2dWorld, dt: f32, steps: u32) -> Result<RunResul
         top_drop: drop_of(top, &start, &end),
         nan: any_nan(&end),
         allocations: 0,
+        stages: Some(stages.mean(steps.saturating_sub(1))),
     })
 }
 
@@ -164,5 +300,6 @@ pub fn run_rapier(world: &mut RapierWorld, steps: u32) -> RunResult {
         top_drop: drop_of(top, &start, &end),
         nan: any_nan(&end),
         allocations,
+        stages: None,
     }
 }

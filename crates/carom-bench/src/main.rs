@@ -153,12 +153,14 @@ fn default_steps(path: &Path) -> u32 {
         .map_or(FALLBACK_STEPS, |(_, s)| *s)
 }
 
-/// Keeps the faster run's time; accuracy figures are those of the first run.
+/// Keeps the faster run's time and stage profile; accuracy figures are those of the first
+/// run.
 fn keep_min(best: Option<RunResult>, run: RunResult) -> RunResult {
     match best {
         Some(b) if b.total_ms <= run.total_ms => b,
         Some(b) => RunResult {
             total_ms: run.total_ms,
+            stages: run.stages,
             ..b
         },
         None => run,
@@ -358,6 +360,78 @@ fn markdown(rows: &[Row], threads: usize) -> String {
             r.carom_bytes_per_body,
             r.rapier_bytes_per_body
         );
+    }
+    s.push_str(&stage_tables(rows));
+    s
+}
+
+/// Where each engine's step goes (one thread, the fastest run's means per step, ms; Box2D's
+/// profile mapped onto carom's stages) and the work behind it.
+fn stage_tables(rows: &[Row]) -> String {
+    let engines = |r: &Row| [("carom", r.carom.stages), ("Box2D", r.box2d.stages)];
+    let mut s = String::from(
+        "\nms per step by stage, one thread (Box2D: broadphase = pairs + refit, narrowphase = \
+         collide, continuous = bullets, sleep = sleep islands, solve = the rest of its solve):\n\n\
+         | scene | engine | step | broadphase | narrowphase | solve | continuous | sleep | other |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        for (engine, stages) in engines(r) {
+            let Some(p) = stages else { continue };
+            let other = p.step_ms
+                - p.broadphase_ms
+                - p.narrowphase_ms
+                - p.solve_ms
+                - p.continuous_ms
+                - p.sleep_ms;
+            let _ = writeln!(
+                s,
+                "| {} | {engine} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {other:.3} |",
+                r.scene,
+                p.step_ms,
+                p.broadphase_ms,
+                p.narrowphase_ms,
+                p.solve_ms,
+                p.continuous_ms,
+                p.sleep_ms
+            );
+        }
+    }
+    s.push_str(
+        "\nWork per step, one thread (means; – where the engine does not count it):\n\n\
+         | scene | engine | contacts | awake contacts | recycled | touching | created | \
+         destroyed | proxies moved | pair candidates | island splits |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    let cell = |x: f64| {
+        if x.is_nan() {
+            "–".to_string()
+        } else {
+            format!("{x:.0}")
+        }
+    };
+    for r in rows {
+        for (engine, stages) in engines(r) {
+            let Some(p) = stages else { continue };
+            let _ = writeln!(
+                s,
+                "| {} | {engine} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+                r.scene,
+                cell(p.contacts),
+                cell(p.awake_contacts),
+                cell(p.recycled),
+                cell(p.touching),
+                cell(p.created),
+                cell(p.destroyed),
+                cell(p.proxies_moved),
+                cell(p.candidates),
+                if p.island_splits.is_nan() {
+                    "–".to_string()
+                } else {
+                    format!("{:.3}", p.island_splits)
+                }
+            );
+        }
     }
     s
 }

@@ -82,7 +82,7 @@ pub use joint::{
 };
 pub use math::{Isometry, Mat3, Real, Rot, Vec2, angle_of, atan2, rotation, vec2};
 pub use solver::{SolverKind, SolverParams};
-pub use stats::{StageTimes, StepStats, Work};
+pub use stats::{CollisionWork, StageTimes, StepStats, Work};
 pub use world::body_mut::BodyMut;
 pub use world::collider_mut::ColliderMut;
 pub use world::effects::{Effect, Effects};

@@ -60,6 +60,30 @@ impl std::ops::AddAssign for Work {
     }
 }
 
+/// What the collision stages did in the last step: the counts behind their times, to compare
+/// with another engine's on the same scene.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct CollisionWork {
+    /// Colliders that left their fat boxes and were moved in the broadphase.
+    pub proxies_moved: usize,
+    /// Candidate pairs the moved colliders' queries met in the trees (before any test).
+    pub pair_candidates: usize,
+    /// Contacts created for new pairs.
+    pub contacts_created: usize,
+    /// Contacts destroyed as their fat boxes parted.
+    pub contacts_destroyed: usize,
+    /// Manifolds computed from the shapes.
+    pub manifolds_built: usize,
+    /// Manifolds carried along from the last step instead (the pair barely moved).
+    pub manifolds_recycled: usize,
+    /// Contacts that gained their first points.
+    pub touches_began: usize,
+    /// Contacts that lost their last points.
+    pub touches_ended: usize,
+    /// Islands split to find which parts can sleep.
+    pub island_splits: usize,
+}
+
 /// Counts and measures from the last step.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct StepStats {
@@ -85,4 +109,6 @@ pub struct StepStats {
     pub times: StageTimes,
     /// Work done by the optional effects.
     pub work: Work,
+    /// What the collision stages did.
+    pub collision: CollisionWork,
 }

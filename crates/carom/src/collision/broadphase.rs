@@ -226,12 +226,13 @@ impl BroadPhase {
     /// one body is dynamic, into `out` (cleared first), allocating nothing once the buffers
     /// have grown. Pairs for which `exists(lower slot, higher slot)` answers true are left
     /// out. The moved colliders'
-    /// queries run on all threads when there are enough of them.
+    /// queries run on all threads when there are enough of them. Returns how many candidate
+    /// pairs the queries met.
     pub fn update_pairs_into(
         &mut self,
         exists: impl Fn(u32, u32) -> bool + Sync,
         out: &mut Vec<(ColliderHandle, ColliderHandle)>,
-    ) {
+    ) -> usize {
         out.clear();
         let moved = &self.move_buffer;
         let tasks = if worth_sharing(moved.len(), MOVES_PER_TASK) {
@@ -246,18 +247,20 @@ impl BroadPhase {
         let per_task = moved.len().div_ceil(tasks).max(1);
         let query = |slots: &[u32], found: &mut Vec<(u32, u32)>| {
             found.clear();
-            for &slot in slots {
-                self.new_pairs_of(slot, &exists, found);
-            }
+            slots
+                .iter()
+                .map(|&slot| self.new_pairs_of(slot, &exists, found))
+                .sum::<usize>()
         };
-        if tasks > 1 {
+        let candidates = if tasks > 1 {
             found[..tasks]
                 .par_iter_mut()
                 .zip(moved.par_chunks(per_task))
-                .for_each(|(found, slots)| query(slots, found));
+                .map(|(found, slots)| query(slots, found))
+                .sum()
         } else {
-            query(moved, &mut found[0]);
-        }
+            query(moved, &mut found[0])
+        };
         for &slot in &self.move_buffer {
             self.moved[slot as usize] = false;
         }
@@ -277,21 +280,24 @@ impl BroadPhase {
                 self.proxies[b as usize]?.handle,
             ))
         }));
+        candidates
     }
 
     /// The pairs the queued proxy in `slot` makes with the proxies its fat box overlaps, into
     /// `found`, leaving out those `exists` knows. Where both moved, only the lower slot's
     /// query keeps the pair. Most candidates are pairs that already exist, so the cheap tests
-    /// come first and the other proxy is read only for a pair that is new.
+    /// come first and the other proxy is read only for a pair that is new. Returns how many
+    /// leaves the queries met.
     fn new_pairs_of(
         &self,
         slot: u32,
         exists: &impl Fn(u32, u32) -> bool,
         found: &mut Vec<(u32, u32)>,
-    ) {
+    ) -> usize {
         let Some(proxy) = self.proxies[slot as usize] else {
-            return;
+            return 0;
         };
+        let mut met = 0;
         // Only dynamic bodies need the static tree; everything needs the moving one.
         let trees: &[usize] = if proxy.kind == BodyKind::Dynamic {
             &[STATIC_TREE, MOVING_TREE]
@@ -300,6 +306,7 @@ impl BroadPhase {
         };
         for &tree in trees {
             self.trees[tree].query(&proxy.fat, |node| {
+                met += 1;
                 let other_slot = self.trees[tree].payload(node);
                 if other_slot == slot || (other_slot < slot && self.moved[other_slot as usize]) {
                     return;
@@ -319,6 +326,7 @@ impl BroadPhase {
                 }
             });
         }
+        met
     }
 
     /// Every pair whose fat boxes overlap now, as [`BroadPhase::update_pairs`] orders them:

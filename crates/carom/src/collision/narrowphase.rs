@@ -17,6 +17,7 @@ use crate::geometry::shape::Shape;
 use crate::handle_map::HandleMap;
 use crate::math::Real;
 use crate::parallel::map_mut_into;
+use crate::stats::CollisionWork;
 
 /// How the narrowphase builds manifolds this step.
 #[derive(Debug, Clone, Copy)]
@@ -51,6 +52,8 @@ enum Refresh {
         in_contact: bool,
         /// It touches a sleeping body that the other body stirs.
         wakes: bool,
+        /// The manifold was carried along, not built.
+        recycled: bool,
     },
 }
 
@@ -68,7 +71,8 @@ impl Narrowphase {
     /// world shapes, carries impulses over by feature id, reports touching changes, and drops
     /// contacts whose fat boxes no longer overlap (or whose bodies can no longer collide).
     /// Sleeping contacts are not visited. Sleeping islands touched by a moving body are added
-    /// to `wake`. Returns the deepest penetration seen.
+    /// to `wake`. Returns the deepest penetration seen, and counts what it did into `work`.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn update(
         &mut self,
         set: &mut ContactSet,
@@ -77,6 +81,7 @@ impl Narrowphase {
         broadphase: &BroadPhase,
         options: ManifoldOptions,
         wake: &mut Vec<u32>,
+        work: &mut CollisionWork,
     ) -> Real {
         // First every manifold, on as many threads as rayon gives (each contact on its own),
         // then the bookkeeping that touches the whole set, in order, for the contacts that
@@ -95,13 +100,19 @@ impl Narrowphase {
         for (index, &refresh) in self.refresh.iter().enumerate().rev() {
             match refresh {
                 Refresh::Unchanged => continue,
-                Refresh::Gone => {}
+                Refresh::Gone => work.contacts_destroyed += 1,
                 Refresh::Updated {
                     depth,
                     changed,
                     wakes,
+                    recycled,
                     ..
                 } => {
+                    if recycled {
+                        work.manifolds_recycled += 1;
+                    } else {
+                        work.manifolds_built += 1;
+                    }
                     deepest = deepest.max(depth);
                     if !(changed || wakes) {
                         continue;
@@ -112,9 +123,12 @@ impl Narrowphase {
             let key = pair_key(contact.collider_a, contact.collider_b);
             self.changed.push((key, refresh));
         }
+        let touch_changes = (set.began.len(), set.ended.len());
         for &(key, refresh) in &self.changed {
             file(set, set.lookup[&key], refresh, bodies, colliders, wake);
         }
+        work.touches_began += set.began.len() - touch_changes.0;
+        work.touches_ended += set.ended.len() - touch_changes.1;
         deepest
     }
 }
@@ -265,7 +279,7 @@ fn rebuild_manifold(
     let stopped = a.had_time_of_impact() || b.had_time_of_impact();
     let carried = |distance| contact.frame.carry(&mut contact.manifold, a, b, distance);
     if polygons && !stopped && recycling.is_some_and(carried) {
-        return settled(contact, [shape_a, shape_b], [a, b], pre_solve);
+        return settled(contact, [shape_a, shape_b], [a, b], pre_solve, true);
     }
     let margins = Margins {
         any: margin,
@@ -281,18 +295,19 @@ fn rebuild_manifold(
         .manifold
         .set_anchors(a.center_of_mass(), b.center_of_mass());
     contact.frame = ManifoldFrame::of(&contact.manifold, (a, shape_a), (b, shape_b));
-    settled(contact, [shape_a, shape_b], [a, b], pre_solve)
+    settled(contact, [shape_a, shape_b], [a, b], pre_solve, false)
 }
 
 /// Asks the pre-solve `hook`, if the contact's colliders opted in and its manifold has points,
 /// whether it is solved this step; one turned down loses its points (and with them what it
 /// would warm start from) and its recycling frame, so next step builds it afresh. Then what
-/// the bookkeeping needs to know of it.
+/// the bookkeeping needs to know of it (`recycled`: its manifold was carried along).
 fn settled(
     contact: &mut Contact,
     colliders: [&Collider; 2],
     bodies: [&Body; 2],
     hook: Option<&PreSolveHook>,
+    recycled: bool,
 ) -> Refresh {
     if let Some(hook) = hook
         && contact.pre_solve
@@ -309,12 +324,12 @@ fn settled(
             contact.frame = ManifoldFrame::default();
         }
     }
-    updated(contact, bodies[0], bodies[1])
+    updated(contact, bodies[0], bodies[1], recycled)
 }
 
 /// What the bookkeeping after the narrowphase needs to know of a contact of bodies `a` and
-/// `b` whose manifold was just updated.
-fn updated(contact: &Contact, a: &Body, b: &Body) -> Refresh {
+/// `b` whose manifold was just updated (`recycled`: carried along).
+fn updated(contact: &Contact, a: &Body, b: &Body, recycled: bool) -> Refresh {
     let touching = !contact.manifold.is_empty();
     let closest = contact.manifold.min_separation();
     // Hysteresis: closer than TOUCH_BEGIN to begin, within TOUCH_END to go on.
@@ -333,5 +348,6 @@ fn updated(contact: &Contact, a: &Body, b: &Body) -> Refresh {
         changed: touching != contact.touching || in_contact != contact.in_contact,
         in_contact,
         wakes: touching && (stirred(a, b) || stirred(b, a)),
+        recycled,
     }
 }

@@ -12,8 +12,9 @@ impl World {
     /// The sleep stage: advances the awake dynamic bodies' sleep timers, puts every island
     /// whose bodies have all rested long enough to sleep (if it is known to be whole), and
     /// splits the sleepiest island that may have come apart, so its resting parts can sleep
-    /// at the next step. Returns how many sleep timers were advanced.
-    pub(crate) fn update_sleep(&mut self, dt: Real) -> usize {
+    /// at the next step. Returns how many sleep timers were advanced and how many islands were
+    /// split.
+    pub(crate) fn update_sleep(&mut self, dt: Real) -> (usize, usize) {
         let step = self.step_count + 1;
         let awake = self.body_sets.awake();
         let mut checked = 0;
@@ -65,7 +66,7 @@ impl World {
         if let Some((_, id)) = split {
             self.split_island(id);
         }
-        checked
+        (checked, usize::from(split.is_some()))
     }
 
     /// Puts every body of island `id` to sleep: they, their colliders, contacts and joints

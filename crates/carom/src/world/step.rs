@@ -15,7 +15,7 @@ use crate::geometry::shape::WorldShape;
 use crate::math::Real;
 use crate::parallel::map_zip_into;
 use crate::solver::{self, Environment, SolverKind};
-use crate::stats::{Instant, StepStats};
+use crate::stats::{CollisionWork, Instant, StepStats};
 use crate::world::effects::Effect;
 use crate::world::solver_sets::SolverSet;
 
@@ -71,7 +71,10 @@ impl World {
 
         let mut scratch = std::mem::take(&mut self.scratch);
 
-        timed(&mut times.broadphase, || {
+        (
+            stats.collision.pair_candidates,
+            stats.collision.contacts_created,
+        ) = timed(&mut times.broadphase, || {
             self.find_pairs(&mut scratch.pairs)
         });
         let effects = self.settings.effects;
@@ -80,8 +83,14 @@ impl World {
         // as far as the pair can close in a step, and moving bodies' boxes cover where they
         // are going, so an impact at any speed has its contact before it happens.
         let prediction = if continuous { dt } else { 0.0 };
+        let collision = &mut stats.collision;
         stats.max_penetration = timed(&mut times.narrowphase, || {
-            self.build_manifolds(prediction, &mut scratch.narrowphase, &mut scratch.wake)
+            self.build_manifolds(
+                prediction,
+                &mut scratch.narrowphase,
+                &mut scratch.wake,
+                collision,
+            )
         });
         if continuous {
             self.record_start_poses();
@@ -121,11 +130,12 @@ impl World {
                 )
             });
         }
-        timed(&mut times.broadphase, || {
+        stats.collision.proxies_moved = timed(&mut times.broadphase, || {
             self.refresh_broadphase(prediction, &mut scratch.refits)
         });
         if effects.contains(Effect::Sleeping) {
-            stats.work.sleep_checks = timed(&mut times.sleep, || self.update_sleep(dt));
+            (stats.work.sleep_checks, stats.collision.island_splits) =
+                timed(&mut times.sleep, || self.update_sleep(dt));
         }
         self.sensors
             .update(&self.bodies, &self.colliders, &self.broadphase);
@@ -138,12 +148,14 @@ impl World {
     }
 
     /// Rebuilds the manifolds of every pair where something moves, and wakes the sleeping
-    /// islands a moving body touched so they join this step; returns the deepest overlap.
+    /// islands a moving body touched so they join this step; returns the deepest overlap and
+    /// counts what it did into `work`.
     fn build_manifolds(
         &mut self,
         prediction: Real,
         narrowphase: &mut Narrowphase,
         wake: &mut Vec<u32>,
+        work: &mut CollisionWork,
     ) -> Real {
         wake.clear();
         let deepest = narrowphase.update(
@@ -164,6 +176,7 @@ impl World {
                 pre_solve: self.pre_solve.as_ref(),
             },
             wake,
+            work,
         );
         wake.sort_unstable();
         wake.dedup();
@@ -239,11 +252,14 @@ impl World {
         )
     }
 
-    /// Creates contacts for pairs of colliders whose enlarged boxes began to overlap.
-    fn find_pairs(&mut self, pairs: &mut Vec<(ColliderHandle, ColliderHandle)>) {
+    /// Creates contacts for pairs of colliders whose enlarged boxes began to overlap; returns
+    /// how many candidate pairs the broadphase met and how many contacts it created.
+    fn find_pairs(&mut self, pairs: &mut Vec<(ColliderHandle, ColliderHandle)>) -> (usize, usize) {
         let contacts = &self.contacts;
-        self.broadphase
+        let candidates = self
+            .broadphase
             .update_pairs_into(|a, b| contacts.contains(a, b), pairs);
+        let mut created = 0;
         for &(a, b) in pairs.iter() {
             let (Some(collider_a), Some(collider_b)) =
                 (self.colliders.get(a), self.colliders.get(b))
@@ -259,7 +275,9 @@ impl World {
                 .iter()
                 .any(|c| sets.set_of(c.body_index()) == SolverSet::Awake);
             self.contacts.add((a, collider_a), (b, collider_b), awake);
+            created += 1;
         }
+        (candidates, created)
     }
 
     /// Places the colliders of the awake set, which moved this step, and their bodies' boxes.
@@ -275,8 +293,12 @@ impl World {
     /// Re-fits the broadphase entries of colliders that moved this step, each box covering
     /// where its collider can get to in `prediction` seconds at its body's present velocity:
     /// which ones left their fat boxes is found on all threads (into `refits`), then only
-    /// those are re-fitted, in collider order.
-    fn refresh_broadphase(&mut self, prediction: Real, refits: &mut Vec<Option<(Aabb, BodyKind)>>) {
+    /// those are re-fitted, in collider order. Returns how many were.
+    fn refresh_broadphase(
+        &mut self,
+        prediction: Real,
+        refits: &mut Vec<Option<(Aabb, BodyKind)>>,
+    ) -> usize {
         let bodies = self.bodies.as_slice();
         let awake = self.collider_sets.awake();
         let handles = &self.colliders.handles()[awake.clone()];
@@ -297,12 +319,15 @@ impl World {
                     .then_some((aabb, body.kind()))
             },
         );
+        let mut moved = 0;
         for (&handle, refit) in handles.iter().zip(refits.iter()) {
             if let &Some((aabb, kind)) = refit {
                 let margin = margin_for(&self.settings, kind);
                 self.broadphase.update(handle, kind, aabb, margin);
+                moved += 1;
             }
         }
+        moved
     }
 }
 
