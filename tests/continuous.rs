@@ -1,8 +1,8 @@
 //! Continuous collision: the tutorial's tunnelling case, and Box2D's hardest sweeps.
 
 use carom::{
-    BodyDef, BodyHandle, Effect, Effects, Real, Shape, SolverParams, Vec2, World, WorldSettings,
-    vec2,
+    BodyDef, BodyHandle, CollisionFilter, Effect, Effects, JointDef, Real, Shape, SolverParams,
+    Vec2, World, WorldSettings, vec2,
 };
 use carom_bench::cases::skinny_box;
 use carom_tests::world_shape;
@@ -40,6 +40,66 @@ fn fire_at_wall(continuous: bool, direction: Real) -> Real {
         world.step(DT).unwrap();
     }
     world.body(bullet).unwrap().position().dot(&along) - 0.05
+}
+
+/// What keeps the fired circle and the wall from colliding, if anything.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum KeptApart {
+    No,
+    /// The wall's category is not in the circle's mask.
+    ByFilter,
+    /// A filter joint joins the two bodies.
+    ByJoint,
+}
+
+/// [`fire_at_wall`] straight on, with continuous collision, where `kept` may keep the circle
+/// and the wall from ever colliding.
+fn fire_at_wall_kept_apart(kept: KeptApart) -> Real {
+    let mut world = world(true, Vec2::zeros());
+    let wall_filter = CollisionFilter {
+        category: 0b10,
+        ..CollisionFilter::DEFAULT
+    };
+    let wall = world
+        .add_body(BodyDef::static_body(Shape::rect(0.05, 4.0)).filter(wall_filter))
+        .unwrap();
+    let mask = if kept == KeptApart::ByFilter {
+        !0b10
+    } else {
+        u64::MAX
+    };
+    let bullet = world
+        .add_body(
+            BodyDef::dynamic(Shape::circle(0.25))
+                .position(vec2(-10.0, 0.0))
+                .linear_velocity(vec2(300.0, 0.0))
+                .density(4.0)
+                .filter(CollisionFilter {
+                    mask,
+                    ..CollisionFilter::DEFAULT
+                }),
+        )
+        .unwrap();
+    if kept == KeptApart::ByJoint {
+        world.add_joint(JointDef::filter(wall, bullet)).unwrap();
+    }
+    for _ in 0..30 {
+        world.step(DT).unwrap();
+    }
+    world.body(bullet).unwrap().position().x - 0.05
+}
+
+#[test]
+fn continuous_collision_stops_nothing_at_a_body_it_may_not_collide_with() {
+    assert!(fire_at_wall_kept_apart(KeptApart::No) < 0.0);
+    for kept in [KeptApart::ByFilter, KeptApart::ByJoint] {
+        let past = fire_at_wall_kept_apart(kept);
+        // 30 steps at 300 m/s from 10 m before the wall: 140 m beyond it, unslowed.
+        assert!(
+            (past - 140.0).abs() < 1.0,
+            "{kept:?}: ended {past} m past the wall"
+        );
+    }
 }
 
 #[test]

@@ -20,6 +20,7 @@ use crate::dynamics::body::{Body, BodyHandle, BodyKind, Pose};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};
 use crate::geometry::shape::WorldShape;
 use crate::handle_map::HandleMap;
+use crate::joint::store::JointStore;
 use crate::math::{Isometry, Real, Rot, Vec2, angle_of, rotation};
 use std::ops::Range;
 
@@ -139,7 +140,8 @@ fn sink_allowance(min_extent: Real, target: Real) -> Real {
 /// have tunnelled back to their time of impact, from their poses at the start of the step
 /// ([`Body::start_pose`]). With `hooked` (the world has a pre-solve hook), pairs
 /// that asked for the hook are left to it and their contacts. Returns the number of impacts
-/// and the number of bodies swept.
+/// and the number of bodies swept. A sweep stops only at colliders its collider may collide
+/// with: their collision filters agree and no joint (`joints`) keeps the two bodies apart.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_continuous(
     bodies: &mut HandleMap<BodyHandle, Body>,
@@ -147,6 +149,7 @@ pub(crate) fn solve_continuous(
     colliders: &mut HandleMap<ColliderHandle, Collider>,
     swept: &mut Option<WorldShape>,
     broadphase: &BroadPhase,
+    joints: &JointStore,
     target: Real,
     hooked: bool,
 ) -> (usize, usize) {
@@ -181,6 +184,8 @@ pub(crate) fn solve_continuous(
                 // Chains are one-sided: a body may pass up through one from behind.
                 let eligible = other.body() != body.handle()
                     && (other_body.kind() == BodyKind::Static || body.is_bullet())
+                    && collider.filter().collides_with(&other.filter())
+                    && !joints.filters(body.handle(), other.body())
                     && !other.world_shape().is_link_behind(sweep.start)
                     && !(hooked && (collider.pre_solve() || other.pre_solve()));
                 if !eligible {

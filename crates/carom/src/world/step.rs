@@ -125,6 +125,7 @@ impl World {
                     &mut self.colliders,
                     &mut scratch.swept,
                     &self.broadphase,
+                    &self.joints,
                     LINEAR_SLOP,
                     self.pre_solve.is_some(),
                 )
