@@ -142,18 +142,20 @@ fn sink_allowance(min_extent: Real, target: Real) -> Real {
 /// that asked for the hook are left to it and their contacts. Returns the number of impacts
 /// and the number of bodies swept. A sweep stops only at colliders its collider may collide
 /// with: their collision filters agree and no joint (`joints`) keeps the two bodies apart.
+/// `scratch` keeps its memory from step to step.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_continuous(
     bodies: &mut HandleMap<BodyHandle, Body>,
     awake: Range<usize>,
     colliders: &mut HandleMap<ColliderHandle, Collider>,
-    swept: &mut Option<WorldShape>,
+    scratch: &mut ContinuousScratch,
     broadphase: &BroadPhase,
     joints: &JointStore,
     target: Real,
     hooked: bool,
 ) -> (usize, usize) {
-    let mut impacts: Vec<(usize, Vec2, Rot)> = Vec::new();
+    let ContinuousScratch { swept, impacts } = scratch;
+    impacts.clear();
     let mut sweeps = 0;
     let awake_bodies = &bodies.as_slice()[awake.clone()];
     for (index, body) in awake.clone().zip(awake_bodies) {
@@ -212,12 +214,21 @@ pub(crate) fn solve_continuous(
         }
     }
     let moved = bodies.as_mut_slice();
-    for &(index, center, rotation) in &impacts {
+    for &(index, center, rotation) in impacts.iter() {
         let body = &mut moved[index];
         body.move_to_time_of_impact(center, rotation);
         place_colliders(body, colliders);
     }
     (impacts.len(), sweeps)
+}
+
+/// What continuous collision works in, kept so a step allocates nothing.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct ContinuousScratch {
+    /// The shape a sweep places along its path.
+    swept: Option<WorldShape>,
+    /// Bodies to put back at their times of impact: (storage index, centre, rotation).
+    impacts: Vec<(usize, Vec2, Rot)>,
 }
 
 #[cfg(test)]

@@ -646,28 +646,58 @@ fn distance_outside(vertices: &[Vec2], normals: &[Vec2], point: Vec2) -> Real {
 }
 
 /// The centre (vertex average) of the overlap of two convex polygons, by clipping the second
-/// against each edge of the first, or `None` when they do not overlap.
+/// against each edge of the first, or `None` when they do not overlap. The clipped outlines
+/// live on the stack (a step allocates nothing); only outlines too long for it take the heap.
 fn overlap_center(a_vertices: &[Vec2], a_normals: &[Vec2], b_vertices: &[Vec2]) -> Option<Vec2> {
-    let mut clipped: Vec<Vec2> = b_vertices.to_vec();
-    let mut next = Vec::with_capacity(clipped.len() + a_vertices.len());
+    const ON_STACK: usize = 64;
+    let mut stack = [[Vec2::zeros(); ON_STACK]; 2];
+    let [front, back] = &mut stack;
+    if let Some(center) = clip_overlap(a_vertices, a_normals, b_vertices, front, back) {
+        return center;
+    }
+    // A convex outline gains at most a point per clip; rounding can add a few more.
+    let mut room = 2 * (a_vertices.len() + b_vertices.len());
+    loop {
+        let mut heap = [vec![Vec2::zeros(); room], vec![Vec2::zeros(); room]];
+        let [front, back] = &mut heap;
+        if let Some(center) = clip_overlap(a_vertices, a_normals, b_vertices, front, back) {
+            return center;
+        }
+        room *= 2;
+    }
+}
+
+/// [`overlap_center`] in the buffers `front` and `back`: `None` when they are too short.
+fn clip_overlap<'a>(
+    a_vertices: &[Vec2],
+    a_normals: &[Vec2],
+    b_vertices: &[Vec2],
+    mut front: &'a mut [Vec2],
+    mut back: &'a mut [Vec2],
+) -> Option<Option<Vec2>> {
+    let mut len = b_vertices.len();
+    front.get_mut(..len)?.copy_from_slice(b_vertices);
     for (v, n) in a_vertices.iter().zip(a_normals) {
-        next.clear();
-        for i in 0..clipped.len() {
-            let (p, q) = (clipped[i], clipped[(i + 1) % clipped.len()]);
+        let mut next = 0;
+        for i in 0..len {
+            let (p, q) = (front[i], front[(i + 1) % len]);
             let (dp, dq) = (n.dot(&(p - v)), n.dot(&(q - v)));
             if dp <= 0.0 {
-                next.push(p);
+                *back.get_mut(next)? = p;
+                next += 1;
             }
             if (dp < 0.0) != (dq < 0.0) {
-                next.push(p + (q - p) * (dp / (dp - dq)));
+                *back.get_mut(next)? = p + (q - p) * (dp / (dp - dq));
+                next += 1;
             }
         }
-        std::mem::swap(&mut clipped, &mut next);
-        if clipped.is_empty() {
-            return None;
+        std::mem::swap(&mut front, &mut back);
+        len = next;
+        if len == 0 {
+            return Some(None);
         }
     }
-    Some(clipped.iter().sum::<Vec2>() / clipped.len() as Real)
+    Some(Some(front[..len].iter().sum::<Vec2>() / len as Real))
 }
 
 #[cfg(test)]
@@ -678,6 +708,28 @@ mod tests {
 
     fn placed(shape: Shape, x: Real, y: Real, angle: Real) -> WorldShape {
         WorldShape::at(&shape, vec2(x, y), angle)
+    }
+
+    #[test]
+    fn overlap_centres_of_short_and_long_outlines_agree_with_symmetry() {
+        // A polygon with a centre of symmetry and a shifted copy: their overlap is symmetric
+        // about the point halfway, and so is its outline. 80 sides are more than the stack
+        // buffers hold.
+        for sides in [6, 8, 80] {
+            let polygon = crate::geometry::polygon::Polygon::regular(sides, 1.0).unwrap();
+            let shift = vec2(0.31, 0.17);
+            let moved: Vec<Vec2> = polygon.vertices().iter().map(|v| v + shift).collect();
+            let center = overlap_center(polygon.vertices(), polygon.normals(), &moved).unwrap();
+            assert!(
+                (center - shift * 0.5).norm() < 1e-3,
+                "{sides} sides: {center:?}"
+            );
+            let far: Vec<Vec2> = moved.iter().map(|v| v + shift * 10.0).collect();
+            assert_eq!(
+                overlap_center(polygon.vertices(), polygon.normals(), &far),
+                None
+            );
+        }
     }
 
     #[test]

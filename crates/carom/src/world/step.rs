@@ -1,7 +1,7 @@
 //! One step of the world, stage by stage.
 
 use super::{World, margin_for};
-use crate::collision::continuous;
+use crate::collision::continuous::{self, ContinuousScratch};
 use crate::collision::hits::find_hits;
 use crate::collision::narrowphase::{ManifoldOptions, Narrowphase};
 use crate::constants::{
@@ -11,7 +11,6 @@ use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::{ColliderHandle, place_awake_colliders};
 use crate::error::CaromError;
 use crate::geometry::aabb::Aabb;
-use crate::geometry::shape::WorldShape;
 use crate::math::Real;
 use crate::parallel::map_zip_into;
 use crate::solver::{self, Environment, SolverKind};
@@ -25,8 +24,8 @@ use crate::world::solver_sets::SolverSet;
 pub(super) struct StepScratch {
     /// New pairs from the broadphase.
     pairs: Vec<(ColliderHandle, ColliderHandle)>,
-    /// The shape a sweep places along its path (its memory reused from step to step).
-    swept: Option<WorldShape>,
+    /// Continuous collision's memory.
+    continuous: ContinuousScratch,
     /// The narrowphase's memory.
     narrowphase: Narrowphase,
     /// Sleeping islands a moving body touched.
@@ -123,7 +122,7 @@ impl World {
                     &mut self.bodies,
                     self.body_sets.awake(),
                     &mut self.colliders,
-                    &mut scratch.swept,
+                    &mut scratch.continuous,
                     &self.broadphase,
                     &self.joints,
                     LINEAR_SLOP,
