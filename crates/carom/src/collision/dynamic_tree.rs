@@ -1,5 +1,6 @@
 //! A dynamic AABB tree (as in Box2D v3): a bounding-volume hierarchy of fat boxes with `u32`
-//! payloads, kept balanced by the surface-area heuristic and tree rotations.
+//! payloads, kept balanced by the surface-area heuristic and tree rotations where leaves go in,
+//! and by a median-split rebuild of the part that leaves enlarged in place.
 
 use crate::geometry::aabb::Aabb;
 use crate::math::{Real, Vec2};
@@ -14,10 +15,25 @@ struct TreeNode {
     parent: u32,
     child1: u32,
     child2: u32,
-    /// Leaves are 0; free nodes are -1.
-    height: i32,
+    /// Leaves are 0; free nodes are -1 (see [`height_over`]).
+    height: i16,
     /// What the leaf stands for.
     payload: u32,
+    /// An inner node whose box grew in place since the last rebuild, or that holds one: the
+    /// part [`DynamicTree::rebuild`] builds again. Every ancestor of a marked node is marked;
+    /// leaves never are.
+    #[cfg_attr(feature = "serde", serde(default))]
+    enlarged: bool,
+}
+
+// Queries walk the nodes: they stay small.
+const _: () = assert!(std::mem::size_of::<TreeNode>() <= 36);
+
+/// The height of an inner node over children of these heights. Saturating: a pathological
+/// tree (thousands of nested boxes make a chain) keeps a valid, if capped, height.
+#[inline]
+fn height_over(a: i16, b: i16) -> i16 {
+    a.max(b).saturating_add(1)
 }
 
 impl TreeNode {
@@ -34,6 +50,10 @@ impl TreeNode {
 /// perimeter (a branch-and-bound search, ties broken by distance), and on the way back up
 /// nodes are rotated whenever swapping a child with a grandchild shrinks the tree, so queries
 /// cost `O(log n + hits)` on average.
+///
+/// Leaves that move every step take the cheaper way, also Box2D v3's:
+/// [`DynamicTree::enlarge_proxy`] gives a leaf its new box in place and grows and marks its
+/// ancestors, and [`DynamicTree::rebuild`] then builds the marked part again, top down.
 #[derive(Debug, Clone)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DynamicTree {
@@ -41,6 +61,9 @@ pub struct DynamicTree {
     root: u32,
     free_list: u32,
     proxy_count: usize,
+    /// The rebuild's working memory, kept so a rebuild allocates nothing once it has grown.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    scratch: RebuildScratch,
 }
 
 impl Default for DynamicTree {
@@ -50,8 +73,22 @@ impl Default for DynamicTree {
             root: NULL,
             free_list: NULL,
             proxy_count: 0,
+            scratch: RebuildScratch::default(),
         }
     }
+}
+
+/// What [`DynamicTree::rebuild`] works in; its contents mean nothing between rebuilds.
+#[derive(Debug, Clone, Default)]
+struct RebuildScratch {
+    /// The subtrees to build over (leaves, and unmarked subtrees under marked nodes)...
+    items: Vec<u32>,
+    /// ...and the centres of their boxes, in the same order, partitioned with them.
+    centers: Vec<Vec2>,
+    /// The walk down the marked part; then the new inner nodes in the order they were made.
+    nodes: Vec<u32>,
+    /// Inner nodes still to split: the node and its range of `items`.
+    splits: Vec<(u32, u32, u32)>,
 }
 
 impl DynamicTree {
@@ -69,6 +106,7 @@ impl DynamicTree {
             child2: NULL,
             height: 0,
             payload: NULL,
+            enlarged: false,
         };
         if self.free_list == NULL {
             self.nodes.push(fresh);
@@ -85,6 +123,7 @@ impl DynamicTree {
         let node = &mut self.nodes[id as usize];
         node.parent = self.free_list;
         node.height = -1;
+        node.enlarged = false;
         self.free_list = id;
     }
 
@@ -114,6 +153,115 @@ impl DynamicTree {
         self.insert_leaf(proxy);
     }
 
+    /// Gives a leaf a new box where it is (Box2D's `b2DynamicTree_EnlargeProxy`): its
+    /// ancestors grow until one already holds the box, and all of them up to the first one
+    /// already marked are marked for the next [`DynamicTree::rebuild`]. The tree stays valid,
+    /// only looser until that rebuild; a moving leaf costs the walk up its path, not a search
+    /// and rotations.
+    pub fn enlarge_proxy(&mut self, proxy: u32, aabb: Aabb) {
+        debug_assert!(self.nodes[proxy as usize].is_leaf());
+        self.nodes[proxy as usize].aabb = aabb;
+        let mut index = self.nodes[proxy as usize].parent;
+        while index != NULL {
+            let node = &mut self.nodes[index as usize];
+            let grown = node.aabb.union(&aabb);
+            let changed = grown != node.aabb;
+            node.aabb = grown;
+            node.enlarged = true;
+            index = node.parent;
+            if !changed {
+                // Every ancestor above already holds this one's box.
+                break;
+            }
+        }
+        // Above a marked node every ancestor is marked already.
+        while index != NULL && !self.nodes[index as usize].enlarged {
+            self.nodes[index as usize].enlarged = true;
+            index = self.nodes[index as usize].parent;
+        }
+    }
+
+    /// Builds the marked part of the tree again (Box2D's `b2DynamicTree_Rebuild`): its inner
+    /// nodes are freed, and the leaves and unmarked subtrees under them are joined again by a
+    /// top-down median split, which leaves no node marked. `full` rebuilds the whole tree.
+    /// Allocates nothing once its buffers have grown to the tree's size.
+    pub fn rebuild(&mut self, full: bool) {
+        if self.root == NULL || !(full || self.nodes[self.root as usize].enlarged) {
+            return;
+        }
+        let mut scratch = std::mem::take(&mut self.scratch);
+        scratch.items.clear();
+        scratch.centers.clear();
+        scratch.nodes.clear();
+        // Gather the subtrees to keep and free the inner nodes above them.
+        let mut index = self.root;
+        loop {
+            let node = &mut self.nodes[index as usize];
+            if node.is_leaf() || !(node.enlarged || full) {
+                node.parent = NULL;
+                scratch.items.push(index);
+                scratch.centers.push(node.aabb.center());
+                match scratch.nodes.pop() {
+                    Some(next) => index = next,
+                    None => break,
+                }
+            } else {
+                let (child1, child2) = (node.child1, node.child2);
+                scratch.nodes.push(child2);
+                self.free_node(index);
+                index = child1;
+            }
+        }
+        self.root = self.build(&mut scratch);
+        self.scratch = scratch;
+    }
+
+    /// Joins `scratch.items` (detached subtrees) under new inner nodes, splitting each range at
+    /// the middle of its centres' extent along the longer axis (Box2D's `b2BuildTree` with
+    /// `b2PartitionMid`); returns the root.
+    fn build(&mut self, scratch: &mut RebuildScratch) -> u32 {
+        let count = scratch.items.len();
+        if count == 1 {
+            return scratch.items[0];
+        }
+        let RebuildScratch {
+            items,
+            centers,
+            nodes: made,
+            splits,
+        } = scratch;
+        made.clear();
+        splits.clear();
+        let root = self.allocate_node();
+        made.push(root);
+        splits.push((root, 0, count as u32));
+        while let Some((parent, start, end)) = splits.pop() {
+            let (start, end) = (start as usize, end as usize);
+            let split = start + partition_mid(&mut items[start..end], &mut centers[start..end]);
+            let mut children = [NULL; 2];
+            for (child, (lo, hi)) in children.iter_mut().zip([(start, split), (split, end)]) {
+                *child = if hi - lo == 1 {
+                    items[lo]
+                } else {
+                    let inner = self.allocate_node();
+                    made.push(inner);
+                    splits.push((inner, lo as u32, hi as u32));
+                    inner
+                };
+                self.nodes[*child as usize].parent = parent;
+            }
+            let node = &mut self.nodes[parent as usize];
+            (node.child1, node.child2) = (children[0], children[1]);
+        }
+        // Every inner node was made before its inner children: backwards, children come first.
+        for &inner in made.iter().rev() {
+            let (height, aabb) = self.children_fit(inner);
+            let node = &mut self.nodes[inner as usize];
+            (node.height, node.aabb) = (height, aabb);
+        }
+        root
+    }
+
     /// The box stored for a leaf, for tests.
     #[cfg(test)]
     pub fn fat_aabb(&self, proxy: u32) -> Aabb {
@@ -138,7 +286,7 @@ impl DynamicTree {
         if self.root == NULL {
             -1
         } else {
-            self.nodes[self.root as usize].height
+            i32::from(self.nodes[self.root as usize].height)
         }
     }
 
@@ -352,10 +500,7 @@ impl DynamicTree {
     /// Refits boxes and heights from `index` to the root, rotating where that shrinks the tree.
     fn refit_upwards(&mut self, mut index: u32) {
         while index != NULL {
-            let (height, aabb) = self.children_fit(index);
-            let node = &mut self.nodes[index as usize];
-            node.height = height;
-            node.aabb = aabb;
+            self.refit(index);
             self.rotate(index);
             index = self.nodes[index as usize].parent;
         }
@@ -364,7 +509,8 @@ impl DynamicTree {
     /// Refits the ancestors of a removed leaf, from `index` up, until one keeps its box and
     /// height (then so do all above it). No rotations, as Box2D v3 removes: the tree is
     /// rebalanced where leaves go in, and a removal then costs a few nodes, not the path to the
-    /// root.
+    /// root. Marks stay as they are: the sibling that took the parent's place was marked only
+    /// if the parent, and so its new parent, was.
     fn shrink_upwards(&mut self, mut index: u32) {
         while index != NULL {
             let (height, aabb) = self.children_fit(index);
@@ -379,13 +525,13 @@ impl DynamicTree {
     }
 
     /// The height and box an inner node takes from its children.
-    fn children_fit(&self, index: u32) -> (i32, Aabb) {
+    fn children_fit(&self, index: u32) -> (i16, Aabb) {
         let node = &self.nodes[index as usize];
         let (c1, c2) = (
             &self.nodes[node.child1 as usize],
             &self.nodes[node.child2 as usize],
         );
-        (1 + c1.height.max(c2.height), c1.aabb.union(&c2.aabb))
+        (height_over(c1.height, c2.height), c1.aabb.union(&c2.aabb))
     }
 
     fn aabb(&self, id: u32) -> Aabb {
@@ -397,12 +543,17 @@ impl DynamicTree {
         self.nodes[child as usize].parent = parent;
     }
 
-    /// Makes `parent`'s box and height those of its children.
+    /// Makes `parent`'s box and height those of its children, and marks it if one of them is
+    /// marked (a subtree moved under it by an insertion or a rotation brings its marks along).
     fn refit(&mut self, parent: u32) {
         let (height, aabb) = self.children_fit(parent);
+        let node = &self.nodes[parent as usize];
+        let marked =
+            self.nodes[node.child1 as usize].enlarged || self.nodes[node.child2 as usize].enlarged;
         let node = &mut self.nodes[parent as usize];
         node.aabb = aabb;
         node.height = height;
+        node.enlarged |= marked;
     }
 
     /// Swaps a child of `a` with a grandchild, or two grandchildren, when that lowers the sum
@@ -484,7 +635,8 @@ impl DynamicTree {
     }
 
     /// Checks every structural invariant: links in range and pointing back, heights, boxes
-    /// containing their children, the leaf count, and the free list. For tests, and for
+    /// containing their children, marks (on inner nodes only, and on every ancestor of a
+    /// marked node), the leaf count, and the free list. For tests, and for
     /// reading a saved tree, so it never indexes out of range or loops.
     #[cfg(any(test, feature = "testing", feature = "serde"))]
     pub fn validate(&self) -> Result<(), String> {
@@ -520,14 +672,22 @@ impl DynamicTree {
                     if n.height != 0 || n.child2 != NULL {
                         return Err(format!("leaf {id} has height {} or a child", n.height));
                     }
+                    if n.enlarged {
+                        return Err(format!("leaf {id} is marked enlarged"));
+                    }
                     continue;
                 }
                 let (c1, c2) = (node(n.child1)?, node(n.child2)?);
                 if c1.parent != id || c2.parent != id {
                     return Err(format!("children of {id} do not point back"));
                 }
-                if n.height != 1 + c1.height.max(c2.height) {
+                if n.height != height_over(c1.height, c2.height) {
                     return Err(format!("node {id} has a stale height"));
+                }
+                if (c1.enlarged || c2.enlarged) && !n.enlarged {
+                    return Err(format!(
+                        "node {id} holds an enlarged node but is not marked"
+                    ));
                 }
                 if !n.aabb.contains(&c1.aabb) || !n.aabb.contains(&c2.aabb) {
                     return Err(format!("node {id} does not contain its children"));
@@ -596,6 +756,40 @@ impl NodeStack {
         self.len -= 1;
         Some(self.inline[self.len])
     }
+}
+
+/// Splits `items` in two about the middle of their `centers`' extent along its longer axis
+/// (Box2D's `b2PartitionMid`: a Hoare partition, centres below the middle first); returns the
+/// size of the first part, half the items when all fall on one side.
+fn partition_mid(items: &mut [u32], centers: &mut [Vec2]) -> usize {
+    let count = items.len();
+    if count <= 2 {
+        return count / 2;
+    }
+    let (mut lower, mut upper) = (centers[0], centers[0]);
+    for c in &centers[1..] {
+        lower = lower.inf(c);
+        upper = upper.sup(c);
+    }
+    let extent = upper - lower;
+    let axis = if extent.x > extent.y { 0 } else { 1 };
+    let pivot = 0.5 * (lower[axis] + upper[axis]);
+    let (mut i1, mut i2) = (0, count);
+    while i1 < i2 {
+        while i1 < i2 && centers[i1][axis] < pivot {
+            i1 += 1;
+        }
+        while i1 < i2 && centers[i2 - 1][axis] >= pivot {
+            i2 -= 1;
+        }
+        if i1 < i2 {
+            items.swap(i1, i2 - 1);
+            centers.swap(i1, i2 - 1);
+            i1 += 1;
+            i2 -= 1;
+        }
+    }
+    if 0 < i1 && i1 < count { i1 } else { count / 2 }
 }
 
 #[cfg(test)]
@@ -703,5 +897,195 @@ pub(crate) mod tests {
             assert!(visited.iter().all(|&i| boxes[i as usize].overlaps(&path)));
             assert!(!visited.is_empty());
         }
+    }
+    /// The leaves of `live` whose boxes overlap `probe`, sorted, and what the tree finds.
+    fn found_and_expected(
+        tree: &DynamicTree,
+        live: &[(u32, Aabb)],
+        probe: &Aabb,
+    ) -> (Vec<u32>, Vec<u32>) {
+        let mut found = Vec::new();
+        tree.query(probe, |p| found.push(p));
+        found.sort_unstable();
+        let mut expected: Vec<u32> = live
+            .iter()
+            .filter(|(_, a)| a.overlaps(probe))
+            .map(|(p, _)| *p)
+            .collect();
+        expected.sort_unstable();
+        (found, expected)
+    }
+
+    fn marked_nodes(tree: &DynamicTree) -> usize {
+        tree.nodes
+            .iter()
+            .filter(|n| n.height >= 0 && n.enlarged)
+            .count()
+    }
+
+    /// Leaves drift and jump in place, a few are re-inserted, made and destroyed, and the
+    /// marked part is rebuilt every few rounds: the tree stays valid throughout, queries find
+    /// exactly the overlapping leaves before and after each rebuild, a rebuild leaves nothing
+    /// marked, and the height stays logarithmic.
+    #[test]
+    fn enlarging_and_rebuilding_keep_the_tree_valid_and_exact() {
+        let mut rng = Lcg(21);
+        let mut tree = DynamicTree::new();
+        let mut live: Vec<(u32, Aabb)> = Vec::new();
+        for i in 0..1500 {
+            let aabb = random_box(&mut rng, 60.0);
+            live.push((tree.create_proxy(aabb, i), aabb));
+        }
+        let mut rebuilds = 0;
+        for round in 0..4000u32 {
+            let choice = rng.next();
+            let i = (rng.next() * live.len() as Real) as usize % live.len();
+            if choice < 0.85 {
+                // A drift, or now and then a long jump, as a fast body takes.
+                let jump = if rng.next() < 0.05 { 30.0 } else { 0.5 };
+                let d = vec2(rng.range(-jump, jump), rng.range(-jump, jump));
+                let aabb = Aabb::new(live[i].1.min + d, live[i].1.max + d);
+                tree.enlarge_proxy(live[i].0, aabb);
+                live[i].1 = aabb;
+            } else if choice < 0.9 {
+                let aabb = random_box(&mut rng, 60.0);
+                tree.move_proxy(live[i].0, aabb);
+                live[i].1 = aabb;
+            } else if choice < 0.95 {
+                let aabb = random_box(&mut rng, 60.0);
+                live.push((tree.create_proxy(aabb, round), aabb));
+            } else {
+                tree.destroy_proxy(live.swap_remove(i).0);
+            }
+            if round % 97 == 0 {
+                tree.validate().unwrap();
+                let probe = random_box(&mut rng, 60.0);
+                let (found, expected) = found_and_expected(&tree, &live, &probe);
+                assert_eq!(found, expected, "round {round}, before the rebuild");
+            }
+            if round % 50 == 49 {
+                assert!(marked_nodes(&tree) > 0, "round {round}: moves mark nodes");
+                tree.rebuild(false);
+                rebuilds += 1;
+                tree.validate().unwrap();
+                assert_eq!(marked_nodes(&tree), 0, "round {round}");
+                assert_eq!(tree.proxy_count(), live.len());
+                for _ in 0..5 {
+                    let probe = random_box(&mut rng, 60.0);
+                    let (found, expected) = found_and_expected(&tree, &live, &probe);
+                    assert_eq!(found, expected, "round {round}, after the rebuild");
+                }
+                let bound = 2.0 * (live.len() as Real).log2() + 2.0;
+                assert!((tree.height() as Real) <= bound, "height {}", tree.height());
+            }
+        }
+        assert_eq!(rebuilds, 80);
+        // Every leaf is still where it was put: each finds itself.
+        for (proxy, aabb) in &live {
+            assert_eq!(tree.fat_aabb(*proxy), *aabb);
+            let (found, _) = found_and_expected(&tree, &live, aabb);
+            assert!(found.contains(proxy));
+        }
+    }
+
+    /// Enlarging marks the leaf's ancestors (all the way to the root, not the leaf), grows
+    /// them to hold the new box, and a rebuild clears every mark; with nothing marked a
+    /// rebuild changes nothing.
+    #[test]
+    fn a_rebuild_clears_the_marks_that_enlarging_sets() {
+        let mut rng = Lcg(4);
+        let mut tree = DynamicTree::new();
+        let proxies: Vec<u32> = (0..200)
+            .map(|i| tree.create_proxy(random_box(&mut rng, 20.0), i))
+            .collect();
+        assert_eq!(marked_nodes(&tree), 0);
+        let before = tree.nodes.clone();
+        tree.rebuild(false);
+        assert_eq!(format!("{:?}", tree.nodes), format!("{before:?}"));
+
+        let far = Aabb::new(vec2(100.0, 100.0), vec2(101.0, 101.0));
+        tree.enlarge_proxy(proxies[7], far);
+        tree.validate().unwrap();
+        assert!(!tree.nodes[proxies[7] as usize].enlarged);
+        let mut ancestor = tree.nodes[proxies[7] as usize].parent;
+        let mut path = 0;
+        while ancestor != NULL {
+            let node = &tree.nodes[ancestor as usize];
+            assert!(node.enlarged && node.aabb.contains(&far));
+            ancestor = node.parent;
+            path += 1;
+        }
+        assert_eq!(marked_nodes(&tree), path);
+        tree.enlarge_proxy(proxies[50], random_box(&mut rng, 20.0));
+        assert!(marked_nodes(&tree) > path);
+
+        tree.rebuild(false);
+        tree.validate().unwrap();
+        assert_eq!(marked_nodes(&tree), 0);
+        let mut found = Vec::new();
+        tree.query(&far, |p| found.push(p));
+        assert_eq!(found, vec![proxies[7]]);
+    }
+
+    /// A full rebuild of a tree built by insertion gives a valid, balanced tree over the same
+    /// leaves.
+    #[test]
+    fn a_full_rebuild_keeps_every_leaf() {
+        let mut rng = Lcg(8);
+        let mut tree = DynamicTree::new();
+        let live: Vec<(u32, Aabb)> = (0..1000)
+            .map(|i| {
+                let aabb = random_box(&mut rng, 40.0);
+                (tree.create_proxy(aabb, i), aabb)
+            })
+            .collect();
+        let nodes = tree.nodes.len();
+        tree.rebuild(true);
+        tree.validate().unwrap();
+        assert_eq!(tree.nodes.len(), nodes, "freed nodes are reused");
+        assert!(tree.height() <= 2 * 10 + 2, "height {}", tree.height());
+        for _ in 0..50 {
+            let probe = random_box(&mut rng, 40.0);
+            let (found, expected) = found_and_expected(&tree, &live, &probe);
+            assert_eq!(found, expected);
+        }
+    }
+
+    /// The median split halves a range about the middle of its centres on the longer axis,
+    /// and halves by count when every centre is the same.
+    #[test]
+    fn the_median_split_cuts_the_longer_axis() {
+        let mut items: Vec<u32> = (0..6).collect();
+        let xs = [5.0, 0.0, 9.0, 1.0, 10.0, 2.0];
+        let mut centers: Vec<Vec2> = xs.iter().map(|&x| vec2(x, 0.5 * x / 10.0)).collect();
+        let split = partition_mid(&mut items, &mut centers);
+        assert_eq!(split, 3);
+        assert!(centers[..split].iter().all(|c| c.x < 5.0));
+        assert!(centers[split..].iter().all(|c| c.x >= 5.0));
+        for (item, c) in items.iter().zip(&centers) {
+            assert_eq!(c.x, xs[*item as usize], "items move with their centres");
+        }
+        let mut same = vec![vec2(1.0, 1.0); 5];
+        assert_eq!(partition_mid(&mut [0, 1, 2, 3, 4], &mut same), 2);
+    }
+
+    /// A saved tree whose marks break the rule (a marked leaf, or a marked node under an
+    /// unmarked one) is refused.
+    #[test]
+    fn validate_checks_the_marks() {
+        let mut rng = Lcg(2);
+        let mut tree = DynamicTree::new();
+        let proxies: Vec<u32> = (0..20)
+            .map(|i| tree.create_proxy(random_box(&mut rng, 10.0), i))
+            .collect();
+        let mut marked_leaf = tree.clone();
+        marked_leaf.nodes[proxies[3] as usize].enlarged = true;
+        assert!(marked_leaf.validate().unwrap_err().contains("marked"));
+        let mut orphan_mark = tree.clone();
+        let parent = orphan_mark.nodes[proxies[3] as usize].parent;
+        orphan_mark.nodes[parent as usize].enlarged = true;
+        assert!(orphan_mark.validate().unwrap_err().contains("not marked"));
+        tree.enlarge_proxy(proxies[3], random_box(&mut rng, 10.0));
+        tree.validate().unwrap();
     }
 }
