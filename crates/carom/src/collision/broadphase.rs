@@ -1,11 +1,12 @@
 //! The broadphase: which pairs of colliders are close enough to need a closer look.
 //!
 //! A dynamic AABB tree (as in Box2D) holds one enlarged ("fat") box per collider. A collider
-//! that moves within its fat box costs nothing; one that leaves it is re-inserted and queued,
-//! and at the next pair update only queued colliders query the trees, so the cost per step
-//! follows motion, not the collider count. Static bodies' colliders live in a tree of their
-//! own that is never queried by static colliders, so static-static pairs are never even looked
-//! at; two colliders of one body never pair.
+//! that moves within its fat box costs nothing; one that leaves it in a step gets its new fat
+//! box in place and is queued, and at the next pair update only queued colliders query the
+//! trees, so the cost per step follows motion, not the collider count; the part of the moving
+//! tree those colliders loosened is then built again, once. Static bodies' colliders live in a
+//! tree of their own that is never queried by static colliders, so static-static pairs are
+//! never even looked at; two colliders of one body never pair.
 
 use super::dynamic_tree::DynamicTree;
 use super::filter::CollisionFilter;
@@ -152,9 +153,33 @@ impl BroadPhase {
             .is_some_and(|proxy| kind != proxy.kind || !proxy.fat.contains(aabb))
     }
 
-    /// Follows a collider whose body may have moved or changed kind. Its fat box is replaced only when
-    /// the tight box has left it; then the body is queued to look for new pairs.
+    /// Follows a collider whose body was moved or changed kind by hand. Its fat box is replaced
+    /// only when the tight box has left it, and then re-inserted where it now belongs (Box2D's
+    /// `b2BroadPhase_MoveProxy`: a teleport may go anywhere); then the body is queued to look
+    /// for new pairs.
     pub fn update(&mut self, handle: ColliderHandle, kind: BodyKind, aabb: Aabb, margin: Real) {
+        self.refit(handle, kind, aabb, margin, false);
+    }
+
+    /// Follows a collider its body carried in a step: as [`BroadPhase::update`], but a new fat
+    /// box in the moving tree is set in place, growing its ancestors
+    /// ([`DynamicTree::enlarge_proxy`]), for [`BroadPhase::rebuild_moving_tree`] to build
+    /// again once after the next pair update: many small moves cost a walk up each, not a
+    /// search and rotations each.
+    pub fn enlarge(&mut self, handle: ColliderHandle, kind: BodyKind, aabb: Aabb, margin: Real) {
+        self.refit(handle, kind, aabb, margin, true);
+    }
+
+    /// [`BroadPhase::update`], or with `in_place` [`BroadPhase::enlarge`]. The static tree is
+    /// never rebuilt in a step, so a static collider is always re-inserted.
+    fn refit(
+        &mut self,
+        handle: ColliderHandle,
+        kind: BodyKind,
+        aabb: Aabb,
+        margin: Real,
+        in_place: bool,
+    ) {
         let Some(proxy) = self.proxy(handle).copied() else {
             return;
         };
@@ -168,7 +193,12 @@ impl BroadPhase {
         let left_fat_box = !proxy.fat.contains(&aabb);
         let fat = if left_fat_box {
             let fat = aabb.fattened(margin);
-            self.trees[proxy.tree()].move_proxy(proxy.node, fat);
+            let tree = &mut self.trees[proxy.tree()];
+            if in_place && proxy.tree() == MOVING_TREE {
+                tree.enlarge_proxy(proxy.node, fat);
+            } else {
+                tree.move_proxy(proxy.node, fat);
+            }
             fat
         } else {
             proxy.fat
@@ -181,6 +211,13 @@ impl BroadPhase {
         if left_fat_box || kind != proxy.kind {
             self.enqueue(slot);
         }
+    }
+
+    /// Builds again the part of the moving tree that [`BroadPhase::enlarge`] loosened (see
+    /// [`DynamicTree::rebuild`]), so queries stay as fast as in a tree built by insertion.
+    /// Nothing to do when nothing was enlarged; the static tree never is.
+    pub fn rebuild_moving_tree(&mut self) {
+        self.trees[MOVING_TREE].rebuild(false);
     }
 
     /// Looks for new pairs of a collider at the next pair update, though it has not moved
@@ -581,7 +618,12 @@ mod tests {
         // The pairs a world would hold: created by `update_pairs`, dropped when fat boxes part.
         let mut held: Vec<(ColliderHandle, ColliderHandle)> = Vec::new();
         for round in 0..6 {
+            // Queried while loosened by the last round's moves, then rebuilt, as in a step.
             let new = broadphase.update_pairs(|a, b| held.contains(&(handle(a), handle(b))));
+            broadphase.rebuild_moving_tree();
+            for tree in broadphase.trees() {
+                tree.validate().unwrap();
+            }
             let mut sorted_new = new.clone();
             sorted_new.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
             assert_eq!(new, sorted_new, "pairs come out in a deterministic order");
@@ -603,7 +645,8 @@ mod tests {
             assert!(expected.len() > 100, "the test world must have pairs");
             assert!(held.iter().all(|(a, b)| a.index() < b.index()));
 
-            // Move the non-static bodies: small drifts and a few long jumps.
+            // Move the non-static bodies: small drifts and a few long jumps, as steps carry
+            // them (in place), and a few teleports (re-inserted).
             for (h, kind, aabb) in bodies.iter_mut() {
                 if *kind == BodyKind::Static {
                     continue;
@@ -611,7 +654,11 @@ mod tests {
                 let jump = if rng.next() < 0.05 { 20.0 } else { 0.3 };
                 let d = vec2(rng.range(-jump, jump), rng.range(-jump, jump));
                 *aabb = Aabb::new(aabb.min + d, aabb.max + d);
-                broadphase.update(*h, *kind, *aabb, margin);
+                if rng.next() < 0.02 {
+                    broadphase.update(*h, *kind, *aabb, margin);
+                } else {
+                    broadphase.enlarge(*h, *kind, *aabb, margin);
+                }
             }
         }
         for tree in broadphase.trees() {

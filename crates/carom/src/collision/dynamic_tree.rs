@@ -186,13 +186,13 @@ impl DynamicTree {
     /// top-down median split, which leaves no node marked. `full` rebuilds the whole tree.
     /// Allocates nothing once its buffers have grown to the tree's size.
     pub fn rebuild(&mut self, full: bool) {
+        // Sized first, nothing marked or not, so that the first step to enlarge anything
+        // does not allocate either.
+        self.scratch.clear_for(self.proxy_count);
         if self.root == NULL || !(full || self.nodes[self.root as usize].enlarged) {
             return;
         }
         let mut scratch = std::mem::take(&mut self.scratch);
-        scratch.items.clear();
-        scratch.centers.clear();
-        scratch.nodes.clear();
         // Gather the subtrees to keep and free the inner nodes above them.
         let mut index = self.root;
         loop {
@@ -755,6 +755,25 @@ impl NodeStack {
         }
         self.len -= 1;
         Some(self.inline[self.len])
+    }
+}
+
+impl RebuildScratch {
+    /// Empties the buffers, sized for a tree of `proxies` leaves: a rebuild gathers at most
+    /// one item per leaf and makes fewer inner nodes, so only new leaves, not motion, make
+    /// them grow (room for half as many again, as Box2D keeps, so a few new ones do not).
+    fn clear_for(&mut self, proxies: usize) {
+        self.items.clear();
+        self.centers.clear();
+        self.nodes.clear();
+        self.splits.clear();
+        if self.items.capacity() < proxies {
+            let room = proxies + proxies / 2;
+            self.items.reserve(room);
+            self.centers.reserve(room);
+            self.nodes.reserve(room);
+            self.splits.reserve(room);
+        }
     }
 }
 

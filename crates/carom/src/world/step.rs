@@ -252,13 +252,15 @@ impl World {
         )
     }
 
-    /// Creates contacts for pairs of colliders whose enlarged boxes began to overlap; returns
-    /// how many candidate pairs the broadphase met and how many contacts it created.
+    /// Creates contacts for pairs of colliders whose enlarged boxes began to overlap, and
+    /// rebuilds the part of the moving tree that the last step's motion loosened; returns how
+    /// many candidate pairs the broadphase met and how many contacts it created.
     fn find_pairs(&mut self, pairs: &mut Vec<(ColliderHandle, ColliderHandle)>) -> (usize, usize) {
         let contacts = &self.contacts;
         let candidates = self
             .broadphase
             .update_pairs_into(|a, b| contacts.contains(a, b), pairs);
+        self.broadphase.rebuild_moving_tree();
         let mut created = 0;
         for &(a, b) in pairs.iter() {
             let (Some(collider_a), Some(collider_b)) =
@@ -293,7 +295,8 @@ impl World {
     /// Re-fits the broadphase entries of colliders that moved this step, each box covering
     /// where its collider can get to in `prediction` seconds at its body's present velocity:
     /// which ones left their fat boxes is found on all threads (into `refits`), then only
-    /// those are re-fitted, in collider order. Returns how many were.
+    /// those are enlarged in place, in collider order, for the next step's rebuild. Returns
+    /// how many were.
     fn refresh_broadphase(
         &mut self,
         prediction: Real,
@@ -323,7 +326,7 @@ impl World {
         for (&handle, refit) in handles.iter().zip(refits.iter()) {
             if let &Some((aabb, kind)) = refit {
                 let margin = margin_for(&self.settings, kind);
-                self.broadphase.update(handle, kind, aabb, margin);
+                self.broadphase.enlarge(handle, kind, aabb, margin);
                 moved += 1;
             }
         }
