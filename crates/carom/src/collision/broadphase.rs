@@ -215,7 +215,9 @@ impl BroadPhase {
 
     /// Builds again the part of the moving tree that [`BroadPhase::enlarge`] loosened (see
     /// [`DynamicTree::rebuild`]), so queries stay as fast as in a tree built by insertion.
-    /// Nothing to do when nothing was enlarged; the static tree never is.
+    /// Nothing to do when nothing was enlarged; the static tree never is. A step does this
+    /// through [`BroadPhase::moving_tree_and_fat_boxes`].
+    #[cfg(any(test, feature = "testing"))]
     pub fn rebuild_moving_tree(&mut self) {
         self.trees[MOVING_TREE].rebuild(false);
     }
@@ -235,16 +237,29 @@ impl BroadPhase {
     }
 
     /// The fat box of a collider, if it has a proxy.
+    #[cfg(any(test, feature = "testing"))]
     pub fn fat_aabb(&self, handle: ColliderHandle) -> Option<Aabb> {
         self.proxy(handle).map(|p| p.fat)
     }
 
-    /// True when the fat boxes of two colliders overlap.
+    /// True when the fat boxes of two colliders overlap (as [`FatBoxes::overlap`]).
+    #[cfg(any(test, feature = "testing"))]
     pub fn fat_aabbs_overlap(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
         match (self.fat_aabb(a), self.fat_aabb(b)) {
             (Some(a), Some(b)) => a.overlaps(&b),
             _ => false,
         }
+    }
+
+    /// The moving tree, to rebuild ([`DynamicTree::rebuild`]), and the fat boxes, to read
+    /// meanwhile: borrowed apart, so that the narrowphase runs beside the rebuild.
+    pub(crate) fn moving_tree_and_fat_boxes(&mut self) -> (&mut DynamicTree, FatBoxes<'_>) {
+        (
+            &mut self.trees[MOVING_TREE],
+            FatBoxes {
+                proxies: &self.proxies,
+            },
+        )
     }
 
     /// [`BroadPhase::update_pairs_into`] into a new vector, for tests.
@@ -468,6 +483,31 @@ impl BroadPhase {
     #[cfg(any(test, feature = "testing"))]
     pub fn trees(&self) -> [&DynamicTree; 2] {
         [&self.trees[STATIC_TREE], &self.trees[MOVING_TREE]]
+    }
+}
+
+/// The fat boxes of a broadphase's colliders, read apart from its trees.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FatBoxes<'a> {
+    proxies: &'a [Option<Proxy>],
+}
+
+impl FatBoxes<'_> {
+    /// The fat box of a collider, if it has a proxy.
+    fn get(&self, handle: ColliderHandle) -> Option<Aabb> {
+        self.proxies
+            .get(BroadPhase::slot(handle))
+            .and_then(Option::as_ref)
+            .filter(|p| p.handle == handle)
+            .map(|p| p.fat)
+    }
+
+    /// True when the fat boxes of two colliders overlap.
+    pub(crate) fn overlap(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
+        match (self.get(a), self.get(b)) {
+            (Some(a), Some(b)) => a.overlaps(&b),
+            _ => false,
+        }
     }
 }
 

@@ -5,7 +5,7 @@
 //! reported as events, with the sleeping islands a moving body stirred listed to wake.
 //! Box2D's `b2Collide` and `b2UpdateContact`.
 
-use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
+use crate::collision::broadphase::{FatBoxes, kinds_can_collide};
 use crate::collision::contact::{Contact, ContactEvent, ContactSet, pair_key};
 use crate::collision::manifold::{self, Manifold, Margins};
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
@@ -78,7 +78,7 @@ impl Narrowphase {
         set: &mut ContactSet,
         bodies: &HandleMap<BodyHandle, Body>,
         colliders: &HandleMap<ColliderHandle, Collider>,
-        broadphase: &BroadPhase,
+        fat_boxes: FatBoxes<'_>,
         options: ManifoldOptions,
         wake: &mut Vec<u32>,
         work: &mut CollisionWork,
@@ -91,7 +91,7 @@ impl Narrowphase {
             &mut set.contacts[awake.clone()],
             &mut self.refresh,
             CONTACTS_PER_TASK,
-            |contact| refresh_manifold(contact, bodies, colliders, broadphase, options),
+            |contact| refresh_manifold(contact, bodies, colliders, fat_boxes, options),
         );
         let mut deepest: Real = 0.0;
         self.changed.clear();
@@ -229,7 +229,7 @@ fn refresh_manifold(
     contact: &mut Contact,
     bodies: &HandleMap<BodyHandle, Body>,
     colliders: &HandleMap<ColliderHandle, Collider>,
-    broadphase: &BroadPhase,
+    fat_boxes: FatBoxes<'_>,
     options: ManifoldOptions,
 ) -> Refresh {
     let (Some(shape_a), Some(shape_b)) = (
@@ -238,7 +238,7 @@ fn refresh_manifold(
     ) else {
         return Refresh::Gone;
     };
-    rebuild_manifold(contact, (shape_a, shape_b), bodies, broadphase, options)
+    rebuild_manifold(contact, (shape_a, shape_b), bodies, fat_boxes, options)
 }
 
 /// [`refresh_manifold`] of a contact between colliders `shape_a` and `shape_b`.
@@ -246,7 +246,7 @@ fn rebuild_manifold(
     contact: &mut Contact,
     (shape_a, shape_b): (&Collider, &Collider),
     bodies: &HandleMap<BodyHandle, Body>,
-    broadphase: &BroadPhase,
+    fat_boxes: FatBoxes<'_>,
     options: ManifoldOptions,
 ) -> Refresh {
     let ManifoldOptions {
@@ -264,7 +264,7 @@ fn rebuild_manifold(
     contact.friction = (shape_a.friction() * shape_b.friction()).sqrt();
     contact.restitution = shape_a.restitution().max(shape_b.restitution());
     if !kinds_can_collide(a.kind(), b.kind())
-        || !broadphase.fat_aabbs_overlap(contact.collider_a, contact.collider_b)
+        || !fat_boxes.overlap(contact.collider_a, contact.collider_b)
     {
         return Refresh::Gone;
     }

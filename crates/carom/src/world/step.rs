@@ -149,7 +149,10 @@ impl World {
 
     /// Rebuilds the manifolds of every pair where something moves, and wakes the sleeping
     /// islands a moving body touched so they join this step; returns the deepest overlap and
-    /// counts what it did into `work`.
+    /// counts what it did into `work`. Beside it, on another thread if one is free, the part
+    /// of the broadphase's moving tree that the last step's motion loosened is built again
+    /// (Box2D's tree task): the pair queries are done with it, and the narrowphase reads only
+    /// the fat boxes.
     fn build_manifolds(
         &mut self,
         prediction: Real,
@@ -158,25 +161,23 @@ impl World {
         work: &mut CollisionWork,
     ) -> Real {
         wake.clear();
-        let deepest = narrowphase.update(
-            &mut self.contacts,
-            &self.bodies,
-            &self.colliders,
-            &self.broadphase,
-            ManifoldOptions {
-                margin: self.settings.speculative_distance,
-                prediction,
-                recycling: self.settings.contact_recycling.then(|| {
-                    if self.settings.solver.effective_kind() == SolverKind::SoftStep {
-                        RECYCLE_DISTANCE
-                    } else {
-                        RECYCLE_DISTANCE_CLASSIC
-                    }
-                }),
-                pre_solve: self.pre_solve.as_ref(),
-            },
-            wake,
-            work,
+        let (moving_tree, fat_boxes) = self.broadphase.moving_tree_and_fat_boxes();
+        let (contacts, bodies, colliders) = (&mut self.contacts, &self.bodies, &self.colliders);
+        let options = ManifoldOptions {
+            margin: self.settings.speculative_distance,
+            prediction,
+            recycling: self.settings.contact_recycling.then(|| {
+                if self.settings.solver.effective_kind() == SolverKind::SoftStep {
+                    RECYCLE_DISTANCE
+                } else {
+                    RECYCLE_DISTANCE_CLASSIC
+                }
+            }),
+            pre_solve: self.pre_solve.as_ref(),
+        };
+        let (deepest, ()) = rayon::join(
+            || narrowphase.update(contacts, bodies, colliders, fat_boxes, options, wake, work),
+            || moving_tree.rebuild(false),
         );
         wake.sort_unstable();
         wake.dedup();
@@ -252,15 +253,13 @@ impl World {
         )
     }
 
-    /// Creates contacts for pairs of colliders whose enlarged boxes began to overlap, and
-    /// rebuilds the part of the moving tree that the last step's motion loosened; returns how
-    /// many candidate pairs the broadphase met and how many contacts it created.
+    /// Creates contacts for pairs of colliders whose enlarged boxes began to overlap; returns
+    /// how many candidate pairs the broadphase met and how many contacts it created.
     fn find_pairs(&mut self, pairs: &mut Vec<(ColliderHandle, ColliderHandle)>) -> (usize, usize) {
         let contacts = &self.contacts;
         let candidates = self
             .broadphase
             .update_pairs_into(|a, b| contacts.contains(a, b), pairs);
-        self.broadphase.rebuild_moving_tree();
         let mut created = 0;
         for &(a, b) in pairs.iter() {
             let (Some(collider_a), Some(collider_b)) =
