@@ -33,7 +33,11 @@ use crate::math::Real;
 use crate::parallel::for_each_with;
 use crate::world::solver_sets::SolverSet;
 use std::collections::HashMap;
+use std::collections::hash_map::Entry;
 use std::hash::{BuildHasherDefault, Hasher};
+
+#[cfg(feature = "serde")]
+mod saved;
 
 /// A pair of colliders the narrowphase watches.
 #[derive(Debug, Clone)]
@@ -257,8 +261,11 @@ pub(super) fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
 /// The contacts of a world, stored contiguously in parts (see `graph::layout`):
 /// the awake ones (a body of the pair is awake) colour by colour, then the sleeping ones;
 /// with a lookup by pair and each body's list.
+///
+/// Each contact also has an id, kept from its creation to its destruction (Box2D's contact
+/// id), which the lookup and the bodies' lists hold: moving a contact between parts only
+/// tells its id where it went, and walking a body's contacts hashes nothing.
 #[derive(Debug, Clone, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactSet {
     pub(super) contacts: Vec<Contact>,
     /// Where each part of `contacts` begins and ends.
@@ -271,11 +278,19 @@ pub struct ContactSet {
     /// destroyed while touching), since the world last took them (to link islands).
     pub(super) began: Vec<(BodyHandle, BodyHandle)>,
     pub(super) ended: Vec<(BodyHandle, BodyHandle)>,
-    #[cfg_attr(feature = "serde", serde(with = "crate::serde_impls::sorted_map"))]
-    pub(super) lookup: HashMap<u64, usize, BuildHasherDefault<PairHasher>>,
-    /// Each body's contacts, by the body's slot index, as pair keys: removing a body or a
-    /// collider visits its own contacts only.
-    edges: Vec<Vec<u64>>,
+    /// Each pair's contact id: written only as contacts are made and destroyed.
+    lookup: HashMap<u64, u32, BuildHasherDefault<PairHasher>>,
+    /// Each contact's id, by index (moved with the contacts).
+    ids: Vec<u32>,
+    /// Where each id's contact is, in the array and in its bodies' lists.
+    slots: Vec<Slot>,
+    /// The first id of destroyed contacts to give out again: each unused slot names the next
+    /// ([`NO_ID`] for none), so freeing allocates nothing.
+    free: Option<u32>,
+    /// Each body's contacts, by the body's slot index, as [`Edge`]s in the order they were
+    /// made (a removal moves the last into its place): removing a body or a collider visits
+    /// its own contacts only, and walks visit partners in this order.
+    edges: Vec<Vec<Edge>>,
     pub(super) events: Vec<ContactEvent>,
     /// Events raised between steps (removing a body), reported after the next step.
     pending: Vec<ContactEvent>,
@@ -285,6 +300,40 @@ pub struct ContactSet {
     body_indices: Vec<BodyIndices>,
     /// How many contacts have been made.
     made: u64,
+    /// The ids a removal destroys, kept to spare an allocation.
+    doomed: Vec<u32>,
+}
+
+/// Where a contact id's contact is.
+#[derive(Debug, Clone, Copy)]
+struct Slot {
+    /// Its index in the contact array ([`FREE`] while the id is unused).
+    index: u32,
+    /// Its place in the edge lists of its first body and of its second; while the id is
+    /// unused, the first is the next unused id.
+    edge_at: [u32; 2],
+}
+
+/// The index of an unused id's slot.
+const FREE: u32 = u32::MAX;
+
+/// No id: the end of the list of unused ones.
+const NO_ID: u32 = u32::MAX;
+
+/// One of a body's contacts: its id, and which of the contact's bodies the body is (the low
+/// bit: 0 for the first).
+type Edge = u32;
+
+fn edge(id: u32, side: usize) -> Edge {
+    id << 1 | side as u32
+}
+
+fn edge_id(edge: Edge) -> u32 {
+    edge >> 1
+}
+
+fn edge_side(edge: Edge) -> usize {
+    (edge & 1) as usize
 }
 
 /// The bodies of the contacts that started touching, and of those that stopped.
@@ -304,18 +353,37 @@ impl ContactSet {
         b: (ColliderHandle, &Collider),
         awake: bool,
     ) {
-        let key = pair_key(a.0, b.0);
-        if self.lookup.contains_key(&key) {
-            return;
-        }
-        self.lookup.insert(key, self.contacts.len());
-        for body in [a.1.body(), b.1.body()] {
+        let id = match self.lookup.entry(pair_key(a.0, b.0)) {
+            Entry::Occupied(_) => return,
+            Entry::Vacant(vacant) => {
+                let id = if let Some(id) = self.free {
+                    let next = self.slots[id as usize].edge_at[0];
+                    self.free = (next != NO_ID).then_some(next);
+                    id
+                } else {
+                    self.slots.push(Slot {
+                        index: FREE,
+                        edge_at: [NO_ID; 2],
+                    });
+                    (self.slots.len() - 1) as u32
+                };
+                *vacant.insert(id)
+            }
+        };
+        let mut edge_at = [0; 2];
+        for (side, body) in [a.1.body(), b.1.body()].into_iter().enumerate() {
             let slot = body.index() as usize;
             if self.edges.len() <= slot {
                 self.edges.resize_with(slot + 1, Vec::new);
             }
-            self.edges[slot].push(key);
+            edge_at[side] = self.edges[slot].len() as u32;
+            self.edges[slot].push(edge(id, side));
         }
+        self.slots[id as usize] = Slot {
+            index: self.contacts.len() as u32,
+            edge_at,
+        };
+        self.ids.push(id);
         self.contacts.push(Contact {
             collider_a: a.0,
             collider_b: b.0,
@@ -344,14 +412,25 @@ impl ContactSet {
         }
     }
 
-    /// Swaps two contacts' places; the lookup learns where they went.
+    /// Swaps two contacts' places; their ids learn where they went.
     fn swap(&mut self, i: usize, j: usize) {
         self.contacts.swap(i, j);
         self.body_indices.swap(i, j);
-        for k in [i, j] {
-            let c = &self.contacts[k];
-            self.lookup.insert(pair_key(c.collider_a, c.collider_b), k);
-        }
+        self.ids.swap(i, j);
+        self.slots[self.ids[i] as usize].index = i as u32;
+        self.slots[self.ids[j] as usize].index = j as u32;
+    }
+
+    /// The index of the live contact of id `id`.
+    #[inline]
+    pub(super) fn index_of(&self, id: u32) -> usize {
+        self.slots[id as usize].index as usize
+    }
+
+    /// The id of the contact at `index`, which it keeps wherever it moves until destroyed.
+    #[inline]
+    pub(super) fn id_at(&self, index: usize) -> u32 {
+        self.ids[index]
     }
 
     /// Moves the contact at `index` into part `to`; returns its new index.
@@ -446,7 +525,7 @@ impl ContactSet {
         let slot = body.index() as usize;
         let count = self.edges.get(slot).map_or(0, Vec::len);
         for k in 0..count {
-            let index = self.lookup[&self.edges[slot][k]];
+            let index = self.index_of(edge_id(self.edges[slot][k]));
             let contact = &self.contacts[index];
             let awake = |b: BodyHandle| bodies(b).0 == SolverSet::Awake;
             let set = if awake(contact.body_a) || awake(contact.body_b) {
@@ -464,7 +543,7 @@ impl ContactSet {
         let slot = body.index() as usize;
         let count = self.edges.get(slot).map_or(0, Vec::len);
         for k in 0..count {
-            let index = self.lookup[&self.edges[slot][k]];
+            let index = self.index_of(edge_id(self.edges[slot][k]));
             if self.contacts[index].color != NO_COLOR {
                 let index = self.unpaint(index);
                 self.paint(index, &kinds);
@@ -478,10 +557,10 @@ impl ContactSet {
         let Some(edges) = self.edges.get(body.index() as usize) else {
             return;
         };
-        for key in edges {
-            let contact = &self.contacts[self.lookup[key]];
+        for &edge in edges {
+            let contact = &self.contacts[self.index_of(edge_id(edge))];
             if contact.touching {
-                into.push(if contact.body_a == body {
+                into.push(if edge_side(edge) == 0 {
                     contact.body_b
                 } else {
                     contact.body_a
@@ -496,22 +575,31 @@ impl ContactSet {
         let index = self.move_to(index, SolverSet::Asleep, &|_| BodyKind::Static);
         let contact = self.contacts.swap_remove(index);
         self.body_indices.swap_remove(index);
+        let id = self.ids.swap_remove(index);
+        if let Some(&moved) = self.ids.get(index) {
+            self.slots[moved as usize].index = index as u32;
+        }
         if contact.touching {
             self.asleep_touching -= 1;
             self.ended.push((contact.body_a, contact.body_b));
         }
-        let key = pair_key(contact.collider_a, contact.collider_b);
-        self.lookup.remove(&key);
-        for body in [contact.body_a, contact.body_b] {
+        self.lookup
+            .remove(&pair_key(contact.collider_a, contact.collider_b));
+        for (side, body) in [contact.body_a, contact.body_b].into_iter().enumerate() {
+            // The last edge takes its place, as a search and swap-remove would leave it.
+            let at = self.slots[id as usize].edge_at[side];
             let edges = &mut self.edges[body.index() as usize];
-            if let Some(at) = edges.iter().position(|&k| k == key) {
-                edges.swap_remove(at);
+            debug_assert_eq!(edges[at as usize], edge(id, side));
+            edges.swap_remove(at as usize);
+            if let Some(&moved) = edges.get(at as usize) {
+                self.slots[edge_id(moved) as usize].edge_at[edge_side(moved)] = at;
             }
         }
-        if let Some(moved) = self.contacts.get(index) {
-            self.lookup
-                .insert(pair_key(moved.collider_a, moved.collider_b), index);
-        }
+        self.slots[id as usize] = Slot {
+            index: FREE,
+            edge_at: [self.free.unwrap_or(NO_ID), NO_ID],
+        };
+        self.free = Some(id);
         if contact.in_contact {
             let event = ContactEvent::End(contact.pair());
             if events_now {
@@ -547,15 +635,19 @@ impl ContactSet {
         let Some(edges) = self.edges.get(body.index() as usize) else {
             return;
         };
-        // By pair, as each removal moves other contacts.
-        let keys: Vec<u64> = edges
-            .iter()
-            .copied()
-            .filter(|key| doomed(&self.contacts[self.lookup[key]]))
-            .collect();
-        for key in keys {
-            self.destroy(self.lookup[&key], false);
+        // By id, as each removal moves other contacts.
+        let mut ids = std::mem::take(&mut self.doomed);
+        ids.clear();
+        ids.extend(
+            edges
+                .iter()
+                .map(|&edge| edge_id(edge))
+                .filter(|&id| doomed(&self.contacts[self.index_of(id)])),
+        );
+        for &id in &ids {
+            self.destroy(self.index_of(id), false);
         }
+        self.doomed = ids;
     }
 
     /// Forgets last step's events; those raised since (by removals) become this step's.
@@ -652,6 +744,46 @@ impl ContactSet {
         )
     }
 
+    /// Checks the ids: each contact's id finds it and its pair finds the id, the unused ids
+    /// are the free ones, and each body's list holds exactly its contacts, each where its id
+    /// says.
+    #[cfg(test)]
+    pub(crate) fn check_ids(&self) {
+        assert_eq!(self.ids.len(), self.contacts.len());
+        assert_eq!(self.lookup.len(), self.contacts.len());
+        for (index, (contact, &id)) in self.contacts.iter().zip(&self.ids).enumerate() {
+            assert_eq!(self.index_of(id), index, "contact {index}'s id");
+            let key = pair_key(contact.collider_a, contact.collider_b);
+            assert_eq!(self.lookup.get(&key), Some(&id), "contact {index}'s pair");
+            for (side, body) in [contact.body_a, contact.body_b].into_iter().enumerate() {
+                let at = self.slots[id as usize].edge_at[side] as usize;
+                assert_eq!(
+                    self.edges[body.index() as usize].get(at),
+                    Some(&edge(id, side)),
+                    "contact {index} in its body's list"
+                );
+            }
+        }
+        let mut free = Vec::new();
+        let mut next = self.free.unwrap_or(NO_ID);
+        while next != NO_ID {
+            assert!(free.len() < self.slots.len(), "the free ids loop");
+            free.push(next);
+            next = self.slots[next as usize].edge_at[0];
+        }
+        free.sort_unstable();
+        let unused: Vec<u32> = (0..self.slots.len() as u32)
+            .filter(|&id| self.slots[id as usize].index == FREE)
+            .collect();
+        assert_eq!(unused, free, "the free ids are the unused ones");
+        let listed: usize = self.edges.iter().map(Vec::len).sum();
+        assert_eq!(
+            listed,
+            2 * self.contacts.len(),
+            "the bodies list only live contacts"
+        );
+    }
+
     /// The graph colours of the awake touching contacts.
     #[cfg(test)]
     pub(crate) fn colors(&self) -> &ContactColors {
@@ -737,17 +869,13 @@ impl ContactSet {
             if self
                 .lookup
                 .get(&pair_key(contact.collider_a, contact.collider_b))
-                != Some(&i)
+                != Some(&self.ids[i])
             {
                 return Err(format!("contact {i} is not found by its pair"));
             }
         }
         if self.lookup.len() != count {
             return Err("the contact lookup holds pairs with no contact".into());
-        }
-        let known = |key: &u64| self.lookup.contains_key(key);
-        if !self.edges.iter().flatten().all(known) {
-            return Err("a body lists a contact that does not exist".into());
         }
         let live = |(a, b): &(BodyHandle, BodyHandle)| bodies.contains(*a) && bodies.contains(*b);
         if !self.began.iter().chain(&self.ended).all(live) {
