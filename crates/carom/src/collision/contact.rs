@@ -287,10 +287,11 @@ pub struct ContactSet {
     /// The first id of destroyed contacts to give out again: each unused slot names the next
     /// ([`NO_ID`] for none), so freeing allocates nothing.
     free: Option<u32>,
-    /// Each body's contacts, by the body's slot index, as [`Edge`]s in the order they were
-    /// made (a removal moves the last into its place): removing a body or a collider visits
-    /// its own contacts only, and walks visit partners in this order.
-    edges: Vec<Vec<Edge>>,
+    /// Each body's contacts, by the body's slot index: the ends of a list of [`Edge`]s linked
+    /// through the slots, in the order they were made, a removal moving the last into its
+    /// place. Removing a body or a collider visits its own contacts only, walks visit partners
+    /// in this order, and a body's first contact allocates nothing.
+    edges: Vec<EdgeList>,
     pub(super) events: Vec<ContactEvent>,
     /// Events raised between steps (removing a body), reported after the next step.
     pending: Vec<ContactEvent>,
@@ -309,9 +310,9 @@ pub struct ContactSet {
 struct Slot {
     /// Its index in the contact array ([`FREE`] while the id is unused).
     index: u32,
-    /// Its place in the edge lists of its first body and of its second; while the id is
-    /// unused, the first is the next unused id.
-    edge_at: [u32; 2],
+    /// The edges before and after it in the list of its first body, then of its second
+    /// ([`NO_EDGE`] at an end). While the id is unused, the first names the next unused id.
+    links: [[Edge; 2]; 2],
 }
 
 /// The index of an unused id's slot.
@@ -323,6 +324,23 @@ const NO_ID: u32 = u32::MAX;
 /// One of a body's contacts: its id, and which of the contact's bodies the body is (the low
 /// bit: 0 for the first).
 type Edge = u32;
+
+/// No edge: the end of a list.
+const NO_EDGE: Edge = u32::MAX;
+
+/// The first and last of a body's edges ([`NO_EDGE`] when it has none).
+#[derive(Debug, Clone, Copy)]
+struct EdgeList {
+    first: Edge,
+    last: Edge,
+}
+
+impl EdgeList {
+    const EMPTY: EdgeList = EdgeList {
+        first: NO_EDGE,
+        last: NO_EDGE,
+    };
+}
 
 fn edge(id: u32, side: usize) -> Edge {
     id << 1 | side as u32
@@ -357,32 +375,23 @@ impl ContactSet {
             Entry::Occupied(_) => return,
             Entry::Vacant(vacant) => {
                 let id = if let Some(id) = self.free {
-                    let next = self.slots[id as usize].edge_at[0];
+                    let next = self.slots[id as usize].links[0][0];
                     self.free = (next != NO_ID).then_some(next);
                     id
                 } else {
                     self.slots.push(Slot {
                         index: FREE,
-                        edge_at: [NO_ID; 2],
+                        links: [[NO_EDGE; 2]; 2],
                     });
                     (self.slots.len() - 1) as u32
                 };
                 *vacant.insert(id)
             }
         };
-        let mut edge_at = [0; 2];
+        self.slots[id as usize].index = self.contacts.len() as u32;
         for (side, body) in [a.1.body(), b.1.body()].into_iter().enumerate() {
-            let slot = body.index() as usize;
-            if self.edges.len() <= slot {
-                self.edges.resize_with(slot + 1, Vec::new);
-            }
-            edge_at[side] = self.edges[slot].len() as u32;
-            self.edges[slot].push(edge(id, side));
+            self.append(body.index() as usize, edge(id, side));
         }
-        self.slots[id as usize] = Slot {
-            index: self.contacts.len() as u32,
-            edge_at,
-        };
         self.ids.push(id);
         self.contacts.push(Contact {
             collider_a: a.0,
@@ -419,6 +428,66 @@ impl ContactSet {
         self.ids.swap(i, j);
         self.slots[self.ids[i] as usize].index = i as u32;
         self.slots[self.ids[j] as usize].index = j as u32;
+    }
+
+    /// The links of `edge`: the edges before and after it in its body's list.
+    #[inline]
+    fn links(&mut self, edge: Edge) -> &mut [Edge; 2] {
+        &mut self.slots[edge_id(edge) as usize].links[edge_side(edge)]
+    }
+
+    /// The edge after `edge` in its body's list.
+    #[inline]
+    fn next(&self, edge: Edge) -> Edge {
+        self.slots[edge_id(edge) as usize].links[edge_side(edge)][1]
+    }
+
+    /// The first of the edges of the body of slot index `body`.
+    fn first_edge(&self, body: usize) -> Edge {
+        self.edges.get(body).map_or(NO_EDGE, |list| list.first)
+    }
+
+    /// Appends `edge` to the list of the body of slot index `body`.
+    fn append(&mut self, body: usize, edge: Edge) {
+        if self.edges.len() <= body {
+            self.edges.resize(body + 1, EdgeList::EMPTY);
+        }
+        let last = self.edges[body].last;
+        *self.links(edge) = [last, NO_EDGE];
+        if last == NO_EDGE {
+            self.edges[body].first = edge;
+        } else {
+            self.links(last)[1] = edge;
+        }
+        self.edges[body].last = edge;
+    }
+
+    /// Takes `edge` out of the list of the body of slot index `body`, the last edge taking
+    /// its place, as a vector's swap removal would leave it.
+    fn unlink(&mut self, body: usize, edge: Edge) {
+        let last = self.edges[body].last;
+        let before_last = self.links(last)[0];
+        if before_last == NO_EDGE {
+            self.edges[body].first = NO_EDGE;
+        } else {
+            self.links(before_last)[1] = NO_EDGE;
+        }
+        self.edges[body].last = before_last;
+        if last == edge {
+            return;
+        }
+        let [before, after] = *self.links(edge);
+        *self.links(last) = [before, after];
+        if before == NO_EDGE {
+            self.edges[body].first = last;
+        } else {
+            self.links(before)[1] = last;
+        }
+        if after == NO_EDGE {
+            self.edges[body].last = last;
+        } else {
+            self.links(after)[0] = last;
+        }
     }
 
     /// The index of the live contact of id `id`.
@@ -522,10 +591,10 @@ impl ContactSet {
         bodies: impl Fn(BodyHandle) -> (SolverSet, BodyKind),
     ) {
         let kinds = |b: BodyHandle| bodies(b).1;
-        let slot = body.index() as usize;
-        let count = self.edges.get(slot).map_or(0, Vec::len);
-        for k in 0..count {
-            let index = self.index_of(edge_id(self.edges[slot][k]));
+        let mut edge = self.first_edge(body.index() as usize);
+        while edge != NO_EDGE {
+            let index = self.index_of(edge_id(edge));
+            edge = self.next(edge);
             let contact = &self.contacts[index];
             let awake = |b: BodyHandle| bodies(b).0 == SolverSet::Awake;
             let set = if awake(contact.body_a) || awake(contact.body_b) {
@@ -540,10 +609,10 @@ impl ContactSet {
     /// Colours each of a body's awake touching contacts again, after its kind changed (a body
     /// that became static frees its colours, one that became dynamic takes its own).
     pub(crate) fn repaint(&mut self, body: BodyHandle, kinds: impl Fn(BodyHandle) -> BodyKind) {
-        let slot = body.index() as usize;
-        let count = self.edges.get(slot).map_or(0, Vec::len);
-        for k in 0..count {
-            let index = self.index_of(edge_id(self.edges[slot][k]));
+        let mut edge = self.first_edge(body.index() as usize);
+        while edge != NO_EDGE {
+            let index = self.index_of(edge_id(edge));
+            edge = self.next(edge);
             if self.contacts[index].color != NO_COLOR {
                 let index = self.unpaint(index);
                 self.paint(index, &kinds);
@@ -554,13 +623,14 @@ impl ContactSet {
     /// The other body of every touching contact of `body`.
     pub(crate) fn touching_partners(&self, body: BodyHandle, into: &mut Vec<BodyHandle>) {
         into.clear();
-        let Some(edges) = self.edges.get(body.index() as usize) else {
-            return;
-        };
-        for &edge in edges {
-            let contact = &self.contacts[self.index_of(edge_id(edge))];
+        let mut edge = self.first_edge(body.index() as usize);
+        while edge != NO_EDGE {
+            let slot = &self.slots[edge_id(edge) as usize];
+            let contact = &self.contacts[slot.index as usize];
+            let side = edge_side(edge);
+            edge = slot.links[side][1];
             if contact.touching {
-                into.push(if edge_side(edge) == 0 {
+                into.push(if side == 0 {
                     contact.body_b
                 } else {
                     contact.body_a
@@ -586,18 +656,11 @@ impl ContactSet {
         self.lookup
             .remove(&pair_key(contact.collider_a, contact.collider_b));
         for (side, body) in [contact.body_a, contact.body_b].into_iter().enumerate() {
-            // The last edge takes its place, as a search and swap-remove would leave it.
-            let at = self.slots[id as usize].edge_at[side];
-            let edges = &mut self.edges[body.index() as usize];
-            debug_assert_eq!(edges[at as usize], edge(id, side));
-            edges.swap_remove(at as usize);
-            if let Some(&moved) = edges.get(at as usize) {
-                self.slots[edge_id(moved) as usize].edge_at[edge_side(moved)] = at;
-            }
+            self.unlink(body.index() as usize, edge(id, side));
         }
         self.slots[id as usize] = Slot {
             index: FREE,
-            edge_at: [self.free.unwrap_or(NO_ID), NO_ID],
+            links: [[self.free.unwrap_or(NO_ID), NO_EDGE], [NO_EDGE; 2]],
         };
         self.free = Some(id);
         if contact.in_contact {
@@ -632,18 +695,17 @@ impl ContactSet {
 
     /// Drops the contacts of `body` that `doomed` picks.
     fn destroy_where(&mut self, body: BodyHandle, doomed: impl Fn(&Contact) -> bool) {
-        let Some(edges) = self.edges.get(body.index() as usize) else {
-            return;
-        };
-        // By id, as each removal moves other contacts.
+        // By id, as each removal moves other contacts and edges.
         let mut ids = std::mem::take(&mut self.doomed);
         ids.clear();
-        ids.extend(
-            edges
-                .iter()
-                .map(|&edge| edge_id(edge))
-                .filter(|&id| doomed(&self.contacts[self.index_of(id)])),
-        );
+        let mut edge = self.first_edge(body.index() as usize);
+        while edge != NO_EDGE {
+            let id = edge_id(edge);
+            if doomed(&self.contacts[self.index_of(id)]) {
+                ids.push(id);
+            }
+            edge = self.next(edge);
+        }
         for &id in &ids {
             self.destroy(self.index_of(id), false);
         }
@@ -755,32 +817,46 @@ impl ContactSet {
             assert_eq!(self.index_of(id), index, "contact {index}'s id");
             let key = pair_key(contact.collider_a, contact.collider_b);
             assert_eq!(self.lookup.get(&key), Some(&id), "contact {index}'s pair");
-            for (side, body) in [contact.body_a, contact.body_b].into_iter().enumerate() {
-                let at = self.slots[id as usize].edge_at[side] as usize;
+        }
+        // Each list, walked forwards, links back and holds only its body's live contacts.
+        let mut listed = vec![[false; 2]; self.slots.len()];
+        for (body, list) in self.edges.iter().enumerate() {
+            let (mut before, mut edge) = (NO_EDGE, list.first);
+            while edge != NO_EDGE {
+                let (id, side) = (edge_id(edge), edge_side(edge));
+                let slot = &self.slots[id as usize];
+                assert_ne!(slot.index, FREE, "body {body} lists an unused id");
+                let contact = &self.contacts[slot.index as usize];
+                let of = [contact.body_a, contact.body_b][side];
                 assert_eq!(
-                    self.edges[body.index() as usize].get(at),
-                    Some(&edge(id, side)),
-                    "contact {index} in its body's list"
+                    of.index() as usize,
+                    body,
+                    "body {body} lists another's contact"
                 );
+                assert!(!listed[id as usize][side], "body {body}'s list loops");
+                listed[id as usize][side] = true;
+                assert_eq!(slot.links[side][0], before, "body {body}'s list links back");
+                (before, edge) = (edge, slot.links[side][1]);
             }
+            assert_eq!(list.last, before, "body {body}'s last edge");
         }
         let mut free = Vec::new();
         let mut next = self.free.unwrap_or(NO_ID);
         while next != NO_ID {
             assert!(free.len() < self.slots.len(), "the free ids loop");
             free.push(next);
-            next = self.slots[next as usize].edge_at[0];
+            next = self.slots[next as usize].links[0][0];
         }
         free.sort_unstable();
         let unused: Vec<u32> = (0..self.slots.len() as u32)
             .filter(|&id| self.slots[id as usize].index == FREE)
             .collect();
         assert_eq!(unused, free, "the free ids are the unused ones");
-        let listed: usize = self.edges.iter().map(Vec::len).sum();
+        let listed = listed.iter().flatten().filter(|&&listed| listed).count();
         assert_eq!(
             listed,
             2 * self.contacts.len(),
-            "the bodies list only live contacts"
+            "the bodies list every contact"
         );
     }
 

@@ -4,8 +4,8 @@
 //! hold each contact exactly once in each of its bodies' lists.
 
 use super::{
-    BodyIndices, Contact, ContactEvent, ContactSet, Edge, FREE, PairHasher, Slot, edge, edge_id,
-    pair_key,
+    BodyIndices, Contact, ContactEvent, ContactSet, EdgeList, NO_EDGE, PairHasher, Slot, edge,
+    edge_id, pair_key,
 };
 use crate::dynamics::body::BodyHandle;
 use crate::graph::colors::ContactColors;
@@ -54,9 +54,15 @@ struct Saved {
 
 impl Serialize for ContactSet {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let key_of = |edge: &Edge| {
-            let contact = &self.contacts[self.index_of(edge_id(*edge))];
-            pair_key(contact.collider_a, contact.collider_b)
+        let keys_of = |list: &EdgeList| {
+            let mut keys = Vec::new();
+            let mut edge = list.first;
+            while edge != NO_EDGE {
+                let contact = &self.contacts[self.index_of(edge_id(edge))];
+                keys.push(pair_key(contact.collider_a, contact.collider_b));
+                edge = self.next(edge);
+            }
+            keys
         };
         let mut lookup: Vec<(u64, usize)> = self
             .lookup
@@ -72,11 +78,7 @@ impl Serialize for ContactSet {
             began: &self.began,
             ended: &self.ended,
             lookup,
-            edges: self
-                .edges
-                .iter()
-                .map(|edges| edges.iter().map(key_of).collect())
-                .collect(),
+            edges: self.edges.iter().map(keys_of).collect(),
             events: &self.events,
             pending: &self.pending,
             body_indices: &self.body_indices,
@@ -112,38 +114,7 @@ impl ContactSet {
                 return Err("a pair appears twice in the contact lookup".into());
             }
         }
-        const UNLISTED: u32 = u32::MAX;
-        let mut slots: Vec<Slot> = (0..count_u32)
-            .map(|index| Slot {
-                index,
-                edge_at: [UNLISTED; 2],
-            })
-            .collect();
-        let mut edges = Vec::with_capacity(saved.edges.len());
-        for (body, keys) in saved.edges.iter().enumerate() {
-            let mut list: Vec<Edge> = Vec::with_capacity(keys.len());
-            for key in keys {
-                let Some(&id) = lookup.get(key) else {
-                    return Err("a body lists a contact that does not exist".into());
-                };
-                let contact = &saved.contacts[id as usize];
-                let slot = &mut slots[id as usize];
-                // The contact's first side this body is and has not yet listed.
-                let side = [contact.body_a, contact.body_b]
-                    .iter()
-                    .zip(slot.edge_at)
-                    .position(|(b, at)| b.index() as usize == body && at == UNLISTED)
-                    .ok_or("a body lists a contact that is not its own, or lists it twice")?;
-                slot.edge_at[side] = list.len() as u32;
-                list.push(edge(id, side));
-            }
-            edges.push(list);
-        }
-        if slots.iter().any(|slot| slot.edge_at.contains(&UNLISTED)) {
-            return Err("a contact is missing from its bodies' lists".into());
-        }
-        debug_assert!(slots.iter().all(|slot| slot.index != FREE));
-        Ok(ContactSet {
+        let mut set = ContactSet {
             contacts: saved.contacts,
             parts: saved.parts,
             asleep_touching: saved.asleep_touching,
@@ -152,14 +123,42 @@ impl ContactSet {
             ended: saved.ended,
             lookup,
             ids: (0..count_u32).collect(),
-            slots,
+            slots: (0..count_u32)
+                .map(|index| Slot {
+                    index,
+                    links: [[NO_EDGE; 2]; 2],
+                })
+                .collect(),
             free: None,
-            edges,
+            edges: Vec::with_capacity(saved.edges.len()),
             events: saved.events,
             pending: saved.pending,
             body_indices: saved.body_indices,
             made: saved.made,
             doomed: Vec::new(),
-        })
+        };
+        let mut listed = vec![[false; 2]; count];
+        for (body, keys) in saved.edges.iter().enumerate() {
+            for key in keys {
+                let Some(&id) = set.lookup.get(key) else {
+                    return Err("a body lists a contact that does not exist".into());
+                };
+                let contact = &set.contacts[id as usize];
+                let listed = &mut listed[id as usize];
+                // The contact's first side that is this body and not yet listed.
+                let side = [contact.body_a, contact.body_b]
+                    .iter()
+                    .zip(*listed)
+                    .position(|(b, listed)| b.index() as usize == body && !listed)
+                    .ok_or("a body lists a contact that is not its own, or lists it twice")?;
+                listed[side] = true;
+                set.append(body, edge(id, side));
+            }
+        }
+        if listed.iter().flatten().any(|&listed| !listed) {
+            return Err("a contact is missing from its bodies' lists".into());
+        }
+        set.edges.resize(saved.edges.len(), EdgeList::EMPTY);
+        Ok(set)
     }
 }
