@@ -960,3 +960,56 @@ impl ContactSet {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Contacts between random bodies made and destroyed at random: each body's linked list
+    /// holds its edges in the order a vector with swap removal would, the order partners are
+    /// walked in, which the islands (and so every result) depend on.
+    #[test]
+    fn edge_lists_keep_the_order_of_swap_removal() {
+        const BODIES: usize = 5;
+        let mut set = ContactSet::default();
+        let mut model: Vec<Vec<Edge>> = vec![Vec::new(); BODIES];
+        let mut live: Vec<(u32, [usize; 2])> = Vec::new();
+        let mut seed: u32 = 99;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (seed >> 8) as usize
+        };
+        for id in 0..500u32 {
+            set.slots.push(Slot {
+                index: id,
+                links: [[NO_EDGE; 2]; 2],
+            });
+            let a = next() % BODIES;
+            let bodies = [a, (a + 1 + next() % (BODIES - 1)) % BODIES];
+            for (side, body) in bodies.into_iter().enumerate() {
+                set.append(body, edge(id, side));
+                model[body].push(edge(id, side));
+            }
+            live.push((id, bodies));
+            while next() % 5 < 2 && !live.is_empty() {
+                let (gone, bodies) = live.swap_remove(next() % live.len());
+                for (side, body) in bodies.into_iter().enumerate() {
+                    set.unlink(body, edge(gone, side));
+                    let at = model[body].iter().position(|&e| e == edge(gone, side));
+                    model[body].swap_remove(at.unwrap());
+                }
+            }
+            for (body, expected) in model.iter().enumerate() {
+                let mut walked = Vec::new();
+                let mut edge = set.first_edge(body);
+                while edge != NO_EDGE {
+                    walked.push(edge);
+                    edge = set.next(edge);
+                }
+                assert_eq!(&walked, expected, "body {body} after contact {id}");
+                assert_eq!(set.edges[body].last, *expected.last().unwrap_or(&NO_EDGE));
+            }
+        }
+        assert!(live.len() > 20, "{} contacts live at the end", live.len());
+    }
+}
