@@ -33,7 +33,11 @@ use crate::math::Real;
 use crate::parallel::for_each_with;
 use crate::world::solver_sets::SolverSet;
 use std::collections::HashMap;
+use std::collections::hash_map::Entry;
 use std::hash::{BuildHasherDefault, Hasher};
+
+#[cfg(feature = "serde")]
+mod saved;
 
 /// A pair of colliders the narrowphase watches.
 #[derive(Debug, Clone)]
@@ -257,8 +261,11 @@ pub(super) fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
 /// The contacts of a world, stored contiguously in parts (see `graph::layout`):
 /// the awake ones (a body of the pair is awake) colour by colour, then the sleeping ones;
 /// with a lookup by pair and each body's list.
+///
+/// Each contact also has an id, kept from its creation to its destruction (Box2D's contact
+/// id), which the lookup and the bodies' lists hold: moving a contact between parts only
+/// tells its id where it went, and walking a body's contacts hashes nothing.
 #[derive(Debug, Clone, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ContactSet {
     pub(super) contacts: Vec<Contact>,
     /// Where each part of `contacts` begins and ends.
@@ -271,11 +278,20 @@ pub struct ContactSet {
     /// destroyed while touching), since the world last took them (to link islands).
     pub(super) began: Vec<(BodyHandle, BodyHandle)>,
     pub(super) ended: Vec<(BodyHandle, BodyHandle)>,
-    #[cfg_attr(feature = "serde", serde(with = "crate::serde_impls::sorted_map"))]
-    pub(super) lookup: HashMap<u64, usize, BuildHasherDefault<PairHasher>>,
-    /// Each body's contacts, by the body's slot index, as pair keys: removing a body or a
-    /// collider visits its own contacts only.
-    edges: Vec<Vec<u64>>,
+    /// Each pair's contact id: written only as contacts are made and destroyed.
+    lookup: HashMap<u64, u32, BuildHasherDefault<PairHasher>>,
+    /// Each contact's id, by index (moved with the contacts).
+    ids: Vec<u32>,
+    /// Where each id's contact is, in the array and in its bodies' lists.
+    slots: Vec<Slot>,
+    /// The first id of destroyed contacts to give out again: each unused slot names the next
+    /// ([`NO_ID`] for none), so freeing allocates nothing.
+    free: Option<u32>,
+    /// Each body's contacts, by the body's slot index: the ends of a list of [`Edge`]s linked
+    /// through the slots, in the order they were made, a removal moving the last into its
+    /// place. Removing a body or a collider visits its own contacts only, walks visit partners
+    /// in this order, and a body's first contact allocates nothing.
+    edges: Vec<EdgeList>,
     pub(super) events: Vec<ContactEvent>,
     /// Events raised between steps (removing a body), reported after the next step.
     pending: Vec<ContactEvent>,
@@ -285,6 +301,57 @@ pub struct ContactSet {
     body_indices: Vec<BodyIndices>,
     /// How many contacts have been made.
     made: u64,
+    /// The ids a removal destroys, kept to spare an allocation.
+    doomed: Vec<u32>,
+}
+
+/// Where a contact id's contact is.
+#[derive(Debug, Clone, Copy)]
+struct Slot {
+    /// Its index in the contact array ([`FREE`] while the id is unused).
+    index: u32,
+    /// The edges before and after it in the list of its first body, then of its second
+    /// ([`NO_EDGE`] at an end). While the id is unused, the first names the next unused id.
+    links: [[Edge; 2]; 2],
+}
+
+/// The index of an unused id's slot.
+const FREE: u32 = u32::MAX;
+
+/// No id: the end of the list of unused ones.
+const NO_ID: u32 = u32::MAX;
+
+/// One of a body's contacts: its id, and which of the contact's bodies the body is (the low
+/// bit: 0 for the first).
+type Edge = u32;
+
+/// No edge: the end of a list.
+const NO_EDGE: Edge = u32::MAX;
+
+/// The first and last of a body's edges ([`NO_EDGE`] when it has none).
+#[derive(Debug, Clone, Copy)]
+struct EdgeList {
+    first: Edge,
+    last: Edge,
+}
+
+impl EdgeList {
+    const EMPTY: EdgeList = EdgeList {
+        first: NO_EDGE,
+        last: NO_EDGE,
+    };
+}
+
+fn edge(id: u32, side: usize) -> Edge {
+    id << 1 | side as u32
+}
+
+fn edge_id(edge: Edge) -> u32 {
+    edge >> 1
+}
+
+fn edge_side(edge: Edge) -> usize {
+    (edge & 1) as usize
 }
 
 /// The bodies of the contacts that started touching, and of those that stopped.
@@ -305,18 +372,28 @@ impl ContactSet {
         b: (ColliderHandle, &Collider),
         awake: bool,
     ) {
-        let key = pair_key(a.0, b.0);
-        if self.lookup.contains_key(&key) {
-            return;
-        }
-        self.lookup.insert(key, self.contacts.len());
-        for body in [a.1.body(), b.1.body()] {
-            let slot = body.index() as usize;
-            if self.edges.len() <= slot {
-                self.edges.resize_with(slot + 1, Vec::new);
+        let id = match self.lookup.entry(pair_key(a.0, b.0)) {
+            Entry::Occupied(_) => return,
+            Entry::Vacant(vacant) => {
+                let id = if let Some(id) = self.free {
+                    let next = self.slots[id as usize].links[0][0];
+                    self.free = (next != NO_ID).then_some(next);
+                    id
+                } else {
+                    self.slots.push(Slot {
+                        index: FREE,
+                        links: [[NO_EDGE; 2]; 2],
+                    });
+                    (self.slots.len() - 1) as u32
+                };
+                *vacant.insert(id)
             }
-            self.edges[slot].push(key);
+        };
+        self.slots[id as usize].index = self.contacts.len() as u32;
+        for (side, body) in [a.1.body(), b.1.body()].into_iter().enumerate() {
+            self.append(body.index() as usize, edge(id, side));
         }
+        self.ids.push(id);
         self.contacts.push(Contact {
             collider_a: a.0,
             collider_b: b.0,
@@ -345,14 +422,85 @@ impl ContactSet {
         }
     }
 
-    /// Swaps two contacts' places; the lookup learns where they went.
+    /// Swaps two contacts' places; their ids learn where they went.
     fn swap(&mut self, i: usize, j: usize) {
         self.contacts.swap(i, j);
         self.body_indices.swap(i, j);
-        for k in [i, j] {
-            let c = &self.contacts[k];
-            self.lookup.insert(pair_key(c.collider_a, c.collider_b), k);
+        self.ids.swap(i, j);
+        self.slots[self.ids[i] as usize].index = i as u32;
+        self.slots[self.ids[j] as usize].index = j as u32;
+    }
+
+    /// The links of `edge`: the edges before and after it in its body's list.
+    #[inline]
+    fn links(&mut self, edge: Edge) -> &mut [Edge; 2] {
+        &mut self.slots[edge_id(edge) as usize].links[edge_side(edge)]
+    }
+
+    /// The edge after `edge` in its body's list.
+    #[inline]
+    fn next(&self, edge: Edge) -> Edge {
+        self.slots[edge_id(edge) as usize].links[edge_side(edge)][1]
+    }
+
+    /// The first of the edges of the body of slot index `body`.
+    fn first_edge(&self, body: usize) -> Edge {
+        self.edges.get(body).map_or(NO_EDGE, |list| list.first)
+    }
+
+    /// Appends `edge` to the list of the body of slot index `body`.
+    fn append(&mut self, body: usize, edge: Edge) {
+        if self.edges.len() <= body {
+            self.edges.resize(body + 1, EdgeList::EMPTY);
         }
+        let last = self.edges[body].last;
+        *self.links(edge) = [last, NO_EDGE];
+        if last == NO_EDGE {
+            self.edges[body].first = edge;
+        } else {
+            self.links(last)[1] = edge;
+        }
+        self.edges[body].last = edge;
+    }
+
+    /// Takes `edge` out of the list of the body of slot index `body`, the last edge taking
+    /// its place, as a vector's swap removal would leave it.
+    fn unlink(&mut self, body: usize, edge: Edge) {
+        let last = self.edges[body].last;
+        let before_last = self.links(last)[0];
+        if before_last == NO_EDGE {
+            self.edges[body].first = NO_EDGE;
+        } else {
+            self.links(before_last)[1] = NO_EDGE;
+        }
+        self.edges[body].last = before_last;
+        if last == edge {
+            return;
+        }
+        let [before, after] = *self.links(edge);
+        *self.links(last) = [before, after];
+        if before == NO_EDGE {
+            self.edges[body].first = last;
+        } else {
+            self.links(before)[1] = last;
+        }
+        if after == NO_EDGE {
+            self.edges[body].last = last;
+        } else {
+            self.links(after)[0] = last;
+        }
+    }
+
+    /// The index of the live contact of id `id`.
+    #[inline]
+    pub(super) fn index_of(&self, id: u32) -> usize {
+        self.slots[id as usize].index as usize
+    }
+
+    /// The id of the contact at `index`, which it keeps wherever it moves until destroyed.
+    #[inline]
+    pub(super) fn id_at(&self, index: usize) -> u32 {
+        self.ids[index]
     }
 
     /// Moves the contact at `index` into part `to`; returns its new index.
@@ -444,10 +592,10 @@ impl ContactSet {
         bodies: impl Fn(BodyHandle) -> (SolverSet, BodyKind),
     ) {
         let kinds = |b: BodyHandle| bodies(b).1;
-        let slot = body.index() as usize;
-        let count = self.edges.get(slot).map_or(0, Vec::len);
-        for k in 0..count {
-            let index = self.lookup[&self.edges[slot][k]];
+        let mut edge = self.first_edge(body.index() as usize);
+        while edge != NO_EDGE {
+            let index = self.index_of(edge_id(edge));
+            edge = self.next(edge);
             let contact = &self.contacts[index];
             let awake = |b: BodyHandle| bodies(b).0 == SolverSet::Awake;
             let set = if awake(contact.body_a) || awake(contact.body_b) {
@@ -462,10 +610,10 @@ impl ContactSet {
     /// Colours each of a body's awake touching contacts again, after its kind changed (a body
     /// that became static frees its colours, one that became dynamic takes its own).
     pub(crate) fn repaint(&mut self, body: BodyHandle, kinds: impl Fn(BodyHandle) -> BodyKind) {
-        let slot = body.index() as usize;
-        let count = self.edges.get(slot).map_or(0, Vec::len);
-        for k in 0..count {
-            let index = self.lookup[&self.edges[slot][k]];
+        let mut edge = self.first_edge(body.index() as usize);
+        while edge != NO_EDGE {
+            let index = self.index_of(edge_id(edge));
+            edge = self.next(edge);
             if self.contacts[index].color != NO_COLOR {
                 let index = self.unpaint(index);
                 self.paint(index, &kinds);
@@ -476,13 +624,14 @@ impl ContactSet {
     /// The other body of every touching contact of `body`.
     pub(crate) fn touching_partners(&self, body: BodyHandle, into: &mut Vec<BodyHandle>) {
         into.clear();
-        let Some(edges) = self.edges.get(body.index() as usize) else {
-            return;
-        };
-        for key in edges {
-            let contact = &self.contacts[self.lookup[key]];
+        let mut edge = self.first_edge(body.index() as usize);
+        while edge != NO_EDGE {
+            let slot = &self.slots[edge_id(edge) as usize];
+            let contact = &self.contacts[slot.index as usize];
+            let side = edge_side(edge);
+            edge = slot.links[side][1];
             if contact.touching {
-                into.push(if contact.body_a == body {
+                into.push(if side == 0 {
                     contact.body_b
                 } else {
                     contact.body_a
@@ -497,22 +646,24 @@ impl ContactSet {
         let index = self.move_to(index, SolverSet::Asleep, &|_| BodyKind::Static);
         let contact = self.contacts.swap_remove(index);
         self.body_indices.swap_remove(index);
+        let id = self.ids.swap_remove(index);
+        if let Some(&moved) = self.ids.get(index) {
+            self.slots[moved as usize].index = index as u32;
+        }
         if contact.touching {
             self.asleep_touching -= 1;
             self.ended.push((contact.body_a, contact.body_b));
         }
-        let key = pair_key(contact.collider_a, contact.collider_b);
-        self.lookup.remove(&key);
-        for body in [contact.body_a, contact.body_b] {
-            let edges = &mut self.edges[body.index() as usize];
-            if let Some(at) = edges.iter().position(|&k| k == key) {
-                edges.swap_remove(at);
-            }
+        self.lookup
+            .remove(&pair_key(contact.collider_a, contact.collider_b));
+        for (side, body) in [contact.body_a, contact.body_b].into_iter().enumerate() {
+            self.unlink(body.index() as usize, edge(id, side));
         }
-        if let Some(moved) = self.contacts.get(index) {
-            self.lookup
-                .insert(pair_key(moved.collider_a, moved.collider_b), index);
-        }
+        self.slots[id as usize] = Slot {
+            index: FREE,
+            links: [[self.free.unwrap_or(NO_ID), NO_EDGE], [NO_EDGE; 2]],
+        };
+        self.free = Some(id);
         if contact.in_contact {
             let event = ContactEvent::End(contact.pair());
             if events_now {
@@ -545,18 +696,21 @@ impl ContactSet {
 
     /// Drops the contacts of `body` that `doomed` picks.
     fn destroy_where(&mut self, body: BodyHandle, doomed: impl Fn(&Contact) -> bool) {
-        let Some(edges) = self.edges.get(body.index() as usize) else {
-            return;
-        };
-        // By pair, as each removal moves other contacts.
-        let keys: Vec<u64> = edges
-            .iter()
-            .copied()
-            .filter(|key| doomed(&self.contacts[self.lookup[key]]))
-            .collect();
-        for key in keys {
-            self.destroy(self.lookup[&key], false);
+        // By id, as each removal moves other contacts and edges.
+        let mut ids = std::mem::take(&mut self.doomed);
+        ids.clear();
+        let mut edge = self.first_edge(body.index() as usize);
+        while edge != NO_EDGE {
+            let id = edge_id(edge);
+            if doomed(&self.contacts[self.index_of(id)]) {
+                ids.push(id);
+            }
+            edge = self.next(edge);
         }
+        for &id in &ids {
+            self.destroy(self.index_of(id), false);
+        }
+        self.doomed = ids;
     }
 
     /// Forgets last step's events; those raised since (by removals) become this step's.
@@ -653,6 +807,60 @@ impl ContactSet {
         )
     }
 
+    /// Checks the ids: each contact's id finds it and its pair finds the id, the unused ids
+    /// are the free ones, and each body's list holds exactly its contacts, each where its id
+    /// says.
+    #[cfg(test)]
+    pub(crate) fn check_ids(&self) {
+        assert_eq!(self.ids.len(), self.contacts.len());
+        assert_eq!(self.lookup.len(), self.contacts.len());
+        for (index, (contact, &id)) in self.contacts.iter().zip(&self.ids).enumerate() {
+            assert_eq!(self.index_of(id), index, "contact {index}'s id");
+            let key = pair_key(contact.collider_a, contact.collider_b);
+            assert_eq!(self.lookup.get(&key), Some(&id), "contact {index}'s pair");
+        }
+        // Each list, walked forwards, links back and holds only its body's live contacts.
+        let mut listed = vec![[false; 2]; self.slots.len()];
+        for (body, list) in self.edges.iter().enumerate() {
+            let (mut before, mut edge) = (NO_EDGE, list.first);
+            while edge != NO_EDGE {
+                let (id, side) = (edge_id(edge), edge_side(edge));
+                let slot = &self.slots[id as usize];
+                assert_ne!(slot.index, FREE, "body {body} lists an unused id");
+                let contact = &self.contacts[slot.index as usize];
+                let of = [contact.body_a, contact.body_b][side];
+                assert_eq!(
+                    of.index() as usize,
+                    body,
+                    "body {body} lists another's contact"
+                );
+                assert!(!listed[id as usize][side], "body {body}'s list loops");
+                listed[id as usize][side] = true;
+                assert_eq!(slot.links[side][0], before, "body {body}'s list links back");
+                (before, edge) = (edge, slot.links[side][1]);
+            }
+            assert_eq!(list.last, before, "body {body}'s last edge");
+        }
+        let mut free = Vec::new();
+        let mut next = self.free.unwrap_or(NO_ID);
+        while next != NO_ID {
+            assert!(free.len() < self.slots.len(), "the free ids loop");
+            free.push(next);
+            next = self.slots[next as usize].links[0][0];
+        }
+        free.sort_unstable();
+        let unused: Vec<u32> = (0..self.slots.len() as u32)
+            .filter(|&id| self.slots[id as usize].index == FREE)
+            .collect();
+        assert_eq!(unused, free, "the free ids are the unused ones");
+        let listed = listed.iter().flatten().filter(|&&listed| listed).count();
+        assert_eq!(
+            listed,
+            2 * self.contacts.len(),
+            "the bodies list every contact"
+        );
+    }
+
     /// The graph colours of the awake touching contacts.
     #[cfg(test)]
     pub(crate) fn colors(&self) -> &ContactColors {
@@ -738,7 +946,7 @@ impl ContactSet {
             if self
                 .lookup
                 .get(&pair_key(contact.collider_a, contact.collider_b))
-                != Some(&i)
+                != Some(&self.ids[i])
             {
                 return Err(format!("contact {i} is not found by its pair"));
             }
@@ -746,14 +954,63 @@ impl ContactSet {
         if self.lookup.len() != count {
             return Err("the contact lookup holds pairs with no contact".into());
         }
-        let known = |key: &u64| self.lookup.contains_key(key);
-        if !self.edges.iter().flatten().all(known) {
-            return Err("a body lists a contact that does not exist".into());
-        }
         let live = |(a, b): &(BodyHandle, BodyHandle)| bodies.contains(*a) && bodies.contains(*b);
         if !self.began.iter().chain(&self.ended).all(live) {
             return Err("a contact change names a body that does not exist".into());
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Contacts between random bodies made and destroyed at random: each body's linked list
+    /// holds its edges in the order a vector with swap removal would, the order partners are
+    /// walked in, which the islands (and so every result) depend on.
+    #[test]
+    fn edge_lists_keep_the_order_of_swap_removal() {
+        const BODIES: usize = 5;
+        let mut set = ContactSet::default();
+        let mut model: Vec<Vec<Edge>> = vec![Vec::new(); BODIES];
+        let mut live: Vec<(u32, [usize; 2])> = Vec::new();
+        let mut seed: u32 = 99;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            (seed >> 8) as usize
+        };
+        for id in 0..500u32 {
+            set.slots.push(Slot {
+                index: id,
+                links: [[NO_EDGE; 2]; 2],
+            });
+            let a = next() % BODIES;
+            let bodies = [a, (a + 1 + next() % (BODIES - 1)) % BODIES];
+            for (side, body) in bodies.into_iter().enumerate() {
+                set.append(body, edge(id, side));
+                model[body].push(edge(id, side));
+            }
+            live.push((id, bodies));
+            while next() % 5 < 2 && !live.is_empty() {
+                let (gone, bodies) = live.swap_remove(next() % live.len());
+                for (side, body) in bodies.into_iter().enumerate() {
+                    set.unlink(body, edge(gone, side));
+                    let at = model[body].iter().position(|&e| e == edge(gone, side));
+                    model[body].swap_remove(at.unwrap());
+                }
+            }
+            for (body, expected) in model.iter().enumerate() {
+                let mut walked = Vec::new();
+                let mut edge = set.first_edge(body);
+                while edge != NO_EDGE {
+                    walked.push(edge);
+                    edge = set.next(edge);
+                }
+                assert_eq!(&walked, expected, "body {body} after contact {id}");
+                assert_eq!(set.edges[body].last, *expected.last().unwrap_or(&NO_EDGE));
+            }
+        }
+        assert!(live.len() > 20, "{} contacts live at the end", live.len());
     }
 }

@@ -6,7 +6,7 @@
 //! Box2D's `b2Collide` and `b2UpdateContact`.
 
 use crate::collision::broadphase::{FatBoxes, kinds_can_collide};
-use crate::collision::contact::{Contact, ContactEvent, ContactSet, pair_key};
+use crate::collision::contact::{Contact, ContactEvent, ContactSet};
 use crate::collision::manifold::{self, Manifold, Margins};
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::recycle::ManifoldFrame;
@@ -62,8 +62,8 @@ enum Refresh {
 pub(crate) struct Narrowphase {
     /// What the last update found for each awake contact.
     refresh: Vec<Refresh>,
-    /// The contacts it must then file again, by pair.
-    changed: Vec<(u64, Refresh)>,
+    /// The contacts it must then file again, by id.
+    changed: Vec<(u32, Refresh)>,
 }
 
 impl Narrowphase {
@@ -95,7 +95,7 @@ impl Narrowphase {
         );
         let mut deepest: Real = 0.0;
         self.changed.clear();
-        // Listed by pair first, as filing them again moves contacts; backwards, the order they
+        // Listed by id first, as filing them again moves contacts; backwards, the order they
         // are filed in (which decides the colours they take).
         for (index, &refresh) in self.refresh.iter().enumerate().rev() {
             match refresh {
@@ -119,13 +119,11 @@ impl Narrowphase {
                     }
                 }
             }
-            let contact = &set.contacts[index];
-            let key = pair_key(contact.collider_a, contact.collider_b);
-            self.changed.push((key, refresh));
+            self.changed.push((set.id_at(index), refresh));
         }
         let touch_changes = (set.began.len(), set.ended.len());
-        for &(key, refresh) in &self.changed {
-            file(set, set.lookup[&key], refresh, bodies, colliders, wake);
+        for &(id, refresh) in &self.changed {
+            file(set, set.index_of(id), refresh, bodies, colliders, wake);
         }
         work.touches_began += set.began.len() - touch_changes.0;
         work.touches_ended += set.ended.len() - touch_changes.1;

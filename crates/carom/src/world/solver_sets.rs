@@ -339,6 +339,7 @@ impl World {
             }
         }
         assert_eq!(asleep_touching, self.contacts.asleep_touching());
+        self.contacts.check_ids();
         for (i, joint) in self.joints.as_slice().iter().enumerate() {
             let set = self.joints.set_of(i);
             assert_eq!(set, self.joint_set_for(joint), "joint {i}");
