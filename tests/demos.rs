@@ -678,3 +678,117 @@ fn a_slice_of_compounds_lands_in_its_box_and_falls_asleep() {
         "the pile is not asleep"
     );
 }
+
+/// Box2D 3.2's `b2MakeRot`: its approximate cosine and sine (`b2ComputeCosSin`, for angles in
+/// [-π, π]), normalised, in f32 as Box2D computes them.
+fn box2d_make_rot(x: f32) -> (f32, f32) {
+    const PI: f32 = std::f32::consts::PI;
+    let pi2 = PI * PI;
+    let cosine = |y: f32| (pi2 - 4.0 * y * y) / (pi2 + y * y);
+    let c = if x < -0.5 * PI {
+        -cosine(x + PI)
+    } else if x > 0.5 * PI {
+        -cosine(x - PI)
+    } else {
+        cosine(x)
+    };
+    let sine = |y: f32| 16.0 * y * (PI - y) / (5.0 * pi2 - 4.0 * y * (PI - y));
+    let s = if x < 0.0 { -sine(x + PI) } else { sine(x) };
+    let inverse = 1.0 / (s * s + c * c).sqrt();
+    (c * inverse, s * inverse)
+}
+
+#[test]
+fn the_spinner_is_box2d_s_recipe() {
+    let scene = demo("spinner");
+    let world = &scene.world;
+    assert_eq!(world.body_count(), 2 + 6076);
+    // The loop: Box2D's 360 points, (40, 0) turned again and again by b2MakeRot(-2π/360),
+    // 32 m up, closed.
+    let ground = world.body(scene.names["ground"]).unwrap();
+    let (c, s) = box2d_make_rot(-2.0 * std::f32::consts::PI / 360.0);
+    let mut p = (40.0f32, 0.0f32);
+    let mut expected = Vec::new();
+    for _ in 0..360 {
+        expected.push(carom::vec2(p.0, p.1 + 32.0));
+        p = (c * p.0 - s * p.1, s * p.0 + c * p.1);
+    }
+    assert_eq!(ground.colliders().len(), 360);
+    for (i, &id) in ground.colliders().iter().enumerate() {
+        let collider = world.collider(id).unwrap();
+        let carom::Shape::ChainSegment(link) = collider.shape() else {
+            panic!("the ground is a chain");
+        };
+        assert_eq!(link.point1(), expected[i], "point {i}");
+        assert_eq!(link.point2(), expected[(i + 1) % 360], "point {}", i + 1);
+        assert_eq!((collider.friction(), collider.restitution()), (0.1, 0.0));
+    }
+    // The bar: a 0.4 x 20 m half box rounded by 0.2 at (0, 12), friction 0, density 1, on a
+    // motor at 5 rad/s with Box2D's FLT_MAX torque.
+    let bar = world.body(scene.names["spinner"]).unwrap();
+    let collider = world.collider(bar.colliders()[0]).unwrap();
+    let carom::Shape::Polygon(polygon) = collider.shape() else {
+        panic!("the bar is a polygon");
+    };
+    let mut corners: Vec<(f32, f32)> = polygon.vertices().iter().map(|v| (v.x, v.y)).collect();
+    corners.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    assert_eq!(
+        corners,
+        [(-0.4, -20.0), (-0.4, 20.0), (0.4, -20.0), (0.4, 20.0)]
+    );
+    assert_eq!((polygon.radius(), collider.friction()), (0.2, 0.0));
+    assert_eq!(collider.density(), 1.0);
+    assert_eq!(bar.position(), carom::vec2(0.0, 12.0));
+    let hinge = world.joint(world.joints_of(bar.handle())[0]).unwrap();
+    let carom::JointKind::Revolute(revolute) = hinge.kind() else {
+        panic!("the bar turns on a revolute joint");
+    };
+    let motor = revolute.motor.unwrap();
+    assert_eq!((motor.speed, motor.max_force), (5.0, f32::MAX));
+    assert!(revolute.limits.is_none() && revolute.spring.is_none());
+    // The bodies: row by row from (-23, 2), 92 to a row 0.5 m apart, a capsule, a circle and
+    // a square in turn, density 0.25, friction 0.1, restitution 0.1.
+    let bodies: Vec<_> = world
+        .bodies()
+        .filter(|b| b.is_dynamic() && b.handle() != bar.handle())
+        .collect();
+    assert_eq!(bodies.len(), 6076);
+    for (i, body) in bodies.iter().enumerate() {
+        let at = carom::vec2(-23.0 + 0.5 * (i % 92) as f32, 2.0 + 0.5 * (i / 92) as f32);
+        assert_eq!(body.position(), at, "body {i}");
+        let collider = world.collider(body.colliders()[0]).unwrap();
+        let material = (
+            collider.density(),
+            collider.friction(),
+            collider.restitution(),
+        );
+        assert_eq!(material, (0.25, 0.1, 0.1));
+        let shape = match (i % 3, collider.shape()) {
+            (0, carom::Shape::Capsule(c)) => {
+                (c.center1(), c.center2(), c.radius())
+                    == (carom::vec2(-0.25, 0.0), carom::vec2(0.25, 0.0), 0.25)
+            }
+            (1, carom::Shape::Circle(c)) => c.radius() == 0.35,
+            (2, carom::Shape::Polygon(p)) => {
+                p.radius() == 0.0
+                    && p.vertices()
+                        .iter()
+                        .all(|v| v.x.abs() == 0.35 && v.y.abs() == 0.35)
+            }
+            _ => false,
+        };
+        assert!(shape, "body {i}: {:?}", collider.shape());
+    }
+}
+
+#[test]
+fn the_spinner_s_motor_turns_its_bar_at_5_rad_a_second() {
+    let mut scene = demo("spinner");
+    let bar = scene.names["spinner"];
+    run(&mut scene, 10);
+    let bar = scene.world.body(bar).unwrap();
+    // The bodies it pushes (some start inside it, as in Box2D) hold it back a little.
+    let w = bar.angular_velocity();
+    assert!((w - 5.0).abs() < 0.25, "turns at {w} rad/s");
+    assert!((bar.position() - carom::vec2(0.0, 12.0)).norm() < 0.01);
+}
