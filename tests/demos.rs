@@ -792,3 +792,186 @@ fn the_spinner_s_motor_turns_its_bar_at_5_rad_a_second() {
     assert!((w - 5.0).abs() < 0.25, "turns at {w} rad/s");
     assert!((bar.position() - carom::vec2(0.0, 12.0)).norm() < 0.01);
 }
+
+#[test]
+fn the_ragdoll_rain_is_box2d_s_recipe() {
+    let mut scene = demo("ragdoll_rain");
+    // The ground: one static body of 5 rows of 501 half-metre boxes, 45 m apart.
+    assert_eq!(scene.world.body_count(), 1);
+    let ground = scene.world.bodies().next().unwrap();
+    assert!(ground.kind() == carom::BodyKind::Static && ground.position() == carom::Vec2::zeros());
+    assert_eq!(ground.colliders().len(), 5 * 501);
+    for (k, &id) in ground.colliders().iter().enumerate() {
+        let collider = scene.world.collider(id).unwrap();
+        let (row, column) = (k / 501, k % 501);
+        let at = collider.local_transform().translation.vector;
+        assert_eq!(
+            at,
+            carom::vec2(-125.0 + 0.5 * column as f32, 45.0 * row as f32)
+        );
+        let carom::Shape::Polygon(p) = collider.shape() else {
+            panic!("the ground is boxes");
+        };
+        assert!(
+            p.vertices()
+                .iter()
+                .all(|v| v.x.abs() == 0.25 && v.y.abs() == 0.25)
+        );
+        assert_eq!(
+            (collider.friction(), collider.filter()),
+            (0.6, carom::CollisionFilter::DEFAULT)
+        );
+    }
+    // Box2D's schedule: a column of five groups every 8 steps, the first 40 filling the grid,
+    // then each remaking the column made 40 turns before, row by row.
+    let schedule = scene.spawn_schedule(400).unwrap();
+    let mut expected = Vec::new();
+    let mut copies = 0;
+    let mut made_at = std::collections::HashMap::new();
+    for turn in 0..50 {
+        for row in 0..5 {
+            let place = (turn % 40, row);
+            if let Some(old) = made_at.insert(place, copies) {
+                expected.push(carom_scene::SpawnChange::Remove {
+                    step: 8 * turn,
+                    copy: old,
+                });
+            }
+            expected.push(carom_scene::SpawnChange::Add {
+                step: 8 * turn,
+                copy: copies,
+            });
+            copies += 1;
+        }
+    }
+    assert_eq!(schedule.changes, expected);
+    // A group as CreateGroup makes it: column 3, row 2 is at x = -125 + 6.25 (3 + 0.5),
+    // y = 40 + 45 2, its ragdolls 0.5 m apart in filter groups -1 to -5.
+    let made = &schedule.copies[3 * 5 + 2];
+    let world = &schedule.world;
+    assert_eq!((made.bodies.len(), made.joints.len()), (55, 50));
+    let (x, y) = (-125.0 + 6.25 * 3.5_f32, 40.0 + 45.0 * 2.0_f32);
+    // human.c's bones: height of the body, capsule centres, radius, linear damping.
+    let bones: [(f32, f32, f32, f32, f32); 11] = [
+        (0.95, -0.02, 0.02, 0.095, 0.0),
+        (1.2, -0.135, 0.135, 0.09, 0.0),
+        (1.475, -0.038, 0.039, 0.075, 0.1),
+        (0.775, -0.125, 0.125, 0.06, 0.0),
+        (0.475, -0.155, 0.125, 0.045, 0.0),
+        (0.775, -0.125, 0.125, 0.06, 0.0),
+        (0.475, -0.155, 0.125, 0.045, 0.0),
+        (1.225, -0.125, 0.125, 0.035, 0.0),
+        (0.975, -0.125, 0.125, 0.03, 0.1),
+        (1.225, -0.125, 0.125, 0.035, 0.0),
+        (0.975, -0.125, 0.125, 0.03, 0.1),
+    ];
+    let foot = [
+        (-0.03, -0.185),
+        (0.11, -0.185),
+        (0.11, -0.16),
+        (-0.03, -0.14),
+    ];
+    for (ragdoll, bodies) in made.bodies.chunks(11).enumerate() {
+        let group = -(1 + ragdoll as i32);
+        let bone_filter = carom::CollisionFilter {
+            category: 2,
+            mask: 3,
+            group,
+        };
+        for (&handle, &(height, low, high, radius, damping)) in bodies.iter().zip(&bones) {
+            let body = world.body(handle).unwrap();
+            assert_eq!(
+                body.position(),
+                carom::vec2(x + 0.5 * ragdoll as f32, y + height)
+            );
+            assert_eq!(
+                (body.linear_damping(), body.angular_damping()),
+                (damping, 0.0)
+            );
+            assert_eq!(body.sleep_threshold(), 0.1);
+            let bone = world.collider(body.colliders()[0]).unwrap();
+            let carom::Shape::Capsule(c) = bone.shape() else {
+                panic!("a bone is a capsule");
+            };
+            let centres = (c.center1(), c.center2(), c.radius());
+            assert_eq!(
+                centres,
+                (carom::vec2(0.0, low), carom::vec2(0.0, high), radius)
+            );
+            assert_eq!(
+                (bone.density(), bone.friction(), bone.filter()),
+                (1.0, 0.2, bone_filter)
+            );
+            // The shins carry the feet, which touch only the ground.
+            if let Some(&id) = body.colliders().get(1) {
+                let sole = world.collider(id).unwrap();
+                let foot_filter = carom::CollisionFilter {
+                    mask: 1,
+                    ..bone_filter
+                };
+                assert_eq!((sole.friction(), sole.filter()), (0.05, foot_filter));
+                let carom::Shape::Polygon(p) = sole.shape() else {
+                    panic!("a foot is a polygon");
+                };
+                assert_eq!(p.radius(), 0.015);
+                let offset = sole.local_transform().translation.vector;
+                for v in p.vertices() {
+                    let v = v + offset;
+                    let near = foot
+                        .iter()
+                        .any(|&(fx, fy)| (v - carom::vec2(fx, fy)).norm() < 1e-7);
+                    assert!(near, "a foot's corner at {v:?}");
+                }
+            }
+        }
+        let feet = bodies
+            .iter()
+            .filter(|&&h| world.body(h).unwrap().colliders().len() == 2);
+        assert_eq!(feet.count(), 2);
+    }
+    // human.c's hinges: pivot height, limits (the forearms' moved by their frame's 45°),
+    // friction torque 0.05 N·m times the bone's scale, a 5 Hz spring at damping ratio 0.5.
+    let pi = std::f32::consts::PI;
+    let hinges = [
+        (1.0, -0.25 * pi, 0.0, 0.5, 0.0),
+        (1.4, -0.3 * pi, 0.1 * pi, 0.25, 0.0),
+        (0.9, -0.05 * pi, 0.4 * pi, 1.0, 0.0),
+        (0.625, -0.5 * pi, -0.02 * pi, 0.5, 0.0),
+        (0.9, -0.05 * pi, 0.4 * pi, 1.0, 0.0),
+        (0.625, -0.5 * pi, -0.02 * pi, 0.5, 0.0),
+        (1.35, -0.1 * pi, 0.8 * pi, 0.5, 0.0),
+        (1.1, -0.2 * pi, 0.3 * pi, 0.1, 0.25 * pi),
+        (1.35, -0.1 * pi, 0.8 * pi, 0.5, 0.0),
+        (1.1, -0.2 * pi, 0.3 * pi, 0.1, 0.25 * pi),
+    ];
+    for (ragdoll, joints) in made.joints.chunks(10).enumerate() {
+        for (&handle, &(height, lower, upper, scale, frame)) in joints.iter().zip(&hinges) {
+            let joint = world.joint(handle).unwrap();
+            let [a, b] = joint.bodies().map(|h| world.body(h).unwrap());
+            let [pa, pb] = joint.world_anchors(a, b);
+            let pivot = carom::vec2(x + 0.5 * ragdoll as f32, y + height);
+            assert!((pa - pivot).norm() < 1e-5 && (pb - pivot).norm() < 1e-5);
+            let carom::JointKind::Revolute(r) = joint.kind() else {
+                panic!("a ragdoll's joints are hinges");
+            };
+            let limits = r.limits.unwrap();
+            assert!((limits.lower - (lower + frame)).abs() < 1e-6);
+            assert!((limits.upper - (upper + frame)).abs() < 1e-6);
+            assert!((r.target_angle - frame).abs() < 1e-6);
+            let motor = r.motor.unwrap();
+            assert_eq!((motor.speed, motor.max_force), (0.0, scale * 0.05));
+            let spring = r.spring.unwrap();
+            assert_eq!((spring.hertz, spring.damping_ratio), (5.0, 0.5));
+            assert!(!joint.collide_connected());
+        }
+    }
+    // The scene itself makes the first column before its first step, and the second at the
+    // eighth.
+    run(&mut scene, 8);
+    assert_eq!(
+        (scene.world.body_count(), scene.world.joint_count()),
+        (1 + 275, 250)
+    );
+    run(&mut scene, 1);
+    assert_eq!(scene.world.body_count(), 1 + 2 * 275);
+}
