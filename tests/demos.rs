@@ -678,3 +678,300 @@ fn a_slice_of_compounds_lands_in_its_box_and_falls_asleep() {
         "the pile is not asleep"
     );
 }
+
+/// Box2D 3.2's `b2MakeRot`: its approximate cosine and sine (`b2ComputeCosSin`, for angles in
+/// [-π, π]), normalised, in f32 as Box2D computes them.
+fn box2d_make_rot(x: f32) -> (f32, f32) {
+    const PI: f32 = std::f32::consts::PI;
+    let pi2 = PI * PI;
+    let cosine = |y: f32| (pi2 - 4.0 * y * y) / (pi2 + y * y);
+    let c = if x < -0.5 * PI {
+        -cosine(x + PI)
+    } else if x > 0.5 * PI {
+        -cosine(x - PI)
+    } else {
+        cosine(x)
+    };
+    let sine = |y: f32| 16.0 * y * (PI - y) / (5.0 * pi2 - 4.0 * y * (PI - y));
+    let s = if x < 0.0 { -sine(x + PI) } else { sine(x) };
+    let inverse = 1.0 / (s * s + c * c).sqrt();
+    (c * inverse, s * inverse)
+}
+
+#[test]
+fn the_spinner_is_box2d_s_recipe() {
+    let scene = demo("spinner");
+    let world = &scene.world;
+    assert_eq!(world.body_count(), 2 + 6076);
+    // The loop: Box2D's 360 points, (40, 0) turned again and again by b2MakeRot(-2π/360),
+    // 32 m up, closed.
+    let ground = world.body(scene.names["ground"]).unwrap();
+    let (c, s) = box2d_make_rot(-2.0 * std::f32::consts::PI / 360.0);
+    let mut p = (40.0f32, 0.0f32);
+    let mut expected = Vec::new();
+    for _ in 0..360 {
+        expected.push(carom::vec2(p.0, p.1 + 32.0));
+        p = (c * p.0 - s * p.1, s * p.0 + c * p.1);
+    }
+    assert_eq!(ground.colliders().len(), 360);
+    for (i, &id) in ground.colliders().iter().enumerate() {
+        let collider = world.collider(id).unwrap();
+        let carom::Shape::ChainSegment(link) = collider.shape() else {
+            panic!("the ground is a chain");
+        };
+        assert_eq!(link.point1(), expected[i], "point {i}");
+        assert_eq!(link.point2(), expected[(i + 1) % 360], "point {}", i + 1);
+        assert_eq!((collider.friction(), collider.restitution()), (0.1, 0.0));
+    }
+    // The bar: a 0.4 x 20 m half box rounded by 0.2 at (0, 12), friction 0, density 1, on a
+    // motor at 5 rad/s with Box2D's FLT_MAX torque.
+    let bar = world.body(scene.names["spinner"]).unwrap();
+    let collider = world.collider(bar.colliders()[0]).unwrap();
+    let carom::Shape::Polygon(polygon) = collider.shape() else {
+        panic!("the bar is a polygon");
+    };
+    let mut corners: Vec<(f32, f32)> = polygon.vertices().iter().map(|v| (v.x, v.y)).collect();
+    corners.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    assert_eq!(
+        corners,
+        [(-0.4, -20.0), (-0.4, 20.0), (0.4, -20.0), (0.4, 20.0)]
+    );
+    assert_eq!((polygon.radius(), collider.friction()), (0.2, 0.0));
+    assert_eq!(collider.density(), 1.0);
+    assert_eq!(bar.position(), carom::vec2(0.0, 12.0));
+    let hinge = world.joint(world.joints_of(bar.handle())[0]).unwrap();
+    let carom::JointKind::Revolute(revolute) = hinge.kind() else {
+        panic!("the bar turns on a revolute joint");
+    };
+    let motor = revolute.motor.unwrap();
+    assert_eq!((motor.speed, motor.max_force), (5.0, f32::MAX));
+    assert!(revolute.limits.is_none() && revolute.spring.is_none());
+    // The bodies: row by row from (-23, 2), 92 to a row 0.5 m apart, a capsule, a circle and
+    // a square in turn, density 0.25, friction 0.1, restitution 0.1.
+    let bodies: Vec<_> = world
+        .bodies()
+        .filter(|b| b.is_dynamic() && b.handle() != bar.handle())
+        .collect();
+    assert_eq!(bodies.len(), 6076);
+    for (i, body) in bodies.iter().enumerate() {
+        let at = carom::vec2(-23.0 + 0.5 * (i % 92) as f32, 2.0 + 0.5 * (i / 92) as f32);
+        assert_eq!(body.position(), at, "body {i}");
+        let collider = world.collider(body.colliders()[0]).unwrap();
+        let material = (
+            collider.density(),
+            collider.friction(),
+            collider.restitution(),
+        );
+        assert_eq!(material, (0.25, 0.1, 0.1));
+        let shape = match (i % 3, collider.shape()) {
+            (0, carom::Shape::Capsule(c)) => {
+                (c.center1(), c.center2(), c.radius())
+                    == (carom::vec2(-0.25, 0.0), carom::vec2(0.25, 0.0), 0.25)
+            }
+            (1, carom::Shape::Circle(c)) => c.radius() == 0.35,
+            (2, carom::Shape::Polygon(p)) => {
+                p.radius() == 0.0
+                    && p.vertices()
+                        .iter()
+                        .all(|v| v.x.abs() == 0.35 && v.y.abs() == 0.35)
+            }
+            _ => false,
+        };
+        assert!(shape, "body {i}: {:?}", collider.shape());
+    }
+}
+
+#[test]
+fn the_spinner_s_motor_turns_its_bar_at_5_rad_a_second() {
+    let mut scene = demo("spinner");
+    let bar = scene.names["spinner"];
+    run(&mut scene, 10);
+    let bar = scene.world.body(bar).unwrap();
+    // The bodies it pushes (some start inside it, as in Box2D) hold it back a little.
+    let w = bar.angular_velocity();
+    assert!((w - 5.0).abs() < 0.25, "turns at {w} rad/s");
+    assert!((bar.position() - carom::vec2(0.0, 12.0)).norm() < 0.01);
+}
+
+#[test]
+fn the_ragdoll_rain_is_box2d_s_recipe() {
+    let mut scene = demo("ragdoll_rain");
+    // The ground: one static body of 5 rows of 501 half-metre boxes, 45 m apart.
+    assert_eq!(scene.world.body_count(), 1);
+    let ground = scene.world.bodies().next().unwrap();
+    assert!(ground.kind() == carom::BodyKind::Static && ground.position() == carom::Vec2::zeros());
+    assert_eq!(ground.colliders().len(), 5 * 501);
+    for (k, &id) in ground.colliders().iter().enumerate() {
+        let collider = scene.world.collider(id).unwrap();
+        let (row, column) = (k / 501, k % 501);
+        let at = collider.local_transform().translation.vector;
+        assert_eq!(
+            at,
+            carom::vec2(-125.0 + 0.5 * column as f32, 45.0 * row as f32)
+        );
+        let carom::Shape::Polygon(p) = collider.shape() else {
+            panic!("the ground is boxes");
+        };
+        assert!(
+            p.vertices()
+                .iter()
+                .all(|v| v.x.abs() == 0.25 && v.y.abs() == 0.25)
+        );
+        assert_eq!(
+            (collider.friction(), collider.filter()),
+            (0.6, carom::CollisionFilter::DEFAULT)
+        );
+    }
+    // Box2D's schedule: a column of five groups every 8 steps, the first 40 filling the grid,
+    // then each remaking the column made 40 turns before, row by row.
+    let schedule = scene.spawn_schedule(400).unwrap();
+    let mut expected = Vec::new();
+    let mut copies = 0;
+    let mut made_at = std::collections::HashMap::new();
+    for turn in 0..50 {
+        for row in 0..5 {
+            let place = (turn % 40, row);
+            if let Some(old) = made_at.insert(place, copies) {
+                expected.push(carom_scene::SpawnChange::Remove {
+                    step: 8 * turn,
+                    copy: old,
+                });
+            }
+            expected.push(carom_scene::SpawnChange::Add {
+                step: 8 * turn,
+                copy: copies,
+            });
+            copies += 1;
+        }
+    }
+    assert_eq!(schedule.changes, expected);
+    // A group as CreateGroup makes it: column 3, row 2 is at x = -125 + 6.25 (3 + 0.5),
+    // y = 40 + 45 2, its ragdolls 0.5 m apart in filter groups -1 to -5.
+    let made = &schedule.copies[3 * 5 + 2];
+    let world = &schedule.world;
+    assert_eq!((made.bodies.len(), made.joints.len()), (55, 50));
+    let (x, y) = (-125.0 + 6.25 * 3.5_f32, 40.0 + 45.0 * 2.0_f32);
+    // human.c's bones: height of the body, capsule centres, radius, linear damping.
+    let bones: [(f32, f32, f32, f32, f32); 11] = [
+        (0.95, -0.02, 0.02, 0.095, 0.0),
+        (1.2, -0.135, 0.135, 0.09, 0.0),
+        (1.475, -0.038, 0.039, 0.075, 0.1),
+        (0.775, -0.125, 0.125, 0.06, 0.0),
+        (0.475, -0.155, 0.125, 0.045, 0.0),
+        (0.775, -0.125, 0.125, 0.06, 0.0),
+        (0.475, -0.155, 0.125, 0.045, 0.0),
+        (1.225, -0.125, 0.125, 0.035, 0.0),
+        (0.975, -0.125, 0.125, 0.03, 0.1),
+        (1.225, -0.125, 0.125, 0.035, 0.0),
+        (0.975, -0.125, 0.125, 0.03, 0.1),
+    ];
+    let foot = [
+        (-0.03, -0.185),
+        (0.11, -0.185),
+        (0.11, -0.16),
+        (-0.03, -0.14),
+    ];
+    for (ragdoll, bodies) in made.bodies.chunks(11).enumerate() {
+        let group = -(1 + ragdoll as i32);
+        let bone_filter = carom::CollisionFilter {
+            category: 2,
+            mask: 3,
+            group,
+        };
+        for (&handle, &(height, low, high, radius, damping)) in bodies.iter().zip(&bones) {
+            let body = world.body(handle).unwrap();
+            assert_eq!(
+                body.position(),
+                carom::vec2(x + 0.5 * ragdoll as f32, y + height)
+            );
+            assert_eq!(
+                (body.linear_damping(), body.angular_damping()),
+                (damping, 0.0)
+            );
+            assert_eq!(body.sleep_threshold(), 0.1);
+            let bone = world.collider(body.colliders()[0]).unwrap();
+            let carom::Shape::Capsule(c) = bone.shape() else {
+                panic!("a bone is a capsule");
+            };
+            let centres = (c.center1(), c.center2(), c.radius());
+            assert_eq!(
+                centres,
+                (carom::vec2(0.0, low), carom::vec2(0.0, high), radius)
+            );
+            assert_eq!(
+                (bone.density(), bone.friction(), bone.filter()),
+                (1.0, 0.2, bone_filter)
+            );
+            // The shins carry the feet, which touch only the ground.
+            if let Some(&id) = body.colliders().get(1) {
+                let sole = world.collider(id).unwrap();
+                let foot_filter = carom::CollisionFilter {
+                    mask: 1,
+                    ..bone_filter
+                };
+                assert_eq!((sole.friction(), sole.filter()), (0.05, foot_filter));
+                let carom::Shape::Polygon(p) = sole.shape() else {
+                    panic!("a foot is a polygon");
+                };
+                assert_eq!(p.radius(), 0.015);
+                let offset = sole.local_transform().translation.vector;
+                for v in p.vertices() {
+                    let v = v + offset;
+                    let near = foot
+                        .iter()
+                        .any(|&(fx, fy)| (v - carom::vec2(fx, fy)).norm() < 1e-7);
+                    assert!(near, "a foot's corner at {v:?}");
+                }
+            }
+        }
+        let feet = bodies
+            .iter()
+            .filter(|&&h| world.body(h).unwrap().colliders().len() == 2);
+        assert_eq!(feet.count(), 2);
+    }
+    // human.c's hinges: pivot height, limits (the forearms' moved by their frame's 45°),
+    // friction torque 0.05 N·m times the bone's scale, a 5 Hz spring at damping ratio 0.5.
+    let pi = std::f32::consts::PI;
+    let hinges = [
+        (1.0, -0.25 * pi, 0.0, 0.5, 0.0),
+        (1.4, -0.3 * pi, 0.1 * pi, 0.25, 0.0),
+        (0.9, -0.05 * pi, 0.4 * pi, 1.0, 0.0),
+        (0.625, -0.5 * pi, -0.02 * pi, 0.5, 0.0),
+        (0.9, -0.05 * pi, 0.4 * pi, 1.0, 0.0),
+        (0.625, -0.5 * pi, -0.02 * pi, 0.5, 0.0),
+        (1.35, -0.1 * pi, 0.8 * pi, 0.5, 0.0),
+        (1.1, -0.2 * pi, 0.3 * pi, 0.1, 0.25 * pi),
+        (1.35, -0.1 * pi, 0.8 * pi, 0.5, 0.0),
+        (1.1, -0.2 * pi, 0.3 * pi, 0.1, 0.25 * pi),
+    ];
+    for (ragdoll, joints) in made.joints.chunks(10).enumerate() {
+        for (&handle, &(height, lower, upper, scale, frame)) in joints.iter().zip(&hinges) {
+            let joint = world.joint(handle).unwrap();
+            let [a, b] = joint.bodies().map(|h| world.body(h).unwrap());
+            let [pa, pb] = joint.world_anchors(a, b);
+            let pivot = carom::vec2(x + 0.5 * ragdoll as f32, y + height);
+            assert!((pa - pivot).norm() < 1e-5 && (pb - pivot).norm() < 1e-5);
+            let carom::JointKind::Revolute(r) = joint.kind() else {
+                panic!("a ragdoll's joints are hinges");
+            };
+            let limits = r.limits.unwrap();
+            assert!((limits.lower - (lower + frame)).abs() < 1e-6);
+            assert!((limits.upper - (upper + frame)).abs() < 1e-6);
+            assert!((r.target_angle - frame).abs() < 1e-6);
+            let motor = r.motor.unwrap();
+            assert_eq!((motor.speed, motor.max_force), (0.0, scale * 0.05));
+            let spring = r.spring.unwrap();
+            assert_eq!((spring.hertz, spring.damping_ratio), (5.0, 0.5));
+            assert!(!joint.collide_connected());
+        }
+    }
+    // The scene itself makes the first column before its first step, and the second at the
+    // eighth.
+    run(&mut scene, 8);
+    assert_eq!(
+        (scene.world.body_count(), scene.world.joint_count()),
+        (1 + 275, 250)
+    );
+    run(&mut scene, 1);
+    assert_eq!(scene.world.body_count(), 1 + 2 * 275);
+}

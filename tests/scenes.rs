@@ -126,11 +126,11 @@ fn the_documented_example_is_a_valid_scene() {
     let scene = carom_scene::parse(&readme[start..end], "demos/README.md")
         .unwrap_or_else(|e| panic!("{e}"));
     let mut built = carom_scene::build(&scene, "demos/README.md").unwrap_or_else(|e| panic!("{e}"));
-    // 19 bodies, a stack of 10, a pyramid of 15, a grid of 8, a joint grid of 3 x 2, 4 walls,
-    // 20 drops, 2 stacks of 3, a chain of 6 links, 2 groups of 2.
+    // 20 bodies, a stack of 10, a pyramid of 15, grids of 8 and 5 and one compound, a joint
+    // grid of 3 x 2, 4 walls, 20 drops, 2 stacks of 3, a chain of 6 links, 2 groups of 2.
     assert_eq!(
         built.world.body_count(),
-        19 + 10 + 15 + 8 + 6 + 4 + 20 + 6 + 6 + 4
+        20 + 10 + 15 + 8 + 5 + 1 + 6 + 4 + 20 + 6 + 6 + 4
     );
     // Every kind of shape is there; the chain of 3 points is 2 links.
     let mut shapes: Vec<&str> = built
@@ -199,6 +199,12 @@ fn the_documented_example_is_a_valid_scene() {
     // aside).
     let velocity = built.world.body(ball).unwrap().linear_velocity();
     assert!(velocity.y > 6.0, "after the launch: {velocity:?}");
+    // The spawn event makes its first pair of circles at 1 s.
+    let before = built.world.body_count();
+    for _ in 16..61 {
+        built.step().unwrap();
+    }
+    assert_eq!(built.world.body_count(), before + 2);
 }
 
 #[test]
@@ -421,4 +427,327 @@ fn a_scene_file_sets_every_world_setting() {
     assert_eq!(classic.world.solver.effective_iterations(), 8);
     let unknown = carom_scene::parse("(name: \"typo\", world: (solver: (substep: 8)))", "inline");
     assert!(unknown.unwrap_err().to_string().contains("substep"));
+}
+
+/// Builds an inline scene, panicking with its error.
+fn inline(text: &str) -> carom_scene::SceneWorld {
+    let scene = carom_scene::parse(text, "inline.ron").unwrap_or_else(|e| panic!("{e}"));
+    carom_scene::build(&scene, "inline.ron").unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn a_rounded_segment_is_a_capsule_where_its_ends_are_given() {
+    // Box2D's ragdoll hip: a capsule between (0, -0.02) and (0, 0.02), radius 0.095, on a body
+    // at (0, 0.95). The ends stay exactly where they are written; the bare segment has none.
+    let built = inline(
+        r#"(name: "capsule", bodies: [
+            (name: "hip", shape: Segment(from: (0.0, -0.02), to: (0.0, 0.02), radius: 0.095),
+             position: (0.0, 0.95), sleep_threshold: 0.1),
+            (name: "floor", kind: static, shape: Segment(from: (-1.0, 0.0), to: (1.0, 0.0))),
+        ])"#,
+    );
+    let world = &built.world;
+    let hip = world.body(built.names["hip"]).unwrap();
+    let carom::Shape::Capsule(c) = world.collider(hip.colliders()[0]).unwrap().shape() else {
+        panic!("a rounded segment should be a capsule");
+    };
+    assert_eq!(
+        (c.center1(), c.center2(), c.radius()),
+        (carom::vec2(0.0, -0.02), carom::vec2(0.0, 0.02), 0.095)
+    );
+    assert!(hip.mass() > 0.0);
+    assert_eq!(hip.sleep_threshold(), 0.1);
+    let floor = world.body(built.names["floor"]).unwrap();
+    let floor_shape = world.collider(floor.colliders()[0]).unwrap().shape();
+    assert!(matches!(floor_shape, carom::Shape::Segment(_)));
+    assert_eq!(floor.sleep_threshold(), carom::SLEEP_THRESHOLD);
+}
+
+#[test]
+fn a_grid_takes_its_shapes_in_turn_stops_at_its_count_and_may_be_one_body() {
+    // Seven cells of a 3 x 3 grid, row by row, cycling a circle, a box and a capsule.
+    let built = inline(
+        r#"(name: "grid", generators: [
+            Grid(origin: (0.0, 1.0), columns: 3, rows: 3, spacing: (2.0, 1.0), count: 7,
+                 shapes: [Circle(radius: 0.2), Box(width: 0.4, height: 0.4),
+                          Capsule(length: 0.2, radius: 0.1)]),
+            Grid(origin: (-10.0, 0.0), columns: 4, rows: 2, spacing: (0.5, 45.0), kind: static,
+                 shape: Box(width: 0.5, height: 0.5), compound: true,
+                 material: (friction: 0.3)),
+        ])"#,
+    );
+    let world = &built.world;
+    assert_eq!(world.body_count(), 7 + 1);
+    let kinds: Vec<(&str, (f32, f32))> = world
+        .bodies()
+        .filter(|b| b.is_dynamic())
+        .map(|b| {
+            let kind = match world.collider(b.colliders()[0]).unwrap().shape() {
+                carom::Shape::Circle(_) => "circle",
+                carom::Shape::Polygon(_) => "box",
+                carom::Shape::Capsule(_) => "capsule",
+                other => panic!("{other:?}"),
+            };
+            (kind, (b.position().x, b.position().y))
+        })
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            ("circle", (0.0, 1.0)),
+            ("box", (2.0, 1.0)),
+            ("capsule", (4.0, 1.0)),
+            ("circle", (0.0, 2.0)),
+            ("box", (2.0, 2.0)),
+            ("capsule", (4.0, 2.0)),
+            ("circle", (0.0, 3.0)),
+        ]
+    );
+    // The compound: one static body at the origin, its 8 boxes where the cells are, each
+    // with the grid's material.
+    let ground = world.bodies().find(|b| !b.is_dynamic()).unwrap();
+    assert_eq!(ground.position(), carom::Vec2::zeros());
+    let offsets: Vec<(f32, f32)> = ground
+        .colliders()
+        .iter()
+        .map(|&c| {
+            let collider = world.collider(c).unwrap();
+            assert_eq!(collider.friction(), 0.3);
+            let t = collider.local_transform().translation;
+            (t.x, t.y)
+        })
+        .collect();
+    assert_eq!(
+        offsets,
+        [
+            (-10.0, 0.0),
+            (-9.5, 0.0),
+            (-9.0, 0.0),
+            (-8.5, 0.0),
+            (-10.0, 45.0),
+            (-9.5, 45.0),
+            (-9.0, 45.0),
+            (-8.5, 45.0)
+        ]
+    );
+    // A grid needs exactly one of `shape` and `shapes`, and no more cells than it has.
+    for (grid, reason) in [
+        (
+            "origin: (0.0, 0.0), columns: 2, rows: 2, spacing: (1.0, 1.0)",
+            "needs a `shape`",
+        ),
+        (
+            "origin: (0.0, 0.0), columns: 2, rows: 2, spacing: (1.0, 1.0), \
+             shape: Circle(radius: 0.1), shapes: [Circle(radius: 0.1)]",
+            "not both",
+        ),
+        (
+            "origin: (0.0, 0.0), columns: 2, rows: 2, spacing: (1.0, 1.0), count: 5, \
+             shape: Circle(radius: 0.1)",
+            "more than the 2 x 2 cells",
+        ),
+    ] {
+        let text = format!("(name: \"bad\", generators: [Grid({grid})])");
+        let scene = carom_scene::parse(&text, "bad.ron").unwrap();
+        let error = carom_scene::build(&scene, "bad.ron")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            error.contains("generator 0 (grid)") && error.contains(reason),
+            "{error}"
+        );
+    }
+}
+
+/// A floor, and a spawn event remaking a jointed pair of balls at the six places of a 3 x 2
+/// grid: turn `n` at 0.05 + 0.1 n s, at 60 Hz before steps 3, 9, 15, 21, ...
+const SPAWNING: &str = r#"(name: "spawning",
+    bodies: [(name: "floor", kind: static, shape: Box(width: 40.0, height: 1.0),
+              position: (0.0, -0.5))],
+    events: [Spawn(at: 0.05, every: 0.1, origin: (-5.0, 3.0), columns: 3, rows: 2,
+                   spacing: (5.0, 2.0),
+                   of: Group(self_collide: false,
+                       bodies: [(name: "a", shape: Circle(radius: 0.2),
+                                 material: (color: (1.0, 0.0, 0.0))),
+                                (name: "b", shape: Circle(radius: 0.2), position: (0.5, 0.0))],
+                       joints: [(bodies: ("a", "b"), anchor: (0.25, 0.0), kind: Revolute())]))],
+)"#;
+
+#[test]
+fn a_spawn_event_makes_and_remakes_its_copies_in_turn() {
+    let mut built = inline(SPAWNING);
+    let run = |built: &mut carom_scene::SceneWorld, steps: u64| {
+        while built.world.step_count() < steps {
+            built.step().unwrap();
+        }
+    };
+    run(&mut built, 3);
+    assert_eq!(built.world.body_count(), 1, "nothing before step 3");
+    run(&mut built, 4);
+    // Column 0: a pair at each row, each where the place puts it, joined, coloured.
+    assert_eq!(
+        (built.world.body_count(), built.world.joint_count()),
+        (5, 2)
+    );
+    let first: Vec<carom::BodyHandle> = built
+        .world
+        .bodies()
+        .filter(|b| b.is_dynamic())
+        .map(|b| b.handle())
+        .collect();
+    run(&mut built, 21);
+    assert_eq!(
+        (built.world.body_count(), built.world.joint_count()),
+        (13, 6)
+    );
+    // A ball of each copy, with its collision group: every place its own.
+    let groups = |built: &carom_scene::SceneWorld| -> Vec<((f32, f32), i32)> {
+        let world = &built.world;
+        let mut groups: Vec<_> = world
+            .bodies()
+            .filter(|b| b.is_dynamic() && built.colors.contains_key(&b.handle()))
+            .map(|b| {
+                let group = world.collider(b.colliders()[0]).unwrap().filter().group;
+                ((b.position().x.round(), b.position().y.round()), group)
+            })
+            .collect();
+        groups.sort_by_key(|&(_, g)| -g);
+        groups
+    };
+    let before = groups(&built);
+    assert_eq!(before.len(), 6);
+    assert_eq!(
+        before.iter().map(|&(_, g)| g).collect::<Vec<_>>(),
+        [-1, -2, -3, -4, -5, -6]
+    );
+    // Turn 3 remakes column 0: its first copies are gone, the new ones stand where they did
+    // and keep their places' groups.
+    run(&mut built, 22);
+    assert_eq!(
+        (built.world.body_count(), built.world.joint_count()),
+        (13, 6)
+    );
+    assert!(first.iter().all(|&h| built.world.body(h).is_none()));
+    assert!(first.iter().all(|h| !built.colors.contains_key(h)));
+    let after = groups(&built);
+    for (row, &(place, group)) in after.iter().take(2).enumerate() {
+        assert_eq!(group, -(1 + row as i32));
+        assert_eq!(
+            place,
+            (-5.0, 3.0 + 2.0 * row as f32),
+            "made again at its place"
+        );
+    }
+    // Saved and reopened, it goes on remaking the same copies.
+    let scene = carom_scene::parse(SPAWNING, "inline.ron").unwrap();
+    let saved = built.save(&scene);
+    let text = carom_scene::to_text(&saved, "saved.ron").unwrap();
+    let mut reopened = inline(&text);
+    for _ in 0..40 {
+        built.step().unwrap();
+        reopened.step().unwrap();
+    }
+    assert_eq!(reopened.world.state_hash(), built.world.state_hash());
+    assert_eq!(reopened.world.body_count(), 13);
+}
+
+#[test]
+fn a_spawn_schedule_makes_and_removes_what_the_scene_does_before_the_same_steps() {
+    let built = inline(SPAWNING);
+    let schedule = built.spawn_schedule(30).unwrap();
+    use carom_scene::SpawnChange::{Add, Remove};
+    assert_eq!(
+        schedule.changes,
+        [
+            Add { step: 3, copy: 0 },
+            Add { step: 3, copy: 1 },
+            Add { step: 9, copy: 2 },
+            Add { step: 9, copy: 3 },
+            Add { step: 15, copy: 4 },
+            Add { step: 15, copy: 5 },
+            Remove { step: 21, copy: 0 },
+            Add { step: 21, copy: 6 },
+            Remove { step: 21, copy: 1 },
+            Add { step: 21, copy: 7 },
+            Remove { step: 27, copy: 2 },
+            Add { step: 27, copy: 8 },
+            Remove { step: 27, copy: 3 },
+            Add { step: 27, copy: 9 },
+        ]
+    );
+    assert!(schedule.other_events.is_empty());
+    // Each copy as the scene makes it: two balls and their hinge, at its place, in its group.
+    let mut live = inline(SPAWNING);
+    for _ in 0..28 {
+        live.step().unwrap();
+    }
+    for (copy, place) in [(6, 0i32), (7, 1), (8, 2), (9, 3)] {
+        let made = &schedule.copies[copy];
+        assert_eq!((made.bodies.len(), made.joints.len()), (2, 1));
+        let a = schedule.world.body(made.bodies[0]).unwrap();
+        let (column, row) = (place / 2, place % 2);
+        let at = carom::vec2(-5.0 + 5.0 * column as f32, 3.0 + 2.0 * row as f32);
+        assert_eq!(a.position(), at);
+        let group = schedule
+            .world
+            .collider(a.colliders()[0])
+            .unwrap()
+            .filter()
+            .group;
+        assert_eq!(group, -(1 + place));
+        // The live world holds the same copy now: a ball in that group, near its place.
+        let twin = live.world.bodies().find(|b| {
+            live.colors.contains_key(&b.handle())
+                && live
+                    .world
+                    .collider(b.colliders()[0])
+                    .unwrap()
+                    .filter()
+                    .group
+                    == group
+        });
+        assert!((twin.unwrap().position() - at).norm() < 0.5);
+    }
+    // A schedule starts from a scene that has made nothing yet.
+    assert!(live.spawn_schedule(10).is_err());
+}
+
+#[test]
+fn a_spawn_event_refuses_what_it_cannot_make() {
+    for (event, reason) in [
+        (
+            "Spawn(every: 0.0, columns: 1, of: Grid(origin: (0.0, 0.0), columns: 1, rows: 1, \
+             spacing: (1.0, 1.0), shape: Circle(radius: 0.1)))",
+            "`every` must be positive",
+        ),
+        (
+            "Spawn(every: 1.0, columns: 0, of: Grid(origin: (0.0, 0.0), columns: 1, rows: 1, \
+             spacing: (1.0, 1.0), shape: Circle(radius: 0.1)))",
+            "at least one column",
+        ),
+        (
+            "Spawn(every: 1.0, columns: 1, of: Group(bodies: [(name: \"a\", \
+             shape: Circle(radius: 0.1))], joints: [(bodies: (\"a\", \"floor\"), \
+             kind: Revolute())]))",
+            "must join its own bodies",
+        ),
+        (
+            "Spawn(every: 1.0, columns: 1, of: Grid(origin: (0.0, 0.0), columns: 1, rows: 1, \
+             spacing: (1.0, 1.0), shape: Circle(radius: 0.1), material: (density: 0.0)))",
+            "a copy cannot be made",
+        ),
+    ] {
+        let text = format!(
+            "(name: \"bad\", bodies: [(name: \"floor\", kind: static, \
+             shape: Box(width: 1.0, height: 1.0))], events: [{event}])"
+        );
+        let scene = carom_scene::parse(&text, "bad.ron").unwrap_or_else(|e| panic!("{e}"));
+        let error = carom_scene::build(&scene, "bad.ron")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            error.contains("event 0") && error.contains(reason),
+            "{error}"
+        );
+    }
 }

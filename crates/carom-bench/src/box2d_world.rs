@@ -24,6 +24,7 @@
 //! | restitution, mixed by max (`Restitution` effect; 0 when off) | shape material `restitution`, Box2D's default mixing `max(a, b)` | yes |
 //! | `restitution_threshold` (1 m/s) | world `restitutionThreshold` (1 m/s) | yes |
 //! | `Sleeping` effect | world `enableSleep` | switch yes, thresholds the same: both 0.05 m/s for 0.5 s, islands sleep whole |
+//! | a body's `sleep_threshold` (default 0.05 m/s) | body `sleepThreshold` | yes |
 //! | `Continuous` effect | world `enableContinuous` (dynamic against static) | yes |
 //! | a body asleep when the copy is made (one added with `awake: false`) | body `isAwake` false (a sleeping set of its own, as Box2D makes one) | yes |
 //! | `is_bullet` (with the `Continuous` effect) | body `isBullet` (dynamic against dynamic too) | yes; a bullet with `Continuous` off is not a bullet in either |
@@ -76,14 +77,18 @@
 //! - Break thresholds: Box2D reports a joint past its force or torque threshold and leaves
 //!   breaking it to the program; they are left out, noted. [`Box2dWorld::notes`] lists
 //!   everything left out, and `carom-bench` prints it under its table.
-//! - Scene events (timed spawns, pushes) in `carom-scene` files are not replayed: the Box2D copy
-//!   is of the world as built at time 0.
+//! - Scene events: a scene's spawn events are replayed. `carom-bench` writes out their schedule
+//!   before timing ([`carom_scene::SceneWorld::spawn_schedule`]) and, inside the timed steps
+//!   as Box2D's benchmark does in its step function, makes and removes the same bodies and
+//!   joints before the same steps ([`Box2dWorld::add_spawned`],
+//!   [`Box2dWorld::remove_spawned`]). Its other events (launches, respawns, spins) are not
+//!   replayed, and `carom-bench` notes them.
 
 use std::collections::HashMap;
 
 use boxdd::{
     BodyBuilder, BodyId, BodyType, ConstraintTuning, DistanceJointDef, Filter, FilterJointDef,
-    Foundation, JointBase, Position, PrismaticJointDef, RevoluteJointDef, ShapeDef,
+    Foundation, JointBase, JointId, Position, PrismaticJointDef, RevoluteJointDef, ShapeDef,
     SurfaceMaterial, Transform, Vec2, WeldJointDef, WheelJointDef, WorldBuilder, shapes,
 };
 use boxdd_sys::ffi;
@@ -109,6 +114,7 @@ enum LocalShape {
 /// A Box2D world holding one body per carom body, in carom's order, and one shape per collider.
 pub struct Box2dWorld {
     world: boxdd::World,
+    foundation: &'static Foundation,
     substeps: i32,
     ids: Vec<BodyId>,
     index: HashMap<BodyHandle, usize>,
@@ -116,8 +122,25 @@ pub struct Box2dWorld {
     shapes: Vec<Vec<LocalShape>>,
     /// Box2D's mass and rotational inertia (about the centre of mass) of each body.
     mass: Vec<(f32, f32)>,
+    /// Which of the carom world's effects the copy follows.
+    effects: Followed,
+    /// Soft step's joint stiffness, every joint's own in Box2D 3.2.
+    tuning: ConstraintTuning,
+    /// The copies of a scene's spawn events made so far and not yet removed, by their index
+    /// in the schedule: their bodies and joints.
+    spawned: HashMap<usize, (Vec<BodyId>, Vec<JointId>)>,
     /// What the copy leaves out or approximates.
     notes: Notes,
+}
+
+/// The carom effects a copy's bodies and shapes follow (each off makes its setting 0 or
+/// leaves it out).
+#[derive(Debug, Clone, Copy)]
+struct Followed {
+    drag: bool,
+    friction: bool,
+    restitution: bool,
+    bullets: bool,
 }
 
 impl std::fmt::Debug for Box2dWorld {
@@ -173,90 +196,34 @@ impl Box2dWorld {
         let mut b2 = foundation.create_world(def).map_err(err)?;
         b2.enable_warm_starting(solver.warm_starting).map_err(err)?;
 
-        let drag = effects.contains(Effect::Drag) && settings.drag == DragModel::Exponential;
-        let friction = effects.contains(Effect::Friction);
-        let restitution = effects.contains(Effect::Restitution);
-        let bullets = effects.contains(Effect::Continuous);
+        let effects = Followed {
+            drag: effects.contains(Effect::Drag) && settings.drag == DragModel::Exponential,
+            friction: effects.contains(Effect::Friction),
+            restitution: effects.contains(Effect::Restitution),
+            bullets: effects.contains(Effect::Continuous),
+        };
+        // Soft step's joint stiffness is each Box2D 3.2 joint's own (`constraintHertz`,
+        // `constraintDampingRatio`; Box2D's 60 Hz and 2 are carom's defaults).
+        let tuning =
+            ConstraintTuning::new(solver.joint_hertz, solver.joint_damping_ratio).map_err(err)?;
         let mut out = Box2dWorld {
             world: b2,
+            foundation,
             substeps: i32::try_from(solver.substeps.max(1)).map_err(|e| e.to_string())?,
             ids: Vec::with_capacity(world.body_count()),
             index: HashMap::with_capacity(world.body_count()),
             kinds: Vec::with_capacity(world.body_count()),
             shapes: Vec::with_capacity(world.body_count()),
             mass: Vec::with_capacity(world.body_count()),
+            effects,
+            tuning,
+            spawned: HashMap::new(),
             notes: Notes::default(),
         };
         for body in world.bodies() {
-            let def = body_def(foundation, body, drag, bullets).map_err(err)?;
-            let id = out.world.create_body(def).map_err(err)?;
-            let mut handle = out.world.body(id).map_err(err)?;
             let mut locals = Vec::with_capacity(body.colliders().len());
-            for collider in body.colliders().iter().filter_map(|&c| world.collider(c)) {
-                let material = SurfaceMaterial::new()
-                    .with_friction(if friction { collider.friction() } else { 0.0 })
-                    .and_then(|m| {
-                        m.with_restitution(if restitution {
-                            collider.restitution()
-                        } else {
-                            0.0
-                        })
-                    })
-                    .map_err(err)?;
-                let filter = collider.filter();
-                let shape_def = ShapeDef::builder()
-                    .density(collider.density())
-                    .material(material)
-                    .filter(Filter {
-                        category_bits: filter.category,
-                        mask_bits: filter.mask,
-                        group_index: filter.group,
-                    })
-                    .build()
-                    .map_err(err)?;
-                let place = collider.local_transform();
-                let local = match collider.shape() {
-                    Shape::Circle(c) => {
-                        let o = place.translation.vector;
-                        let circle =
-                            shapes::circle(Vec2::new(o.x, o.y), c.radius()).map_err(err)?;
-                        handle.create_circle(&shape_def, &circle).map_err(err)?;
-                        LocalShape::Circle([o.x, o.y], c.radius())
-                    }
-                    Shape::Polygon(p) => {
-                        handle
-                            .create_polygon(&shape_def, &polygon(p, collider)?)
-                            .map_err(err)?;
-                        let placed = p
-                            .vertices()
-                            .iter()
-                            .map(|v| place.rotation * v + place.translation.vector);
-                        LocalShape::Polygon(placed.map(|v| [v.x, v.y]).collect(), p.radius())
-                    }
-                    Shape::Capsule(c) => {
-                        let [c1, c2] = [c.center1(), c.center2()].map(|v| point_in_body(&place, v));
-                        let capsule = shapes::capsule(c1, c2, c.radius()).map_err(err)?;
-                        handle.create_capsule(&shape_def, &capsule).map_err(err)?;
-                        LocalShape::Polygon(vec![[c1.x, c1.y], [c2.x, c2.y]], c.radius())
-                    }
-                    Shape::Segment(s) => {
-                        let [p1, p2] = [s.point1(), s.point2()].map(|v| point_in_body(&place, v));
-                        let segment = shapes::segment(p1, p2).map_err(err)?;
-                        handle.create_segment(&shape_def, &segment).map_err(err)?;
-                        LocalShape::Polygon(vec![[p1.x, p1.y], [p2.x, p2.y]], 0.0)
-                    }
-                    Shape::ChainSegment(s) => {
-                        let [g1, p1, p2, g2] = [s.ghost1(), s.point1(), s.point2(), s.ghost2()]
-                            .map(|v| point_in_body(&place, v));
-                        let link = shapes::chain_segment(g1, p1, p2, g2).map_err(err)?;
-                        handle
-                            .create_chain_segment(&shape_def, &link)
-                            .map_err(err)?;
-                        LocalShape::Polygon(vec![[p1.x, p1.y], [p2.x, p2.y]], 0.0)
-                    }
-                };
-                locals.push(local);
-            }
+            let id = out.add_body(world, body, Some(&mut locals))?;
+            let handle = out.world.body(id).map_err(err)?;
             let mass = (
                 handle.mass().map_err(err)?,
                 handle.rotational_inertia().map_err(err)?,
@@ -267,14 +234,195 @@ impl Box2dWorld {
             out.shapes.push(locals);
             out.mass.push(mass);
         }
-        // Soft step's joint stiffness is each Box2D 3.2 joint's own (`constraintHertz`,
-        // `constraintDampingRatio`; Box2D's 60 Hz and 2 are carom's defaults).
-        let tuning =
-            ConstraintTuning::new(solver.joint_hertz, solver.joint_damping_ratio).map_err(err)?;
         for joint in world.joints() {
-            out.add_joint(joint, tuning)?;
+            let [a, b] = joint.bodies().map(|h| {
+                out.body_id(h).ok_or(format!(
+                    "a {} joint's body is not in the copy",
+                    joint.kind().name()
+                ))
+            });
+            out.add_joint(joint, [a?, b?])?;
         }
         Ok(out)
+    }
+
+    /// Rebuilds one body of `world` in Box2D with a shape per collider, and returns its id;
+    /// each shape's outline in the body's frame goes to `locals` if it is given.
+    fn add_body(
+        &mut self,
+        world: &World,
+        body: &Body,
+        mut locals: Option<&mut Vec<LocalShape>>,
+    ) -> Result<BodyId, String> {
+        let Followed {
+            drag,
+            friction,
+            restitution,
+            bullets,
+        } = self.effects;
+        let def = body_def(self.foundation, body, drag, bullets).map_err(err)?;
+        let id = self.world.create_body(def).map_err(err)?;
+        let mut handle = self.world.body(id).map_err(err)?;
+        for collider in body.colliders().iter().filter_map(|&c| world.collider(c)) {
+            let material = SurfaceMaterial::new()
+                .with_friction(if friction { collider.friction() } else { 0.0 })
+                .and_then(|m| {
+                    m.with_restitution(if restitution {
+                        collider.restitution()
+                    } else {
+                        0.0
+                    })
+                })
+                .map_err(err)?;
+            let filter = collider.filter();
+            let shape_def = ShapeDef::builder()
+                .density(collider.density())
+                .material(material)
+                .filter(Filter {
+                    category_bits: filter.category,
+                    mask_bits: filter.mask,
+                    group_index: filter.group,
+                })
+                .build()
+                .map_err(err)?;
+            let place = collider.local_transform();
+            let local = match collider.shape() {
+                Shape::Circle(c) => {
+                    let o = place.translation.vector;
+                    let circle = shapes::circle(Vec2::new(o.x, o.y), c.radius()).map_err(err)?;
+                    handle.create_circle(&shape_def, &circle).map_err(err)?;
+                    locals
+                        .is_some()
+                        .then(|| LocalShape::Circle([o.x, o.y], c.radius()))
+                }
+                Shape::Polygon(p) => {
+                    handle
+                        .create_polygon(&shape_def, &polygon(p, collider)?)
+                        .map_err(err)?;
+                    locals.is_some().then(|| {
+                        let placed = p
+                            .vertices()
+                            .iter()
+                            .map(|v| place.rotation * v + place.translation.vector);
+                        LocalShape::Polygon(placed.map(|v| [v.x, v.y]).collect(), p.radius())
+                    })
+                }
+                Shape::Capsule(c) => {
+                    let [c1, c2] = [c.center1(), c.center2()].map(|v| point_in_body(&place, v));
+                    let capsule = shapes::capsule(c1, c2, c.radius()).map_err(err)?;
+                    handle.create_capsule(&shape_def, &capsule).map_err(err)?;
+                    locals
+                        .is_some()
+                        .then(|| LocalShape::Polygon(vec![[c1.x, c1.y], [c2.x, c2.y]], c.radius()))
+                }
+                Shape::Segment(s) => {
+                    let [p1, p2] = [s.point1(), s.point2()].map(|v| point_in_body(&place, v));
+                    let segment = shapes::segment(p1, p2).map_err(err)?;
+                    handle.create_segment(&shape_def, &segment).map_err(err)?;
+                    locals
+                        .is_some()
+                        .then(|| LocalShape::Polygon(vec![[p1.x, p1.y], [p2.x, p2.y]], 0.0))
+                }
+                Shape::ChainSegment(s) => {
+                    let [g1, p1, p2, g2] = [s.ghost1(), s.point1(), s.point2(), s.ghost2()]
+                        .map(|v| point_in_body(&place, v));
+                    let link = shapes::chain_segment(g1, p1, p2, g2).map_err(err)?;
+                    handle
+                        .create_chain_segment(&shape_def, &link)
+                        .map_err(err)?;
+                    locals
+                        .is_some()
+                        .then(|| LocalShape::Polygon(vec![[p1.x, p1.y], [p2.x, p2.y]], 0.0))
+                }
+            };
+            if let (Some(locals), Some(local)) = (locals.as_deref_mut(), local) {
+                locals.push(local);
+            }
+        }
+        Ok(id)
+    }
+
+    /// Makes copy `copy` of a scene's spawn events: `made`'s bodies of `world` (the
+    /// schedule's), then their joints, kept apart from the bodies copied at the start (the
+    /// indices of [`Box2dWorld::position`] and the rest do not count them).
+    ///
+    /// # Errors
+    /// A body or joint Box2D refuses, or a joint whose bodies are not in the copy.
+    pub fn add_spawned(
+        &mut self,
+        copy: usize,
+        world: &World,
+        made: &carom_scene::Made,
+    ) -> Result<(), String> {
+        let mut bodies = Vec::with_capacity(made.bodies.len());
+        for &handle in &made.bodies {
+            let body = world
+                .body(handle)
+                .ok_or("a spawned body is not in its world")?;
+            bodies.push(self.add_body(world, body, None)?);
+        }
+        let find = |h: BodyHandle| {
+            made.bodies
+                .iter()
+                .position(|&b| b == h)
+                .map(|i| bodies[i])
+                .ok_or("a spawned joint's body is not in its copy")
+        };
+        let mut joints = Vec::with_capacity(made.joints.len());
+        for &handle in &made.joints {
+            let joint = world
+                .joint(handle)
+                .ok_or("a spawned joint is not in its world")?;
+            let [a, b] = joint.bodies().map(find);
+            if let Some(id) = self.add_joint(joint, [a?, b?])? {
+                joints.push(id);
+            }
+        }
+        self.spawned.insert(copy, (bodies, joints));
+        Ok(())
+    }
+
+    /// Removes copy `copy` of a scene's spawn events as Box2D's benchmark removes a group of
+    /// ragdolls: its joints without waking their bodies, then its bodies (which wakes what
+    /// touches them).
+    ///
+    /// # Errors
+    /// A copy not made, or one Box2D no longer holds.
+    pub fn remove_spawned(&mut self, copy: usize) -> Result<(), String> {
+        let (bodies, joints) = self
+            .spawned
+            .remove(&copy)
+            .ok_or_else(|| format!("spawned copy {copy} is not in the world"))?;
+        for joint in joints {
+            self.world
+                .joint(joint)
+                .map_err(err)?
+                .destroy(false)
+                .map_err(err)?;
+        }
+        for body in bodies {
+            self.world.body(body).map_err(err)?.destroy().map_err(err)?;
+        }
+        Ok(())
+    }
+
+    /// Positions (centres of mass) of the spawned bodies there are now.
+    ///
+    /// # Errors
+    /// A body Box2D no longer holds.
+    pub fn spawned_positions(&mut self) -> Result<Vec<[f32; 2]>, String> {
+        let ids: Vec<BodyId> = self
+            .spawned
+            .values()
+            .flat_map(|(b, _)| b)
+            .copied()
+            .collect();
+        ids.into_iter()
+            .map(|id| {
+                let p = self.world.body(id).map_err(err)?.position().map_err(err)?;
+                Ok([p.x, p.y])
+            })
+            .collect()
     }
 
     /// What this copy leaves out of the carom world or approximates (empty if nothing).
@@ -305,8 +453,10 @@ impl Box2dWorld {
     /// anchor and a rotation): the anchors are carom's, body A's frame is turned to the axis
     /// of a slider or a wheel (Box2D's axis is that frame's x), and body B's frame by the
     /// reference angle less, so the joint's angle is 0 where carom's is. Joints Box2D cannot
-    /// express are noted and left out.
-    fn add_joint(&mut self, joint: &Joint, tuning: ConstraintTuning) -> Result<(), String> {
+    /// express are noted and left out (`None`). `bodies` are Box2D's bodies for the joint's
+    /// two.
+    fn add_joint(&mut self, joint: &Joint, [a, b]: [BodyId; 2]) -> Result<Option<JointId>, String> {
+        let tuning = self.tuning;
         let kind = joint.kind();
         let name = kind.name();
         let skip = match kind {
@@ -323,13 +473,8 @@ impl Box2dWorld {
         };
         if let Some(what) = skip {
             self.notes.add(what);
-            return Ok(());
+            return Ok(None);
         }
-        let [a, b] = joint.bodies().map(|h| {
-            self.body_id(h)
-                .ok_or(format!("a {name} joint's body is not in the copy"))
-        });
-        let (a, b) = (a?, b?);
         let (break_force, break_torque) = joint.break_thresholds();
         if break_force.is_finite() || break_torque.is_finite() {
             self.notes.add(
@@ -461,7 +606,7 @@ impl Box2dWorld {
             JointKind::Mouse(_) | JointKind::Motor(_) => unreachable!("noted and skipped above"),
         };
         created
-            .map(|_| ())
+            .map(Some)
             .map_err(|e| format!("Box2D refused a {name} joint: {e}"))
     }
 
@@ -726,6 +871,7 @@ fn body_def(
         .angle(body.angle())
         .gravity_scale(body.gravity_scale())
         .bullet(bullets && body.is_bullet())
+        .sleep_threshold(body.sleep_threshold())
         .awake(!body.is_sleeping());
     if body.kind() != BodyKind::Static {
         let v = body.linear_velocity();

@@ -4,6 +4,7 @@ use stats_alloc::{INSTRUMENTED_SYSTEM, Region};
 use std::time::Instant;
 
 use carom::{BodyKind, World};
+use carom_scene::{Made, SceneWorld, SpawnChange, SpawnSchedule};
 
 use crate::box2d_world::Box2dWorld;
 use crate::rapier_world::RapierWorld;
@@ -211,43 +212,120 @@ fn drop_of(top: Option<usize>, start: &[[f32; 2]], end: &[[f32; 2]]) -> f32 {
     top.map_or(f32::NAN, |i| start[i][1] - end[i][1])
 }
 
-/// Steps a carom world `steps` times by `dt`, timing all steps but the first.
+/// Steps a scene `steps` times by its time step, its events firing before each step as they
+/// do in the demo (spawned bodies are made and removed inside the timed steps, as Box2D's
+/// benchmark does in its step function), timing all steps but the first.
 ///
 /// # Errors
 /// A failed carom step.
-pub fn run_carom(world: &mut World, dt: f32, steps: u32) -> Result<RunResult, String> {
-    let start = carom_positions(world);
-    let top = top_body(&start, &carom_dynamic_flags(world));
+pub fn run_carom(scene: &mut SceneWorld, steps: u32) -> Result<RunResult, String> {
+    let start = carom_positions(&scene.world);
+    let top = top_body(&start, &carom_dynamic_flags(&scene.world))
+        .and_then(|i| scene.world.bodies().nth(i))
+        .map(|b| (b.handle(), b.position().y));
     let (mut total_ms, mut allocations) = (0.0, 0);
     let mut stages = StageProfile::zero();
     if steps > 0 {
-        world.step(dt).map_err(|e| e.to_string())?;
+        scene.step().map_err(|e| e.to_string())?;
         let region = Region::new(&INSTRUMENTED_SYSTEM);
         let t0 = Instant::now();
         for _ in 1..steps {
-            world.step(dt).map_err(|e| e.to_string())?;
-            stages.add_carom(world.stats());
+            scene.step().map_err(|e| e.to_string())?;
+            stages.add_carom(scene.world.stats());
         }
         total_ms = t0.elapsed().as_secs_f64() * 1e3;
         allocations = region.change().allocations;
     }
-    let end = carom_positions(world);
+    // The top body by its handle: events may have added and removed bodies since.
+    let top_drop = top.map_or(f32::NAN, |(handle, y)| {
+        scene
+            .world
+            .body(handle)
+            .map_or(f32::NAN, |b| y - b.position().y)
+    });
     Ok(RunResult {
         total_ms,
         timed_steps: steps.saturating_sub(1),
-        top_drop: drop_of(top, &start, &end),
-        nan: any_nan(&end),
+        top_drop,
+        nan: any_nan(&carom_positions(&scene.world)),
         allocations,
         stages: Some(stages.mean(steps.saturating_sub(1))),
     })
 }
 
+/// A spawn schedule's changes, done before the steps they name, in order.
+struct Replay<'a> {
+    schedule: Option<&'a SpawnSchedule>,
+    next: usize,
+}
+
+impl<'a> Replay<'a> {
+    fn new(schedule: Option<&'a SpawnSchedule>) -> Self {
+        Replay { schedule, next: 0 }
+    }
+
+    /// Does every change due before step `step` in `world`.
+    fn before(&mut self, step: u64, world: &mut impl Spawns) -> Result<(), String> {
+        let Some(schedule) = self.schedule else {
+            return Ok(());
+        };
+        while let Some(change) = schedule.changes.get(self.next) {
+            if change.step() > step {
+                break;
+            }
+            match *change {
+                SpawnChange::Add { copy, .. } => {
+                    world.add_spawned(copy, &schedule.world, &schedule.copies[copy])?
+                }
+                SpawnChange::Remove { copy, .. } => world.remove_spawned(copy)?,
+            }
+            self.next += 1;
+        }
+        Ok(())
+    }
+}
+
+/// A peer that makes and removes the copies of a scene's spawn events.
+trait Spawns {
+    /// Makes copy `copy`: `made`'s bodies and joints of `world`.
+    fn add_spawned(&mut self, copy: usize, world: &World, made: &Made) -> Result<(), String>;
+    /// Removes copy `copy`.
+    fn remove_spawned(&mut self, copy: usize) -> Result<(), String>;
+}
+
+impl Spawns for Box2dWorld {
+    fn add_spawned(&mut self, copy: usize, world: &World, made: &Made) -> Result<(), String> {
+        Box2dWorld::add_spawned(self, copy, world, made)
+    }
+
+    fn remove_spawned(&mut self, copy: usize) -> Result<(), String> {
+        Box2dWorld::remove_spawned(self, copy)
+    }
+}
+
+impl Spawns for RapierWorld {
+    fn add_spawned(&mut self, copy: usize, world: &World, made: &Made) -> Result<(), String> {
+        RapierWorld::add_spawned(self, copy, world, made)
+    }
+
+    fn remove_spawned(&mut self, copy: usize) -> Result<(), String> {
+        RapierWorld::remove_spawned(self, copy)
+    }
+}
+
 /// Steps a Box2D world `steps` times by `dt` (in its substeps, on one worker), timing all
-/// but the first. Box2D allocates through C's allocator, which is not counted.
+/// but the first. The changes of a scene's spawn `schedule` are made before the steps they
+/// name, inside the timed steps as Box2D's benchmark makes them. Box2D allocates through C's
+/// allocator, which is not counted.
 ///
 /// # Errors
-/// A failed Box2D step or body query.
-pub fn run_box2d(world: &mut Box2dWorld, dt: f32, steps: u32) -> Result<RunResult, String> {
+/// A failed Box2D step, body query, or spawned body Box2D refuses.
+pub fn run_box2d(
+    world: &mut Box2dWorld,
+    dt: f32,
+    steps: u32,
+    schedule: Option<&SpawnSchedule>,
+) -> Result<RunResult, String> {
     let positions = |world: &mut Box2dWorld| -> Result<Vec<[f32; 2]>, String> {
         (0..world.body_count()).map(|i| world.position(i)).collect()
     };
@@ -256,50 +334,71 @@ pub fn run_box2d(world: &mut Box2dWorld, dt: f32, steps: u32) -> Result<RunResul
         .map(|i| world.kind(i) == BodyKind::Dynamic)
         .collect();
     let top = top_body(&start, &dynamic);
+    let mut replay = Replay::new(schedule);
+    let mut step = |world: &mut Box2dWorld, i: u32| -> Result<(), String> {
+        replay.before(u64::from(i), world)?;
+        world.step(dt)
+    };
     let mut total_ms = 0.0;
     let mut stages = StageProfile::zero();
     if steps > 0 {
-        world.step(dt)?;
+        step(world, 0)?;
         let t0 = Instant::now();
-        for _ in 1..steps {
-            world.step(dt)?;
+        for i in 1..steps {
+            step(world, i)?;
             stages.add_box2d(&world.profile()?, &world.counters()?);
         }
         total_ms = t0.elapsed().as_secs_f64() * 1e3;
     }
     let end = positions(world)?;
+    let spawned = world.spawned_positions()?;
     Ok(RunResult {
         total_ms,
         timed_steps: steps.saturating_sub(1),
         top_drop: drop_of(top, &start, &end),
-        nan: any_nan(&end),
+        nan: any_nan(&end) || any_nan(&spawned),
         allocations: 0,
         stages: Some(stages.mean(steps.saturating_sub(1))),
     })
 }
 
-/// Steps a Rapier world `steps` times (by the dt it was built with), timing all but the first.
-pub fn run_rapier(world: &mut RapierWorld, steps: u32) -> RunResult {
+/// Steps a Rapier world `steps` times (by the dt it was built with), timing all but the first;
+/// a scene's spawn `schedule` is followed as in [`run_box2d`].
+///
+/// # Errors
+/// A spawned body Rapier cannot build.
+pub fn run_rapier(
+    world: &mut RapierWorld,
+    steps: u32,
+    schedule: Option<&SpawnSchedule>,
+) -> Result<RunResult, String> {
     let start = world.positions();
     let top = top_body(&start, &world.dynamic_flags());
+    let mut replay = Replay::new(schedule);
+    let mut step = |world: &mut RapierWorld, i: u32| -> Result<(), String> {
+        replay.before(u64::from(i), world)?;
+        world.step();
+        Ok(())
+    };
     let (mut total_ms, mut allocations) = (0.0, 0);
     if steps > 0 {
-        world.step();
+        step(world, 0)?;
         let region = Region::new(&INSTRUMENTED_SYSTEM);
         let t0 = Instant::now();
-        for _ in 1..steps {
-            world.step();
+        for i in 1..steps {
+            step(world, i)?;
         }
         total_ms = t0.elapsed().as_secs_f64() * 1e3;
         allocations = region.change().allocations;
     }
     let end = world.positions();
-    RunResult {
+    let spawned = world.spawned_positions();
+    Ok(RunResult {
         total_ms,
         timed_steps: steps.saturating_sub(1),
         top_drop: drop_of(top, &start, &end),
-        nan: any_nan(&end),
+        nan: any_nan(&end) || any_nan(&spawned),
         allocations,
         stages: None,
-    }
+    })
 }

@@ -38,12 +38,13 @@
 //! | any other `Shape::Polygon` (convex, CCW, centred on its centroid) | `convex_polyline` (no hull recomputed), `convex_hull` as a fallback; `round_convex_polyline` when it is rounded | yes |
 //! | `Shape::Capsule` | `capsule_from_endpoints(center1, center2, radius)` | yes |
 //! | `Shape::Segment` | `segment(point1, point2)` | yes |
-//! | `Shape::ChainSegment` (a chain's link) | `segment(point1, point2)` | no: Rapier's segment is two-sided and has no ghost vertices, so its joins are not smoothed |
+//! | `Shape::ChainSegment` (a chain's link) | `segment(point1, point2)` | no: Rapier's segment is two-sided and has no ghost vertices, so its joins are not smoothed; noted |
 //! | each collider: density, offset and angle | a collider with `density` and `position` relative to its body (mass and inertia from the shapes) | yes |
 //! | friction, mixed by geometric mean (`Friction` effect; 0 when off) | collider `friction` + `CoefficientCombineRule::GeometricMean` | yes |
 //! | restitution, mixed by max (`Restitution` effect; 0 when off) | collider `restitution` + `CoefficientCombineRule::Max` | rule yes; carom does not bounce below 1 m/s approach, Rapier has no such threshold |
 //! | gravity (zero when the `Gravity` effect is off) | `gravity` argument of `PhysicsPipeline::step` | yes |
 //! | `Sleeping` effect | `can_sleep(true)` on every body; off → `can_sleep(false)` | switch yes, thresholds close: both 0.05 m/s and 0.5 s, but carom measures the fastest point's speed (`|v| + r |ω|`) and sleeps islands, Rapier its own per-body linear (0.05) and angular (0.5 rad/s) thresholds |
+//! | a body's `sleep_threshold` other than 0.05 m/s | its activation's `normalized_linear_threshold` | yes: both on the fastest point's speed |
 //! | a body asleep when the copy is made (one added with `awake: false`) | `sleeping(true)` | yes |
 //! | `is_bullet` (with the `Continuous` effect) | `ccd_enabled(true)` | partly: carom also sweeps every fast dynamic body against static ones; Rapier's CCD is only switched on for bullets here |
 //! | soft step's `substeps` (default 4) | `num_solver_iterations` (Rapier's solver iterations are its substeps) | yes |
@@ -58,7 +59,7 @@
 //! | collision filter: `category`, `mask` (`u64`), `group` | `collision_groups`: memberships = category, filter = mask, test `And` | yes when the collider has no group and every category in the world fits Rapier's 32 bits (a mask's higher bits then meet no category); otherwise the collider lets every pair through its groups and a contact-pair hook applies carom's rule (same group: collide if positive, never if negative; else both masks) exactly |
 //! | a joint: bodies, anchors in each body, reference angle, axis in A's frame | an impulse joint (`GenericJoint`): `local_frame1` at A's anchor turned to the axis, `local_frame2` at B's anchor turned by the axis less the reference angle | yes |
 //! | `collide_connected` | `contacts_enabled` (Rapier's default is true, carom's false) | yes |
-//! | revolute: limits / motor / spring toward `target_angle` | `AngX` free: limits, a velocity motor (rigid: damping 1e10) capped at the motor's torque, or a position motor | yes; a spring and a motor together keep the spring only (one motor per axis), noted |
+//! | revolute: limits / motor / spring toward `target_angle` | `AngX` free: limits, a velocity motor (rigid: damping 1e10) capped at the motor's torque, or a position motor | yes; with both a spring and a motor (a ragdoll's sprung hinge with joint friction), the spring is the joint's position motor and the motor a second joint's velocity motor on the same frames, every axis free (Rapier has one motor per axis) |
 //! | prismatic: axis, limits, motor, spring toward `target_translation` | `LinX` free along A's frame's x: limits, motor as for the revolute | yes, same spring-and-motor note |
 //! | wheel: axis, suspension spring, limits, motor | pin-slot (`LinY` locked): a position motor at 0 on `LinX`, limits on `LinX`, a velocity motor on `AngX` | yes |
 //! | weld, rigid / with linear and angular springs | all axes locked / a sprung part freed and pulled home by position motors | rigid yes; a linear spring acts per axis of A's frame (carom and Box2D solve the point as one block) |
@@ -82,8 +83,12 @@
 //!   within force caps, and no mouse joint; they are left out, and break thresholds too (its
 //!   joints do not break). [`RapierWorld::notes`] lists what was left out or approximated, and
 //!   `carom-bench` prints it under its table.
-//! - Scene events (timed spawns, pushes) in `carom-scene` files are not replayed: the Rapier copy
-//!   is of the world as built at time 0.
+//! - Scene events: a scene's spawn events are replayed. `carom-bench` writes out their schedule
+//!   before timing ([`carom_scene::SceneWorld::spawn_schedule`]) and, inside the timed steps,
+//!   makes and removes the same bodies and joints before the same steps
+//!   ([`RapierWorld::add_spawned`], [`RapierWorld::remove_spawned`]); carom fires every
+//!   event itself. Its other events (launches, respawns, spins) are not replayed in the
+//!   peers, and `carom-bench` notes them.
 //!
 //! ## Parameter mapping, carom → Box2D
 //!
@@ -102,6 +107,7 @@
 //! | friction (geometric mean) / restitution (max); 0 when the effect is off | shape material `friction` / `restitution`, Box2D's default mixing (the same rules) | yes |
 //! | `restitution_threshold` (1 m/s) | world `restitutionThreshold` (1 m/s) | yes |
 //! | `Sleeping` effect | world `enableSleep` (0.05 m/s for 0.5 s in both) | yes |
+//! | a body's `sleep_threshold` | body `sleepThreshold` | yes |
 //! | `Continuous` effect / `is_bullet` | world `enableContinuous` / body `isBullet` | yes |
 //! | soft step's `substeps` (4) | `subStepCount` (4) | yes |
 //! | `contact_hertz` (30), `damping_ratio` (10), `max_push_speed` (3 m/s) | world `contactHertz`, `contactDampingRatio`, `contactSpeed` (3.1's `maxContactPushSpeed`) | yes |
@@ -120,8 +126,8 @@
 //! rotation at π/4 per step, carom's
 //! settable; Box2D caps contact stiffness at an eighth of the substep rate, carom at a
 //! quarter (equal at the default 30 Hz with 4 substeps); contact recycling stays at
-//! Box2D's default (on); the tutorial drag model has no counterpart; scene events are not
-//! replayed. Details in [`box2d_world`].
+//! Box2D's default (on); the tutorial drag model has no counterpart; of a scene's events only
+//! its spawns are replayed, as in Rapier. Details in [`box2d_world`].
 
 pub mod cases;
 pub mod notes;

@@ -21,13 +21,15 @@ static ALLOCATOR: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
 const DT: f32 = 1.0 / 60.0;
 
 /// Box2D's benchmark scenes and step counts, run when no scene is named.
-const DEFAULT_SCENES: [(&str, u32); 6] = [
+const DEFAULT_SCENES: [(&str, u32); 8] = [
     ("demos/joint_grid.ron", 500),
     ("demos/large_pyramid.ron", 500),
     ("demos/many_pyramids.ron", 200),
     ("demos/tumbler.ron", 750),
     ("demos/smash.ron", 300),
     ("demos/compounds.ron", 500),
+    ("demos/ragdoll_rain.ron", 1000),
+    ("demos/spinner.ron", 500),
 ];
 
 /// Steps for a scene not in [`DEFAULT_SCENES`] when `--steps` is not given.
@@ -42,7 +44,8 @@ struct Args {
     command: Option<Command>,
     /// Scene files (default: Box2D's recipes with its step counts: demos/joint_grid.ron, 500
     /// steps; demos/large_pyramid.ron, 500; demos/many_pyramids.ron, 200; demos/tumbler.ron,
-    /// 750; demos/smash.ron, 300; demos/compounds.ron, 500).
+    /// 750; demos/smash.ron, 300; demos/compounds.ron, 500; demos/ragdoll_rain.ron, 1000;
+    /// demos/spinner.ron, 500).
     scenes: Vec<PathBuf>,
     /// Steps per run, overriding each scene's default.
     #[arg(long)]
@@ -194,7 +197,10 @@ fn bench_scene(
     bench_world(&name, load, steps, runs, one, many)
 }
 
-/// Times the world `load` builds (afresh for every run) in every engine.
+/// Times the scene `load` builds (afresh for every run) in every engine, each stepped by
+/// [`DT`]: carom fires the scene's events as the demo does, and the peers make and remove the
+/// bodies of its spawn events before the same steps (the scene's schedule of them, written
+/// out before timing); its other events are not replayed in the peers, and noted.
 fn bench_world(
     name: &str,
     load: impl Fn() -> Result<carom_scene::SceneWorld, String>,
@@ -203,16 +209,30 @@ fn bench_world(
     one: &rayon::ThreadPool,
     many: &rayon::ThreadPool,
 ) -> Result<Row, String> {
+    let load = || {
+        let mut scene = load()?;
+        scene.time_step = DT;
+        Ok::<_, String>(scene)
+    };
+    let schedule = load()?.spawn_schedule(u64::from(steps))?;
+    let replayed = (!schedule.changes.is_empty()).then_some(&schedule);
     let path = Path::new(name);
     let (mut carom_best, mut threads_best, mut rapier_best) = (None, None, None);
     let (mut box2d_best, mut box2d_threads_best) = (None, None);
     let (mut bodies, mut carom_bytes, mut rapier_bytes) = (0, 0.0, 0.0);
     let mut notes = Vec::new();
+    for event in &schedule.other_events {
+        for peer in ["Box2D", "Rapier"] {
+            notes.push(format!(
+                "{peer}: a {event} event: not replayed (only spawns are; carom fires it)"
+            ));
+        }
+    }
     for run in 1..=runs {
         // carom on one thread; its memory is what the world holds after the run.
         let mut result = None;
-        let (bytes, scene) = bytes_per_body(1, &load, |scene| {
-            result = Some(one.install(|| run_carom(&mut scene.world, DT, steps))?);
+        let (bytes, scene) = bytes_per_body(1, load, |scene| {
+            result = Some(one.install(|| run_carom(scene, steps))?);
             Ok(())
         })?;
         bodies = scene.world.body_count();
@@ -227,7 +247,7 @@ fn bench_world(
         drop(scene);
 
         let mut scene = load()?;
-        let t = many.install(|| run_carom(&mut scene.world, DT, steps))?;
+        let t = many.install(|| run_carom(&mut scene, steps))?;
         eprintln!(
             "{} run {run}: carom on {} threads {:.3} ms/step",
             path.display(),
@@ -243,7 +263,7 @@ fn bench_world(
             bodies,
             || RapierWorld::from_carom(&scene.world, DT),
             |rapier| {
-                result = Some(run_rapier(rapier, steps));
+                result = Some(run_rapier(rapier, steps, replayed)?);
                 Ok(())
             },
         )?;
@@ -271,6 +291,8 @@ fn bench_world(
             let scene = load()?;
             let mut box2d = Box2dWorld::with_workers(&scene.world, workers as u32)?;
             drop(scene);
+            let b = run_box2d(&mut box2d, DT, steps, replayed)?;
+            // After the run: the spawned copies' joints are noted as they are made.
             if run == 1 && workers == 1 {
                 notes.extend(
                     box2d
@@ -280,7 +302,6 @@ fn bench_world(
                         .map(|l| format!("Box2D: {l}")),
                 );
             }
-            let b = run_box2d(&mut box2d, DT, steps)?;
             let on = match workers {
                 1 => String::new(),
                 n => format!(" on {n} threads"),

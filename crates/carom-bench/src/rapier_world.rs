@@ -39,8 +39,27 @@ pub struct RapierWorld {
     handles: Vec<RigidBodyHandle>,
     /// carom's collision filters, for the pairs Rapier's groups cannot decide.
     filters: GroupFilter,
+    /// Which of the carom world's effects the copy follows.
+    effects: Followed,
+    /// Joint softness (Rapier's own).
+    softness: SpringCoefficients<f32>,
+    /// The copies of a scene's spawn events made so far and not yet removed, by their index
+    /// in the schedule.
+    spawned: HashMap<usize, Vec<RigidBodyHandle>>,
     /// What the copy leaves out or approximates.
     notes: Notes,
+}
+
+/// The carom effects a copy follows, and whether every category in the world fits Rapier's
+/// 32 bits.
+#[derive(Debug, Clone, Copy)]
+struct Followed {
+    drag: bool,
+    can_sleep: bool,
+    ccd: bool,
+    friction: bool,
+    restitution: bool,
+    narrow_categories: bool,
 }
 
 /// carom's (and Box2D's) collision rule for the colliders Rapier's interaction groups cannot
@@ -143,6 +162,18 @@ impl RapierWorld {
         // Contact softness is left at Rapier's defaults: 30 Hz, damping ratio 10, and twice
         // the frequency against fixed bodies, which are carom's soft-step defaults too.
 
+        let narrow_categories = world.bodies().all(|body| {
+            body.colliders()
+                .iter()
+                .filter_map(|&c| world.collider(c))
+                .all(|c| c.filter().category <= u64::from(u32::MAX))
+        });
+        // Joints keep Rapier's own softness (1 MHz, ζ 1: nearly rigid), not soft step's 60 Hz
+        // and 2. Rapier softens a joint in every pass, Box2D and carom only in the biased one,
+        // so the same 60 Hz makes Rapier's joints far softer: Box2D's 100 x 100 joint grid
+        // opens its widest joint to 0.82 m in a second at 60 Hz, 0.67 m at Rapier's default,
+        // where carom's and Box2D's open to 0.36 m.
+        let softness = SpringCoefficients::<f32>::joint_defaults();
         let mut out = RapierWorld {
             gravity: Vector::new(g.x, g.y),
             params,
@@ -158,60 +189,25 @@ impl RapierWorld {
             ccd: CCDSolver::new(),
             handles: Vec::with_capacity(world.body_count()),
             filters: GroupFilter::default(),
+            effects: Followed {
+                drag: effects.contains(Effect::Drag) && settings.drag == DragModel::Exponential,
+                can_sleep: effects.contains(Effect::Sleeping),
+                ccd: effects.contains(Effect::Continuous),
+                friction: effects.contains(Effect::Friction),
+                restitution: effects.contains(Effect::Restitution),
+                narrow_categories,
+            },
+            softness,
+            spawned: HashMap::new(),
             notes: Notes::default(),
         };
         let mut index = HashMap::with_capacity(world.body_count());
-        let narrow_categories = world.bodies().all(|body| {
-            body.colliders()
-                .iter()
-                .filter_map(|&c| world.collider(c))
-                .all(|c| c.filter().category <= u64::from(u32::MAX))
-        });
-        let drag = effects.contains(Effect::Drag) && settings.drag == DragModel::Exponential;
-        let can_sleep = effects.contains(Effect::Sleeping);
-        let ccd = effects.contains(Effect::Continuous);
-        let friction = effects.contains(Effect::Friction);
-        let restitution = effects.contains(Effect::Restitution);
         for body in world.bodies() {
-            let rb = rigid_body(body, drag, can_sleep, ccd);
-            let handle = out.bodies.insert(rb);
-            for part in body.colliders().iter().filter_map(|&c| world.collider(c)) {
-                let place = part.local_transform();
-                let collider = collider(part.shape())?
-                    .position(Pose::new(
-                        Vector::new(place.translation.x, place.translation.y),
-                        place.rotation.angle(),
-                    ))
-                    .density(part.density())
-                    .friction(if friction { part.friction() } else { 0.0 })
-                    .friction_combine_rule(CoefficientCombineRule::GeometricMean)
-                    .restitution(if restitution { part.restitution() } else { 0.0 })
-                    .restitution_combine_rule(CoefficientCombineRule::Max);
-                let filter = part.filter();
-                let collider = match interaction_groups(filter, narrow_categories) {
-                    Some(groups) => collider.collision_groups(groups),
-                    None => collider
-                        .collision_groups(InteractionGroups::all())
-                        .active_hooks(ActiveHooks::FILTER_CONTACT_PAIRS),
-                }
-                .user_data(out.filters.filters.len() as u128);
-                out.filters.filters.push(filter);
-                out.colliders
-                    .insert_with_parent(collider, handle, &mut out.bodies);
-            }
+            let handle = out.add_body(world, body)?;
             index.insert(body.handle(), handle);
             out.handles.push(handle);
         }
-        // Joints keep Rapier's own softness (1 MHz, ζ 1: nearly rigid), not soft step's 60 Hz
-        // and 2. Rapier softens a joint in every pass, Box2D and carom only in the biased one,
-        // so the same 60 Hz makes Rapier's joints far softer: Box2D's 100 x 100 joint grid
-        // opens its widest joint to 0.82 m in a second at 60 Hz, 0.67 m at Rapier's default,
-        // where carom's and Box2D's open to 0.36 m.
-        let softness = SpringCoefficients::<f32>::joint_defaults();
         for joint in world.joints() {
-            let Some(data) = generic_joint(joint, softness, &mut out.notes) else {
-                continue;
-            };
             let [a, b] = joint.bodies().map(|h| index.get(&h).copied());
             let (Some(a), Some(b)) = (a, b) else {
                 return Err(format!(
@@ -219,9 +215,145 @@ impl RapierWorld {
                     joint.kind().name()
                 ));
             };
-            out.impulse_joints.insert(a, b, data, true);
+            out.add_joint(joint, [a, b]);
         }
         Ok(out)
+    }
+
+    /// Rebuilds one body of `world` in Rapier with a collider per carom collider, placed on it
+    /// as carom places it, and returns its handle.
+    fn add_body(&mut self, world: &World, body: &Body) -> Result<RigidBodyHandle, String> {
+        let Followed {
+            drag,
+            can_sleep,
+            ccd,
+            friction,
+            restitution,
+            narrow_categories,
+        } = self.effects;
+        let handle = self.bodies.insert(rigid_body(body, drag, can_sleep, ccd));
+        if can_sleep && body.sleep_threshold() != carom::SLEEP_THRESHOLD {
+            // Rapier's threshold is on the same speed: the fastest point's.
+            self.bodies[handle]
+                .activation_mut()
+                .normalized_linear_threshold = body.sleep_threshold();
+        }
+        for part in body.colliders().iter().filter_map(|&c| world.collider(c)) {
+            if matches!(part.shape(), Shape::ChainSegment(_)) {
+                self.notes.add(
+                    "a chain link: a plain segment in Rapier (two-sided, without the ghost \
+                     vertices that smooth a chain's joins)",
+                );
+            }
+            let place = part.local_transform();
+            let collider = collider(part.shape())?
+                .position(Pose::new(
+                    Vector::new(place.translation.x, place.translation.y),
+                    place.rotation.angle(),
+                ))
+                .density(part.density())
+                .friction(if friction { part.friction() } else { 0.0 })
+                .friction_combine_rule(CoefficientCombineRule::GeometricMean)
+                .restitution(if restitution { part.restitution() } else { 0.0 })
+                .restitution_combine_rule(CoefficientCombineRule::Max);
+            let filter = part.filter();
+            let narrow = narrow_categories && filter.category <= u64::from(u32::MAX);
+            let collider = match interaction_groups(filter, narrow) {
+                Some(groups) => collider.collision_groups(groups),
+                None => collider
+                    .collision_groups(InteractionGroups::all())
+                    .active_hooks(ActiveHooks::FILTER_CONTACT_PAIRS),
+            }
+            .user_data(self.filters.filters.len() as u128);
+            self.filters.filters.push(filter);
+            self.colliders
+                .insert_with_parent(collider, handle, &mut self.bodies);
+        }
+        Ok(handle)
+    }
+
+    /// Rebuilds one joint between Rapier's bodies `a` and `b`, unless Rapier cannot express it
+    /// (noted).
+    fn add_joint(&mut self, joint: &Joint, [a, b]: [RigidBodyHandle; 2]) {
+        if let Some((data, motor)) = generic_joint(joint, self.softness, &mut self.notes) {
+            self.impulse_joints.insert(a, b, data, true);
+            if let Some(motor) = motor {
+                self.impulse_joints.insert(a, b, motor, true);
+            }
+        }
+    }
+
+    /// Makes copy `copy` of a scene's spawn events: `made`'s bodies of `world` (the
+    /// schedule's), then their joints, kept apart from the bodies copied at the start (the
+    /// indices of [`RapierWorld::positions`] and the rest do not count them).
+    ///
+    /// # Errors
+    /// A shape Rapier cannot build, or a joint whose bodies are not in the copy.
+    pub fn add_spawned(
+        &mut self,
+        copy: usize,
+        world: &World,
+        made: &carom_scene::Made,
+    ) -> Result<(), String> {
+        let mut bodies = Vec::with_capacity(made.bodies.len());
+        for &handle in &made.bodies {
+            let body = world
+                .body(handle)
+                .ok_or("a spawned body is not in its world")?;
+            bodies.push(self.add_body(world, body)?);
+        }
+        let find = |h: carom::BodyHandle| {
+            made.bodies
+                .iter()
+                .position(|&b| b == h)
+                .map(|i| bodies[i])
+                .ok_or("a spawned joint's body is not in its copy")
+        };
+        for &handle in &made.joints {
+            let joint = world
+                .joint(handle)
+                .ok_or("a spawned joint is not in its world")?;
+            let [a, b] = joint.bodies().map(find);
+            self.add_joint(joint, [a?, b?]);
+        }
+        self.spawned.insert(copy, bodies);
+        Ok(())
+    }
+
+    /// Removes copy `copy` of a scene's spawn events: its bodies, with their colliders and
+    /// joints, waking what touched them.
+    ///
+    /// # Errors
+    /// A copy not made.
+    pub fn remove_spawned(&mut self, copy: usize) -> Result<(), String> {
+        let bodies = self
+            .spawned
+            .remove(&copy)
+            .ok_or_else(|| format!("spawned copy {copy} is not in the world"))?;
+        for body in bodies {
+            self.bodies.remove(
+                body,
+                &mut self.islands,
+                &mut self.colliders,
+                &mut self.impulse_joints,
+                &mut self.multibody_joints,
+                &mut self.soft_bodies,
+                true,
+            );
+        }
+        Ok(())
+    }
+
+    /// Positions of the spawned bodies there are now.
+    pub fn spawned_positions(&self) -> Vec<[f32; 2]> {
+        self.spawned
+            .values()
+            .flatten()
+            .map(|&h| {
+                let t = self.bodies[h].translation();
+                [t.x, t.y]
+            })
+            .collect()
     }
 
     /// What this copy leaves out of the carom world or approximates (empty if nothing).
@@ -442,13 +574,16 @@ fn axis_aligned_rectangle(p: &Polygon) -> Option<(f32, f32)> {
 
 /// A carom joint as a Rapier generic joint: one frame in each body, the anchors carom's, body
 /// A's frame turned to a slider's or wheel's axis (Rapier's free axis is that frame's x) and
-/// body B's by the reference angle less, so the joint's angle is 0 where carom's is. `None`
+/// body B's by the reference angle less, so the joint's angle is 0 where carom's is. A hinge
+/// or slider with both a spring and a motor comes with a second joint on the same frames,
+/// every axis free, whose velocity motor is the motor (Rapier has one motor per axis, and
+/// the first joint's holds the spring): joint friction on a sprung ragdoll's hinges. `None`
 /// for a joint Rapier cannot express, with a note saying so; approximations are noted too.
 fn generic_joint(
     joint: &Joint,
     softness: SpringCoefficients<f32>,
     notes: &mut Notes,
-) -> Option<GenericJoint> {
+) -> Option<(GenericJoint, Option<GenericJoint>)> {
     let kind = joint.kind();
     let (break_force, break_torque) = joint.break_thresholds();
     if break_force.is_finite() || break_torque.is_finite() {
@@ -480,6 +615,8 @@ fn generic_joint(
         b.motor_velocity(axis, motor.speed, RIGID_MOTOR_DAMPING)
             .motor_max_force(axis, motor.max_force.min(f32::MAX))
     };
+    // The motor of a joint whose own motor holds its spring, on a joint of its own.
+    let mut second = None;
     let built = match *kind {
         JointKind::Distance(d) => {
             // The distance between the anchors is Rapier's coupled linear axis (as in its rope
@@ -522,12 +659,10 @@ fn generic_joint(
                 b = b.limits(JointAxis::AngX, [limits.lower, limits.upper]);
             }
             match (r.spring.filter(|s| s.hertz > 0.0), r.motor) {
-                (Some(spring), Some(_)) => {
-                    notes.add(
-                        "a revolute joint with both a spring and a motor: the motor not \
-                         translated (Rapier has one motor per axis, which holds the spring)",
-                    );
+                (Some(spring), Some(motor)) => {
                     b = spring_on(b, JointAxis::AngX, r.target_angle, spring);
+                    let free = builder(JointAxesMask::empty());
+                    second = Some(drive(free, JointAxis::AngX, motor).build());
                 }
                 (Some(spring), None) => b = spring_on(b, JointAxis::AngX, r.target_angle, spring),
                 (None, Some(motor)) => b = drive(b, JointAxis::AngX, motor),
@@ -541,12 +676,10 @@ fn generic_joint(
                 b = b.limits(JointAxis::LinX, [limits.lower, limits.upper]);
             }
             match (p.spring.filter(|s| s.hertz > 0.0), p.motor) {
-                (Some(spring), Some(_)) => {
-                    notes.add(
-                        "a prismatic joint with both a spring and a motor: the motor not \
-                         translated (Rapier has one motor per axis, which holds the spring)",
-                    );
+                (Some(spring), Some(motor)) => {
                     b = spring_on(b, JointAxis::LinX, p.target_translation, spring);
+                    let free = builder(JointAxesMask::empty());
+                    second = Some(drive(free, JointAxis::LinX, motor).build());
                 }
                 (Some(spring), None) => {
                     b = spring_on(b, JointAxis::LinX, p.target_translation, spring)
@@ -608,5 +741,5 @@ fn generic_joint(
             return None;
         }
     };
-    Some(built.build())
+    Some((built.build(), second))
 }

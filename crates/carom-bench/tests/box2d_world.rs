@@ -146,7 +146,7 @@ fn a_compound_body_keeps_each_collider_s_place_density_and_friction() {
 fn a_timed_box2d_run_measures_the_drop() {
     let world = box_over_ground();
     let mut box2d = Box2dWorld::from_carom(&world).unwrap();
-    let run = carom_bench::run_box2d(&mut box2d, DT, 120).unwrap();
+    let run = carom_bench::run_box2d(&mut box2d, DT, 120, None).unwrap();
     assert_eq!(run.timed_steps, 119);
     assert!(run.total_ms > 0.0 && !run.nan);
     assert!((run.top_drop - 2.0).abs() < 0.01, "drop {}", run.top_drop);

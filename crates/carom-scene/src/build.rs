@@ -7,11 +7,13 @@ use crate::scene::{
     Accuracy, BodySpec, Camera, Cells, Generator, JointKindSpec, JointSpec, Material, Pair,
     RevoluteSpec, Scene, ShapeSpec,
 };
+use crate::spawn::SpawnSchedule;
 use carom::{
     BodyDef, BodyHandle, BodyKind, CaromError, ChainDef, ColliderDef, Color, DebugDraw,
     DistanceJoint, DrawFlags, DrawOptions, JointDef, JointKind, Limits, MotorJoint, MouseJoint,
     PrismaticJoint, Real, RevoluteJoint, Shape, Vec2, WeldJoint, WheelJoint, World, vec2,
 };
+use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::rc::Rc;
 
@@ -39,14 +41,34 @@ pub struct SceneWorld {
 impl SceneWorld {
     /// Fires the events due and advances the world by one time step.
     pub fn step(&mut self) -> Result<(), CaromError> {
-        self.events.fire(&mut self.world, self.time_step);
+        self.events
+            .fire(&mut self.world, &mut self.colors, self.time_step);
         self.world.step(self.time_step)
     }
 
     /// Fires the events due now without stepping (harmless: [`SceneWorld::step`] fires each
     /// event once), so the state at time 0 includes the launches at time 0.
     pub fn fire_events(&mut self) {
-        self.events.fire(&mut self.world, self.time_step);
+        self.events
+            .fire(&mut self.world, &mut self.colors, self.time_step);
+    }
+
+    /// What the scene's spawn events will make and remove over the next `steps` steps,
+    /// written out for another engine to do the same before the same steps (a benchmark's
+    /// peers, say); see [`SpawnSchedule`].
+    ///
+    /// # Errors
+    /// A spawn event that has made copies already: schedule a scene before its first step.
+    pub fn spawn_schedule(&self, steps: u64) -> Result<SpawnSchedule, String> {
+        let (spawns, others) = self.events.spawns();
+        let now = self.world.step_count();
+        SpawnSchedule::new(
+            &spawns,
+            self.world.settings(),
+            (now, steps),
+            self.time_step,
+            others,
+        )
     }
 
     /// Describes the world to `out` as `options` select, in the scene's colours.
@@ -118,31 +140,23 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
     for (index, generator) in scene.generators.iter().enumerate() {
         let what = format!("generator {index} ({})", generator_name(generator));
         let batch = generate(generator).map_err(|e| invalid(what.clone(), e))?;
-        let mut handles = Vec::with_capacity(batch.defs.len());
-        let copies = batch.apart.iter().flatten().max().map_or(0, |&k| k + 1);
-        for ((mut def, color), apart) in batch.defs.into_iter().zip(batch.colors).zip(batch.apart) {
-            if let Some(copy) = apart {
-                let group = -(1 + groups_used + copy as i32);
-                for collider in &mut def.colliders {
-                    collider.filter.group = group;
-                }
-            }
-            let handle = world
-                .add_body(def)
-                .map_err(|e| invalid(what.clone(), e.to_string()))?;
-            if let Some(color) = color {
-                colors.insert(handle, color);
-            }
-            handles.push(handle);
-        }
+        let copies = batch.copies_apart();
+        let Batch {
+            defs,
+            colors: batch_colors,
+            joints,
+            apart,
+        } = batch;
+        let parts = (&batch_colors[..], &apart[..]);
+        let handles = add_bodies(&mut world, defs, parts, groups_used, &mut colors)
+            .map_err(|e| invalid(what.clone(), e.to_string()))?;
         groups_used += copies as i32;
         // Joined once every generator's bodies exist (a chain may hang from a later one).
         // The joints share their batch's handles: a copy each cost the joint grid's 19,800
         // joints 1.6 GB of copying.
         let handles: Rc<[BodyHandle]> = handles.into();
         pending.extend(
-            batch
-                .joints
+            joints
                 .into_iter()
                 .map(|joint| (what.clone(), joint, Rc::clone(&handles))),
         );
@@ -163,7 +177,7 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
     if world.colliders().any(|c| c.pre_solve()) {
         world.set_pre_solve(one_way::solid_from_above);
     }
-    let events = Events::new(&scene.events, &names, initial, &world)
+    let events = Events::new(&scene.events, &names, initial, &world, groups_used)
         .map_err(|(index, reason)| invalid(format!("event {index}"), reason))?;
     finish(scene, world, names, colors, events, time_step, &invalid)
 }
@@ -307,8 +321,13 @@ fn single_shape(spec: &ShapeSpec) -> Result<Shape, CaromError> {
         } => rounded(Shape::regular(*sides as usize, *radius)?, *rounding),
         ShapeSpec::Polygon { points: p, radius } => rounded(Shape::polygon(&points(p))?, *radius),
         ShapeSpec::Hull { points: p, radius } => rounded(Shape::hull(&points(p))?, *radius),
-        ShapeSpec::Segment { from, to } => {
-            checked(Shape::segment(vec2(from.0, from.1), vec2(to.0, to.1)))
+        ShapeSpec::Segment { from, to, radius } => {
+            let (from, to) = (vec2(from.0, from.1), vec2(to.0, to.1));
+            if *radius == 0.0 {
+                checked(Shape::segment(from, to))
+            } else {
+                checked(Shape::capsule(from, to, *radius))
+            }
         }
         ShapeSpec::Chain { .. } => unreachable!("chains are made by `colliders_of`"),
     }
@@ -417,7 +436,8 @@ fn body_def_of(spec: &BodySpec) -> Result<BodyDef, String> {
         .angular_velocity(spec.angular_velocity)
         .damping(material.damping.0, material.damping.1)
         .bullet(spec.bullet)
-        .awake(spec.awake);
+        .awake(spec.awake)
+        .sleep_threshold(spec.sleep_threshold);
     def.colliders = colliders;
     Ok(def)
 }
@@ -436,17 +456,52 @@ fn generator_name(generator: &Generator) -> &'static str {
     }
 }
 
+/// A batch's colours and copies that keep apart, body by body.
+pub(crate) type BatchParts<'a> = (&'a [Option<(f32, f32, f32)>], &'a [Option<u32>]);
+
+/// Adds a batch's bodies (`defs`, with their colours and the copies that keep apart, from
+/// `parts`) to `world`: the bodies of copy `k` of a group that does not collide with itself
+/// take collision group `-(1 + first_group + k)`. Returns their handles, in order.
+pub(crate) fn add_bodies(
+    world: &mut World,
+    defs: impl IntoIterator<Item = BodyDef>,
+    (batch_colors, apart): BatchParts<'_>,
+    first_group: i32,
+    colors: &mut HashMap<BodyHandle, (f32, f32, f32)>,
+) -> Result<Vec<BodyHandle>, CaromError> {
+    let mut handles = Vec::with_capacity(apart.len());
+    for ((mut def, color), apart) in defs.into_iter().zip(batch_colors).zip(apart) {
+        if let Some(copy) = apart {
+            let group = -(1 + first_group + *copy as i32);
+            for collider in &mut def.colliders {
+                collider.filter.group = group;
+            }
+        }
+        let handle = world.add_body(def)?;
+        if let Some(color) = color {
+            colors.insert(handle, *color);
+        }
+        handles.push(handle);
+    }
+    Ok(handles)
+}
+
 /// The bodies a generator makes, their colours, and the joints between them.
-#[derive(Debug, Clone, Default)]
-struct Batch {
-    defs: Vec<BodyDef>,
-    colors: Vec<Option<(f32, f32, f32)>>,
-    joints: Vec<PendingJoint>,
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+pub(crate) struct Batch {
+    pub defs: Vec<BodyDef>,
+    pub colors: Vec<Option<(f32, f32, f32)>>,
+    pub joints: Vec<PendingJoint>,
     /// Per body, the copy of a group that must not collide with itself it belongs to.
-    apart: Vec<Option<u32>>,
+    pub apart: Vec<Option<u32>>,
 }
 
 impl Batch {
+    /// How many copies of groups that keep apart it holds (each takes a collision group).
+    pub fn copies_apart(&self) -> u32 {
+        self.apart.iter().flatten().max().map_or(0, |&k| k + 1)
+    }
+
     /// Bodies all of one material.
     fn of(defs: Vec<BodyDef>, material: &Material) -> Self {
         Batch {
@@ -459,16 +514,16 @@ impl Batch {
 }
 
 /// A joint's body: one of its batch's (by index), or one the scene named.
-#[derive(Debug, Clone)]
-enum Target {
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub(crate) enum Target {
     Local(usize),
     Named(String),
 }
 
 /// A joint waiting for its bodies to exist.
-#[derive(Debug, Clone)]
-struct PendingJoint {
-    bodies: [Target; 2],
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub(crate) struct PendingJoint {
+    pub bodies: [Target; 2],
     kind: JointKindSpec,
     anchor: Vec2,
     anchor_b: Option<Vec2>,
@@ -507,7 +562,7 @@ impl PendingJoint {
     }
 
     /// The same joint moved by `shift`, its batch bodies `offset` further on.
-    fn shifted(&self, shift: Vec2, offset: usize) -> Self {
+    pub fn shifted(&self, shift: Vec2, offset: usize) -> Self {
         let mut moved = self.clone();
         for target in &mut moved.bodies {
             if let Target::Local(index) = target {
@@ -524,7 +579,7 @@ impl PendingJoint {
 
     /// The joint's definition, its bodies found among the batch's `handles` or the scene's
     /// `names`.
-    fn def(
+    pub fn def(
         &self,
         handles: &[BodyHandle],
         names: &HashMap<String, BodyHandle>,
@@ -624,7 +679,7 @@ impl PendingJoint {
 }
 
 /// The bodies and joints a generator makes.
-fn generate(generator: &Generator) -> Result<Batch, String> {
+pub(crate) fn generate(generator: &Generator) -> Result<Batch, String> {
     let square =
         |size: f32| checked(Shape::rect(0.5 * size, 0.5 * size)).map_err(|e| e.to_string());
     let (defs, material) = match generator {
@@ -678,27 +733,55 @@ fn generate(generator: &Generator) -> Result<Batch, String> {
             columns,
             rows,
             spacing,
-            shape: spec,
+            shape: one,
+            shapes: cycle,
+            count,
             kind: kind_name,
             material,
             awake,
+            compound,
         } => {
-            let shape = shape(spec)?;
-            let mut defs = Vec::new();
-            for row in 0..*rows {
-                for column in 0..*columns {
-                    let at = vec2(
-                        origin.0 + column as f32 * spacing.0,
-                        origin.1 + row as f32 * spacing.1,
-                    );
-                    defs.push(with_material(
-                        BodyDef::new(*kind_name, shape.clone())
-                            .position(at)
-                            .awake(*awake),
-                        material,
-                    ));
-                }
+            let shapes = match (one, cycle.is_empty()) {
+                (Some(spec), true) => vec![shape(spec)?],
+                (None, false) => cycle.iter().map(shape).collect::<Result<Vec<_>, _>>()?,
+                (Some(_), false) => return Err("give `shape` or `shapes`, not both".into()),
+                (None, true) => return Err("a grid needs a `shape` or `shapes`".into()),
+            };
+            let cells = columns.saturating_mul(*rows);
+            let count = count.unwrap_or(cells);
+            if count > cells {
+                return Err(format!(
+                    "count {count} is more than the {columns} x {rows} cells"
+                ));
             }
+            let cells = (0..count).map(|i| {
+                let (row, column) = (i / columns, i % columns);
+                let at = vec2(
+                    origin.0 + column as f32 * spacing.0,
+                    origin.1 + row as f32 * spacing.1,
+                );
+                (at, shapes[i as usize % shapes.len()].clone())
+            });
+            let defs = if *compound {
+                let colliders: Vec<ColliderDef> = cells
+                    .map(|(at, shape)| ColliderDef::new(shape).offset(at))
+                    .collect();
+                let Some(first) = colliders.first() else {
+                    return Err("a compound grid needs at least one cell".into());
+                };
+                let mut def = BodyDef::new(*kind_name, first.shape.clone()).awake(*awake);
+                def.colliders = colliders;
+                vec![with_material(def, material)]
+            } else {
+                cells
+                    .map(|(at, shape)| {
+                        with_material(
+                            BodyDef::new(*kind_name, shape).position(at).awake(*awake),
+                            material,
+                        )
+                    })
+                    .collect()
+            };
             (defs, *material)
         }
         Generator::JointGrid {
@@ -761,7 +844,7 @@ fn generate(generator: &Generator) -> Result<Batch, String> {
             of,
         } => {
             let one = generate(of)?;
-            let copies_apart = one.apart.iter().flatten().max().map_or(0, |&k| k + 1);
+            let copies_apart = one.copies_apart();
             let mut all = Batch::default();
             for row in 0..*rows {
                 for column in 0..*columns {

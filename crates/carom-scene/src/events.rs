@@ -1,7 +1,8 @@
 //! Timed events: launching a body at a moment, respawning one periodically, spinning a
-//! kinematic frame.
+//! kinematic frame, making and remaking copies of bodies and joints in turn.
 
 use crate::scene::EventSpec;
+use crate::spawn::Spawn;
 use carom::{BodyDef, BodyHandle, BodyKind, World, vec2};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -27,6 +28,7 @@ enum Action {
         /// Each body with its offset from the pivot and its angle at time zero.
         bodies: Vec<(BodyHandle, carom::Vec2, f32)>,
     },
+    Spawn(Spawn),
 }
 
 /// A scene's events, ready to fire.
@@ -36,12 +38,14 @@ pub(crate) struct Events {
 }
 
 impl Events {
-    /// Resolves body names; an error gives the event's index and the reason.
+    /// Resolves body names; an error gives the event's index and the reason. Spawned copies
+    /// that keep apart take collision groups after the first `groups_used`.
     pub fn new(
         specs: &[EventSpec],
         names: &HashMap<String, BodyHandle>,
         mut initial: HashMap<BodyHandle, BodyDef>,
         world: &World,
+        mut groups_used: i32,
     ) -> Result<Self, (usize, String)> {
         let find = |index: usize, name: &str| {
             names
@@ -111,12 +115,36 @@ impl Events {
                         bodies: frame,
                     }
                 }
+                EventSpec::Spawn {
+                    at,
+                    every,
+                    origin,
+                    columns,
+                    rows,
+                    spacing,
+                    of,
+                } => {
+                    let template = crate::build::generate(of).map_err(|e| (index, e))?;
+                    let groups = Spawn::groups(&template, *columns, *rows);
+                    let spawn = Spawn::new(
+                        (*at, *every),
+                        vec2(origin.0, origin.1),
+                        (*columns, *rows),
+                        vec2(spacing.0, spacing.1),
+                        template,
+                        groups_used,
+                        world,
+                    )
+                    .map_err(|e| (index, e))?;
+                    groups_used = groups_used.saturating_add(groups);
+                    Action::Spawn(spawn)
+                }
             });
         }
         Ok(Events { actions })
     }
 
-    /// Every body the events move.
+    /// Every body the events move or have made.
     pub fn bodies(&self) -> Vec<BodyHandle> {
         let mut moved = Vec::new();
         for action in &self.actions {
@@ -125,13 +153,35 @@ impl Events {
                 Action::Spin { bodies, .. } => {
                     moved.extend(bodies.iter().map(|(body, _, _)| *body))
                 }
+                Action::Spawn(spawn) => moved.extend(spawn.bodies()),
             }
         }
         moved
     }
 
-    /// Fires every event due at the world's current time, before a step of `dt` seconds.
-    pub fn fire(&mut self, world: &mut World, dt: f32) {
+    /// The spawn events, in order, and the names of the other events' kinds, in order.
+    pub fn spawns(&self) -> (Vec<&Spawn>, Vec<&'static str>) {
+        let mut spawns = Vec::new();
+        let mut others = Vec::new();
+        for action in &self.actions {
+            match action {
+                Action::Spawn(spawn) => spawns.push(spawn),
+                Action::Launch { .. } => others.push("launch"),
+                Action::Respawn { .. } => others.push("respawn"),
+                Action::Spin { .. } => others.push("spin"),
+            }
+        }
+        (spawns, others)
+    }
+
+    /// Fires every event due at the world's current time, before a step of `dt` seconds;
+    /// bodies an event makes or removes take or lose their colour in `colors`.
+    pub fn fire(
+        &mut self,
+        world: &mut World,
+        colors: &mut HashMap<BodyHandle, (f32, f32, f32)>,
+        dt: f32,
+    ) {
         let now = world.time() + 1e-9;
         for action in &mut self.actions {
             match action {
@@ -183,6 +233,7 @@ impl Events {
                         }
                     }
                 }
+                Action::Spawn(spawn) => spawn.fire(world, colors, dt),
             }
         }
     }

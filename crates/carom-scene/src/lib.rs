@@ -26,12 +26,14 @@ mod load;
 mod one_way;
 mod saved;
 pub mod scene;
+mod spawn;
 
 pub use build::{SceneWorld, build};
 pub use error::SceneError;
 pub use load::{parse, read};
 pub use saved::{SavedState, to_text, write};
 pub use scene::{Accuracy, Camera, Scene};
+pub use spawn::{Made, SpawnChange, SpawnSchedule};
 
 /// Reads, parses and builds a scene file.
 pub fn load(path: &std::path::Path) -> Result<SceneWorld, SceneError> {

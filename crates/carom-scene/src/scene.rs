@@ -226,12 +226,16 @@ pub enum ShapeSpec {
         radius: f32,
     },
     /// A two-sided segment for static geometry, its ends where they are given (not
-    /// recentred); it has no mass.
+    /// recentred); it has no mass. Rounded by a `radius`, it is a capsule between those ends
+    /// (Box2D's `b2Capsule`: two centres and a radius), which has mass.
     Segment {
         /// One end, m.
         from: Pair,
         /// The other end, m.
         to: Pair,
+        /// Rounding, m: 0 for a bare segment.
+        #[serde(default)]
+        radius: f32,
     },
     /// A chain of one-sided segments for terrain, its points where they are given; it collides
     /// on its right, walking along the points (ground whose solid side is below runs right to
@@ -323,6 +327,14 @@ pub struct BodySpec {
     /// sides. A collider may say otherwise.
     #[serde(default)]
     pub one_way: bool,
+    /// The speed of its fastest point below which it counts as resting, m/s (carom's
+    /// `BodyDef::sleep_threshold`; Box2D's ragdolls use 0.1). Default 0.05.
+    #[serde(default = "sleep_threshold")]
+    pub sleep_threshold: f32,
+}
+
+fn sleep_threshold() -> f32 {
+    carom::SLEEP_THRESHOLD
 }
 
 /// One more shape of a body, placed in its frame; its material is the body's unless given.
@@ -398,7 +410,7 @@ pub enum Generator {
         #[serde(default)]
         material: Material,
     },
-    /// `columns × rows` copies of a shape, the first centred on `origin`.
+    /// `columns × rows` copies of a shape, the first centred on `origin`, made row by row.
     Grid {
         /// Centre of the first (bottom-left) body.
         origin: Pair,
@@ -408,8 +420,17 @@ pub enum Generator {
         rows: u32,
         /// Distance between neighbours' centres, m.
         spacing: Pair,
-        /// The shape of each.
-        shape: ShapeSpec,
+        /// The shape of each. Give this or `shapes`.
+        #[serde(default)]
+        shape: Option<ShapeSpec>,
+        /// Shapes taken in turn, in the order the bodies are made (Box2D's spinner cycles a
+        /// capsule, a circle and a square). Give this or `shape`.
+        #[serde(default)]
+        shapes: Vec<ShapeSpec>,
+        /// Only the first `count` cells, row by row, the last row left part-filled. Default
+        /// all.
+        #[serde(default)]
+        count: Option<u32>,
         /// Their kind.
         #[serde(default = "dynamic")]
         kind: BodyKind,
@@ -420,6 +441,11 @@ pub enum Generator {
         /// something touches them).
         #[serde(default = "yes")]
         awake: bool,
+        /// One body at the world origin holding every copy as a collider where the copy
+        /// would be, instead of a body each (Box2D's rain ground: one static body of 2505
+        /// boxes).
+        #[serde(default)]
+        compound: bool,
     },
     /// `columns × rows` copies of a shape joined into a net by revolute joints (Box2D's joint
     /// grid): each body is hinged to the one before it in its column and to the one beside it
@@ -759,4 +785,35 @@ pub enum EventSpec {
         /// Turn rate, rad/s (positive is counter-clockwise).
         angular_velocity: f32,
     },
+    /// Copies of a generator's bodies and joints made and remade in turn at the places of a
+    /// `columns × rows` grid (Box2D's rain of ragdolls). Turn `n` comes at `at + n every`
+    /// seconds, before the first step that starts then or later: it takes column `n` mod
+    /// `columns` and, row by row from the first, removes the copy made at that place the
+    /// last time round (its bodies, with their joints) and makes a new one there. A copy is
+    /// what `of` makes, moved by its place: `origin` for the first, `spacing` on from one
+    /// column or row to the next. A copy's joints join its own bodies.
+    Spawn {
+        /// When the first turn comes, s.
+        #[serde(default)]
+        at: f32,
+        /// Time from one turn to the next, s.
+        every: f32,
+        /// Where the first place is: what `of` makes there is moved by this, m.
+        #[serde(default)]
+        origin: Pair,
+        /// Columns of places, one taken each turn.
+        columns: u32,
+        /// Places in a column, each filled at its column's turn.
+        #[serde(default = "one_place")]
+        rows: u32,
+        /// From one column's places to the next's (x) and one row's to the next's (y), m.
+        #[serde(default)]
+        spacing: Pair,
+        /// What is made at each place.
+        of: Box<Generator>,
+    },
+}
+
+fn one_place() -> u32 {
+    1
 }

@@ -110,7 +110,8 @@ pub const SHAPE_CAST_TOLERANCE: Real = 0.25 * LINEAR_SLOP;
 
 // Sleeping.
 
-/// Bodies whose fastest point moves slower than this may sleep, m/s (Box2D's 5 cm/s).
+/// Bodies whose fastest point moves slower than this may sleep, m/s (Box2D's 5 cm/s): the
+/// default of each body's own [`crate::BodyDef::sleep_threshold`].
 pub const SLEEP_THRESHOLD: Real = 0.05;
 
 /// How long a whole island must rest before it sleeps, s (Box2D's 0.5 s).

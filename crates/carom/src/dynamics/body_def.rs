@@ -53,6 +53,21 @@ pub struct BodyDef {
     /// until something hits it. Ignored for static and kinematic bodies.
     #[cfg_attr(feature = "serde", serde(default = "crate::dynamics::body_def::yes"))]
     pub awake: bool,
+    /// The speed of its fastest point below which a dynamic body counts as resting, m/s:
+    /// its island sleeps once every body in it has rested for [`crate::TIME_TO_SLEEP`].
+    /// Default [`crate::SLEEP_THRESHOLD`] (Box2D's `sleepThreshold`, also per body).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "crate::dynamics::body_def::sleep_threshold")
+    )]
+    pub sleep_threshold: Real,
+}
+
+/// [`crate::SLEEP_THRESHOLD`], the default of [`BodyDef::sleep_threshold`] in saved
+/// definitions.
+#[cfg(feature = "serde")]
+pub(crate) fn sleep_threshold() -> Real {
+    crate::constants::SLEEP_THRESHOLD
 }
 
 /// `true`, the default of [`BodyDef::awake`] in saved definitions.
@@ -78,6 +93,7 @@ impl BodyDef {
             bullet: false,
             user_tag: 0,
             awake: true,
+            sleep_threshold: crate::constants::SLEEP_THRESHOLD,
         }
     }
 
@@ -221,6 +237,13 @@ impl BodyDef {
     /// Sets the user tag.
     pub fn user_tag(mut self, tag: u64) -> Self {
         self.user_tag = tag;
+        self
+    }
+
+    /// Sets the speed below which the body counts as resting (see
+    /// [`BodyDef::sleep_threshold`]).
+    pub fn sleep_threshold(mut self, threshold: Real) -> Self {
+        self.sleep_threshold = threshold;
         self
     }
 }

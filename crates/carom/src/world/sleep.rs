@@ -2,7 +2,7 @@
 //! (bodies, colliders, contacts, joints), and wake as a whole when something touches or moves
 //! them.
 
-use crate::constants::{SLEEP_THRESHOLD, TIME_TO_SLEEP};
+use crate::constants::TIME_TO_SLEEP;
 use crate::dynamics::body::BodyKind;
 use crate::math::Real;
 use crate::world::World;
@@ -25,7 +25,7 @@ impl World {
             if body.kind() != BodyKind::Dynamic {
                 continue;
             }
-            body.update_sleep_time(SLEEP_THRESHOLD, dt);
+            body.update_sleep_time(dt);
             checked += 1;
             let (time, id) = (body.sleep_time(), body.island().expect("dynamic bodies"));
             let island = self.islands.get_mut(id);

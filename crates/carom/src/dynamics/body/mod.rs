@@ -87,8 +87,14 @@ pub struct Body {
     /// How far the body's farthest point moved in the last step, m: the solver's position
     /// correction moves bodies without leaving them a velocity, and sleep must see that.
     last_motion: Real,
-    /// How long the body has moved slower than the sleep threshold, s.
+    /// How long the body has moved slower than its sleep threshold, s.
     sleep_time: Real,
+    /// The speed below which the body counts as resting, m/s.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "crate::dynamics::body_def::sleep_threshold")
+    )]
+    sleep_threshold: Real,
     /// Asleep: skipped by every stage until something wakes it.
     sleeping: bool,
     /// A dynamic body's island (see [`crate::dynamics::island`]), and its neighbours in the
@@ -160,6 +166,7 @@ impl Body {
             start: Pose::default(),
             last_motion: 0.0,
             sleep_time: 0.0,
+            sleep_threshold: check_non_negative("sleep threshold", def.sleep_threshold)?,
             sleeping: false,
             island: None,
             island_prev: None,
@@ -403,10 +410,16 @@ impl Body {
         self.kind != BodyKind::Static && !self.sleeping
     }
 
-    /// How long the body has been slower than the sleep threshold, s.
+    /// How long the body has been slower than its sleep threshold, s.
     #[inline]
     pub fn sleep_time(&self) -> Real {
         self.sleep_time
+    }
+
+    /// The speed of its fastest point below which the body counts as resting, m/s.
+    #[inline]
+    pub fn sleep_threshold(&self) -> Real {
+        self.sleep_threshold
     }
 
     /// Wakes the body (its island follows at the next step, through their contacts).
@@ -464,7 +477,8 @@ impl Body {
     /// Advances or resets the sleep timer from the body's fastest point speed, or from half
     /// the speed its last step's motion implies if that is more (Box2D's rule): a body still
     /// being pushed out of an overlap, with no velocity left after relaxing, stays awake.
-    pub(crate) fn update_sleep_time(&mut self, threshold: Real, dt: Real) {
+    pub(crate) fn update_sleep_time(&mut self, dt: Real) {
+        let threshold = self.sleep_threshold;
         /// How much position correction counts beside true velocity (Box2D's 0.5).
         const CORRECTION_WEIGHT: Real = 0.5;
         let speed = self.linear_velocity.norm() + self.reach * self.angular_velocity.abs();
@@ -847,15 +861,36 @@ mod tests {
         let dt = 1.0 / 60.0;
         // At rest and still: the timer runs.
         body.finish_step(Vec2::zeros(), 0.0, Vec2::zeros(), Rot::identity());
-        body.update_sleep_time(0.05, dt);
+        body.update_sleep_time(dt);
         assert_eq!(body.sleep_time(), dt);
         // No velocity left, but pushed 1 cm this step (0.3 m/s, half counted): awake.
         body.finish_step(Vec2::zeros(), 0.0, vec2(0.0, 0.01), Rot::identity());
-        body.update_sleep_time(0.05, dt);
+        body.update_sleep_time(dt);
         assert_eq!(body.sleep_time(), 0.0);
         // Turned 0.01 rad: its corners moved 7 mm. Awake too.
         body.finish_step(Vec2::zeros(), 0.0, Vec2::zeros(), Rot::new(0.01));
-        body.update_sleep_time(0.05, dt);
+        body.update_sleep_time(dt);
         assert_eq!(body.sleep_time(), 0.0);
+    }
+
+    #[test]
+    fn each_body_rests_below_its_own_sleep_threshold() {
+        let handle = BodyHandle {
+            index: 0,
+            generation: 0,
+        };
+        let dt = 1.0 / 60.0;
+        // Drifting at 7 cm/s: moving by the default 5 cm/s, resting by Box2D's ragdolls' 10.
+        let drifting = |threshold: Real| {
+            let def = BodyDef::dynamic(Shape::circle(0.5)).sleep_threshold(threshold);
+            let mut body = Body::new(handle, &def).unwrap();
+            body.finish_step(vec2(0.07, 0.0), 0.0, vec2(0.07 * dt, 0.0), Rot::identity());
+            body.update_sleep_time(dt);
+            body.sleep_time()
+        };
+        assert_eq!(drifting(crate::SLEEP_THRESHOLD), 0.0);
+        assert_eq!(drifting(0.1), dt);
+        let negative = BodyDef::dynamic(Shape::circle(0.5)).sleep_threshold(-1.0);
+        assert!(Body::new(handle, &negative).is_err());
     }
 }

@@ -47,6 +47,7 @@ impl Body {
             self.angular_damping,
             self.last_motion,
             self.sleep_time,
+            self.sleep_threshold,
             self.mass.mass,
             self.mass.inv_mass,
             self.mass.inertia,
