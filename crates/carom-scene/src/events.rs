@@ -144,7 +144,8 @@ impl Events {
         Ok(Events { actions })
     }
 
-    /// Every body the events move or have made.
+    /// Every body the events move: not the copies spawn events make, which may be removed by
+    /// hand (the place is made again at its turn all the same).
     pub fn bodies(&self) -> Vec<BodyHandle> {
         let mut moved = Vec::new();
         for action in &self.actions {
@@ -153,7 +154,7 @@ impl Events {
                 Action::Spin { bodies, .. } => {
                     moved.extend(bodies.iter().map(|(body, _, _)| *body))
                 }
-                Action::Spawn(spawn) => moved.extend(spawn.bodies()),
+                Action::Spawn(_) => {}
             }
         }
         moved

@@ -185,14 +185,6 @@ impl Spawn {
             self.turn += 1;
         }
     }
-
-    /// Every body its copies hold now.
-    pub fn bodies(&self) -> impl Iterator<Item = BodyHandle> + '_ {
-        self.places
-            .iter()
-            .flatten()
-            .flat_map(|made| made.bodies.iter().copied())
-    }
 }
 
 /// What a scene's spawn events will do over a run, written out ahead for another engine to do
