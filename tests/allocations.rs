@@ -54,6 +54,33 @@ fn hanging_grid(effects: Effects) -> World {
     world
 }
 
+/// Circles, capsules and boxes in turn, flying fast enough for continuous collision to sweep
+/// every one of them each step (gravity off, nothing in their way).
+fn fast_mixed_shapes() -> World {
+    let settings = WorldSettings {
+        effects: Effects::ALL
+            .without(Effect::Sleeping)
+            .without(Effect::Gravity),
+        ..WorldSettings::default()
+    };
+    let mut world = World::with_settings(settings).unwrap();
+    let shapes = [
+        Shape::circle(0.25),
+        Shape::capsule(vec2(-0.25, 0.0), vec2(0.25, 0.0), 0.2),
+        Shape::rect(0.25, 0.25),
+    ];
+    for i in 0..30 {
+        world
+            .add_body(
+                BodyDef::dynamic(shapes[i % 3].clone())
+                    .position(vec2(0.0, 2.0 * i as f32))
+                    .linear_velocity(vec2(60.0, 0.0)),
+            )
+            .unwrap();
+    }
+    world
+}
+
 /// Allocations over `steps` steps of `world` after `warm_up` steps, on `threads` threads.
 fn allocations(mut world: World, threads: usize, warm_up: usize, steps: usize) -> usize {
     carom_tests::on_threads(threads, || {
@@ -87,6 +114,12 @@ fn a_world_in_steady_state_allocates_nothing_per_step() {
             pyramid(20, Effects::ALL),
             1,
             30,
+        ),
+        (
+            "fast circles, capsules and boxes swept in turn",
+            fast_mixed_shapes(),
+            1,
+            5,
         ),
         (
             "a hanging grid of joints, 1 thread",

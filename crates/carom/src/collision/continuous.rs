@@ -175,7 +175,7 @@ pub(crate) fn solve_continuous(
         sweeps += 1;
         let mut first: Option<Real> = None;
         for collider in body.colliders().iter().filter_map(|&c| colliders.get(c)) {
-            let placed = swept.get_or_insert_with(|| collider.world_shape().clone());
+            let placed = placed_shape(swept, collider);
             collider.place_shape(placed, &sweep.at(0.0));
             let path = placed.aabb().union(&collider.aabb());
             let mut visit = |handle| {
@@ -193,7 +193,7 @@ pub(crate) fn solve_continuous(
                 if !eligible {
                     return;
                 }
-                let placed = swept.get_or_insert_with(|| collider.world_shape().clone());
+                let placed = placed_shape(swept, collider);
                 if let Some(t) =
                     time_of_impact(collider, &sweep, other.world_shape(), target, placed)
                     && first.is_none_or(|f| t < f)
@@ -222,11 +222,25 @@ pub(crate) fn solve_continuous(
     (impacts.len(), sweeps)
 }
 
+/// The scratch shape a sweep of `collider` places along its path: one per kind of world
+/// shape, so sweeping a circle after a polygon does not give up the polygon's storage.
+fn placed_shape<'a>(
+    swept: &'a mut [Option<WorldShape>; 3],
+    collider: &Collider,
+) -> &'a mut WorldShape {
+    let kind = match collider.world_shape() {
+        WorldShape::Circle { .. } => 0,
+        WorldShape::Polygon { .. } => 1,
+        WorldShape::ChainSegment { .. } => 2,
+    };
+    swept[kind].get_or_insert_with(|| collider.world_shape().clone())
+}
+
 /// What continuous collision works in, kept so a step allocates nothing.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct ContinuousScratch {
-    /// The shape a sweep places along its path.
-    swept: Option<WorldShape>,
+    /// The shapes a sweep places along its path, one per kind of world shape.
+    swept: [Option<WorldShape>; 3],
     /// Bodies to put back at their times of impact: (storage index, centre, rotation).
     impacts: Vec<(usize, Vec2, Rot)>,
 }
