@@ -331,9 +331,12 @@ fn bench_world(
     })
 }
 
+/// The top drop, or a dash for a scene that starts with no dynamic body to follow.
 fn drop_cell(r: &RunResult) -> String {
     if r.nan {
         format!("{:.3} (NaN!)", r.top_drop)
+    } else if r.top_drop.is_nan() {
+        "—".to_string()
     } else {
         format!("{:.3}", r.top_drop)
     }

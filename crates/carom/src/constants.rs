@@ -162,6 +162,10 @@ pub(crate) const ITEMS_PER_TASK: usize = 2048;
 /// a tenth of a microsecond, a fork several microseconds).
 pub(crate) const CONTACTS_PER_TASK: usize = 256;
 
+/// Fast bodies per task when continuous collision's sweeps are shared among threads (a sweep
+/// costs a microsecond or more: a tree query and conservative advancement per shape met).
+pub(crate) const SWEEPS_PER_TASK: usize = 32;
+
 /// Moved colliders per task when the broadphase's pair queries are shared among threads (a
 /// query walks the trees in about a microsecond).
 pub(crate) const MOVES_PER_TASK: usize = 64;

@@ -15,13 +15,15 @@
 
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::distance::separation;
-use crate::constants::{FAST_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS};
+use crate::constants::{FAST_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS, SWEEPS_PER_TASK};
 use crate::dynamics::body::{Body, BodyHandle, BodyKind, Pose};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};
 use crate::geometry::shape::WorldShape;
 use crate::handle_map::HandleMap;
 use crate::joint::store::JointStore;
 use crate::math::{Isometry, Real, Rot, Vec2, angle_of, rotation};
+use crate::parallel::worth_sharing;
+use rayon::prelude::*;
 use std::ops::Range;
 
 /// How far any point of `body` can have moved since `from`: at least the sweep's reach
@@ -143,6 +145,10 @@ fn sink_allowance(min_extent: Real, target: Real) -> Real {
 /// and the number of bodies swept. A sweep stops only at colliders its collider may collide
 /// with: their collision filters agree and no joint (`joints`) keeps the two bodies apart.
 /// `scratch` keeps its memory from step to step.
+///
+/// The fast bodies are picked in order, swept on as many threads as rayon gives (each sweep
+/// reads the world as the solver left it, and nothing is moved until all are done), then put
+/// back in order: the same bits on any number of threads.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_continuous(
     bodies: &mut HandleMap<BodyHandle, Body>,
@@ -154,48 +160,124 @@ pub(crate) fn solve_continuous(
     target: Real,
     hooked: bool,
 ) -> (usize, usize) {
-    let ContinuousScratch { swept, impacts } = scratch;
-    impacts.clear();
-    let mut sweeps = 0;
-    let awake_bodies = &bodies.as_slice()[awake.clone()];
-    for (index, body) in awake.clone().zip(awake_bodies) {
-        let start = body.start_pose();
+    let ContinuousScratch {
+        fast,
+        impacts,
+        swept,
+    } = scratch;
+    fast.clear();
+    let all = bodies.as_slice();
+    for (index, body) in awake.clone().zip(&all[awake]) {
         if body.kind() != BodyKind::Dynamic {
             continue;
         }
         let slow = FAST_FRACTION * body.min_extent();
-        if motion_bound(start, body) <= slow {
+        if motion_bound(body.start_pose(), body) <= slow {
             continue;
         }
-        let sweep = Sweep::new(start, body);
+        let sweep = Sweep::new(body.start_pose(), body);
         let reach = sweep.translation.norm() + sweep.turn.abs() * body.reach();
-        if reach <= slow {
-            continue;
+        if reach > slow {
+            fast.push((index, sweep));
         }
-        sweeps += 1;
+    }
+    impacts.clear();
+    impacts.resize(fast.len(), None);
+    {
+        let world = SweptWorld {
+            bodies: all,
+            colliders,
+            broadphase,
+            joints,
+            target,
+            hooked,
+        };
+        let sweep_run = |fast: &[(usize, Sweep)],
+                         impacts: &mut [Option<(Vec2, Rot)>],
+                         shapes: &mut [Option<WorldShape>; 3]| {
+            for (&(index, sweep), impact) in fast.iter().zip(impacts.iter_mut()) {
+                *impact = world.first_impact(index, &sweep, shapes);
+            }
+        };
+        if worth_sharing(fast.len(), SWEEPS_PER_TASK) {
+            // One set of scratch shapes per task, kept from step to step.
+            let tasks = fast.len().div_ceil(SWEEPS_PER_TASK);
+            if swept.len() < tasks {
+                swept.resize_with(tasks, Default::default);
+            }
+            fast.par_chunks(SWEEPS_PER_TASK)
+                .zip(impacts.par_chunks_mut(SWEEPS_PER_TASK))
+                .zip(swept.par_iter_mut())
+                .for_each(|((fast, impacts), shapes)| sweep_run(fast, impacts, shapes));
+        } else if !fast.is_empty() {
+            if swept.is_empty() {
+                swept.push(Default::default());
+            }
+            sweep_run(fast, impacts, &mut swept[0]);
+        }
+    }
+    let moved = bodies.as_mut_slice();
+    let mut count = 0;
+    for (&(index, _), impact) in fast.iter().zip(impacts.iter()) {
+        if let &Some((center, rotation)) = impact {
+            let body = &mut moved[index];
+            body.move_to_time_of_impact(center, rotation);
+            place_colliders(body, colliders);
+            count += 1;
+        }
+    }
+    (count, fast.len())
+}
+/// What a sweep reads of the world: all of it as the solver left it.
+struct SweptWorld<'a> {
+    bodies: &'a [Body],
+    colliders: &'a HandleMap<ColliderHandle, Collider>,
+    broadphase: &'a BroadPhase,
+    joints: &'a JointStore,
+    /// The gap a time of impact leaves, m.
+    target: Real,
+    /// The world has a pre-solve hook.
+    hooked: bool,
+}
+
+impl SweptWorld<'_> {
+    /// Where the body at storage index `index`, moving along `sweep`, first meets a collider
+    /// it may not pass through (its centre of mass and rotation then), if before the end of
+    /// the step; `shapes` are scratch.
+    fn first_impact(
+        &self,
+        index: usize,
+        sweep: &Sweep,
+        shapes: &mut [Option<WorldShape>; 3],
+    ) -> Option<(Vec2, Rot)> {
+        let body = &self.bodies[index];
         let mut first: Option<Real> = None;
-        for collider in body.colliders().iter().filter_map(|&c| colliders.get(c)) {
-            let placed = placed_shape(swept, collider);
+        for collider in body
+            .colliders()
+            .iter()
+            .filter_map(|&c| self.colliders.get(c))
+        {
+            let placed = placed_shape(shapes, collider);
             collider.place_shape(placed, &sweep.at(0.0));
             let path = placed.aabb().union(&collider.aabb());
             let mut visit = |handle| {
-                let Some(other) = colliders.get(handle) else {
+                let Some(other) = self.colliders.get(handle) else {
                     return;
                 };
-                let other_body = &bodies.as_slice()[other.body_index()];
+                let other_body = &self.bodies[other.body_index()];
                 // Chains are one-sided: a body may pass up through one from behind.
                 let eligible = other.body() != body.handle()
                     && (other_body.kind() == BodyKind::Static || body.is_bullet())
                     && collider.filter().collides_with(&other.filter())
-                    && !joints.filters(body.handle(), other.body())
+                    && !self.joints.filters(body.handle(), other.body())
                     && !other.world_shape().is_link_behind(sweep.start)
-                    && !(hooked && (collider.pre_solve() || other.pre_solve()));
+                    && !(self.hooked && (collider.pre_solve() || other.pre_solve()));
                 if !eligible {
                     return;
                 }
-                let placed = placed_shape(swept, collider);
+                let placed = placed_shape(shapes, collider);
                 if let Some(t) =
-                    time_of_impact(collider, &sweep, other.world_shape(), target, placed)
+                    time_of_impact(collider, sweep, other.world_shape(), self.target, placed)
                     && first.is_none_or(|f| t < f)
                 {
                     first = Some(t);
@@ -203,29 +285,19 @@ pub(crate) fn solve_continuous(
             };
             // Only a bullet stops at moving bodies: the others need only the static tree.
             if body.is_bullet() {
-                broadphase.query(&path, &mut visit);
+                self.broadphase.query(&path, &mut visit);
             } else {
-                broadphase.query_static(&path, &mut visit);
+                self.broadphase.query_static(&path, &mut visit);
             }
         }
-        if let Some(t) = first.filter(|&t| t < 1.0) {
-            let (center, rotation) = sweep.pose_at(t);
-            impacts.push((index, center, rotation));
-        }
+        first.filter(|&t| t < 1.0).map(|t| sweep.pose_at(t))
     }
-    let moved = bodies.as_mut_slice();
-    for &(index, center, rotation) in impacts.iter() {
-        let body = &mut moved[index];
-        body.move_to_time_of_impact(center, rotation);
-        place_colliders(body, colliders);
-    }
-    (impacts.len(), sweeps)
 }
 
 /// The scratch shape a sweep of `collider` places along its path: one per kind of world
 /// shape, so sweeping a circle after a polygon does not give up the polygon's storage.
 fn placed_shape<'a>(
-    swept: &'a mut [Option<WorldShape>; 3],
+    shapes: &'a mut [Option<WorldShape>; 3],
     collider: &Collider,
 ) -> &'a mut WorldShape {
     let kind = match collider.world_shape() {
@@ -233,16 +305,18 @@ fn placed_shape<'a>(
         WorldShape::Polygon { .. } => 1,
         WorldShape::ChainSegment { .. } => 2,
     };
-    swept[kind].get_or_insert_with(|| collider.world_shape().clone())
+    shapes[kind].get_or_insert_with(|| collider.world_shape().clone())
 }
 
 /// What continuous collision works in, kept so a step allocates nothing.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct ContinuousScratch {
-    /// The shapes a sweep places along its path, one per kind of world shape.
-    swept: [Option<WorldShape>; 3],
-    /// Bodies to put back at their times of impact: (storage index, centre, rotation).
-    impacts: Vec<(usize, Vec2, Rot)>,
+    /// The fast bodies of this step: storage index and sweep.
+    fast: Vec<(usize, Sweep)>,
+    /// Where each fast body is put back, if it is.
+    impacts: Vec<Option<(Vec2, Rot)>>,
+    /// Scratch shapes, one set per task: a sweep places its shape along its path in them.
+    swept: Vec<[Option<WorldShape>; 3]>,
 }
 
 #[cfg(test)]
