@@ -166,6 +166,11 @@ pub(crate) const CONTACTS_PER_TASK: usize = 256;
 /// costs a microsecond or more: a tree query and conservative advancement per shape met).
 pub(crate) const SWEEPS_PER_TASK: usize = 32;
 
+/// At most this many tasks per thread when continuous collision's sweeps are shared: enough
+/// to even out sweeps of unequal cost, few enough that each task's scratch shapes, once
+/// grown, serve every step after.
+pub(crate) const TASKS_PER_THREAD: usize = 4;
+
 /// Moved colliders per task when the broadphase's pair queries are shared among threads (a
 /// query walks the trees in about a microsecond).
 pub(crate) const MOVES_PER_TASK: usize = 64;

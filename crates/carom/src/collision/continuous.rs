@@ -15,7 +15,9 @@
 
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::distance::separation;
-use crate::constants::{FAST_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS, SWEEPS_PER_TASK};
+use crate::constants::{
+    FAST_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS, SWEEPS_PER_TASK, TASKS_PER_THREAD,
+};
 use crate::dynamics::body::{Body, BodyHandle, BodyKind, Pose};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};
 use crate::geometry::shape::WorldShape;
@@ -200,13 +202,18 @@ pub(crate) fn solve_continuous(
             }
         };
         if worth_sharing(fast.len(), SWEEPS_PER_TASK) {
-            // One set of scratch shapes per task, kept from step to step.
-            let tasks = fast.len().div_ceil(SWEEPS_PER_TASK);
+            // One set of scratch shapes per task, kept from step to step: a few tasks per
+            // thread, so that the sets, once filled, serve every step after.
+            let tasks = fast
+                .len()
+                .div_ceil(SWEEPS_PER_TASK)
+                .min(TASKS_PER_THREAD * rayon::current_num_threads());
+            let per_task = fast.len().div_ceil(tasks);
             if swept.len() < tasks {
                 swept.resize_with(tasks, Default::default);
             }
-            fast.par_chunks(SWEEPS_PER_TASK)
-                .zip(impacts.par_chunks_mut(SWEEPS_PER_TASK))
+            fast.par_chunks(per_task)
+                .zip(impacts.par_chunks_mut(per_task))
                 .zip(swept.par_iter_mut())
                 .for_each(|((fast, impacts), shapes)| sweep_run(fast, impacts, shapes));
         } else if !fast.is_empty() {
