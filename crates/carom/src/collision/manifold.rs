@@ -405,7 +405,13 @@ fn collide_polygon_circle(
     // Along the normal from the core's nearest point: the polygon from `rounding` behind its
     // core to `rounding` in front of it, the circle from `separation + rounding` to that plus
     // its diameter.
-    let polygon = polygon_chord(vertices, normals, pc.polygon_point, s.normal);
+    let mut polygon = polygon_chord(vertices, normals, pc.polygon_point, s.normal);
+    if polygon.0 > polygon.1 && polygon.0 == Real::INFINITY {
+        // The nearest point is on the boundary, so the line meets the polygon there: it
+        // misses only by rounding, running beside an edge square to the normal (a box's
+        // corner), and then the chord is that point.
+        polygon = (0.0, 0.0);
+    }
     let near = s.separation + rounding;
     let u = middle(
         (polygon.0 - rounding, polygon.1.min(0.0) + rounding),
@@ -708,6 +714,47 @@ mod tests {
 
     fn placed(shape: Shape, x: Real, y: Real, angle: Real) -> WorldShape {
         WorldShape::at(&shape, vec2(x, y), angle)
+    }
+
+    #[test]
+    fn a_circle_off_a_turned_box_corner_gets_a_finite_point() {
+        // Met in the spinner: the circle's centre projects onto edge 0 a rounding error
+        // past its start, so the nearest point is the corner and the normal is edge 0's,
+        // exactly square to edge 3's normal; the line from the corner along it runs beside
+        // edge 3, a rounding error outside it.
+        let vertices = [
+            vec2(-30.08221, 33.10679),
+            vec2(-30.055412, 32.4073),
+            vec2(-29.355927, 32.434097),
+            vec2(-29.382725, 33.133587),
+        ];
+        let normals = [
+            vec2(-0.99926686, -0.0382842),
+            vec2(0.0382842, -0.99926686),
+            vec2(0.99926686, 0.0382842),
+            vec2(-0.0382842, 0.99926686),
+        ];
+        let margins = Margins {
+            any: 0.02,
+            face: 0.031149585,
+        };
+        let manifold = collide_polygon_circle(
+            &vertices,
+            &normals,
+            0.0,
+            vec2(-30.434263, 33.0933),
+            0.35,
+            margins,
+        );
+        assert_eq!(manifold.points().len(), 1);
+        let point = manifold.points()[0].point;
+        assert!(point.x.is_finite() && point.y.is_finite(), "{manifold:?}");
+        // Midway between the corner and the circle, along the normal.
+        let expected = vertices[0] + normals[0] * (0.5 * 0.002311021);
+        assert!(
+            (point - expected).norm() < 1.0e-4,
+            "{point:?}, not {expected:?}"
+        );
     }
 
     #[test]
