@@ -235,6 +235,7 @@ pub(crate) fn solve_continuous(
     }
     (count, fast.len())
 }
+
 /// What a sweep reads of the world: all of it as the solver left it.
 struct SweptWorld<'a> {
     bodies: &'a [Body],
