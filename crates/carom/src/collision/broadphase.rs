@@ -90,13 +90,9 @@ impl BroadPhase {
     }
 
     fn proxy(&self, handle: ColliderHandle) -> Option<&Proxy> {
-        self.proxies
-            .get(Self::slot(handle))
-            .and_then(Option::as_ref)
-            .filter(|p| p.handle == handle)
+        proxy_of(&self.proxies, handle)
     }
 
-    /// Adds a body with its tight box, enlarged by `margin`.
     /// Adds a proxy for a collider of `body`, a body of `kind`, with a fat box `margin` wider
     /// than `aabb`.
     pub fn insert(
@@ -245,10 +241,8 @@ impl BroadPhase {
     /// True when the fat boxes of two colliders overlap (as [`FatBoxes::overlap`]).
     #[cfg(any(test, feature = "testing"))]
     pub fn fat_aabbs_overlap(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
-        match (self.fat_aabb(a), self.fat_aabb(b)) {
-            (Some(a), Some(b)) => a.overlaps(&b),
-            _ => false,
-        }
+        let proxies = &self.proxies;
+        FatBoxes { proxies }.overlap(a, b)
     }
 
     /// The moving tree, to rebuild ([`DynamicTree::rebuild`]), and the fat boxes, to read
@@ -486,6 +480,15 @@ impl BroadPhase {
     }
 }
 
+/// The proxy of a live collider in `proxies` (indexed by slot): none for a slot now held by
+/// another collider.
+fn proxy_of(proxies: &[Option<Proxy>], handle: ColliderHandle) -> Option<&Proxy> {
+    proxies
+        .get(BroadPhase::slot(handle))
+        .and_then(Option::as_ref)
+        .filter(|p| p.handle == handle)
+}
+
 /// The fat boxes of a broadphase's colliders, read apart from its trees.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct FatBoxes<'a> {
@@ -495,11 +498,7 @@ pub(crate) struct FatBoxes<'a> {
 impl FatBoxes<'_> {
     /// The fat box of a collider, if it has a proxy.
     fn get(&self, handle: ColliderHandle) -> Option<Aabb> {
-        self.proxies
-            .get(BroadPhase::slot(handle))
-            .and_then(Option::as_ref)
-            .filter(|p| p.handle == handle)
-            .map(|p| p.fat)
+        proxy_of(self.proxies, handle).map(|p| p.fat)
     }
 
     /// True when the fat boxes of two colliders overlap.

@@ -254,10 +254,9 @@ impl DynamicTree {
             (node.child1, node.child2) = (children[0], children[1]);
         }
         // Every inner node was made before its inner children: backwards, children come first.
+        // None of them is marked: the subtrees kept under them are leaves or unmarked.
         for &inner in made.iter().rev() {
-            let (height, aabb) = self.children_fit(inner);
-            let node = &mut self.nodes[inner as usize];
-            (node.height, node.aabb) = (height, aabb);
+            self.refit(inner);
         }
         root
     }
