@@ -334,6 +334,53 @@ fn impacts_up_to_30_m_s_overlap_at_most_a_centimetre() {
     );
 }
 
+/// Two 1 m boxes, one behind the other with a 0.3 m gap, flying along x at 30 m/s, gravity
+/// off.
+fn convoy() -> (World, BodyHandle, BodyHandle) {
+    let mut world = world(true, Vec2::zeros());
+    let mut add = |x: Real| {
+        world
+            .add_body(
+                BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                    .position(vec2(x, 0.0))
+                    .linear_velocity(vec2(30.0, 0.0)),
+            )
+            .unwrap()
+    };
+    let (rear, front) = (add(0.0), add(1.3));
+    (world, rear, front)
+}
+
+#[test]
+fn bodies_flying_together_have_no_contact() {
+    // Each box's broadphase box reaches half a metre ahead, over the other, but the two keep
+    // their distance: a contact would be work for nothing.
+    let (mut world, rear, front) = convoy();
+    for step in 0..20 {
+        world.step(DT).unwrap();
+        assert_eq!(world.contacts().count(), 0, "step {step}");
+    }
+    let gap = world.body(front).unwrap().position().x - world.body(rear).unwrap().position().x;
+    assert!((gap - 1.3).abs() < 1e-4, "they keep their distance: {gap}");
+}
+
+#[test]
+fn a_body_turned_round_by_hand_still_meets_the_one_behind_it() {
+    // The front box is sent back at 30 m/s: the pair now closes a metre a step across a 0.3 m
+    // gap, and what the last step said of the front box's motion no longer holds.
+    let (mut world, rear, front) = convoy();
+    for _ in 0..5 {
+        world.step(DT).unwrap();
+    }
+    world
+        .body_mut(front)
+        .unwrap()
+        .set_linear_velocity(vec2(-30.0, 0.0))
+        .unwrap();
+    let deepest = deepest_overlap(&mut world, rear, front, 10);
+    assert!(deepest < 0.01, "{deepest} m deep");
+}
+
 /// Slides a box (or ball) at 30 m/s past the top corner of a static block, `clearance` above
 /// it, gravity off; returns how much its velocity changed.
 fn graze(shape: Shape, half_height: Real, clearance: Real, start_x: Real) -> Real {

@@ -89,6 +89,12 @@ pub(crate) const RECYCLE_DISTANCE: Real = 10.0 * LINEAR_SLOP;
 /// in a random pile; 2 × slop keeps both as they were.
 pub(crate) const RECYCLE_DISTANCE_CLASSIC: Real = 2.0 * LINEAR_SLOP;
 
+/// A body that moves farther in a step than its fat box's margin pairs only with what it can
+/// reach at its relative velocity (`collision::look_ahead`); it stops doing so once it moves
+/// less than this fraction of the margin, so a body near that speed does not make and drop its
+/// pairs every other step.
+pub(crate) const RUNNER_STOP_FRACTION: Real = 0.5;
+
 /// A small body may move no more than this fraction of its smallest extent: 1 cm is a fiftieth
 /// of a 1 m box but a fifth of a 5 cm one, whose contacts change a good deal over it.
 pub(crate) const RECYCLE_SIZE_FRACTION: Real = 0.1;

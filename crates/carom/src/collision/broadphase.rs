@@ -10,6 +10,7 @@
 
 use super::dynamic_tree::DynamicTree;
 use super::filter::CollisionFilter;
+use super::look_ahead::Motion;
 use crate::constants::MOVES_PER_TASK;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
@@ -41,11 +42,29 @@ struct Proxy {
     fat: Aabb,
     /// What its collider collides with: pairs it forbids are never reported.
     filter: CollisionFilter,
+    /// Where it can go next step, if its body moves farther in a step than its fat box's
+    /// margin (a runner): its box, swept along its path, overlaps colliders it cannot reach,
+    /// so its pairs are made and kept only while the two can close within a step
+    /// ([`crate::collision::look_ahead`]), and it looks for new pairs every step.
+    #[cfg_attr(feature = "serde", serde(default))]
+    runner: Option<Motion>,
 }
 
 impl Proxy {
     fn tree(&self) -> usize {
         tree_for(self.kind)
+    }
+
+    /// Its motion, or for a collider that is not a runner, its fat box held still (every
+    /// point it can reach in a step lies in it).
+    fn motion(&self) -> Motion {
+        self.runner.unwrap_or(Motion::still(self.fat))
+    }
+
+    /// True when a pair with `other` may have a contact: for a pair with a runner, only
+    /// while the two can meet in a step.
+    fn may_meet(&self, other: &Proxy) -> bool {
+        (self.runner.is_none() && other.runner.is_none()) || self.motion().meets(&other.motion())
     }
 }
 
@@ -118,6 +137,7 @@ impl BroadPhase {
             node,
             fat,
             filter: CollisionFilter::DEFAULT,
+            runner: None,
         });
         self.enqueue(slot);
     }
@@ -218,6 +238,48 @@ impl BroadPhase {
         self.trees[MOVING_TREE].rebuild(false);
     }
 
+    /// True when the collider's body outran its fat box's margin in the last step (see
+    /// [`BroadPhase::set_runner`]).
+    pub(crate) fn is_runner(&self, handle: ColliderHandle) -> bool {
+        self.proxy(handle).is_some_and(|p| p.runner.is_some())
+    }
+
+    /// Marks whether the collider's body outruns its fat box's margin, with its motion if it
+    /// does. A runner looks for new pairs every step, since the pairs its swept box overlaps
+    /// are made only once the two can close within a step. One that stops running takes
+    /// `fat` as its fat box (its box swept at its own, slower speed, grown by the margin:
+    /// the old one reaches as far as it could go at a runner's speed) and looks once more,
+    /// for the pairs it passed over.
+    pub(crate) fn set_runner(&mut self, handle: ColliderHandle, runner: Option<Motion>, fat: Aabb) {
+        let slot = Self::slot(handle);
+        let Some(proxy) = self.proxies.get_mut(slot).and_then(Option::as_mut) else {
+            return;
+        };
+        if proxy.handle != handle {
+            return;
+        }
+        let was = std::mem::replace(&mut proxy.runner, runner);
+        if was.is_some() && runner.is_none() && proxy.tree() == MOVING_TREE {
+            proxy.fat = fat;
+            self.trees[MOVING_TREE].enlarge_proxy(proxy.node, fat);
+        }
+        if runner.is_some() || was.is_some() {
+            self.enqueue(slot);
+        }
+    }
+
+    /// Forgets where the last step said the collider was going (its body was moved or pushed
+    /// by hand): its pairs are judged by its fat box alone until the next step says again.
+    pub(crate) fn forget_motion(&mut self, handle: ColliderHandle) {
+        let slot = Self::slot(handle);
+        if let Some(proxy) = self.proxies.get_mut(slot).and_then(Option::as_mut)
+            && proxy.handle == handle
+            && proxy.runner.take().is_some()
+        {
+            self.enqueue(slot);
+        }
+    }
+
     /// Looks for new pairs of a collider at the next pair update, though it has not moved
     /// (two bodies that could not collide now can).
     pub fn requeue(&mut self, handle: ColliderHandle) {
@@ -238,11 +300,11 @@ impl BroadPhase {
         self.proxy(handle).map(|p| p.fat)
     }
 
-    /// True when the fat boxes of two colliders overlap (as [`FatBoxes::overlap`]).
+    /// True when two colliders may keep a contact ([`FatBoxes::may_keep`]).
     #[cfg(any(test, feature = "testing"))]
-    pub fn fat_aabbs_overlap(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
+    pub fn may_keep(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
         let proxies = &self.proxies;
-        FatBoxes { proxies }.overlap(a, b)
+        FatBoxes { proxies }.may_keep(a, b)
     }
 
     /// The moving tree, to rebuild ([`DynamicTree::rebuild`]), and the fat boxes, to read
@@ -367,6 +429,7 @@ impl BroadPhase {
                 if other.body != proxy.body
                     && kinds_can_collide(proxy.kind, other.kind)
                     && proxy.filter.collides_with(&other.filter)
+                    && proxy.may_meet(other)
                 {
                     found.push((low, high));
                 }
@@ -496,15 +559,11 @@ pub(crate) struct FatBoxes<'a> {
 }
 
 impl FatBoxes<'_> {
-    /// The fat box of a collider, if it has a proxy.
-    fn get(&self, handle: ColliderHandle) -> Option<Aabb> {
-        proxy_of(self.proxies, handle).map(|p| p.fat)
-    }
-
-    /// True when the fat boxes of two colliders overlap.
-    pub(crate) fn overlap(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
-        match (self.get(a), self.get(b)) {
-            (Some(a), Some(b)) => a.overlaps(&b),
+    /// True when two colliders may have a contact: their fat boxes overlap and, for a pair
+    /// with a runner, the two can meet in a step (the test that made the pair).
+    pub(crate) fn may_keep(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
+        match (proxy_of(self.proxies, a), proxy_of(self.proxies, b)) {
+            (Some(a), Some(b)) => a.fat.overlaps(&b.fat) && a.may_meet(b),
             _ => false,
         }
     }
@@ -561,6 +620,11 @@ impl BroadPhase {
             }
             if self.trees[proxy.tree()].leaf_payload(proxy.node) != Some(slot as u32) {
                 return Err(format!("broadphase slot {slot} is not on its leaf"));
+            }
+            if proxy.runner.is_some_and(|m| !m.is_finite()) {
+                return Err(format!(
+                    "broadphase slot {slot} has a motion that is not finite"
+                ));
             }
             per_tree[proxy.tree()] += 1;
         }
@@ -667,7 +731,7 @@ mod tests {
             sorted_new.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
             assert_eq!(new, sorted_new, "pairs come out in a deterministic order");
             held.extend(new);
-            held.retain(|&(a, b)| broadphase.fat_aabbs_overlap(a, b));
+            held.retain(|&(a, b)| broadphase.may_keep(a, b));
             held.sort_unstable_by_key(|(a, b)| (a.index(), b.index()));
 
             let fat: Vec<(ColliderHandle, BodyKind, Aabb)> = bodies

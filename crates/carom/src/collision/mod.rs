@@ -12,6 +12,7 @@ pub(crate) mod distance;
 pub(crate) mod dynamic_tree;
 pub(crate) mod filter;
 pub(crate) mod hits;
+pub(crate) mod look_ahead;
 pub(crate) mod manifold;
 pub(crate) mod narrowphase;
 pub(crate) mod pre_solve;

@@ -262,7 +262,7 @@ fn rebuild_manifold(
     contact.friction = (shape_a.friction() * shape_b.friction()).sqrt();
     contact.restitution = shape_a.restitution().max(shape_b.restitution());
     if !kinds_can_collide(a.kind(), b.kind())
-        || !fat_boxes.overlap(contact.collider_a, contact.collider_b)
+        || !fat_boxes.may_keep(contact.collider_a, contact.collider_b)
     {
         return Refresh::Gone;
     }

@@ -24,10 +24,14 @@ impl<'w> BodyMut<'w> {
     }
 
     /// Applies a change to the body; if the change woke it (a push, a move), its island wakes
-    /// with it at once.
+    /// with it at once. Where the last step said its colliders were going no longer holds, so
+    /// the broadphase stops judging their new pairs by it.
     fn edit<T>(&mut self, change: impl FnOnce(&mut Body) -> T) -> T {
         let body = &mut self.world.bodies.as_mut_slice()[self.index];
         let result = change(body);
+        for &collider in body.colliders() {
+            self.world.broadphase.forget_motion(collider);
+        }
         if !body.is_sleeping() {
             let handle = body.handle();
             self.world.wake_body(self.index);

@@ -3,9 +3,11 @@
 use super::{World, margin_for};
 use crate::collision::continuous::{self, ContinuousScratch};
 use crate::collision::hits::find_hits;
+use crate::collision::look_ahead::Motion;
 use crate::collision::narrowphase::{ManifoldOptions, Narrowphase};
 use crate::constants::{
     CONTACTS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
+    RUNNER_STOP_FRACTION,
 };
 use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::{ColliderHandle, place_awake_colliders};
@@ -32,9 +34,8 @@ pub(super) struct StepScratch {
     wake: Vec<u32>,
     /// The joints solved this step.
     awake_joints: Vec<solver::AwakeJoint>,
-    /// Per awake collider, its predicted box if it left its fat box (or its body changed
-    /// kind), to re-fit in the broadphase.
-    refits: Vec<Option<(Aabb, BodyKind)>>,
+    /// Per awake collider, what the broadphase must learn of it, if anything.
+    refits: Vec<Option<Refit>>,
 }
 
 impl World {
@@ -293,18 +294,16 @@ impl World {
 
     /// Re-fits the broadphase entries of colliders that moved this step, each box covering
     /// where its collider can get to in `prediction` seconds at its body's present velocity:
-    /// which ones left their fat boxes is found on all threads (into `refits`), then only
-    /// those are enlarged in place, in collider order, for the next step's rebuild. Returns
-    /// how many were.
-    fn refresh_broadphase(
-        &mut self,
-        prediction: Real,
-        refits: &mut Vec<Option<(Aabb, BodyKind)>>,
-    ) -> usize {
+    /// which ones left their fat boxes, and which outrun their margin (runners, whose pairs
+    /// the look-ahead test judges), is found on all threads (into `refits`), then only those
+    /// are enlarged in place or marked, in collider order, for the next step's rebuild and
+    /// pair update. Returns how many were enlarged.
+    fn refresh_broadphase(&mut self, prediction: Real, refits: &mut Vec<Option<Refit>>) -> usize {
         let bodies = self.bodies.as_slice();
         let awake = self.collider_sets.awake();
         let handles = &self.colliders.handles()[awake.clone()];
         let broadphase = &self.broadphase;
+        let reach = margin_for(&self.settings, BodyKind::Dynamic);
         map_zip_into(
             handles,
             &self.colliders.as_slice()[awake],
@@ -316,21 +315,64 @@ impl World {
                     return None;
                 }
                 let aabb = predicted_aabb(body, collider.aabb(), prediction);
-                broadphase
-                    .needs_update(handle, body.kind(), &aabb)
-                    .then_some((aabb, body.kind()))
+                let leaves = broadphase.needs_update(handle, body.kind(), &aabb);
+                // A runner runs on until it is well below the speed that made it one, so that a
+                // body near that speed does not make and drop its pairs step after step.
+                let was_runner = broadphase.is_runner(handle);
+                let threshold = if was_runner {
+                    reach * RUNNER_STOP_FRACTION
+                } else {
+                    reach
+                };
+                let runner =
+                    (prediction > 0.0 && motion_in(body, prediction) > threshold).then(|| Motion {
+                        aabb: collider.aabb().fattened(reach),
+                        shift: body.linear_velocity() * prediction,
+                        turn: body.angular_velocity().abs() * body.reach() * prediction,
+                    });
+                (leaves || runner.is_some() || was_runner).then_some(Refit {
+                    aabb,
+                    kind: body.kind(),
+                    leaves,
+                    runner,
+                })
             },
         );
         let mut moved = 0;
         for (&handle, refit) in handles.iter().zip(refits.iter()) {
-            if let &Some((aabb, kind)) = refit {
-                let margin = margin_for(&self.settings, kind);
+            let Some(Refit {
+                aabb,
+                kind,
+                leaves,
+                runner,
+            }) = *refit
+            else {
+                continue;
+            };
+            let margin = margin_for(&self.settings, kind);
+            if leaves {
                 self.broadphase.enlarge(handle, kind, aabb, margin);
                 moved += 1;
             }
+            self.broadphase
+                .set_runner(handle, runner, aabb.fattened(margin));
         }
         moved
     }
+}
+
+/// What the broadphase must learn of a collider that moved in a step.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Refit {
+    /// Its box, grown to cover where its body can take it next step.
+    aabb: Aabb,
+    /// Its body's kind.
+    kind: BodyKind,
+    /// `aabb` left its fat box (or its body changed kind).
+    leaves: bool,
+    /// Where it can go next step, if its body outruns the fat box's margin (see
+    /// [`crate::collision::look_ahead`]).
+    runner: Option<Motion>,
 }
 
 /// A collider's box, grown to cover where its body can take it in `time` at its present
@@ -343,6 +385,11 @@ fn predicted_aabb(body: &Body, aabb: Aabb, time: Real) -> Aabb {
     let moved = Aabb::new(aabb.min + shift, aabb.max + shift);
     let turn = body.angular_velocity().abs() * time * body.reach();
     aabb.union(&moved).fattened(turn)
+}
+
+/// How far any point of `body` can move in `time` at its present velocity.
+fn motion_in(body: &Body, time: Real) -> Real {
+    (body.linear_velocity().norm() + body.angular_velocity().abs() * body.reach()) * time
 }
 
 /// Runs a stage and adds its wall time to `slot`.
