@@ -16,7 +16,8 @@
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::distance::separation;
 use crate::constants::{
-    FAST_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS, SWEEPS_PER_TASK, TASKS_PER_THREAD,
+    FAST_FRACTION, LINK_SKIM_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS, SWEEPS_PER_TASK,
+    TASKS_PER_THREAD,
 };
 use crate::dynamics::body::{Body, BodyHandle, BodyKind, Pose};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};
@@ -279,6 +280,11 @@ impl SweptWorld<'_> {
                     && collider.filter().collides_with(&other.filter())
                     && !self.joints.filters(body.handle(), other.body())
                     && !other.world_shape().is_link_behind(sweep.start)
+                    && !other.world_shape().is_link_skimmed(
+                        sweep.start,
+                        sweep.start + sweep.translation,
+                        LINK_SKIM_FRACTION * body.min_extent(),
+                    )
                     && !(self.hooked && (collider.pre_solve() || other.pre_solve()));
                 if !eligible {
                     return;

@@ -381,6 +381,23 @@ impl WorldShape {
             _ => false,
         }
     }
+
+    /// True when the shape is a chain's link that a point going from `from` to `to` only
+    /// skims: it closes on the link's line by less than `core` and ends more than `core` in
+    /// front of it (Box2D's early out for fast motion along a chain).
+    pub(crate) fn is_link_skimmed(&self, from: Vec2, to: Vec2, core: Real) -> bool {
+        let WorldShape::ChainSegment { point1, point2, .. } = self else {
+            return false;
+        };
+        let edge = point2 - point1;
+        let length = edge.norm();
+        if length <= crate::constants::LINEAR_SLOP {
+            return false;
+        }
+        let normal = perp_cw(edge) / length;
+        let (before, after) = (normal.dot(&(from - point1)), normal.dot(&(to - point1)));
+        before - after < core && after > core
+    }
 }
 
 #[cfg(test)]
