@@ -308,8 +308,8 @@ fn ride_round_a_loop(speed: Real) -> (Real, Real) {
 #[test]
 fn a_fast_ball_riding_round_a_chain_loop_is_not_held_back() {
     // Each step's straight path cuts outside the circle the ball follows, toward the next link.
-    // Sweeping it against that link would stop it there every step (at 40 m/s it went 21 m in
-    // a second); its contact with the loop is what keeps it in.
+    // Sweeping it against that link would stop it there every step, and it would fall far
+    // behind; its contact with the loop is what keeps it in.
     for speed in [10.0, 20.0, 40.0] {
         let (went, deepest) = ride_round_a_loop(speed);
         assert!(
