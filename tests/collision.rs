@@ -617,6 +617,37 @@ fn world_contacts_track_brute_force_pairs_as_thousands_of_bodies_move() {
 }
 
 #[test]
+fn a_hairline_capsule_beside_a_large_circle_gets_finite_points() {
+    // Found by the any_pair fuzz target: a capsule of subnormal radius, its core a two-vertex
+    // polygon turned 48.5 rad, whose nearest point to a 48.6 m circle is its end: the line
+    // from there along the normal runs beside its core's side, a rounding error outside it.
+    let bits = f32::from_bits;
+    let capsule = Shape::capsule(
+        vec2(bits(0x42ffffff), bits(0x0042003f)),
+        vec2(bits(0x42420000), bits(0x31fffe42)),
+        bits(0x00ff3aff),
+    );
+    let a = WorldShape::at(
+        &capsule,
+        vec2(bits(0xff), bits(0x0042003f)),
+        bits(0x42420000),
+    );
+    let b = WorldShape::at(&Shape::circle(bits(0x42424242)), vec2(0.0, 0.0), 0.0);
+    for margin in [0.0, 0.02] {
+        for m in [collide(&a, &b, margin), collide(&b, &a, margin)] {
+            assert!(!m.points().is_empty(), "they overlap: {m:?}");
+            assert!(m.normal.x.is_finite() && m.normal.y.is_finite(), "{m:?}");
+            for p in m.points() {
+                let finite = [p.point, p.anchor_a, p.anchor_b]
+                    .iter()
+                    .all(|v| v.x.is_finite() && v.y.is_finite());
+                assert!(finite && p.separation.is_finite(), "{m:?}");
+            }
+        }
+    }
+}
+
+#[test]
 fn polygon_circle_survives_a_zero_length_edge_and_a_centre_on_a_vertex() {
     // Found by the polygon_circle fuzz target: a hairline polygon 1 km from the origin rounds
     // to world vertices that coincide, and a circle centred on one of them had a NaN normal.
