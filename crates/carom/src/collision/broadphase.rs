@@ -112,6 +112,14 @@ impl BroadPhase {
         proxy_of(&self.proxies, handle)
     }
 
+    /// [`BroadPhase::proxy`], to change.
+    fn proxy_mut(&mut self, handle: ColliderHandle) -> Option<&mut Proxy> {
+        self.proxies
+            .get_mut(Self::slot(handle))
+            .and_then(Option::as_mut)
+            .filter(|p| p.handle == handle)
+    }
+
     /// Adds a proxy for a collider of `body`, a body of `kind`, with a fat box `margin` wider
     /// than `aabb`.
     pub fn insert(
@@ -251,32 +259,28 @@ impl BroadPhase {
     /// the old one reaches as far as it could go at a runner's speed) and looks once more,
     /// for the pairs it passed over.
     pub(crate) fn set_runner(&mut self, handle: ColliderHandle, runner: Option<Motion>, fat: Aabb) {
-        let slot = Self::slot(handle);
-        let Some(proxy) = self.proxies.get_mut(slot).and_then(Option::as_mut) else {
+        let Some(proxy) = self.proxy_mut(handle) else {
             return;
         };
-        if proxy.handle != handle {
-            return;
-        }
         let was = std::mem::replace(&mut proxy.runner, runner);
         if was.is_some() && runner.is_none() && proxy.tree() == MOVING_TREE {
             proxy.fat = fat;
-            self.trees[MOVING_TREE].enlarge_proxy(proxy.node, fat);
+            let node = proxy.node;
+            self.trees[MOVING_TREE].enlarge_proxy(node, fat);
         }
         if runner.is_some() || was.is_some() {
-            self.enqueue(slot);
+            self.enqueue(Self::slot(handle));
         }
     }
 
     /// Forgets where the last step said the collider was going (its body was moved or pushed
     /// by hand): its pairs are judged by its fat box alone until the next step says again.
     pub(crate) fn forget_motion(&mut self, handle: ColliderHandle) {
-        let slot = Self::slot(handle);
-        if let Some(proxy) = self.proxies.get_mut(slot).and_then(Option::as_mut)
-            && proxy.handle == handle
-            && proxy.runner.take().is_some()
+        if self
+            .proxy_mut(handle)
+            .is_some_and(|proxy| proxy.runner.take().is_some())
         {
-            self.enqueue(slot);
+            self.enqueue(Self::slot(handle));
         }
     }
 

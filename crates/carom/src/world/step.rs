@@ -13,7 +13,7 @@ use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::{ColliderHandle, place_awake_colliders};
 use crate::error::CaromError;
 use crate::geometry::aabb::Aabb;
-use crate::math::Real;
+use crate::math::{Real, Vec2};
 use crate::parallel::map_zip_into;
 use crate::solver::{self, Environment, SolverKind};
 use crate::stats::{CollisionWork, Instant, StepStats};
@@ -314,7 +314,8 @@ impl World {
                 if body.kind() == BodyKind::Static {
                     return None;
                 }
-                let aabb = predicted_aabb(body, collider.aabb(), prediction);
+                let stride = Stride::of(body, prediction);
+                let aabb = stride.map_or(collider.aabb(), |s| s.sweep(collider.aabb()));
                 let leaves = broadphase.needs_update(handle, body.kind(), &aabb);
                 // A runner runs on until it is well below the speed that made it one, so that a
                 // body near that speed does not make and drop its pairs step after step.
@@ -324,12 +325,11 @@ impl World {
                 } else {
                     reach
                 };
-                let runner =
-                    (prediction > 0.0 && motion_in(body, prediction) > threshold).then(|| Motion {
-                        aabb: collider.aabb().fattened(reach),
-                        shift: body.linear_velocity() * prediction,
-                        turn: body.angular_velocity().abs() * body.reach() * prediction,
-                    });
+                let runner = stride.filter(|s| s.reach() > threshold).map(|s| Motion {
+                    aabb: collider.aabb().fattened(reach),
+                    shift: s.shift,
+                    turn: s.turn,
+                });
                 (leaves || runner.is_some() || was_runner).then_some(Refit {
                     aabb,
                     kind: body.kind(),
@@ -375,21 +375,35 @@ pub(super) struct Refit {
     runner: Option<Motion>,
 }
 
-/// A collider's box, grown to cover where its body can take it in `time` at its present
-/// velocity.
-fn predicted_aabb(body: &Body, aabb: Aabb, time: Real) -> Aabb {
-    if time == 0.0 {
-        return aabb;
-    }
-    let shift = body.linear_velocity() * time;
-    let moved = Aabb::new(aabb.min + shift, aabb.max + shift);
-    let turn = body.angular_velocity().abs() * time * body.reach();
-    aabb.union(&moved).fattened(turn)
+/// How far a body's velocity takes it in a time.
+#[derive(Debug, Clone, Copy)]
+struct Stride {
+    /// Its translation, m.
+    shift: Vec2,
+    /// How far its turn carries its farthest point, m.
+    turn: Real,
 }
 
-/// How far any point of `body` can move in `time` at its present velocity.
-fn motion_in(body: &Body, time: Real) -> Real {
-    (body.linear_velocity().norm() + body.angular_velocity().abs() * body.reach()) * time
+impl Stride {
+    /// `body`'s stride in `time` at its present velocity; none when there is no time to
+    /// look ahead.
+    fn of(body: &Body, time: Real) -> Option<Self> {
+        (time != 0.0).then(|| Stride {
+            shift: body.linear_velocity() * time,
+            turn: body.angular_velocity().abs() * time * body.reach(),
+        })
+    }
+
+    /// A box carried along the stride and grown by its turn: every point of it can reach.
+    fn sweep(&self, aabb: Aabb) -> Aabb {
+        let moved = Aabb::new(aabb.min + self.shift, aabb.max + self.shift);
+        aabb.union(&moved).fattened(self.turn)
+    }
+
+    /// How far any point can move along it.
+    fn reach(&self) -> Real {
+        self.shift.norm() + self.turn
+    }
 }
 
 /// Runs a stage and adds its wall time to `slot`.
