@@ -19,6 +19,20 @@ fn world(continuous: bool, gravity: Vec2) -> World {
     .unwrap()
 }
 
+/// A world with continuous collision and no friction, drag or sleeping, so a body keeps its
+/// speed unless something stops it.
+fn slick_world(gravity: Vec2) -> World {
+    World::with_settings(WorldSettings {
+        gravity,
+        effects: Effects::ALL
+            .switched(Effect::Friction, false)
+            .switched(Effect::Drag, false)
+            .switched(Effect::Sleeping, false),
+        ..WorldSettings::default()
+    })
+    .unwrap()
+}
+
 /// Fires a 0.25 m circle at 300 m/s, from 10 m away along `direction`, at a 0.1 m thick static
 /// wall through the origin facing it; returns how far past the wall's far face it ended
 /// (negative: it stayed on its side).
@@ -228,14 +242,7 @@ fn a_fast_body_sliding_on_the_ground_is_not_held_back() {
     // A box resting on a floor and sliding fast enough to be swept touches the floor at the
     // start of every sweep. Touching at the start is the solver's business, not a tunnel: the
     // box must slide on, not be put back where it started each step.
-    let mut world = World::with_settings(WorldSettings {
-        effects: Effects::ALL
-            .switched(Effect::Friction, false)
-            .switched(Effect::Drag, false)
-            .switched(Effect::Sleeping, false),
-        ..WorldSettings::default()
-    })
-    .unwrap();
+    let mut world = slick_world(WorldSettings::default().gravity);
     world
         .add_body(BodyDef::static_body(Shape::rect(100.0, 0.5)).position(vec2(0.0, -0.5)))
         .unwrap();
@@ -266,15 +273,7 @@ fn a_fast_body_sliding_on_the_ground_is_not_held_back() {
 /// gravity, friction and drag off, for a second; returns how far it went along the loop and
 /// how deep it sank into it at worst.
 fn ride_round_a_loop(speed: Real) -> (Real, Real) {
-    let mut world = World::with_settings(WorldSettings {
-        gravity: Vec2::zeros(),
-        effects: Effects::ALL
-            .switched(Effect::Friction, false)
-            .switched(Effect::Drag, false)
-            .switched(Effect::Sleeping, false),
-        ..WorldSettings::default()
-    })
-    .unwrap();
+    let mut world = slick_world(Vec2::zeros());
     let (radius, ball_radius, links) = (10.0, 0.25, 90);
     let points: Vec<Vec2> = (0..links)
         .map(|i| {
