@@ -367,18 +367,23 @@ impl DynamicTree {
         if self.root == NULL {
             return;
         }
+        if !self.nodes[self.root as usize].aabb.overlaps(aabb) {
+            return;
+        }
+        // Only nodes whose boxes overlap go on the stack: each child is tested as its parent
+        // is taken off, so a child that misses costs no push and pop.
         let mut stack = NodeStack::default();
         stack.push(self.root);
         while let Some(id) = stack.pop() {
             let node = &self.nodes[id as usize];
-            if !node.aabb.overlaps(aabb) {
-                continue;
-            }
             if node.is_leaf() {
                 visit(id);
-            } else {
-                stack.push(node.child1);
-                stack.push(node.child2);
+                continue;
+            }
+            for child in [node.child1, node.child2] {
+                if self.nodes[child as usize].aabb.overlaps(aabb) {
+                    stack.push(child);
+                }
             }
         }
     }
