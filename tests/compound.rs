@@ -314,6 +314,21 @@ fn a_friction_changed_on_a_collider_applies_to_its_contacts() {
         .unwrap()
         .set_friction(0.0)
         .unwrap();
+    // Its contacts take it at once (an edit between steps is seen by the next one), and a
+    // restitution change likewise.
+    assert!(world.contacts().len() > 0);
+    assert!(world.contacts().all(|c| c.friction() == 0.0));
+    world
+        .collider_mut(floor_collider)
+        .unwrap()
+        .set_restitution(0.25)
+        .unwrap();
+    assert!(world.contacts().all(|c| c.restitution() == 0.25));
+    world
+        .collider_mut(floor_collider)
+        .unwrap()
+        .set_restitution(0.0)
+        .unwrap();
     let before = world.body(slider).unwrap().linear_velocity().x;
     for _ in 0..30 {
         world.step(1.0 / 60.0).unwrap();

@@ -23,11 +23,11 @@ use crate::constants::CONTACTS_PER_TASK;
 use crate::dynamics::body::Body;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
+use crate::geometry::shape::Shape;
 use crate::graph::colors::{ColorBody, ContactColors, NO_COLOR};
 use crate::graph::layout::{
     ASLEEP, ColorRanges, ContactPartition, NOT_TOUCHING, color_part, color_ranges,
 };
-#[cfg(feature = "serde")]
 use crate::handle_map::HandleMap;
 use crate::math::Real;
 use crate::parallel::for_each_with;
@@ -62,10 +62,16 @@ pub struct Contact {
     hit_events: bool,
     /// A collider of the pair asks for the pre-solve hook.
     pub(super) pre_solve: bool,
-    /// The colliders' friction mixed: their geometric mean.
+    /// The colliders' friction mixed: their geometric mean. Kept current as a collider's
+    /// changes, so a step reads it without its colliders.
     pub(super) friction: Real,
     /// The colliders' restitution mixed: the larger.
     pub(super) restitution: Real,
+    /// Both colliders are polygons: the pairs whose manifolds are carried along while their
+    /// bodies barely move (see [`crate::collision::recycle`]). Saved worlds leave it out: it
+    /// is found again from the colliders.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pub(super) polygon_pair: bool,
     /// What the manifold was built against, to carry it along while the bodies barely move.
     pub(super) frame: ManifoldFrame,
     /// Its graph colour while touching in the awake set ([`NO_COLOR`] otherwise).
@@ -78,6 +84,18 @@ pub struct Contact {
 }
 
 impl Contact {
+    /// Takes its friction, restitution and kind of pair from its colliders (both live).
+    fn mix(&mut self, colliders: &HandleMap<ColliderHandle, Collider>) {
+        if let (Some(a), Some(b)) = (
+            colliders.get(self.collider_a),
+            colliders.get(self.collider_b),
+        ) {
+            self.friction = mixed_friction(a, b);
+            self.restitution = mixed_restitution(a, b);
+            self.polygon_pair = is_polygon_pair(a, b);
+        }
+    }
+
     /// The first collider (the manifold normal points away from it).
     pub fn collider_a(&self) -> ColliderHandle {
         self.collider_a
@@ -228,6 +246,24 @@ impl ContactEvent {
             ContactEvent::Begin(pair) | ContactEvent::End(pair) => pair,
         }
     }
+}
+
+/// Two colliders' friction mixed for their contacts: the geometric mean.
+fn mixed_friction(a: &Collider, b: &Collider) -> Real {
+    (a.friction() * b.friction()).sqrt()
+}
+
+/// Two colliders' restitution mixed for their contacts: the larger.
+fn mixed_restitution(a: &Collider, b: &Collider) -> Real {
+    a.restitution().max(b.restitution())
+}
+
+/// Whether both colliders are polygons.
+fn is_polygon_pair(a: &Collider, b: &Collider) -> bool {
+    matches!(
+        (a.shape(), b.shape()),
+        (Shape::Polygon(_), Shape::Polygon(_))
+    )
 }
 
 /// A cheap hasher for pair keys (two slot indices packed in a `u64`), which need no
@@ -405,8 +441,9 @@ impl ContactSet {
             in_contact: false,
             hit_events: a.1.hit_events() || b.1.hit_events(),
             pre_solve: a.1.pre_solve() || b.1.pre_solve(),
-            friction: (a.1.friction() * b.1.friction()).sqrt(),
-            restitution: a.1.restitution().max(b.1.restitution()),
+            friction: mixed_friction(a.1, b.1),
+            restitution: mixed_restitution(a.1, b.1),
+            polygon_pair: is_polygon_pair(a.1, b.1),
             frame: ManifoldFrame::default(),
             color: NO_COLOR,
             color_holds: [false; 2],
@@ -618,6 +655,21 @@ impl ContactSet {
                 let index = self.unpaint(index);
                 self.paint(index, &kinds);
             }
+        }
+    }
+
+    /// Mixes again the friction and restitution of each contact of `body`, whose collider's
+    /// material changed.
+    pub(crate) fn remix(
+        &mut self,
+        body: BodyHandle,
+        colliders: &HandleMap<ColliderHandle, Collider>,
+    ) {
+        let mut edge = self.first_edge(body.index() as usize);
+        while edge != NO_EDGE {
+            let index = self.index_of(edge_id(edge));
+            edge = self.next(edge);
+            self.contacts[index].mix(colliders);
         }
     }
 
@@ -899,6 +951,15 @@ pub(crate) fn body_indices_of(
 
 #[cfg(feature = "serde")]
 impl ContactSet {
+    /// Gives each contact of a saved world, once checked, what it keeps from its colliders
+    /// (its friction, restitution and kind of pair), so it steps as the world it was saved
+    /// from.
+    pub(crate) fn mix_saved(&mut self, colliders: &HandleMap<ColliderHandle, Collider>) {
+        for contact in &mut self.contacts {
+            contact.mix(colliders);
+        }
+    }
+
     /// Checks contacts read from a saved world: each is between live colliders of its bodies,
     /// with at most two finite points and a colour that exists, and the lookups find them.
     pub(crate) fn check_saved(

@@ -13,7 +13,6 @@ use crate::collision::recycle::ManifoldFrame;
 use crate::constants::{CONTACTS_PER_TASK, TOUCH_BEGIN, TOUCH_END};
 use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
-use crate::geometry::shape::Shape;
 use crate::handle_map::HandleMap;
 use crate::math::Real;
 use crate::parallel::map_mut_into;
@@ -223,27 +222,12 @@ fn closing_speed(a: &Body, b: &Body) -> Real {
 
 /// Rebuilds one contact's manifold if either body moves (or, `recycling`, carries the last one
 /// along if they barely moved relative to each other); says whether the contact lives on.
+/// A manifold carried along reads the contact, its bodies and their fat boxes, not its
+/// colliders: those are read only to build one (or to show the pre-solve hook).
 fn refresh_manifold(
     contact: &mut Contact,
     bodies: &HandleMap<BodyHandle, Body>,
     colliders: &HandleMap<ColliderHandle, Collider>,
-    fat_boxes: FatBoxes<'_>,
-    options: ManifoldOptions,
-) -> Refresh {
-    let (Some(shape_a), Some(shape_b)) = (
-        colliders.get(contact.collider_a),
-        colliders.get(contact.collider_b),
-    ) else {
-        return Refresh::Gone;
-    };
-    rebuild_manifold(contact, (shape_a, shape_b), bodies, fat_boxes, options)
-}
-
-/// [`refresh_manifold`] of a contact between colliders `shape_a` and `shape_b`.
-fn rebuild_manifold(
-    contact: &mut Contact,
-    (shape_a, shape_b): (&Collider, &Collider),
-    bodies: &HandleMap<BodyHandle, Body>,
     fat_boxes: FatBoxes<'_>,
     options: ManifoldOptions,
 ) -> Refresh {
@@ -253,32 +237,32 @@ fn rebuild_manifold(
         recycling,
         pre_solve,
     } = options;
-    let all = bodies.as_slice();
-    let (a, b) = (&all[shape_a.body_index()], &all[shape_b.body_index()]);
+    let (Some(a), Some(b)) = (bodies.get(contact.body_a()), bodies.get(contact.body_b())) else {
+        return Refresh::Gone;
+    };
     if !a.moves() && !b.moves() {
         return Refresh::Unchanged;
     }
-    // Mixed each step, so a collider's friction or restitution changed by the user applies.
-    contact.friction = (shape_a.friction() * shape_b.friction()).sqrt();
-    contact.restitution = shape_a.restitution().max(shape_b.restitution());
     if !kinds_can_collide(a.kind(), b.kind())
         || !fat_boxes.may_keep(contact.collider_a, contact.collider_b)
     {
         return Refresh::Gone;
     }
-    // Only polygon pairs: their manifold is the expensive one (SAT and clipping); a circle's
-    // is a few multiplications, and its normal follows the centres, not the body's turn.
-    let polygons = matches!(
-        (shape_a.shape(), shape_b.shape()),
-        (Shape::Polygon(_), Shape::Polygon(_))
-    );
-    // A body stopped by continuous collision barely moved, but only because it was put back:
-    // its manifold may lack the points its motion was about to meet.
+    // Only polygon pairs are carried along: their manifold is the expensive one (SAT and
+    // clipping); a circle's is a few multiplications, and its normal follows the centres, not
+    // the body's turn. A body stopped by continuous collision barely moved, but only because
+    // it was put back: its manifold may lack the points its motion was about to meet.
     let stopped = a.had_time_of_impact() || b.had_time_of_impact();
     let carried = |distance| contact.frame.carry(&mut contact.manifold, a, b, distance);
-    if polygons && !stopped && recycling.is_some_and(carried) {
-        return settled(contact, [shape_a, shape_b], [a, b], pre_solve, true);
+    if contact.polygon_pair && !stopped && recycling.is_some_and(carried) {
+        return settled(contact, colliders, [a, b], pre_solve, true);
     }
+    let (Some(shape_a), Some(shape_b)) = (
+        colliders.get(contact.collider_a),
+        colliders.get(contact.collider_b),
+    ) else {
+        return Refresh::Gone;
+    };
     let margins = Margins {
         any: margin,
         face: margin + closing_speed(a, b) * prediction,
@@ -293,7 +277,7 @@ fn rebuild_manifold(
         .manifold
         .set_anchors(a.center_of_mass(), b.center_of_mass());
     contact.frame = ManifoldFrame::of(&contact.manifold, (a, shape_a), (b, shape_b));
-    settled(contact, [shape_a, shape_b], [a, b], pre_solve, false)
+    settled(contact, colliders, [a, b], pre_solve, false)
 }
 
 /// Asks the pre-solve `hook`, if the contact's colliders opted in and its manifold has points,
@@ -302,7 +286,7 @@ fn rebuild_manifold(
 /// the bookkeeping needs to know of it (`recycled`: its manifold was carried along).
 fn settled(
     contact: &mut Contact,
-    colliders: [&Collider; 2],
+    colliders: &HandleMap<ColliderHandle, Collider>,
     bodies: [&Body; 2],
     hook: Option<&PreSolveHook>,
     recycled: bool,
@@ -310,11 +294,15 @@ fn settled(
     if let Some(hook) = hook
         && contact.pre_solve
         && !contact.manifold.is_empty()
+        && let (Some(a), Some(b)) = (
+            colliders.get(contact.collider_a),
+            colliders.get(contact.collider_b),
+        )
     {
         let shown = PreSolveContact {
             pair: contact.pair(),
             manifold: &contact.manifold,
-            colliders,
+            colliders: [a, b],
             bodies,
         };
         if !hook.allows(&shown) {

@@ -35,7 +35,9 @@ impl<'w> ColliderMut<'w> {
     /// # Errors
     /// A negative or non-finite friction; it is then left as it was.
     pub fn set_friction(&mut self, friction: Real) -> Result<(), CaromError> {
-        self.collider().set_friction(friction)
+        self.collider().set_friction(friction)?;
+        self.remix_contacts();
+        Ok(())
     }
 
     /// Sets the restitution (finite, not negative); its contacts use it from the next step.
@@ -43,7 +45,16 @@ impl<'w> ColliderMut<'w> {
     /// # Errors
     /// A negative or non-finite restitution; it is then left as it was.
     pub fn set_restitution(&mut self, restitution: Real) -> Result<(), CaromError> {
-        self.collider().set_restitution(restitution)
+        self.collider().set_restitution(restitution)?;
+        self.remix_contacts();
+        Ok(())
+    }
+
+    /// Mixes the collider's material into its contacts again.
+    fn remix_contacts(&mut self) {
+        let world = &mut *self.world;
+        let body = world.colliders.get(self.handle).expect("lent live").body();
+        world.contacts.remix(body, &world.colliders);
     }
 
     /// Sets the density; the body's mass, centre of mass and inertia follow, and it wakes.

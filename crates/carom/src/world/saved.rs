@@ -79,7 +79,7 @@ impl TryFrom<SavedWorld> for World {
             )));
         }
         check_settings(&saved.settings)?;
-        let world = World {
+        let mut world = World {
             hit_event_colliders: saved
                 .colliders
                 .as_slice()
@@ -102,6 +102,7 @@ impl TryFrom<SavedWorld> for World {
             ..World::default()
         };
         world.check_saved().map_err(bad)?;
+        world.contacts.mix_saved(&world.colliders);
         Ok(world)
     }
 }
