@@ -85,6 +85,41 @@ impl<const CUTS: usize> Partition<CUTS> {
         }
         index
     }
+
+    /// [`Partition::move_item`], told to the caller as one move along a path: `shift(from,
+    /// path)` must put the item at `from` at the path's last position, and the item at each
+    /// position of the path at the one before it (the first at `from`), which is where the
+    /// swaps would leave them. Each item moves once, instead of twice in each swap; returns the
+    /// item's new index.
+    pub fn move_item_along(
+        &mut self,
+        index: usize,
+        to: usize,
+        shift: impl FnOnce(usize, &[usize]),
+    ) -> usize {
+        let mut path = [0; CUTS];
+        let mut len = 0;
+        let end = self.move_item(index, to, |_, j| {
+            path[len] = j;
+            len += 1;
+        });
+        if len > 0 {
+            shift(index, &path[..len]);
+        }
+        end
+    }
+}
+
+/// Moves `items` as [`Partition::move_item_along`] asks: the item at `from` to the path's end,
+/// each other item on the path one place back along it.
+pub(crate) fn shift_along<T: Clone>(items: &mut [T], from: usize, path: &[usize]) {
+    let moving = items[from].clone();
+    let mut hole = from;
+    for &next in path {
+        items[hole] = items[next].clone();
+        hole = next;
+    }
+    items[hole] = moving;
 }
 
 #[cfg(test)]
@@ -131,5 +166,39 @@ mod tests {
         labels.sort_unstable();
         labels.dedup();
         assert_eq!(labels.len(), items.len());
+    }
+
+    /// Moving along a path leaves every item where the swaps leave it.
+    #[test]
+    fn a_move_along_the_path_matches_the_swaps() {
+        const PARTS: usize = 5;
+        let mut seed: u32 = 777;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            seed >> 8
+        };
+        let mut swapped: Vec<u32> = Vec::new();
+        let mut shifted: Vec<u32> = Vec::new();
+        let (mut by_swaps, mut by_path) = (
+            Partition::<{ PARTS - 1 }>::default(),
+            Partition::<{ PARTS - 1 }>::default(),
+        );
+        for label in 0..400 {
+            swapped.push(label);
+            shifted.push(label);
+            let last = swapped.len() - 1;
+            let (index, to) = if next() % 3 == 0 {
+                (last, next() as usize % PARTS)
+            } else {
+                (next() as usize % swapped.len(), next() as usize % PARTS)
+            };
+            let a = by_swaps.move_item(index, to, |i, j| swapped.swap(i, j));
+            let b = by_path.move_item_along(index, to, |from, path| {
+                shift_along(&mut shifted, from, path)
+            });
+            assert_eq!(a, b);
+            assert_eq!(by_swaps, by_path);
+            assert_eq!(swapped, shifted, "after {label}");
+        }
     }
 }

@@ -31,6 +31,7 @@ use crate::graph::layout::{
 use crate::handle_map::HandleMap;
 use crate::math::Real;
 use crate::parallel::for_each_with;
+use crate::partition::shift_along;
 use crate::world::solver_sets::SolverSet;
 use std::collections::HashMap;
 use std::collections::hash_map::Entry;
@@ -459,13 +460,16 @@ impl ContactSet {
         }
     }
 
-    /// Swaps two contacts' places; their ids learn where they went.
-    fn swap(&mut self, i: usize, j: usize) {
-        self.contacts.swap(i, j);
-        self.body_indices.swap(i, j);
-        self.ids.swap(i, j);
-        self.slots[self.ids[i] as usize].index = i as u32;
-        self.slots[self.ids[j] as usize].index = j as u32;
+    /// Moves the contact at `from` along `path`, and the contacts on it one place back, with
+    /// what is kept beside them (see [`crate::partition::Partition::move_item_along`]); their
+    /// ids learn where they went.
+    fn shift(&mut self, from: usize, path: &[usize]) {
+        shift_along(&mut self.contacts, from, path);
+        shift_along(&mut self.body_indices, from, path);
+        shift_along(&mut self.ids, from, path);
+        for &index in std::iter::once(&from).chain(path) {
+            self.slots[self.ids[index] as usize].index = index as u32;
+        }
     }
 
     /// The links of `edge`: the edges before and after it in its body's list.
@@ -543,7 +547,7 @@ impl ContactSet {
     /// Moves the contact at `index` into part `to`; returns its new index.
     fn move_part(&mut self, index: usize, to: usize) -> usize {
         let mut parts = self.parts;
-        let index = parts.move_item(index, to, |i, j| self.swap(i, j));
+        let index = parts.move_item_along(index, to, |from, path| self.shift(from, path));
         self.parts = parts;
         index
     }
