@@ -563,7 +563,7 @@ fn world_contacts_track_brute_force_pairs_as_thousands_of_bodies_move() {
             0 => BodyDef::static_body(shape),
             1 => BodyDef::kinematic(shape).linear_velocity(vec2(rng.range(-3.0, 3.0), 0.0)),
             _ => BodyDef::dynamic(shape)
-                .linear_velocity(vec2(rng.range(-8.0, 8.0), rng.range(-8.0, 8.0)))
+                .linear_velocity(vec2(rng.range(-20.0, 20.0), rng.range(-20.0, 20.0)))
                 .angular_velocity(rng.range(-5.0, 5.0)),
         };
         world.add_body(def.position(position)).unwrap();
@@ -612,7 +612,7 @@ fn world_contacts_track_brute_force_pairs_as_thousands_of_bodies_move() {
     }
     assert!(
         passed_over > 100,
-        "the look-ahead test must leave pairs out"
+        "the look-ahead test must leave pairs out: {passed_over}"
     );
 }
 

@@ -501,3 +501,43 @@ fn a_shot_stopped_at_a_free_plank_stays_on_its_side() {
         );
     }
 }
+
+#[test]
+fn a_runners_fat_box_is_its_swept_box_without_the_margin() {
+    // A body that outruns its fat box's margin looks for new pairs every step, so its tree box
+    // is where its next step takes it and no wider; a slow body keeps the margin, so it need
+    // not be looked at again while it creeps.
+    let mut world = slick_world(Vec2::zeros());
+    let fast = world
+        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).linear_velocity(vec2(30.0, 0.0)))
+        .unwrap();
+    let slow = world
+        .add_body(
+            BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                .position(vec2(0.0, 10.0))
+                .linear_velocity(vec2(0.6, 0.0)),
+        )
+        .unwrap();
+    for _ in 0..3 {
+        world.step(DT).unwrap();
+    }
+    let boxes = |body: BodyHandle| {
+        let collider = world.body(body).unwrap().colliders()[0];
+        (
+            world.broadphase().fat_aabb(collider).unwrap(),
+            world.collider(collider).unwrap().aabb(),
+        )
+    };
+    let (fat, tight) = boxes(fast);
+    let ahead = 30.0 * DT;
+    assert!(
+        (fat.max.x - (tight.max.x + ahead)).abs() < 1e-3,
+        "{fat:?} {tight:?}"
+    );
+    assert!((fat.min.x - tight.min.x).abs() < 1e-3, "{fat:?} {tight:?}");
+    assert!((fat.max.y - tight.max.y).abs() < 1e-3, "{fat:?} {tight:?}");
+    assert!((fat.min.y - tight.min.y).abs() < 1e-3, "{fat:?} {tight:?}");
+    let (fat, tight) = boxes(slow);
+    assert!(fat.max.y - tight.max.y > 0.04, "{fat:?} {tight:?}");
+    assert!(tight.min.y - fat.min.y > 0.04, "{fat:?} {tight:?}");
+}

@@ -349,7 +349,13 @@ impl World {
             else {
                 continue;
             };
-            let margin = margin_for(&self.settings, kind);
+            // A runner's box is swept over its next step and it looks for pairs every step, so
+            // a margin would only widen its tree walks and the pairs they meet.
+            let margin = if runner.is_some() {
+                0.0
+            } else {
+                margin_for(&self.settings, kind)
+            };
             if leaves {
                 self.broadphase.enlarge(handle, kind, aabb, margin);
                 moved += 1;
