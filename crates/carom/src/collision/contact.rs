@@ -633,33 +633,27 @@ impl ContactSet {
         bodies: impl Fn(BodyHandle) -> (SolverSet, BodyKind),
     ) {
         let kinds = |b: BodyHandle| bodies(b).1;
-        let mut edge = self.first_edge(body.index() as usize);
-        while edge != NO_EDGE {
-            let index = self.index_of(edge_id(edge));
-            edge = self.next(edge);
-            let contact = &self.contacts[index];
-            let awake = |b: BodyHandle| bodies(b).0 == SolverSet::Awake;
-            let set = if awake(contact.body_a) || awake(contact.body_b) {
+        let awake = |b: BodyHandle| bodies(b).0 == SolverSet::Awake;
+        self.for_each_of(body, |set, index| {
+            let contact = &set.contacts[index];
+            let to = if awake(contact.body_a) || awake(contact.body_b) {
                 SolverSet::Awake
             } else {
                 SolverSet::Asleep
             };
-            self.move_to(index, set, &kinds);
-        }
+            set.move_to(index, to, &kinds);
+        });
     }
 
     /// Colours each of a body's awake touching contacts again, after its kind changed (a body
     /// that became static frees its colours, one that became dynamic takes its own).
     pub(crate) fn repaint(&mut self, body: BodyHandle, kinds: impl Fn(BodyHandle) -> BodyKind) {
-        let mut edge = self.first_edge(body.index() as usize);
-        while edge != NO_EDGE {
-            let index = self.index_of(edge_id(edge));
-            edge = self.next(edge);
-            if self.contacts[index].color != NO_COLOR {
-                let index = self.unpaint(index);
-                self.paint(index, &kinds);
+        self.for_each_of(body, |set, index| {
+            if set.contacts[index].color != NO_COLOR {
+                let index = set.unpaint(index);
+                set.paint(index, &kinds);
             }
-        }
+        });
     }
 
     /// Mixes again the friction and restitution of each contact of `body`, whose collider's
@@ -669,11 +663,18 @@ impl ContactSet {
         body: BodyHandle,
         colliders: &HandleMap<ColliderHandle, Collider>,
     ) {
+        self.for_each_of(body, |set, index| set.contacts[index].mix(colliders));
+    }
+
+    /// Calls `visit(self, index)` for each contact of `body`, at its index now. The visit may
+    /// move contacts between parts (their edges stay as they are): the next edge is read
+    /// before it.
+    fn for_each_of(&mut self, body: BodyHandle, mut visit: impl FnMut(&mut Self, usize)) {
         let mut edge = self.first_edge(body.index() as usize);
         while edge != NO_EDGE {
             let index = self.index_of(edge_id(edge));
             edge = self.next(edge);
-            self.contacts[index].mix(colliders);
+            visit(self, index);
         }
     }
 

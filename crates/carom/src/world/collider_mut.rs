@@ -52,8 +52,8 @@ impl<'w> ColliderMut<'w> {
 
     /// Mixes the collider's material into its contacts again.
     fn remix_contacts(&mut self) {
+        let body = self.body();
         let world = &mut *self.world;
-        let body = world.colliders.get(self.handle).expect("lent live").body();
         world.contacts.remix(body, &world.colliders);
     }
 
