@@ -205,3 +205,12 @@ pub(crate) const MIN_SHARED: usize = 256;
 
 /// Bodies per block, at least, when integration is shared among threads.
 pub(crate) const MIN_BODY_BLOCK: usize = 256;
+
+/// Pieces the broadphase's pair walk is cut into when threads share it: enough to even out
+/// pieces of unequal size among the threads.
+pub(crate) const WALK_PIECES: usize = 128;
+
+/// The broadphase walks its moving tree against itself for new pairs once at least this
+/// fraction of the tree's leaves moved in a step (neighbours then share the walk down); when
+/// fewer moved, each queries the trees from the root.
+pub(crate) const WALK_MOVED_FRACTION: Real = 0.25;

@@ -66,7 +66,8 @@ impl std::ops::AddAssign for Work {
 pub struct CollisionWork {
     /// Colliders that left their fat boxes and were moved in the broadphase.
     pub proxies_moved: usize,
-    /// Candidate pairs the moved colliders' queries met in the trees (before any test).
+    /// Pairs of overlapping fat boxes with a moved collider that the pair update met in the
+    /// trees (before any test), each pair once.
     pub pair_candidates: usize,
     /// Contacts created for new pairs.
     pub contacts_created: usize,

@@ -2,16 +2,17 @@
 //!
 //! A dynamic AABB tree (as in Box2D) holds one enlarged ("fat") box per collider. A collider
 //! that moves within its fat box costs nothing; one that leaves it in a step gets its new fat
-//! box in place and is queued, and at the next pair update only queued colliders query the
-//! trees, so the cost per step follows motion, not the collider count; the part of the moving
-//! tree those colliders loosened is then built again, once. Static bodies' colliders live in a
+//! box in place and is queued, and at the next pair update only queued colliders look for
+//! pairs, so the cost per step follows motion, not the collider count: each queries the trees,
+//! or when many moved, the moving tree is walked against itself once for the pairs with a
+//! queued leaf. The part of the moving tree those colliders loosened is then built again, once. Static bodies' colliders live in a
 //! tree of their own that is never queried by static colliders, so static-static pairs are
 //! never even looked at; two colliders of one body never pair.
 
-use super::dynamic_tree::DynamicTree;
+use super::dynamic_tree::{DynamicTree, Walk};
 use super::filter::CollisionFilter;
 use super::look_ahead::Motion;
-use crate::constants::MOVES_PER_TASK;
+use crate::constants::{MOVES_PER_TASK, WALK_MOVED_FRACTION, WALK_PIECES};
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
 use crate::geometry::aabb::Aabb;
@@ -95,6 +96,9 @@ pub struct BroadPhase {
     /// All of them, sorted (kept to reuse the memory).
     #[cfg_attr(feature = "serde", serde(skip))]
     candidates: Vec<(u32, u32)>,
+    /// The pieces the pair walk was cut into (kept to reuse the memory).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pieces: Vec<Walk>,
 }
 
 impl BroadPhase {
@@ -337,109 +341,194 @@ impl BroadPhase {
     /// each ordered `(lower slot, higher slot)`, sorted, without duplicates, and only where
     /// one body is dynamic, into `out` (cleared first), allocating nothing once the buffers
     /// have grown. Pairs for which `exists(lower slot, higher slot)` answers true are left
-    /// out. The moved colliders'
-    /// queries run on all threads when there are enough of them. Returns how many candidate
-    /// pairs the queries met.
+    /// out. Returns how many pairs of overlapping fat boxes it met.
+    ///
+    /// When many of the moving tree's leaves moved, they are marked and the tree is walked
+    /// against itself and against the static tree for the overlapping pairs with a marked leaf
+    /// ([`DynamicTree::walk`]), and only queued static colliders (a static body moved by hand)
+    /// query the moving tree; when few moved, each queued collider queries the trees. Threads
+    /// share the walk in pieces, and the queries in runs, when there is enough of either.
     pub fn update_pairs_into(
         &mut self,
         exists: impl Fn(u32, u32) -> bool + Sync,
         out: &mut Vec<(ColliderHandle, ColliderHandle)>,
     ) -> usize {
         out.clear();
-        let moved = &self.move_buffer;
-        let tasks = if worth_sharing(moved.len(), MOVES_PER_TASK) {
-            moved.len().div_ceil(MOVES_PER_TASK)
+        let moved = self.move_buffer.len();
+        let walked =
+            moved as Real >= WALK_MOVED_FRACTION * self.trees[MOVING_TREE].proxy_count() as Real;
+        if walked {
+            for &slot in &self.move_buffer {
+                if let Some(proxy) = self.proxies[slot as usize]
+                    && proxy.tree() == MOVING_TREE
+                {
+                    self.trees[MOVING_TREE].mark_moved(proxy.node);
+                }
+            }
+        }
+        let shared = worth_sharing(moved, MOVES_PER_TASK);
+        let mut pieces = std::mem::take(&mut self.pieces);
+        pieces.clear();
+        let [static_tree, moving_tree] = &self.trees;
+        if walked {
+            let wanted = if shared { WALK_PIECES } else { 1 };
+            moving_tree.split_walk(static_tree, wanted, &mut pieces);
+        }
+        let query_tasks = if shared && !walked {
+            moved.div_ceil(MOVES_PER_TASK)
         } else {
             1
         };
+        let per_task = moved.div_ceil(query_tasks).max(1);
+        let lists = pieces.len() + query_tasks;
         let mut found = std::mem::take(&mut self.found);
-        if found.len() < tasks {
-            found.resize_with(tasks, Vec::new);
+        if found.len() < lists {
+            found.resize_with(lists, Vec::new);
         }
-        let per_task = moved.len().div_ceil(tasks).max(1);
+        found.iter_mut().for_each(Vec::clear);
+        let walk = |piece: &Walk, found: &mut Vec<(u32, u32)>| {
+            let other_tree = match piece {
+                Walk::Against(..) => static_tree,
+                _ => moving_tree,
+            };
+            let mut met = 0;
+            moving_tree.walk(static_tree, *piece, |a, b| {
+                met += 1;
+                self.judge(
+                    moving_tree.payload(a),
+                    other_tree.payload(b),
+                    &exists,
+                    found,
+                );
+            });
+            met
+        };
         let query = |slots: &[u32], found: &mut Vec<(u32, u32)>| {
-            found.clear();
             slots
                 .iter()
-                .map(|&slot| self.new_pairs_of(slot, &exists, found))
+                .map(|&slot| self.query_pairs(slot, walked, &exists, found))
                 .sum::<usize>()
         };
-        let candidates = if tasks > 1 {
-            found[..tasks]
+        let (walk_found, query_found) = found[..lists].split_at_mut(pieces.len());
+        let met: usize = if shared {
+            let walk_met: usize = walk_found
                 .par_iter_mut()
-                .zip(moved.par_chunks(per_task))
+                .zip(pieces.par_iter())
+                .map(|(found, piece)| walk(piece, found))
+                .sum();
+            let query_met: usize = query_found
+                .par_iter_mut()
+                .zip(self.move_buffer.par_chunks(per_task))
                 .map(|(found, slots)| query(slots, found))
-                .sum()
+                .sum();
+            walk_met + query_met
         } else {
-            query(moved, &mut found[0])
+            let walk_met: usize = walk_found
+                .iter_mut()
+                .zip(&pieces)
+                .map(|(found, piece)| walk(piece, found))
+                .sum();
+            walk_met + query(&self.move_buffer, &mut query_found[0])
         };
         for &slot in &self.move_buffer {
+            if walked
+                && let Some(proxy) = self.proxies[slot as usize]
+                && proxy.tree() == MOVING_TREE
+            {
+                self.trees[MOVING_TREE].unmark_moved(proxy.node);
+            }
             self.moved[slot as usize] = false;
         }
         self.move_buffer.clear();
         let pairs = &mut self.candidates;
         pairs.clear();
-        for found in &found[..tasks] {
+        for found in &found[..lists] {
             pairs.extend_from_slice(found);
         }
         self.found = found;
+        self.pieces = pieces;
         pairs.sort_unstable();
-        // Both sides of a pair of moved proxies may report it.
-        pairs.dedup();
+        // The walk meets each pair once, and a query leaves out the pairs the walk or an
+        // earlier query met.
+        debug_assert!(pairs.windows(2).all(|w| w[0] != w[1]), "a pair met twice");
         out.extend(pairs.iter().filter_map(|&(a, b)| {
             Some((
                 self.proxies[a as usize]?.handle,
                 self.proxies[b as usize]?.handle,
             ))
         }));
-        candidates
+        met
     }
 
     /// The pairs the queued proxy in `slot` makes with the proxies its fat box overlaps, into
-    /// `found`, leaving out those `exists` knows. Where both moved, only the lower slot's
-    /// query keeps the pair. Most candidates are pairs that already exist, so the cheap tests
-    /// come first and the other proxy is read only for a pair that is new. Returns how many
-    /// leaves the queries met.
-    fn new_pairs_of(
+    /// `found`, as [`BroadPhase::judge`] rules. None if the walk (`walked`) met them: a
+    /// proxy of the moving tree, or a pair with another queued proxy. Where two queued proxies
+    /// query, only the lower slot's query keeps their pair. Returns how many leaves the queries
+    /// met.
+    fn query_pairs(
         &self,
         slot: u32,
+        walked: bool,
         exists: &impl Fn(u32, u32) -> bool,
         found: &mut Vec<(u32, u32)>,
     ) -> usize {
         let Some(proxy) = self.proxies[slot as usize] else {
             return 0;
         };
-        let mut met = 0;
+        if walked && proxy.tree() == MOVING_TREE {
+            return 0;
+        }
         // Only dynamic bodies need the static tree; everything needs the moving one.
         let trees: &[usize] = if proxy.kind == BodyKind::Dynamic {
             &[STATIC_TREE, MOVING_TREE]
         } else {
             &[MOVING_TREE]
         };
+        let mut met = 0;
         for &tree in trees {
             self.trees[tree].query(&proxy.fat, |node| {
+                let other = self.trees[tree].payload(node);
+                if other == slot || (self.moved[other as usize] && (walked || other < slot)) {
+                    return;
+                }
                 met += 1;
-                let other_slot = self.trees[tree].payload(node);
-                if other_slot == slot || (other_slot < slot && self.moved[other_slot as usize]) {
-                    return;
-                }
-                let (low, high) = (slot.min(other_slot), slot.max(other_slot));
-                if exists(low, high) {
-                    return;
-                }
-                let Some(other) = &self.proxies[other_slot as usize] else {
-                    return;
-                };
-                if other.body != proxy.body
-                    && kinds_can_collide(proxy.kind, other.kind)
-                    && proxy.filter.collides_with(&other.filter)
-                    && proxy.may_meet(other)
-                {
-                    found.push((low, high));
-                }
+                self.judge(slot, other, exists, found);
             });
         }
         met
+    }
+
+    /// Adds to `found` the pair of the proxies in slots `a` and `b`, whose fat boxes overlap
+    /// and at least one of which is queued, if it is new and may collide. The pair is judged
+    /// from the side of the queued one (of two, the lower slot), as that side's query saw it.
+    fn judge(
+        &self,
+        a: u32,
+        b: u32,
+        exists: &impl Fn(u32, u32) -> bool,
+        found: &mut Vec<(u32, u32)>,
+    ) {
+        let (low, high) = (a.min(b), a.max(b));
+        let (mover, other) = if self.moved[low as usize] {
+            (low, high)
+        } else {
+            (high, low)
+        };
+        if exists(low, high) {
+            return;
+        }
+        let (Some(proxy), Some(other)) =
+            (self.proxies[mover as usize], self.proxies[other as usize])
+        else {
+            return;
+        };
+        if other.body != proxy.body
+            && kinds_can_collide(proxy.kind, other.kind)
+            && proxy.filter.collides_with(&other.filter)
+            && proxy.may_meet(&other)
+        {
+            found.push((low, high));
+        }
     }
 
     /// Every pair whose fat boxes overlap now, as [`BroadPhase::update_pairs`] orders them:
@@ -753,9 +842,20 @@ mod tests {
             assert!(held.iter().all(|(a, b)| a.index() < b.index()));
 
             // Move the non-static bodies: small drifts and a few long jumps, as steps carry
-            // them (in place), and a few teleports (re-inserted).
+            // them (in place), and a few teleports (re-inserted). In every other round only
+            // a few move (each then queries the trees; when most move, the tree is walked
+            // against itself), and a few static bodies are moved by hand.
+            let moving_share = if round % 2 == 0 { 1.0 } else { 0.05 };
             for (h, kind, aabb) in bodies.iter_mut() {
                 if *kind == BodyKind::Static {
+                    if rng.next() < 0.01 {
+                        let d = vec2(rng.range(-5.0, 5.0), rng.range(-5.0, 5.0));
+                        *aabb = Aabb::new(aabb.min + d, aabb.max + d);
+                        broadphase.update(*h, *kind, *aabb, margin);
+                    }
+                    continue;
+                }
+                if rng.next() >= moving_share {
                     continue;
                 }
                 let jump = if rng.next() < 0.05 { 20.0 } else { 0.3 };

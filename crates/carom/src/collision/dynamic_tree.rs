@@ -5,6 +5,9 @@
 use crate::geometry::aabb::Aabb;
 use crate::math::{Real, Vec2};
 
+mod overlaps;
+pub(crate) use overlaps::Walk;
+
 const NULL: u32 = u32::MAX;
 
 /// A node of the tree: 32 bytes, aligned to 32, so a walk reads each node from one cache line.
@@ -29,6 +32,9 @@ struct TreeNode {
     /// part [`DynamicTree::rebuild`] builds again. Every ancestor of a marked node is marked;
     /// leaves never are.
     enlarged: bool,
+    /// A leaf that moved since the last pair update, or an inner node that holds one: only
+    /// while the pair walk runs (see [`overlaps`]); at any other time no node is marked.
+    moved: bool,
 }
 
 // Queries walk the nodes: one per half cache line.
@@ -82,6 +88,7 @@ impl TryFrom<NodeRecord> for TreeNode {
             child2: if leaf { record.payload } else { record.child2 },
             height: record.height,
             enlarged: record.enlarged,
+            moved: false,
         })
     }
 }
@@ -163,6 +170,7 @@ impl DynamicTree {
             child2: NULL,
             height: 0,
             enlarged: false,
+            moved: false,
         };
         if self.free_list == NULL {
             self.nodes.push(fresh);
@@ -726,6 +734,9 @@ impl DynamicTree {
                 let n = node(id)?;
                 if !(n.aabb.min.iter().chain(n.aabb.max.iter())).all(|x| x.is_finite()) {
                     return Err(format!("node {id} has a box that is not finite"));
+                }
+                if n.moved {
+                    return Err(format!("node {id} is still marked moved"));
                 }
                 if n.is_leaf() {
                     leaves += 1;
