@@ -324,6 +324,24 @@ pub fn polygon_polygon(
     polygon_polygon_within(a_vertices, a_normals, b_vertices, b_normals, 0.0, |_| false)
 }
 
+/// Polygon A against polygon B by the separating-axis test alone: SAT's axis and distance,
+/// which for polygons apart corner to corner is less than the true distance.
+pub fn polygon_sat(
+    a_vertices: &[Vec2],
+    a_normals: &[Vec2],
+    b_vertices: &[Vec2],
+    b_normals: &[Vec2],
+) -> PolygonPolygon {
+    polygon_polygon_within(
+        a_vertices,
+        a_normals,
+        b_vertices,
+        b_normals,
+        Real::INFINITY,
+        |_| false,
+    )
+}
+
 /// [`polygon_polygon`], except that polygons apart by no more than `sat_is_enough` keep SAT's
 /// axis and distance without searching for the exact closest points. Two polygons that barely
 /// touch (a tenth of the slop, Box2D's rule) differ from the exact answer by less than anything

@@ -21,6 +21,7 @@ use super::chain_segment::{self, ChainLink};
 use super::distance::{self, PolygonFeature};
 use crate::constants::LINEAR_SLOP;
 use crate::constants::{REFERENCE_TOLERANCE, SPURIOUS_TOLERANCE};
+use crate::geometry::segment::closest_between_segments;
 use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Vec2};
 
@@ -441,24 +442,37 @@ fn collide_polygons(
 ) -> Manifold {
     let margin = margins.any;
     let rounding = a.radius + b.radius;
-    let pp = distance::polygon_polygon_within(
-        a.vertices,
-        a.normals,
-        b.vertices,
-        b.normals,
-        0.1 * LINEAR_SLOP,
-        |separation| separation - rounding > margins.face,
-    );
+    let pp = distance::polygon_sat(a.vertices, a.normals, b.vertices, b.normals);
     let (edge_a, separation_a) = pp.edge_a;
     let (edge_b, separation_b) = pp.edge_b;
     if pp.separation.separation - rounding > margins.face {
         return Manifold::with_normal(pp.separation.normal);
     }
+    // Two polygons that barely touch (a tenth of the slop, Box2D's rule) keep SAT's axis: the
+    // exact answer differs by less than a contact can tell, and resting contacts are nearly
+    // all like that. Further apart, the closest points are on the facing edges.
+    let mut separation = pp.separation;
+    let mut closest = None;
+    if separation.separation > 0.1 * LINEAR_SLOP {
+        let facing = facing_edges_closest(a, b, pp.edge_a, pp.edge_b);
+        // Facing features: the SAT axis is the true normal. Corner to corner: the line
+        // between the closest points is.
+        if facing.distance > separation.separation * (1.0 + 1e-5) + 1e-7 {
+            separation = distance::Separation {
+                normal: (facing.point_b - facing.point_a) / facing.distance,
+                separation: facing.distance,
+            };
+        }
+        closest = Some(facing);
+    }
+    if separation.separation - rounding > margins.face {
+        return Manifold::with_normal(separation.normal);
+    }
     // Apart with two corners facing each other: one point on the line between them.
-    if let Some(closest) = pp.closest
-        && pp.separation.separation > separation_a.max(separation_b)
+    if let Some(closest) = closest
+        && separation.separation > separation_a.max(separation_b)
     {
-        let normal = pp.separation.normal;
+        let normal = separation.normal;
         let mut manifold = Manifold::with_normal(normal);
         if closest.distance - rounding > margin {
             return manifold;
@@ -497,13 +511,7 @@ fn collide_polygons(
     let normal = ref_normals[i1];
 
     // The incident edge: the one facing the reference face most directly.
-    let j1 = (0..inc_normals.len())
-        .min_by(|&x, &y| {
-            inc_normals[x]
-                .dot(&normal)
-                .total_cmp(&inc_normals[y].dot(&normal))
-        })
-        .expect("polygons have edges");
+    let j1 = facing_edge(inc_normals, normal);
     let j2 = (j1 + 1) % inc_vertices.len();
     let (v21, v22) = (inc_vertices[j1], inc_vertices[j2]);
 
@@ -642,6 +650,59 @@ fn collide_polygons(
     manifold
 }
 
+/// The closest points of SAT's best face (`edge_a` or `edge_b`, each with its separation;
+/// B's when it separates more) and the other polygon's edge that faces it most directly:
+/// Box2D's two-edge test. For polygons apart these hold the closest points of the two; for
+/// two segments' cores, whose edges are the segments, they are exact.
+fn facing_edges_closest(
+    a: Core,
+    b: Core,
+    edge_a: (usize, Real),
+    edge_b: (usize, Real),
+) -> distance::ClosestPoints {
+    let b_holds_face = edge_b.1 > edge_a.1;
+    let ((reference, i1), incident) = if b_holds_face {
+        ((b, edge_b.0), a)
+    } else {
+        ((a, edge_a.0), b)
+    };
+    let normal = reference.normals[i1];
+    let j1 = facing_edge(incident.normals, normal);
+    let ends = |core: Core, i: usize| (i, (i + 1) % core.vertices.len());
+    let ((i1, i2), (j1, j2)) = (ends(reference, i1), ends(incident, j1));
+    let ((on_reference, f_reference), (on_incident, f_incident)) = closest_between_segments(
+        (reference.vertices[i1], reference.vertices[i2]),
+        (incident.vertices[j1], incident.vertices[j2]),
+    );
+    let vertex = |f: Real, start: usize, end: usize| match f {
+        0.0 => Some(start),
+        1.0 => Some(end),
+        _ => None,
+    };
+    let (reference_vertex, incident_vertex) =
+        (vertex(f_reference, i1, i2), vertex(f_incident, j1, j2));
+    let (point_a, point_b, vertex_a, vertex_b) = if b_holds_face {
+        (on_incident, on_reference, incident_vertex, reference_vertex)
+    } else {
+        (on_reference, on_incident, reference_vertex, incident_vertex)
+    };
+    distance::ClosestPoints {
+        point_a,
+        point_b,
+        distance: (point_b - point_a).norm(),
+        vertex_a,
+        vertex_b,
+    }
+}
+
+/// The edge whose normal is most nearly opposite `normal`: the one facing a face of that
+/// normal most directly.
+fn facing_edge(normals: &[Vec2], normal: Vec2) -> usize {
+    (0..normals.len())
+        .min_by(|&x, &y| normals[x].dot(&normal).total_cmp(&normals[y].dot(&normal)))
+        .expect("polygons have edges")
+}
+
 /// How far a point lies outside a convex polygon (negative inside).
 fn distance_outside(vertices: &[Vec2], normals: &[Vec2], point: Vec2) -> Real {
     vertices
@@ -714,6 +775,63 @@ mod tests {
 
     fn placed(shape: Shape, x: Real, y: Real, angle: Real) -> WorldShape {
         WorldShape::at(&shape, vec2(x, y), angle)
+    }
+
+    /// Polygons apart, turned every way: the closest points of SAT's face and the edge facing
+    /// it are the polygons' closest points (what the all-pairs search finds).
+    #[test]
+    fn the_facing_edges_hold_the_closest_points_of_polygons_apart() {
+        let shapes = [
+            Shape::rect(1.0, 0.5),
+            Shape::rect(0.1, 2.0),
+            Shape::polygon(&[vec2(0.0, 0.0), vec2(1.0, 0.0), vec2(0.2, 0.7)]).unwrap(),
+            Shape::capsule(vec2(-0.5, 0.0), vec2(0.5, 0.0), 0.1),
+        ];
+        let mut checked = 0;
+        for (i, a) in shapes.iter().enumerate() {
+            for b in &shapes[i..] {
+                for k in 0..400 {
+                    let t = k as Real;
+                    let wa = placed(a.clone(), 0.0, 0.0, 0.37 * t);
+                    let (x, y) = ((0.71 * t).cos() * 3.0, (0.71 * t).sin() * 3.0);
+                    let wb = placed(b.clone(), x, y, 1.13 * t);
+                    let (
+                        WorldShape::Polygon {
+                            vertices: va,
+                            normals: na,
+                            radius: ra,
+                        },
+                        WorldShape::Polygon {
+                            vertices: vb,
+                            normals: nb,
+                            radius: rb,
+                        },
+                    ) = (&wa, &wb)
+                    else {
+                        unreachable!()
+                    };
+                    let sat = distance::polygon_sat(va, na, vb, nb);
+                    if sat.separation.separation <= 0.1 * LINEAR_SLOP {
+                        continue;
+                    }
+                    let facing = facing_edges_closest(
+                        Core::new(va, na, *ra),
+                        Core::new(vb, nb, *rb),
+                        sat.edge_a,
+                        sat.edge_b,
+                    );
+                    let exact = distance::closest_points(va, vb);
+                    assert!(
+                        (facing.distance - exact.distance).abs() < 1e-5,
+                        "{a:?} {b:?} at {k}: {} against {}",
+                        facing.distance,
+                        exact.distance
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 2000, "{checked}");
     }
 
     #[test]

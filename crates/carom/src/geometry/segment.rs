@@ -28,6 +28,44 @@ pub(crate) fn closest_on_segment(p: Vec2, start: Vec2, end: Vec2) -> (Vec2, Real
     (start + edge * t, t)
 }
 
+/// The closest points of segments `p1`–`q1` and `p2`–`q2` and where along each they lie
+/// (`0..=1`): the unclamped closest points of the two lines, clamped to the first segment and
+/// then found again on the second (a segment of no length is its start point).
+pub(crate) fn closest_between_segments(
+    (p1, q1): (Vec2, Vec2),
+    (p2, q2): (Vec2, Vec2),
+) -> ((Vec2, Real), (Vec2, Real)) {
+    let (d1, d2, r) = (q1 - p1, q2 - p2, p1 - p2);
+    let (dd1, dd2) = (d1.norm_squared(), d2.norm_squared());
+    let (rd1, rd2) = (r.dot(&d1), r.dot(&d2));
+    let tiny = Real::EPSILON * Real::EPSILON;
+    let (f1, f2) = if dd1 < tiny && dd2 < tiny {
+        (0.0, 0.0)
+    } else if dd1 < tiny {
+        (0.0, (rd2 / dd2).clamp(0.0, 1.0))
+    } else if dd2 < tiny {
+        ((-rd1 / dd1).clamp(0.0, 1.0), 0.0)
+    } else {
+        let d12 = d1.dot(&d2);
+        let denominator = dd1 * dd2 - d12 * d12;
+        // Parallel lines: any point of the first will do, its start first.
+        let f1 = if denominator != 0.0 {
+            ((d12 * rd2 - rd1 * dd2) / denominator).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let f2 = (d12 * f1 + rd2) / dd2;
+        if f2 < 0.0 {
+            ((-rd1 / dd1).clamp(0.0, 1.0), 0.0)
+        } else if f2 > 1.0 {
+            (((d12 - rd1) / dd1).clamp(0.0, 1.0), 1.0)
+        } else {
+            (f1, f2)
+        }
+    };
+    ((p1 + d1 * f1, f1), (p2 + d2 * f2, f2))
+}
+
 /// The distance from `point` to the segment `start`–`end`.
 pub(crate) fn distance_to_segment(point: Vec2, start: Vec2, end: Vec2) -> Real {
     (closest_on_segment(point, start, end).0 - point).norm()
@@ -145,5 +183,42 @@ impl ChainSegment {
     /// True when the local point lies on the segment (within the containment tolerance).
     pub fn contains_local(&self, point: Vec2) -> bool {
         self.segment.contains_local(point)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::vec2;
+
+    #[test]
+    fn closest_points_between_segments() {
+        let close = |a, b| closest_between_segments(a, b);
+        // Crossing: the crossing point, on both.
+        let ((p, f), (q, g)) = close(
+            (vec2(-1.0, 0.0), vec2(1.0, 0.0)),
+            (vec2(0.5, -1.0), vec2(0.5, 1.0)),
+        );
+        assert!((p - vec2(0.5, 0.0)).norm() < 1e-6 && (q - p).norm() < 1e-6);
+        assert!((f - 0.75).abs() < 1e-6 && (g - 0.5).abs() < 1e-6);
+        // End to end: both ends, fractions exactly 1 and 0.
+        let ((p, f), (q, g)) = close(
+            (vec2(0.0, 0.0), vec2(1.0, 1.0)),
+            (vec2(2.0, 1.5), vec2(3.0, 1.0)),
+        );
+        assert_eq!((p, f, q, g), (vec2(1.0, 1.0), 1.0, vec2(2.0, 1.5), 0.0));
+        // Parallel and overlapping along their length: a pair of points one gap apart.
+        let ((p, _), (q, _)) = close(
+            (vec2(0.0, 0.0), vec2(2.0, 0.0)),
+            (vec2(1.0, 0.5), vec2(3.0, 0.5)),
+        );
+        assert!(((q - p).norm() - 0.5).abs() < 1e-6);
+        // A segment of no length is a point.
+        let ((p, f), (q, _)) = close(
+            (vec2(0.0, 2.0), vec2(0.0, 2.0)),
+            (vec2(-1.0, 0.0), vec2(1.0, 0.0)),
+        );
+        assert_eq!((p, f), (vec2(0.0, 2.0), 0.0));
+        assert!((q - vec2(0.0, 0.0)).norm() < 1e-6);
     }
 }
