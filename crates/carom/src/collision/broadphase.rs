@@ -30,6 +30,9 @@ pub fn kinds_can_collide(a: BodyKind, b: BodyKind) -> bool {
 const STATIC_TREE: usize = 0;
 const MOVING_TREE: usize = 1;
 
+/// New pairs each list of the pair update has room for from the start.
+const PAIRS_PER_LIST: usize = 64;
+
 #[derive(Debug, Clone, Copy)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Proxy {
@@ -385,7 +388,12 @@ impl BroadPhase {
         if found.len() < lists {
             found.resize_with(lists, Vec::new);
         }
-        found.iter_mut().for_each(Vec::clear);
+        // Each list gets room for a few pairs once: which piece meets a new pair changes from
+        // step to step, so lists that start empty would each allocate a step at some point.
+        for list in &mut found {
+            list.clear();
+            list.reserve(PAIRS_PER_LIST);
+        }
         let walk = |piece: &Walk, found: &mut Vec<(u32, u32)>| {
             let other_tree = match piece {
                 Walk::Against(..) => static_tree,

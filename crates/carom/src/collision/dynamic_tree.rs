@@ -338,7 +338,6 @@ impl DynamicTree {
     }
 
     /// How many leaves the tree holds.
-    #[cfg(any(test, feature = "testing", feature = "serde"))]
     pub fn proxy_count(&self) -> usize {
         self.proxy_count
     }
