@@ -379,7 +379,7 @@ impl DynamicTree {
         }
         // Only nodes whose boxes overlap go on the stack: each child is tested as its parent
         // is taken off, so a child that misses costs no push and pop.
-        let mut stack = NodeStack::default();
+        let mut stack = NodeStack::new(NULL);
         stack.push(self.root);
         while let Some(id) = stack.pop() {
             let node = &self.nodes[id as usize];
@@ -411,7 +411,7 @@ impl DynamicTree {
             return;
         }
         let (origin, half) = (swept.center(), swept.half_extents());
-        let mut stack = NodeStack::default();
+        let mut stack = NodeStack::new(NULL);
         stack.push(self.root);
         while let Some(id) = stack.pop() {
             let node = &self.nodes[id as usize];
@@ -785,40 +785,43 @@ impl DynamicTree {
     }
 }
 
-/// The nodes still to visit in a tree walk: on the stack for any tree of sane height, so a
-/// query allocates nothing; a spill vector only for pathologically deep trees.
-struct NodeStack {
-    inline: [u32; 128],
+/// What is still to visit in a tree walk (nodes, or pairs of them): on the stack for any tree
+/// of sane height, so a walk allocates nothing; a spill vector only for pathologically deep
+/// trees.
+struct WalkStack<T, const N: usize> {
+    inline: [T; N],
     len: usize,
-    spill: Vec<u32>,
+    spill: Vec<T>,
 }
 
-impl Default for NodeStack {
-    fn default() -> Self {
-        NodeStack {
-            inline: [0; 128],
+/// The nodes still to visit in a query.
+type NodeStack = WalkStack<u32, 128>;
+
+impl<T: Copy, const N: usize> WalkStack<T, N> {
+    /// An empty stack (`fill` fills the unused places).
+    fn new(fill: T) -> Self {
+        WalkStack {
+            inline: [fill; N],
             len: 0,
             spill: Vec::new(),
         }
     }
-}
 
-impl NodeStack {
     #[inline]
-    fn push(&mut self, node: u32) {
-        if self.len < self.inline.len() {
-            self.inline[self.len] = node;
+    fn push(&mut self, item: T) {
+        if self.len < N {
+            self.inline[self.len] = item;
             self.len += 1;
         } else {
-            self.spill.push(node);
+            self.spill.push(item);
         }
     }
 
-    /// The last pushed node (the spill holds the newest once the array is full).
+    /// The last pushed item (the spill holds the newest once the array is full).
     #[inline]
-    fn pop(&mut self) -> Option<u32> {
-        if let Some(node) = self.spill.pop() {
-            return Some(node);
+    fn pop(&mut self) -> Option<T> {
+        if let Some(item) = self.spill.pop() {
+            return Some(item);
         }
         if self.len == 0 {
             return None;

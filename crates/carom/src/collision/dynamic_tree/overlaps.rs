@@ -6,7 +6,7 @@
 //! first, with their ancestors ([`DynamicTree::mark_moved`]), and the walk passes by every
 //! subtree that holds none of them.
 
-use super::{DynamicTree, NULL};
+use super::{DynamicTree, NULL, WalkStack};
 
 /// A piece of the walk. The whole walk is `Within(root)` and, for the second tree,
 /// `Against(root, its root)`; [`DynamicTree::split_walk`] cuts it into more pieces so threads
@@ -66,7 +66,7 @@ impl DynamicTree {
             let (mut i, mut end) = (0, out.len());
             while i < end && out.len() < pieces {
                 let piece = out[i];
-                if self.is_pair(other, piece) {
+                if self.leaf_pair(other, piece).is_some() {
                     i += 1;
                     continue;
                 }
@@ -90,32 +90,25 @@ impl DynamicTree {
     /// that [`DynamicTree::split_walk`] made): `other_leaf` is a leaf of `other` for a piece
     /// [`Walk::Against`], else of this tree.
     pub(crate) fn walk(&self, other: &DynamicTree, piece: Walk, mut visit: impl FnMut(u32, u32)) {
-        let mut stack = WalkStack::default();
+        let mut stack = WalkStack::<Walk, 256>::new(Walk::Within(NULL));
         stack.push(piece);
         while let Some(piece) = stack.pop() {
-            if self.is_pair(other, piece) {
-                let (Walk::Between(a, b) | Walk::Against(a, b)) = piece else {
-                    unreachable!("a piece within one node is never a pair of leaves");
-                };
-                visit(a, b);
-            } else {
-                self.split(other, piece, |more| stack.push(more));
+            match self.leaf_pair(other, piece) {
+                Some((a, b)) => visit(a, b),
+                None => self.split(other, piece, |more| stack.push(more)),
             }
         }
     }
 
-    /// True when `piece` is a pair of leaves.
+    /// The two leaves `piece` is, if it is a pair of leaves.
     #[inline]
-    fn is_pair(&self, other: &DynamicTree, piece: Walk) -> bool {
-        match piece {
-            Walk::Within(_) => false,
-            Walk::Between(a, b) => {
-                self.nodes[a as usize].is_leaf() && self.nodes[b as usize].is_leaf()
-            }
-            Walk::Against(a, b) => {
-                self.nodes[a as usize].is_leaf() && other.nodes[b as usize].is_leaf()
-            }
-        }
+    fn leaf_pair(&self, other: &DynamicTree, piece: Walk) -> Option<(u32, u32)> {
+        let (a, b, b_nodes) = match piece {
+            Walk::Within(_) => return None,
+            Walk::Between(a, b) => (a, b, &self.nodes),
+            Walk::Against(a, b) => (a, b, &other.nodes),
+        };
+        (self.nodes[a as usize].is_leaf() && b_nodes[b as usize].is_leaf()).then_some((a, b))
     }
 
     /// Passes to `push` the smaller pieces of `piece` (not a pair of leaves) that may hold
@@ -189,49 +182,6 @@ fn goes_down_first(a: &super::TreeNode, b: &super::TreeNode) -> bool {
         (false, true) => true,
         (true, false) => false,
         _ => a.aabb.perimeter() >= b.aabb.perimeter(),
-    }
-}
-
-/// The pieces still to walk: on the stack for any tree of sane height, so a walk allocates
-/// nothing; a spill vector only for pathologically deep trees.
-struct WalkStack {
-    inline: [Walk; 256],
-    len: usize,
-    spill: Vec<Walk>,
-}
-
-impl Default for WalkStack {
-    fn default() -> Self {
-        WalkStack {
-            inline: [Walk::Within(NULL); 256],
-            len: 0,
-            spill: Vec::new(),
-        }
-    }
-}
-
-impl WalkStack {
-    #[inline]
-    fn push(&mut self, piece: Walk) {
-        if self.len < self.inline.len() {
-            self.inline[self.len] = piece;
-            self.len += 1;
-        } else {
-            self.spill.push(piece);
-        }
-    }
-
-    /// The last pushed piece (the spill holds the newest once the array is full).
-    #[inline]
-    fn pop(&mut self) -> Option<Walk> {
-        if let Some(piece) = self.spill.pop() {
-            return Some(piece);
-        }
-        if self.len == 0 {
-            return None;
-        }
-        self.len -= 1;
-        Some(self.inline[self.len])
     }
 }
 
