@@ -184,7 +184,8 @@ pub(crate) const SWEEPS_PER_TASK: usize = 32;
 pub(crate) const TASKS_PER_THREAD: usize = 4;
 
 /// Moved colliders per task when the broadphase's pair queries are shared among threads (a
-/// query walks the trees in about a microsecond).
+/// query walks the trees in about a microsecond); with fewer than two tasks' worth, neither
+/// the queries nor the pair walk are shared.
 pub(crate) const MOVES_PER_TASK: usize = 64;
 
 /// Sensors per task when their overlap queries are shared among threads (a query and a few

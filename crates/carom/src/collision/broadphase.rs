@@ -783,8 +783,8 @@ mod tests {
         incremental_pairs_match_brute_force(1);
     }
 
-    /// The moved colliders' queries split among threads find the same pairs, in the same
-    /// order.
+    /// The pair walk's pieces and the moved colliders' queries, shared among threads, find
+    /// the same pairs, in the same order.
     #[test]
     fn incremental_pairs_match_brute_force_with_queries_on_threads() {
         incremental_pairs_match_brute_force(3);
