@@ -5,9 +5,10 @@
 //! box in place and is queued, and at the next pair update only queued colliders look for
 //! pairs, so the cost per step follows motion, not the collider count: each queries the trees,
 //! or when many moved, the moving tree is walked against itself once for the pairs with a
-//! queued leaf. The part of the moving tree those colliders loosened is then built again, once. Static bodies' colliders live in a
-//! tree of their own that is never queried by static colliders, so static-static pairs are
-//! never even looked at; two colliders of one body never pair.
+//! queued leaf. The part of the moving tree those colliders loosened is then built again,
+//! once. Static bodies' colliders live in a tree of their own that is never queried by static
+//! colliders, so static-static pairs are never even looked at; two colliders of one body never
+//! pair.
 
 use super::dynamic_tree::{DynamicTree, Walk};
 use super::filter::CollisionFilter;

@@ -795,32 +795,23 @@ mod tests {
                     let wa = placed(a.clone(), 0.0, 0.0, 0.37 * t);
                     let (x, y) = ((0.71 * t).cos() * 3.0, (0.71 * t).sin() * 3.0);
                     let wb = placed(b.clone(), x, y, 1.13 * t);
-                    let (
-                        WorldShape::Polygon {
-                            vertices: va,
-                            normals: na,
-                            radius: ra,
-                        },
-                        WorldShape::Polygon {
-                            vertices: vb,
-                            normals: nb,
-                            radius: rb,
-                        },
-                    ) = (&wa, &wb)
-                    else {
-                        unreachable!()
-                    };
-                    let sat = distance::polygon_sat(va, na, vb, nb);
-                    if sat.separation.separation <= 0.1 * LINEAR_SLOP {
+                    let pair = distance::with_core(&wa, |va, na, ra| {
+                        distance::with_core(&wb, |vb, nb, rb| {
+                            let sat = distance::polygon_sat(va, na, vb, nb);
+                            (sat.separation.separation > 0.1 * LINEAR_SLOP).then(|| {
+                                let facing = facing_edges_closest(
+                                    Core::new(va, na, ra),
+                                    Core::new(vb, nb, rb),
+                                    sat.edge_a,
+                                    sat.edge_b,
+                                );
+                                (facing, distance::closest_points(va, vb))
+                            })
+                        })
+                    });
+                    let Some((facing, exact)) = pair else {
                         continue;
-                    }
-                    let facing = facing_edges_closest(
-                        Core::new(va, na, *ra),
-                        Core::new(vb, nb, *rb),
-                        sat.edge_a,
-                        sat.edge_b,
-                    );
-                    let exact = distance::closest_points(va, vb);
+                    };
                     assert!(
                         (facing.distance - exact.distance).abs() < 1e-5,
                         "{a:?} {b:?} at {k}: {} against {}",
