@@ -174,6 +174,10 @@ pub(crate) const ITEMS_PER_TASK: usize = 2048;
 /// a tenth of a microsecond, a fork several microseconds).
 pub(crate) const CONTACTS_PER_TASK: usize = 256;
 
+/// How many contacts ahead the narrowphase asks for bodies to be fetched: far enough that
+/// they arrive before they are read, near enough that they are still cached then.
+pub(crate) const PREFETCH_AHEAD: usize = 8;
+
 /// Fast bodies per task when continuous collision's sweeps are shared among threads (a sweep
 /// costs a microsecond or more: a tree query and conservative advancement per shape met).
 pub(crate) const SWEEPS_PER_TASK: usize = 32;

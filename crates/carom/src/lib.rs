@@ -45,6 +45,7 @@ mod joint;
 mod math;
 mod parallel;
 mod partition;
+mod prefetch;
 #[cfg(feature = "serde")]
 mod serde_impls;
 mod solver;
@@ -75,7 +76,9 @@ pub use error::CaromError;
 pub use geometry::aabb::Aabb;
 pub use geometry::mass::MassProperties;
 pub use geometry::ray::{Ray, RayHit};
-pub use geometry::shape::{Capsule, ChainSegment, Circle, Polygon, Segment, Shape, WorldShape};
+pub use geometry::shape::{
+    Capsule, ChainSegment, Circle, Points, Polygon, Segment, Shape, WorldShape,
+};
 pub use joint::{
     Anchors, DistanceJoint, Joint, JointDef, JointEvent, JointHandle, JointKind, Limits, Motor,
     MotorJoint, MouseJoint, PrismaticJoint, RevoluteJoint, Spring, WeldJoint, WheelJoint,

@@ -122,6 +122,23 @@ pub(crate) fn for_each_chunk_with<A: Sync, B: Send>(
     }
 }
 
+/// [`for_each_chunk_with`] where `f` may also change the inputs.
+pub(crate) fn for_each_chunk_mut_with<A: Send, B: Send>(
+    inputs: &mut [A],
+    outputs: &mut [B],
+    per_task: usize,
+    f: impl Fn(&mut [A], &mut [B]) + Sync + Send,
+) {
+    if worth_sharing(outputs.len(), per_task) {
+        inputs
+            .par_chunks_mut(per_task)
+            .zip(outputs.par_chunks_mut(per_task))
+            .for_each(|(a, b)| f(a, b));
+    } else {
+        f(inputs, outputs);
+    }
+}
+
 /// [`for_each_with`], adding up what `f` returns.
 pub(crate) fn sum_with<A: Sync, B: Send, S: Default + AddAssign + Send>(
     inputs: &[A],
@@ -187,6 +204,16 @@ mod tests {
                     }
                 });
                 assert!(outputs.iter().zip(&inputs).all(|(o, i)| *o == 2 * i));
+                let mut changed = inputs.clone();
+                for_each_chunk_mut_with(&mut changed, &mut outputs, 64, |xs, outs| {
+                    assert_eq!(xs.len(), outs.len());
+                    for (x, out) in xs.iter_mut().zip(outs) {
+                        *x += 1;
+                        *out = 3 * *x;
+                    }
+                });
+                assert!(changed.iter().zip(&inputs).all(|(c, i)| *c == i + 1));
+                assert!(outputs.iter().zip(&inputs).all(|(o, i)| *o == 3 * (i + 1)));
             });
         }
     }

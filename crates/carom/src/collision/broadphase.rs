@@ -19,6 +19,7 @@ use crate::dynamics::collider::ColliderHandle;
 use crate::geometry::aabb::Aabb;
 use crate::math::{Real, Vec2};
 use crate::parallel::worth_sharing;
+use crate::prefetch::prefetch;
 use rayon::prelude::*;
 
 /// True when a pair of bodies of these kinds can ever produce a contact response: at least
@@ -667,6 +668,15 @@ impl FatBoxes<'_> {
         match (proxy_of(self.proxies, a), proxy_of(self.proxies, b)) {
             (Some(a), Some(b)) => a.fat.overlaps(&b.fat) && a.may_meet(b),
             _ => false,
+        }
+    }
+
+    /// Asks for the proxies [`FatBoxes::may_keep`] reads to be fetched.
+    pub(crate) fn prefetch(&self, a: ColliderHandle, b: ColliderHandle) {
+        for collider in [a, b] {
+            if let Some(proxy) = self.proxies.get(BroadPhase::slot(collider)) {
+                prefetch(proxy);
+            }
         }
     }
 }

@@ -342,7 +342,7 @@ pub struct ContactSet {
     doomed: Vec<u32>,
 }
 
-/// Where a contact id's contact is.
+/// Where a contact id's contact is, and what a walk through a body's contacts reads of it.
 #[derive(Debug, Clone, Copy)]
 struct Slot {
     /// Its index in the contact array ([`FREE`] while the id is unused).
@@ -350,6 +350,33 @@ struct Slot {
     /// The edges before and after it in the list of its first body, then of its second
     /// ([`NO_EDGE`] at an end). While the id is unused, the first names the next unused id.
     links: [[Edge; 2]; 2],
+    /// Its bodies, first and second, and whether it touches: copies of the contact's, here
+    /// so that finding a body's touching partners (to split or join islands) reads the
+    /// slots alone, not every contact of the body.
+    bodies: [BodyHandle; 2],
+    touching: bool,
+}
+
+impl Slot {
+    /// The slot of an unused id, `next` naming the next unused one.
+    fn unused(next: u32) -> Self {
+        Slot {
+            index: FREE,
+            links: [[next, NO_EDGE], [NO_EDGE; 2]],
+            bodies: [BodyHandle::from_raw_parts(u32::MAX, 0); 2],
+            touching: false,
+        }
+    }
+
+    /// The slot of the contact at `index` (not yet linked into its bodies' lists).
+    fn of(index: u32, contact: &Contact) -> Self {
+        Slot {
+            index,
+            links: [[NO_EDGE; 2]; 2],
+            bodies: [contact.body_a, contact.body_b],
+            touching: contact.touching,
+        }
+    }
 }
 
 /// The index of an unused id's slot.
@@ -417,21 +444,13 @@ impl ContactSet {
                     self.free = (next != NO_ID).then_some(next);
                     id
                 } else {
-                    self.slots.push(Slot {
-                        index: FREE,
-                        links: [[NO_EDGE; 2]; 2],
-                    });
+                    self.slots.push(Slot::unused(NO_ID));
                     (self.slots.len() - 1) as u32
                 };
                 *vacant.insert(id)
             }
         };
-        self.slots[id as usize].index = self.contacts.len() as u32;
-        for (side, body) in [a.1.body(), b.1.body()].into_iter().enumerate() {
-            self.append(body.index() as usize, edge(id, side));
-        }
-        self.ids.push(id);
-        self.contacts.push(Contact {
+        let contact = Contact {
             collider_a: a.0,
             collider_b: b.0,
             body_a: a.1.body(),
@@ -449,7 +468,13 @@ impl ContactSet {
             color: NO_COLOR,
             color_holds: [false; 2],
             serial: self.made,
-        });
+        };
+        self.slots[id as usize] = Slot::of(self.contacts.len() as u32, &contact);
+        for (side, body) in [contact.body_a, contact.body_b].into_iter().enumerate() {
+            self.append(body.index() as usize, edge(id, side));
+        }
+        self.ids.push(id);
+        self.contacts.push(contact);
         self.body_indices.push(NO_BODIES);
         self.made += 1;
         // New contacts arrive in the sleeping part, the last.
@@ -536,6 +561,13 @@ impl ContactSet {
     #[inline]
     pub(super) fn index_of(&self, id: u32) -> usize {
         self.slots[id as usize].index as usize
+    }
+
+    /// Says whether the contact at `index` touches (its manifold has points).
+    pub(super) fn set_touching(&mut self, index: usize, touching: bool) {
+        self.contacts[index].touching = touching;
+        let id = self.ids[index];
+        self.slots[id as usize].touching = touching;
     }
 
     /// The id of the contact at `index`, which it keeps wherever it moves until destroyed.
@@ -684,15 +716,10 @@ impl ContactSet {
         let mut edge = self.first_edge(body.index() as usize);
         while edge != NO_EDGE {
             let slot = &self.slots[edge_id(edge) as usize];
-            let contact = &self.contacts[slot.index as usize];
             let side = edge_side(edge);
             edge = slot.links[side][1];
-            if contact.touching {
-                into.push(if side == 0 {
-                    contact.body_b
-                } else {
-                    contact.body_a
-                });
+            if slot.touching {
+                into.push(slot.bodies[1 - side]);
             }
         }
     }
@@ -716,10 +743,7 @@ impl ContactSet {
         for (side, body) in [contact.body_a, contact.body_b].into_iter().enumerate() {
             self.unlink(body.index() as usize, edge(id, side));
         }
-        self.slots[id as usize] = Slot {
-            index: FREE,
-            links: [[self.free.unwrap_or(NO_ID), NO_EDGE], [NO_EDGE; 2]],
-        };
+        self.slots[id as usize] = Slot::unused(self.free.unwrap_or(NO_ID));
         self.free = Some(id);
         if contact.in_contact {
             let event = ContactEvent::End(contact.pair());
@@ -875,6 +899,16 @@ impl ContactSet {
             assert_eq!(self.index_of(id), index, "contact {index}'s id");
             let key = pair_key(contact.collider_a, contact.collider_b);
             assert_eq!(self.lookup.get(&key), Some(&id), "contact {index}'s pair");
+            let slot = &self.slots[id as usize];
+            assert_eq!(
+                slot.bodies,
+                [contact.body_a, contact.body_b],
+                "contact {index}'s bodies"
+            );
+            assert_eq!(
+                slot.touching, contact.touching,
+                "contact {index}'s touching"
+            );
         }
         // Each list, walked forwards, links back and holds only its body's live contacts.
         let mut listed = vec![[false; 2]; self.slots.len()];
@@ -1049,7 +1083,7 @@ mod tests {
         for id in 0..500u32 {
             set.slots.push(Slot {
                 index: id,
-                links: [[NO_EDGE; 2]; 2],
+                ..Slot::unused(NO_ID)
             });
             let a = next() % BODIES;
             let bodies = [a, (a + 1 + next() % (BODIES - 1)) % BODIES];

@@ -10,12 +10,13 @@ use crate::collision::contact::{Contact, ContactEvent, ContactSet};
 use crate::collision::manifold::{self, Manifold, Margins};
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::recycle::ManifoldFrame;
-use crate::constants::{CONTACTS_PER_TASK, TOUCH_BEGIN, TOUCH_END};
+use crate::constants::{CONTACTS_PER_TASK, PREFETCH_AHEAD, TOUCH_BEGIN, TOUCH_END};
 use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
 use crate::handle_map::HandleMap;
 use crate::math::Real;
-use crate::parallel::map_mut_into;
+use crate::parallel::for_each_chunk_mut_with;
+use crate::prefetch::prefetch;
 use crate::stats::CollisionWork;
 
 /// How the narrowphase builds manifolds this step.
@@ -86,11 +87,29 @@ impl Narrowphase {
         // then the bookkeeping that touches the whole set, in order, for the contacts that
         // need it: those that end, start or stop touching, or wake a sleeper.
         let awake = set.awake_range();
-        map_mut_into(
-            &mut set.contacts[awake.clone()],
+        self.refresh.clear();
+        self.refresh.resize(awake.len(), Refresh::Unchanged);
+        let contacts = &mut set.contacts[awake];
+        for_each_chunk_mut_with(
+            contacts,
             &mut self.refresh,
             CONTACTS_PER_TASK,
-            |contact| refresh_manifold(contact, bodies, colliders, fat_boxes, options),
+            |contacts, out| {
+                for (index, refresh) in out.iter_mut().enumerate() {
+                    // What a contact a few ahead reads is asked for now, so that those reads
+                    // overlap this contact's work instead of each stalling in turn.
+                    if let Some(ahead) = contacts.get(index + PREFETCH_AHEAD) {
+                        fetch_ahead(ahead, bodies, fat_boxes);
+                    }
+                    *refresh = refresh_manifold(
+                        &mut contacts[index],
+                        bodies,
+                        colliders,
+                        fat_boxes,
+                        options,
+                    );
+                }
+            },
         );
         let mut deepest: Real = 0.0;
         self.changed.clear();
@@ -179,7 +198,7 @@ fn file(
     if touching == contact.touching {
         return;
     }
-    contact.touching = touching;
+    set.set_touching(index, touching);
     let kinds = [(a.handle(), a.kind()), (b.handle(), b.kind())];
     let bodies = (a.handle(), b.handle());
     if touching {
@@ -194,6 +213,17 @@ fn file(
         set.ended.push(bodies);
         set.unpaint(index);
     }
+}
+
+/// Asks for the memory that refreshing `contact` reads first: its bodies and its colliders'
+/// broadphase proxies.
+fn fetch_ahead(contact: &Contact, bodies: &HandleMap<BodyHandle, Body>, fat_boxes: FatBoxes<'_>) {
+    for body in [contact.body_a(), contact.body_b()] {
+        if let Some(body) = bodies.get(body) {
+            prefetch(body);
+        }
+    }
+    fat_boxes.prefetch(contact.collider_a, contact.collider_b);
 }
 
 /// True when `body` can disturb a sleeping body it touches: it is awake and dynamic, or

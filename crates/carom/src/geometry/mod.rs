@@ -5,6 +5,7 @@ pub(crate) mod capsule;
 pub(crate) mod checks;
 pub(crate) mod circle;
 pub(crate) mod mass;
+pub(crate) mod points;
 pub(crate) mod polygon;
 pub(crate) mod ray;
 pub(crate) mod segment;

@@ -4,6 +4,7 @@
 use crate::error::CaromError;
 use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::{self, MassProperties};
+pub use crate::geometry::points::Points;
 use crate::geometry::ray::{self, Ray, RayHit};
 use crate::math::{Isometry, Real, Vec2, perp_cw};
 
@@ -211,9 +212,9 @@ pub enum WorldShape {
     /// rounded by `radius`.
     Polygon {
         /// World vertices of the core, counter-clockwise.
-        vertices: Vec<Vec2>,
+        vertices: Points,
         /// World outward unit normals, one per edge.
-        normals: Vec<Vec2>,
+        normals: Points,
         /// How far the shape reaches beyond its core (0 for sharp polygons and segments).
         radius: Real,
     },
@@ -244,8 +245,8 @@ impl WorldShape {
                 radius: c.radius(),
             },
             Shape::Capsule(_) | Shape::Polygon(_) | Shape::Segment(_) => WorldShape::Polygon {
-                vertices: Vec::new(),
-                normals: Vec::new(),
+                vertices: Points::default(),
+                normals: Points::default(),
                 radius: 0.0,
             },
             Shape::ChainSegment(s) => WorldShape::ChainSegment {
@@ -277,10 +278,8 @@ impl WorldShape {
                 },
                 Shape::Polygon(p),
             ) => {
-                vertices.clear();
-                vertices.extend(p.vertices().iter().map(|&v| place(v)));
-                normals.clear();
-                normals.extend(p.normals().iter().map(|n| rotation * n));
+                vertices.set(p.vertices().iter().map(|&v| place(v)));
+                normals.set(p.normals().iter().map(|n| rotation * n));
                 *radius = p.radius();
             }
             (
@@ -298,10 +297,8 @@ impl WorldShape {
                 };
                 let [p1, p2] = ends.map(place);
                 let normal = perp_cw(p2 - p1).normalize();
-                vertices.clear();
-                vertices.extend([p1, p2]);
-                normals.clear();
-                normals.extend([normal, -normal]);
+                vertices.set([p1, p2]);
+                normals.set([normal, -normal]);
                 *radius = rounding;
             }
             (
@@ -359,7 +356,9 @@ impl WorldShape {
     pub fn translate(&mut self, delta: Vec2) {
         match self {
             WorldShape::Circle { center, .. } => *center += delta,
-            WorldShape::Polygon { vertices, .. } => vertices.iter_mut().for_each(|v| *v += delta),
+            WorldShape::Polygon { vertices, .. } => {
+                vertices.as_mut_slice().iter_mut().for_each(|v| *v += delta)
+            }
             WorldShape::ChainSegment {
                 ghost1,
                 point1,

@@ -114,6 +114,9 @@ impl ContactSet {
                 return Err("a pair appears twice in the contact lookup".into());
             }
         }
+        let slots = (saved.contacts.iter().zip(0..count_u32))
+            .map(|(contact, index)| Slot::of(index, contact))
+            .collect();
         let mut set = ContactSet {
             contacts: saved.contacts,
             parts: saved.parts,
@@ -123,12 +126,7 @@ impl ContactSet {
             ended: saved.ended,
             lookup,
             ids: (0..count_u32).collect(),
-            slots: (0..count_u32)
-                .map(|index| Slot {
-                    index,
-                    links: [[NO_EDGE; 2]; 2],
-                })
-                .collect(),
+            slots,
             free: None,
             edges: Vec::with_capacity(saved.edges.len()),
             events: saved.events,
