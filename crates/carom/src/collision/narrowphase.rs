@@ -113,9 +113,8 @@ impl Narrowphase {
         );
         let mut deepest: Real = 0.0;
         self.changed.clear();
-        // Listed by id first, as filing them again moves contacts; backwards, the order they
-        // are filed in (which decides the colours they take).
-        for (index, &refresh) in self.refresh.iter().enumerate().rev() {
+        // Listed by id first, as filing them again moves contacts.
+        for (index, &refresh) in self.refresh.iter().enumerate() {
             match refresh {
                 Refresh::Unchanged => continue,
                 Refresh::Gone => work.contacts_destroyed += 1,
@@ -139,6 +138,12 @@ impl Narrowphase {
             }
             self.changed.push((set.id_at(index), refresh));
         }
+        // Filed by id, as Box2D files them: the colour a contact takes, the order islands
+        // join in and the events' order follow from the ids alone, not from where contacts
+        // happen to sit in the array (which moves as they change part). Highest first: a
+        // pile made at once is then coloured from its last contact back, as array order did.
+        self.changed
+            .sort_unstable_by_key(|&(id, _)| std::cmp::Reverse(id));
         let touch_changes = (set.began.len(), set.ended.len());
         for &(id, refresh) in &self.changed {
             file(set, set.index_of(id), refresh, bodies, colliders, wake);

@@ -24,8 +24,9 @@ use serde::{Deserialize, Serialize};
 
 /// The version of the saved form; a world saved in another is refused. Format 2: the solver's
 /// `iterations` became optional and joints are stored in solver sets. Format 3: the
-/// broadphase keeps which proxies moved apart from the proxies.
-const SAVE_FORMAT: u32 = 3;
+/// broadphase keeps which proxies moved apart from the proxies. Format 4: contacts keep their
+/// ids (contacts are filed by id).
+const SAVE_FORMAT: u32 = 4;
 
 /// What a saved world holds: every field of [`World`] that outlives a step.
 #[derive(Serialize, Deserialize)]

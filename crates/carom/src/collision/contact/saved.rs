@@ -1,11 +1,12 @@
 //! A contact set as a saved world holds it: by index, with the lookup giving each pair's index
-//! and each body's list its pairs. Contact ids are not saved (they change nothing a step
-//! computes); reading gives each contact the id of its index, and refuses lists that do not
-//! hold each contact exactly once in each of its bodies' lists.
+//! and each body's list its pairs, and each contact's id with the unused ids in the order
+//! they are given out again (contacts are filed by id, so a restored world must keep them).
+//! Reading refuses ids that are not each used once, and lists that do not hold each contact
+//! exactly once in each of its bodies' lists.
 
 use super::{
-    BodyIndices, Contact, ContactEvent, ContactSet, EdgeList, NO_EDGE, PairHasher, Slot, edge,
-    edge_id, pair_key,
+    BodyIndices, Contact, ContactEvent, ContactSet, EdgeList, NO_EDGE, NO_ID, PairHasher, Slot,
+    edge, edge_id, pair_key,
 };
 use crate::dynamics::body::BodyHandle;
 use crate::graph::colors::ContactColors;
@@ -32,6 +33,10 @@ struct SavedRef<'a> {
     pending: &'a [ContactEvent],
     body_indices: &'a [BodyIndices],
     made: u64,
+    /// Each contact's id, by index.
+    ids: &'a [u32],
+    /// The unused ids, the next to be given out first.
+    free: Vec<u32>,
 }
 
 /// The saved form, as read.
@@ -50,6 +55,8 @@ struct Saved {
     pending: Vec<ContactEvent>,
     body_indices: Vec<BodyIndices>,
     made: u64,
+    ids: Vec<u32>,
+    free: Vec<u32>,
 }
 
 impl Serialize for ContactSet {
@@ -70,6 +77,12 @@ impl Serialize for ContactSet {
             .map(|(&key, &id)| (key, self.index_of(id)))
             .collect();
         lookup.sort_unstable_by_key(|&(key, _)| key);
+        let mut free = Vec::new();
+        let mut next = self.free;
+        while let Some(id) = next {
+            free.push(id);
+            next = Some(self.slots[id as usize].links[0][0]).filter(|&next| next != NO_ID);
+        }
         SavedRef {
             contacts: &self.contacts,
             parts: &self.parts,
@@ -83,6 +96,8 @@ impl Serialize for ContactSet {
             pending: &self.pending,
             body_indices: &self.body_indices,
             made: self.made,
+            ids: &self.ids,
+            free,
         }
         .serialize(serializer)
     }
@@ -96,27 +111,42 @@ impl<'de> Deserialize<'de> for ContactSet {
 }
 
 impl ContactSet {
-    /// The set `saved` holds, each contact with the id of its index; refused when a pair is
-    /// listed twice or names no contact, or a body's lists do not hold each of its contacts
-    /// once. What else must hold is checked with the rest of the world (`check_saved`).
+    /// The set `saved` holds; refused when a pair is listed twice or names no contact, an id
+    /// is used twice or not at all, or a body's lists do not hold each of its contacts once.
+    /// What else must hold is checked with the rest of the world (`check_saved`).
     fn from_saved(saved: Saved) -> Result<Self, String> {
         let count = saved.contacts.len();
-        let Ok(count_u32) = u32::try_from(count) else {
+        if saved.ids.len() != count {
+            return Err("the contacts and their ids differ in number".into());
+        }
+        let slot_count = count + saved.free.len();
+        if u32::try_from(slot_count).is_err() {
             return Err("too many contacts".into());
-        };
+        }
+        let mut slots = vec![Slot::unused(NO_ID); slot_count];
+        let mut used = vec![false; slot_count];
+        for &id in saved.ids.iter().chain(&saved.free) {
+            match used.get_mut(id as usize) {
+                Some(used) if !*used => *used = true,
+                _ => return Err("a contact id is used twice, or is out of range".into()),
+            }
+        }
+        for (index, (&id, contact)) in saved.ids.iter().zip(&saved.contacts).enumerate() {
+            slots[id as usize] = Slot::of(index as u32, contact);
+        }
+        for (i, &id) in saved.free.iter().enumerate() {
+            slots[id as usize] = Slot::unused(saved.free.get(i + 1).copied().unwrap_or(NO_ID));
+        }
         let mut lookup: HashMap<u64, u32, BuildHasherDefault<PairHasher>> =
             HashMap::with_capacity_and_hasher(saved.lookup.len(), Default::default());
         for &(key, index) in &saved.lookup {
-            if index >= count {
+            let Some(&id) = saved.ids.get(index) else {
                 return Err("the contact lookup names a contact that does not exist".into());
-            }
-            if lookup.insert(key, index as u32).is_some() {
+            };
+            if lookup.insert(key, id).is_some() {
                 return Err("a pair appears twice in the contact lookup".into());
             }
         }
-        let slots = (saved.contacts.iter().zip(0..count_u32))
-            .map(|(contact, index)| Slot::of(index, contact))
-            .collect();
         let mut set = ContactSet {
             contacts: saved.contacts,
             parts: saved.parts,
@@ -125,9 +155,9 @@ impl ContactSet {
             began: saved.began,
             ended: saved.ended,
             lookup,
-            ids: (0..count_u32).collect(),
+            ids: saved.ids,
             slots,
-            free: None,
+            free: saved.free.first().copied(),
             edges: Vec::with_capacity(saved.edges.len()),
             events: saved.events,
             pending: saved.pending,
@@ -141,8 +171,9 @@ impl ContactSet {
                 let Some(&id) = set.lookup.get(key) else {
                     return Err("a body lists a contact that does not exist".into());
                 };
-                let contact = &set.contacts[id as usize];
-                let listed = &mut listed[id as usize];
+                let index = set.index_of(id);
+                let contact = &set.contacts[index];
+                let listed = &mut listed[index];
                 // The contact's first side that is this body and not yet listed.
                 let side = [contact.body_a, contact.body_b]
                     .iter()
