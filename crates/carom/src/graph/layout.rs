@@ -2,46 +2,63 @@
 //! the solver reads each graph colour's contacts in memory order, as Box2D v3 keeps each
 //! colour's contacts in an array of their own.
 //!
-//! The awake contacts (a body of the pair is awake) come first, the sleeping ones last. Among
-//! the awake ones, in order: the overflow, the high colours (which contacts with a static body
-//! take, from the last down), the contacts that do not touch, then the low colours (which
-//! contacts between dynamic bodies take, from the first up). The colours most taken sit next
-//! to the part that does not touch, so a contact that starts or stops touching usually crosses
-//! one or two parts (see `partition`).
+//! A contact that changes part crosses every non-empty part between (see `partition`), so the
+//! parts a contact moves between most often sit side by side. In order: the overflow, the
+//! colours, the awake contacts that do not touch, then the sleeping ones. A new contact
+//! arrives in the sleeping part, the last, and one being destroyed leaves from it, so most
+//! contacts made and destroyed cross one boundary. The colours are ordered by how often they
+//! are taken, the most taken next to the part that does not touch: contacts between dynamic
+//! bodies take the lowest colour free, from the first up, and contacts with a static or
+//! kinematic body the highest, from the last down, so the two orders alternate (colour 0, the
+//! last colour, colour 1, the one before the last, ...) going away from it.
 
 use crate::constants::COLOR_COUNT;
 use crate::graph::colors::OVERFLOW;
 use crate::partition::Partition;
 use std::ops::Range;
 
-/// The parts of the contact array (one per colour, the overflow, the awake contacts that do
+/// The parts of the contact array (the overflow, one per colour, the awake contacts that do
 /// not touch, the sleeping ones), less one.
 const CUTS: usize = COLOR_COUNT + 2;
 
 /// The contact array's parts.
 pub(crate) type ContactPartition = Partition<CUTS>;
 
-/// The colours from this one up are kept before the part that does not touch, the lower ones
-/// after it.
-const FIRST_HIGH: usize = COLOR_COUNT / 2;
-
-/// The awake contacts that do not touch (and have no colour).
-pub(crate) const NOT_TOUCHING: usize = 1 + COLOR_COUNT - FIRST_HIGH;
+/// The awake contacts that do not touch (and have no colour): after the overflow and the
+/// colours.
+pub(crate) const NOT_TOUCHING: usize = 1 + COLOR_COUNT;
 
 /// The sleeping contacts, touching or not: the last part.
 pub(crate) const ASLEEP: usize = CUTS;
 
+/// Each colour's part, then the overflow's (the first).
+const COLOR_PARTS: [usize; COLOR_COUNT + 1] = color_parts();
+
+/// Lays the colours out going away from the part that does not touch, taking in turn the
+/// lowest colour not yet placed and the highest.
+const fn color_parts() -> [usize; COLOR_COUNT + 1] {
+    let mut parts = [0; COLOR_COUNT + 1];
+    // Colours still to place: low..high (high exclusive).
+    let (mut low, mut high) = (0, COLOR_COUNT);
+    let mut part = NOT_TOUCHING - 1;
+    while low < high {
+        if (NOT_TOUCHING - part) % 2 == 1 {
+            parts[low] = part;
+            low += 1;
+        } else {
+            high -= 1;
+            parts[high] = part;
+        }
+        part -= 1;
+    }
+    parts[OVERFLOW as usize] = 0;
+    parts
+}
+
 /// The part of colour `color` (or of the overflow, [`OVERFLOW`]).
 #[inline]
 pub(crate) fn color_part(color: u8) -> usize {
-    let color = color as usize;
-    if color == OVERFLOW as usize {
-        0
-    } else if color >= FIRST_HIGH {
-        1 + color - FIRST_HIGH
-    } else {
-        NOT_TOUCHING + 1 + color
-    }
+    COLOR_PARTS[color as usize]
 }
 
 /// Each colour's contacts, then the overflow's, as ranges of the contact array.
@@ -57,14 +74,18 @@ mod tests {
     use super::*;
 
     /// Every colour and the overflow have a part of their own, awake, apart from the
-    /// contacts that do not touch; the colours most taken sit beside the latter.
+    /// contacts that do not touch; the colours most taken sit beside the latter, in turn from
+    /// each end, and the sleeping part beside it on its other side.
     #[test]
     fn every_colour_has_its_own_awake_part() {
         let mut parts: Vec<usize> = (0..=COLOR_COUNT as u8).map(color_part).collect();
         parts.push(NOT_TOUCHING);
         parts.sort_unstable();
         assert_eq!(parts, (0..ASLEEP).collect::<Vec<_>>());
-        assert_eq!(color_part(0), NOT_TOUCHING + 1);
-        assert_eq!(color_part(COLOR_COUNT as u8 - 1), NOT_TOUCHING - 1);
+        assert_eq!(ASLEEP, NOT_TOUCHING + 1);
+        let last = COLOR_COUNT as u8 - 1;
+        let nearest = [0, last, 1, last - 1, 2].map(color_part);
+        assert_eq!(nearest, std::array::from_fn(|i| NOT_TOUCHING - 1 - i));
+        assert_eq!(color_part(OVERFLOW), 0);
     }
 }

@@ -25,8 +25,9 @@ use serde::{Deserialize, Serialize};
 /// The version of the saved form; a world saved in another is refused. Format 2: the solver's
 /// `iterations` became optional and joints are stored in solver sets. Format 3: the
 /// broadphase keeps which proxies moved apart from the proxies. Format 4: contacts keep their
-/// ids (contacts are filed by id).
-const SAVE_FORMAT: u32 = 4;
+/// ids (contacts are filed by id). Format 5: the contact array's parts are laid out anew
+/// (`graph::layout`).
+const SAVE_FORMAT: u32 = 5;
 
 /// What a saved world holds: every field of [`World`] that outlives a step.
 #[derive(Serialize, Deserialize)]
