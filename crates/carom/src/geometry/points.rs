@@ -54,12 +54,6 @@ impl FromIterator<Vec2> for Points {
     }
 }
 
-impl From<&[Vec2]> for Points {
-    fn from(points: &[Vec2]) -> Self {
-        points.iter().copied().collect()
-    }
-}
-
 impl fmt::Debug for Points {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_list().entries(self.iter()).finish()
