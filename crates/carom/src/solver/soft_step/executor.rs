@@ -14,10 +14,9 @@ use crate::constants::{
     COLOR_COUNT, JOINT_COLOR_COUNT, MAX_BLOCKS, MIN_BLOCK, MIN_BODY_BLOCK, MIN_JOINT_BLOCK,
     MIN_SHARED,
 };
-use crate::dynamics::body::Body;
 use crate::graph::joints::JointColors;
 use crate::math::Real;
-use crate::solver::body_state::{SpeedCaps, integrate_position, integrate_velocity};
+use crate::solver::body_state::{BodyMotion, SpeedCaps, integrate_position, integrate_velocity};
 use crate::solver::joints::{JointConstraint, JointPass};
 use crate::solver::{BodyState, ContactConstraint, Environment, SolverParams};
 use crate::stats::Work;
@@ -52,8 +51,8 @@ pub(crate) enum Stage {
 
 /// What the stages read besides the states and constraints.
 pub(crate) struct StageInputs<'a> {
-    /// The awake bodies (their states come first).
-    pub bodies: &'a [Body],
+    /// What integrating the awake bodies reads of them (their states come first).
+    pub motions: &'a [BodyMotion],
     pub environment: Environment,
     /// The substep, and the speed caps.
     pub h: Real,
@@ -110,7 +109,7 @@ pub(super) fn execute_stages<L: Lanes>(
         }
         color_blocks[color] = count;
     }
-    let bodies = inputs.bodies;
+    let bodies = inputs.motions;
     let body_blocks = if shared {
         block_count(bodies.len(), MIN_BODY_BLOCK, threads)
     } else {
@@ -173,7 +172,7 @@ pub(super) fn execute_stages<L: Lanes>(
 /// (returning the work the effects did) or positions.
 fn integrate(
     stage: Stage,
-    bodies: &[Body],
+    bodies: &[BodyMotion],
     states: &mut [BodyState],
     inputs: &StageInputs,
 ) -> Option<Work> {
