@@ -1,7 +1,6 @@
 //! The solver's copy of a body: velocities and the motion accumulated over the step, stored
 //! contiguously so the inner loops touch little memory. Every solver path (one contact at a
-//! time, or several in SIMD lanes) reads and writes this one array. Beside it, what
-//! integrating a body reads of it ([`BodyMotion`]), copied once a step.
+//! time, or several in SIMD lanes) reads and writes this one array.
 
 use super::{Environment, SolverParams};
 use crate::constants::ITEMS_PER_TASK;
@@ -85,54 +84,6 @@ impl BodyState {
     }
 }
 
-/// What integrating a body reads of it, copied from the body once a step: the substeps then
-/// read one compact line per body instead of the body's several (Box2D's integration reads its
-/// body sims, which hold these beside the transforms).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct BodyMotion {
-    pub force: Vec2,
-    pub torque: Real,
-    pub inv_mass: Real,
-    pub inv_inertia: Real,
-    pub gravity_scale: Real,
-    pub linear_damping: Real,
-    pub angular_damping: Real,
-    pub moves: Moves,
-}
-
-/// How the step moves a body.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Moves {
-    /// Static, or asleep: not at all.
-    Not,
-    /// Kinematic: as it is told (its velocity), no force, no cap.
-    AsTold,
-    /// Dynamic: forces, gravity and drag, held to the speed caps.
-    Freely,
-}
-
-impl BodyMotion {
-    pub fn of(body: &Body) -> Self {
-        let moves = if !body.moves() {
-            Moves::Not
-        } else if body.kind() == BodyKind::Dynamic {
-            Moves::Freely
-        } else {
-            Moves::AsTold
-        };
-        BodyMotion {
-            force: body.force(),
-            torque: body.torque(),
-            inv_mass: body.inv_mass(),
-            inv_inertia: body.inv_inertia(),
-            gravity_scale: body.gravity_scale(),
-            linear_damping: body.linear_damping(),
-            angular_damping: body.angular_damping(),
-            moves,
-        }
-    }
-}
-
 /// The guard rails on speed: how fast any dynamic body may move and turn.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct SpeedCaps {
@@ -173,13 +124,13 @@ impl SpeedCaps {
 /// entirely when off.
 pub(crate) fn integrate_velocities(
     environment: Environment,
-    motions: &[BodyMotion],
+    bodies: &[Body],
     states: &mut [BodyState],
     h: Real,
     caps: SpeedCaps,
 ) -> Work {
-    sum_with(motions, states, ITEMS_PER_TASK, |motion, state| {
-        integrate_velocity(environment, motion, state, h, caps)
+    sum_with(bodies, states, ITEMS_PER_TASK, |body, state| {
+        integrate_velocity(environment, body, state, h, caps)
     })
 }
 
@@ -187,26 +138,26 @@ pub(crate) fn integrate_velocities(
 #[inline]
 pub(crate) fn integrate_velocity(
     environment: Environment,
-    body: &BodyMotion,
+    body: &Body,
     state: &mut BodyState,
     h: Real,
     caps: SpeedCaps,
 ) -> Work {
     let mut work = Work::default();
-    if body.moves != Moves::Freely {
+    if body.kind() != BodyKind::Dynamic || body.is_sleeping() {
         return work;
     }
-    let mut v = state.v + body.force * (body.inv_mass * h);
-    let mut w = state.w + body.torque * body.inv_inertia * h;
+    let mut v = state.v + body.force() * (body.inv_mass() * h);
+    let mut w = state.w + body.torque() * body.inv_inertia() * h;
     if let Some(gravity) = environment.gravity {
-        v += gravity * (body.gravity_scale * h);
+        v += gravity * (body.gravity_scale() * h);
         work.gravity_terms += 1;
     }
     if let Some(model) = environment.drag
-        && (body.linear_damping > 0.0 || body.angular_damping > 0.0)
+        && (body.linear_damping() > 0.0 || body.angular_damping() > 0.0)
     {
-        v = model.apply_linear(v, body.linear_damping, h);
-        w = model.apply_angular(w, body.angular_damping, h);
+        v = model.apply_linear(v, body.linear_damping(), h);
+        w = model.apply_angular(w, body.angular_damping(), h);
         work.drag_terms += 1;
     }
     let (v, w, cut) = caps.hold(v, w);
@@ -221,33 +172,27 @@ pub(crate) fn integrate_velocity(
 /// first held to the speed caps (after the contacts and joints had their say, as Box2D 3.2
 /// does, so the cap bounds the motion itself). Kinematic bodies move as they are told.
 pub(crate) fn integrate_positions(
-    motions: &[BodyMotion],
+    bodies: &[Body],
     states: &mut [BodyState],
     h: Real,
     caps: SpeedCaps,
 ) {
-    for_each_with(motions, states, ITEMS_PER_TASK, |motion, state| {
-        integrate_position(motion, state, h, caps)
+    for_each_with(bodies, states, ITEMS_PER_TASK, |body, state| {
+        integrate_position(body, state, h, caps)
     });
 }
 
 /// [`integrate_positions`] of one body.
 #[inline]
-pub(crate) fn integrate_position(
-    body: &BodyMotion,
-    state: &mut BodyState,
-    h: Real,
-    caps: SpeedCaps,
-) {
-    match body.moves {
-        Moves::Not => return,
-        Moves::AsTold => {}
-        Moves::Freely => {
-            let (v, w, cut) = caps.hold(state.v, state.w);
-            (state.v, state.w) = (v, w);
-            // The warm start since the last position integration has seen the cuts before it.
-            state.held = u32::from(cut);
-        }
+pub(crate) fn integrate_position(body: &Body, state: &mut BodyState, h: Real, caps: SpeedCaps) {
+    if !body.moves() {
+        return;
+    }
+    if body.kind() == BodyKind::Dynamic {
+        let (v, w, cut) = caps.hold(state.v, state.w);
+        (state.v, state.w) = (v, w);
+        // The warm start since the last position integration has seen the cuts before it.
+        state.held = u32::from(cut);
     }
     state.dp += state.v * h;
     state.dq = rotation(state.w * h) * state.dq;

@@ -20,7 +20,7 @@ mod step;
 
 use crate::graph::joints::JointColors;
 pub(crate) use body_state::BodyState;
-use body_state::{BodyMotion, SpeedCaps};
+use body_state::SpeedCaps;
 use contact_constraint::BodyMass;
 pub(crate) use contact_constraint::ContactConstraint;
 pub(crate) use joints::{JointBody, JointConstraint};
@@ -301,12 +301,12 @@ pub(crate) struct Environment {
     pub restitution: bool,
 }
 
-/// What every solver reads and does not change: its settings, the world's forces, what
-/// integrating the awake bodies reads of them, and the step.
+/// What every solver reads and does not change: its settings, the world's forces, the bodies
+/// (for mass, forces and kind), and the step.
 pub(crate) struct SolverContext<'a> {
     pub params: &'a SolverParams,
     pub environment: Environment,
-    pub motions: &'a [BodyMotion],
+    pub bodies: &'a [Body],
     pub dt: Real,
 }
 
@@ -316,8 +316,6 @@ pub(crate) struct Workspace {
     /// The awake bodies' states and masses, then the spare state's.
     states: Vec<BodyState>,
     masses: Vec<BodyMass>,
-    /// What integrating each awake body reads of it.
-    motions: Vec<BodyMotion>,
     /// The constraints solved one at a time: every touching contact for the classic solvers
     /// and for soft step without colours, the overflow's with them.
     constraints: Vec<ContactConstraint>,

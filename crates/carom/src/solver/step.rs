@@ -3,7 +3,7 @@
 //! constraints), solve (the chosen solver), and store (impulses back into contacts and joints
 //! for the next warm start, states back into bodies through the speed caps).
 
-use super::body_state::{BodyMotion, SpeedCaps};
+use super::body_state::SpeedCaps;
 use super::classic::{push_out, sequential_impulse, tutorial_impulse};
 use super::contact_constraint::BodyMass;
 use super::soft_step::{self, Bias, BundleInputs};
@@ -45,7 +45,7 @@ pub(crate) fn step(
     let started = Instant::now();
     let plan = prepare(params, &set, dt, workspace);
     let prepare = started.elapsed();
-    let work = solve(params, environment, dt, &plan, workspace);
+    let work = solve(params, environment, &set, dt, &plan, workspace);
     let storing = Instant::now();
     let (points, joints) = store(params, &mut set, dt, &plan, workspace);
     StepReport {
@@ -81,7 +81,6 @@ fn prepare(params: &SolverParams, set: &AwakeSet, dt: Real, workspace: &mut Work
     let Workspace {
         states,
         masses,
-        motions,
         constraints,
         graph,
         wide,
@@ -103,7 +102,6 @@ fn prepare(params: &SolverParams, set: &AwakeSet, dt: Real, workspace: &mut Work
     states.push(BodyState::spare());
     map_into(awake_bodies, masses, ITEMS_PER_TASK, BodyMass::of);
     masses.push(BodyMass::default());
-    map_into(awake_bodies, motions, ITEMS_PER_TASK, BodyMotion::of);
     let check = ColorCheck {
         moves: |i: usize| masses[i].dynamic,
         awake: awake.clone(),
@@ -172,13 +170,13 @@ fn prepare(params: &SolverParams, set: &AwakeSet, dt: Real, workspace: &mut Work
 fn solve(
     params: &SolverParams,
     environment: Environment,
+    set: &AwakeSet,
     dt: Real,
     plan: &Plan,
     workspace: &mut Workspace,
 ) -> Work {
     let Workspace {
         states,
-        motions,
         constraints,
         wide,
         plan: stages,
@@ -189,7 +187,7 @@ fn solve(
     let context = SolverContext {
         params,
         environment,
-        motions,
+        bodies: &set.bodies[set.awake.clone()],
         dt,
     };
     // Push-out and the tutorial's impulses predate joints: they leave them out.

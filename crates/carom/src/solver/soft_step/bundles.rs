@@ -240,7 +240,7 @@ impl WideContacts {
 
     /// Runs `plan`, stage after stage, on as many threads as rayon gives (in one parallel
     /// region) when there is enough to share: the stages over the bundles, the overflow's
-    /// constraints one by one, and the integration of the awake bodies (`inputs.motions`, whose
+    /// constraints one by one, and the integration of the awake bodies (`inputs.bodies`, whose
     /// states come first in `states`). Returns the work integration did and how many
     /// restitution impulses were computed.
     #[allow(unsafe_code)]
@@ -298,7 +298,7 @@ impl WideContacts {
         let params = SolverParams::default();
         let bias = Bias::new(&params, 1.0 / 240.0);
         let inputs = StageInputs {
-            motions: &[],
+            bodies: &[],
             environment: Environment {
                 gravity: None,
                 drag: None,

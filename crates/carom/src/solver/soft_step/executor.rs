@@ -14,9 +14,10 @@ use crate::constants::{
     COLOR_COUNT, JOINT_COLOR_COUNT, MAX_BLOCKS, MIN_BLOCK, MIN_BODY_BLOCK, MIN_JOINT_BLOCK,
     MIN_SHARED,
 };
+use crate::dynamics::body::Body;
 use crate::graph::joints::JointColors;
 use crate::math::Real;
-use crate::solver::body_state::{BodyMotion, SpeedCaps, integrate_position, integrate_velocity};
+use crate::solver::body_state::{SpeedCaps, integrate_position, integrate_velocity};
 use crate::solver::joints::{JointConstraint, JointPass};
 use crate::solver::{BodyState, ContactConstraint, Environment, SolverParams};
 use crate::stats::Work;
@@ -51,8 +52,8 @@ pub(crate) enum Stage {
 
 /// What the stages read besides the states and constraints.
 pub(crate) struct StageInputs<'a> {
-    /// What integrating the awake bodies reads of them (their states come first).
-    pub motions: &'a [BodyMotion],
+    /// The awake bodies (their states come first).
+    pub bodies: &'a [Body],
     pub environment: Environment,
     /// The substep, and the speed caps.
     pub h: Real,
@@ -109,7 +110,7 @@ pub(super) fn execute_stages<L: Lanes>(
         }
         color_blocks[color] = count;
     }
-    let bodies = inputs.motions;
+    let bodies = inputs.bodies;
     let body_blocks = if shared {
         block_count(bodies.len(), MIN_BODY_BLOCK, threads)
     } else {
@@ -172,7 +173,7 @@ pub(super) fn execute_stages<L: Lanes>(
 /// (returning the work the effects did) or positions.
 fn integrate(
     stage: Stage,
-    bodies: &[BodyMotion],
+    bodies: &[Body],
     states: &mut [BodyState],
     inputs: &StageInputs,
 ) -> Option<Work> {

@@ -56,7 +56,7 @@ pub(super) fn solve(
     let SolverContext {
         params,
         environment,
-        motions,
+        bodies,
         dt,
     } = *context;
     let substeps = params.substeps.max(1);
@@ -66,7 +66,7 @@ pub(super) fn solve(
     let shape = (wide.color_count(), !constraints.is_empty(), bouncy);
     plan_stages(plan, params, environment, bias, joint_colors, shape);
     let inputs = StageInputs {
-        motions,
+        bodies,
         environment,
         h,
         caps: SpeedCaps::new(params, dt),
