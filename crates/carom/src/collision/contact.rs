@@ -368,6 +368,12 @@ impl Slot {
         }
     }
 
+    /// The unused id after this unused one, if any.
+    fn next_unused(&self) -> Option<u32> {
+        let next = self.links[0][0];
+        (next != NO_ID).then_some(next)
+    }
+
     /// The slot of the contact at `index` (not yet linked into its bodies' lists).
     fn of(index: u32, contact: &Contact) -> Self {
         Slot {
@@ -440,8 +446,7 @@ impl ContactSet {
             Entry::Occupied(_) => return,
             Entry::Vacant(vacant) => {
                 let id = if let Some(id) = self.free {
-                    let next = self.slots[id as usize].links[0][0];
-                    self.free = (next != NO_ID).then_some(next);
+                    self.free = self.slots[id as usize].next_unused();
                     id
                 } else {
                     self.slots.push(Slot::unused(NO_ID));
@@ -888,6 +893,12 @@ impl ContactSet {
         )
     }
 
+    /// The unused ids, the next to be given out first.
+    #[cfg(any(test, feature = "serde"))]
+    fn free_ids(&self) -> impl Iterator<Item = u32> + '_ {
+        std::iter::successors(self.free, |&id| self.slots[id as usize].next_unused())
+    }
+
     /// Checks the ids: each contact's id finds it and its pair finds the id, the unused ids
     /// are the free ones, and each body's list holds exactly its contacts, each where its id
     /// says.
@@ -933,11 +944,9 @@ impl ContactSet {
             assert_eq!(list.last, before, "body {body}'s last edge");
         }
         let mut free = Vec::new();
-        let mut next = self.free.unwrap_or(NO_ID);
-        while next != NO_ID {
+        for id in self.free_ids() {
             assert!(free.len() < self.slots.len(), "the free ids loop");
-            free.push(next);
-            next = self.slots[next as usize].links[0][0];
+            free.push(id);
         }
         free.sort_unstable();
         let unused: Vec<u32> = (0..self.slots.len() as u32)

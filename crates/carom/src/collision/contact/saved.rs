@@ -77,12 +77,7 @@ impl Serialize for ContactSet {
             .map(|(&key, &id)| (key, self.index_of(id)))
             .collect();
         lookup.sort_unstable_by_key(|&(key, _)| key);
-        let mut free = Vec::new();
-        let mut next = self.free;
-        while let Some(id) = next {
-            free.push(id);
-            next = Some(self.slots[id as usize].links[0][0]).filter(|&next| next != NO_ID);
-        }
+        let free = self.free_ids().collect();
         SavedRef {
             contacts: &self.contacts,
             parts: &self.parts,
