@@ -216,6 +216,11 @@ impl<H: Handle, T> HandleMap<H, T> {
         &self.handles
     }
 
+    /// Every item's handle and every item, which may be changed, in storage order.
+    pub fn handles_and_slice_mut(&mut self) -> (&[H], &mut [T]) {
+        (&self.handles, &mut self.items)
+    }
+
     /// How many items there are.
     #[inline]
     pub fn len(&self) -> usize {

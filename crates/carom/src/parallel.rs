@@ -51,6 +51,27 @@ pub(crate) fn map_zip_into<A: Sync, B: Sync, U: Send>(
     }
 }
 
+/// `out` becomes `f` of every pair of `a[i]` and `b[i]`, which `f` may change (`out`'s memory
+/// reused).
+pub(crate) fn map_zip_mut_into<A: Sync, B: Send, U: Send>(
+    a: &[A],
+    b: &mut [B],
+    out: &mut Vec<U>,
+    per_task: usize,
+    f: impl Fn(&A, &mut B) -> U + Sync + Send,
+) {
+    if worth_sharing(a.len().min(b.len()), per_task) {
+        a.par_iter()
+            .zip(b.par_iter_mut())
+            .with_min_len(per_task)
+            .map(|(a, b)| f(a, b))
+            .collect_into_vec(out);
+    } else {
+        out.clear();
+        out.extend(a.iter().zip(b).map(|(a, b)| f(a, b)));
+    }
+}
+
 /// `out` becomes `f` of every item, which `f` may change (`out`'s memory reused).
 pub(crate) fn map_mut_into<T: Send, U: Send>(
     items: &mut [T],

@@ -333,6 +333,17 @@ pub(crate) struct ContinuousScratch {
     swept: Vec<[Option<WorldShape>; 3]>,
 }
 
+impl ContinuousScratch {
+    /// The storage indices of the bodies the last [`solve_continuous`] put back.
+    pub(crate) fn moved(&self) -> impl Iterator<Item = usize> + '_ {
+        self.fast
+            .iter()
+            .zip(&self.impacts)
+            .filter(|(_, impact)| impact.is_some())
+            .map(|(&(index, _), _)| index)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -17,7 +17,7 @@ use crate::geometry::ray::{Ray, RayHit};
 use crate::geometry::shape::{Shape, WorldShape};
 use crate::handle_map::{HandleMap, generational_handle};
 use crate::math::{Isometry, Real, Vec2};
-use crate::parallel::for_each_mut;
+use crate::parallel::{for_each_mut, map_zip_mut_into};
 use std::ops::Range;
 
 generational_handle!(
@@ -439,18 +439,29 @@ pub(crate) fn place_colliders(
 }
 
 /// [`place_colliders`] for every body of the awake set (`awake_bodies`, whose colliders are
-/// `awake_colliders`), on all threads: the colliders first, then each body's box.
-pub(crate) fn place_awake_colliders(
+/// `awake_colliders`), on all threads: the colliders first, then each body's box. `out`
+/// becomes `after` of every awake collider just placed (with its handle and body), in
+/// collider order, so what a later stage needs of each is found while it is at hand.
+pub(crate) fn place_awake_colliders<T: Send>(
     bodies: &mut HandleMap<BodyHandle, Body>,
     awake_bodies: Range<usize>,
     colliders: &mut HandleMap<ColliderHandle, Collider>,
     awake_colliders: Range<usize>,
+    out: &mut Vec<T>,
+    after: impl Fn(ColliderHandle, &Collider, &Body) -> T + Sync + Send,
 ) {
     let all = bodies.as_slice();
-    for_each_mut(
-        &mut colliders.as_mut_slice()[awake_colliders],
+    let (handles, placed) = colliders.handles_and_slice_mut();
+    map_zip_mut_into(
+        &handles[awake_colliders.clone()],
+        &mut placed[awake_colliders],
+        out,
         CONTACTS_PER_TASK,
-        |collider| collider.place(&all[collider.body_index()].transform()),
+        |&handle, collider| {
+            let body = &all[collider.body_index()];
+            collider.place(&body.transform());
+            after(handle, collider, body)
+        },
     );
     let colliders = &*colliders;
     for_each_mut(

@@ -150,8 +150,8 @@ impl World {
     }
 
     /// Removes the joints the last step pulled past their break force or torque, reporting
-    /// each.
-    pub(crate) fn break_joints(&mut self, solved: &[AwakeJoint]) {
+    /// each; says whether any broke.
+    pub(crate) fn break_joints(&mut self, solved: &[AwakeJoint]) -> bool {
         self.joints.events.clear();
         let broken: Vec<JointHandle> = solved
             .iter()
@@ -159,7 +159,7 @@ impl World {
             .filter(|joint| joint.is_broken())
             .map(Joint::handle)
             .collect();
-        for handle in broken {
+        for &handle in &broken {
             let joint = self.joints.remove(handle).expect("solved joints live");
             self.detach_joint(&joint);
             self.joints.events.push(JointEvent::Broken {
@@ -169,6 +169,7 @@ impl World {
                 torque: joint.reaction_torque(),
             });
         }
+        !broken.is_empty()
     }
 
     /// The bodies joined to `body`, into `out` (for islands).

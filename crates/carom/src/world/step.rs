@@ -1,6 +1,7 @@
 //! One step of the world, stage by stage.
 
 use super::{World, margin_for};
+use crate::collision::broadphase::BroadPhase;
 use crate::collision::continuous::{self, ContinuousScratch};
 use crate::collision::hits::find_hits;
 use crate::collision::look_ahead::Motion;
@@ -10,7 +11,7 @@ use crate::constants::{
     RUNNER_STOP_FRACTION,
 };
 use crate::dynamics::body::{Body, BodyKind};
-use crate::dynamics::collider::{ColliderHandle, place_awake_colliders};
+use crate::dynamics::collider::{Collider, ColliderHandle, place_awake_colliders};
 use crate::error::CaromError;
 use crate::geometry::aabb::Aabb;
 use crate::math::{Real, Vec2};
@@ -92,13 +93,10 @@ impl World {
                 collision,
             )
         });
-        if continuous {
-            self.record_start_poses();
-        }
         self.awake_joints(&mut scratch.awake_joints);
         let solved = timed(&mut times.solve, || {
             let report = self.solve(dt, &scratch.awake_joints);
-            self.place_moved_colliders();
+            self.place_moved_colliders(prediction, &mut scratch.refits);
             report
         });
         (stats.contact_points, stats.work) = (solved.points, solved.work);
@@ -115,7 +113,7 @@ impl World {
             );
         }
         stats.joints = solved.joints;
-        self.break_joints(&scratch.awake_joints);
+        let joints_broke = self.break_joints(&scratch.awake_joints);
         (times.prepare, times.store) = (solved.prepare, solved.store);
         if continuous {
             (stats.continuous_impacts, stats.work.sweeps) = timed(&mut times.continuous, || {
@@ -132,7 +130,15 @@ impl World {
             });
         }
         stats.collision.proxies_moved = timed(&mut times.broadphase, || {
-            self.refresh_broadphase(prediction, &mut scratch.refits)
+            // A broken joint may have woken bodies into the awake set, which the refits found
+            // at placement do not cover; otherwise only the bodies continuous collision put
+            // back have moved since.
+            if joints_broke {
+                self.find_refits(prediction, &mut scratch.refits);
+            } else if continuous {
+                self.refind_refits(prediction, scratch.continuous.moved(), &mut scratch.refits);
+            }
+            self.refresh_broadphase(&scratch.refits)
         });
         if effects.contains(Effect::Sleeping) {
             (stats.work.sleep_checks, stats.collision.island_splits) =
@@ -215,14 +221,6 @@ impl World {
         &self.bodies.as_slice()[self.body_sets.awake()]
     }
 
-    /// Records every awake body's pose at the start of the step, for continuous collision.
-    fn record_start_poses(&mut self) {
-        let awake = self.body_sets.awake();
-        for body in &mut self.bodies.as_mut_slice()[awake] {
-            body.record_start_pose();
-        }
-    }
-
     /// Runs the configured solver over every moving body and touching contact; returns how
     /// many contact points it solved and the work its effects did.
     fn solve(&mut self, dt: Real, awake_joints: &[solver::AwakeJoint]) -> solver::StepReport {
@@ -282,64 +280,74 @@ impl World {
         (candidates, created)
     }
 
-    /// Places the colliders of the awake set, which moved this step, and their bodies' boxes.
-    fn place_moved_colliders(&mut self) {
+    /// Places the colliders of the awake set, which moved this step, and their bodies' boxes,
+    /// and finds for each, while it is at hand, what the broadphase must learn of it
+    /// (`refits`, see [`refit`]).
+    fn place_moved_colliders(&mut self, prediction: Real, refits: &mut Vec<Option<Refit>>) {
+        let reach = margin_for(&self.settings, BodyKind::Dynamic);
+        let broadphase = &self.broadphase;
         place_awake_colliders(
             &mut self.bodies,
             self.body_sets.awake(),
             &mut self.colliders,
             self.collider_sets.awake(),
+            refits,
+            |handle, collider, body| refit(handle, collider, body, prediction, reach, broadphase),
         );
     }
 
-    /// Re-fits the broadphase entries of colliders that moved this step, each box covering
-    /// where its collider can get to in `prediction` seconds at its body's present velocity:
-    /// which ones left their fat boxes, and which outrun their margin (runners, whose pairs
-    /// the look-ahead test judges), is found on all threads (into `refits`), then only those
-    /// are enlarged in place or marked, in collider order, for the next step's rebuild and
-    /// pair update. Returns how many were enlarged.
-    fn refresh_broadphase(&mut self, prediction: Real, refits: &mut Vec<Option<Refit>>) -> usize {
+    /// Finds again what the broadphase must learn of every awake collider ([`refit`]).
+    fn find_refits(&self, prediction: Real, refits: &mut Vec<Option<Refit>>) {
         let bodies = self.bodies.as_slice();
         let awake = self.collider_sets.awake();
-        let handles = &self.colliders.handles()[awake.clone()];
         let broadphase = &self.broadphase;
         let reach = margin_for(&self.settings, BodyKind::Dynamic);
         map_zip_into(
-            handles,
+            &self.colliders.handles()[awake.clone()],
             &self.colliders.as_slice()[awake],
             refits,
             CONTACTS_PER_TASK,
             |&handle, collider| {
                 let body = &bodies[collider.body_index()];
-                if body.kind() == BodyKind::Static {
-                    return None;
-                }
-                let stride = Stride::of(body, prediction);
-                let aabb = stride.map_or(collider.aabb(), |s| s.sweep(collider.aabb()));
-                let leaves = broadphase.needs_update(handle, body.kind(), &aabb);
-                // A runner runs on until it is well below the speed that made it one, so that a
-                // body near that speed does not make and drop its pairs step after step.
-                let was_runner = broadphase.is_runner(handle);
-                let threshold = if was_runner {
-                    reach * RUNNER_STOP_FRACTION
-                } else {
-                    reach
-                };
-                let runner = stride.filter(|s| s.reach() > threshold).map(|s| Motion {
-                    aabb: collider.aabb().fattened(reach),
-                    shift: s.shift,
-                    turn: s.turn,
-                });
-                (leaves || runner.is_some() || was_runner).then_some(Refit {
-                    aabb,
-                    kind: body.kind(),
-                    leaves,
-                    runner,
-                })
+                refit(handle, collider, body, prediction, reach, broadphase)
             },
         );
+    }
+
+    /// Finds again what the broadphase must learn of the colliders of the bodies at storage
+    /// indices `moved`, all awake.
+    fn refind_refits(
+        &self,
+        prediction: Real,
+        moved: impl Iterator<Item = usize>,
+        refits: &mut [Option<Refit>],
+    ) {
+        let bodies = self.bodies.as_slice();
+        let first = self.collider_sets.awake().start;
+        let reach = margin_for(&self.settings, BodyKind::Dynamic);
+        for body in moved.map(|index| &bodies[index]) {
+            for &handle in body.colliders() {
+                let (Some(index), Some(collider)) = (
+                    self.colliders.dense_index(handle),
+                    self.colliders.get(handle),
+                ) else {
+                    continue;
+                };
+                refits[index - first] =
+                    refit(handle, collider, body, prediction, reach, &self.broadphase);
+            }
+        }
+    }
+
+    /// Re-fits the broadphase entries of the awake colliders that moved this step, as found
+    /// into `refits` (see [`refit`]): in collider order, each that left its fat box is
+    /// enlarged in place, and each runner is marked, for the next step's rebuild and pair
+    /// update. Returns how many were enlarged.
+    fn refresh_broadphase(&mut self, refits: &[Option<Refit>]) -> usize {
+        let awake = self.collider_sets.awake();
+        let handles = &self.colliders.handles()[awake];
         let mut moved = 0;
-        for (&handle, refit) in handles.iter().zip(refits.iter()) {
+        for (&handle, refit) in handles.iter().zip(refits) {
             let Some(Refit {
                 aabb,
                 kind,
@@ -365,6 +373,46 @@ impl World {
         }
         moved
     }
+}
+
+/// What the broadphase must learn of a collider (`handle`) of `body` that moved this step,
+/// if anything: its box, grown to cover where it can get to in `prediction` seconds at its
+/// body's present velocity, if that left its fat box, and whether it outruns its margin
+/// (`reach`: a runner, whose pairs the look-ahead test judges). Reads only, so it may run on
+/// all threads.
+fn refit(
+    handle: ColliderHandle,
+    collider: &Collider,
+    body: &Body,
+    prediction: Real,
+    reach: Real,
+    broadphase: &BroadPhase,
+) -> Option<Refit> {
+    if body.kind() == BodyKind::Static {
+        return None;
+    }
+    let stride = Stride::of(body, prediction);
+    let aabb = stride.map_or(collider.aabb(), |s| s.sweep(collider.aabb()));
+    let leaves = broadphase.needs_update(handle, body.kind(), &aabb);
+    // A runner runs on until it is well below the speed that made it one, so that a body
+    // near that speed does not make and drop its pairs step after step.
+    let was_runner = broadphase.is_runner(handle);
+    let threshold = if was_runner {
+        reach * RUNNER_STOP_FRACTION
+    } else {
+        reach
+    };
+    let runner = stride.filter(|s| s.reach() > threshold).map(|s| Motion {
+        aabb: collider.aabb().fattened(reach),
+        shift: s.shift,
+        turn: s.turn,
+    });
+    (leaves || runner.is_some() || was_runner).then_some(Refit {
+        aabb,
+        kind: body.kind(),
+        leaves,
+        runner,
+    })
 }
 
 /// What the broadphase must learn of a collider that moved in a step.

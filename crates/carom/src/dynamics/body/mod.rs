@@ -80,8 +80,8 @@ pub struct Body {
     aabb: Aabb,
     /// Continuous collision cut this step's motion short.
     had_time_of_impact: bool,
-    /// Where the centre of mass was at the start of the step, and how the body was turned
-    /// (recorded for continuous collision only), as Box2D keeps `center0` in its bodies.
+    /// Where the centre of mass was at the start of the last solved step, and how the body
+    /// was turned (for continuous collision), as Box2D keeps `center0` in its bodies.
     #[cfg_attr(feature = "serde", serde(skip))]
     start: Pose,
     /// How far the body's farthest point moved in the last step, m: the solver's position
@@ -687,22 +687,21 @@ impl Body {
         self.had_time_of_impact
     }
 
-    /// Records where the body starts the step, for continuous collision to sweep from.
-    pub(crate) fn record_start_pose(&mut self) {
-        self.start = Pose {
-            center: self.center,
-            rotation: self.rotation,
-        };
-    }
-
-    /// Where the body started the step ([`Body::record_start_pose`]).
+    /// Where the body started its last solved step ([`Body::finish_step`]), for continuous
+    /// collision to sweep from.
     pub(crate) fn start_pose(&self) -> Pose {
         self.start
     }
 
     /// Commits a solved step: velocities, and the motion of the centre of mass accumulated
-    /// over it; the origin follows. Forces are cleared; the world re-places the colliders.
+    /// over it; the origin follows, and the pose it started from is kept for continuous
+    /// collision (here, where the body is written anyway, rather than in a pass of its own).
+    /// Forces are cleared; the world re-places the colliders.
     pub(crate) fn finish_step(&mut self, v: Vec2, w: Real, dp: Vec2, dq: Rot) {
+        self.start = Pose {
+            center: self.center,
+            rotation: self.rotation,
+        };
         self.linear_velocity = v;
         self.angular_velocity = w;
         self.center += dp;
