@@ -1,7 +1,7 @@
 //! Broadphase cost against collider count (one per body here): building the tree for n boxes and finding their pairs,
 //! then one step of motion (every box drifts, some leave their fat boxes) and the pair update.
 //!
-//! Run with `cargo bench -p carom --bench broadphase`. Time per box should grow like log n.
+//! Run with `cargo bench -p carom-bench --features criterion --bench broadphase`. Time per box should grow like log n.
 
 use carom::testing::BroadPhase;
 use carom::{Aabb, BodyHandle, BodyKind, ColliderHandle, Real, vec2};

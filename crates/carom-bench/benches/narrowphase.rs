@@ -2,7 +2,7 @@
 //! clipped manifold for circle-circle, polygon-circle and polygon-polygon, each for a touching
 //! pair (the common case in a pile) and a deeply overlapping one.
 //!
-//! Run with `cargo bench -p carom --bench narrowphase`.
+//! Run with `cargo bench -p carom-bench --features criterion --bench narrowphase`.
 
 use carom::collide;
 use carom::separation;

@@ -1,6 +1,6 @@
 //! What removing one body costs in a large world: 20 pyramids of 1081 boxes (21,620 bodies),
 //! settled a second so every box has its contacts, then one box from the middle of each
-//! pyramid removed in turn, each timed alone. Run with `cargo bench -p carom --bench removal`;
+//! pyramid removed in turn, each timed alone. Run with `cargo bench -p carom-bench --features criterion --bench removal`;
 //! it prints the median and the slowest removal.
 
 use carom::{BodyDef, BodyHandle, Real, Shape, World, vec2};

@@ -3,7 +3,7 @@
 //! - 20,000 boxes asleep in 1000 columns of 20 beside one box that never stops moving, and
 //!   that one box alone, so the difference is what the sleepers cost.
 //!
-//! Run with `cargo bench -p carom --bench sleeping`.
+//! Run with `cargo bench -p carom-bench --features criterion --bench sleeping`.
 
 use carom::{BodyDef, Effect, Effects, Real, Shape, World, WorldSettings, vec2};
 use criterion::{Criterion, criterion_group, criterion_main};
