@@ -815,8 +815,7 @@ impl ContactSet {
         0..self.parts.start(ASLEEP)
     }
 
-    /// How many contacts are in the awake set, for tests of the sets.
-    #[cfg(test)]
+    /// How many contacts are in the awake set.
     pub(crate) fn awake_len(&self) -> usize {
         self.awake_range().end
     }

@@ -15,7 +15,7 @@ use crate::dynamics::collider::{Collider, ColliderHandle, place_awake_colliders}
 use crate::error::CaromError;
 use crate::geometry::aabb::Aabb;
 use crate::math::{Real, Vec2};
-use crate::parallel::map_zip_into;
+use crate::parallel::{map_zip_into, worth_sharing};
 use crate::solver::{self, Environment, SolverKind};
 use crate::stats::{CollisionWork, Instant, StepStats};
 use crate::world::effects::Effect;
@@ -182,10 +182,16 @@ impl World {
             }),
             pre_solve: self.pre_solve.as_ref(),
         };
-        let (deepest, ()) = rayon::join(
-            || narrowphase.update(contacts, bodies, colliders, fat_boxes, options, wake, work),
-            || moving_tree.rebuild(false),
-        );
+        // A small world does both on the calling thread: a fork from outside rayon's pool
+        // (a game's main thread) wakes a worker and waits for it, which costs more than either.
+        let shared = worth_sharing(contacts.awake_len(), CONTACTS_PER_TASK);
+        let mut collide =
+            || narrowphase.update(contacts, bodies, colliders, fat_boxes, options, wake, work);
+        let (deepest, ()) = if shared {
+            rayon::join(collide, || moving_tree.rebuild(false))
+        } else {
+            (collide(), moving_tree.rebuild(false))
+        };
         wake.sort_unstable();
         wake.dedup();
         for &island in wake.iter() {
