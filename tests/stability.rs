@@ -77,7 +77,7 @@ impl Run {
 
 /// Runs `case` with every solver, prints and writes its table, and fails on a missed bar of a
 /// bound solver or a NaN from any.
-fn check(case: &str, run: impl Fn(SolverParams) -> Run) {
+fn check(case: &str, run: impl Fn(SolverParams) -> Run + Sync) {
     check_known(case, &[], run);
 }
 
@@ -85,11 +85,21 @@ fn check(case: &str, run: impl Fn(SolverParams) -> Run) {
 /// solver and the bar. Those misses are shown in the table as known, not failed; a known miss
 /// that is met fails the test, so the list only ever shrinks and never hides a fix. Each entry
 /// is explained, with its figures, in `docs/hard-cases.md`.
-fn check_known(case: &str, known: &[(SolverKind, &str)], run: impl Fn(SolverParams) -> Run) {
+fn check_known(case: &str, known: &[(SolverKind, &str)], run: impl Fn(SolverParams) -> Run + Sync) {
     let mut table = format!("### {case}\n\n| solver | figures | bars |\n|---|---|---|\n");
     let mut failures = Vec::new();
-    for (kind, label, bound) in SOLVERS {
-        let mut result = run(SolverParams::for_kind(kind));
+    // Each solver's run on a thread of its own: the long cases take the time of the slowest.
+    let run = &run;
+    let results: Vec<Run> = std::thread::scope(|scope| {
+        let runs: Vec<_> = SOLVERS
+            .iter()
+            .map(|&(kind, ..)| scope.spawn(move || run(SolverParams::for_kind(kind))))
+            .collect();
+        runs.into_iter()
+            .map(|r| r.join().expect("a solver's run panicked"))
+            .collect()
+    });
+    for ((kind, label, bound), mut result) in SOLVERS.into_iter().zip(results) {
         let expected: Vec<&str> = known
             .iter()
             .filter(|(k, _)| *k == kind)
@@ -589,8 +599,11 @@ fn a_resting_pyramid_soaks_for_an_hour_without_creeping() {
         );
         run
     };
-    check("soak_one_hour", case);
-    check_contact_order("soak_one_hour", case);
+    // Both at once: the hour-long runs are the suite's longest.
+    std::thread::scope(|scope| {
+        scope.spawn(|| check_contact_order("soak_one_hour", case));
+        check("soak_one_hour", case);
+    });
 }
 
 proptest::proptest! {
