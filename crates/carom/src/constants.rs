@@ -95,9 +95,10 @@ pub(crate) const RECYCLE_DISTANCE_CLASSIC: Real = 2.0 * LINEAR_SLOP;
 /// pairs every other step.
 pub(crate) const RUNNER_STOP_FRACTION: Real = 0.5;
 
-/// A small body may move no more than this fraction of its smallest extent: 1 cm is a fiftieth
-/// of a 1 m box but a fifth of a 5 cm one, whose contacts change a good deal over it.
-pub(crate) const RECYCLE_SIZE_FRACTION: Real = 0.1;
+/// A small body may move no more than this fraction of its smallest extent (its inradius) before
+/// its manifolds are built again: 5 cm is a tenth of a 1 m box's half-width but all of a
+/// 10 cm plank's, whose contacts change a good deal over it.
+pub(crate) const RECYCLE_SIZE_FRACTION: Real = 0.25;
 
 /// Neither body may have turned more than this since the manifold was built (the cosine of
 /// the turn, Box2D's 0.98: about 11°), so the held normal and anchors stay close to the truth.

@@ -23,7 +23,6 @@ use crate::constants::CONTACTS_PER_TASK;
 use crate::dynamics::body::Body;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
-use crate::geometry::shape::Shape;
 use crate::graph::colors::{ColorBody, ContactColors, NO_COLOR};
 use crate::graph::layout::{
     ASLEEP, ColorRanges, ContactPartition, NOT_TOUCHING, color_part, color_ranges,
@@ -68,11 +67,6 @@ pub struct Contact {
     pub(super) friction: Real,
     /// The colliders' restitution mixed: the larger.
     pub(super) restitution: Real,
-    /// Both colliders are polygons: the pairs whose manifolds are carried along while their
-    /// bodies barely move (see [`crate::collision::recycle`]). Saved worlds leave it out: it
-    /// is found again from the colliders.
-    #[cfg_attr(feature = "serde", serde(skip))]
-    pub(super) polygon_pair: bool,
     /// What the manifold was built against, to carry it along while the bodies barely move.
     pub(super) frame: ManifoldFrame,
     /// Its graph colour while touching in the awake set ([`NO_COLOR`] otherwise).
@@ -85,7 +79,7 @@ pub struct Contact {
 }
 
 impl Contact {
-    /// Takes its friction, restitution and kind of pair from its colliders (both live).
+    /// Takes its friction and restitution from its colliders (both live).
     fn mix(&mut self, colliders: &HandleMap<ColliderHandle, Collider>) {
         if let (Some(a), Some(b)) = (
             colliders.get(self.collider_a),
@@ -93,7 +87,6 @@ impl Contact {
         ) {
             self.friction = mixed_friction(a, b);
             self.restitution = mixed_restitution(a, b);
-            self.polygon_pair = is_polygon_pair(a, b);
         }
     }
 
@@ -257,14 +250,6 @@ fn mixed_friction(a: &Collider, b: &Collider) -> Real {
 /// Two colliders' restitution mixed for their contacts: the larger.
 fn mixed_restitution(a: &Collider, b: &Collider) -> Real {
     a.restitution().max(b.restitution())
-}
-
-/// Whether both colliders are polygons.
-fn is_polygon_pair(a: &Collider, b: &Collider) -> bool {
-    matches!(
-        (a.shape(), b.shape()),
-        (Shape::Polygon(_), Shape::Polygon(_))
-    )
 }
 
 /// A cheap hasher for pair keys (two slot indices packed in a `u64`), which need no
@@ -468,7 +453,6 @@ impl ContactSet {
             pre_solve: a.1.pre_solve() || b.1.pre_solve(),
             friction: mixed_friction(a.1, b.1),
             restitution: mixed_restitution(a.1, b.1),
-            polygon_pair: is_polygon_pair(a.1, b.1),
             frame: ManifoldFrame::default(),
             color: NO_COLOR,
             color_holds: [false; 2],
@@ -999,7 +983,7 @@ pub(crate) fn body_indices_of(
 #[cfg(feature = "serde")]
 impl ContactSet {
     /// Gives each contact of a saved world, once checked, what it keeps from its colliders
-    /// (its friction, restitution and kind of pair), so it steps as the world it was saved
+    /// (its friction and restitution), so it steps as the world it was saved
     /// from.
     pub(crate) fn mix_saved(&mut self, colliders: &HandleMap<ColliderHandle, Collider>) {
         for contact in &mut self.contacts {

@@ -283,13 +283,11 @@ fn refresh_manifold(
     {
         return Refresh::Gone;
     }
-    // Only polygon pairs are carried along: their manifold is the expensive one (SAT and
-    // clipping); a circle's is a few multiplications, and its normal follows the centres, not
-    // the body's turn. A body stopped by continuous collision barely moved, but only because
-    // it was put back: its manifold may lack the points its motion was about to meet.
+    // A body stopped by continuous collision barely moved, but only because it was put back:
+    // its manifold may lack the points its motion was about to meet.
     let stopped = a.had_time_of_impact() || b.had_time_of_impact();
     let carried = |distance| contact.frame.carry(&mut contact.manifold, a, b, distance);
-    if contact.polygon_pair && !stopped && recycling.is_some_and(carried) {
+    if !stopped && recycling.is_some_and(carried) {
         return settled(contact, colliders, [a, b], pre_solve, true);
     }
     let (Some(shape_a), Some(shape_b)) = (
