@@ -20,8 +20,9 @@ pub struct RunResult {
     pub top_drop: f32,
     /// True when any body's position became NaN or infinite.
     pub nan: bool,
-    /// Heap allocations during the timed steps (counted only where the program's global
-    /// allocator is [`stats_alloc::INSTRUMENTED_SYSTEM`], as in the `carom-bench` binary).
+    /// Heap allocations in the timed steps proper, not in a scene's spawns before them
+    /// (counted only where the program's global allocator is
+    /// [`stats_alloc::INSTRUMENTED_SYSTEM`], as in the `carom-bench` binary).
     pub allocations: usize,
     /// What the stages took and did, per timed step (carom's and Box2D's; none for Rapier).
     pub stages: Option<StageProfile>,
@@ -227,14 +228,19 @@ pub fn run_carom(scene: &mut SceneWorld, steps: u32) -> Result<RunResult, String
     let mut stages = StageProfile::zero();
     if steps > 0 {
         scene.step().map_err(|e| e.to_string())?;
-        let region = Region::new(&INSTRUMENTED_SYSTEM);
         let t0 = Instant::now();
         for _ in 1..steps {
-            scene.step().map_err(|e| e.to_string())?;
+            // Allocations are counted in the step proper, not in the spawns before it.
+            scene.fire_events();
+            let region = Region::new(&INSTRUMENTED_SYSTEM);
+            scene
+                .world
+                .step(scene.time_step)
+                .map_err(|e| e.to_string())?;
+            allocations += region.change().allocations;
             stages.add_carom(scene.world.stats());
         }
         total_ms = t0.elapsed().as_secs_f64() * 1e3;
-        allocations = region.change().allocations;
     }
     // The top body by its handle: events may have added and removed bodies since.
     let top_drop = top.map_or(f32::NAN, |(handle, y)| {
@@ -375,21 +381,21 @@ pub fn run_rapier(
     let start = world.positions();
     let top = top_body(&start, &world.dynamic_flags());
     let mut replay = Replay::new(schedule);
-    let mut step = |world: &mut RapierWorld, i: u32| -> Result<(), String> {
+    // Allocations are counted in the step proper, not in the spawns before it.
+    let mut step = |world: &mut RapierWorld, i: u32| -> Result<usize, String> {
         replay.before(u64::from(i), world)?;
+        let region = Region::new(&INSTRUMENTED_SYSTEM);
         world.step();
-        Ok(())
+        Ok(region.change().allocations)
     };
     let (mut total_ms, mut allocations) = (0.0, 0);
     if steps > 0 {
         step(world, 0)?;
-        let region = Region::new(&INSTRUMENTED_SYSTEM);
         let t0 = Instant::now();
         for i in 1..steps {
-            step(world, i)?;
+            allocations += step(world, i)?;
         }
         total_ms = t0.elapsed().as_secs_f64() * 1e3;
-        allocations = region.change().allocations;
     }
     let end = world.positions();
     let spawned = world.spawned_positions();
