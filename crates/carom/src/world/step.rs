@@ -329,16 +329,15 @@ impl World {
         refits: &mut [Option<Refit>],
     ) {
         let bodies = self.bodies.as_slice();
+        let colliders = self.colliders.as_slice();
         let first = self.collider_sets.awake().start;
         let reach = margin_for(&self.settings, BodyKind::Dynamic);
         for body in moved.map(|index| &bodies[index]) {
             for &handle in body.colliders() {
-                let (Some(index), Some(collider)) = (
-                    self.colliders.dense_index(handle),
-                    self.colliders.get(handle),
-                ) else {
+                let Some(index) = self.colliders.dense_index(handle) else {
                     continue;
                 };
+                let collider = &colliders[index];
                 refits[index - first] =
                     refit(handle, collider, body, prediction, reach, &self.broadphase);
             }
