@@ -983,8 +983,7 @@ pub(crate) fn body_indices_of(
 #[cfg(feature = "serde")]
 impl ContactSet {
     /// Gives each contact of a saved world, once checked, what it keeps from its colliders
-    /// (its friction and restitution), so it steps as the world it was saved
-    /// from.
+    /// (its friction and restitution), so it steps as the world it was saved from.
     pub(crate) fn mix_saved(&mut self, colliders: &HandleMap<ColliderHandle, Collider>) {
         for contact in &mut self.contacts {
             contact.mix(colliders);

@@ -117,16 +117,24 @@ mod tests {
     use crate::math::vec2;
     use crate::world::World;
 
-    /// A box resting on a wider box, and the manifold between them.
+    /// A 1 m box resting on a wider box, `gap` above it.
     fn resting_pair(gap: Real) -> (World, crate::BodyHandle, crate::BodyHandle) {
+        resting_on_ground(Shape::rect(0.5, 0.5), 1.0 + gap)
+    }
+
+    /// `shape` on a body at `(0.3, height)` over a static box whose top is at 0.5 m.
+    fn resting_on_ground(
+        shape: Shape,
+        height: Real,
+    ) -> (World, crate::BodyHandle, crate::BodyHandle) {
         let mut world = World::new();
         let ground = world
             .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)))
             .unwrap();
-        let block = world
-            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.3, 1.0 + gap)))
+        let body = world
+            .add_body(BodyDef::dynamic(shape).position(vec2(0.3, height)))
             .unwrap();
-        (world, ground, block)
+        (world, ground, body)
     }
 
     /// A body and its (only) collider.
@@ -202,8 +210,8 @@ mod tests {
         assert!(moved(vec2(0.3, 1.0), 0.01));
         // 0.02 rad carries them 14 mm: too far, though the centre stayed.
         assert!(!moved(vec2(0.3, 1.0), 0.02));
-        // Soft step's distance, Box2D's 10 slop, is capped at a tenth of the smaller box's
-        // inradius (the block's 0.5 m): 4 cm is within, 6 cm too far.
+        // Soft step's distance, Box2D's 10 slop (5 cm), under the block's size cap (a quarter
+        // of its 0.5 m inradius): 4 cm is within, 6 cm too far.
         let mut moved = |position, angle| moved_within(RECYCLE_DISTANCE, position, angle);
         assert!(moved(vec2(0.3, 1.04), 0.0));
         assert!(!moved(vec2(0.3, 1.06), 0.0));
@@ -227,5 +235,46 @@ mod tests {
         assert!(closer(0.008));
         // 2.5 cm closer, which is more than the 2 cm margin: built again.
         assert!(!closer(0.025));
+    }
+
+    #[test]
+    fn a_small_body_may_move_a_quarter_of_its_inradius() {
+        // A plank 4 cm thick: its inradius is 2 cm, so it may move 5 mm, not soft step's 5 cm.
+        let (mut world, ground, plank) = resting_on_ground(Shape::rect(0.5, 0.02), 0.52);
+        let (built, frame) = built(&world, ground, plank);
+        assert!(!built.is_empty());
+        let mut slid = |by: Real| {
+            world
+                .body_mut(plank)
+                .unwrap()
+                .set_position(vec2(0.3 + by, 0.52))
+                .unwrap();
+            let (a, b) = (parts(&world, ground), parts(&world, plank));
+            frame.carry(&mut built.clone(), a.0, b.0, RECYCLE_DISTANCE)
+        };
+        assert!(slid(0.004), "4 mm is within a quarter of 2 cm");
+        assert!(!slid(0.006), "6 mm is too far");
+    }
+
+    #[test]
+    fn a_circle_pair_is_carried_as_a_polygon_pair_is() {
+        let (mut world, ground, ball) = resting_on_ground(Shape::circle(0.5), 1.0 - 0.002);
+        let (built, frame) = built(&world, ground, ball);
+        // Lift the ball 1 mm, shift it 0.5 mm and turn it a little: within the limits.
+        {
+            let mut body = world.body_mut(ball).unwrap();
+            body.set_position(vec2(0.3005, 1.0 - 0.001)).unwrap();
+            body.set_angle(0.002).unwrap();
+        }
+        let (a, b) = (parts(&world, ground), parts(&world, ball));
+        let mut carried = built;
+        assert!(frame.carry(&mut carried, a.0, b.0, RECYCLE_DISTANCE));
+        let rebuilt = manifold::collide(a.1.world_shape(), b.1.world_shape(), SPECULATIVE_DISTANCE);
+        assert_eq!(carried.points().len(), rebuilt.points().len());
+        for (c, r) in carried.points().iter().zip(rebuilt.points()) {
+            assert!((c.separation - r.separation).abs() < 1e-4, "{c:?} vs {r:?}");
+            assert!((c.point - r.point).norm() < 1e-3, "{c:?} vs {r:?}");
+        }
+        assert_eq!(carried.normal, built.normal);
     }
 }
