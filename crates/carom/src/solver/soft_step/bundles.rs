@@ -35,12 +35,18 @@ pub(crate) enum Width {
 }
 
 impl Width {
-    /// The widest this CPU runs.
+    /// The widest this CPU runs, unless the environment variable `CAROM_LANES` is `4`: then
+    /// four lanes everywhere, so that a check of the same bits at both widths can run whole
+    /// scenes (read once a process).
     pub fn widest() -> Width {
+        static FOUR_ASKED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+        let four_asked =
+            *FOUR_ASKED.get_or_init(|| std::env::var("CAROM_LANES").is_ok_and(|v| v.trim() == "4"));
         #[cfg(target_arch = "x86_64")]
-        if avx::detected() {
+        if !four_asked && avx::detected() {
             return Width::Eight;
         }
+        let _ = four_asked;
         Width::Four
     }
 }
