@@ -367,3 +367,40 @@ fn hinged_pair(world: &mut World, x: f32) -> carom::BodyHandle {
         .unwrap();
     a
 }
+
+/// A world saved by another version of carom is refused for that, naming both save formats,
+/// before a field that version laid out differently can fail to read.
+#[test]
+fn a_world_saved_in_another_format_is_refused_naming_both() {
+    let text = save(&small_world());
+    let start = text.find("format:").expect("the save names its format") + "format:".len();
+    let digits = text[start..]
+        .find(|c: char| !c.is_ascii_digit())
+        .expect("a number");
+    let ours: u32 = text[start..start + digits].parse().unwrap();
+    // The other version's file: another format number and a field this version lacks.
+    for other in [ours - 1, ours + 1] {
+        let edited = format!(
+            "{}{other},made_by_another_version:(),{}",
+            &text[..start],
+            &text[start + digits + 1..]
+        );
+        let error = ron::from_str::<World>(&edited)
+            .expect_err("a world in another format is refused")
+            .to_string();
+        for named in [
+            format!("save format {other}"),
+            format!("save format {ours}"),
+        ] {
+            assert!(error.contains(&named), "`{error}` does not name {named}");
+        }
+    }
+    // The same file in this version's format fails on the unknown field instead.
+    let edited = format!(
+        "{}{ours},made_by_another_version:(),{}",
+        &text[..start],
+        &text[start + digits + 1..]
+    );
+    let error = ron::from_str::<World>(&edited).unwrap_err().to_string();
+    assert!(error.contains("made_by_another_version"), "{error}");
+}

@@ -30,6 +30,44 @@ fn malformed_ron_names_file_line_and_column() {
     assert!(message.contains(":3:"), "{message}");
 }
 
+/// A scene written for another version of the format is refused for that, with both versions
+/// and the place named, before a field that version added can fail to read; a scene that does
+/// not say its version is read as this one's.
+#[test]
+fn a_scene_in_another_format_is_refused_naming_both_versions() {
+    let ours = carom_scene::SCENE_FORMAT;
+    for other in [ours + 1, ours.wrapping_sub(1)] {
+        let text =
+            format!("(\n    format: {other},\n    name: \"later\",\n    gravity_well: 3.0,\n)");
+        let error = carom_scene::parse(&text, "later.ron").expect_err("another format is refused");
+        let message = error.to_string();
+        assert!(
+            matches!(error, SceneError::Syntax { line: 2, .. }),
+            "{message}"
+        );
+        for named in [
+            format!("scene format {other}"),
+            format!("scene format {ours}"),
+        ] {
+            assert!(
+                message.contains(&named),
+                "`{message}` does not name {named}"
+            );
+        }
+    }
+    let unsaid = carom_scene::parse("(name: \"no version\")", "inline.ron").unwrap();
+    assert_eq!(unsaid.format, ours);
+    // What this crate writes says its version first, and reads back.
+    let text = carom_scene::to_text(&unsaid, "inline.ron").unwrap();
+    assert!(
+        text.trim_start_matches('(')
+            .trim_start()
+            .starts_with(&format!("format: {ours},")),
+        "{text}"
+    );
+    carom_scene::parse(&text, "inline.ron").unwrap_or_else(|e| panic!("{e}\n{text}"));
+}
+
 #[test]
 fn an_unknown_effect_is_named_with_its_place() {
     let (error, message) = error_of("scenes/bad_effect.ron");

@@ -32,7 +32,7 @@ pub use build::{SceneWorld, build};
 pub use error::SceneError;
 pub use load::{parse, read};
 pub use saved::{SavedState, to_text, write};
-pub use scene::{Accuracy, Camera, Scene};
+pub use scene::{Accuracy, Camera, SCENE_FORMAT, Scene};
 pub use spawn::{Made, SpawnChange, SpawnSchedule};
 
 /// Reads, parses and builds a scene file.

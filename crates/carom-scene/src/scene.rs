@@ -3,6 +3,29 @@
 use carom::{BodyKind, CollisionFilter, DrawFlags, Motor, Spring, WorldSettings};
 use serde::{Deserialize, Serialize};
 
+/// The version of the scene format this crate reads and writes. It changes when a file
+/// written for one version would read differently, or not at all, in another; a saved state
+/// in a scene has its own version as well (carom's save format).
+pub const SCENE_FORMAT: u32 = 1;
+
+fn this_format() -> u32 {
+    SCENE_FORMAT
+}
+
+/// Reads a scene's format, refusing any but [`SCENE_FORMAT`].
+fn read_format<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<u32, D::Error> {
+    let format = u32::deserialize(deserializer)?;
+    if format == SCENE_FORMAT {
+        Ok(format)
+    } else {
+        Err(serde::de::Error::custom(format!(
+            "the scene is in scene format {format}, and this carom-scene ({}) reads scene \
+             format {SCENE_FORMAT} only",
+            env!("CARGO_PKG_VERSION")
+        )))
+    }
+}
+
 /// A 2D vector written `(x, y)`.
 pub type Pair = (f32, f32);
 
@@ -10,6 +33,11 @@ pub type Pair = (f32, f32);
 #[derive(Debug, Clone, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
+    /// The version of the scene format the file is written in ([`SCENE_FORMAT`] if it does
+    /// not say). A file in another version is refused with both versions named, as soon as
+    /// this field is read: write it first. Every file this crate writes does.
+    #[serde(default = "this_format", deserialize_with = "read_format")]
+    pub format: u32,
     /// Short name, shown in menus.
     pub name: String,
     /// What the scene shows and what to try.

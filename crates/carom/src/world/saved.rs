@@ -33,6 +33,10 @@ const SAVE_FORMAT: u32 = 5;
 #[derive(Serialize, Deserialize)]
 #[serde(rename = "World", deny_unknown_fields)]
 pub(crate) struct SavedWorld {
+    /// Written first and checked as soon as it is read, so a world saved by another version
+    /// is refused for that, with both versions named, before any field that version changed
+    /// can fail to read.
+    #[serde(deserialize_with = "this_format")]
     format: u32,
     settings: WorldSettings,
     time: f64,
@@ -75,10 +79,7 @@ impl TryFrom<SavedWorld> for World {
 
     fn try_from(saved: SavedWorld) -> Result<Self, CaromError> {
         if saved.format != SAVE_FORMAT {
-            return Err(bad(format!(
-                "it is in save format {}, this carom reads format {SAVE_FORMAT}",
-                saved.format
-            )));
+            return Err(bad(format_mismatch(saved.format)));
         }
         check_settings(&saved.settings)?;
         let mut world = World {
@@ -107,6 +108,25 @@ impl TryFrom<SavedWorld> for World {
         world.contacts.mix_saved(&world.colliders);
         Ok(world)
     }
+}
+
+/// Reads a saved world's format, refusing any but [`SAVE_FORMAT`].
+fn this_format<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<u32, D::Error> {
+    let format = u32::deserialize(deserializer)?;
+    if format == SAVE_FORMAT {
+        Ok(format)
+    } else {
+        Err(serde::de::Error::custom(format_mismatch(format)))
+    }
+}
+
+/// Why a world saved in `format` is refused.
+fn format_mismatch(format: u32) -> String {
+    format!(
+        "the world was saved in save format {format}, and this carom ({}) reads save format \
+         {SAVE_FORMAT} only",
+        env!("CARGO_PKG_VERSION")
+    )
 }
 
 fn bad(reason: String) -> CaromError {
