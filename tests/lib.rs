@@ -3,6 +3,8 @@
 
 use carom::{BodyHandle, World, WorldShape};
 
+pub mod world_ops;
+
 /// Every scene file in `demos/`, sorted by name.
 pub fn demo_files() -> Vec<std::path::PathBuf> {
     let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../demos");

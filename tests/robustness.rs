@@ -212,6 +212,63 @@ fn bodies_with_bad_values_are_refused_at_the_door() {
     assert_eq!(world.gravity(), vec2(0.0, -10.0));
 }
 
+/// Finite values too large (or too small) for f32 arithmetic to stay finite are refused like
+/// non-numbers: time steps outside 1 µs to 10 s, positions beyond 1000 km, collider offsets
+/// beyond 100 km. And a shape a world would refuse meets nothing in a query.
+#[test]
+fn values_beyond_what_f32_can_carry_are_refused() {
+    let mut world = World::new();
+    let square = || Shape::rect(0.5, 0.5);
+    let body = world.add_body(BodyDef::dynamic(square())).unwrap();
+    for dt in [0.0, 1e-9, Real::MIN_POSITIVE, 10.5, 3e38, Real::NAN] {
+        assert!(
+            matches!(world.step(dt), Err(CaromError::OutOfRange { .. })),
+            "a step of {dt} s"
+        );
+    }
+    assert_eq!(world.step_count(), 0);
+    for dt in [1e-6, 1.0 / 60.0, 10.0] {
+        world.step(dt).unwrap();
+    }
+    let far = [vec2(2e6, 0.0), vec2(0.0, -1.5e6), vec2(3e38, 3e38)];
+    for position in far {
+        assert!(
+            world
+                .add_body(BodyDef::dynamic(square()).position(position))
+                .is_err()
+        );
+        let before = world.body(body).unwrap().position();
+        let mut handle = world.body_mut(body).unwrap();
+        assert!(handle.set_position(position).is_err());
+        assert!(handle.move_kinematic_to(position, 0.0, 1.0 / 60.0).is_err());
+        assert_eq!(world.body(body).unwrap().position(), before);
+    }
+    world
+        .add_body(BodyDef::dynamic(square()).position(vec2(-1e6, 1e6)))
+        .unwrap();
+    let offset = ColliderDef::new(Shape::circle(0.5)).offset(vec2(0.0, -1e9));
+    assert!(world.add_collider(body, offset.clone()).is_err());
+    assert!(
+        world
+            .add_body(BodyDef::dynamic(square()).collider(offset))
+            .is_err()
+    );
+    // A capsule whose ends coincide (refused as a collider) has no normal to cast with.
+    let point = Shape::capsule(Vec2::zeros(), Vec2::zeros(), 0.4);
+    assert!(
+        world
+            .add_collider(body, ColliderDef::new(point.clone()))
+            .is_err()
+    );
+    let at_body = world.body(body).unwrap().position();
+    let shape = carom::WorldShape::at(&point, at_body + vec2(-3.0, 0.0), 0.0);
+    let filter = carom::QueryFilter::default();
+    assert!(world.cast_shape(&shape, vec2(6.0, 0.0), filter).is_none());
+    assert!(world.query_shape(&shape, filter).is_empty());
+    let sound = carom::WorldShape::at(&Shape::circle(0.4), at_body + vec2(-3.0, 0.0), 0.0);
+    assert!(world.cast_shape(&sound, vec2(6.0, 0.0), filter).is_some());
+}
+
 #[test]
 fn stepping_a_world_of_extreme_but_valid_bodies_stays_finite() {
     let mut world = World::new();
@@ -270,4 +327,39 @@ fn shapes_beyond_100_km_or_with_hairline_edges_are_refused_or_repaired() {
             assert!((normal.norm() - 1.0).abs() < 1e-5, "{normal:?}");
         }
     }
+}
+
+/// Random sequences of every public call on a world (bodies, colliders and joints added and
+/// removed, every setter, steps with any time step, queries, explosions, saves read back), with
+/// sensible, extreme and non-number values: nothing panics, every call succeeds or is refused,
+/// bodies stay finite and the world holds together after each call (`carom_tests::world_ops`,
+/// the world-operations fuzz target's own checks). `CAROM_OPS_CASES` sets how many sequences
+/// and `CAROM_OPS_CASE` runs one alone, by the number a failure names.
+#[test]
+fn random_sequences_of_public_calls_keep_the_world_whole() {
+    let cases: usize = std::env::var("CAROM_OPS_CASES")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(60);
+    let mut total = carom_tests::world_ops::Tally::default();
+    for case in std::env::var("CAROM_OPS_CASE")
+        .ok()
+        .and_then(|c| c.parse().ok())
+        .map_or(0..cases as u64, |c: u64| c..c + 1)
+    {
+        let mut rng = carom_bench::cases::Rng::new(0x9e37_79b9_7f4a_7c15 ^ case);
+        let bytes: Vec<u8> = (0..1500).map(|_| rng.next_u64() as u8).collect();
+        let tally = std::panic::catch_unwind(|| carom_tests::world_ops::run(&bytes))
+            .unwrap_or_else(|_| panic!("case {case} broke a promise (above)"));
+        total.calls += tally.calls;
+        total.refused += tally.refused;
+        total.steps += tally.steps;
+        total.restores += tally.restores;
+    }
+    println!("{total:?}");
+    // The sequences reached every kind of outcome: calls refused and made, steps and restores.
+    assert!(
+        total.refused > 0 && total.refused < total.calls && total.steps > 0 && total.restores > 0,
+        "{total:?}"
+    );
 }

@@ -39,6 +39,16 @@ pub(crate) const HIT_EVENT_THRESHOLD: Real = 1.0;
 /// keeps too few digits below a millimetre for contacts, and sums of sizes can overflow.
 pub const MAX_SHAPE_EXTENT: Real = 1.0e5;
 
+/// The shortest and the longest time step a world takes, s. Outside them the step's
+/// reciprocals and products overflow f32 (a step of 1e-38 s, or of 1e38 s), so they are
+/// refused; a game's step is thousands of times inside both.
+pub const TIME_STEP_RANGE: std::ops::RangeInclusive<Real> = 1.0e-6..=10.0;
+
+/// The farthest from the origin a body may be placed, m, along either axis: ten times the
+/// largest shape. Beyond it an f32 position resolves to no better than 6 cm, and products of
+/// positions with forces and sizes can overflow.
+pub const MAX_POSITION: Real = 1.0e6;
+
 /// How far outside a shape's boundary a point may lie and still count as inside, in metres.
 ///
 /// Points exactly on an edge are inside; this absorbs the rounding of moving a point into the

@@ -249,7 +249,7 @@ impl BroadPhase {
     /// Builds again the part of the moving tree that [`BroadPhase::enlarge`] loosened (see
     /// [`DynamicTree::rebuild`]), so queries stay as fast as in a tree built by insertion.
     /// Nothing to do when nothing was enlarged; the static tree never is. A step does this
-    /// through [`BroadPhase::moving_tree_and_fat_boxes`].
+    /// through `BroadPhase::moving_tree_and_fat_boxes`.
     #[cfg(any(test, feature = "testing"))]
     pub fn rebuild_moving_tree(&mut self) {
         self.trees[MOVING_TREE].rebuild(false);
@@ -313,7 +313,7 @@ impl BroadPhase {
         self.proxy(handle).map(|p| p.fat)
     }
 
-    /// True when two colliders may keep a contact ([`FatBoxes::may_keep`]).
+    /// True when two colliders may keep a contact (`FatBoxes::may_keep`).
     #[cfg(any(test, feature = "testing"))]
     pub fn may_keep(&self, a: ColliderHandle, b: ColliderHandle) -> bool {
         let proxies = &self.proxies;
@@ -350,7 +350,7 @@ impl BroadPhase {
     ///
     /// When many of the moving tree's leaves moved, they are marked and the tree is walked
     /// against itself and against the static tree for the overlapping pairs with a marked leaf
-    /// ([`DynamicTree::walk`]), and only queued static colliders (a static body moved by hand)
+    /// (`DynamicTree::walk`), and only queued static colliders (a static body moved by hand)
     /// query the moving tree; when few moved, each queued collider queries the trees. Threads
     /// share the walk in pieces, and the queries in runs, when there is enough of either.
     pub fn update_pairs_into(
@@ -603,7 +603,7 @@ impl BroadPhase {
     }
 
     /// Walks the colliders whose fat boxes the segment passes through, clipping the walk to the
-    /// fraction `visit` returns (see [`DynamicTree::ray_cast`]).
+    /// fraction `visit` returns (see `DynamicTree::ray_cast`).
     pub fn ray_cast(
         &self,
         origin: Vec2,

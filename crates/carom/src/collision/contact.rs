@@ -166,7 +166,7 @@ impl Contact {
     }
 
     /// True while the manifold has points, speculative ones included: the solver works on it.
-    #[cfg(test)]
+    #[cfg(any(test, all(feature = "testing", feature = "serde")))]
     pub(crate) fn is_solved(&self) -> bool {
         self.touching
     }
@@ -183,7 +183,7 @@ impl Contact {
     }
 
     /// Its colour and which bodies the colour holds, for tests.
-    #[cfg(test)]
+    #[cfg(any(test, all(feature = "testing", feature = "serde")))]
     pub(crate) fn color(&self) -> (u8, [bool; 2]) {
         (self.color, self.color_holds)
     }
@@ -805,13 +805,13 @@ impl ContactSet {
     }
 
     /// The part of the contact at `index`, for tests of the layout.
-    #[cfg(test)]
+    #[cfg(any(test, all(feature = "testing", feature = "serde")))]
     pub(crate) fn part_of(&self, index: usize) -> usize {
         self.parts.part_of(index)
     }
 
     /// How many sleeping contacts touch, as counted while filing them.
-    #[cfg(test)]
+    #[cfg(any(test, all(feature = "testing", feature = "serde")))]
     pub(crate) fn asleep_touching(&self) -> usize {
         self.asleep_touching
     }
@@ -885,7 +885,7 @@ impl ContactSet {
     /// Checks the ids: each contact's id finds it and its pair finds the id, the unused ids
     /// are the free ones, and each body's list holds exactly its contacts, each where its id
     /// says.
-    #[cfg(test)]
+    #[cfg(any(test, all(feature = "testing", feature = "serde")))]
     pub(crate) fn check_ids(&self) {
         assert_eq!(self.ids.len(), self.contacts.len());
         assert_eq!(self.lookup.len(), self.contacts.len());
@@ -945,7 +945,7 @@ impl ContactSet {
     }
 
     /// The graph colours of the awake touching contacts.
-    #[cfg(test)]
+    #[cfg(any(test, all(feature = "testing", feature = "serde")))]
     pub(crate) fn colors(&self) -> &ContactColors {
         &self.colors
     }

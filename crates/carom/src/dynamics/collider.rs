@@ -12,6 +12,7 @@ use crate::constants::{CONTACTS_PER_TASK, ITEMS_PER_TASK};
 use crate::dynamics::body::{Body, BodyHandle};
 use crate::error::{CaromError, check_finite, check_finite_vec};
 use crate::geometry::aabb::Aabb;
+use crate::geometry::checks::check_extent;
 use crate::geometry::mass::MassProperties;
 use crate::geometry::ray::{Ray, RayHit};
 use crate::geometry::shape::{Shape, WorldShape};
@@ -163,6 +164,9 @@ impl ColliderDef {
     pub fn validate(&self) -> Result<(), CaromError> {
         self.shape.validate()?;
         check_finite_vec("collider offset", self.offset)?;
+        // An offset is part of the body's shape: held to the same size as a shape's points.
+        check_extent("collider offset", self.offset.x)?;
+        check_extent("collider offset", self.offset.y)?;
         check_finite("collider angle", self.angle)?;
         check_non_negative("density", self.density)?;
         check_non_negative("friction", self.friction)?;

@@ -83,7 +83,7 @@ impl Islands {
     }
 
     /// The ids of the live islands, for tests.
-    #[cfg(test)]
+    #[cfg(any(test, all(feature = "testing", feature = "serde")))]
     pub fn live_ids(&self) -> impl Iterator<Item = u32> + '_ {
         (0..self.records.len() as u32).filter(|&id| self.records[id as usize].live)
     }

@@ -232,6 +232,26 @@ pub enum WorldShape {
 }
 
 impl WorldShape {
+    /// True when every figure of it is finite: a shape placed from one a world would refuse
+    /// (a capsule whose ends coincide, say) may have a normal that is not a number.
+    pub(crate) fn is_finite(&self) -> bool {
+        let finite = |v: &Vec2| v.x.is_finite() && v.y.is_finite();
+        match self {
+            WorldShape::Circle { center, radius } => finite(center) && radius.is_finite(),
+            WorldShape::Polygon {
+                vertices,
+                normals,
+                radius,
+            } => vertices.iter().chain(normals.iter()).all(finite) && radius.is_finite(),
+            WorldShape::ChainSegment {
+                ghost1,
+                point1,
+                point2,
+                ghost2,
+            } => [ghost1, point1, point2, ghost2].into_iter().all(finite),
+        }
+    }
+
     /// The shape with its local origin at `position`, turned by `angle` radians.
     pub fn at(shape: &Shape, position: Vec2, angle: Real) -> Self {
         WorldShape::new(shape, &Isometry::new(position, angle))

@@ -97,7 +97,7 @@ impl ContactColors {
     }
 
     /// True when `slot`'s bit is set in `color`, for tests of the colouring.
-    #[cfg(test)]
+    #[cfg(any(test, all(feature = "testing", feature = "serde")))]
     pub fn holds(&self, color: u8, slot: u32) -> bool {
         self.bodies[color as usize].get(slot)
     }

@@ -35,8 +35,11 @@ impl World {
     }
 
     /// Every collider `shape` (placed in the world) overlaps or touches, exactly, that
-    /// `filter` sees, in handle order.
+    /// `filter` sees, in handle order. A shape that is not finite meets nothing.
     pub fn query_shape(&self, shape: &WorldShape, filter: QueryFilter) -> Vec<ColliderHandle> {
+        if !shape.is_finite() {
+            return Vec::new();
+        }
         let mut found = self.query_aabb(&shape.aabb(), filter);
         found.retain(|&handle| {
             let collider = self.colliders.get(handle).expect("just found");
@@ -118,7 +121,10 @@ impl World {
         mut visit: impl FnMut(CastHit, Real) -> Real,
     ) {
         let aabb = shape.aabb();
-        if !(is_finite_vec(aabb.min) && is_finite_vec(aabb.max) && is_finite_vec(translation)) {
+        let finite = [aabb.min, aabb.max, translation]
+            .into_iter()
+            .all(is_finite_vec);
+        if !(shape.is_finite() && finite) {
             return;
         }
         let start = aabb.center();

@@ -136,7 +136,7 @@ fn bad(reason: String) -> CaromError {
 impl World {
     /// Checks that what was read holds together: every handle and index points at something
     /// that exists, the parts of each array fit in it, and every number is finite.
-    fn check_saved(&self) -> Result<(), String> {
+    pub(crate) fn check_saved(&self) -> Result<(), String> {
         self.bodies.check_saved()?;
         self.colliders.check_saved()?;
         if !self.time.is_finite() {

@@ -293,8 +293,20 @@ impl World {
     }
 }
 
-#[cfg(test)]
+#[cfg(any(test, all(feature = "testing", feature = "serde")))]
 impl World {
+    /// Checks every invariant the world keeps between calls, panicking on the first broken
+    /// one: each item in the solver set it belongs in, and everything a saved world is checked
+    /// for as it is read (every handle and index points at something that exists, every
+    /// number is finite). For fuzzing and carom's own tests (features `testing` and `serde`).
+    pub fn check_invariants(&self) {
+        self.check_sets();
+        #[cfg(feature = "serde")]
+        if let Err(reason) = self.check_saved() {
+            panic!("the world does not hold together: {reason}");
+        }
+    }
+
     /// Checks every invariant of the sets, panicking on the first broken one: each body is in
     /// the set its kind and state call for, its colliders in the same set and pointing at it,
     /// each contact awake exactly when one of its bodies is, each joint in the set its bodies
@@ -394,7 +406,7 @@ impl World {
     }
 }
 
-#[cfg(test)]
+#[cfg(any(test, all(feature = "testing", feature = "serde")))]
 impl World {
     /// Checks the graph colouring: exactly the awake touching contacts have colours, each
     /// contact is kept in its colour's part (or the awake part that does not touch, or the

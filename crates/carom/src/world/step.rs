@@ -8,7 +8,7 @@ use crate::collision::look_ahead::Motion;
 use crate::collision::narrowphase::{ManifoldOptions, Narrowphase};
 use crate::constants::{
     CONTACTS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
-    RUNNER_STOP_FRACTION,
+    RUNNER_STOP_FRACTION, TIME_STEP_RANGE,
 };
 use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_awake_colliders};
@@ -54,12 +54,13 @@ impl World {
     /// by a walk over all of them.
     ///
     /// # Errors
-    /// A time step that is not finite and positive; the world is left untouched.
+    /// A time step outside 1 µs to 10 s (`TIME_STEP_RANGE`), or not a number; the world is
+    /// left untouched.
     pub fn step(&mut self, dt: Real) -> Result<(), CaromError> {
-        if !(dt.is_finite() && dt > 0.0) {
+        if !TIME_STEP_RANGE.contains(&dt) {
             return Err(CaromError::OutOfRange {
                 name: "time step",
-                expected: "finite and positive",
+                expected: "from 1e-6 s to 10 s",
                 value: dt,
             });
         }

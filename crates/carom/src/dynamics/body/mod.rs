@@ -6,6 +6,7 @@
 //! (the common case) has its centre of mass at its origin, as shapes are centred on their
 //! centroid. The solver moves centres of mass; the origin follows.
 
+use crate::constants::{MAX_POSITION, TIME_STEP_RANGE};
 use crate::dynamics::body_def::BodyDef;
 use crate::dynamics::collider::{Collider, ColliderHandle, check_non_negative};
 use crate::error::{CaromError, check_finite, check_finite_vec};
@@ -131,7 +132,7 @@ impl Body {
         for collider in &def.colliders {
             collider.validate()?;
         }
-        check_finite_vec("body position", def.position)?;
+        check_position("body position", def.position)?;
         check_finite("body angle", def.angle)?;
         check_finite_vec("body linear velocity", def.linear_velocity)?;
         check_finite("body angular velocity", def.angular_velocity)?;
@@ -510,7 +511,7 @@ impl Body {
 
     /// Moves the body's origin (teleports it: no velocity change).
     pub(crate) fn set_position(&mut self, position: Vec2) -> Result<(), CaromError> {
-        self.position = check_finite_vec("body position", position)?;
+        self.position = check_position("body position", position)?;
         self.center = self.position + self.rotation * self.local_center;
         self.wake_up();
         Ok(())
@@ -554,12 +555,12 @@ impl Body {
         angle: Real,
         dt: Real,
     ) -> Result<(), CaromError> {
-        check_finite_vec("kinematic target", position)?;
+        check_position("kinematic target", position)?;
         check_finite("kinematic target angle", angle)?;
-        if !(dt.is_finite() && dt > 0.0) {
+        if !TIME_STEP_RANGE.contains(&dt) {
             return Err(CaromError::OutOfRange {
                 name: "time step",
-                expected: "positive and finite",
+                expected: "from 1e-6 s to 10 s",
                 value: dt,
             });
         }
@@ -755,6 +756,22 @@ impl Body {
 
 #[cfg(feature = "serde")]
 mod saved;
+
+/// Checks a position a body is given: finite and within [`MAX_POSITION`] of the origin on
+/// each axis.
+fn check_position(what: &'static str, position: Vec2) -> Result<Vec2, CaromError> {
+    check_finite_vec(what, position)?;
+    for value in [position.x, position.y] {
+        if value.abs() > MAX_POSITION {
+            return Err(CaromError::OutOfRange {
+                name: what,
+                expected: "within 1000 km (1e6 m) of the origin",
+                value,
+            });
+        }
+    }
+    Ok(position)
+}
 
 #[cfg(test)]
 mod tests {
