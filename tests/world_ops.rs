@@ -11,7 +11,7 @@
 //! bits as the original.
 
 use carom::{
-    BodyDef, BodyHandle, BodyKind, ColliderDef, ColliderHandle, CollisionFilter, Effect, Effects,
+    BodyDef, BodyHandle, BodyKind, ColliderDef, ColliderHandle, CollisionFilter, Effects,
     ExplosionDef, JointDef, JointHandle, QueryFilter, Ray, Real, Shape, SolverKind, Vec2, World,
     WorldShape, vec2,
 };
@@ -197,13 +197,7 @@ pub fn run(bytes: &[u8]) -> Tally {
                     .angle(input.real(3.0))
                     .density(input.real(5.0))
                     .sensor(input.byte() < 30);
-                match world.add_collider(body, def) {
-                    Ok(handle) => {
-                        colliders.push(handle);
-                        false
-                    }
-                    Err(_) => true,
-                }
+                refused_or_kept(world.add_collider(body, def), &mut colliders)
             }
             6 => {
                 let Some(collider) = input.pick(&colliders) else {
@@ -238,13 +232,7 @@ pub fn run(bytes: &[u8]) -> Tally {
                 } else {
                     Real::INFINITY
                 });
-                match world.add_joint(def) {
-                    Ok(handle) => {
-                        joints.push(handle);
-                        false
-                    }
-                    Err(_) => true,
-                }
+                refused_or_kept(world.add_joint(def), &mut joints)
             }
             9 => {
                 let Some(joint) = input.pick(&joints) else {
@@ -345,17 +333,7 @@ pub fn run(bytes: &[u8]) -> Tally {
                         ][settings.1];
                         s.solver.substeps = settings.2;
                         let mut effects = Effects::ALL;
-                        for (bit, effect) in [
-                            Effect::Gravity,
-                            Effect::Drag,
-                            Effect::Friction,
-                            Effect::Restitution,
-                            Effect::Continuous,
-                            Effect::Sleeping,
-                        ]
-                        .into_iter()
-                        .enumerate()
-                        {
+                        for (bit, effect) in Effects::ALL.iter().enumerate() {
                             effects.set(effect, settings.3 & (1 << bit) == 0);
                         }
                         s.effects = effects;
@@ -405,6 +383,17 @@ pub fn run(bytes: &[u8]) -> Tally {
         }
     }
     tally
+}
+
+/// True when the call that made `made` was refused; else keeps the handle it made in `into`.
+fn refused_or_kept<H>(made: Result<H, carom::CaromError>, into: &mut Vec<H>) -> bool {
+    match made {
+        Ok(handle) => {
+            into.push(handle);
+            false
+        }
+        Err(_) => true,
+    }
 }
 
 /// Every body's figures are finite and the world holds together.

@@ -78,9 +78,7 @@ impl TryFrom<SavedWorld> for World {
     type Error = CaromError;
 
     fn try_from(saved: SavedWorld) -> Result<Self, CaromError> {
-        if saved.format != SAVE_FORMAT {
-            return Err(bad(format_mismatch(saved.format)));
-        }
+        // The format was checked as it was read (`this_format`).
         check_settings(&saved.settings)?;
         let mut world = World {
             hit_event_colliders: saved
