@@ -18,12 +18,12 @@ use carom::{BodyHandle, Effect, Real, Shape, SolverKind, SolverParams, Vec2, Wor
 use carom_bench::cases::joint_measures::{
     period, total_hinge_separation, worst_hinge_separation, worst_limit_violation,
 };
-use carom_bench::cases::skinny_box;
 use carom_bench::cases::worlds::{
     TINY_BOX_SIZE, big_box_on, bullet_shot, coincident_circles, gravity_work, outside_the_box,
     pyramid_world, random_world, scene, skinny_plank, small_triangle, tiny_pyramid, vertical_stack,
     workspace,
 };
+use carom_bench::cases::{skinny_box, wall_shot};
 use std::fmt::Write as _;
 
 const DT: Real = 1.0 / 60.0;
@@ -563,6 +563,45 @@ fn bullets_into_a_stack_before_a_wall_never_tunnel() {
         }
         run.below("bullets through the stack", tunnels as f64, 0.5);
         run.below("steps with a bullet past the wall", past_wall as f64, 0.5);
+        run
+    });
+}
+
+#[test]
+fn bullets_stop_at_the_face_of_free_walls_and_push_them_as_momentum_says() {
+    // A 10 cm circle at 300 to 1000 m/s into a 5 cm wall, light or heavy, still, coming,
+    // going, sliding or standing on the ground: it stops at the face (within 1 cm, through
+    // none) and the two end moving as their momentum says.
+    check("wall shots", |params| {
+        let mut run = Run::default();
+        let (mut deepest, mut through, mut worst_push): (f64, usize, f64) = (0.0, 0, 0.0);
+        for shot in &wall_shot::SHOTS {
+            let mut made = shot.world(params);
+            let mut shot_deepest: f64 = 0.0;
+            for _ in 0..30 {
+                made.world.step(DT).unwrap();
+                let wall = made.world.body(made.wall).unwrap();
+                let bullet = made.world.body(made.bullet).unwrap().position();
+                let depth = wall_shot::depth(bullet, wall.position(), wall.angle());
+                shot_deepest = shot_deepest.max(depth);
+            }
+            deepest = deepest.max(shot_deepest);
+            through += usize::from(shot_deepest > 2.0 * f64::from(wall_shot::WALL_HALF_THICKNESS));
+            if !shot.standing {
+                let shared = shot.shared_velocity(made.bullet_mass, made.wall_mass);
+                let v = f64::from(made.world.body(made.wall).unwrap().linear_velocity().x);
+                let closing = f64::from(shot.speed - shot.wall_velocity[0]);
+                worst_push = worst_push.max((v - shared).abs() / closing);
+            }
+            run.check_finite(&made.world);
+        }
+        run.below("deepest into a wall cm", 100.0 * deepest, 1.0);
+        run.below("shots through a wall", through as f64, 0.5);
+        run.below(
+            "worst push off momentum's % of closing speed",
+            100.0 * worst_push,
+            1.0,
+        );
         run
     });
 }

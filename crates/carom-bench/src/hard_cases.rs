@@ -12,7 +12,7 @@ use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
 use crate::cases::skinny_box;
-use crate::cases::worlds;
+use crate::cases::{wall_shot, worlds};
 use carom::{BodyHandle, BodyKind, Effect, Real, SolverKind, SolverParams, World, vec2};
 
 use crate::box2d_world::Box2dWorld;
@@ -25,6 +25,9 @@ const SOAK_STEPS: usize = 216_000;
 
 /// Steps of the soak with `--quick`: one simulated minute.
 const QUICK_SOAK_STEPS: usize = 3_600;
+
+/// Steps of each wall shot: half a second, long after the bullet has met its wall.
+const WALL_SHOT_STEPS: usize = 30;
 
 /// Random worlds measured (each 2000 steps).
 const RANDOM_WORLDS: usize = 4;
@@ -438,6 +441,11 @@ pub fn cases() -> Vec<Case> {
             run: |e, _, o| bullets(e, o),
         },
         Case {
+            name: "wall_shots",
+            title: "bullets at 300 to 1000 m/s into free 5 cm walls",
+            run: |e, _, o| wall_shots(e, o),
+        },
+        Case {
             name: "soak_one_hour",
             title: "one hour of a base-10 pyramid",
             run: soak,
@@ -837,6 +845,55 @@ fn bullets(engine: Engine, o: &mut Outcome) -> Res<()> {
         "steps with a bullet past the wall",
         Bar::Below(0.5),
         past_wall as f64,
+    );
+    Ok(())
+}
+
+fn wall_shots(engine: Engine, o: &mut Outcome) -> Res<()> {
+    // Each shot's deepest point into the wall after any step, and for a free wall how far its
+    // velocity ends from the one its momentum and the bullet's give, of the closing speed.
+    let (mut deepest, mut through, mut worst_push): (f64, usize, f64) = (0.0, 0, 0.0);
+    let mut nan = false;
+    for shot in &wall_shot::SHOTS {
+        let made = shot.world(soft_step());
+        let (bullet, wall) = (
+            index(&made.world, made.bullet)?,
+            index(&made.world, made.wall)?,
+        );
+        let shared = shot.shared_velocity(made.bullet_mass, made.wall_mass);
+        let closing = f64::from(shot.speed - shot.wall_velocity[0]);
+        on(engine, made.world, |w| {
+            let mut shot_deepest: f64 = 0.0;
+            for _ in 0..WALL_SHOT_STEPS {
+                w.advance(DT)?;
+                let b = w.body_position(bullet)?;
+                let p = w.body_position(wall)?;
+                let depth =
+                    wall_shot::depth(vec2(b[0], b[1]), vec2(p[0], p[1]), w.body_angle(wall)?);
+                shot_deepest = shot_deepest.max(depth);
+            }
+            o.figure(&format!("{}: deepest cm", shot.name), 100.0 * shot_deepest);
+            deepest = deepest.max(shot_deepest);
+            through += usize::from(shot_deepest > 2.0 * f64::from(wall_shot::WALL_HALF_THICKNESS));
+            if !shot.standing {
+                let v = f64::from(w.body_velocity(wall)?.0[0]);
+                let push = (v - shared).abs() / closing;
+                o.figure(&format!("{}: push off %", shot.name), 100.0 * push);
+                worst_push = worst_push.max(push);
+            }
+            let mut shot_outcome = Outcome::default();
+            shot_outcome.check_finite(w)?;
+            nan |= shot_outcome.nan;
+            Ok(())
+        })?;
+    }
+    o.nan |= nan;
+    o.bar("deepest into a wall cm", Bar::Below(1.0), 100.0 * deepest);
+    o.bar("shots through a wall", Bar::Below(0.5), through as f64);
+    o.bar(
+        "worst push off momentum's % of closing speed",
+        Bar::Below(1.0),
+        100.0 * worst_push,
     );
     Ok(())
 }

@@ -5,6 +5,7 @@
 //! without the peers (`carom-bench` with default features off).
 
 pub mod joint_measures;
+pub mod wall_shot;
 pub mod worlds;
 
 use carom::{BodyDef, ColliderDef, Shape, World, vec2};

@@ -2,10 +2,17 @@
 //!
 //! After the solve, a dynamic body that moved more than half its smallest extent this step is
 //! swept from where it started to where it ended. Conservative advancement finds the first
-//! time its shape comes within the linear slop of a static body (or, for bullets, of any
-//! other body): with `d` the exact distance and `bound` the fastest any point of the body can
-//! close that distance, advancing by `d / bound` can never step past a contact. The body is
-//! left at that time of impact with its velocity; the next step's speculative contact stops it.
+//! time its shape comes within the linear slop of a static body: with `d` the exact distance
+//! and `bound` the fastest the two can close that distance, advancing by `d / bound` can never
+//! step past a contact. The body is left at that time of impact with its velocity; the next
+//! step's speculative contact stops it.
+//!
+//! Bullets are swept after the other fast bodies have been put back, against every body, and
+//! a moving one is swept too: its path over the step, not only where it ended, so a bullet
+//! cannot start the sweep already past a wall that came towards it. A bullet that hits a
+//! moving body is carried with it to where that body ended, keeping the place on its face
+//! where it hit. (Sweeping against where the other body ended, as Box2D does, lets a wall
+//! coming at a bullet, or one the solver pushed on, pass the bullet through itself.)
 //!
 //! The sweep is the second line. The first is in the contacts: with this effect on, a pair's
 //! face points are kept as far apart as the pair can close in a step (see
@@ -21,6 +28,7 @@ use crate::constants::{
 };
 use crate::dynamics::body::{Body, BodyHandle, BodyKind, Pose};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};
+use crate::geometry::aabb::Aabb;
 use crate::geometry::shape::WorldShape;
 use crate::handle_map::HandleMap;
 use crate::joint::store::JointStore;
@@ -85,38 +93,33 @@ impl Sweep {
     }
 }
 
-/// The first time in `(0, 1)` at which `shape` on `sweep` would pass into `other`, by
-/// conservative advancement: with `distance` the signed gap (negative when overlapping) and
-/// `bound` the fastest any point of the shape can close it, advancing by `distance / bound`
-/// can never step past the goal.
+/// The first time in `(0, 1)` at which two shapes would pass into each other, by conservative
+/// advancement: with `separation_at(t)` their signed gap at `t` (negative when overlapping) and
+/// `bound` the fastest they can close it per unit of sweep time, advancing by the gap over
+/// `bound` can never step past the goal.
 ///
-/// A shape that starts clear of `other` is stopped when it comes within `target` of it. A shape
+/// Shapes that start clear of each other are stopped when they come within `target`. A shape
 /// already touching at the start (a fast box sliding on the floor it rests on, a plank landing
 /// on one end) is the solver's business, but the solver may not stop all of it in one step:
-/// it may go on as long as no point sinks more than [`sink_allowance`] deeper than it started.
-/// Stopping it at the first touch instead would freeze a sliding body where it started, every
-/// step; sweeping only a core around its centre (Box2D's fallback) lets a spinning plank's far
-/// end swing through a thin floor.
+/// it may go on as long as no point sinks more than [`sink_allowance`] deeper than it started
+/// (`min_extent` is the swept shape's). Stopping it at the first touch instead would freeze a
+/// sliding body where it started, every step; sweeping only a core around its centre (Box2D's
+/// fallback) lets a spinning plank's far end swing through a thin floor.
 fn time_of_impact(
-    collider: &Collider,
-    sweep: &Sweep,
-    other: &WorldShape,
+    bound: Real,
+    min_extent: Real,
     target: Real,
-    placed: &mut WorldShape,
+    mut separation_at: impl FnMut(Real) -> Real,
 ) -> Option<Real> {
-    let radius = collider.reach_from(sweep.local_center);
-    // The fastest any point of the shape moves, per unit of sweep time.
-    let bound = sweep.translation.norm() + sweep.turn.abs() * radius;
     if bound <= 0.0 {
         return None;
     }
     let tolerance = 0.25 * target;
-    collider.place_shape(placed, &sweep.at(0.0));
-    let start = separation(other, placed).separation;
+    let start = separation_at(0.0);
     let goal = if start >= target + tolerance {
         target
     } else {
-        start.min(target) - sink_allowance(collider.shape().min_extent(), target)
+        start.min(target) - sink_allowance(min_extent, target)
     };
     let mut t: Real = 0.0;
     let mut distance = start;
@@ -128,11 +131,44 @@ fn time_of_impact(
         if t >= 1.0 {
             return None;
         }
-        collider.place_shape(placed, &sweep.at(t));
-        distance = separation(other, placed).separation;
+        distance = separation_at(t);
     }
     // Still approaching after many small advances: stop here, short of the goal.
     Some(t)
+}
+
+/// [`time_of_impact`] of `collider` on `sweep` with `other`, a shape that stays where it is.
+fn impact_with_still(
+    collider: &Collider,
+    sweep: &Sweep,
+    other: &WorldShape,
+    target: Real,
+    placed: &mut WorldShape,
+) -> Option<Real> {
+    let bound =
+        sweep.translation.norm() + sweep.turn.abs() * collider.reach_from(sweep.local_center);
+    time_of_impact(bound, collider.shape().min_extent(), target, |t| {
+        collider.place_shape(placed, &sweep.at(t));
+        separation(other, placed).separation
+    })
+}
+
+/// [`time_of_impact`] of `collider` on `sweep` with `other` on `other_sweep`: both move, and
+/// the gap closes no faster than their centres close plus how fast each turns its reach.
+fn impact_with_moving(
+    (collider, sweep): (&Collider, &Sweep),
+    (other, other_sweep): (&Collider, &Sweep),
+    target: Real,
+    (placed, placed_other): (&mut WorldShape, &mut WorldShape),
+) -> Option<Real> {
+    let bound = (sweep.translation - other_sweep.translation).norm()
+        + sweep.turn.abs() * collider.reach_from(sweep.local_center)
+        + other_sweep.turn.abs() * other.reach_from(other_sweep.local_center);
+    time_of_impact(bound, collider.shape().min_extent(), target, |t| {
+        collider.place_shape(placed, &sweep.at(t));
+        other.place_shape(placed_other, &other_sweep.at(t));
+        separation(placed_other, placed).separation
+    })
 }
 
 /// How much deeper than it started a shape that already touches another may sink within one
@@ -149,9 +185,10 @@ fn sink_allowance(min_extent: Real, target: Real) -> Real {
 /// with: their collision filters agree and no joint (`joints`) keeps the two bodies apart.
 /// `scratch` keeps its memory from step to step.
 ///
-/// The fast bodies are picked in order, swept on as many threads as rayon gives (each sweep
-/// reads the world as the solver left it, and nothing is moved until all are done), then put
-/// back in order: the same bits on any number of threads.
+/// The other fast bodies are swept first, then the bullets against the world those left. In
+/// each pass the fast bodies are picked in order, swept on as many threads as rayon gives (each
+/// sweep reads the world as the pass found it, and nothing is moved until all are done), then
+/// put back in order: the same bits on any number of threads.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_continuous(
     bodies: &mut HandleMap<BodyHandle, Body>,
@@ -167,10 +204,12 @@ pub(crate) fn solve_continuous(
         fast,
         impacts,
         swept,
+        paths,
     } = scratch;
     fast.clear();
     let all = bodies.as_slice();
-    for (index, body) in awake.clone().zip(&all[awake]) {
+    let mut bullets = 0;
+    for (index, body) in awake.clone().zip(&all[awake.clone()]) {
         if body.kind() != BodyKind::Dynamic {
             continue;
         }
@@ -182,24 +221,96 @@ pub(crate) fn solve_continuous(
         let reach = sweep.translation.norm() + sweep.turn.abs() * body.reach();
         if reach > slow {
             fast.push((index, sweep));
+            bullets += usize::from(body.is_bullet());
         }
+    }
+    // The bullets last, each group in storage order.
+    let others = fast.len() - bullets;
+    if bullets > 0 {
+        fast.sort_by_key(|&(index, _)| all[index].is_bullet());
     }
     impacts.clear();
     impacts.resize(fast.len(), None);
-    {
+    let mut count = 0;
+    for pass in [0..others, others..fast.len()] {
+        if pass.is_empty() {
+            continue;
+        }
+        // Where each fast body went this step, as the pass finds it, for the bullets to find
+        // the moving bodies the broadphase does not hold where they were.
+        paths.clear();
+        if pass.start > 0 {
+            let all = bodies.as_slice();
+            paths.extend(fast.iter().map(|&(index, _)| swept_box(&all[index])));
+        }
         let world = SweptWorld {
-            bodies: all,
+            bodies: bodies.as_slice(),
+            awake: awake.clone(),
             colliders,
             broadphase,
             joints,
             target,
             hooked,
+            fast,
+            paths,
         };
+        world.sweep_all(&pass, &mut impacts[pass.clone()], swept);
+        let moved = bodies.as_mut_slice();
+        for (&(index, _), impact) in fast[pass.clone()].iter().zip(&impacts[pass]) {
+            if let &Some((center, rotation)) = impact {
+                let body = &mut moved[index];
+                body.move_to_time_of_impact(center, rotation);
+                place_colliders(body, colliders);
+                count += 1;
+            }
+        }
+    }
+    (count, fast.len())
+}
+
+/// A box around everywhere `body` went this step: its reach around its centre's path.
+fn swept_box(body: &Body) -> Aabb {
+    let reach = Vec2::repeat(body.reach());
+    let (from, to) = (body.start_pose().center, body.center_of_mass());
+    Aabb::new(from.inf(&to) - reach, from.sup(&to) + reach)
+}
+
+/// What a sweep reads of the world: all of it as the pass found it.
+struct SweptWorld<'a> {
+    bodies: &'a [Body],
+    /// The storage indices of the awake bodies: only these moved this step.
+    awake: Range<usize>,
+    colliders: &'a HandleMap<ColliderHandle, Collider>,
+    broadphase: &'a BroadPhase,
+    joints: &'a JointStore,
+    /// The gap a time of impact leaves, m.
+    target: Real,
+    /// The world has a pre-solve hook.
+    hooked: bool,
+    /// Every fast body of the step (storage index, sweep).
+    fast: &'a [(usize, Sweep)],
+    /// For the bullets' pass, [`swept_box`] of each of `fast`; empty in the first pass.
+    paths: &'a [Aabb],
+}
+
+/// When a sweep stops, and the moving body it met, if it did: that body's storage index and
+/// path.
+type Impact = (Real, Option<(usize, Sweep)>);
+
+impl SweptWorld<'_> {
+    /// Sweeps `fast[pass]` into `impacts`, on as many threads as rayon gives.
+    fn sweep_all(
+        &self,
+        pass: &Range<usize>,
+        impacts: &mut [Option<(Vec2, Rot)>],
+        swept: &mut Vec<SweepShapes>,
+    ) {
+        let fast = &self.fast[pass.clone()];
         let sweep_run = |fast: &[(usize, Sweep)],
                          impacts: &mut [Option<(Vec2, Rot)>],
-                         shapes: &mut [Option<WorldShape>; 3]| {
+                         shapes: &mut SweepShapes| {
             for (&(index, sweep), impact) in fast.iter().zip(impacts.iter_mut()) {
-                *impact = world.first_impact(index, &sweep, shapes);
+                *impact = self.first_impact(index, &sweep, shapes);
             }
         };
         if worth_sharing(fast.len(), SWEEPS_PER_TASK) {
@@ -217,98 +328,121 @@ pub(crate) fn solve_continuous(
                 .zip(impacts.par_chunks_mut(per_task))
                 .zip(swept.par_iter_mut())
                 .for_each(|((fast, impacts), shapes)| sweep_run(fast, impacts, shapes));
-        } else if !fast.is_empty() {
+        } else {
             if swept.is_empty() {
                 swept.push(Default::default());
             }
             sweep_run(fast, impacts, &mut swept[0]);
         }
     }
-    let moved = bodies.as_mut_slice();
-    let mut count = 0;
-    for (&(index, _), impact) in fast.iter().zip(impacts.iter()) {
-        if let &Some((center, rotation)) = impact {
-            let body = &mut moved[index];
-            body.move_to_time_of_impact(center, rotation);
-            place_colliders(body, colliders);
-            count += 1;
-        }
-    }
-    (count, fast.len())
-}
 
-/// What a sweep reads of the world: all of it as the solver left it.
-struct SweptWorld<'a> {
-    bodies: &'a [Body],
-    colliders: &'a HandleMap<ColliderHandle, Collider>,
-    broadphase: &'a BroadPhase,
-    joints: &'a JointStore,
-    /// The gap a time of impact leaves, m.
-    target: Real,
-    /// The world has a pre-solve hook.
-    hooked: bool,
-}
-
-impl SweptWorld<'_> {
-    /// Where the body at storage index `index`, moving along `sweep`, first meets a collider
-    /// it may not pass through (its centre of mass and rotation then), if before the end of
-    /// the step; `shapes` are scratch.
+    /// Where the body at storage index `index`, moving along `sweep`, ends if it meets a
+    /// collider it may not pass through before the end of the step (its centre of mass and
+    /// rotation then); `shapes` are scratch.
     fn first_impact(
         &self,
         index: usize,
         sweep: &Sweep,
-        shapes: &mut [Option<WorldShape>; 3],
+        shapes: &mut SweepShapes,
     ) -> Option<(Vec2, Rot)> {
         let body = &self.bodies[index];
-        let mut first: Option<Real> = None;
+        let mut first: Option<Impact> = None;
         for collider in body
             .colliders()
             .iter()
             .filter_map(|&c| self.colliders.get(c))
         {
-            let placed = placed_shape(shapes, collider);
+            let placed = placed_shape(&mut shapes.own, collider);
             collider.place_shape(placed, &sweep.at(0.0));
             let path = placed.aabb().union(&collider.aabb());
             let mut visit = |handle| {
-                let Some(other) = self.colliders.get(handle) else {
-                    return;
-                };
-                let other_body = &self.bodies[other.body_index()];
-                // Chains are one-sided: a body may pass up through one from behind.
-                let eligible = other.body() != body.handle()
-                    && (other_body.kind() == BodyKind::Static || body.is_bullet())
-                    && collider.filter().collides_with(&other.filter())
-                    && !self.joints.filters(body.handle(), other.body())
-                    && !other.world_shape().is_link_behind(sweep.start)
-                    && !other.world_shape().is_link_skimmed(
-                        sweep.start,
-                        sweep.start + sweep.translation,
-                        LINK_SKIM_FRACTION * body.min_extent(),
-                    )
-                    && !(self.hooked && (collider.pre_solve() || other.pre_solve()));
-                if !eligible {
-                    return;
-                }
-                let placed = placed_shape(shapes, collider);
-                if let Some(t) =
-                    time_of_impact(collider, sweep, other.world_shape(), self.target, placed)
-                    && first.is_none_or(|f| t < f)
+                if let Some(impact) = self.impact(body, collider, sweep, handle, shapes)
+                    && first.is_none_or(|(f, _)| impact.0 < f)
                 {
-                    first = Some(t);
+                    first = Some(impact);
                 }
             };
-            // Only a bullet stops at moving bodies: the others need only the static tree.
             if body.is_bullet() {
                 self.broadphase.query(&path, &mut visit);
+                // A moving body may have crossed the path from somewhere the broadphase,
+                // which holds it where it ended, does not cover.
+                for (&(other, _), other_path) in self.fast.iter().zip(self.paths) {
+                    if other != index && other_path.overlaps(&path) {
+                        for &handle in self.bodies[other].colliders() {
+                            visit(handle);
+                        }
+                    }
+                }
             } else {
+                // Only a bullet stops at moving bodies: the others need only the static tree.
                 self.broadphase.query_static(&path, &mut visit);
             }
         }
-        first.filter(|&t| t < 1.0).map(|t| sweep.pose_at(t))
+        let (t, carrier) = first.filter(|&(t, _)| t < 1.0)?;
+        let (center, rotation) = sweep.pose_at(t);
+        Some(match carrier {
+            None => (center, rotation),
+            Some((other, other_sweep)) => {
+                // Keep the place on the other body's face where the two met, to where it ended.
+                let (other_center, other_rotation) = other_sweep.pose_at(t);
+                let end = &self.bodies[other];
+                let turn = end.rotation() * other_rotation.inverse();
+                (
+                    end.center_of_mass() + turn * (center - other_center),
+                    turn * rotation,
+                )
+            }
+        })
+    }
+
+    /// When `collider` of `body`, on `sweep`, meets the collider `handle` if it may not pass
+    /// through it, and the moving body that collider is on, if it moved.
+    fn impact(
+        &self,
+        body: &Body,
+        collider: &Collider,
+        sweep: &Sweep,
+        handle: ColliderHandle,
+        shapes: &mut SweepShapes,
+    ) -> Option<Impact> {
+        let other = self.colliders.get(handle)?;
+        let other_index = other.body_index();
+        let other_body = &self.bodies[other_index];
+        // Chains are one-sided: a body may pass up through one from behind.
+        let eligible = other.body() != body.handle()
+            && (other_body.kind() == BodyKind::Static || body.is_bullet())
+            && collider.filter().collides_with(&other.filter())
+            && !self.joints.filters(body.handle(), other.body())
+            && !other.world_shape().is_link_behind(sweep.start)
+            && !other.world_shape().is_link_skimmed(
+                sweep.start,
+                sweep.start + sweep.translation,
+                LINK_SKIM_FRACTION * body.min_extent(),
+            )
+            && !(self.hooked && (collider.pre_solve() || other.pre_solve()));
+        if !eligible {
+            return None;
+        }
+        let placed = placed_shape(&mut shapes.own, collider);
+        if other_body.kind() != BodyKind::Static && self.awake.contains(&other_index) {
+            let other_sweep = Sweep::new(other_body.start_pose(), other_body);
+            if other_sweep.translation != Vec2::zeros() || other_sweep.turn != 0.0 {
+                let placed_other = placed_shape(&mut shapes.other, other);
+                let t = impact_with_moving(
+                    (collider, sweep),
+                    (other, &other_sweep),
+                    self.target,
+                    (placed, placed_other),
+                )?;
+                return Some((t, Some((other_index, other_sweep))));
+            }
+        }
+        let t = impact_with_still(collider, sweep, other.world_shape(), self.target, placed)?;
+        Some((t, None))
     }
 }
 
-/// The scratch shape a sweep of `collider` places along its path: one per kind of world
+/// The scratch shape a sweep places `collider` in along its path: one per kind of world
 /// shape, so sweeping a circle after a polygon does not give up the polygon's storage.
 fn placed_shape<'a>(
     shapes: &'a mut [Option<WorldShape>; 3],
@@ -322,15 +456,25 @@ fn placed_shape<'a>(
     shapes[kind].get_or_insert_with(|| collider.world_shape().clone())
 }
 
+/// The scratch shapes of one task of sweeps: the swept body's, and the moving body's it is
+/// swept against.
+#[derive(Debug, Clone, Default)]
+struct SweepShapes {
+    own: [Option<WorldShape>; 3],
+    other: [Option<WorldShape>; 3],
+}
+
 /// What continuous collision works in, kept so a step allocates nothing.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct ContinuousScratch {
-    /// The fast bodies of this step: storage index and sweep.
+    /// The fast bodies of this step: storage index and sweep; the bullets last.
     fast: Vec<(usize, Sweep)>,
     /// Where each fast body is put back, if it is.
     impacts: Vec<Option<(Vec2, Rot)>>,
-    /// Scratch shapes, one set per task: a sweep places its shape along its path in them.
-    swept: Vec<[Option<WorldShape>; 3]>,
+    /// Scratch shapes, one set per task.
+    swept: Vec<SweepShapes>,
+    /// Where each fast body went, for the bullets' pass ([`swept_box`]).
+    paths: Vec<Aabb>,
 }
 
 impl ContinuousScratch {
