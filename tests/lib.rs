@@ -3,6 +3,7 @@
 
 use carom::{BodyHandle, World, WorldShape};
 
+pub mod untrusted_files;
 pub mod world_ops;
 
 /// Every scene file in `demos/`, sorted by name.

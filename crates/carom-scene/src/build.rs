@@ -93,10 +93,10 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
         reason,
     };
     let time_step = scene.time_step;
-    if !(time_step.is_finite() && time_step > 0.0) {
+    if !carom::TIME_STEP_RANGE.contains(&time_step) {
         return Err(invalid(
             "time_step".into(),
-            format!("time_step must be finite and positive, got {time_step}"),
+            format!("time_step must be from 1e-6 s to 10 s, got {time_step}"),
         ));
     }
     if let Some(state) = &scene.state {

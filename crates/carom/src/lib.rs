@@ -61,7 +61,8 @@ pub use collision::pre_solve::PreSolveContact;
 pub use collision::query_filter::QueryFilter;
 pub use collision::sensor::{SensorEvent, SensorOverlap};
 pub use constants::{
-    LINEAR_SLOP, SHAPE_CAST_TOLERANCE, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_TO_SLEEP,
+    LINEAR_SLOP, SHAPE_CAST_TOLERANCE, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_STEP_RANGE,
+    TIME_TO_SLEEP,
 };
 pub use debug_draw::{
     ARROW_WIDTH, Color, DebugDraw, DrawCircle, DrawFlags, DrawList, DrawOptions, DrawPoint,
