@@ -280,6 +280,10 @@ fn shape(spec: &ShapeSpec) -> Result<Shape, String> {
     single_shape(spec).map_err(|e| e.to_string())
 }
 
+#[allow(
+    clippy::unreachable,
+    reason = "its one caller, `shape`, answers chains with an error before calling it"
+)]
 fn single_shape(spec: &ShapeSpec) -> Result<Shape, CaromError> {
     let points =
         |points: &[(f32, f32)]| points.iter().map(|&(x, y)| vec2(x, y)).collect::<Vec<_>>();

@@ -33,6 +33,20 @@
 //! # Ok::<(), carom::CaromError>(())
 //! ```
 
+// A panic that a caller's input can reach is a bug. Each `expect`, `unreachable!` and
+// `panic!` left in the library says, in the `allow` beside it, why no input reaches it.
+#![cfg_attr(
+    not(test),
+    warn(
+        clippy::unwrap_used,
+        clippy::expect_used,
+        clippy::panic,
+        clippy::unreachable,
+        clippy::todo,
+        clippy::unimplemented
+    )
+)]
+
 mod collision;
 mod constants;
 mod debug_draw;

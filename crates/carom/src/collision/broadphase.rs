@@ -543,6 +543,10 @@ impl BroadPhase {
 
     /// Every pair whose fat boxes overlap now, as [`BroadPhase::update_pairs`] orders them:
     /// the full answer the incremental one must agree with.
+    #[allow(
+        clippy::expect_used,
+        reason = "every leaf of the trees was made for a proxy, and a proxy's leaf goes with it"
+    )]
     #[cfg(any(test, feature = "testing"))]
     pub fn overlapping_pairs(&self) -> Vec<(ColliderHandle, ColliderHandle)> {
         let mut pairs = Vec::new();

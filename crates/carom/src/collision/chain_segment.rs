@@ -35,6 +35,10 @@ pub(crate) struct ChainLink {
 
 impl ChainLink {
     /// The link of a placed chain segment.
+    #[allow(
+        clippy::unreachable,
+        reason = "links are made only of chain segments: the caller matched the shape first"
+    )]
     pub fn of(shape: &WorldShape) -> Self {
         match *shape {
             WorldShape::ChainSegment {
@@ -193,6 +197,10 @@ enum Incident {
 }
 
 /// A link against a convex core grown by its radius (a polygon, rounded or not, or a capsule).
+#[allow(
+    clippy::expect_used,
+    reason = "a polygon has at least three vertices, so the ranges over them are not empty"
+)]
 fn collide_polygon(link: &ChainLink, polygon: Core, margins: Margins) -> Manifold {
     let map = GaussMap::of(link);
     let (p1, p2) = (link.point1, link.point2);

@@ -697,6 +697,10 @@ fn facing_edges_closest(
 
 /// The edge whose normal is most nearly opposite `normal`: the one facing a face of that
 /// normal most directly.
+#[allow(
+    clippy::expect_used,
+    reason = "a polygon has at least three normals, so the range is not empty"
+)]
 fn facing_edge(normals: &[Vec2], normal: Vec2) -> usize {
     (0..normals.len())
         .min_by(|&x, &y| normals[x].dot(&normal).total_cmp(&normals[y].dot(&normal)))

@@ -281,6 +281,10 @@ impl WorldShape {
     }
 
     /// Re-places the shape, reusing this cache's storage.
+    #[allow(
+        clippy::unreachable,
+        reason = "the arm is reached only by the shapes its pattern matched"
+    )]
     pub fn update(&mut self, shape: &Shape, transform: &Isometry) {
         let rotation = transform.rotation;
         let translation = transform.translation.vector;
@@ -340,6 +344,10 @@ impl WorldShape {
     }
 
     /// The tight bounding box.
+    #[allow(
+        clippy::expect_used,
+        reason = "a placed polygon keeps its shape's vertices, at least three"
+    )]
     pub fn aabb(&self) -> Aabb {
         match self {
             WorldShape::Circle { center, radius } => {

@@ -100,6 +100,10 @@ impl JointStore {
     }
 
     /// Moves a joint into set `to` (a no-op when it is there already).
+    #[allow(
+        clippy::expect_used,
+        reason = "only joints the store lists are refiled, and a listed joint is live"
+    )]
     pub fn refile(&mut self, handle: JointHandle, to: SolverSet) {
         let index = self.joints.dense_index(handle).expect("listed joints live");
         self.move_to(index, to);
@@ -146,6 +150,10 @@ impl JointStore {
 
     /// The bodies joined to `body`, into `out` (cleared first; a body joined twice is listed
     /// twice).
+    #[allow(
+        clippy::expect_used,
+        reason = "a body's joint list holds only live joints: removing a joint unlists it"
+    )]
     pub fn partners(&self, body: BodyHandle, out: &mut Vec<BodyHandle>) {
         out.clear();
         for &handle in self.of_body(body) {

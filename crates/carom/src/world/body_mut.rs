@@ -26,6 +26,10 @@ impl<'w> BodyMut<'w> {
     /// Applies a change to the body; if the change woke it (a push, a move), its island wakes
     /// with it at once. Where the last step said its colliders were going no longer holds, so
     /// the broadphase stops judging their new pairs by it.
+    #[allow(
+        clippy::expect_used,
+        reason = "the body is lent live, and waking it moves it but keeps it"
+    )]
     fn edit<T>(&mut self, change: impl FnOnce(&mut Body) -> T) -> T {
         let body = &mut self.world.bodies.as_mut_slice()[self.index];
         let result = change(body);
@@ -157,6 +161,10 @@ impl<'w> BodyMut<'w> {
     /// # Errors
     /// A dynamic body without mass (no collider with a positive density); the kind is then
     /// left as it was.
+    #[allow(
+        clippy::expect_used,
+        reason = "the body is lent live, and changing its kind moves it but keeps it"
+    )]
     pub fn set_kind(&mut self, kind: BodyKind) -> Result<(), CaromError> {
         let handle = self.handle();
         self.world.set_body_kind(handle, kind)?;

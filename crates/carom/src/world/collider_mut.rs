@@ -22,6 +22,10 @@ impl<'w> ColliderMut<'w> {
         ColliderMut { world, handle }
     }
 
+    #[allow(
+        clippy::expect_used,
+        reason = "the collider was checked live when it was lent, and the loan holds the world"
+    )]
     fn collider(&mut self) -> &mut Collider {
         self.world
             .colliders
@@ -62,6 +66,10 @@ impl<'w> ColliderMut<'w> {
     /// # Errors
     /// A density that is negative or not finite, or a dynamic body left without mass; the
     /// density is then left as it was.
+    #[allow(
+        clippy::expect_used,
+        reason = "a live collider's body is live: removing a body removes its colliders"
+    )]
     pub fn set_density(&mut self, density: Real) -> Result<(), CaromError> {
         check_non_negative("density", density)?;
         let previous = self.density();
@@ -79,6 +87,10 @@ impl<'w> ColliderMut<'w> {
     /// Changes what the collider collides with: its contacts the new filter forbids end
     /// (reported after the next step), its body wakes, and the broadphase looks at it again
     /// for pairs the filter now allows.
+    #[allow(
+        clippy::expect_used,
+        reason = "the collider was checked live when it was lent, and its body is live with it"
+    )]
     pub fn set_filter(&mut self, filter: CollisionFilter) {
         self.collider().set_filter(filter);
         let world = &mut *self.world;
@@ -101,6 +113,10 @@ impl<'w> ColliderMut<'w> {
 impl Deref for ColliderMut<'_> {
     type Target = Collider;
 
+    #[allow(
+        clippy::expect_used,
+        reason = "the collider was checked live when it was lent, and the loan holds the world"
+    )]
     fn deref(&self) -> &Collider {
         self.world.colliders.get(self.handle).expect("lent live")
     }

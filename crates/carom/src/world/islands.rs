@@ -21,6 +21,10 @@ pub(crate) struct IslandScratch {
 }
 
 impl World {
+    #[allow(
+        clippy::expect_used,
+        reason = "islands list only live bodies: removing a body takes it out of its island"
+    )]
     pub(super) fn handle_index(&self, handle: BodyHandle) -> usize {
         self.bodies.dense_index(handle).expect("island bodies live")
     }

@@ -25,6 +25,10 @@ impl<'w> JointMut<'w> {
     ///
     /// # Errors
     /// A kind of another kind, or a bad value in it; the joint is then left as it was.
+    #[allow(
+        clippy::expect_used,
+        reason = "the joint was checked live when it was lent, and the loan holds the world"
+    )]
     pub fn set_kind(&mut self, kind: JointKind) -> Result<(), CaromError> {
         let joint = self.world.joints.get_mut(self.handle).expect("lent live");
         joint.set_kind(kind)?;
@@ -51,6 +55,10 @@ impl<'w> JointMut<'w> {
 impl Deref for JointMut<'_> {
     type Target = Joint;
 
+    #[allow(
+        clippy::expect_used,
+        reason = "the joint was checked live when it was lent, and the loan holds the world"
+    )]
     fn deref(&self) -> &Joint {
         self.world.joints.get(self.handle).expect("lent live")
     }

@@ -22,6 +22,10 @@ impl World {
     /// for a mouse joint, every setting finite and in range, only settings its kind has), and
     /// nothing is added if any of it is wrong. Both bodies wake. Unless the joint lets them
     /// collide, contacts between the two bodies end.
+    #[allow(
+        clippy::expect_used,
+        reason = "both bodies were checked above, and a stale one refused with an error"
+    )]
     pub fn add_joint(&mut self, def: JointDef) -> Result<JointHandle, CaromError> {
         let handle = self.joints.next_handle();
         let joint = def.build(
@@ -79,6 +83,10 @@ impl World {
     }
 
     /// Removes every joint of a body (which is being removed).
+    #[allow(
+        clippy::expect_used,
+        reason = "a body's joint list holds only live joints: removing a joint unlists it"
+    )]
     pub(crate) fn remove_joints_of(&mut self, body: BodyHandle) {
         while let Some(&handle) = self.joints.of_body(body).first() {
             let joint = self.joints.remove(handle).expect("listed joints live");
@@ -132,6 +140,10 @@ impl World {
 
     /// The joints a step solves, into `awake`: the awake set of joints (those with an awake
     /// dynamic body), in storage order, with where their bodies are.
+    #[allow(
+        clippy::expect_used,
+        reason = "a live joint's bodies are live: removing a body removes its joints"
+    )]
     pub(crate) fn awake_joints(&self, awake: &mut Vec<AwakeJoint>) {
         awake.clear();
         let range = self.joints.awake();
@@ -151,6 +163,10 @@ impl World {
 
     /// Removes the joints the last step pulled past their break force or torque, reporting
     /// each; says whether any broke.
+    #[allow(
+        clippy::expect_used,
+        reason = "the joints just solved are live: nothing removes a joint between the solve and here"
+    )]
     pub(crate) fn break_joints(&mut self, solved: &[AwakeJoint]) -> bool {
         self.joints.events.clear();
         let broken: Vec<JointHandle> = solved

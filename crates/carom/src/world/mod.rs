@@ -186,6 +186,10 @@ impl World {
     /// No collider, a bad shape, non-finite placement or velocity, a dynamic body without mass
     /// (no collider with a positive density), or a negative density, friction, restitution or
     /// drag coefficient.
+    #[allow(
+        clippy::expect_used,
+        reason = "the body and its colliders were inserted just above"
+    )]
     pub fn add_body(&mut self, def: BodyDef) -> Result<BodyHandle, CaromError> {
         let handle = self.bodies.next_handle();
         let mut body = Body::new(handle, &def)?;
@@ -233,6 +237,10 @@ impl World {
     /// Removes a body with its colliders and joints and returns it. Its contacts end
     /// (reported after the next step), and the sleeping bodies it touched or was joined to
     /// wake.
+    #[allow(
+        clippy::expect_used,
+        reason = "the handle was checked first, and a stale one refused with an error"
+    )]
     pub fn remove_body(&mut self, handle: BodyHandle) -> Result<Body, CaromError> {
         self.bodies.checked_index(handle)?;
         self.remove_joints_of(handle);
@@ -263,6 +271,10 @@ impl World {
     ///
     /// # Errors
     /// A stale body handle, a bad definition, or a dynamic body left without mass.
+    #[allow(
+        clippy::expect_used,
+        reason = "the body was checked first, and the collider inserted just above"
+    )]
     pub fn add_collider(
         &mut self,
         body: BodyHandle,
@@ -305,6 +317,10 @@ impl World {
     /// # Errors
     /// A stale handle, the body's last collider (remove the body instead), or a dynamic body
     /// left without mass.
+    #[allow(
+        clippy::expect_used,
+        reason = "the collider was checked first, and a live collider's body is live"
+    )]
     pub fn remove_collider(&mut self, handle: ColliderHandle) -> Result<Collider, CaromError> {
         let collider = self.colliders.get(handle).ok_or(CaromError::StaleHandle {
             what: "collider",
@@ -340,6 +356,10 @@ impl World {
     }
 
     /// Changes how a body moves ([`BodyMut::set_kind`]).
+    #[allow(
+        clippy::expect_used,
+        reason = "the body was checked first, and a body's colliders live while it does"
+    )]
     pub(crate) fn set_body_kind(
         &mut self,
         handle: BodyHandle,

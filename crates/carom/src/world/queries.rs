@@ -36,6 +36,10 @@ impl World {
 
     /// Every collider `shape` (placed in the world) overlaps or touches, exactly, that
     /// `filter` sees, in handle order. A shape that is not finite meets nothing.
+    #[allow(
+        clippy::expect_used,
+        reason = "the broadphase answers only with live colliders"
+    )]
     pub fn query_shape(&self, shape: &WorldShape, filter: QueryFilter) -> Vec<ColliderHandle> {
         if !shape.is_finite() {
             return Vec::new();

@@ -14,6 +14,10 @@ impl World {
     /// splits the sleepiest island that may have come apart, so its resting parts can sleep
     /// at the next step. Returns how many sleep timers were advanced and how many islands were
     /// split.
+    #[allow(
+        clippy::expect_used,
+        reason = "the sleep pass visits only awake dynamic bodies, and every dynamic body has an island"
+    )]
     pub(crate) fn update_sleep(&mut self, dt: Real) -> (usize, usize) {
         let step = self.step_count + 1;
         let awake = self.body_sets.awake();

@@ -147,6 +147,10 @@ impl World {
     /// The set a joint belongs in, by its bodies' kinds and sets: with no dynamic body it is
     /// never solved (static); otherwise it is awake while a dynamic body of it is, and sleeps
     /// with their island (a static or kinematic partner does not keep it awake).
+    #[allow(
+        clippy::expect_used,
+        reason = "a live joint's bodies are live: removing a body removes its joints"
+    )]
     pub(crate) fn joint_set_for(&self, joint: &Joint) -> SolverSet {
         let mut set = SolverSet::Static;
         for handle in joint.bodies() {
@@ -178,6 +182,10 @@ impl World {
 
     /// Puts each of a body's joints in the set its bodies call for (after the body changed
     /// set or kind): the cost is the body's own joints.
+    #[allow(
+        clippy::expect_used,
+        reason = "a body's joint list holds only live joints: removing a joint unlists it"
+    )]
     fn refile_joints(&mut self, body: BodyHandle) {
         for k in 0..self.joints.of_body(body).len() {
             let handle = self.joints.of_body(body)[k];
@@ -189,6 +197,10 @@ impl World {
 
     /// [`World::move_body`] without refiling the contacts (for a body whose contacts are about
     /// to be destroyed).
+    #[allow(
+        clippy::expect_used,
+        reason = "a live body's colliders are live: removing a collider detaches it"
+    )]
     fn move_body_and_colliders(&mut self, index: usize, to: SolverSet) -> usize {
         // The colliders first, each on its own: one just attached may not be in its body's
         // set yet.
@@ -217,6 +229,10 @@ impl World {
 
     /// Puts each of a body's contacts in the awake set if either of its bodies is awake, else
     /// in the sleeping set.
+    #[allow(
+        clippy::expect_used,
+        reason = "a live contact's bodies are live: removing a body removes its contacts"
+    )]
     fn refile_contacts(&mut self, body: BodyHandle) {
         let (bodies, sets) = (&self.bodies, self.body_sets);
         self.contacts.refile(body, |handle| {
@@ -235,6 +251,10 @@ impl World {
     }
 
     /// Colours a body's touching contacts again after its kind changed.
+    #[allow(
+        clippy::expect_used,
+        reason = "a live contact's bodies are live: removing a body removes its contacts"
+    )]
     pub(crate) fn repaint_contacts(&mut self, body: BodyHandle) {
         let bodies = &self.bodies;
         self.contacts.repaint(body, |handle| {
@@ -247,6 +267,10 @@ impl World {
 
     /// Wakes the island of the body at `index` if it sleeps (or was just woken by an edit but
     /// still stands in the sleeping set).
+    #[allow(
+        clippy::expect_used,
+        reason = "only a sleeping body is woken, and a sleeping body sleeps in an island"
+    )]
     pub(crate) fn wake_body(&mut self, index: usize) {
         if self.body_sets.set_of(index) == SolverSet::Asleep {
             let island = self.bodies.as_slice()[index].island();
@@ -285,6 +309,10 @@ impl World {
 
     /// Moves a collider into the sleeping set, the last of the array, so removing it keeps
     /// every set contiguous.
+    #[allow(
+        clippy::expect_used,
+        reason = "the collider was checked live by the caller"
+    )]
     pub(crate) fn prepare_collider_removal(&mut self, collider: ColliderHandle) {
         let at = self.colliders.checked_index(collider).expect("attached");
         let colliders = &mut self.colliders;
@@ -299,6 +327,10 @@ impl World {
     /// one: each item in the solver set it belongs in, and everything a saved world is checked
     /// for as it is read (every handle and index points at something that exists, every
     /// number is finite). For fuzzing and carom's own tests (features `testing` and `serde`).
+    #[allow(
+        clippy::panic,
+        reason = "checking is what this is for: it panics on a broken invariant, for tests and fuzzing"
+    )]
     pub fn check_invariants(&self) {
         self.check_sets();
         #[cfg(feature = "serde")]
@@ -311,6 +343,10 @@ impl World {
     /// the set its kind and state call for, its colliders in the same set and pointing at it,
     /// each contact awake exactly when one of its bodies is, each joint in the set its bodies
     /// call for, and each sleeping island's list holds exactly the bodies that name it.
+    #[allow(
+        clippy::expect_used,
+        reason = "checking is what this is for: it panics on a broken invariant, for tests and fuzzing"
+    )]
     pub(crate) fn check_sets(&self) {
         let bodies = self.bodies.as_slice();
         for (index, body) in bodies.iter().enumerate() {
@@ -363,6 +399,11 @@ impl World {
     /// Checks the islands: each live island's list, walked both ways, is exactly the bodies
     /// that name it, all in one set; every touching contact and every joint between dynamic
     /// bodies joins two bodies of one island.
+    #[allow(
+        clippy::expect_used,
+        clippy::unwrap_used,
+        reason = "checking is what this is for: it panics on a broken invariant, for tests and fuzzing"
+    )]
     fn check_islands(&self) {
         for id in self.islands.live_ids() {
             let island = self.islands.get(id);
@@ -412,6 +453,10 @@ impl World {
     /// contact is kept in its colour's part (or the awake part that does not touch, or the
     /// sleeping one), no dynamic body is twice in a colour, and each colour holds exactly the
     /// bodies of its contacts.
+    #[allow(
+        clippy::unwrap_used,
+        reason = "checking is what this is for: it panics on a broken invariant, for tests and fuzzing"
+    )]
     fn check_colors(&self) {
         use crate::constants::COLOR_COUNT;
         use crate::graph::colors::{NO_COLOR, OVERFLOW};

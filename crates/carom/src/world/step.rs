@@ -161,6 +161,10 @@ impl World {
     /// of the broadphase's moving tree that the last step's motion loosened is built again
     /// (Box2D's tree task): the pair queries are done with it, and the narrowphase reads only
     /// the fat boxes.
+    #[allow(
+        clippy::expect_used,
+        reason = "a live contact's bodies are live: removing a body removes its contacts"
+    )]
     fn build_manifolds(
         &mut self,
         prediction: Real,

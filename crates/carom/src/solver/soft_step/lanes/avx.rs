@@ -108,6 +108,10 @@ impl Lanes for Avx8 {
         Avx8(unsafe { _mm256_set1_ps(x) })
     }
 
+    #[allow(
+        clippy::expect_used,
+        reason = "bundles are eight lanes wide, and the slice is cut to eight"
+    )]
     #[inline(always)]
     fn write_to(self, out: &mut [f32]) {
         let out: &mut [f32; 8] = (&mut out[..8]).try_into().expect("room for eight");
@@ -115,6 +119,10 @@ impl Lanes for Avx8 {
         unsafe { _mm256_storeu_ps(out.as_mut_ptr(), self.0) };
     }
 
+    #[allow(
+        clippy::expect_used,
+        reason = "bundles are eight lanes wide, and the slice is cut to eight"
+    )]
     #[inline(always)]
     fn from_slice(values: &[f32]) -> Self {
         let values: &[f32; 8] = values[..8].try_into().expect("eight values");
