@@ -1,0 +1,281 @@
+//! A long soak: `demos/mixed_1000.ron` stepped for a set time under random abuse (bodies
+//! removed and added, grabbed and thrown, turned kinematic and back, made bullets, blown
+//! apart), saved as a scene file and opened again every ten simulated seconds, with every
+//! body checked finite after every step and the process's resident memory sampled every
+//! second.
+//!
+//! It fails (exit code 1) on a body that is not finite, a reopened save that does not carry
+//! on from the same state, or resident memory at the end more than 5 % above what it was
+//! after the first minute (the warm-up, in which the contact and solver arrays grow to what
+//! the pile needs). A panic fails it too.
+//!
+//! ```sh
+//! cargo run --release -p carom-tests --example soak -- --seconds 3600   # the hour
+//! cargo run -p carom-tests --example soak -- --seconds 120              # CI's two minutes
+//! ```
+
+use carom::{BodyDef, BodyHandle, BodyKind, ExplosionDef, JointDef, JointHandle, Shape, vec2};
+use carom_bench::cases::Rng;
+use carom_scene::SceneWorld;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// The warm-up, after which resident memory may grow by at most [`MEMORY_GROWTH`].
+const WARM_UP: Duration = Duration::from_secs(60);
+/// How much resident memory may grow after the warm-up, as a fraction.
+const MEMORY_GROWTH: f64 = 0.05;
+/// Steps between a save and the reopening of it: ten simulated seconds.
+const SAVE_EVERY: u64 = 600;
+
+/// A body held by a mouse joint, and where its target goes.
+struct Grab {
+    joint: JointHandle,
+    body: BodyHandle,
+    steps_left: u32,
+    velocity: carom::Vec2,
+}
+
+/// What the soak did, for its report.
+#[derive(Debug, Default)]
+struct Tally {
+    steps: u64,
+    replaced: u64,
+    grabs: u64,
+    explosions: u64,
+    kind_changes: u64,
+    bullets: u64,
+    reopened: u64,
+}
+
+fn main() {
+    let seconds: u64 = std::env::args()
+        .skip_while(|a| a != "--seconds")
+        .nth(1)
+        .map(|s| s.parse().expect("--seconds takes a whole number"))
+        .unwrap_or(120);
+    let length = Duration::from_secs(seconds);
+    let file = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../demos/mixed_1000.ron");
+    let scene = carom_scene::read(&file).unwrap_or_else(|e| panic!("{e}"));
+    let name = file.display().to_string();
+    let mut built = carom_scene::build(&scene, &name).unwrap_or_else(|e| panic!("{e}"));
+    let mut rng = Rng::new(0x50a6);
+    let mut tally = Tally::default();
+    let mut grab: Option<Grab> = None;
+    let started = Instant::now();
+    let mut samples: Vec<(Duration, u64)> = Vec::new();
+    let mut next_sample = Duration::ZERO;
+    while started.elapsed() < length {
+        abuse(&mut built, &mut rng, &mut grab, &mut tally);
+        built.step().expect("a valid world steps");
+        tally.steps += 1;
+        check_finite(&built, tally.steps);
+        if tally.steps % SAVE_EVERY == 0 {
+            // A grab's joint is the user's hand, not part of the scene: let go first.
+            if let Some(held) = grab.take() {
+                let _ = built.world.remove_joint(held.joint);
+            }
+            built = reopen(&built, &scene, &name);
+            tally.reopened += 1;
+        }
+        let now = started.elapsed();
+        if now >= next_sample {
+            if let Some(rss) = resident_bytes() {
+                samples.push((now, rss));
+            }
+            next_sample += Duration::from_secs(1);
+        }
+    }
+    println!("{tally:?}");
+    println!("bodies at the end: {}", built.world.body_count());
+    report_memory(&samples);
+}
+
+/// One step's worth of random abuse.
+fn abuse(built: &mut SceneWorld, rng: &mut Rng, grab: &mut Option<Grab>, tally: &mut Tally) {
+    let world = &mut built.world;
+    // Move the held body's target, and throw it when the time is up.
+    if let Some(held) = grab {
+        held.steps_left -= 1;
+        let target = world
+            .body(held.body)
+            .map(|b| b.position() + held.velocity / 60.0);
+        match (held.steps_left, target) {
+            (1.., Some(target)) => {
+                let mut joint = world
+                    .joint_mut(held.joint)
+                    .expect("the grab's joint is live");
+                joint
+                    .set_mouse_target(target)
+                    .expect("a finite target is taken");
+            }
+            _ => {
+                let _ = world.remove_joint(held.joint);
+                *grab = None;
+            }
+        }
+    }
+    let dynamic: Vec<BodyHandle> = world
+        .bodies()
+        .filter(|b| b.kind() != BodyKind::Static)
+        .map(|b| b.handle())
+        .collect();
+    if dynamic.is_empty() {
+        return;
+    }
+    let pick = |rng: &mut Rng| dynamic[rng.below(dynamic.len())];
+    let held = grab.as_ref().map(|g| g.body);
+    match rng.below(240) {
+        // Replace a body with a new one of another shape, dropped from the top.
+        0..=7 => {
+            let gone = pick(rng);
+            if Some(gone) != held {
+                world.remove_body(gone).expect("a live body is removed");
+                built.colors.remove(&gone);
+                built.names.retain(|_, &mut h| h != gone);
+                let shape = match rng.below(3) {
+                    0 => Shape::circle(rng.range(0.1, 0.5)),
+                    1 => Shape::rect(rng.range(0.1, 0.5), rng.range(0.1, 0.5)),
+                    _ => Shape::capsule(vec2(-0.3, 0.0), vec2(0.3, 0.0), rng.range(0.05, 0.3)),
+                };
+                let at = vec2(rng.range(-18.0, 18.0), rng.range(20.0, 28.0));
+                let world = &mut built.world;
+                world
+                    .add_body(BodyDef::dynamic(shape).position(at))
+                    .expect("a valid body is added");
+                tally.replaced += 1;
+            }
+        }
+        // Grab a body and throw it.
+        8 if grab.is_none() => {
+            let body = pick(rng);
+            let (point, mass) = {
+                let b = world.body(body).expect("a live body");
+                (b.position(), b.mass())
+            };
+            if mass > 0.0 {
+                let joint = world
+                    .add_joint(JointDef::mouse(body, point, 1000.0 * mass))
+                    .expect("a mouse joint on a live body");
+                *grab = Some(Grab {
+                    joint,
+                    body,
+                    steps_left: 30 + rng.below(90) as u32,
+                    velocity: vec2(rng.range(-30.0, 30.0), rng.range(-10.0, 30.0)),
+                });
+                tally.grabs += 1;
+            }
+        }
+        9 => {
+            let center = vec2(rng.range(-18.0, 18.0), rng.range(1.0, 25.0));
+            let explosion = ExplosionDef {
+                falloff: 2.0,
+                ..ExplosionDef::new(center, rng.range(1.0, 5.0), rng.range(1.0, 50.0))
+            };
+            world.explode(&explosion).expect("a valid explosion");
+            tally.explosions += 1;
+        }
+        // Turn a body kinematic for a while, or back.
+        10 => {
+            let body = pick(rng);
+            if Some(body) != held {
+                let mut b = world.body_mut(body).expect("a live body");
+                let kind = if b.kind() == BodyKind::Kinematic {
+                    BodyKind::Dynamic
+                } else {
+                    BodyKind::Kinematic
+                };
+                b.set_kind(kind).expect("a valid kind");
+                tally.kind_changes += 1;
+            }
+        }
+        11 => {
+            let body = pick(rng);
+            let mut b = world.body_mut(body).expect("a live body");
+            let bullet = !b.is_bullet();
+            b.set_bullet(bullet);
+            tally.bullets += 1;
+        }
+        _ => {}
+    }
+}
+
+/// Saves the running scene as a scene file's text and opens it again; the reopened world must
+/// be in the same state and step on to the same state.
+fn reopen(built: &SceneWorld, scene: &carom_scene::Scene, name: &str) -> SceneWorld {
+    let text = carom_scene::to_text(&built.save(scene), name).expect("a running scene saves");
+    let parsed = carom_scene::parse(&text, name).expect("a saved scene parses");
+    let mut reopened = carom_scene::build(&parsed, name).expect("a saved scene opens");
+    assert_eq!(
+        reopened.world.state_hash(),
+        built.world.state_hash(),
+        "the reopened scene is not where the saved one was"
+    );
+    let mut original = built.world.clone();
+    original.step(built.time_step).expect("a valid step");
+    reopened.step().expect("a valid step");
+    assert_eq!(
+        reopened.world.state_hash(),
+        original.state_hash(),
+        "the reopened scene stepped to another state"
+    );
+    reopened
+}
+
+fn check_finite(built: &SceneWorld, step: u64) {
+    for body in built.world.bodies() {
+        let figures = [
+            body.position().x,
+            body.position().y,
+            body.angle(),
+            body.linear_velocity().x,
+            body.linear_velocity().y,
+            body.angular_velocity(),
+        ];
+        if !figures.iter().all(|x| x.is_finite()) {
+            eprintln!("step {step}: a body went non-finite: {figures:?}");
+            std::process::exit(1);
+        }
+    }
+}
+
+/// The process's resident memory, bytes, where the system says (Linux's `/proc`).
+fn resident_bytes() -> Option<u64> {
+    let statm = std::fs::read_to_string("/proc/self/statm").ok()?;
+    let pages: u64 = statm.split_whitespace().nth(1)?.parse().ok()?;
+    Some(pages * 4096)
+}
+
+/// Prints resident memory over the run and fails if it grew after the warm-up.
+fn report_memory(samples: &[(Duration, u64)]) {
+    let Some(&(_, end)) = samples.last() else {
+        println!("resident memory: not available on this system");
+        return;
+    };
+    let mb = |bytes: u64| bytes as f64 / (1024.0 * 1024.0);
+    let every = if samples.len() > 600 { 300 } else { 10 };
+    println!("| s | resident MB |\n|---|---|");
+    for &(at, rss) in samples.iter().filter(|(at, _)| at.as_secs() % every == 0) {
+        println!("| {} | {:.1} |", at.as_secs(), mb(rss));
+    }
+    let Some(&(_, warm)) = samples.iter().find(|(at, _)| *at >= WARM_UP) else {
+        println!("shorter than the warm-up: no memory bar");
+        return;
+    };
+    let peak = samples.iter().map(|&(_, rss)| rss).max().unwrap_or(end);
+    let growth = end as f64 / warm as f64 - 1.0;
+    println!(
+        "resident memory: {:.1} MB after the warm-up, {:.1} MB at the end ({:+.2} %), peak {:.1} MB",
+        mb(warm),
+        mb(end),
+        100.0 * growth,
+        mb(peak)
+    );
+    if growth > MEMORY_GROWTH {
+        eprintln!(
+            "resident memory grew {:.2} % after the warm-up (bar: {} %)",
+            100.0 * growth,
+            100.0 * MEMORY_GROWTH
+        );
+        std::process::exit(1);
+    }
+}
