@@ -676,6 +676,49 @@ fn polygon_circle_survives_a_zero_length_edge_and_a_centre_on_a_vertex() {
     }
 }
 
+#[test]
+fn a_circle_a_hair_from_a_segment_end_gets_a_unit_normal() {
+    // Found by the any_pair fuzz target: a circle of radius 3e-23 m whose centre is 5e-23 m
+    // from the end of a 1.5 km segment. The squared distance is subnormal, and the normal
+    // made from it was 0.85 long.
+    let segment = Shape::segment(
+        vec2(-1571.649, 3.186_753_8e-23),
+        vec2(3.186_753_8e-23, 3.186_753_8e-23),
+    );
+    let circle = Shape::circle(3.186_753_8e-23);
+    let at = vec2(3.186_753_8e-23, 3.186_753_8e-23);
+    let (a, b) = (
+        WorldShape::at(&segment, at, 3.186_753_8e-23),
+        WorldShape::at(&circle, at, 3.186_753_8e-23),
+    );
+    for s in [carom::separation(&a, &b), carom::separation(&b, &a)] {
+        assert!(s.separation.is_finite(), "{s:?}");
+        assert!((s.normal.norm() - 1.0).abs() < 1e-5, "{s:?}");
+    }
+}
+
+#[test]
+fn segments_shorter_than_the_linear_slop_are_refused() {
+    // Found by the any_pair fuzz target: segments 30 um long, whose direction is rounding
+    // noise, gave a NaN normal against each other. Box2D refuses them too.
+    for (p, q) in [
+        (vec2(1.5e-36, 0.0), vec2(0.0, -3.0517172e-5)),
+        (
+            vec2(2.7911188e-17, 1.3964586e-16),
+            vec2(1.2095e-41, -2.1900623e-5),
+        ),
+        (vec2(0.0, 0.0), vec2(0.0049, 0.0)),
+    ] {
+        let error = Shape::segment(p, q).validate().expect_err("too short");
+        assert!(error.to_string().contains("0.005 m apart"), "{error}");
+        let capsule = Shape::capsule(p, q, 0.1).validate().expect_err("too short");
+        assert!(capsule.to_string().contains("0.005 m apart"), "{capsule}");
+    }
+    Shape::segment(vec2(0.0, 0.0), vec2(0.0051, 0.0))
+        .validate()
+        .expect("a segment just longer than the slop");
+}
+
 /// Filters decide which colliders collide, as Box2D's rule: a shared negative group never, a
 /// shared positive group always, otherwise each one's category in the other's mask. A filter
 /// changed at run time ends the contacts it forbids and lets new ones begin.

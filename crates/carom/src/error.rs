@@ -138,9 +138,9 @@ pub enum CaromError {
     /// A body needs a collider to have a shape and a mass.
     #[error("a body needs at least one collider (a shape)")]
     NoCollider,
-    /// Two points that must differ (a capsule's centres, a segment's ends, neighbouring
-    /// points of a chain) coincide.
-    #[error("{what} coincide at ({x}, {y}); give two different points")]
+    /// Two points that must be apart (a capsule's centres, a segment's ends, neighbouring
+    /// points of a chain) coincide, or are closer than the linear slop (0.005 m).
+    #[error("{what} coincide at ({x}, {y}): they must be at least 0.005 m apart")]
     CoincidentPoints {
         /// Which points, for example "capsule centres" or "chain points 3 and 4".
         what: String,

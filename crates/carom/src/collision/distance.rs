@@ -198,7 +198,8 @@ pub fn polygon_circle(
     }
     let (distance_sq, polygon_point, feature) = best;
     let normal = match feature {
-        PolygonFeature::Vertex(_) if distance_sq > 0.0 => {
+        // A distance whose square is subnormal has lost its direction to rounding.
+        PolygonFeature::Vertex(_) if distance_sq >= Real::MIN_POSITIVE => {
             (center - polygon_point) / distance_sq.sqrt()
         }
         // On the vertex itself (outside only by rounding): the edge it was outside of.
