@@ -698,6 +698,31 @@ fn a_circle_a_hair_from_a_segment_end_gets_a_unit_normal() {
 }
 
 #[test]
+fn a_segment_ending_on_a_chain_links_end_gets_a_finite_manifold() {
+    // Found by the any_pair fuzz target: a 3 km segment whose end is 1e-38 m from the end of
+    // a 94 km chain link. The normal made from that distance was infinite.
+    let link = Shape::ChainSegment(carom::ChainSegment::new(
+        vec2(7.70042e-15, 0.3852941),
+        vec2(-94062.45, 5.310414e-12),
+        vec2(6.6749636e-38, -0.00076571107),
+        vec2(3252.358, 3156.3557),
+    ));
+    let segment = Shape::segment(vec2(3248.0598, 6.36165e-39), vec2(6.5184e-41, 0.0));
+    let a = WorldShape::at(&link, vec2(1.1443805e-28, 7.69414e-15), 0.3852941);
+    let b = WorldShape::at(&segment, vec2(0.0, 0.0), 0.0);
+    for margin in [0.0, 0.02] {
+        for manifold in [collide(&a, &b, margin), collide(&b, &a, margin)] {
+            for point in manifold.points() {
+                assert!(point.point.iter().all(|x| x.is_finite()), "{manifold:?}");
+            }
+            if !manifold.is_empty() {
+                assert!((manifold.normal.norm() - 1.0).abs() < 1e-3, "{manifold:?}");
+            }
+        }
+    }
+}
+
+#[test]
 fn segments_shorter_than_the_linear_slop_are_refused() {
     // Found by the any_pair fuzz target: segments 30 um long, whose direction is rounding
     // noise, gave a NaN normal against each other. Box2D refuses them too.

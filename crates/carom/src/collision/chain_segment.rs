@@ -231,7 +231,11 @@ fn collide_polygon(link: &ChainLink, polygon: Core, margins: Margins) -> Manifol
     if !behind1 && let Some(closest) = pp.closest {
         // Apart: the closest features may be two corners, or a corner and an edge, even when
         // the contact ought to be face to face.
+        // Corners closer than rounding can tell apart (a segment ending on the link's end) give
+        // no direction: the link's face decides, as for a corner on it.
+        let apart = closest.distance > Real::EPSILON * (1.0 + closest.point_a.norm());
         match (closest.vertex_a, closest.vertex_b) {
+            (Some(_), Some(corner)) if !apart => incident = Some(Incident::Vertex(corner)),
             (Some(end), Some(corner)) => {
                 let normal = (closest.point_b - closest.point_a) / closest.distance;
                 match map.classify(normal) {
