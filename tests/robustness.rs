@@ -363,3 +363,35 @@ fn random_sequences_of_public_calls_keep_the_world_whole() {
         "{total:?}"
     );
 }
+
+/// The fuzz targets' kept seeds (`fuzz/seeds/`), each run as its target runs it: the
+/// world-operation sequences libFuzzer found that reach the most code, and saved worlds.
+#[test]
+fn the_fuzz_seeds_keep_their_promises() {
+    let seeds = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz/seeds");
+    let files = |target: &str| {
+        let mut files: Vec<_> = std::fs::read_dir(seeds.join(target))
+            .expect("the seeds are there")
+            .map(|entry| entry.expect("a readable entry").path())
+            .collect();
+        files.sort();
+        files
+    };
+    let sequences = files("world_ops");
+    assert!(sequences.len() >= 50, "{} sequences", sequences.len());
+    for file in &sequences {
+        let bytes = std::fs::read(file).expect("a readable seed");
+        std::panic::catch_unwind(|| carom_tests::world_ops::run(&bytes))
+            .unwrap_or_else(|_| panic!("{} broke a promise (above)", file.display()));
+    }
+    let saved = files("saved_world");
+    assert!(!saved.is_empty());
+    for file in &saved {
+        let text = std::fs::read_to_string(file).expect("a readable seed");
+        assert!(
+            carom_tests::untrusted_files::saved_world(&text),
+            "{} no longer reads as a saved world: save it again from its demo",
+            file.display()
+        );
+    }
+}
