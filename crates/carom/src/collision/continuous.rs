@@ -239,7 +239,7 @@ pub(crate) fn solve_continuous(
         // Where each fast body went this step, as the pass finds it, for the bullets to find
         // the moving bodies the broadphase does not hold where they were.
         paths.clear();
-        if pass.start > 0 {
+        if pass.start == others {
             let all = bodies.as_slice();
             paths.extend(fast.iter().map(|&(index, _)| swept_box(&all[index])));
         }
