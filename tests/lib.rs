@@ -6,6 +6,30 @@ use carom::{BodyHandle, World, WorldShape};
 pub mod untrusted_files;
 pub mod world_ops;
 
+/// The position, angle and velocities of the first body any of which is not finite, if one is.
+pub fn first_non_finite_body(world: &World) -> Option<[carom::Real; 6]> {
+    world
+        .bodies()
+        .map(|body| {
+            [
+                body.position().x,
+                body.position().y,
+                body.angle(),
+                body.linear_velocity().x,
+                body.linear_velocity().y,
+                body.angular_velocity(),
+            ]
+        })
+        .find(|figures| !figures.iter().all(|x| x.is_finite()))
+}
+
+/// Panics, naming its figures, if any body is not finite ([`first_non_finite_body`]).
+pub fn assert_bodies_finite(world: &World) {
+    if let Some(figures) = first_non_finite_body(world) {
+        panic!("a body went non-finite: {figures:?}");
+    }
+}
+
 /// Every scene file in `demos/`, sorted by name.
 pub fn demo_files() -> Vec<std::path::PathBuf> {
     let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../demos");

@@ -34,7 +34,7 @@ pub fn scene_file(text: &str) -> bool {
         built
             .step()
             .expect("a scene that builds steps at its own time step");
-        check_finite(&built.world);
+        crate::assert_bodies_finite(&built.world);
     }
     built.world.check_invariants();
     true
@@ -57,22 +57,4 @@ pub fn saved_world(text: &str) -> bool {
     }
     world.check_invariants();
     true
-}
-
-/// Every body's figures are finite.
-fn check_finite(world: &World) {
-    for body in world.bodies() {
-        let figures = [
-            body.position().x,
-            body.position().y,
-            body.angle(),
-            body.linear_velocity().x,
-            body.linear_velocity().y,
-            body.angular_velocity(),
-        ];
-        assert!(
-            figures.iter().all(|x| x.is_finite()),
-            "a body went non-finite: {figures:?}"
-        );
-    }
 }

@@ -398,20 +398,7 @@ fn refused_or_kept<H>(made: Result<H, carom::CaromError>, into: &mut Vec<H>) -> 
 
 /// Every body's figures are finite and the world holds together.
 fn check(world: &World) {
-    for body in world.bodies() {
-        let figures = [
-            body.position().x,
-            body.position().y,
-            body.angle(),
-            body.linear_velocity().x,
-            body.linear_velocity().y,
-            body.angular_velocity(),
-        ];
-        assert!(
-            figures.iter().all(|x| x.is_finite()),
-            "a body went non-finite: {figures:?}"
-        );
-    }
+    crate::assert_bodies_finite(world);
     world.check_invariants();
 }
 

@@ -814,7 +814,6 @@ fn bullets(engine: Engine, o: &mut Outcome) -> Res<()> {
     // Each of ten bullets into a fresh stack (a hit stack falls, and a bullet through the gap a
     // box left is no tunnel).
     let (mut tunnels, mut past_wall) = (0usize, 0usize);
-    let mut nan = false;
     for shot in 0..10 {
         let (world, bullet) = worlds::bullet_shot(soft_step(), shot);
         let bullet = index(&world, bullet)?;
@@ -833,13 +832,9 @@ fn bullets(engine: Engine, o: &mut Outcome) -> Res<()> {
                 }
                 past_wall += usize::from(x > 10.05);
             }
-            let mut shot_outcome = Outcome::default();
-            shot_outcome.check_finite(w)?;
-            nan |= shot_outcome.nan;
-            Ok(())
+            o.check_finite(w)
         })?;
     }
-    o.nan |= nan;
     o.bar("bullets through the stack", Bar::Below(0.5), tunnels as f64);
     o.bar(
         "steps with a bullet past the wall",
@@ -853,7 +848,6 @@ fn wall_shots(engine: Engine, o: &mut Outcome) -> Res<()> {
     // Each shot's deepest point into the wall after any step, and for a free wall how far its
     // velocity ends from the one its momentum and the bullet's give, of the closing speed.
     let (mut deepest, mut through, mut worst_push): (f64, usize, f64) = (0.0, 0, 0.0);
-    let mut nan = false;
     for shot in &wall_shot::SHOTS {
         let made = shot.world(soft_step());
         let (bullet, wall) = (
@@ -881,13 +875,9 @@ fn wall_shots(engine: Engine, o: &mut Outcome) -> Res<()> {
                 o.figure(&format!("{}: push off %", shot.name), 100.0 * push);
                 worst_push = worst_push.max(push);
             }
-            let mut shot_outcome = Outcome::default();
-            shot_outcome.check_finite(w)?;
-            nan |= shot_outcome.nan;
-            Ok(())
+            o.check_finite(w)
         })?;
     }
-    o.nan |= nan;
     o.bar("deepest into a wall cm", Bar::Below(1.0), 100.0 * deepest);
     o.bar("shots through a wall", Bar::Below(0.5), through as f64);
     o.bar(
