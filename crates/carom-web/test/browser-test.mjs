@@ -146,9 +146,10 @@ async function drag(page, body, by, pointer, what) {
         await pointer.move({ x: from.x + (by.x * i) / moves, y: from.y + (by.y * i) / moves });
         await page.waitForTimeout(20);
     }
-    // Let the spring pull it to the pointer: a second of frames.
+    // Let the spring pull it to the pointer: a second, and at least 60 frames, since a busy
+    // machine draws fewer frames a second.
     await page.waitForTimeout(1000);
-    const held = (await probe(page)).held;
+    const held = (await waitForFrames(page, 60, 60_000)).held;
     check(held, `${what}: no body is held after pressing on one at ${fmt(from)}`);
     const travelled = { x: held.x - from.x, y: held.y - from.y };
     const along = (travelled.x * by.x + travelled.y * by.y) / Math.hypot(by.x, by.y);
@@ -158,8 +159,9 @@ async function drag(page, body, by, pointer, what) {
     check(along > 0.8 * Math.hypot(by.x, by.y),
         `${what}: the body moved ${along.toFixed(0)} px along a ${Math.hypot(by.x, by.y)} px drag`);
     check(miss < 40, `${what}: the body is ${miss.toFixed(0)} px from the pointer`);
-    await page.waitForTimeout(200);
-    check(!(await probe(page)).held, `${what}: the body is still held after letting go`);
+    // The release shows in the first frame drawn after it.
+    check(!(await waitForFrames(page, 2, 30_000)).held,
+        `${what}: the body is still held two frames after letting go`);
     passed(`${what}: the body followed the drag ${fmt(from)} -> ${fmt(to)} (held ${fmt(held)})`);
 }
 
