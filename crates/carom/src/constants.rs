@@ -131,6 +131,21 @@ pub(crate) const MAX_TIME_OF_IMPACT_ITERATIONS: usize = 30;
 /// A shape cast stops when the gap is this small, m (Box2D's quarter of the slop).
 pub const SHAPE_CAST_TOLERANCE: Real = 0.25 * LINEAR_SLOP;
 
+// Characters.
+
+/// The most sweeps of the plane solver over a mover's planes (Box2D's 20).
+pub(crate) const MAX_PLANE_ITERATIONS: usize = 20;
+
+/// The most rounds of collide, solve and cast in one character move (Box2D's sample uses 5).
+pub(crate) const MAX_CHARACTER_ITERATIONS: usize = 5;
+
+/// A round of a character's move that goes less than this ends the move, m.
+pub(crate) const CHARACTER_MOVE_TOLERANCE: Real = 0.1 * LINEAR_SLOP;
+
+/// How far below a character the ground it stands on may be, m: it rests a slop into the
+/// ground, and a cast may leave it a little short.
+pub(crate) const CHARACTER_GROUND_PROBE: Real = 2.0 * LINEAR_SLOP;
+
 // Sleeping.
 
 /// Bodies whose fastest point moves slower than this may sleep, m/s (Box2D's 5 cm/s): the

@@ -47,6 +47,7 @@
     )
 )]
 
+mod character;
 mod collision;
 mod constants;
 mod debug_draw;
@@ -66,6 +67,9 @@ mod solver;
 mod stats;
 mod world;
 
+pub use character::controller::{Character, CharacterDef, CharacterMove, Ground};
+pub use character::mover::MoverPlane;
+pub use character::planes::{CollisionPlane, PlaneSolution, clip_velocity, solve_planes};
 pub use collision::contact::{Contact, ContactEvent, ContactPair, PointImpulse};
 pub use collision::distance::{Separation, separation};
 pub use collision::filter::CollisionFilter;

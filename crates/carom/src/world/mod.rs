@@ -554,6 +554,12 @@ impl World {
         &self.broadphase
     }
 
+    /// The broadphase, for the queries outside this module (a character's).
+    #[cfg(not(any(test, feature = "testing")))]
+    pub(crate) fn broadphase(&self) -> &BroadPhase {
+        &self.broadphase
+    }
+
     /// Simulated time so far, in seconds.
     pub fn time(&self) -> f64 {
         self.time
