@@ -541,3 +541,53 @@ fn a_runners_fat_box_is_its_swept_box_without_the_margin() {
     assert!(fat.max.y - tight.max.y > 0.04, "{fat:?} {tight:?}");
     assert!(tight.min.y - fat.min.y > 0.04, "{fat:?} {tight:?}");
 }
+
+/// Fires the circle of [`fire_at_wall`] straight at the wall with `threshold` as its sweep
+/// threshold; returns how many times it was swept and how far past the wall it ended.
+fn fire_with_threshold(threshold: Real) -> (usize, Real) {
+    let mut world = world(true, Vec2::zeros());
+    world
+        .add_body(BodyDef::static_body(Shape::rect(0.05, 4.0)))
+        .unwrap();
+    let bullet = world
+        .add_body(
+            BodyDef::dynamic(Shape::circle(0.25))
+                .position(vec2(-10.0, 0.0))
+                .linear_velocity(vec2(300.0, 0.0))
+                .sweep_threshold(threshold),
+        )
+        .unwrap();
+    let mut sweeps = 0;
+    for _ in 0..30 {
+        world.step(DT).unwrap();
+        sweeps += world.stats().work.sweeps;
+    }
+    (sweeps, world.body(bullet).unwrap().position().x - 0.05)
+}
+
+#[test]
+fn each_body_chooses_how_fast_it_must_be_to_be_swept() {
+    // 5 m a step for a circle of radius 0.25 m (its smallest extent): swept at the default
+    // threshold (half that), never at infinity, and still stopped then by its contact, which
+    // looks a step ahead.
+    let (swept, past) = fire_with_threshold(carom::SWEEP_THRESHOLD);
+    assert!(swept > 0 && past < -0.3, "{swept} sweeps, {past} m past");
+    let (swept, past) = fire_with_threshold(Real::INFINITY);
+    assert_eq!(swept, 0);
+    assert!(past < -0.3, "{past} m past");
+    // A threshold above its motion in a step (20 × 0.25 m) leaves it unswept too.
+    assert_eq!(fire_with_threshold(30.0).0, 0);
+    // Bad thresholds are refused.
+    let mut world = World::new();
+    let bad = BodyDef::dynamic(Shape::circle(0.25)).sweep_threshold(-1.0);
+    assert!(world.add_body(bad).is_err());
+    let nan = BodyDef::dynamic(Shape::circle(0.25)).sweep_threshold(Real::NAN);
+    assert!(world.add_body(nan).is_err());
+    let ball = world
+        .add_body(BodyDef::dynamic(Shape::circle(0.25)))
+        .unwrap();
+    let mut body = world.body_mut(ball).unwrap();
+    assert!(body.set_sweep_threshold(-0.5).is_err());
+    body.set_sweep_threshold(2.0).unwrap();
+    assert_eq!(world.body(ball).unwrap().sweep_threshold(), 2.0);
+}

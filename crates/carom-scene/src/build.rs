@@ -11,7 +11,7 @@ use crate::spawn::SpawnSchedule;
 use carom::{
     BodyDef, BodyHandle, BodyKind, CaromError, ChainDef, ColliderDef, Color, DebugDraw,
     DistanceJoint, DrawFlags, DrawOptions, JointDef, JointKind, Limits, MotorJoint, MouseJoint,
-    PrismaticJoint, Real, RevoluteJoint, Shape, Vec2, WeldJoint, WheelJoint, World, vec2,
+    PrismaticJoint, Real, RevoluteJoint, Shape, Surface, Vec2, WeldJoint, WheelJoint, World, vec2,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -374,9 +374,19 @@ fn checked(shape: Shape) -> Result<Shape, CaromError> {
 fn with_material(def: BodyDef, material: &Material) -> BodyDef {
     def.filter(material.filter)
         .density(material.density)
-        .friction(material.friction)
-        .restitution(material.restitution)
+        .surface(surface(material))
         .damping(material.damping.0, material.damping.1)
+}
+
+/// The surface a material gives.
+fn surface(material: &Material) -> Surface {
+    Surface {
+        friction: material.friction,
+        restitution: material.restitution,
+        rolling_resistance: material.rolling_resistance,
+        tangent_speed: material.tangent_speed,
+        material: 0,
+    }
 }
 
 /// A body's definition; a collider that is both a sensor and one-way is refused.
@@ -409,8 +419,7 @@ fn body_def_of(spec: &BodySpec) -> Result<BodyDef, String> {
             first,
             placeholder()
                 .density(material.density)
-                .friction(material.friction)
-                .restitution(material.restitution)
+                .surface(surface(material))
                 .filter(material.filter)
                 .sensor(spec.sensor)
                 .pre_solve(spec.one_way),
@@ -423,6 +432,7 @@ fn body_def_of(spec: &BodySpec) -> Result<BodyDef, String> {
                 .offset(vec2(part.offset.0, part.offset.1))
                 .angle(part.angle)
                 .density(part.density.unwrap_or(material.density))
+                .surface(surface(material))
                 .friction(part.friction.unwrap_or(material.friction))
                 .restitution(part.restitution.unwrap_or(material.restitution))
                 .filter(part.filter.unwrap_or(material.filter))

@@ -287,6 +287,11 @@ pub struct Material {
     pub friction: f32,
     /// Bounciness.
     pub restitution: f32,
+    /// Resistance to rolling (carom's `Surface::rolling_resistance`).
+    pub rolling_resistance: f32,
+    /// How fast the surface moves along itself, m/s, clockwise around the shape: a conveyor
+    /// belt (carom's `Surface::tangent_speed`).
+    pub tangent_speed: f32,
     /// Linear and angular drag coefficients.
     pub damping: Pair,
     /// RGB in 0..1, for drawing.
@@ -301,6 +306,8 @@ impl Default for Material {
             density: 1.0,
             friction: 0.6,
             restitution: 0.0,
+            rolling_resistance: 0.0,
+            tangent_speed: 0.0,
             damping: (0.0, 0.0),
             color: None,
             filter: CollisionFilter::DEFAULT,

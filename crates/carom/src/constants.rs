@@ -116,8 +116,10 @@ pub(crate) const RECYCLE_COS_ANGLE: Real = 0.98;
 
 // Continuous collision.
 
-/// A body faster than this fraction of its smallest extent per step is swept.
-pub(crate) const FAST_FRACTION: Real = 0.5;
+/// A body that moves more than this fraction of its smallest extent in a step is swept by
+/// continuous collision: the default of each body's own [`crate::BodyDef::sweep_threshold`]
+/// (Box2D's safety factor).
+pub const SWEEP_THRESHOLD: Real = 0.5;
 
 /// A fast body whose centre moves along a chain's link, closing on it by less than this
 /// fraction of its smallest extent and ending farther than that in front of it, is not swept

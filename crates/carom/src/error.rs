@@ -69,6 +69,14 @@ pub enum CaromError {
         /// The rejected density.
         density: Real,
     },
+    /// A chain was given a number of surfaces that is neither 1 nor one per link.
+    #[error("a chain of {links} links takes 1 surface or {links}, got {count}")]
+    ChainSurfaces {
+        /// How many links the chain has.
+        links: usize,
+        /// How many surfaces it was given.
+        count: usize,
+    },
     /// A parameter was outside its allowed range.
     #[error("{name} must be {expected}, got {value}")]
     OutOfRange {

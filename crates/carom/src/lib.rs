@@ -70,7 +70,7 @@ mod world;
 pub use character::controller::{Character, CharacterDef, CharacterMove, Ground};
 pub use character::mover::MoverPlane;
 pub use character::planes::{CollisionPlane, PlaneSolution, clip_velocity, solve_planes};
-pub use collision::contact::{Contact, ContactEvent, ContactPair, PointImpulse};
+pub use collision::contact::{Contact, ContactEvent, ContactPair, MaterialMixer, PointImpulse};
 pub use collision::distance::{Separation, separation};
 pub use collision::filter::CollisionFilter;
 pub use collision::hits::HitEvent;
@@ -79,8 +79,8 @@ pub use collision::pre_solve::PreSolveContact;
 pub use collision::query_filter::QueryFilter;
 pub use collision::sensor::{SensorEvent, SensorOverlap};
 pub use constants::{
-    LINEAR_SLOP, SHAPE_CAST_TOLERANCE, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, TIME_STEP_RANGE,
-    TIME_TO_SLEEP,
+    LINEAR_SLOP, SHAPE_CAST_TOLERANCE, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, SWEEP_THRESHOLD,
+    TIME_STEP_RANGE, TIME_TO_SLEEP,
 };
 pub use debug_draw::{
     ARROW_WIDTH, Color, DebugDraw, DrawCircle, DrawFlags, DrawList, DrawOptions, DrawPoint,
@@ -91,6 +91,7 @@ pub use dynamics::body_def::BodyDef;
 pub use dynamics::chain::ChainDef;
 pub use dynamics::collider::{Collider, ColliderDef, ColliderHandle};
 pub use dynamics::drag::DragModel;
+pub use dynamics::surface::Surface;
 pub use error::CaromError;
 pub use geometry::aabb::Aabb;
 pub use geometry::mass::MassProperties;

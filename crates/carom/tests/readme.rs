@@ -56,6 +56,28 @@ fn shape_cast_example() -> Result<(), carom::CaromError> {
     Ok(())
 }
 
+#[rustfmt::skip]
+fn character_example() -> Result<(), carom::CaromError> {
+    use carom::{BodyDef, Character, CharacterDef, Shape, World, vec2};
+
+    let mut world = World::new();
+    world.add_body(BodyDef::static_body(Shape::rect(20.0, 0.5)).position(vec2(0.0, -0.5)))?;
+    // A capsule 1.6 m tall standing on the floor: centres 0.5 m above and below its middle.
+    let mut hero = Character::new(CharacterDef::capsule(0.5, 0.3).position(vec2(0.0, 0.8)))?;
+    let dt = 1.0 / 60.0;
+    let mut velocity = vec2(0.0, 0.0);
+    for _ in 0..60 {
+        velocity.x = 3.0; // walk
+        velocity.y -= 10.0 * dt; // fall
+        world.move_character(&mut hero, velocity * dt, dt)?;
+        velocity = hero.clip_velocity(velocity); // landed: no more falling
+        world.step(dt)?;
+    }
+    assert!(hero.is_grounded());
+    assert!((hero.position().x - 3.0).abs() < 0.01);
+    Ok(())
+}
+
 /// The README's example: a program of one's own crate, its `main` nested here.
 #[rustfmt::skip]
 fn own_crate_example() -> Result<(), carom::CaromError> {
@@ -90,6 +112,7 @@ fn the_readme_examples_run() {
     joint_example().unwrap();
     sensor_example().unwrap();
     shape_cast_example().unwrap();
+    character_example().unwrap();
 }
 
 /// Lines without their leading spaces, blank ones dropped.
@@ -131,7 +154,7 @@ fn every_rust_example_in_the_features_guide_is_one_of_these() {
     let guide = include_str!("../../../docs/features.md");
     assert_eq!(
         examples_in("docs/features.md", guide),
-        3,
+        4,
         "a new example in docs/features.md: add it here"
     );
 }

@@ -23,6 +23,7 @@ use crate::constants::CONTACTS_PER_TASK;
 use crate::dynamics::body::Body;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
+use crate::dynamics::surface::{Mixed, mix};
 use crate::graph::colors::{ColorBody, ContactColors, NO_COLOR};
 use crate::graph::layout::{
     ASLEEP, ColorRanges, ContactPartition, NOT_TOUCHING, color_part, color_ranges,
@@ -62,11 +63,13 @@ pub struct Contact {
     hit_events: bool,
     /// A collider of the pair asks for the pre-solve hook.
     pub(super) pre_solve: bool,
-    /// The colliders' friction mixed: their geometric mean. Kept current as a collider's
-    /// changes, so a step reads it without its colliders.
-    pub(super) friction: Real,
-    /// The colliders' restitution mixed: the larger.
-    pub(super) restitution: Real,
+    /// The colliders' surfaces mixed ([`crate::dynamics::surface`]). Kept current as a
+    /// collider's change, so a step reads them without its colliders.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    mixed: Mixed,
+    /// The rolling resistance's accumulated angular impulse, kept for warm starting while
+    /// the contact touches.
+    pub(crate) rolling_impulse: Real,
     /// What the manifold was built against, to carry it along while the bodies barely move.
     pub(super) frame: ManifoldFrame,
     /// Its graph colour while touching in the awake set ([`NO_COLOR`] otherwise).
@@ -79,14 +82,16 @@ pub struct Contact {
 }
 
 impl Contact {
-    /// Takes its friction and restitution from its colliders (both live).
-    fn mix(&mut self, colliders: &HandleMap<ColliderHandle, Collider>) {
+    /// Takes its material from its colliders (both live).
+    fn mix(&mut self, colliders: &HandleMap<ColliderHandle, Collider>, mixers: &Mixers) {
         if let (Some(a), Some(b)) = (
             colliders.get(self.collider_a),
             colliders.get(self.collider_b),
         ) {
-            self.friction = mixed_friction(a, b);
-            self.restitution = mixed_restitution(a, b);
+            self.mixed = mix(a, b, mixers);
+            if self.mixed.rolling_resistance == 0.0 {
+                self.rolling_impulse = 0.0;
+            }
         }
     }
 
@@ -120,14 +125,27 @@ impl Contact {
         }
     }
 
-    /// Friction coefficient of the pair: the geometric mean of the colliders'.
+    /// Friction coefficient of the pair: the geometric mean of the colliders', or the
+    /// world's friction mixer's answer.
     pub fn friction(&self) -> Real {
-        self.friction
+        self.mixed.friction
     }
 
-    /// Restitution of the pair: the larger of the colliders'.
+    /// Restitution of the pair: the larger of the colliders', or the world's restitution
+    /// mixer's answer.
     pub fn restitution(&self) -> Real {
-        self.restitution
+        self.mixed.restitution
+    }
+
+    /// The pair's rolling resistance: the larger of the colliders' times the larger rolling
+    /// radius, m (see [`crate::Surface::rolling_resistance`]).
+    pub fn rolling_resistance(&self) -> Real {
+        self.mixed.rolling_resistance
+    }
+
+    /// The colliders' tangent speeds added, m/s (see [`crate::Surface::tangent_speed`]).
+    pub fn tangent_speed(&self) -> Real {
+        self.mixed.tangent_speed
     }
 
     /// Where the bodies touch, as of the last step.
@@ -242,14 +260,17 @@ impl ContactEvent {
     }
 }
 
-/// Two colliders' friction mixed for their contacts: the geometric mean.
-fn mixed_friction(a: &Collider, b: &Collider) -> Real {
-    (a.friction() * b.friction()).sqrt()
-}
+/// A world's rule for mixing two surfaces' friction or restitution where they touch: it is
+/// given each surface's value and material id (`a`'s value, `a`'s id, `b`'s value, `b`'s
+/// id) and answers the pair's. A plain function, so that it cannot reach into the world; an
+/// answer that is negative or not a number counts as 0.
+pub type MaterialMixer = fn(Real, u64, Real, u64) -> Real;
 
-/// Two colliders' restitution mixed for their contacts: the larger.
-fn mixed_restitution(a: &Collider, b: &Collider) -> Real {
-    a.restitution().max(b.restitution())
+/// The world's mixers; `None` mixes as [`crate::dynamics::surface`] says by default.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Mixers {
+    pub friction: Option<MaterialMixer>,
+    pub restitution: Option<MaterialMixer>,
 }
 
 /// A cheap hasher for pair keys (two slot indices packed in a `u64`), which need no
@@ -325,6 +346,8 @@ pub struct ContactSet {
     made: u64,
     /// The ids a removal destroys, kept to spare an allocation.
     doomed: Vec<u32>,
+    /// The world's friction and restitution mixers (code: not saved).
+    mixers: Mixers,
 }
 
 /// Where a contact id's contact is, and what a walk through a body's contacts reads of it.
@@ -451,8 +474,8 @@ impl ContactSet {
             in_contact: false,
             hit_events: a.1.hit_events() || b.1.hit_events(),
             pre_solve: a.1.pre_solve() || b.1.pre_solve(),
-            friction: mixed_friction(a.1, b.1),
-            restitution: mixed_restitution(a.1, b.1),
+            mixed: mix(a.1, b.1, &self.mixers),
+            rolling_impulse: 0.0,
             frame: ManifoldFrame::default(),
             color: NO_COLOR,
             color_holds: [false; 2],
@@ -684,7 +707,27 @@ impl ContactSet {
         body: BodyHandle,
         colliders: &HandleMap<ColliderHandle, Collider>,
     ) {
-        self.for_each_of(body, |set, index| set.contacts[index].mix(colliders));
+        let mixers = self.mixers;
+        self.for_each_of(body, |set, index| {
+            set.contacts[index].mix(colliders, &mixers);
+        });
+    }
+
+    /// Takes new mixers and mixes every contact again with them.
+    pub(crate) fn set_mixers(
+        &mut self,
+        mixers: Mixers,
+        colliders: &HandleMap<ColliderHandle, Collider>,
+    ) {
+        self.mixers = mixers;
+        for contact in &mut self.contacts {
+            contact.mix(colliders, &mixers);
+        }
+    }
+
+    /// The world's mixers.
+    pub(crate) fn mixers(&self) -> Mixers {
+        self.mixers
     }
 
     /// Calls `visit(self, index)` for each contact of `body`, at its index now. The visit may
@@ -983,10 +1026,11 @@ pub(crate) fn body_indices_of(
 #[cfg(feature = "serde")]
 impl ContactSet {
     /// Gives each contact of a saved world, once checked, what it keeps from its colliders
-    /// (its friction and restitution), so it steps as the world it was saved from.
+    /// (its mixed surfaces), so it steps as the world it was saved from.
     pub(crate) fn mix_saved(&mut self, colliders: &HandleMap<ColliderHandle, Collider>) {
+        let mixers = self.mixers;
         for contact in &mut self.contacts {
-            contact.mix(colliders);
+            contact.mix(colliders, &mixers);
         }
     }
 
@@ -1027,7 +1071,8 @@ impl ContactSet {
                         && [p.separation, p.normal_impulse, p.tangent_impulse]
                             .iter()
                             .all(|x| x.is_finite())
-                });
+                })
+                && contact.rolling_impulse.is_finite();
             let colored = (contact.color as usize) < COLOR_COUNT
                 || contact.color == crate::graph::colors::OVERFLOW
                 || contact.color == NO_COLOR;

@@ -23,8 +23,7 @@
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::distance::separation;
 use crate::constants::{
-    FAST_FRACTION, LINK_SKIM_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS, SWEEPS_PER_TASK,
-    TASKS_PER_THREAD,
+    LINK_SKIM_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS, SWEEPS_PER_TASK, TASKS_PER_THREAD,
 };
 use crate::dynamics::body::{Body, BodyHandle, BodyKind, Pose};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};
@@ -213,7 +212,7 @@ pub(crate) fn solve_continuous(
         if body.kind() != BodyKind::Dynamic {
             continue;
         }
-        let slow = FAST_FRACTION * body.min_extent();
+        let slow = body.sweep_threshold() * body.min_extent();
         if motion_bound(body.start_pose(), body) <= slow {
             continue;
         }

@@ -61,6 +61,15 @@ pub struct BodyDef {
         serde(default = "crate::dynamics::body_def::sleep_threshold")
     )]
     pub sleep_threshold: Real,
+    /// How far a dynamic body must move in a step, as a fraction of its smallest extent, to
+    /// be swept by continuous collision (Box2D's safety factor, also per body). Lower sweeps
+    /// more bodies, sooner; [`Real::INFINITY`] never sweeps this one. Default
+    /// [`crate::SWEEP_THRESHOLD`].
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "crate::dynamics::body_def::sweep_threshold")
+    )]
+    pub sweep_threshold: Real,
 }
 
 /// [`crate::SLEEP_THRESHOLD`], the default of [`BodyDef::sleep_threshold`] in saved
@@ -68,6 +77,13 @@ pub struct BodyDef {
 #[cfg(feature = "serde")]
 pub(crate) fn sleep_threshold() -> Real {
     crate::constants::SLEEP_THRESHOLD
+}
+
+/// [`crate::SWEEP_THRESHOLD`], the default of [`BodyDef::sweep_threshold`] in saved
+/// definitions.
+#[cfg(feature = "serde")]
+pub(crate) fn sweep_threshold() -> Real {
+    crate::constants::SWEEP_THRESHOLD
 }
 
 /// `true`, the default of [`BodyDef::awake`] in saved definitions.
@@ -94,6 +110,7 @@ impl BodyDef {
             user_tag: 0,
             awake: true,
             sleep_threshold: crate::constants::SLEEP_THRESHOLD,
+            sweep_threshold: crate::constants::SWEEP_THRESHOLD,
         }
     }
 
@@ -176,6 +193,16 @@ impl BodyDef {
         self
     }
 
+    /// Sets the whole surface of every collider so far (see [`crate::Surface`]).
+    pub fn surface(mut self, surface: crate::Surface) -> Self {
+        self.colliders = self
+            .colliders
+            .into_iter()
+            .map(|collider| collider.surface(surface))
+            .collect();
+        self
+    }
+
     /// Sets what every collider collides with.
     pub fn filter(mut self, filter: crate::CollisionFilter) -> Self {
         for collider in &mut self.colliders {
@@ -244,6 +271,13 @@ impl BodyDef {
     /// [`BodyDef::sleep_threshold`]).
     pub fn sleep_threshold(mut self, threshold: Real) -> Self {
         self.sleep_threshold = threshold;
+        self
+    }
+
+    /// Sets the fraction of its smallest extent it must move in a step to be swept (see
+    /// [`BodyDef::sweep_threshold`]).
+    pub fn sweep_threshold(mut self, fraction: Real) -> Self {
+        self.sweep_threshold = fraction;
         self
     }
 }

@@ -9,7 +9,8 @@
 //! for static (or kinematic) bodies, and they do not collide with other chains.
 
 use crate::collision::filter::CollisionFilter;
-use crate::dynamics::collider::{ColliderDef, DEFAULT_FRICTION};
+use crate::dynamics::collider::ColliderDef;
+use crate::dynamics::surface::Surface;
 use crate::error::CaromError;
 use crate::geometry::capsule::check_apart;
 use crate::geometry::checks::check_point;
@@ -28,10 +29,9 @@ pub struct ChainDef {
     /// For an open chain, the points before the first and after the last that its end links
     /// should meet smoothly (another chain's, say); `None` continues each end straight on.
     pub ghosts: Option<(Vec2, Vec2)>,
-    /// Coulomb friction coefficient of every link.
-    pub friction: Real,
-    /// Restitution of every link.
-    pub restitution: Real,
+    /// The links' surfaces: one for every link, or one per link in order (the link from
+    /// point `i` to point `i + 1` takes surface `i`).
+    pub surfaces: Vec<Surface>,
     /// What the links collide with.
     pub filter: CollisionFilter,
 }
@@ -43,8 +43,7 @@ impl ChainDef {
             points: points.into(),
             closed: false,
             ghosts: None,
-            friction: DEFAULT_FRICTION,
-            restitution: 0.0,
+            surfaces: vec![Surface::default()],
             filter: CollisionFilter::DEFAULT,
         }
     }
@@ -63,15 +62,31 @@ impl ChainDef {
         self
     }
 
-    /// Sets the friction coefficient.
+    /// Sets the friction coefficient of every link.
     pub fn friction(mut self, friction: Real) -> Self {
-        self.friction = friction;
+        for surface in &mut self.surfaces {
+            surface.friction = friction;
+        }
         self
     }
 
-    /// Sets the restitution.
+    /// Sets the restitution of every link.
     pub fn restitution(mut self, restitution: Real) -> Self {
-        self.restitution = restitution;
+        for surface in &mut self.surfaces {
+            surface.restitution = restitution;
+        }
+        self
+    }
+
+    /// Sets one surface for every link.
+    pub fn surface(mut self, surface: Surface) -> Self {
+        self.surfaces = vec![surface];
+        self
+    }
+
+    /// Sets each link's surface, in order: one per link.
+    pub fn link_surfaces(mut self, surfaces: impl Into<Vec<Surface>>) -> Self {
+        self.surfaces = surfaces.into();
         self
     }
 
@@ -144,19 +159,26 @@ impl ChainDef {
             .collect())
     }
 
-    /// One massless collider per link, with the chain's material.
+    /// One massless collider per link, with its surface.
     ///
     /// # Errors
-    /// As [`ChainDef::segments`].
+    /// As [`ChainDef::segments`], and [`CaromError::ChainSurfaces`] for a number of surfaces
+    /// that is neither 1 nor the number of links.
     pub fn colliders(&self) -> Result<Vec<ColliderDef>, CaromError> {
-        Ok(self
-            .segments()?
+        let links = self.segments()?;
+        if self.surfaces.len() != 1 && self.surfaces.len() != links.len() {
+            return Err(CaromError::ChainSurfaces {
+                links: links.len(),
+                count: self.surfaces.len(),
+            });
+        }
+        Ok(links
             .into_iter()
-            .map(|link| {
+            .zip(self.surfaces.iter().cycle())
+            .map(|(link, surface)| {
                 ColliderDef::new(Shape::ChainSegment(link))
                     .density(0.0)
-                    .friction(self.friction)
-                    .restitution(self.restitution)
+                    .surface(*surface)
                     .filter(self.filter)
             })
             .collect())

@@ -10,6 +10,7 @@
 use crate::collision::filter::CollisionFilter;
 use crate::constants::{CONTACTS_PER_TASK, ITEMS_PER_TASK};
 use crate::dynamics::body::{Body, BodyHandle};
+use crate::dynamics::surface::Surface;
 use crate::error::{CaromError, check_finite, check_finite_vec};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::checks::check_extent;
@@ -50,6 +51,16 @@ pub struct ColliderDef {
     /// Bounciness: 0 does not bounce, 1 bounces back at the speed it came.
     #[cfg_attr(feature = "serde", serde(default))]
     pub restitution: Real,
+    /// Resistance to rolling (see [`Surface::rolling_resistance`]). Default 0.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub rolling_resistance: Real,
+    /// How fast the surface moves along itself, m/s (see [`Surface::tangent_speed`]): a
+    /// conveyor belt. Default 0.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub tangent_speed: Real,
+    /// The game's material id, for the world's mixers (see [`Surface::material`]). Default 0.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub material: u64,
     /// What it collides with. Default: everything.
     #[cfg_attr(feature = "serde", serde(default))]
     pub filter: CollisionFilter,
@@ -95,6 +106,9 @@ impl ColliderDef {
             density: 1.0,
             friction: DEFAULT_FRICTION,
             restitution: 0.0,
+            rolling_resistance: 0.0,
+            tangent_speed: 0.0,
+            material: 0,
             filter: CollisionFilter::DEFAULT,
             hit_events: false,
             sensor: false,
@@ -132,6 +146,28 @@ impl ColliderDef {
         self
     }
 
+    /// Sets its whole surface: friction, restitution, rolling resistance, tangent speed and
+    /// material id.
+    pub fn surface(mut self, surface: Surface) -> Self {
+        self.friction = surface.friction;
+        self.restitution = surface.restitution;
+        self.rolling_resistance = surface.rolling_resistance;
+        self.tangent_speed = surface.tangent_speed;
+        self.material = surface.material;
+        self
+    }
+
+    /// Its surface, as [`ColliderDef::surface`] sets it.
+    pub(crate) fn as_surface(&self) -> Surface {
+        Surface {
+            friction: self.friction,
+            restitution: self.restitution,
+            rolling_resistance: self.rolling_resistance,
+            tangent_speed: self.tangent_speed,
+            material: self.material,
+        }
+    }
+
     /// Sets what it collides with.
     pub fn filter(mut self, filter: CollisionFilter) -> Self {
         self.filter = filter;
@@ -159,8 +195,8 @@ impl ColliderDef {
     /// Checks every value.
     ///
     /// # Errors
-    /// A bad shape, a non-finite placement, or a density, friction or restitution that is
-    /// not finite or is negative.
+    /// A bad shape, a non-finite placement, a density that is not finite or is negative, or
+    /// a surface [`Surface::validate`] refuses.
     pub fn validate(&self) -> Result<(), CaromError> {
         self.shape.validate()?;
         check_finite_vec("collider offset", self.offset)?;
@@ -169,9 +205,7 @@ impl ColliderDef {
         check_extent("collider offset", self.offset.y)?;
         check_finite("collider angle", self.angle)?;
         check_non_negative("density", self.density)?;
-        check_non_negative("friction", self.friction)?;
-        check_non_negative("restitution", self.restitution)?;
-        Ok(())
+        self.as_surface().validate()
     }
 }
 
@@ -203,8 +237,7 @@ pub struct Collider {
     /// then costs no transform product).
     local: Option<Isometry>,
     density: Real,
-    friction: Real,
-    restitution: Real,
+    surface: Surface,
     filter: CollisionFilter,
     hit_events: bool,
     sensor: bool,
@@ -224,14 +257,14 @@ impl Collider {
         let local = (def.offset != Vec2::zeros() || def.angle != 0.0)
             .then(|| Isometry::new(def.offset, def.angle));
         let world_shape = WorldShape::new(&def.shape, body_transform);
+        let surface = def.as_surface();
         let mut collider = Collider {
             body,
             body_index: body_index as u32,
             shape: def.shape,
             local,
             density: def.density,
-            friction: def.friction,
-            restitution: def.restitution,
+            surface,
             filter: def.filter,
             hit_events: def.hit_events,
             sensor: def.sensor,
@@ -280,13 +313,20 @@ impl Collider {
     /// Coulomb friction coefficient.
     #[inline]
     pub fn friction(&self) -> Real {
-        self.friction
+        self.surface.friction
     }
 
     /// Restitution.
     #[inline]
     pub fn restitution(&self) -> Real {
-        self.restitution
+        self.surface.restitution
+    }
+
+    /// Its whole surface: friction, restitution, rolling resistance, tangent speed and
+    /// material id.
+    #[inline]
+    pub fn surface(&self) -> &Surface {
+        &self.surface
     }
 
     /// What it collides with.
@@ -330,15 +370,10 @@ impl Collider {
         self.aabb
     }
 
-    /// Sets the friction coefficient (finite, not negative).
-    pub(crate) fn set_friction(&mut self, friction: Real) -> Result<(), CaromError> {
-        self.friction = check_non_negative("friction", friction)?;
-        Ok(())
-    }
-
-    /// Sets the restitution (finite, not negative).
-    pub(crate) fn set_restitution(&mut self, restitution: Real) -> Result<(), CaromError> {
-        self.restitution = check_non_negative("restitution", restitution)?;
+    /// Sets its surface, if [`Surface::validate`] accepts it.
+    pub(crate) fn set_surface(&mut self, surface: Surface) -> Result<(), CaromError> {
+        surface.validate()?;
+        self.surface = surface;
         Ok(())
     }
 
@@ -495,8 +530,7 @@ impl Collider {
     /// shape placed where its body is (`body_transform`).
     pub(crate) fn check_saved(&self, body_transform: &Isometry) -> Result<(), CaromError> {
         check_non_negative("density", self.density)?;
-        check_non_negative("friction", self.friction)?;
-        check_non_negative("restitution", self.restitution)?;
+        self.surface.validate()?;
         if let Some(local) = &self.local {
             check_finite_vec("collider offset", local.translation.vector)?;
             check_finite("collider angle", local.rotation.angle())?;

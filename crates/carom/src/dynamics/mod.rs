@@ -7,3 +7,4 @@ pub(crate) mod chain;
 pub(crate) mod collider;
 pub(crate) mod drag;
 pub(crate) mod island;
+pub(crate) mod surface;

@@ -2,7 +2,7 @@
 
 use super::BodyState;
 use crate::collision::contact::{Contact, PointImpulse};
-use crate::collision::manifold::{Manifold, ManifoldPoint};
+use crate::collision::manifold::ManifoldPoint;
 use crate::dynamics::body::Body;
 use crate::math::{Real, Vec2, cross, cross_sv, perp_cw};
 
@@ -87,6 +87,16 @@ pub(crate) struct ContactConstraint {
     pub friction: Real,
     /// Restitution: the larger of the colliders'.
     pub restitution: Real,
+    /// The surfaces' speed along the tangent: friction drives the relative tangent velocity
+    /// to it instead of to zero.
+    pub tangent_speed: Real,
+    /// The most rolling-resistance torque per unit normal impulse, m (0: none).
+    pub rolling_resistance: Real,
+    /// `1 / (iA + iB)`: the effective mass against relative spin (0 without rolling
+    /// resistance).
+    pub rolling_mass: Real,
+    /// The accumulated rolling-resistance angular impulse.
+    pub rolling_impulse: Real,
     /// True when one body is static (soft step makes such contacts stiffer).
     pub touches_static: bool,
     points: [ConstraintPoint; 2],
@@ -127,15 +137,10 @@ impl BodyMass {
 
 impl ContactConstraint {
     /// Prepares a contact (at `contact_index` among the awake contacts) from its manifold and
-    /// its mixed friction and restitution.
+    /// its mixed material.
     #[inline]
-    pub fn new(
-        contact_index: usize,
-        manifold: &Manifold,
-        (friction, restitution): (Real, Real),
-        a: SolverBody,
-        b: SolverBody,
-    ) -> Self {
+    pub fn new(contact_index: usize, contact: &Contact, a: SolverBody, b: SolverBody) -> Self {
+        let manifold = contact.manifold();
         let normal = manifold.normal;
         let mut points = [ConstraintPoint::default(); 2];
         let point_count = manifold.points().len();
@@ -144,6 +149,7 @@ impl ContactConstraint {
         }
         let (ma, ia) = (a.mass.inv_mass, a.mass.inv_inertia);
         let (mb, ib) = (b.mass.inv_mass, b.mass.inv_inertia);
+        let (rolling_mass, rolling_impulse) = rolling(contact, ia, ib);
         ContactConstraint {
             contact_index,
             a: a.index,
@@ -153,8 +159,12 @@ impl ContactConstraint {
             inv_mass_b: mb,
             inv_inertia_b: ib,
             normal,
-            friction,
-            restitution,
+            friction: contact.friction(),
+            restitution: contact.restitution(),
+            tangent_speed: contact.tangent_speed(),
+            rolling_resistance: contact.rolling_resistance(),
+            rolling_mass,
+            rolling_impulse,
             touches_static: !a.awake || !b.awake,
             points,
             point_count,
@@ -229,6 +239,7 @@ impl ContactConstraint {
     /// Copies accumulated impulses back into the contact's manifold for warm starting, and
     /// what the step applied and the approach it started from beside it, for the user.
     pub fn store_impulses(&self, contact: &mut Contact) {
+        contact.rolling_impulse = self.rolling_impulse;
         let (manifold, reports) = contact.manifold_and_impulses_mut();
         for ((mp, report), point) in manifold
             .points_mut()
@@ -253,6 +264,17 @@ impl ContactConstraint {
         for point in self.points_mut() {
             point.max_normal_impulse = point.max_normal_impulse.max(point.normal_impulse);
         }
+    }
+}
+
+/// A contact's rolling-resistance effective mass and warm-start impulse for bodies of
+/// inverse inertias `ia` and `ib`: both 0 for a contact without rolling resistance.
+#[inline]
+pub(crate) fn rolling(contact: &Contact, ia: Real, ib: Real) -> (Real, Real) {
+    if contact.rolling_resistance() > 0.0 && ia + ib > 0.0 {
+        (1.0 / (ia + ib), contact.rolling_impulse)
+    } else {
+        (0.0, 0.0)
     }
 }
 

@@ -113,6 +113,15 @@ impl<'w> BodyMut<'w> {
         self.edit(|body| body.set_damping(linear, angular))
     }
 
+    /// Sets the fraction of its smallest extent it must move in a step to be swept by
+    /// continuous collision (see [`crate::BodyDef::sweep_threshold`]).
+    ///
+    /// # Errors
+    /// A negative or NaN fraction; it is then left as it was.
+    pub fn set_sweep_threshold(&mut self, fraction: Real) -> Result<(), CaromError> {
+        self.edit(|body| body.set_sweep_threshold(fraction))
+    }
+
     /// Marks or unmarks the body as a bullet.
     pub fn set_bullet(&mut self, bullet: bool) {
         self.edit(|body| body.set_bullet(bullet))

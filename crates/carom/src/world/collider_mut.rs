@@ -3,6 +3,7 @@
 
 use crate::collision::filter::CollisionFilter;
 use crate::dynamics::collider::{Collider, ColliderHandle, check_non_negative};
+use crate::dynamics::surface::Surface;
 use crate::error::CaromError;
 use crate::math::Real;
 use crate::world::World;
@@ -39,9 +40,7 @@ impl<'w> ColliderMut<'w> {
     /// # Errors
     /// A negative or non-finite friction; it is then left as it was.
     pub fn set_friction(&mut self, friction: Real) -> Result<(), CaromError> {
-        self.collider().set_friction(friction)?;
-        self.remix_contacts();
-        Ok(())
+        self.change_surface(|surface| surface.friction = friction)
     }
 
     /// Sets the restitution (finite, not negative); its contacts use it from the next step.
@@ -49,7 +48,39 @@ impl<'w> ColliderMut<'w> {
     /// # Errors
     /// A negative or non-finite restitution; it is then left as it was.
     pub fn set_restitution(&mut self, restitution: Real) -> Result<(), CaromError> {
-        self.collider().set_restitution(restitution)?;
+        self.change_surface(|surface| surface.restitution = restitution)
+    }
+
+    /// Sets the rolling resistance (finite, not negative; see
+    /// [`crate::Surface::rolling_resistance`]); its contacts use it from the next step.
+    ///
+    /// # Errors
+    /// A negative or non-finite resistance; it is then left as it was.
+    pub fn set_rolling_resistance(&mut self, resistance: Real) -> Result<(), CaromError> {
+        self.change_surface(|surface| surface.rolling_resistance = resistance)
+    }
+
+    /// Sets the tangent speed (finite; see [`crate::Surface::tangent_speed`]): a conveyor
+    /// belt's; its contacts use it from the next step.
+    ///
+    /// # Errors
+    /// A speed that is not finite; it is then left as it was.
+    pub fn set_tangent_speed(&mut self, speed: Real) -> Result<(), CaromError> {
+        self.change_surface(|surface| surface.tangent_speed = speed)
+    }
+
+    /// Sets the material id the world's mixers see (see [`crate::Surface::material`]).
+    pub fn set_material(&mut self, material: u64) {
+        // An id is any number: nothing to refuse.
+        let _ = self.change_surface(|surface| surface.material = material);
+    }
+
+    /// Changes the surface as `change` says, if the result is valid, and mixes it into the
+    /// contacts.
+    fn change_surface(&mut self, change: impl FnOnce(&mut Surface)) -> Result<(), CaromError> {
+        let mut surface = *self.collider().surface();
+        change(&mut surface);
+        self.collider().set_surface(surface)?;
         self.remix_contacts();
         Ok(())
     }

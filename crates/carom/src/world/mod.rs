@@ -18,7 +18,7 @@ mod step;
 use step::StepScratch;
 
 use crate::collision::broadphase::BroadPhase;
-use crate::collision::contact::{Contact, ContactEvent, ContactSet};
+use crate::collision::contact::{Contact, ContactEvent, ContactSet, MaterialMixer, Mixers};
 use crate::collision::hits::HitEvent;
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::sensor::{SensorEvent, SensorOverlap, Sensors};
@@ -540,6 +540,47 @@ impl World {
     /// Removes the pre-solve hook: every contact is solved again.
     pub fn clear_pre_solve(&mut self) {
         self.pre_solve = None;
+    }
+
+    /// Mixes friction where two surfaces touch with `mixer` (given each surface's friction
+    /// and [`crate::Surface::material`] id), or, with `None`, as the geometric mean. Every
+    /// contact takes it at once. Not saved with the world: set it again after restoring one.
+    ///
+    /// ```
+    /// use carom::{BodyDef, ColliderDef, Shape, Surface, World, vec2};
+    ///
+    /// const ICE: u64 = 1;
+    /// let mut world = World::new();
+    /// // Ice on anything is slippery, whatever the other surface's friction.
+    /// world.set_friction_mixer(Some(|fa, a, fb, b| if a == ICE || b == ICE { 0.02 } else { (fa * fb).sqrt() }));
+    /// let ice = Surface { material: ICE, ..Surface::default() };
+    /// world.add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)).surface(ice))?;
+    /// let crate_ = world.add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 1.0)))?;
+    /// world.body_mut(crate_).unwrap().set_linear_velocity(vec2(2.0, 0.0))?;
+    /// for _ in 0..60 {
+    ///     world.step(1.0 / 60.0)?;
+    /// }
+    /// // 0.02 × 10 m/s² slows it by 0.2 m/s in a second.
+    /// assert!((world.body(crate_).unwrap().linear_velocity().x - 1.8).abs() < 0.02);
+    /// # Ok::<(), carom::CaromError>(())
+    /// ```
+    pub fn set_friction_mixer(&mut self, mixer: Option<MaterialMixer>) {
+        let mixers = Mixers {
+            friction: mixer,
+            ..self.contacts.mixers()
+        };
+        self.contacts.set_mixers(mixers, &self.colliders);
+    }
+
+    /// Mixes restitution where two surfaces touch with `mixer` (given each surface's
+    /// restitution and material id), or, with `None`, as the larger. As
+    /// [`World::set_friction_mixer`].
+    pub fn set_restitution_mixer(&mut self, mixer: Option<MaterialMixer>) {
+        let mixers = Mixers {
+            restitution: mixer,
+            ..self.contacts.mixers()
+        };
+        self.contacts.set_mixers(mixers, &self.colliders);
     }
 
     /// The hard hits of the last step on colliders that ask for them

@@ -26,8 +26,9 @@ use serde::{Deserialize, Serialize};
 /// `iterations` became optional and joints are stored in solver sets. Format 3: the
 /// broadphase keeps which proxies moved apart from the proxies. Format 4: contacts keep their
 /// ids (contacts are filed by id). Format 5: the contact array's parts are laid out anew
-/// (`graph::layout`).
-const SAVE_FORMAT: u32 = 5;
+/// (`graph::layout`). Format 6: colliders keep a whole surface (rolling resistance, tangent
+/// speed, material id) and contacts their rolling impulse.
+const SAVE_FORMAT: u32 = 6;
 
 /// What a saved world holds: every field of [`World`] that outlives a step.
 #[derive(Serialize, Deserialize)]

@@ -5,8 +5,8 @@
 //! exactly once in each of its bodies' lists.
 
 use super::{
-    BodyIndices, Contact, ContactEvent, ContactSet, EdgeList, NO_EDGE, NO_ID, PairHasher, Slot,
-    edge, edge_id, pair_key,
+    BodyIndices, Contact, ContactEvent, ContactSet, EdgeList, Mixers, NO_EDGE, NO_ID, PairHasher,
+    Slot, edge, edge_id, pair_key,
 };
 use crate::dynamics::body::BodyHandle;
 use crate::graph::colors::ContactColors;
@@ -159,6 +159,7 @@ impl ContactSet {
             body_indices: saved.body_indices,
             made: saved.made,
             doomed: Vec::new(),
+            mixers: Mixers::default(),
         };
         let mut listed = vec![[false; 2]; count];
         for (body, keys) in saved.edges.iter().enumerate() {

@@ -96,6 +96,12 @@ pub struct Body {
         serde(default = "crate::dynamics::body_def::sleep_threshold")
     )]
     sleep_threshold: Real,
+    /// The fraction of its smallest extent it must move in a step to be swept.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default = "crate::dynamics::body_def::sweep_threshold")
+    )]
+    sweep_threshold: Real,
     /// Asleep: skipped by every stage until something wakes it.
     sleeping: bool,
     /// A dynamic body's island (see [`crate::dynamics::island`]), and its neighbours in the
@@ -168,6 +174,7 @@ impl Body {
             last_motion: 0.0,
             sleep_time: 0.0,
             sleep_threshold: check_non_negative("sleep threshold", def.sleep_threshold)?,
+            sweep_threshold: check_sweep_threshold(def.sweep_threshold)?,
             sleeping: false,
             island: None,
             island_prev: None,
@@ -423,6 +430,13 @@ impl Body {
         self.sleep_threshold
     }
 
+    /// The fraction of its smallest extent it must move in a step to be swept by continuous
+    /// collision ([`crate::BodyDef::sweep_threshold`]).
+    #[inline]
+    pub fn sweep_threshold(&self) -> Real {
+        self.sweep_threshold
+    }
+
     /// Wakes the body (its island follows at the next step, through their contacts).
     pub(crate) fn wake_up(&mut self) {
         self.sleeping = false;
@@ -588,6 +602,12 @@ impl Body {
         let linear = check_non_negative("linear damping", linear)?;
         self.angular_damping = check_non_negative("angular damping", angular)?;
         self.linear_damping = linear;
+        Ok(())
+    }
+
+    /// Sets the sweep threshold, if [`check_sweep_threshold`] accepts it.
+    pub(crate) fn set_sweep_threshold(&mut self, fraction: Real) -> Result<(), CaromError> {
+        self.sweep_threshold = check_sweep_threshold(fraction)?;
         Ok(())
     }
 
@@ -771,6 +791,20 @@ fn check_position(what: &'static str, position: Vec2) -> Result<Vec2, CaromError
         }
     }
     Ok(position)
+}
+
+/// A sweep threshold: not negative, and not a number's absence (infinity, never swept, is
+/// allowed).
+pub(crate) fn check_sweep_threshold(fraction: Real) -> Result<Real, CaromError> {
+    if fraction >= 0.0 {
+        Ok(fraction)
+    } else {
+        Err(CaromError::OutOfRange {
+            name: "sweep threshold",
+            expected: "zero or more (infinity never sweeps)",
+            value: fraction,
+        })
+    }
 }
 
 #[cfg(test)]

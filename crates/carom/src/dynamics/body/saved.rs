@@ -64,6 +64,12 @@ impl Body {
                 handle.index()
             ));
         }
+        if super::check_sweep_threshold(self.sweep_threshold).is_err() {
+            return Err(format!(
+                "body {} has a sweep threshold that is negative or not a number",
+                handle.index()
+            ));
+        }
         if (self.rotation.norm() - 1.0).abs() > 1e-3 {
             return Err(format!(
                 "body {} has a rotation that is not a unit",

@@ -146,14 +146,14 @@ impl BundleInputs<'_> {
     /// Contact `index` prepared as a constraint.
     pub fn constraint(&self, index: usize) -> ContactConstraint {
         let contact = &self.contacts[index];
-        let material = (contact.friction(), contact.restitution());
         let [a, b] = self.body_indices[index].map(|i| self.solver_body(i as usize));
-        let mut constraint = ContactConstraint::new(index, contact.manifold(), material, a, b);
+        let mut constraint = ContactConstraint::new(index, contact, a, b);
         if !self.warm_starting {
             for point in constraint.points_mut() {
                 point.normal_impulse = 0.0;
                 point.tangent_impulse = 0.0;
             }
+            constraint.rolling_impulse = 0.0;
         }
         constraint
     }

@@ -9,7 +9,7 @@ use super::shared_states::SharedStates;
 use crate::collision::contact::{Contact, PointImpulse};
 use crate::math::Real;
 use crate::solver::Softness;
-use crate::solver::contact_constraint::ConstraintPoint;
+use crate::solver::contact_constraint::{ConstraintPoint, rolling};
 
 /// One contact point of a bundle's constraints.
 #[derive(Debug, Clone, Copy)]
@@ -90,6 +90,15 @@ pub(super) struct Bundle<L: Lanes> {
     pub(super) normal_y: L,
     pub(super) friction: L,
     pub(super) restitution: L,
+    /// The surfaces' tangent speed (conveyor belts).
+    pub(super) tangent_speed: L,
+    /// Rolling resistance: its coefficient times the rolling radius, the effective mass
+    /// against relative spin, and the accumulated angular impulse.
+    pub(super) rolling_resistance: L,
+    pub(super) rolling_mass: L,
+    pub(super) rolling_impulse: L,
+    /// Whether any lane has rolling resistance: without, its row is skipped.
+    pub(super) rolling: bool,
     /// Soft step's coefficients per lane (stiffer against static bodies).
     pub(super) bias_rate: L,
     pub(super) mass_scale: L,
@@ -178,6 +187,11 @@ impl<L: Lanes> Bundle<L> {
             normal_y: zero,
             friction: zero,
             restitution: zero,
+            tangent_speed: zero,
+            rolling_resistance: zero,
+            rolling_mass: zero,
+            rolling_impulse: zero,
+            rolling: false,
             bias_rate: zero,
             mass_scale: zero,
             impulse_scale: zero,
@@ -197,6 +211,7 @@ impl<L: Lanes> Bundle<L> {
         spare: u32,
     ) {
         (self.writes_a, self.writes_b, self.point_count) = (0, 0, 0);
+        self.rolling = false;
         for lane in 0..L::WIDTH {
             let Some(&index) = members.get(lane) else {
                 self.clear_lane(lane, spare);
@@ -213,6 +228,12 @@ impl<L: Lanes> Bundle<L> {
             self.writes_b |= u32::from(b.mass.dynamic) << lane;
             let soft = softness[usize::from(!a.awake || !b.awake)];
             let normal = manifold.normal;
+            let (rolling_mass, mut rolling_impulse) =
+                rolling(contact, a.mass.inv_inertia, b.mass.inv_inertia);
+            if !inputs.warm_starting {
+                rolling_impulse = 0.0;
+            }
+            self.rolling |= rolling_mass > 0.0;
             let values = [
                 a.mass.inv_mass,
                 a.mass.inv_inertia,
@@ -222,6 +243,10 @@ impl<L: Lanes> Bundle<L> {
                 normal.y,
                 contact.friction(),
                 contact.restitution(),
+                contact.tangent_speed(),
+                contact.rolling_resistance(),
+                rolling_mass,
+                rolling_impulse,
                 soft.bias_rate,
                 soft.mass_scale,
                 soft.impulse_scale,
@@ -260,7 +285,7 @@ impl<L: Lanes> Bundle<L> {
 
     /// The per-constraint fields, in the order `prepare` fills them.
     #[inline(always)]
-    pub(super) fn fields_mut(&mut self) -> [&mut L; 11] {
+    pub(super) fn fields_mut(&mut self) -> [&mut L; 15] {
         [
             &mut self.inv_mass_a,
             &mut self.inv_inertia_a,
@@ -270,6 +295,10 @@ impl<L: Lanes> Bundle<L> {
             &mut self.normal_y,
             &mut self.friction,
             &mut self.restitution,
+            &mut self.tangent_speed,
+            &mut self.rolling_resistance,
+            &mut self.rolling_mass,
+            &mut self.rolling_impulse,
             &mut self.bias_rate,
             &mut self.mass_scale,
             &mut self.impulse_scale,
@@ -304,6 +333,10 @@ impl<L: Lanes> Bundle<L> {
             let p_y = self.normal_y * point.normal_impulse + tangent_y * point.tangent_impulse;
             self.apply(&point, p_x, p_y, &mut a, &mut b);
             self.points[j].total_normal_impulse += point.normal_impulse;
+        }
+        if self.rolling {
+            a.w -= self.inv_inertia_a * self.rolling_impulse;
+            b.w += self.inv_inertia_b * self.rolling_impulse;
         }
         self.write(states, &a, &b);
     }
@@ -364,7 +397,8 @@ impl<L: Lanes> Bundle<L> {
             let (tangent_x, tangent_y) = (normal_y, -normal_x);
             for j in 0..2 {
                 let point = self.points[j];
-                let vt = relative_velocity(&point, &a, &b, tangent_x, tangent_y);
+                let vt =
+                    relative_velocity(&point, &a, &b, tangent_x, tangent_y) - self.tangent_speed;
                 let limit = self.friction * point.normal_impulse;
                 let total = (point.tangent_impulse - point.tangent_mass * vt)
                     .max(-limit)
@@ -378,6 +412,18 @@ impl<L: Lanes> Bundle<L> {
                     &mut a,
                     &mut b,
                 );
+            }
+            if self.rolling {
+                let pressed = self.points[0].normal_impulse + self.points[1].normal_impulse;
+                let limit = self.rolling_resistance * pressed;
+                let spin = b.w - a.w;
+                let total = (self.rolling_impulse - self.rolling_mass * spin)
+                    .max(-limit)
+                    .min(limit);
+                let applied = total - self.rolling_impulse;
+                self.rolling_impulse = total;
+                a.w -= self.inv_inertia_a * applied;
+                b.w += self.inv_inertia_b * applied;
             }
         }
         self.write(states, &a, &b);
@@ -467,6 +513,8 @@ impl<L: Lanes> Bundle<L> {
     /// `offset`), and what the step applied and the approach it started from beside them.
     #[inline(always)]
     pub(super) fn store(&self, contacts: &mut [Contact], offset: usize) {
+        let mut rolling = [0.0; 8];
+        self.rolling_impulse.write_to(&mut rolling);
         let mut impulses = [[[0.0; 8]; 5]; 2];
         for (j, point) in self.points.iter().enumerate() {
             point.normal_impulse.write_to(&mut impulses[j][0]);
@@ -483,6 +531,7 @@ impl<L: Lanes> Bundle<L> {
             else {
                 continue;
             };
+            contact.rolling_impulse = rolling[lane];
             let (manifold, reports) = contact.manifold_and_impulses_mut();
             let points = manifold.points_mut().iter_mut().zip(reports);
             for (j, (point, report)) in points.enumerate() {

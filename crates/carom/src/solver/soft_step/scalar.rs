@@ -4,14 +4,18 @@
 //! sequential-impulse solver shares warm starting, friction and restitution.
 
 use super::Bias;
+use crate::math::Real;
 use crate::solver::contact_constraint::pair_mut;
 use crate::solver::{BodyState, ContactConstraint, SolverParams};
 
 /// Starts from zero impulses (warm starting off).
 pub(crate) fn forget_impulses(constraints: &mut [ContactConstraint]) {
-    for point in constraints.iter_mut().flat_map(|c| c.points_mut()) {
-        point.normal_impulse = 0.0;
-        point.tangent_impulse = 0.0;
+    for c in constraints.iter_mut() {
+        for point in c.points_mut() {
+            point.normal_impulse = 0.0;
+            point.tangent_impulse = 0.0;
+        }
+        c.rolling_impulse = 0.0;
     }
 }
 
@@ -31,6 +35,10 @@ pub(crate) fn warm_start_one(c: &mut ContactConstraint, states: &mut [BodyState]
         let p = c.normal * point.normal_impulse + tangent * point.tangent_impulse;
         c.apply(&point, p, a, b);
         c.points_mut()[i].total_normal_impulse += point.normal_impulse;
+    }
+    if c.rolling_resistance > 0.0 {
+        a.w -= c.inv_inertia_a * c.rolling_impulse;
+        b.w += c.inv_inertia_b * c.rolling_impulse;
     }
 }
 
@@ -77,8 +85,10 @@ pub(crate) fn solve_one(
     }
 }
 
-/// Coulomb friction at each point: the tangent impulse stays within `μ ×` the normal one.
-/// Returns how many impulses were computed.
+/// Coulomb friction at each point: the tangent impulse stays within `μ ×` the normal one,
+/// driving the relative tangent velocity to the surfaces' tangent speed; then rolling
+/// resistance, whose angular impulse stays within its coefficient times the contact's
+/// normal impulse. Returns how many impulses were computed.
 pub(crate) fn solve_friction(
     c: &mut ContactConstraint,
     a: &mut BodyState,
@@ -87,13 +97,23 @@ pub(crate) fn solve_friction(
     let tangent = c.tangent();
     for i in 0..c.points().len() {
         let mut point = c.points()[i];
-        let vt = ContactConstraint::relative_velocity(&point, a, b).dot(&tangent);
+        let vt = ContactConstraint::relative_velocity(&point, a, b).dot(&tangent) - c.tangent_speed;
         let limit = c.friction * point.normal_impulse;
         let total = (point.tangent_impulse - point.tangent_mass * vt).clamp(-limit, limit);
         let applied = total - point.tangent_impulse;
         point.tangent_impulse = total;
         c.apply(&point, tangent * applied, a, b);
         c.points_mut()[i] = point;
+    }
+    if c.rolling_resistance > 0.0 {
+        let pressed: Real = c.points().iter().map(|p| p.normal_impulse).sum();
+        let limit = c.rolling_resistance * pressed;
+        let spin = b.w - a.w;
+        let total = (c.rolling_impulse - c.rolling_mass * spin).clamp(-limit, limit);
+        let applied = total - c.rolling_impulse;
+        c.rolling_impulse = total;
+        a.w -= c.inv_inertia_a * applied;
+        b.w += c.inv_inertia_b * applied;
     }
     c.points().len()
 }

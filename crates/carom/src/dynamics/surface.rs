@@ -1,0 +1,118 @@
+//! What a collider's surface is like, and how two surfaces mix where they touch.
+//!
+//! Friction mixes as the geometric mean and restitution as the larger, unless the world has a
+//! mixer of its own ([`crate::World::set_friction_mixer`]), which sees both surfaces'
+//! [`Surface::material`] ids. Rolling resistance mixes as the larger times the larger rolling
+//! radius (a circle's or capsule's radius, a rounded polygon's rounding; sharp shapes do not
+//! roll), as Box2D does: it is a torque of at most `resistance × radius × normal force`
+//! against the bodies' relative spin. Tangent speeds add: each surface moves along itself at
+//! its speed, clockwise around its shape (a belt's top, facing up, carries what lies on it
+//! toward +x), and friction drives what touches it to match.
+
+use crate::collision::contact::Mixers;
+use crate::dynamics::collider::{Collider, DEFAULT_FRICTION, check_non_negative};
+use crate::error::{CaromError, check_finite};
+use crate::geometry::shape::Shape;
+use crate::math::Real;
+
+/// A surface's material: how it grips, bounces, resists rolling and moves along itself, and
+/// an id of the game's own for its mixers. [`Surface::default`] is friction 0.6 and nothing
+/// else.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
+pub struct Surface {
+    /// Coulomb friction coefficient (0 is ice).
+    pub friction: Real,
+    /// Bounciness: 0 does not bounce, 1 bounces back at the speed it came.
+    pub restitution: Real,
+    /// Resistance to rolling, usually in `[0, 1]`: a ball rolling on it slows as if friction
+    /// of this coefficient acted at its rim, and rests on a slope up to `atan` of it.
+    pub rolling_resistance: Real,
+    /// How fast the surface moves along itself, m/s, clockwise around its shape: a conveyor
+    /// belt's speed.
+    pub tangent_speed: Real,
+    /// The game's id for the material, passed to the world's mixers. Not used otherwise.
+    pub material: u64,
+}
+
+impl Default for Surface {
+    fn default() -> Self {
+        Surface {
+            friction: DEFAULT_FRICTION,
+            restitution: 0.0,
+            rolling_resistance: 0.0,
+            tangent_speed: 0.0,
+            material: 0,
+        }
+    }
+}
+
+impl Surface {
+    /// Checks every value: friction, restitution and rolling resistance finite and not
+    /// negative, the tangent speed finite.
+    ///
+    /// # Errors
+    /// The first value that is not so.
+    pub fn validate(&self) -> Result<(), CaromError> {
+        check_non_negative("friction", self.friction)?;
+        check_non_negative("restitution", self.restitution)?;
+        check_non_negative("rolling resistance", self.rolling_resistance)?;
+        check_finite("tangent speed", self.tangent_speed)?;
+        Ok(())
+    }
+}
+
+/// A pair's mixed material, as its contact keeps it.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct Mixed {
+    pub friction: Real,
+    pub restitution: Real,
+    /// The larger rolling resistance times the larger rolling radius, m.
+    pub rolling_resistance: Real,
+    pub tangent_speed: Real,
+}
+
+/// Two colliders' surfaces mixed for their contact.
+pub(crate) fn mix(a: &Collider, b: &Collider, mixers: &Mixers) -> Mixed {
+    let (sa, sb) = (a.surface(), b.surface());
+    let friction = match mixers.friction {
+        Some(mixer) => mixer(sa.friction, sa.material, sb.friction, sb.material),
+        None => (sa.friction * sb.friction).sqrt(),
+    };
+    let restitution = match mixers.restitution {
+        Some(mixer) => mixer(sa.restitution, sa.material, sb.restitution, sb.material),
+        None => sa.restitution.max(sb.restitution),
+    };
+    let rolling = sa.rolling_resistance.max(sb.rolling_resistance);
+    Mixed {
+        // A mixer's answer is the game's: one that is not finite or is negative counts as 0.
+        friction: sanitized(friction),
+        restitution: sanitized(restitution),
+        rolling_resistance: if rolling > 0.0 {
+            rolling * rolling_radius(a.shape()).max(rolling_radius(b.shape()))
+        } else {
+            0.0
+        },
+        tangent_speed: sa.tangent_speed + sb.tangent_speed,
+    }
+}
+
+/// A mixer's answer made safe for the solver.
+fn sanitized(value: Real) -> Real {
+    if value.is_finite() && value > 0.0 {
+        value
+    } else {
+        0.0
+    }
+}
+
+/// How far a shape's rolling surface is from its core: what it rolls on.
+fn rolling_radius(shape: &Shape) -> Real {
+    match shape {
+        Shape::Circle(c) => c.radius(),
+        Shape::Capsule(c) => c.radius(),
+        Shape::Polygon(p) => p.radius(),
+        Shape::Segment(_) | Shape::ChainSegment(_) => 0.0,
+    }
+}
