@@ -875,3 +875,119 @@ mod random_chains {
         }
     }
 }
+
+#[test]
+fn a_distance_spring_pulls_and_pushes_no_harder_than_its_bounds() {
+    for kind in SOLVERS {
+        // A 1 kg ball (radius 1/sqrt(π), density 1) on a stiff spring under gravity: the
+        // spring may pull with at most 4 N, so the ball falls at 10 - 4 = 6 m/s².
+        let mut world = world(kind);
+        let top = anchor(&mut world, vec2(0.0, 10.0));
+        let radius = 1.0 / PI.sqrt();
+        let weight = ball(&mut world, vec2(0.0, 8.0), radius, 1.0);
+        world
+            .add_joint(
+                JointDef::distance(top, weight, vec2(0.0, 10.0), vec2(0.0, 8.0))
+                    .spring(20.0, 1.0)
+                    .spring_force(-4.0, 4.0),
+            )
+            .unwrap();
+        for _ in 0..30 {
+            world.step(DT).unwrap();
+        }
+        let v = world.body(weight).unwrap().linear_velocity().y;
+        assert!(
+            (v + 3.0).abs() < 0.06,
+            "{kind:?}: {v} m/s after 0.5 s, expected -3"
+        );
+
+        // A spring that only pushes lets a ball leave at the speed it had.
+        let mut world = world_without_gravity(kind);
+        let left = anchor(&mut world, vec2(0.0, 0.0));
+        let leaving = ball(&mut world, vec2(1.0, 0.0), 0.2, 1.0);
+        world
+            .add_joint(
+                JointDef::distance(left, leaving, vec2(0.0, 0.0), vec2(1.0, 0.0))
+                    .spring(5.0, 0.5)
+                    .spring_force(0.0, Real::INFINITY),
+            )
+            .unwrap();
+        world
+            .body_mut(leaving)
+            .unwrap()
+            .set_linear_velocity(vec2(2.0, 0.0))
+            .unwrap();
+        for _ in 0..60 {
+            world.step(DT).unwrap();
+        }
+        let v = world.body(leaving).unwrap().linear_velocity().x;
+        assert!((v - 2.0).abs() < 1e-4, "{kind:?}: slowed to {v} m/s");
+    }
+}
+
+fn world_without_gravity(kind: SolverKind) -> World {
+    World::with_settings(WorldSettings {
+        gravity: Vec2::zeros(),
+        solver: SolverParams::for_kind(kind),
+        effects: Effects::ALL.switched(Effect::Sleeping, false),
+        ..WorldSettings::default()
+    })
+    .unwrap()
+}
+
+#[test]
+fn a_distance_motor_drives_the_length_within_its_force() {
+    for kind in SOLVERS {
+        // A light ball on a free spring (0 Hz) reeled out at 1 m/s.
+        let mut world = world_without_gravity(kind);
+        let left = anchor(&mut world, vec2(0.0, 0.0));
+        let light = ball(&mut world, vec2(1.0, 0.0), 0.2, 1.0);
+        world
+            .add_joint(
+                JointDef::distance(left, light, vec2(0.0, 0.0), vec2(1.0, 0.0))
+                    .spring(0.0, 0.0)
+                    .motor_drive(1.0, 100.0),
+            )
+            .unwrap();
+        for _ in 0..60 {
+            world.step(DT).unwrap();
+        }
+        let x = world.body(light).unwrap().position().x;
+        assert!(
+            (x - 2.0).abs() < 0.02,
+            "{kind:?}: reeled out to {x} m, expected 2"
+        );
+
+        // A heavy one (100 kg) with at most 10 N: 0.1 m/s² at most.
+        let mut world = world_without_gravity(kind);
+        let left = anchor(&mut world, vec2(0.0, 0.0));
+        let heavy = ball(&mut world, vec2(1.0, 0.0), 1.0 / PI.sqrt(), 100.0);
+        world
+            .add_joint(
+                JointDef::distance(left, heavy, vec2(0.0, 0.0), vec2(1.0, 0.0))
+                    .spring(0.0, 0.0)
+                    .motor_drive(1.0, 10.0),
+            )
+            .unwrap();
+        for _ in 0..60 {
+            world.step(DT).unwrap();
+        }
+        let v = world.body(heavy).unwrap().linear_velocity().x;
+        assert!(
+            (v - 0.1).abs() < 1e-3,
+            "{kind:?}: {v} m/s after 1 s, expected 0.1"
+        );
+    }
+    // A bad range is refused.
+    let mut world = world(SolverKind::SoftStep);
+    let (a, b) = (
+        anchor(&mut world, vec2(0.0, 0.0)),
+        ball(&mut world, vec2(1.0, 0.0), 0.2, 1.0),
+    );
+    let backwards = JointDef::distance(a, b, vec2(0.0, 0.0), vec2(1.0, 0.0))
+        .spring(1.0, 1.0)
+        .spring_force(5.0, -5.0);
+    assert!(world.add_joint(backwards).is_err());
+    let on_a_hinge = JointDef::revolute(a, b, vec2(0.0, 0.0)).spring_force(0.0, 1.0);
+    assert!(world.add_joint(on_a_hinge).is_err());
+}

@@ -616,6 +616,8 @@ impl PendingJoint {
             } => JointKind::Distance(DistanceJoint {
                 length: length.unwrap_or_else(|| (anchor_b - self.anchor).norm()),
                 spring,
+                spring_force: None,
+                motor: None,
                 limits: limits(range),
             }),
             JointKindSpec::Revolute {

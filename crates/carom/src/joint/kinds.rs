@@ -50,8 +50,9 @@ pub struct Limits {
 /// Holds two anchors at a distance: a rod, a spring, or a rope.
 ///
 /// Without a spring the distance is held rigidly at `length`. With one, the spring pulls
-/// toward `length` and `limits`, if any, stop it rigidly outside `[lower, upper]`; a spring
-/// of 0 Hz with limits `[0, L]` is a rope of length `L`.
+/// toward `length` with a force within `spring_force`, a motor drives the length's rate,
+/// and `limits`, if any, stop it rigidly outside `[lower, upper]`; a spring of 0 Hz with
+/// limits `[0, L]` is a rope of length `L`. In that order, as Box2D 3.2 solves them.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
@@ -60,6 +61,15 @@ pub struct DistanceJoint {
     pub length: Real,
     /// Soft instead of rigid.
     pub spring: Option<Spring>,
+    /// The least and most force the spring applies, N: negative pulls the anchors together,
+    /// positive pushes them apart. `lower` 0 makes a spring that only pushes, `upper` 0 one
+    /// that only pulls. Default unbounded.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub spring_force: Option<Limits>,
+    /// Drives the length's rate of change (m/s, positive lengthening) with at most
+    /// `max_force` N (with a spring).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub motor: Option<Motor>,
     /// Lengths the anchors stay between (with a spring).
     pub limits: Option<Limits>,
 }
@@ -247,6 +257,16 @@ impl JointKind {
             JointKind::Distance(j) => {
                 positive("distance joint length", j.length)?;
                 check_spring(j.spring.as_ref())?;
+                check_motor(j.motor.as_ref())?;
+                if let Some(range) = j.spring_force
+                    && (range.lower.is_nan() || range.upper.is_nan() || range.lower > range.upper)
+                {
+                    return Err(CaromError::OutOfRange {
+                        name: "distance joint spring force's lower bound",
+                        expected: "a number not above the upper bound",
+                        value: range.lower,
+                    });
+                }
                 check_limits(j.limits.as_ref(), "distance joint limits")?;
                 if let Some(limits) = j.limits {
                     not_negative("distance joint lower limit", limits.lower)?;

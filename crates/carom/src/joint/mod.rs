@@ -134,6 +134,8 @@ impl JointDef {
         let kind = JointKind::Distance(DistanceJoint {
             length,
             spring: None,
+            spring_force: None,
+            motor: None,
             limits: None,
         });
         JointDef::new(a, b, anchor_a, anchor_b, kind)
@@ -151,6 +153,8 @@ impl JointDef {
         let kind = JointKind::Distance(DistanceJoint {
             length,
             spring: Some(Spring::new(0.0, 0.0)),
+            spring_force: None,
+            motor: None,
             limits: Some(Limits {
                 lower: 0.0,
                 upper: length,
@@ -269,14 +273,27 @@ impl JointDef {
         self
     }
 
-    /// A motor at `speed` with at most `max_force` (a torque for a revolute or wheel joint).
+    /// A motor at `speed` with at most `max_force` (a torque for a revolute or wheel joint;
+    /// for a distance joint, which needs a spring for it, the length's rate).
     pub fn motor_drive(mut self, speed: Real, max_force: Real) -> Self {
         let motor = Some(Motor { speed, max_force });
         match &mut self.kind {
             JointKind::Revolute(j) => j.motor = motor,
             JointKind::Prismatic(j) => j.motor = motor,
             JointKind::Wheel(j) => j.motor = motor,
+            JointKind::Distance(j) => j.motor = motor,
             _ => self.misuse = Some("motor"),
+        }
+        self
+    }
+
+    /// Bounds a distance joint's spring force to `[lower, upper]` newtons (negative pulls);
+    /// see [`DistanceJoint::spring_force`]. Ignored by the other kinds (reported when the
+    /// joint is added).
+    pub fn spring_force(mut self, lower: Real, upper: Real) -> Self {
+        match &mut self.kind {
+            JointKind::Distance(j) => j.spring_force = Some(Limits { lower, upper }),
+            _ => self.misuse = Some("spring force"),
         }
         self
     }

@@ -44,7 +44,12 @@ pub(super) fn warm_start(c: &JointConstraint, p: &Prepared, a: &mut BodyState, b
     let (ra, rb) = c.anchors(a, b);
     let axis = axis_now(c, a, b, ra, rb, p.axis).0;
     let i = &c.impulses;
-    c.apply_linear(a, b, ra, rb, axis * (i.axial + i.lower - i.upper));
+    let mut total = i.axial + i.lower - i.upper;
+    // A motor taken away leaves no impulse to start from.
+    if p.settings.motor.is_some() {
+        total += i.motor;
+    }
+    c.apply_linear(a, b, ra, rb, axis * total);
 }
 
 /// The axis and length now.
@@ -90,8 +95,29 @@ pub(super) fn solve(
         let bias = p.spring.bias_rate * (length - settings.length);
         let impulse = -p.spring.mass_scale * p.axial_mass * (speed(a, b) + bias)
             - p.spring.impulse_scale * c.impulses.axial;
-        c.impulses.axial += impulse;
-        c.apply_linear(a, b, ra, rb, axis * impulse);
+        let applied = match settings.spring_force {
+            None => impulse,
+            Some(range) => {
+                let total =
+                    (c.impulses.axial + impulse).clamp(range.lower * pass.h, range.upper * pass.h);
+                total - c.impulses.axial
+            }
+        };
+        c.impulses.axial += applied;
+        c.apply_linear(a, b, ra, rb, axis * applied);
+    }
+    if settings.motor.is_none() {
+        c.impulses.motor = 0.0;
+    }
+    if pass.drive
+        && let Some(motor) = settings.motor
+    {
+        let impulse = p.axial_mass * (motor.speed - speed(a, b));
+        let limit = motor.max_force * pass.h;
+        let total = (c.impulses.motor + impulse).clamp(-limit, limit);
+        let applied = total - c.impulses.motor;
+        c.impulses.motor = total;
+        c.apply_linear(a, b, ra, rb, axis * applied);
     }
     if let Some(limits) = settings.limits {
         let mut impulses = (c.impulses.lower, c.impulses.upper);

@@ -336,7 +336,7 @@ impl JointConstraint {
     pub fn reaction(&self, inv_h: Real) -> (Vec2, Real) {
         let i = &self.impulses;
         let (linear, angular) = match self.data {
-            JointData::Distance(p) => (p.axis * (i.axial + i.lower - i.upper), 0.0),
+            JointData::Distance(p) => (p.axis * (i.axial + i.lower - i.upper + i.motor), 0.0),
             JointData::Revolute(_) => (i.linear, i.motor + i.lower - i.upper + i.axial),
             JointData::Prismatic(p) => {
                 let axis = self.rot_a * p.settings.axis;
