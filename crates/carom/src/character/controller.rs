@@ -19,6 +19,7 @@ use crate::character::planes::{CollisionPlane, PlaneSolution, solve_planes, solv
 use crate::collision::query_filter::QueryFilter;
 use crate::constants::{
     CHARACTER_GROUND_PROBE, CHARACTER_MOVE_TOLERANCE, LINEAR_SLOP, MAX_CHARACTER_ITERATIONS,
+    TIME_STEP_RANGE,
 };
 use crate::dynamics::body::{Body, BodyHandle};
 use crate::dynamics::collider::ColliderHandle;
@@ -326,7 +327,7 @@ impl World {
     ///
     /// # Errors
     /// [`CaromError::NonFinite`] for a translation that is not finite, and
-    /// [`CaromError::OutOfRange`] for a `dt` that is not finite and positive.
+    /// [`CaromError::OutOfRange`] for a `dt` outside [`crate::TIME_STEP_RANGE`].
     pub fn move_character(
         &mut self,
         character: &mut Character,
@@ -334,10 +335,10 @@ impl World {
         dt: Real,
     ) -> Result<CharacterMove, CaromError> {
         check_finite_vec("character translation", translation)?;
-        if !(dt.is_finite() && dt > 0.0) {
+        if !TIME_STEP_RANGE.contains(&dt) {
             return Err(CaromError::OutOfRange {
                 name: "character time step",
-                expected: "finite and positive",
+                expected: "from 1e-6 s to 10 s, as a world step's",
                 value: dt,
             });
         }
@@ -350,7 +351,10 @@ impl World {
         // the character goes too, so that the two move together.
         let ride = character
             .ground
-            .and_then(|ground| Some(carried(self.body(ground.body)?, ground.anchor, dt)))
+            .and_then(|ground| {
+                let body = self.body(ground.body).filter(|body| body.moves())?;
+                Some(carried(body, ground.anchor, dt))
+            })
             .unwrap_or_else(Vec2::zeros);
 
         let slid = self.slide_character(character, start, start + ride + translation, dt);
