@@ -309,6 +309,10 @@ fn refresh_manifold(
     contact
         .manifold
         .set_anchors(a.center_of_mass(), b.center_of_mass());
+    if contact.manifold.is_empty() {
+        // Apart: a rolling resistance met again starts over, as the points' impulses do.
+        contact.rolling_impulse = 0.0;
+    }
     contact.frame = ManifoldFrame::of(&contact.manifold, (a, shape_a), (b, shape_b));
     settled(contact, colliders, [a, b], pre_solve, false)
 }
