@@ -12,7 +12,6 @@
 use crate::collision::contact::Mixers;
 use crate::dynamics::collider::{Collider, DEFAULT_FRICTION, check_non_negative};
 use crate::error::{CaromError, check_finite};
-use crate::geometry::shape::Shape;
 use crate::math::Real;
 
 /// A surface's material: how it grips, bounces, resists rolling and moves along itself, and
@@ -89,8 +88,10 @@ pub(crate) fn mix(a: &Collider, b: &Collider, mixers: &Mixers) -> Mixed {
         // A mixer's answer is the game's: one that is not finite or is negative counts as 0.
         friction: sanitized(friction),
         restitution: sanitized(restitution),
+        // The rolling radius is how far the shape reaches beyond its core: a circle's or a
+        // capsule's radius, a rounded polygon's rounding, 0 for sharp shapes.
         rolling_resistance: if rolling > 0.0 {
-            rolling * rolling_radius(a.shape()).max(rolling_radius(b.shape()))
+            rolling * a.world_shape().radius().max(b.world_shape().radius())
         } else {
             0.0
         },
@@ -104,15 +105,5 @@ fn sanitized(value: Real) -> Real {
         value
     } else {
         0.0
-    }
-}
-
-/// How far a shape's rolling surface is from its core: what it rolls on.
-fn rolling_radius(shape: &Shape) -> Real {
-    match shape {
-        Shape::Circle(c) => c.radius(),
-        Shape::Capsule(c) => c.radius(),
-        Shape::Polygon(p) => p.radius(),
-        Shape::Segment(_) | Shape::ChainSegment(_) => 0.0,
     }
 }
