@@ -2,11 +2,12 @@
 //! followed downhill, platforms ridden, bodies pushed with a bounded force, and what it
 //! touches reported. Each is driven as a game drives it: a walk velocity, gravity added to
 //! the character's own vertical velocity, the move, the velocity clipped by what it touched,
-//! then the world's step.
+//! then the world's step. And the dynamic character: a body walked by a mover joint on a
+//! pogo leg, within their forces.
 
 use carom::{
-    BodyDef, BodyKind, Character, CharacterDef, CharacterMove, QueryFilter, Real, Shape, Vec2,
-    World, vec2,
+    BodyDef, BodyKind, Character, CharacterDef, CharacterMove, JointDef, QueryFilter, Real, Shape,
+    Vec2, World, vec2,
 };
 
 const DT: Real = 1.0 / 60.0;
@@ -483,4 +484,292 @@ fn its_weight_tips_a_seesaw_it_stands_on() {
         player.step(&mut world, 0.0);
     }
     assert!(world.body(plank).unwrap().angle().abs() < 1e-3);
+}
+
+// The dynamic character: a body that never turns, walked by a mover joint and held up by a
+// pogo leg re-made each step on what a ray from its foot hits, as Box2D's dynamic mover is.
+
+/// How long the leg is, and how far below the foot the ray looks for ground.
+const LEG: Real = 0.9;
+/// Half the walker's box, m (1 m²: 1 kg at density 1).
+const WALKER_HALF: Real = 0.5;
+
+/// A walker: its body, its mover, and its leg if it stands on something.
+struct Walker {
+    body: carom::BodyHandle,
+    mover: carom::JointHandle,
+    leg: Option<carom::JointHandle>,
+    weight: Real,
+}
+
+impl Walker {
+    /// A 1 kg box that never turns, its foot (the middle of its bottom) `height` above
+    /// `x`, with a mover of at most `max_force` N along x.
+    fn new(world: &mut World, reference: carom::BodyHandle, x: Real, height: Real) -> Self {
+        let body = world
+            .add_body(
+                BodyDef::dynamic(Shape::rect(WALKER_HALF, WALKER_HALF))
+                    .position(vec2(x, height + WALKER_HALF))
+                    .friction(0.0)
+                    .fixed_rotation(true),
+            )
+            .unwrap();
+        let mover = world
+            .add_joint(JointDef::mover(
+                reference,
+                body,
+                Vec2::zeros(),
+                vec2(70.0, 0.0),
+            ))
+            .unwrap();
+        let weight = world.body(body).unwrap().mass() * 10.0;
+        Walker {
+            body,
+            mover,
+            leg: None,
+            weight,
+        }
+    }
+
+    fn foot(&self, world: &World) -> Vec2 {
+        world.body(self.body).unwrap().position() - vec2(0.0, WALKER_HALF)
+    }
+
+    /// Walks at `speed` for one step: the leg re-made on what is under the foot, carrying
+    /// on from the last one, then the world's step.
+    fn step(&mut self, world: &mut World, speed: Real) {
+        let mut mover = *world.joint(self.mover).unwrap().kind();
+        if let carom::JointKind::Mover(m) = &mut mover {
+            m.velocity = vec2(speed, 0.0);
+        }
+        world
+            .joint_mut(self.mover)
+            .unwrap()
+            .set_kind(mover)
+            .unwrap();
+        let previous = self.leg.take().map(|leg| {
+            let joint = world.joint(leg).unwrap().clone();
+            world.remove_joint(leg).unwrap();
+            joint
+        });
+        let foot = self.foot(world);
+        let ray = carom::Ray::new(foot, vec2(0.0, -2.0 * LEG));
+        if let Some(hit) = world.cast_ray(&ray, QueryFilter::ALL.excluding(self.body)) {
+            let mut leg = JointDef::pogo(
+                hit.body,
+                self.body,
+                hit.point,
+                foot,
+                hit.normal,
+                LEG,
+                (100.0 * self.weight, 100.0 * self.weight),
+            );
+            if let Some(previous) = &previous {
+                leg = leg.continue_from(previous);
+            }
+            self.leg = Some(world.add_joint(leg).unwrap());
+        }
+        world.step(DT).unwrap();
+    }
+}
+
+fn world_with_gravity(solver: carom::SolverKind) -> World {
+    World::with_settings(carom::WorldSettings {
+        gravity: vec2(0.0, GRAVITY),
+        solver: carom::SolverParams::for_kind(solver),
+        ..carom::WorldSettings::default()
+    })
+    .unwrap()
+}
+
+#[test]
+fn a_dynamic_walker_stands_on_its_leg_and_walks_at_its_speed() {
+    for solver in [
+        carom::SolverKind::SoftStep,
+        carom::SolverKind::SequentialImpulse,
+    ] {
+        let mut world = world_with_gravity(solver);
+        let ground = world
+            .add_body(BodyDef::static_body(Shape::rect(50.0, 0.5)).position(vec2(0.0, -0.5)))
+            .unwrap();
+        // Dropped from 0.3 m above its leg's length.
+        let mut walker = Walker::new(&mut world, ground, 0.0, LEG + 0.3);
+        for _ in 0..120 {
+            walker.step(&mut world, 0.0);
+        }
+        let foot = walker.foot(&world);
+        assert!(
+            (foot.y - LEG).abs() < 0.01,
+            "{solver:?}: the foot stands {} m up, the leg is {LEG}",
+            foot.y
+        );
+        let leg = world.joint(walker.leg.unwrap()).unwrap();
+        let push = leg.reaction_force().y;
+        assert!(
+            (push - walker.weight).abs() < 0.02 * walker.weight,
+            "{solver:?}: the leg pushes {push} N, the walker weighs {}",
+            walker.weight
+        );
+        // 3 m/s, reached at 70 N at most: 1 kg takes 3/70 s. After 2 s it walks at 3 m/s,
+        // still on its leg, still upright.
+        for _ in 0..120 {
+            walker.step(&mut world, 3.0);
+        }
+        let body = world.body(walker.body).unwrap();
+        let v = body.linear_velocity();
+        assert!((v.x - 3.0).abs() < 1e-3, "{solver:?}: walks at {v}");
+        assert!(
+            (walker.foot(&world).y - LEG).abs() < 0.01,
+            "{solver:?}: walking, the foot is {} m up",
+            walker.foot(&world).y
+        );
+        assert_eq!(body.angle(), 0.0, "{solver:?}: a fixed rotation turned");
+        assert_eq!(body.angular_velocity(), 0.0);
+    }
+}
+
+#[test]
+fn a_mover_drives_each_axis_within_its_force_and_leaves_the_other_free() {
+    for solver in [
+        carom::SolverKind::SoftStep,
+        carom::SolverKind::SequentialImpulse,
+    ] {
+        let mut world = world_with_gravity(solver);
+        let reference = world
+            .add_body(BodyDef::static_body(Shape::rect(0.1, 0.1)).position(vec2(0.0, 50.0)))
+            .unwrap();
+        // 2 kg, driven to 3 m/s along x with at most 4 N: 2 m/s² until 1.5 s. Nothing on y:
+        // it falls freely.
+        let body = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 1.0)).position(vec2(0.0, 0.0)))
+            .unwrap();
+        let mover = world
+            .add_joint(JointDef::mover(
+                reference,
+                body,
+                vec2(3.0, 0.0),
+                vec2(4.0, 0.0),
+            ))
+            .unwrap();
+        for _ in 0..60 {
+            world.step(DT).unwrap();
+        }
+        let v = world.body(body).unwrap().linear_velocity();
+        assert!((v.x - 2.0).abs() < 0.02 * 2.0, "{solver:?}: {v} after 1 s");
+        assert!((v.y - GRAVITY).abs() < 1e-3, "{solver:?}: falls at {v}");
+        let force = world.joint(mover).unwrap().reaction_force();
+        assert!((force.x - 4.0).abs() < 1e-3, "{solver:?}: {force}");
+        for _ in 0..60 {
+            world.step(DT).unwrap();
+        }
+        let v = world.body(body).unwrap().linear_velocity();
+        assert!((v.x - 3.0).abs() < 1e-3, "{solver:?}: {v} after 2 s");
+        // Held on y too, with at most 30 N against 20 N of weight: it rises at 5 m/s².
+        world
+            .joint_mut(mover)
+            .unwrap()
+            .set_kind(carom::JointKind::Mover(carom::MoverJoint {
+                velocity: vec2(3.0, 10.0),
+                max_force: vec2(4.0, 30.0),
+            }))
+            .unwrap();
+        let before = world.body(body).unwrap().linear_velocity().y;
+        for _ in 0..30 {
+            world.step(DT).unwrap();
+        }
+        let after = world.body(body).unwrap().linear_velocity().y;
+        assert!(
+            ((after - before) / 0.5 - 5.0).abs() < 0.02 * 5.0,
+            "{solver:?}: {before} to {after} m/s in 0.5 s"
+        );
+    }
+}
+
+#[test]
+fn a_pogo_leg_pushes_and_pulls_no_harder_than_its_bounds() {
+    let mut world = world_with_gravity(carom::SolverKind::SoftStep);
+    let ground = world
+        .add_body(BodyDef::static_body(Shape::rect(50.0, 0.5)).position(vec2(0.0, -0.5)))
+        .unwrap();
+    // A leg too weak to hold the walker: half its weight. It sinks to the ground, the leg
+    // pushing its most the whole way.
+    let body = world
+        .add_body(
+            BodyDef::dynamic(Shape::rect(WALKER_HALF, WALKER_HALF))
+                .position(vec2(0.0, LEG + WALKER_HALF))
+                .fixed_rotation(true),
+        )
+        .unwrap();
+    let weight = world.body(body).unwrap().mass() * 10.0;
+    let leg = world
+        .add_joint(JointDef::pogo(
+            ground,
+            body,
+            vec2(0.0, 0.0),
+            vec2(0.0, LEG),
+            vec2(0.0, 1.0),
+            LEG,
+            (0.5 * weight, 0.0),
+        ))
+        .unwrap();
+    let mut most: Real = 0.0;
+    for _ in 0..30 {
+        world.step(DT).unwrap();
+        most = most.max(world.joint(leg).unwrap().reaction_force().y);
+    }
+    // Falling at g/2 for 0.5 s: 0.625 m down.
+    let drop = LEG + WALKER_HALF - world.body(body).unwrap().position().y;
+    assert!(
+        (drop - 0.625).abs() < 0.02 * 0.625,
+        "sank {drop} m in 0.5 s, expected 0.625"
+    );
+    assert!(most <= 0.5 * weight * 1.0001, "pushed {most} N");
+    // With no pull, a walker thrown up leaves its leg behind: it rises as if the leg were
+    // not there.
+    world.remove_joint(leg).unwrap();
+    world
+        .body_mut(body)
+        .unwrap()
+        .set_position(vec2(0.0, LEG + WALKER_HALF))
+        .unwrap();
+    world
+        .body_mut(body)
+        .unwrap()
+        .set_linear_velocity(vec2(0.0, 5.0))
+        .unwrap();
+    world
+        .add_joint(JointDef::pogo(
+            ground,
+            body,
+            vec2(0.0, 0.0),
+            vec2(0.0, LEG),
+            vec2(0.0, 1.0),
+            LEG,
+            (100.0 * weight, 0.0),
+        ))
+        .unwrap();
+    for _ in 0..30 {
+        world.step(DT).unwrap();
+    }
+    let v = world.body(body).unwrap().linear_velocity().y;
+    assert!((v - 0.0).abs() < 1e-3, "{v} m/s after 0.5 s up at 5 m/s");
+}
+
+#[test]
+fn a_walker_falls_asleep_standing_and_goes_with_its_body() {
+    let mut world = world_with_gravity(carom::SolverKind::SoftStep);
+    let ground = world
+        .add_body(BodyDef::static_body(Shape::rect(50.0, 0.5)).position(vec2(0.0, -0.5)))
+        .unwrap();
+    let mut walker = Walker::new(&mut world, ground, 0.0, LEG);
+    // Standing still on the same leg (not re-made), it rests and sleeps.
+    walker.step(&mut world, 0.0);
+    for _ in 0..240 {
+        world.step(DT).unwrap();
+    }
+    assert!(world.body(walker.body).unwrap().is_sleeping());
+    assert_eq!(world.joints_of(walker.body).len(), 2);
+    world.remove_body(walker.body).unwrap();
+    assert_eq!(world.joint_count(), 0);
+    world.step(DT).unwrap();
 }

@@ -395,7 +395,7 @@ fn a_wheel_rides_its_suspension_and_turns() {
     }
 }
 
-/// A motor joint drives a body (no gravity) to its offset and angle from another.
+/// A motor joint's springs pull a body (no gravity) to its offset and angle from another.
 #[test]
 fn a_motor_joint_drives_to_its_offset() {
     for kind in SOLVERS {
@@ -415,6 +415,8 @@ fn a_motor_joint_drives_to_its_offset() {
         };
         settings.linear_offset = vec2(-1.0, 2.0);
         settings.angular_offset = 1.0;
+        settings.linear_spring = carom::Spring::new(2.0, 1.0);
+        settings.angular_spring = carom::Spring::new(2.0, 1.0);
         world
             .joint_mut(motor)
             .unwrap()
@@ -431,6 +433,86 @@ fn a_motor_joint_drives_to_its_offset() {
             (body.angle() - 1.0).abs() < 0.01,
             "{kind:?}: {}",
             body.angle()
+        );
+    }
+}
+
+/// A motor joint's velocity part at rest is friction against the ground seen from above: a
+/// puck sliding at 4 m/s, held back by at most 2 N, stops after 4 m in 2 s (1 kg). Its
+/// spring part pulls no harder than its cap: a puck 10 m from its target starts off at
+/// 5 m/s² under a 5 N cap.
+#[test]
+fn a_motor_joint_brakes_and_pulls_within_its_caps() {
+    for kind in SOLVERS {
+        let mut world = world_without_gravity(kind);
+        let ground = anchor(&mut world, vec2(0.0, -5.0));
+        let puck = world
+            .add_body(
+                BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                    .position(vec2(0.0, 0.0))
+                    .linear_velocity(vec2(4.0, 0.0))
+                    .angular_velocity(3.0),
+            )
+            .unwrap();
+        let friction = carom::MotorJoint {
+            max_velocity_force: 2.0,
+            max_velocity_torque: 0.5,
+            ..carom::MotorJoint::default()
+        };
+        let brake = world
+            .add_joint(JointDef::new(
+                ground,
+                puck,
+                vec2(0.0, 0.0),
+                vec2(0.0, 0.0),
+                JointKind::Motor(friction),
+            ))
+            .unwrap();
+        step(&mut world, 60);
+        let v = world.body(puck).unwrap().linear_velocity().x;
+        assert!((v - 2.0).abs() < 0.02 * 2.0, "{kind:?}: {v} m/s after 1 s");
+        let force = world.joint(brake).unwrap().reaction_force().x;
+        assert!(
+            (force + 2.0).abs() < 1e-3,
+            "{kind:?}: brakes with {force} N"
+        );
+        step(&mut world, 90);
+        let body = world.body(puck).unwrap();
+        let x = body.position().x;
+        assert!(
+            (x - 4.0).abs() < 0.02 * 4.0,
+            "{kind:?}: stopped after {x} m"
+        );
+        assert!(
+            body.linear_velocity().norm() < 1e-4,
+            "{kind:?}: still moving"
+        );
+        assert!(
+            body.angular_velocity().abs() < 1e-4,
+            "{kind:?}: still turning"
+        );
+        world.remove_joint(brake).unwrap();
+
+        let pull = carom::MotorJoint {
+            linear_offset: vec2(10.0, 0.0),
+            max_spring_force: 5.0,
+            ..carom::MotorJoint::default()
+        };
+        let x0 = world.body(puck).unwrap().position().x;
+        world
+            .add_joint(JointDef::new(
+                ground,
+                puck,
+                vec2(x0, 0.0),
+                vec2(x0, 0.0),
+                JointKind::Motor(pull),
+            ))
+            .unwrap();
+        step(&mut world, 30);
+        let v = world.body(puck).unwrap().linear_velocity().x;
+        assert!(
+            (v - 2.5).abs() < 0.02 * 2.5,
+            "{kind:?}: {v} m/s after 0.5 s"
         );
     }
 }
@@ -593,6 +675,17 @@ fn bad_joints_are_refused() {
     let b = ball(&mut world, vec2(2.0, 0.0), 0.5, 1.0);
     let gone = ball(&mut world, vec2(4.0, 0.0), 0.5, 1.0);
     world.remove_body(gone).unwrap();
+    let hinge_of_another_world = {
+        let mut other = World::new();
+        let (a, b) = (
+            anchor(&mut other, Vec2::zeros()),
+            ball(&mut other, Vec2::zeros(), 0.5, 1.0),
+        );
+        let hinge = other
+            .add_joint(JointDef::revolute(a, b, Vec2::zeros()))
+            .unwrap();
+        other.joint(hinge).unwrap().clone()
+    };
     let cases: Vec<(JointDef, &str)> = vec![
         (JointDef::revolute(a, gone, Vec2::zeros()), "no body"),
         (
@@ -628,6 +721,58 @@ fn bad_joints_are_refused() {
         (
             JointDef::distance(a, b, Vec2::zeros(), Vec2::zeros()),
             "length",
+        ),
+        (
+            JointDef::mover(a, b, Vec2::zeros(), vec2(-1.0, 0.0)),
+            "mover joint max force",
+        ),
+        (
+            JointDef::mover(a, b, vec2(Real::NAN, 0.0), vec2(1.0, 0.0)),
+            "mover joint velocity",
+        ),
+        (
+            JointDef::pogo(
+                a,
+                b,
+                Vec2::zeros(),
+                Vec2::zeros(),
+                Vec2::zeros(),
+                1.0,
+                (1.0, 1.0),
+            ),
+            "pogo joint normal",
+        ),
+        (
+            JointDef::pogo(
+                a,
+                b,
+                Vec2::zeros(),
+                Vec2::zeros(),
+                vec2(0.0, 1.0),
+                -1.0,
+                (1.0, 1.0),
+            ),
+            "pogo joint rest length",
+        ),
+        (
+            JointDef::pogo(
+                a,
+                b,
+                Vec2::zeros(),
+                Vec2::zeros(),
+                vec2(0.0, 1.0),
+                1.0,
+                (-1.0, 1.0),
+            ),
+            "pogo joint max compression",
+        ),
+        (
+            JointDef::motor(a, b, Vec2::zeros(), -1.0, 1.0),
+            "motor joint max spring force",
+        ),
+        (
+            JointDef::motor(a, b, Vec2::zeros(), 1.0, 1.0).continue_from(&hinge_of_another_world),
+            "continue from a joint of another kind",
         ),
     ];
     for (def, expected) in cases {

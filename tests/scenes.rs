@@ -211,9 +211,9 @@ fn the_documented_example_is_a_valid_scene() {
     assert!(collider("shelf").pre_solve() && !collider("shelf").is_sensor());
     assert!(collider("zone").is_sensor() && !collider("zone").pre_solve());
     assert!(!collider("ball").is_sensor() && !collider("ball").pre_solve());
-    // 8 joints, one of each kind; the joint grid's 3 down its columns and 4 across its rows;
+    // 10 joints, one of each kind; the joint grid's 3 down its columns and 4 across its rows;
     // the chain's 6; one in each group.
-    assert_eq!(built.world.joint_count(), 8 + 3 + 4 + 6 + 2);
+    assert_eq!(built.world.joint_count(), 10 + 3 + 4 + 6 + 2);
     let mut kinds: Vec<&str> = built.world.joints().map(|j| j.kind().name()).collect();
     kinds.sort_unstable();
     kinds.dedup();
@@ -224,6 +224,8 @@ fn the_documented_example_is_a_valid_scene() {
             "filter",
             "motor",
             "mouse",
+            "mover",
+            "pogo",
             "prismatic",
             "revolute",
             "weld",

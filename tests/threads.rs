@@ -4,7 +4,7 @@
 //! contacts.
 
 use carom::{
-    BodyDef, Effect, Effects, Shape, SolverKind, SolverParams, World, WorldSettings, vec2,
+    BodyDef, Effect, Effects, JointDef, Shape, SolverKind, SolverParams, World, WorldSettings, vec2,
 };
 
 /// A pyramid of 92 in the base (4278 boxes, about 12,700 contacts: enough that the
@@ -176,6 +176,60 @@ fn joints_give_the_same_world_on_every_thread_count() {
                 world.step(1.0 / 60.0).unwrap();
             }
             assert_eq!(world.stats().joints, 2 * n * (n - 1));
+            world.state_hash()
+        })
+    };
+    let one = run(1);
+    assert_eq!(run(2), one);
+    assert_eq!(run(3), one);
+}
+
+/// 300 dynamic walkers, each walked by a mover joint and held up by a pogo leg (600 joints:
+/// two colours of 300, each shared among threads), in two crowds walking into each other:
+/// the same world on every thread count.
+#[test]
+fn walkers_give_the_same_world_on_every_thread_count() {
+    let run = |threads: usize| {
+        carom_tests::on_threads(threads, || {
+            let mut world = World::new();
+            let ground = world
+                .add_body(BodyDef::static_body(Shape::rect(400.0, 0.5)).position(vec2(0.0, -0.5)))
+                .unwrap();
+            for i in 0..300 {
+                let x = (i as f32 - 150.0) * 1.1;
+                let body = world
+                    .add_body(
+                        BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                            .position(vec2(x, 1.5 + 0.01 * (i % 7) as f32))
+                            .friction(0.0)
+                            .fixed_rotation(true),
+                    )
+                    .unwrap();
+                let speed = if x < 0.0 { 2.0 } else { -1.5 };
+                world
+                    .add_joint(JointDef::mover(
+                        ground,
+                        body,
+                        vec2(speed, 0.0),
+                        vec2(30.0, 0.0),
+                    ))
+                    .unwrap();
+                world
+                    .add_joint(JointDef::pogo(
+                        ground,
+                        body,
+                        vec2(x, 0.0),
+                        vec2(x, 1.0),
+                        vec2(0.0, 1.0),
+                        0.9,
+                        (1000.0, 1000.0),
+                    ))
+                    .unwrap();
+            }
+            for _ in 0..120 {
+                world.step(1.0 / 60.0).unwrap();
+            }
+            assert_eq!(world.stats().joints, 600);
             world.state_hash()
         })
     };

@@ -212,7 +212,7 @@ pub fn run(bytes: &[u8]) -> Tally {
                 };
                 let anchor = input.point(20.0);
                 let axis = input.point(1.0);
-                let def = match input.below(9) {
+                let def = match input.below(11) {
                     0 => JointDef::distance(a, b, anchor, input.point(20.0)),
                     1 => JointDef::revolute(a, b, anchor).limits(input.real(3.0), input.real(3.0)),
                     2 => JointDef::prismatic(a, b, anchor, axis)
@@ -224,6 +224,16 @@ pub fn run(bytes: &[u8]) -> Tally {
                     }
                     6 => JointDef::mouse(a, anchor, input.real(1e4)),
                     7 => JointDef::filter(a, b),
+                    8 => JointDef::mover(a, b, input.point(20.0), input.point(500.0)),
+                    9 => JointDef::pogo(
+                        a,
+                        b,
+                        anchor,
+                        input.point(20.0),
+                        axis,
+                        input.real(3.0),
+                        (input.real(1e4), input.real(1e4)),
+                    ),
                     _ => JointDef::rope(a, b, anchor, input.point(20.0), input.real(10.0)),
                 }
                 .collide_connected(input.flag())

@@ -37,12 +37,13 @@
 //! | a joint's bodies, anchors in each body, reference angle, axis (in A's frame) | `localFrameA` at A's anchor turned to the axis (a slider's or wheel's axis is the frame's x), `localFrameB` at B's anchor turned by the axis angle less the reference angle | yes: the joint's angle and translation are 0 where carom's are |
 //! | `collide_connected` | `collideConnected` | yes |
 //! | soft step's `joint_hertz` (60), `joint_damping_ratio` (2) | each joint's `constraintHertz`, `constraintDampingRatio` (60, 2) | yes; both cap it at a quarter of the substep rate |
-//! | distance joint: rigid rod / spring (`hertz`, `damping_ratio`) with `limits` / rope (0 Hz, limits) | `length`, `enableSpring`, `hertz`, `dampingRatio`, `enableLimit`, `minLength`, `maxLength` | yes (Box2D raises a lower limit below the slop, 5 mm, to it) |
+//! | distance joint: rigid rod / spring (`hertz`, `damping_ratio`) with `limits` / rope (0 Hz, limits), `spring_force`, `motor` | `length`, `enableSpring`, `hertz`, `dampingRatio`, `enableLimit`, `minLength`, `maxLength`, `lowerSpringForce`, `upperSpringForce`, `enableMotor`, `motorSpeed`, `maxMotorForce` | yes (Box2D raises a lower limit below the slop, 5 mm, to it) |
 //! | revolute joint: limits, motor (speed, torque), spring toward `target_angle` | `enableLimit`, `lowerAngle`, `upperAngle`, `enableMotor`, `motorSpeed`, `maxMotorTorque`, `enableSpring`, `hertz`, `dampingRatio`, `targetAngle` | yes; limits beyond Box2D's ±0.99π are narrowed to it (noted) |
 //! | prismatic joint: axis, limits, motor, spring toward `target_translation` | the frame's x axis, the same settings, `targetTranslation` | yes |
 //! | wheel joint: axis, suspension spring, limits, motor | the frame's x axis, `enableSpring`, ..., `maxMotorTorque` | yes |
 //! | weld joint: linear and angular springs (none: rigid) | `linearHertz`, `angularHertz` and damping ratios (0 Hz: rigid) | yes |
 //! | filter joint | `b2FilterJointDef` | yes |
+//! | motor joint: velocity part and spring part, each with its cap; `linear_offset`, `angular_offset` | `linearVelocity`, `maxVelocityForce`, `angularVelocity`, `maxVelocityTorque`, `linearHertz`, ..., `maxSpringTorque`; the offsets move `localFrameA` | yes |
 //! | an unbounded motor force | `f32::MAX` | yes |
 //!
 //! ## What does not map
@@ -71,9 +72,8 @@
 //!   contact softening (mass-ratio softening) off; one worker thread unless
 //!   [`Box2dWorld::with_workers`] asks for more (Box2D's built-in scheduler).
 //! - The tutorial drag model has no Box2D counterpart (no damping is set).
-//! - Motor joints: Box2D 3.2's drives relative velocities and springs toward its frame;
-//!   carom's closes a fraction of its offset per step within force and torque caps, as Box2D
-//!   3.0's did. Mouse joints: Box2D 3.2 has none. Both are left out, noted.
+//! - Mouse joints: Box2D 3.2 has none. Mover and pogo joints: the Box2D that boxdd 0.6
+//!   bundles has neither (Box2D's repository does). They are left out, noted.
 //! - Break thresholds: Box2D reports a joint past its force or torque threshold and leaves
 //!   breaking it to the program; they are left out, noted. [`Box2dWorld::notes`] lists
 //!   everything left out, and `carom-bench` prints it under its table.
@@ -88,8 +88,8 @@ use std::collections::HashMap;
 
 use boxdd::{
     BodyBuilder, BodyId, BodyType, ConstraintTuning, DistanceJointDef, Filter, FilterJointDef,
-    Foundation, JointBase, JointId, Position, PrismaticJointDef, RevoluteJointDef, ShapeDef,
-    SurfaceMaterial, Transform, Vec2, WeldJointDef, WheelJointDef, WorldBuilder, shapes,
+    Foundation, JointBase, JointId, MotorJointDef, Position, PrismaticJointDef, RevoluteJointDef,
+    ShapeDef, SurfaceMaterial, Transform, Vec2, WeldJointDef, WheelJointDef, WorldBuilder, shapes,
 };
 use boxdd_sys::ffi;
 use carom::{
@@ -464,10 +464,9 @@ impl Box2dWorld {
                 "a mouse joint: not translated (Box2D 3.2 has no mouse joint; its samples drag \
                  bodies with a motor joint's spring instead)",
             ),
-            JointKind::Motor(_) => Some(
-                "a motor joint: not translated (Box2D 3.2's motor joint drives velocities and \
-                 springs toward a frame; carom's closes a fraction of its offset per step, \
-                 capped, as Box2D 3.0's did)",
+            JointKind::Mover(_) | JointKind::Pogo(_) => Some(
+                "a mover or pogo joint: not translated (the Box2D that boxdd 0.6 bundles has \
+                 neither)",
             ),
             _ => None,
         };
@@ -487,8 +486,14 @@ impl Box2dWorld {
             JointKind::Wheel(j) => j.axis.y.atan2(j.axis.x),
             _ => 0.0,
         };
-        let [la, lb] = joint.local_anchors();
-        let frame_a = Transform::from_pos_angle(Vec2::new(la.x, la.y), axis_angle).map_err(err)?;
+        let [mut la, lb] = joint.local_anchors();
+        // Box2D's motor joint pulls frame B onto frame A: carom's offsets move frame A.
+        let mut angle_a = axis_angle;
+        if let JointKind::Motor(m) = kind {
+            la += m.linear_offset;
+            angle_a += m.angular_offset;
+        }
+        let frame_a = Transform::from_pos_angle(Vec2::new(la.x, la.y), angle_a).map_err(err)?;
         let frame_b =
             Transform::from_pos_angle(Vec2::new(lb.x, lb.y), axis_angle - joint.reference_angle())
                 .map_err(err)?;
@@ -510,6 +515,17 @@ impl Box2dWorld {
                         .enable_spring(true)
                         .hertz(spring.hertz)
                         .damping_ratio(spring.damping_ratio);
+                    if let Some(force) = d.spring_force {
+                        def = def
+                            .lower_spring_force(force.lower.max(-f32::MAX))
+                            .upper_spring_force(finite(force.upper));
+                    }
+                    if let Some(motor) = d.motor {
+                        def = def
+                            .enable_motor(true)
+                            .motor_speed(motor.speed)
+                            .max_motor_force(finite(motor.max_force));
+                    }
                     if let Some(limits) = d.limits {
                         def = def
                             .enable_limit(true)
@@ -602,8 +618,24 @@ impl Box2dWorld {
                 }
                 self.world.create_wheel_joint(&def)
             }
+            JointKind::Motor(m) => {
+                let def = MotorJointDef::new(base)
+                    .linear_velocity(Vec2::new(m.linear_velocity.x, m.linear_velocity.y))
+                    .max_velocity_force(finite(m.max_velocity_force))
+                    .angular_velocity(m.angular_velocity)
+                    .max_velocity_torque(finite(m.max_velocity_torque))
+                    .linear_hertz(m.linear_spring.hertz)
+                    .linear_damping_ratio(m.linear_spring.damping_ratio)
+                    .max_spring_force(finite(m.max_spring_force))
+                    .angular_hertz(m.angular_spring.hertz)
+                    .angular_damping_ratio(m.angular_spring.damping_ratio)
+                    .max_spring_torque(finite(m.max_spring_torque));
+                self.world.create_motor_joint(&def)
+            }
             JointKind::Filter => self.world.create_filter_joint(&FilterJointDef::new(base)),
-            JointKind::Mouse(_) | JointKind::Motor(_) => unreachable!("noted and skipped above"),
+            JointKind::Mouse(_) | JointKind::Mover(_) | JointKind::Pogo(_) => {
+                unreachable!("noted and skipped above")
+            }
         };
         created
             .map(Some)

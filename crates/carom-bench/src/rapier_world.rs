@@ -729,10 +729,10 @@ fn generic_joint(
         }
         // No axis locked: the joint only keeps the bodies from colliding (and in one island).
         JointKind::Filter => builder(JointAxesMask::empty()),
-        JointKind::Motor(_) => {
+        JointKind::Motor(_) | JointKind::Mover(_) | JointKind::Pogo(_) => {
             notes.add(
-                "a motor joint: not translated (Rapier has no joint that closes a fraction of \
-                 an offset per step within a force cap)",
+                "a motor, mover or pogo joint: not translated (Rapier has no joint that drives \
+                 a body's velocity or pose within a force cap without a fixed axis)",
             );
             return None;
         }

@@ -262,6 +262,110 @@ fn a_hinge_motor_and_a_hinge_spring_act_alike() {
     same_periods(periods, 0.01, "torsion spring");
 }
 
+/// Without gravity: a puck pulled by a motor joint's spring toward an offset and turned by
+/// its angular spring, a puck braked by its velocity part, and a ball reeled out by a
+/// distance joint's motor against a spring that only pulls, bounded. Box2D follows carom's
+/// paths.
+#[test]
+fn motor_joints_and_distance_motors_move_as_box2d_s() {
+    let mut world = World::new();
+    world
+        .update_settings(|s| {
+            s.gravity = Vec2::zeros();
+            s.effects.set(Effect::Sleeping, false);
+        })
+        .unwrap();
+    let ground = world
+        .add_body(BodyDef::static_body(Shape::rect(0.1, 0.1)))
+        .unwrap();
+    let pulled = world
+        .add_body(BodyDef::dynamic(Shape::rect(0.3, 0.3)).position(vec2(1.0, 0.0)))
+        .unwrap();
+    world
+        .add_joint(JointDef::new(
+            ground,
+            pulled,
+            vec2(1.0, 0.0),
+            vec2(1.0, 0.0),
+            carom::JointKind::Motor(carom::MotorJoint {
+                linear_offset: vec2(-1.0, 2.0),
+                angular_offset: 1.0,
+                linear_spring: carom::Spring::new(1.0, 0.7),
+                max_spring_force: 2.0,
+                angular_spring: carom::Spring::new(1.0, 0.7),
+                max_spring_torque: 0.5,
+                ..carom::MotorJoint::default()
+            }),
+        ))
+        .unwrap();
+    let braked = world
+        .add_body(
+            BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                .position(vec2(5.0, 0.0))
+                .linear_velocity(vec2(2.0, 1.0))
+                .angular_velocity(2.0),
+        )
+        .unwrap();
+    world
+        .add_joint(JointDef::new(
+            ground,
+            braked,
+            vec2(5.0, 0.0),
+            vec2(5.0, 0.0),
+            carom::JointKind::Motor(carom::MotorJoint {
+                max_velocity_force: 1.0,
+                max_velocity_torque: 0.2,
+                ..carom::MotorJoint::default()
+            }),
+        ))
+        .unwrap();
+    let reeled = world
+        .add_body(BodyDef::dynamic(Shape::circle(0.2)).position(vec2(0.0, -1.0)))
+        .unwrap();
+    world
+        .add_joint(
+            JointDef::distance(ground, reeled, Vec2::zeros(), vec2(0.0, -1.0))
+                .spring(2.0, 0.0)
+                .spring_force(-0.5, 0.0)
+                .motor_drive(1.0, 3.0),
+        )
+        .unwrap();
+    let box2d = Box2dWorld::from_carom(&world).unwrap();
+    assert_eq!(
+        box2d.joint_count().unwrap(),
+        3,
+        "{:?}",
+        box2d.notes().lines()
+    );
+    let mut worst = [0.0_f32; 3];
+    let mut box2d = box2d;
+    for _ in 0..180 {
+        world.step(DT).unwrap();
+        box2d.step(DT).unwrap();
+        for (i, body) in [pulled, braked, reeled].into_iter().enumerate() {
+            let b = world.body(body).unwrap();
+            let [x, y] = box2d.position(i + 1).unwrap();
+            let gap = (b.position() - vec2(x, y)).norm();
+            let turn = (b.angle() - box2d.angle(i + 1).unwrap()).abs();
+            worst[i] = worst[i].max(gap).max(turn);
+        }
+    }
+    for (what, gap) in ["spring-pulled puck", "braked puck", "reeled ball"]
+        .iter()
+        .zip(worst)
+    {
+        assert!(gap < 0.01, "{what}: Box2D strays {gap} m or rad from carom");
+    }
+    // And they got somewhere: the pulled puck near its target, the braked one stopped.
+    let p = world.body(pulled).unwrap();
+    assert!(
+        (p.position() - vec2(0.0, 2.0)).norm() < 0.05,
+        "{}",
+        p.position()
+    );
+    assert!(world.body(braked).unwrap().linear_velocity().norm() < 1e-4);
+}
+
 #[test]
 fn sliders_follow_their_axis_to_their_limits_and_spring_at_their_rate() {
     // A box on a slider tilted 30° below the horizontal slides down it to its limit at 0.5 m;
@@ -519,12 +623,21 @@ fn joints_a_peer_cannot_express_are_noted_not_dropped_silently() {
         .add_joint(JointDef::motor(pivot, bob, at, 10.0, 1.0))
         .unwrap();
     world
+        .add_joint(JointDef::mover(pivot, bob, Vec2::zeros(), vec2(1.0, 0.0)))
+        .unwrap();
+    world
         .add_joint(JointDef::revolute(pivot, bob, Vec2::zeros()).break_force(100.0))
         .unwrap();
     let box2d = Box2dWorld::from_carom(&world).unwrap();
     let rapier = RapierWorld::from_carom(&world, DT).unwrap();
-    for notes in [box2d.notes(), rapier.notes()] {
-        for what in ["mouse joint", "motor joint", "break force"] {
+    for (notes, whats) in [
+        (box2d.notes(), &["mouse joint", "mover", "break force"][..]),
+        (
+            rapier.notes(),
+            &["mouse joint", "motor", "mover", "break force"][..],
+        ),
+    ] {
+        for what in whats {
             assert!(
                 notes.mentions(what),
                 "{what} not noted: {:?}",
@@ -532,8 +645,8 @@ fn joints_a_peer_cannot_express_are_noted_not_dropped_silently() {
             );
         }
     }
-    // The hinge is there; the other two are not.
-    assert_eq!(box2d.joint_count().unwrap(), 1);
+    // Box2D has the hinge and the motor joint; Rapier the hinge.
+    assert_eq!(box2d.joint_count().unwrap(), 2);
     assert_eq!(rapier.joint_count(), 1);
 }
 

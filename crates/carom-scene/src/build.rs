@@ -11,7 +11,8 @@ use crate::spawn::SpawnSchedule;
 use carom::{
     BodyDef, BodyHandle, BodyKind, CaromError, ChainDef, ColliderDef, Color, DebugDraw,
     DistanceJoint, DrawFlags, DrawOptions, JointDef, JointKind, Limits, MotorJoint, MouseJoint,
-    PrismaticJoint, Real, RevoluteJoint, Shape, Surface, Vec2, WeldJoint, WheelJoint, World, vec2,
+    MoverJoint, PogoJoint, PrismaticJoint, Real, RevoluteJoint, Shape, Surface, Vec2, WeldJoint,
+    WheelJoint, World, vec2,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
@@ -450,6 +451,7 @@ fn body_def_of(spec: &BodySpec) -> Result<BodyDef, String> {
         .angular_velocity(spec.angular_velocity)
         .damping(material.damping.0, material.damping.1)
         .bullet(spec.bullet)
+        .fixed_rotation(spec.fixed_rotation)
         .awake(spec.awake)
         .sleep_threshold(spec.sleep_threshold);
     def.colliders = colliders;
@@ -659,17 +661,47 @@ impl PendingJoint {
                 motor,
             }),
             JointKindSpec::Motor {
+                linear_velocity,
+                max_velocity_force,
+                angular_velocity,
+                max_velocity_torque,
                 linear_offset,
                 angular_offset,
-                max_force,
-                max_torque,
-                correction_factor,
+                linear_spring,
+                max_spring_force,
+                angular_spring,
+                max_spring_torque,
             } => JointKind::Motor(MotorJoint {
+                linear_velocity: point(linear_velocity),
+                max_velocity_force,
+                angular_velocity,
+                max_velocity_torque,
                 linear_offset: point(linear_offset),
                 angular_offset,
+                linear_spring,
+                max_spring_force,
+                angular_spring,
+                max_spring_torque,
+            }),
+            JointKindSpec::Mover {
+                velocity,
                 max_force,
-                max_torque,
-                correction_factor,
+            } => JointKind::Mover(MoverJoint {
+                velocity: point(velocity),
+                max_force: point(max_force),
+            }),
+            JointKindSpec::Pogo {
+                normal,
+                rest_length,
+                spring,
+                max_compression,
+                max_tension,
+            } => JointKind::Pogo(PogoJoint {
+                normal: point(normal),
+                rest_length,
+                spring,
+                max_compression,
+                max_tension,
             }),
             JointKindSpec::Mouse {
                 target,

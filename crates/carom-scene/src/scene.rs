@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 /// The version of the scene format this crate reads and writes. It changes when a file
 /// written for one version would read differently, or not at all, in another; a saved state
 /// in a scene has its own version as well (carom's save format).
-pub const SCENE_FORMAT: u32 = 1;
+pub const SCENE_FORMAT: u32 = 2;
 
 fn this_format() -> u32 {
     SCENE_FORMAT
@@ -349,6 +349,9 @@ pub struct BodySpec {
     /// Swept against moving bodies too.
     #[serde(default)]
     pub bullet: bool,
+    /// A dynamic body that never turns (a character standing upright).
+    #[serde(default)]
+    pub fixed_rotation: bool,
     /// Starts awake; a dynamic body that starts asleep waits, unsolved, until something
     /// touches it.
     #[serde(default = "yes")]
@@ -737,21 +740,65 @@ pub enum JointKindSpec {
         #[serde(default)]
         motor: Option<Motor>,
     },
-    /// Drives B toward an offset and angle from A with at most `max_force` and `max_torque`.
+    /// Drives B relative to A (as carom's `MotorJoint`): a velocity part and a spring part
+    /// toward offsets from where B starts, each doing nothing while its cap is 0.
     Motor {
-        /// Where B's anchor should be from A's, in A's frame, m. Default where it starts.
+        /// B's anchor's velocity relative to A's, in the world, m/s.
+        #[serde(default)]
+        linear_velocity: Pair,
+        /// N (0: no linear velocity part).
+        #[serde(default)]
+        max_velocity_force: f32,
+        /// B's spin relative to A's, rad/s.
+        #[serde(default)]
+        angular_velocity: f32,
+        /// N·m (0: no angular velocity part).
+        #[serde(default)]
+        max_velocity_torque: f32,
+        /// Where the spring pulls B's anchor from A's, in A's frame, m. Default where it starts.
         #[serde(default)]
         linear_offset: Pair,
-        /// B's angle from A's should be this more than at the start, rad.
+        /// The angle the spring turns B to from A's, more than at the start, rad.
         #[serde(default)]
         angular_offset: f32,
-        /// N.
-        max_force: f32,
-        /// N·m.
-        max_torque: f32,
-        /// Fraction of the error closed per step, 0..1. Default 0.3.
-        #[serde(default = "correction")]
-        correction_factor: f32,
+        /// Default 4 Hz, critically damped.
+        #[serde(default = "motor_spring")]
+        linear_spring: Spring,
+        /// N (0: no linear spring).
+        #[serde(default)]
+        max_spring_force: f32,
+        /// Default 4 Hz, critically damped.
+        #[serde(default = "motor_spring")]
+        angular_spring: Spring,
+        /// N·m (0: no angular spring).
+        #[serde(default)]
+        max_spring_torque: f32,
+    },
+    /// Drives B's velocity relative to A's with at most `max_force` on each world axis, not
+    /// turning it (a dynamic character's legs; the bodies still collide).
+    Mover {
+        /// m/s, in the world.
+        #[serde(default)]
+        velocity: Pair,
+        /// N on x and on y (0: that axis is free).
+        max_force: Pair,
+    },
+    /// A leg holding B's `anchor_b` (the foot) `rest_length` above A's `anchor` on the
+    /// ground, whose normal there is `normal` (the bodies still collide).
+    Pogo {
+        /// The ground's normal, in the world. Default up.
+        #[serde(default = "up")]
+        normal: Pair,
+        /// m.
+        rest_length: f32,
+        /// Default 5 Hz, damping ratio 0.8.
+        #[serde(default = "pogo_spring")]
+        spring: Spring,
+        /// The most push, N.
+        max_compression: f32,
+        /// The most pull, N.
+        #[serde(default)]
+        max_tension: f32,
     },
     /// Pulls body B's point at `anchor` toward `target` (both names the same body).
     Mouse {
@@ -767,16 +814,20 @@ pub enum JointKindSpec {
     Filter,
 }
 
+fn motor_spring() -> Spring {
+    Spring::new(4.0, 1.0)
+}
+
+fn pogo_spring() -> Spring {
+    Spring::new(5.0, 0.8)
+}
+
 fn up() -> Pair {
     (0.0, 1.0)
 }
 
 fn suspension() -> Option<Spring> {
     Some(Spring::new(4.0, 0.7))
-}
-
-fn correction() -> f32 {
-    0.3
 }
 
 fn mouse_spring() -> Spring {

@@ -101,7 +101,8 @@ pub use geometry::shape::{
 };
 pub use joint::{
     Anchors, DistanceJoint, Joint, JointDef, JointEvent, JointHandle, JointKind, Limits, Motor,
-    MotorJoint, MouseJoint, PrismaticJoint, RevoluteJoint, Spring, WeldJoint, WheelJoint,
+    MotorJoint, MouseJoint, MoverJoint, PogoJoint, PrismaticJoint, RevoluteJoint, Spring,
+    WeldJoint, WheelJoint,
 };
 pub use math::{Isometry, Mat3, Real, Rot, Vec2, angle_of, atan2, rotation, vec2};
 pub use solver::{SolverKind, SolverParams};

@@ -78,6 +78,41 @@ fn character_example() -> Result<(), carom::CaromError> {
     Ok(())
 }
 
+#[rustfmt::skip]
+fn dynamic_character_example() -> Result<(), carom::CaromError> {
+    use carom::{BodyDef, JointDef, QueryFilter, Ray, Shape, World, vec2};
+
+    let mut world = World::new();
+    let ground = world.add_body(BodyDef::static_body(Shape::rect(20.0, 0.5)).position(vec2(0.0, -0.5)))?;
+    let hero = world.add_body(
+        BodyDef::dynamic(Shape::rect(0.3, 0.5)).position(vec2(0.0, 1.4)).friction(0.0).fixed_rotation(true),
+    )?;
+    let weight = world.body(hero).unwrap().mass() * 10.0;
+    // Walk right at 2 m/s with at most 50 N along x; y is left to gravity and the leg.
+    world.add_joint(JointDef::mover(ground, hero, vec2(2.0, 0.0), vec2(50.0, 0.0)))?;
+    let mut leg = None;
+    for _ in 0..60 {
+        let foot = world.body(hero).unwrap().position() - vec2(0.0, 0.5);
+        let previous = leg.take().map(|leg| world.remove_joint(leg)).transpose()?;
+        let down = Ray::new(foot, vec2(0.0, -1.8));
+        if let Some(hit) = world.cast_ray(&down, QueryFilter::ALL.excluding(hero)) {
+            let mut def = JointDef::pogo(
+                hit.body, hero, hit.point, foot, hit.normal, 0.9, (50.0 * weight, 50.0 * weight),
+            );
+            if let Some(previous) = &previous {
+                def = def.continue_from(previous);
+            }
+            leg = Some(world.add_joint(def)?);
+        }
+        world.step(1.0 / 60.0)?;
+    }
+    let body = world.body(hero).unwrap();
+    assert!((body.linear_velocity().x - 2.0).abs() < 0.01);
+    assert!((body.position().y - 1.4).abs() < 0.02); // the foot 0.9 m up
+    assert_eq!(body.angle(), 0.0);
+    Ok(())
+}
+
 /// The README's example: a program of one's own crate, its `main` nested here.
 #[rustfmt::skip]
 fn own_crate_example() -> Result<(), carom::CaromError> {
@@ -113,6 +148,7 @@ fn the_readme_examples_run() {
     sensor_example().unwrap();
     shape_cast_example().unwrap();
     character_example().unwrap();
+    dynamic_character_example().unwrap();
 }
 
 /// Lines without their leading spaces, blank ones dropped.
@@ -154,7 +190,7 @@ fn every_rust_example_in_the_features_guide_is_one_of_these() {
     let guide = include_str!("../../../docs/features.md");
     assert_eq!(
         examples_in("docs/features.md", guide),
-        4,
+        5,
         "a new example in docs/features.md: add it here"
     );
 }

@@ -100,6 +100,11 @@ fn draw_joint(joint: &Joint, a: &Body, b: &Body, size: Real, out: &mut impl Debu
             link(out);
         }
         JointKind::Weld(_) | JointKind::Motor(_) => link(out),
+        // A mover drives B's centre: a dot there. A leg is a line from the ground to the foot.
+        JointKind::Mover(_) => {
+            out.point(b.center_of_mass(), 2.0 * JOINT_ANCHOR_SIZE, palette::JOINT)
+        }
+        JointKind::Pogo(_) => out.segment(anchor_a, anchor_b, JOINT_WIDTH, palette::JOINT),
     }
     out.point(anchor_a, JOINT_ANCHOR_SIZE, palette::JOINT_ANCHOR);
     out.point(anchor_b, JOINT_ANCHOR_SIZE, palette::JOINT_ANCHOR);

@@ -70,6 +70,10 @@ pub struct BodyDef {
         serde(default = "crate::dynamics::body_def::sweep_threshold")
     )]
     pub sweep_threshold: Real,
+    /// A dynamic body that never turns, whatever pushes it (Box2D's angular motion lock): a
+    /// character standing upright. Default false.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub fixed_rotation: bool,
 }
 
 /// [`crate::SLEEP_THRESHOLD`], the default of [`BodyDef::sleep_threshold`] in saved
@@ -111,6 +115,7 @@ impl BodyDef {
             awake: true,
             sleep_threshold: crate::constants::SLEEP_THRESHOLD,
             sweep_threshold: crate::constants::SWEEP_THRESHOLD,
+            fixed_rotation: false,
         }
     }
 
@@ -278,6 +283,12 @@ impl BodyDef {
     /// [`BodyDef::sweep_threshold`]).
     pub fn sweep_threshold(mut self, fraction: Real) -> Self {
         self.sweep_threshold = fraction;
+        self
+    }
+
+    /// Keeps a dynamic body from turning (see [`BodyDef::fixed_rotation`]).
+    pub fn fixed_rotation(mut self, fixed: bool) -> Self {
+        self.fixed_rotation = fixed;
         self
     }
 }

@@ -1,6 +1,6 @@
 //! What each kind of joint holds, and the settings the kinds share: springs, motors, limits.
 
-use crate::error::{CaromError, check_finite_not_negative};
+use crate::error::{CaromError, check_finite_not_negative, check_finite_vec};
 use crate::math::{Real, Vec2, vec2};
 
 /// A soft spring: its natural frequency and damping ratio. Frequency 0 is no spring at all
@@ -158,33 +158,103 @@ impl Default for WheelJoint {
     }
 }
 
-/// Drives B toward a pose relative to A with at most so much force and torque: a character
-/// pushed around, a top-down body with friction against the ground.
+/// Drives B relative to A in two parts, each with its own force and torque caps, as Box2D
+/// 3.2's motor joint does: a velocity part (B's anchor moves at `linear_velocity` relative
+/// to A's, and B turns at `angular_velocity` relative to A) and a spring part (B's anchor
+/// is pulled to `linear_offset` from A's anchor, and B's angle to `angular_offset`, both
+/// relative to A). A part whose cap is 0 does nothing, so the default does nothing.
+///
+/// A top-down body with friction against the ground is the velocity part at rest with the
+/// friction force as its cap; a body dragged toward a target is the spring part.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct MotorJoint {
-    /// Where B's anchor should be relative to A's, in A's frame, m.
+    /// The velocity B's anchor is driven at relative to A's, in the world, m/s.
+    pub linear_velocity: Vec2,
+    /// The most force the velocity part applies, N (0: no linear velocity part).
+    pub max_velocity_force: Real,
+    /// The rate B is turned at relative to A, rad/s.
+    pub angular_velocity: Real,
+    /// The most torque the velocity part applies, N·m (0: no angular velocity part).
+    pub max_velocity_torque: Real,
+    /// Where the spring pulls B's anchor, relative to A's anchor in A's frame, m.
     pub linear_offset: Vec2,
-    /// B's angle relative to A's (less the reference angle) it should have, rad.
+    /// The angle the spring turns B to relative to A (less the reference angle), rad.
     pub angular_offset: Real,
-    /// N, not negative.
-    pub max_force: Real,
-    /// N·m, not negative.
-    pub max_torque: Real,
-    /// How much of the offset's error is closed per second, as a fraction of the step rate,
-    /// in `[0, 1]`.
-    pub correction_factor: Real,
+    /// The spring pulling the anchor (0 Hz: none).
+    pub linear_spring: Spring,
+    /// The most force the linear spring applies, N.
+    pub max_spring_force: Real,
+    /// The spring turning B (0 Hz: none).
+    pub angular_spring: Spring,
+    /// The most torque the angular spring applies, N·m.
+    pub max_spring_torque: Real,
 }
 
 impl Default for MotorJoint {
     fn default() -> Self {
         MotorJoint {
+            linear_velocity: Vec2::zeros(),
+            max_velocity_force: 0.0,
+            angular_velocity: 0.0,
+            max_velocity_torque: 0.0,
             linear_offset: Vec2::zeros(),
             angular_offset: 0.0,
-            max_force: 1.0,
-            max_torque: 1.0,
-            correction_factor: 0.3,
+            linear_spring: Spring::new(4.0, 1.0),
+            max_spring_force: 0.0,
+            angular_spring: Spring::new(4.0, 1.0),
+            max_spring_torque: 0.0,
+        }
+    }
+}
+
+/// Drives B's velocity relative to A's with at most so much force on each world axis, and
+/// leaves its rotation alone: how a dynamic character walks (Box2D's mover joint). An axis
+/// whose force is 0 is free, so a walker driven along x still falls under gravity.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
+pub struct MoverJoint {
+    /// The velocity B is driven at relative to A, in the world, m/s.
+    pub velocity: Vec2,
+    /// The most force on each world axis (x, y), N, not negative.
+    pub max_force: Vec2,
+}
+
+/// A leg: a spring that holds B's foot (its anchor) `rest_length` above a point on the
+/// ground (A's anchor), pushing along the ground's normal with at most `max_compression`
+/// and pulling with at most `max_tension` (Box2D's pogo joint). The spring sets the speed
+/// of the foot, not a force, so it holds any mass at its rest length as long as the forces
+/// suffice; the length is measured along B's own up (its frame's +y).
+///
+/// It does not look for the ground: re-make it on what a ray from the foot hits as the
+/// character moves ([`crate::JointDef::continue_from`] keeps the leg's momentum).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
+pub struct PogoJoint {
+    /// The ground's normal (in the world when the joint is defined from world points, in A's
+    /// frame once made); a unit vector.
+    pub normal: Vec2,
+    /// The length the leg holds, m, not negative.
+    pub rest_length: Real,
+    /// The leg's spring (0 Hz: the leg does nothing).
+    pub spring: Spring,
+    /// The most force pushing B away from the ground, N.
+    pub max_compression: Real,
+    /// The most force pulling B toward the ground, N (0 lets it jump off).
+    pub max_tension: Real,
+}
+
+impl Default for PogoJoint {
+    fn default() -> Self {
+        PogoJoint {
+            normal: vec2(0.0, 1.0),
+            rest_length: 1.0,
+            spring: Spring::new(5.0, 0.8),
+            max_compression: 0.0,
+            max_tension: 0.0,
         }
     }
 }
@@ -230,6 +300,10 @@ pub enum JointKind {
     Wheel(WheelJoint),
     /// See [`MotorJoint`].
     Motor(MotorJoint),
+    /// See [`MoverJoint`].
+    Mover(MoverJoint),
+    /// See [`PogoJoint`].
+    Pogo(PogoJoint),
     /// See [`MouseJoint`]: one body (both handles name it).
     Mouse(MouseJoint),
     /// Only keeps the two bodies from colliding.
@@ -246,6 +320,8 @@ impl JointKind {
             JointKind::Weld(_) => "weld",
             JointKind::Wheel(_) => "wheel",
             JointKind::Motor(_) => "motor",
+            JointKind::Mover(_) => "mover",
+            JointKind::Pogo(_) => "pogo",
             JointKind::Mouse(_) => "mouse",
             JointKind::Filter => "filter",
         }
@@ -297,18 +373,33 @@ impl JointKind {
                 check_motor(j.motor.as_ref())
             }
             JointKind::Motor(j) => {
-                crate::error::check_finite_vec("motor joint linear offset", j.linear_offset)?;
+                check_finite_vec("motor joint linear velocity", j.linear_velocity)?;
+                finite("motor joint angular velocity", j.angular_velocity)?;
+                check_finite_vec("motor joint linear offset", j.linear_offset)?;
                 finite("motor joint angular offset", j.angular_offset)?;
-                not_negative("motor joint max force", j.max_force)?;
-                not_negative("motor joint max torque", j.max_torque)?;
-                if !(0.0..=1.0).contains(&j.correction_factor) {
-                    return Err(CaromError::OutOfRange {
-                        name: "motor joint correction factor",
-                        expected: "between 0 and 1",
-                        value: j.correction_factor,
-                    });
+                check_spring(Some(&j.linear_spring))?;
+                check_spring(Some(&j.angular_spring))?;
+                for (name, value) in [
+                    ("motor joint max velocity force", j.max_velocity_force),
+                    ("motor joint max velocity torque", j.max_velocity_torque),
+                    ("motor joint max spring force", j.max_spring_force),
+                    ("motor joint max spring torque", j.max_spring_torque),
+                ] {
+                    not_negative(name, value)?;
                 }
                 Ok(())
+            }
+            JointKind::Mover(j) => {
+                check_finite_vec("mover joint velocity", j.velocity)?;
+                not_negative("mover joint max force", j.max_force.x)?;
+                not_negative("mover joint max force", j.max_force.y)
+            }
+            JointKind::Pogo(j) => {
+                check_direction("pogo joint normal", j.normal)?;
+                check_finite_not_negative("pogo joint rest length", j.rest_length)?;
+                check_spring(Some(&j.spring))?;
+                not_negative("pogo joint max compression", j.max_compression)?;
+                not_negative("pogo joint max tension", j.max_tension)
             }
             JointKind::Mouse(j) => {
                 crate::error::check_finite_vec("mouse joint target", j.target)?;
@@ -319,11 +410,12 @@ impl JointKind {
         }
     }
 
-    /// The axis, for the kinds that have one.
+    /// The axis (a pogo joint's normal), for the kinds that have one.
     pub(crate) fn axis_mut(&mut self) -> Option<&mut Vec2> {
         match self {
             JointKind::Prismatic(j) => Some(&mut j.axis),
             JointKind::Wheel(j) => Some(&mut j.axis),
+            JointKind::Pogo(j) => Some(&mut j.normal),
             _ => None,
         }
     }
@@ -400,11 +492,15 @@ fn check_limits(limits: Option<&Limits>, name: &'static str) -> Result<(), Carom
 }
 
 fn check_axis(axis: Vec2) -> Result<(), CaromError> {
-    crate::error::check_finite_vec("joint axis", axis)?;
+    check_direction("joint axis", axis)
+}
+
+fn check_direction(name: &'static str, axis: Vec2) -> Result<(), CaromError> {
+    check_finite_vec(name, axis)?;
     let length = axis.norm();
     if length < 1.0e-6 {
         return Err(CaromError::OutOfRange {
-            name: "joint axis length",
+            name,
             expected: "not zero",
             value: length,
         });

@@ -34,8 +34,8 @@ pub(crate) mod kinds;
 pub(crate) mod store;
 
 pub use kinds::{
-    DistanceJoint, JointKind, Limits, Motor, MotorJoint, MouseJoint, PrismaticJoint, RevoluteJoint,
-    Spring, WeldJoint, WheelJoint,
+    DistanceJoint, JointKind, Limits, Motor, MotorJoint, MouseJoint, MoverJoint, PogoJoint,
+    PrismaticJoint, RevoluteJoint, Spring, WeldJoint, WheelJoint,
 };
 
 use crate::dynamics::body::{Body, BodyHandle};
@@ -100,6 +100,9 @@ pub struct JointDef {
     /// A setter used on a kind that has no such setting ("limits", "motor", "spring"),
     /// reported when the joint is added.
     misuse: Option<&'static str>,
+    /// Impulses carried from an earlier joint ([`JointDef::continue_from`]).
+    #[cfg_attr(feature = "serde", serde(skip))]
+    carried: Option<JointImpulses>,
 }
 
 impl JointDef {
@@ -123,6 +126,7 @@ impl JointDef {
             break_torque: Real::INFINITY,
             kind,
             misuse: None,
+            carried: None,
         }
     }
 
@@ -194,10 +198,10 @@ impl JointDef {
         JointDef::new(a, b, anchor, anchor, kind)
     }
 
-    /// Drives `b` toward its present pose relative to `a` with at most `max_force` and
-    /// `max_torque`, through world point `anchor` (usually `b`'s centre): with no offset
-    /// set, it holds `b` where it is; an offset moves the target (change it with
-    /// [`crate::JointMut::set_kind`]).
+    /// Holds `b` at its present pose relative to `a` through critically damped 4 Hz
+    /// springs with at most `max_force` and `max_torque`, anchored at world point `anchor`
+    /// (usually `b`'s centre). Move the target with the offsets, or drive velocities
+    /// instead, through [`crate::JointMut::set_kind`] (see [`MotorJoint`]).
     pub fn motor(
         a: BodyHandle,
         b: BodyHandle,
@@ -206,11 +210,61 @@ impl JointDef {
         max_torque: Real,
     ) -> Self {
         let kind = JointKind::Motor(MotorJoint {
-            max_force,
-            max_torque,
+            max_spring_force: max_force,
+            max_spring_torque: max_torque,
             ..MotorJoint::default()
         });
         JointDef::new(a, b, anchor, anchor, kind)
+    }
+
+    /// Drives `body`'s velocity relative to `reference` (a static body for a velocity in
+    /// the world) toward `velocity` with at most `max_force` on each world axis (x, y): a
+    /// dynamic character's legs. It does not turn the body; the two still collide.
+    pub fn mover(reference: BodyHandle, body: BodyHandle, velocity: Vec2, max_force: Vec2) -> Self {
+        let kind = JointKind::Mover(MoverJoint {
+            velocity,
+            max_force,
+        });
+        JointDef::new(reference, body, Vec2::zeros(), Vec2::zeros(), kind).collide_connected(true)
+    }
+
+    /// A leg from world point `foot` on `body` down to world point `ground_point` on
+    /// `ground`, whose surface there has normal `normal`: it holds the foot `rest_length`
+    /// above the ground through a spring of `hertz` and `damping_ratio`, pushing with at
+    /// most `max_compression` and pulling with at most `max_tension` (see [`PogoJoint`]).
+    /// The two still collide.
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "a leg is where it stands and how it pushes; a builder would hide none"
+    )]
+    pub fn pogo(
+        ground: BodyHandle,
+        body: BodyHandle,
+        ground_point: Vec2,
+        foot: Vec2,
+        normal: Vec2,
+        rest_length: Real,
+        (max_compression, max_tension): (Real, Real),
+    ) -> Self {
+        let kind = JointKind::Pogo(PogoJoint {
+            normal,
+            rest_length,
+            max_compression,
+            max_tension,
+            ..PogoJoint::default()
+        });
+        JointDef::new(ground, body, ground_point, foot, kind).collide_connected(true)
+    }
+
+    /// Starts the joint where `previous` (of the same kind) left off: its impulses, and a
+    /// pogo leg's spring's speed. For a joint that is removed and made again each step, as
+    /// a leg is on whatever is under the foot, so it does not start cold every time.
+    pub fn continue_from(mut self, previous: &Joint) -> Self {
+        self.carried = Some(previous.impulses);
+        if std::mem::discriminant(&previous.kind) != std::mem::discriminant(&self.kind) {
+            self.misuse = Some("continue from a joint of another kind");
+        }
+        self
     }
 
     /// Grabs `body` at world point `point` and pulls that point toward `point` (move it with
@@ -399,7 +453,7 @@ impl JointDef {
             kind,
             force: Vec2::zeros(),
             torque: 0.0,
-            impulses: JointImpulses::default(),
+            impulses: self.carried.unwrap_or_default(),
         })
     }
 }
@@ -419,6 +473,10 @@ pub(crate) struct JointImpulses {
     pub motor: Real,
     pub lower: Real,
     pub upper: Real,
+    /// The motor joint's velocity part, the mover joint's drive.
+    pub drive: Vec2,
+    /// A pogo leg's spring's speed: motion carried from step to step, not an impulse.
+    pub spring_velocity: Real,
 }
 
 /// A joint in a world.
@@ -566,6 +624,7 @@ impl Joint {
             ("joint anchor", self.local_anchor_b),
             ("joint force", self.force),
             ("joint impulse", i.linear),
+            ("joint impulse", i.drive),
         ] {
             check_finite_vec(name, value)?;
         }
@@ -577,6 +636,7 @@ impl Joint {
             ("joint impulse", i.motor),
             ("joint impulse", i.lower),
             ("joint impulse", i.upper),
+            ("pogo joint spring velocity", i.spring_velocity),
         ] {
             check_finite(name, value)?;
         }

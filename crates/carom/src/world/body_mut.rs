@@ -122,6 +122,20 @@ impl<'w> BodyMut<'w> {
         self.edit(|body| body.set_sweep_threshold(fraction))
     }
 
+    /// Locks or frees the body's rotation (see [`crate::BodyDef::fixed_rotation`]); locking
+    /// stops its spin.
+    #[allow(
+        clippy::expect_used,
+        reason = "a live dynamic body's mass was built from these colliders before"
+    )]
+    pub fn set_fixed_rotation(&mut self, fixed: bool) {
+        let handle = self.handle();
+        self.edit(|body| body.set_fixed_rotation(fixed));
+        self.world
+            .rebuild_mass_of(handle)
+            .expect("the same colliders give the same mass");
+    }
+
     /// Marks or unmarks the body as a bullet.
     pub fn set_bullet(&mut self, bullet: bool) {
         self.edit(|body| body.set_bullet(bullet))

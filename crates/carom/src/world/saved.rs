@@ -27,8 +27,10 @@ use serde::{Deserialize, Serialize};
 /// broadphase keeps which proxies moved apart from the proxies. Format 4: contacts keep their
 /// ids (contacts are filed by id). Format 5: the contact array's parts are laid out anew
 /// (`graph::layout`). Format 6: colliders keep a whole surface (rolling resistance, tangent
-/// speed, material id) and contacts their rolling impulse.
-const SAVE_FORMAT: u32 = 6;
+/// speed, material id) and contacts their rolling impulse. Format 7: Box2D 3.2's motor joint
+/// (a velocity part and a spring part), the mover and pogo joints and their impulses, and
+/// bodies that never turn.
+const SAVE_FORMAT: u32 = 7;
 
 /// What a saved world holds: every field of [`World`] that outlives a step.
 #[derive(Serialize, Deserialize)]

@@ -102,6 +102,9 @@ pub struct Body {
         serde(default = "crate::dynamics::body_def::sweep_threshold")
     )]
     sweep_threshold: Real,
+    /// Never turns: no inverse inertia, no spin ([`crate::BodyDef::fixed_rotation`]).
+    #[cfg_attr(feature = "serde", serde(default))]
+    fixed_rotation: bool,
     /// Asleep: skipped by every stage until something wakes it.
     sleeping: bool,
     /// A dynamic body's island (see [`crate::dynamics::island`]), and its neighbours in the
@@ -175,6 +178,7 @@ impl Body {
             sleep_time: 0.0,
             sleep_threshold: check_non_negative("sleep threshold", def.sleep_threshold)?,
             sweep_threshold: check_sweep_threshold(def.sweep_threshold)?,
+            fixed_rotation: def.fixed_rotation,
             sleeping: false,
             island: None,
             island_prev: None,
@@ -225,8 +229,15 @@ impl Body {
                     mass,
                     inv_mass: total.inv_mass(),
                     inertia,
-                    inv_inertia: total.inv_inertia(),
+                    inv_inertia: if self.fixed_rotation {
+                        0.0
+                    } else {
+                        total.inv_inertia()
+                    },
                 };
+                if self.fixed_rotation {
+                    self.angular_velocity = 0.0;
+                }
                 (data, center)
             }
             // Static and kinematic bodies have no mass; they turn about their origin.
@@ -437,6 +448,11 @@ impl Body {
         self.sweep_threshold
     }
 
+    /// Whether it never turns ([`crate::BodyDef::fixed_rotation`]).
+    pub fn fixed_rotation(&self) -> bool {
+        self.fixed_rotation
+    }
+
     /// Wakes the body (its island follows at the next step, through their contacts).
     pub(crate) fn wake_up(&mut self) {
         self.sleeping = false;
@@ -552,7 +568,8 @@ impl Body {
     /// Sets the angular velocity (ignored by static bodies).
     pub(crate) fn set_angular_velocity(&mut self, velocity: Real) -> Result<(), CaromError> {
         check_finite("angular velocity", velocity)?;
-        if self.kind != BodyKind::Static {
+        let locked = self.fixed_rotation && self.kind == BodyKind::Dynamic;
+        if self.kind != BodyKind::Static && !locked {
             self.angular_velocity = velocity;
             self.wake_up();
         }
@@ -603,6 +620,11 @@ impl Body {
         self.angular_damping = check_non_negative("angular damping", angular)?;
         self.linear_damping = linear;
         Ok(())
+    }
+
+    /// Locks or frees its rotation; the caller rebuilds the mass.
+    pub(crate) fn set_fixed_rotation(&mut self, fixed: bool) {
+        self.fixed_rotation = fixed;
     }
 
     /// Sets the sweep threshold, if [`check_sweep_threshold`] accepts it.

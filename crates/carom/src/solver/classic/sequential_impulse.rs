@@ -39,10 +39,12 @@ pub(crate) fn solve(
     let mut work =
         integrate_velocities(environment, bodies, states, dt, SpeedCaps::new(params, dt));
     let joint_pass = JointPass::velocities(dt);
+    // Joints begin the step either way: without warm starting their impulses were forgotten
+    // when prepared, and a leg's spring still advances.
+    for joint in joints.iter_mut() {
+        with_joint_states(joint, states, |j, a, b| j.warm_start(a, b));
+    }
     if params.warm_starting {
-        for joint in joints.iter_mut() {
-            with_joint_states(joint, states, |j, a, b| j.warm_start(a, b));
-        }
         warm_start(constraints, states);
     } else {
         forget_impulses(constraints);

@@ -13,6 +13,8 @@
 mod distance;
 mod motor;
 mod mouse;
+mod mover;
+mod pogo;
 mod prismatic;
 mod revolute;
 mod weld;
@@ -62,6 +64,8 @@ enum JointData {
     Weld(weld::Prepared),
     Wheel(wheel::Prepared),
     Motor(motor::Prepared),
+    Mover(mover::Prepared),
+    Pogo(pogo::Prepared),
     Mouse(mouse::Prepared),
     Filter,
 }
@@ -78,6 +82,9 @@ pub(crate) struct JointPass {
     pub softness: Softness,
     /// Springs and motors act (off in a pass that only corrects positions).
     pub drive: bool,
+    /// Soft step's relaxation, after the positions moved: a pogo leg's spring then holds
+    /// still instead of driving.
+    pub relaxing: bool,
 }
 
 impl JointPass {
@@ -92,6 +99,7 @@ impl JointPass {
             use_bias,
             softness: Softness::new(hertz, params.joint_damping_ratio, h),
             drive: true,
+            relaxing: !use_bias,
         }
     }
 
@@ -104,6 +112,7 @@ impl JointPass {
             use_bias: false,
             softness: Softness::new(0.0, 0.0, dt),
             drive: true,
+            relaxing: false,
         }
     }
 
@@ -120,6 +129,7 @@ impl JointPass {
                 impulse_scale: 0.0,
             },
             drive: false,
+            relaxing: false,
         }
     }
 
@@ -248,7 +258,11 @@ impl JointConstraint {
             impulses: if warm_starting {
                 joint.impulses
             } else {
-                JointImpulses::default()
+                // A leg's spring is motion, not an impulse: it goes on.
+                JointImpulses {
+                    spring_velocity: joint.impulses.spring_velocity,
+                    ..JointImpulses::default()
+                }
             },
             data: JointData::Filter,
         };
@@ -258,18 +272,32 @@ impl JointConstraint {
             JointKind::Prismatic(s) => JointData::Prismatic(prismatic::prepare(&c, s, h)),
             JointKind::Weld(s) => JointData::Weld(weld::prepare(&c, s, h)),
             JointKind::Wheel(s) => JointData::Wheel(wheel::prepare(&c, s, h)),
-            JointKind::Motor(s) => JointData::Motor(motor::prepare(&c, s)),
+            JointKind::Motor(s) => JointData::Motor(motor::prepare(&mut c, s, h)),
+            JointKind::Mover(s) => JointData::Mover(mover::prepare(&mut c, s)),
+            JointKind::Pogo(s) => {
+                let up = b.body.rotation() * Vec2::new(0.0, 1.0);
+                JointData::Pogo(pogo::prepare(&c, s, h, up))
+            }
             JointKind::Mouse(s) => JointData::Mouse(mouse::prepare(&c, s, h)),
             JointKind::Filter => JointData::Filter,
         };
         c
     }
 
-    /// Applies the accumulated impulses; or, if the speed caps cut either body's velocities
-    /// since the last warm start, forgets them and starts cold ([`super::SpeedCaps::hold`]).
+    /// Begins a (sub)step: advances a leg's spring, and applies the accumulated impulses;
+    /// or, if the speed caps cut either body's velocities since the last warm start, forgets
+    /// them and starts cold ([`super::SpeedCaps::hold`]). Called once per (sub)step whether
+    /// warm starting is on or not (off, the impulses were forgotten when prepared).
     pub fn warm_start(&mut self, a: &mut BodyState, b: &mut BodyState) {
+        if let JointData::Pogo(p) = self.data {
+            pogo::advance_spring(self, &p, a, b);
+        }
         if a.held != 0 || b.held != 0 {
-            self.impulses = JointImpulses::default();
+            let spring_velocity = self.impulses.spring_velocity;
+            self.impulses = JointImpulses {
+                spring_velocity,
+                ..JointImpulses::default()
+            };
             return;
         }
         match self.data {
@@ -279,6 +307,8 @@ impl JointConstraint {
             JointData::Weld(_) => weld::warm_start(self, a, b),
             JointData::Wheel(p) => wheel::warm_start(self, &p, a, b),
             JointData::Motor(_) => motor::warm_start(self, a, b),
+            JointData::Mover(_) => mover::warm_start(self, a, b),
+            JointData::Pogo(p) => pogo::warm_start(self, &p, a, b),
             JointData::Mouse(_) => mouse::warm_start(self, b),
             JointData::Filter => {}
         }
@@ -293,6 +323,8 @@ impl JointConstraint {
             JointData::Weld(p) => weld::solve(self, &p, a, b, pass),
             JointData::Wheel(p) => wheel::solve(self, &p, a, b, pass),
             JointData::Motor(p) => motor::solve(self, &p, a, b, pass),
+            JointData::Mover(p) => mover::solve(self, &p, a, b, pass),
+            JointData::Pogo(p) => pogo::solve(self, &p, a, b, pass),
             JointData::Mouse(p) => mouse::solve(self, &p, b, pass),
             JointData::Filter => {}
         }
@@ -325,7 +357,10 @@ impl JointConstraint {
     pub fn impulses_to_keep(&self, states: &[BodyState], caps: super::SpeedCaps) -> JointImpulses {
         let held = |moves: bool, state: usize| moves && states[state].is_held(caps);
         if held(self.moves_a, self.a) || held(self.moves_b, self.b) {
-            JointImpulses::default()
+            JointImpulses {
+                spring_velocity: self.impulses.spring_velocity,
+                ..JointImpulses::default()
+            }
         } else {
             self.impulses
         }
@@ -355,7 +390,9 @@ impl JointConstraint {
                     i.motor,
                 )
             }
-            JointData::Motor(_) => (i.linear, i.angular),
+            JointData::Motor(_) => (i.linear + i.drive, i.angular + i.motor),
+            JointData::Mover(_) => (i.drive, 0.0),
+            JointData::Pogo(p) => (p.normal * i.axial, 0.0),
             JointData::Mouse(_) => (i.linear, 0.0),
             JointData::Filter => (Vec2::zeros(), 0.0),
         };
