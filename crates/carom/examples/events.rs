@@ -3,7 +3,7 @@
 //!
 //! `cargo run -p carom --example events`
 
-use carom::{BodyDef, CaromError, ContactEvent, Shape, World, vec2};
+use carom::{BodyDef, CaromError, ContactEvent, Real, Shape, World, vec2};
 
 fn main() -> Result<(), CaromError> {
     let mut world = World::new();
@@ -11,7 +11,7 @@ fn main() -> Result<(), CaromError> {
         world.add_body(BodyDef::static_body(Shape::rect(10.0, 0.5)).position(vec2(0.0, -0.5)))?;
     let balls: Vec<_> = (0..3)
         .map(|i| {
-            let at = vec2(-2.0 + 2.0 * i as f32, 1.0 + i as f32);
+            let at = vec2(-2.0 + 2.0 * i as Real, 1.0 + i as Real);
             world.add_body(BodyDef::dynamic(Shape::circle(0.25)).position(at))
         })
         .collect::<Result<_, _>>()?;

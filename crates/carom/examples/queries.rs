@@ -3,15 +3,15 @@
 //!
 //! `cargo run -p carom --example queries`
 
-use carom::{BodyDef, CaromError, QueryFilter, Ray, Shape, World, WorldShape, vec2};
+use carom::{BodyDef, CaromError, QueryFilter, Ray, Real, Shape, World, WorldShape, vec2};
 
 fn main() -> Result<(), CaromError> {
     let mut world = World::new();
     world.add_body(BodyDef::static_body(Shape::rect(10.0, 0.5)).position(vec2(0.0, -0.5)))?;
     for i in 0..5 {
-        let x = -6.0 + 3.0 * i as f32;
+        let x = -6.0 + 3.0 * i as Real;
         world.add_body(
-            BodyDef::dynamic(Shape::circle(0.4 + 0.1 * i as f32)).position(vec2(x, 1.0)),
+            BodyDef::dynamic(Shape::circle(0.4 + 0.1 * i as Real)).position(vec2(x, 1.0)),
         )?;
     }
 

@@ -46,6 +46,12 @@
         clippy::unimplemented
     )
 )]
+// Single precision widens to `f64` where sums need it; in the double-precision build those
+// casts are no-ops.
+#![cfg_attr(feature = "f64", allow(clippy::unnecessary_cast))]
+// A world-placed polygon holds its points inline; in double precision that is over the lint's
+// size bound, and boxing it would cost the single-precision build a pointer chase.
+#![cfg_attr(feature = "f64", allow(clippy::large_enum_variant))]
 
 mod character;
 mod collision;
@@ -104,7 +110,7 @@ pub use joint::{
     MotorJoint, MouseJoint, MoverJoint, PogoJoint, PrismaticJoint, RevoluteJoint, Spring,
     WeldJoint, WheelJoint,
 };
-pub use math::{Isometry, Mat3, Real, Rot, Vec2, angle_of, atan2, rotation, vec2};
+pub use math::{Isometry, Mat3, Real, Rot, Vec2, angle_of, atan2, consts, rotation, vec2};
 pub use solver::{SolverKind, SolverParams};
 pub use stats::{CollisionWork, StageTimes, StepStats, Work};
 pub use world::body_mut::BodyMut;

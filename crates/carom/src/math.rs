@@ -1,7 +1,20 @@
 //! Scalar and vector types, and the few 2D products nalgebra does not name.
 
-/// The floating-point type of the whole engine.
+/// The floating-point type of the whole engine: `f32`, or `f64` with the `f64` feature
+/// (bodies far from the origin keep their precision; every step costs more).
+#[cfg(not(feature = "f64"))]
 pub type Real = f32;
+/// The floating-point type of the whole engine: `f32`, or `f64` with the `f64` feature
+/// (bodies far from the origin keep their precision; every step costs more).
+#[cfg(feature = "f64")]
+pub type Real = f64;
+
+/// π and its kin in [`Real`]'s precision.
+#[cfg(not(feature = "f64"))]
+pub use std::f32::consts;
+/// π and its kin in [`Real`]'s precision.
+#[cfg(feature = "f64")]
+pub use std::f64::consts;
 
 /// A 2D vector or point.
 pub type Vec2 = nalgebra::Vector2<Real>;
@@ -61,7 +74,7 @@ pub fn clamp_magnitude(v: Vec2, max_len: Real) -> Vec2 {
 /// `angle` brought into `[-π, π]` by whole turns.
 #[inline]
 pub fn unwind_angle(angle: Real) -> Real {
-    use std::f32::consts::{PI, TAU};
+    use consts::{PI, TAU};
     if (-PI..=PI).contains(&angle) {
         angle
     } else {
@@ -84,19 +97,25 @@ pub fn rotation(angle: Real) -> Rot {
 /// The angle of `rotation` in `[-π, π]`, computed the same on every platform.
 #[inline]
 pub fn angle_of(rotation: &Rot) -> Real {
-    libm::atan2f(rotation.im, rotation.re)
+    atan2(rotation.im, rotation.re)
 }
 
 /// Sine and cosine of `x`, computed the same on every platform.
 #[inline]
 pub fn sin_cos(x: Real) -> (Real, Real) {
-    (libm::sinf(x), libm::cosf(x))
+    #[cfg(not(feature = "f64"))]
+    return (libm::sinf(x), libm::cosf(x));
+    #[cfg(feature = "f64")]
+    return sin_cos_f64(x);
 }
 
 /// `atan2(y, x)`, computed the same on every platform.
 #[inline]
 pub fn atan2(y: Real, x: Real) -> Real {
-    libm::atan2f(y, x)
+    #[cfg(not(feature = "f64"))]
+    return libm::atan2f(y, x);
+    #[cfg(feature = "f64")]
+    return atan2_f64(y, x);
 }
 
 /// Sine and cosine of `x` in double precision, computed the same on every platform.

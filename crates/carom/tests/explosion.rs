@@ -29,7 +29,7 @@ fn circles_on_a_ring_fly_straight_out_by_impulse_per_length_times_their_width() 
     let (r, ring) = (0.5, 2.0);
     let balls: Vec<(BodyHandle, Vec2)> = (0..6)
         .map(|i| {
-            let angle = i as Real * std::f32::consts::TAU / 6.0;
+            let angle = i as Real * carom::consts::TAU / 6.0;
             let out = vec2(angle.cos(), angle.sin());
             let ball = add(
                 &mut world,

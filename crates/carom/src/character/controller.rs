@@ -56,7 +56,7 @@ impl CharacterDef {
             capsule: Capsule::new(vec2(0.0, -half_height), vec2(0.0, half_height), radius),
             position: Vec2::zeros(),
             up: vec2(0.0, 1.0),
-            max_slope: std::f32::consts::FRAC_PI_4,
+            max_slope: crate::math::consts::FRAC_PI_4,
             step_height: 0.3,
             step_width: 0.5 * radius,
             snap_distance: 0.2,
@@ -142,7 +142,7 @@ impl CharacterDef {
                 value: self.up.norm(),
             });
         }
-        if !(0.0..std::f32::consts::FRAC_PI_2).contains(&self.max_slope) {
+        if !(0.0..crate::math::consts::FRAC_PI_2).contains(&self.max_slope) {
             return Err(CaromError::OutOfRange {
                 name: "character max slope",
                 expected: "in [0, π/2) radians",

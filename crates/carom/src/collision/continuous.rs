@@ -48,9 +48,9 @@ fn motion_bound(from: Pose, body: &Body) -> Real {
 /// larger turn counts as half a turn.
 fn turn_bound(relative: Rot) -> Real {
     if relative.re >= 0.0 {
-        relative.im.abs() * (1.001 * std::f32::consts::FRAC_PI_2)
+        relative.im.abs() * (1.001 * crate::math::consts::FRAC_PI_2)
     } else {
-        std::f32::consts::PI
+        crate::math::consts::PI
     }
 }
 
@@ -495,8 +495,8 @@ mod tests {
     fn the_turn_bound_is_never_below_the_turn() {
         let steps = 100_000;
         for i in 0..=steps {
-            let angle =
-                -std::f32::consts::PI + 2.0 * std::f32::consts::PI * i as Real / steps as Real;
+            let angle = -crate::math::consts::PI
+                + 2.0 * crate::math::consts::PI * i as Real / steps as Real;
             let relative = Rot::new(angle);
             let turn = relative.angle().abs();
             assert!(

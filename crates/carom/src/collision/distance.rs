@@ -457,7 +457,7 @@ mod tests {
         // Off a corner: the tutorial's "closest vertex" axis, and only there.
         let pc = polygon_circle(vertices, normals, vec2(2.0, 2.0), 1.0);
         assert_eq!(pc.feature, PolygonFeature::Vertex(2));
-        assert!((pc.separation.separation - (2.0_f32.sqrt() - 1.0)).abs() < 1e-6);
+        assert!((pc.separation.separation - ((2.0 as Real).sqrt() - 1.0)).abs() < 1e-6);
         // Near a corner but in the edge's region: the vertex axis would be wrong here.
         let pc = polygon_circle(vertices, normals, vec2(0.9, 1.2), 0.5);
         assert_eq!(pc.feature, PolygonFeature::Edge(2));

@@ -182,8 +182,10 @@ mod tests {
         let ball = world
             .add_body(BodyDef::dynamic(Shape::circle(0.2)).position(vec2(1.5, 4.0)))
             .unwrap();
-        let hinge = JointDef::revolute(bar, boxed, vec2(0.0, 4.5))
-            .limits(-std::f32::consts::FRAC_PI_4, std::f32::consts::FRAC_PI_2);
+        let hinge = JointDef::revolute(bar, boxed, vec2(0.0, 4.5)).limits(
+            -crate::math::consts::FRAC_PI_4,
+            crate::math::consts::FRAC_PI_2,
+        );
         let hinge = world.add_joint(hinge).unwrap();
         let rod = JointDef::distance(boxed, ball, vec2(0.0, 4.0), vec2(1.5, 4.0))
             .spring(2.0, 0.5)
@@ -243,7 +245,7 @@ mod tests {
                 .map(|s| (s.end - s.start).normalize())
                 .collect::<Vec<_>>()
         };
-        let half = std::f32::consts::FRAC_1_SQRT_2;
+        let half = crate::math::consts::FRAC_1_SQRT_2;
         let lower = limit(palette::JOINT_LOWER_LIMIT);
         assert!(
             lower.len() == 1 && close(lower[0], vec2(half, -half)),

@@ -191,7 +191,7 @@ fn rounded_outline(vertices: &[Vec2], normals: &[Vec2], radius: Real) -> Vec<Vec
         let from = normals[(i + n - 1) % n];
         let to = normals[i];
         let turn = crate::math::cross(from, to).abs().atan2(from.dot(&to));
-        let steps = (turn / (std::f32::consts::TAU / 16.0)).ceil().max(1.0) as usize;
+        let steps = (turn / (crate::math::consts::TAU / 16.0)).ceil().max(1.0) as usize;
         let start = from.y.atan2(from.x);
         for k in 0..=steps {
             let angle = start + turn * k as Real / steps as Real;

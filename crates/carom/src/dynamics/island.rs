@@ -17,6 +17,7 @@ use crate::dynamics::body::Body;
 use crate::dynamics::body::BodyHandle;
 #[cfg(feature = "serde")]
 use crate::handle_map::HandleMap;
+use crate::math::Real;
 
 /// One island's record.
 #[derive(Debug, Clone, Default)]
@@ -31,7 +32,7 @@ pub(crate) struct Island {
     /// was last known to be connected: above zero, it may have come apart.
     pub removed: u32,
     /// The shortest time any of its awake bodies has rested, as of step `rest_step`.
-    pub rest: f32,
+    pub rest: Real,
     pub rest_step: u64,
     /// Still in use (a freed record waits to be reused).
     pub live: bool,

@@ -281,7 +281,7 @@ mod tests {
     #[test]
     fn circle_inertia_is_half_m_r_squared() {
         let mass = circle_mass(2.0, 0.5);
-        let expected_mass = 0.5 * std::f32::consts::PI * 4.0;
+        let expected_mass = 0.5 * crate::math::consts::PI * 4.0;
         assert!((mass.mass - expected_mass).abs() < 1e-5);
         assert!((mass.inertia - 0.5 * expected_mass * 4.0).abs() < 1e-4);
     }
@@ -367,7 +367,7 @@ mod tests {
         let capsule = Shape::capsule(vec2(-1.0, 0.0), vec2(1.0, 0.0), 0.5)
             .mass_properties(1.0)
             .unwrap();
-        let expected = 2.0 * 0.5 * 2.0 + std::f32::consts::PI * 0.25;
+        let expected = 2.0 * 0.5 * 2.0 + crate::math::consts::PI * 0.25;
         assert!((capsule.mass - expected).abs() < 1e-5);
         assert!(capsule.center.norm() < 1e-6);
     }

@@ -68,10 +68,10 @@ mod tests {
     #[test]
     fn holds_few_points_inline_and_many_on_the_heap() {
         let mut points = Points::default();
-        points.set((0..3).map(|i| vec2(i as f32, 0.0)));
+        points.set((0..3).map(|i| vec2(i as crate::math::Real, 0.0)));
         assert!(!points.0.spilled());
         assert_eq!(points[2], vec2(2.0, 0.0));
-        points.set((0..12).map(|i| vec2(0.0, i as f32)));
+        points.set((0..12).map(|i| vec2(0.0, i as crate::math::Real)));
         assert!(points.0.spilled());
         assert_eq!((points.len(), points[11]), (12, vec2(0.0, 11.0)));
         points.set([vec2(1.0, 1.0)]);

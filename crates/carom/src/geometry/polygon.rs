@@ -544,7 +544,7 @@ mod tests {
         // A pentagram turns left at every vertex but winds twice.
         let star: Vec<Vec2> = (0..5)
             .map(|i| {
-                let a = std::f32::consts::TAU * (2 * i) as Real / 5.0;
+                let a = crate::math::consts::TAU * (2 * i) as Real / 5.0;
                 vec2(a.cos(), a.sin())
             })
             .collect();

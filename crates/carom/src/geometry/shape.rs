@@ -435,7 +435,7 @@ mod tests {
     #[test]
     fn world_shape_follows_the_transform() {
         let shape = Shape::rect(1.0, 0.5);
-        let iso = Isometry::new(vec2(3.0, 4.0), std::f32::consts::FRAC_PI_2);
+        let iso = Isometry::new(vec2(3.0, 4.0), crate::math::consts::FRAC_PI_2);
         let world = WorldShape::new(&shape, &iso);
         let aabb = world.aabb();
         assert!((aabb.min - vec2(2.5, 3.0)).norm() < 1e-6);
@@ -455,7 +455,7 @@ mod tests {
 
     #[test]
     fn max_extent_is_the_circumradius() {
-        let diagonal = (2.0f32 * 2.0 + 0.1 * 0.1).sqrt();
+        let diagonal = (2.0 as crate::math::Real * 2.0 + 0.1 * 0.1).sqrt();
         assert!((Shape::rect(2.0, 0.1).max_extent() - diagonal).abs() < 1e-6);
         assert_eq!(Shape::circle(0.3).max_extent(), 0.3);
     }

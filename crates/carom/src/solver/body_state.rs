@@ -9,6 +9,15 @@ use crate::math::{Real, Rot, Vec2, clamp_magnitude, rotation};
 use crate::parallel::{for_each_with, sum_with};
 use crate::stats::Work;
 
+/// Whether the speed caps cut a body's velocities (see [`BodyState::held`]): a word as wide
+/// as [`Real`], so a state is eight words with no padding.
+#[cfg(not(feature = "f64"))]
+pub(crate) type Held = u32;
+/// Whether the speed caps cut a body's velocities (see [`BodyState::held`]): a word as wide
+/// as [`Real`], so a state is eight words with no padding.
+#[cfg(feature = "f64")]
+pub(crate) type Held = u64;
+
 /// One body as the solver sees it: eight floats in one 32-byte line (Box2D's `b2BodyState`),
 /// so the SIMD solver loads a body with one or two vector loads and transposes bodies into
 /// lanes: `[v.x, v.y, w, held, dp.x, dp.y, dq.cos, dq.sin]`.
@@ -20,23 +29,26 @@ pub(crate) struct BodyState {
     /// Angular velocity.
     pub w: Real,
     /// 1 if the speed caps cut the velocities since the body's joints last warm started,
-    /// else 0 (see [`SpeedCaps::hold`]). A `u32`, not a `bool`, so every byte of the line is
+    /// else 0 (see [`SpeedCaps::hold`]). A word, not a `bool`, so every byte of the line is
     /// set (the SIMD solver loads it whole, and leaves this word as it was when it stores the
     /// velocities).
-    pub held: u32,
+    pub held: Held,
     /// Translation since the start of the step.
     pub dp: Vec2,
     /// Rotation since the start of the step.
     pub dq: Rot,
 }
 
-// The SIMD solver reads a state as eight floats in this order (see `shared_states`).
+// The SIMD solver reads a state as eight floats in this order (see `shared_states`): one
+// 32-byte line in single precision, two in double.
 const _: () = {
     use std::mem::{align_of, offset_of, size_of};
-    assert!(size_of::<BodyState>() == 32 && align_of::<BodyState>() == 32);
-    assert!(offset_of!(BodyState, v) == 0 && offset_of!(BodyState, w) == 8);
-    assert!(offset_of!(BodyState, held) == 12 && offset_of!(BodyState, dp) == 16);
-    assert!(offset_of!(BodyState, dq) == 24 && size_of::<Rot>() == 8);
+    const R: usize = size_of::<Real>();
+    assert!(size_of::<BodyState>() == 8 * R && align_of::<BodyState>() == 32);
+    assert!(offset_of!(BodyState, v) == 0 && offset_of!(BodyState, w) == 2 * R);
+    assert!(offset_of!(BodyState, held) == 3 * R && size_of::<Held>() == R);
+    assert!(offset_of!(BodyState, dp) == 4 * R);
+    assert!(offset_of!(BodyState, dq) == 6 * R && size_of::<Rot>() == 2 * R);
 };
 
 impl BodyState {
@@ -164,7 +176,7 @@ pub(crate) fn integrate_velocity(
     (state.v, state.w) = (v, w);
     // Added to a cut at the last position integration, which the warm start to come has not
     // seen yet.
-    state.held |= u32::from(cut);
+    state.held |= Held::from(cut);
     work
 }
 
@@ -192,7 +204,7 @@ pub(crate) fn integrate_position(body: &Body, state: &mut BodyState, h: Real, ca
         let (v, w, cut) = caps.hold(state.v, state.w);
         (state.v, state.w) = (v, w);
         // The warm start since the last position integration has seen the cuts before it.
-        state.held = u32::from(cut);
+        state.held = Held::from(cut);
     }
     state.dp += state.v * h;
     state.dq = rotation(state.w * h) * state.dq;

@@ -181,7 +181,7 @@ impl Default for SolverParams {
             baumgarte: 0.2,
             restitution_threshold: 1.0,
             max_linear_speed: 400.0,
-            max_rotation: 0.25 * std::f32::consts::PI,
+            max_rotation: 0.25 * crate::math::consts::PI,
         }
     }
 }
@@ -279,7 +279,7 @@ impl Softness {
                 impulse_scale: 0.0,
             };
         }
-        let omega = 2.0 * std::f32::consts::PI * hertz;
+        let omega = 2.0 * crate::math::consts::PI * hertz;
         let a1 = 2.0 * damping_ratio + h * omega;
         let a2 = h * omega * a1;
         let a3 = 1.0 / (1.0 + a2);

@@ -894,7 +894,7 @@ mod tests {
     fn model_matrix_rotates_then_translates() {
         let mut b = unit_box(BodyKind::Dynamic);
         b.set_position(vec2(3.0, 1.0)).unwrap();
-        b.set_angle(std::f32::consts::FRAC_PI_2).unwrap();
+        b.set_angle(crate::math::consts::FRAC_PI_2).unwrap();
         let m = b.model_matrix();
         let local = nalgebra::Vector3::new(1.0, 0.0, 1.0);
         let world = m * local;
@@ -918,7 +918,7 @@ mod tests {
         // From 3 rad to -3 rad is a short turn forward across ±π, not 6 rad back.
         k.move_kinematic_to(vec2(1.0, -2.0), -3.0, 0.5).unwrap();
         assert_eq!(k.linear_velocity(), vec2(2.0, -4.0));
-        let short_turn = 2.0 * std::f32::consts::PI - 6.0;
+        let short_turn = 2.0 * crate::math::consts::PI - 6.0;
         assert!((k.angular_velocity() - short_turn / 0.5).abs() < 1e-4);
         assert!(k.move_kinematic_to(vec2(0.0, 0.0), 0.0, 0.0).is_err());
         assert!(k.move_kinematic_to(vec2(Real::NAN, 0.0), 0.0, 0.1).is_err());

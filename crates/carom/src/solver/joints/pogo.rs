@@ -46,7 +46,7 @@ pub(super) fn advance_spring(c: &mut JointConstraint, p: &Prepared, a: &BodyStat
     let (ra, rb) = c.anchors(a, b);
     let stretch = p.up.dot(&c.separation(a, b, ra, rb)) - p.settings.rest_length;
     // Implicit in both the stretch and the speed: stable at any stiffness and step.
-    let omega = 2.0 * std::f32::consts::PI * spring.hertz;
+    let omega = 2.0 * crate::math::consts::PI * spring.hertz;
     let omega_h = omega * p.h;
     c.impulses.spring_velocity = (c.impulses.spring_velocity - omega * omega_h * stretch)
         / (1.0 + 2.0 * spring.damping_ratio * omega_h + omega_h * omega_h);

@@ -15,14 +15,13 @@ use crate::math::Real;
 use crate::parallel::{for_each_chunk_with, worth_sharing};
 use crate::solver::contact_constraint::{BodyMass, ContactConstraint, SolverBody};
 use crate::solver::joints::JointConstraint;
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
 use crate::solver::soft_step::lanes::avx::{self, Avx8};
-use crate::solver::soft_step::lanes::{Kernel, Lanes};
+use crate::solver::soft_step::lanes::{Four, Kernel, Lanes};
 use crate::solver::soft_step::shared_states::SharedStates;
 use crate::solver::{BodyState, Softness};
 use crate::stats::Work;
 use std::ops::Range;
-use wide::f32x4;
 
 /// How many constraints the solver takes at a time.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -30,7 +29,7 @@ pub(crate) enum Width {
     /// `wide`'s four lanes, on every CPU.
     Four,
     /// AVX's eight lanes (x86-64 CPUs with AVX).
-    #[cfg(target_arch = "x86_64")]
+    #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
     Eight,
 }
 
@@ -42,7 +41,7 @@ impl Width {
         static FOUR_ASKED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
         let four_asked =
             *FOUR_ASKED.get_or_init(|| std::env::var("CAROM_LANES").is_ok_and(|v| v.trim() == "4"));
-        #[cfg(target_arch = "x86_64")]
+        #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
         if !four_asked && avx::detected() {
             return Width::Eight;
         }
@@ -54,8 +53,8 @@ impl Width {
 /// The bundles of one width.
 #[derive(Debug, Clone)]
 enum Bundles {
-    Four(Vec<Bundle<f32x4>>),
-    #[cfg(target_arch = "x86_64")]
+    Four(Vec<Bundle<Four>>),
+    #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
     Eight(Vec<Bundle<Avx8>>),
 }
 
@@ -64,7 +63,7 @@ macro_rules! with_bundles {
     ($bundles:expr, |$b:ident| $body:expr) => {
         match $bundles {
             Bundles::Four($b) => $body,
-            #[cfg(target_arch = "x86_64")]
+            #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
             Bundles::Eight($b) => $body,
         }
     };
@@ -165,9 +164,9 @@ impl WideContacts {
         let bundles = match width {
             Width::Four => Bundles::Four(Vec::new()),
             // An `Avx8` may only exist on a CPU with AVX.
-            #[cfg(target_arch = "x86_64")]
+            #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
             Width::Eight if avx::detected() => Bundles::Eight(Vec::new()),
-            #[cfg(target_arch = "x86_64")]
+            #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
             Width::Eight => Bundles::Four(Vec::new()),
         };
         WideContacts {

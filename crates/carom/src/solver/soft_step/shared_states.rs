@@ -21,6 +21,7 @@
 //! (`WideContacts::execute`), and the AVX lanes (`super::lanes::avx`).
 #![allow(unsafe_code)]
 
+use crate::math::Real;
 use crate::solver::BodyState;
 use std::marker::PhantomData;
 
@@ -55,12 +56,12 @@ impl<'a> SharedStates<'a> {
     /// State `index` as eight floats: `[v.x, v.y, w, held, dp.x, dp.y, dq.cos, dq.sin]`
     /// (`held`'s bits, which the solver ignores).
     #[inline(always)]
-    pub fn read(&self, index: u32) -> [f32; 8] {
+    pub fn read(&self, index: u32) -> [Real; 8] {
         let index = index as usize;
         assert!(index < self.len, "state {index} of {}", self.len);
-        // SAFETY: in bounds (checked), aligned, and `BodyState` is eight `f32`s in this order
+        // SAFETY: in bounds (checked), aligned, and `BodyState` is eight `Real`s in this order
         // (asserted beside its definition); no other thread writes it (promised in `new`).
-        unsafe { std::ptr::read(self.states.add(index).cast::<[f32; 8]>()) }
+        unsafe { std::ptr::read(self.states.add(index).cast::<[Real; 8]>()) }
     }
 
     /// State `index`, copied (for a joint, which works on its own copies of two states).
@@ -97,13 +98,13 @@ impl<'a> SharedStates<'a> {
     /// Sets state `index`'s velocities from `[v.x, v.y, w, _]`; its `held` stays as it was
     /// (the joints' warm start reads it after the contacts have solved).
     #[inline(always)]
-    pub fn write_velocity(&self, index: u32, velocity: [f32; 4]) {
+    pub fn write_velocity(&self, index: u32, velocity: [Real; 4]) {
         let index = index as usize;
         assert!(index < self.len, "state {index} of {}", self.len);
         let [v_x, v_y, w, _] = velocity;
         // SAFETY: in bounds (checked), aligned, the first three floats of a `BodyState` are
         // `v.x, v.y, w`; no other thread touches it (promised in `new`).
-        unsafe { std::ptr::write(self.states.add(index).cast::<[f32; 3]>(), [v_x, v_y, w]) }
+        unsafe { std::ptr::write(self.states.add(index).cast::<[Real; 3]>(), [v_x, v_y, w]) }
     }
 }
 
@@ -124,7 +125,7 @@ mod tests {
         };
         // SAFETY: one thread.
         let shared = unsafe { SharedStates::new(&mut states) };
-        let held = f32::from_bits(1);
+        let held = Real::from_bits(1);
         assert_eq!(shared.read(1), [1.0, 2.0, 3.0, held, 5.0, 6.0, 0.6, 0.8]);
         shared.write_velocity(1, [7.0, 8.0, 9.0, 0.0]);
         assert_eq!((states[1].v, states[1].w), (Vec2::new(7.0, 8.0), 9.0));

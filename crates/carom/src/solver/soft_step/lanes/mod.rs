@@ -9,11 +9,22 @@
 
 use crate::solver::soft_step::shared_states::SharedStates;
 
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
 pub(crate) mod avx;
+use crate::math::Real;
 use std::fmt::Debug;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+#[cfg(not(feature = "f64"))]
 use wide::f32x4;
+#[cfg(feature = "f64")]
+use wide::f64x4;
+
+/// Four lanes of [`Real`], on every CPU.
+#[cfg(not(feature = "f64"))]
+pub(crate) type Four = f32x4;
+/// Four lanes of [`Real`], on every CPU.
+#[cfg(feature = "f64")]
+pub(crate) type Four = f64x4;
 
 /// A vector of [`Lanes::WIDTH`] floats.
 pub(crate) trait Lanes:
@@ -39,23 +50,23 @@ pub(crate) trait Lanes:
     /// inside one.
     fn run<K: Kernel>(kernel: K) -> K::Output;
     /// Every lane `x`.
-    fn splat(x: f32) -> Self;
+    fn splat(x: Real) -> Self;
     /// The lanes into `out`.
-    fn write_to(self, out: &mut [f32]);
+    fn write_to(self, out: &mut [Real]);
     /// The lanes as floats in memory, to set one at a time.
-    fn lanes_mut(&mut self) -> &mut [f32];
+    fn lanes_mut(&mut self) -> &mut [Real];
     /// The lanes from the first [`Lanes::WIDTH`] values.
-    fn from_slice(values: &[f32]) -> Self;
+    fn from_slice(values: &[Real]) -> Self;
     /// Lane `lane`.
     #[cfg(test)]
-    fn lane(self, lane: usize) -> f32 {
+    fn lane(self, lane: usize) -> Real {
         let mut values = [0.0; 8];
         self.write_to(&mut values);
         values[lane]
     }
-    /// Per lane, the larger, as `f32::max` (a NaN in `other` gives `self`).
+    /// Per lane, the larger, as `Real::max` (a NaN in `other` gives `self`).
     fn max(self, other: Self) -> Self;
-    /// Per lane, the smaller, as `f32::min` (a NaN in `other` gives `self`).
+    /// Per lane, the smaller, as `Real::min` (a NaN in `other` gives `self`).
     fn min(self, other: Self) -> Self;
     /// Per lane: `self > other`, as a mask.
     fn gt(self, other: Self) -> Self;
@@ -88,6 +99,7 @@ pub(crate) trait Kernel {
     fn run(self) -> Self::Output;
 }
 
+#[cfg(not(feature = "f64"))]
 impl Lanes for f32x4 {
     const WIDTH: usize = 4;
     type Indices = [u32; 4];
@@ -175,21 +187,105 @@ impl Lanes for f32x4 {
     }
 }
 
+/// Double precision's four lanes: the same operations, gathered and scattered field by field.
+#[cfg(feature = "f64")]
+impl Lanes for f64x4 {
+    const WIDTH: usize = 4;
+    type Indices = [u32; 4];
+
+    #[inline(always)]
+    fn run<K: Kernel>(kernel: K) -> K::Output {
+        kernel.run()
+    }
+
+    #[inline(always)]
+    fn splat(x: Real) -> Self {
+        f64x4::splat(x)
+    }
+
+    #[inline(always)]
+    fn write_to(self, out: &mut [Real]) {
+        out[..4].copy_from_slice(self.as_array());
+    }
+
+    #[inline(always)]
+    fn lanes_mut(&mut self) -> &mut [Real] {
+        self.as_mut_array()
+    }
+
+    #[inline(always)]
+    fn from_slice(values: &[Real]) -> Self {
+        f64x4::new([values[0], values[1], values[2], values[3]])
+    }
+
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        f64x4::max(self, other)
+    }
+
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        f64x4::min(self, other)
+    }
+
+    #[inline(always)]
+    fn gt(self, other: Self) -> Self {
+        self.simd_gt(other)
+    }
+
+    #[inline(always)]
+    fn ne(self, other: Self) -> Self {
+        self.simd_ne(other)
+    }
+
+    #[inline(always)]
+    fn select(self, if_set: Self, if_clear: Self) -> Self {
+        self.bitselect(if_set, if_clear)
+    }
+
+    #[inline(always)]
+    fn and(self, other: Self) -> Self {
+        self & other
+    }
+
+    #[inline(always)]
+    fn bits(self) -> u32 {
+        self.to_bitmask()
+    }
+
+    #[inline(always)]
+    fn gather(states: &SharedStates, indices: &[u32; 4]) -> [Self; 8] {
+        let rows = indices.map(|index| states.read(index));
+        std::array::from_fn(|field| Self::from_slice(&rows.map(|row| row[field])))
+    }
+
+    #[inline(always)]
+    fn scatter(states: &SharedStates, indices: &[u32; 4], lanes: u32, velocity: [Self; 3]) {
+        let [v_x, v_y, w] = velocity.map(|v| v.to_array());
+        for (lane, &index) in indices.iter().enumerate() {
+            if lanes & (1 << lane) != 0 {
+                states.write_velocity(index, [v_x[lane], v_y[lane], w[lane], 0.0]);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
     use crate::math::{Rot, Vec2};
     use crate::solver::BodyState;
+    use crate::solver::body_state::Held;
 
     /// Body `i`'s state holds `10 i + k` in float `k` (and `held` is `i % 2`).
     pub(crate) fn numbered_states(count: usize) -> Vec<BodyState> {
         (0..count)
             .map(|i| {
-                let x = |k: usize| (10 * i + k) as f32;
+                let x = |k: usize| (10 * i + k) as Real;
                 BodyState {
                     v: Vec2::new(x(0), x(1)),
                     w: x(2),
-                    held: (i % 2) as u32,
+                    held: (i % 2) as Held,
                     dp: Vec2::new(x(4), x(5)),
                     dq: Rot::from_cos_sin_unchecked(x(6), x(7)),
                 }
@@ -212,9 +308,9 @@ pub(crate) mod tests {
         for (k, vector) in gathered.iter().enumerate() {
             for (lane, &index) in indices.as_ref().iter().enumerate() {
                 let expected = if k == 3 {
-                    f32::from_bits(index % 2)
+                    Real::from_bits((index % 2) as Held)
                 } else {
-                    (10 * index) as f32 + k as f32
+                    (10 * index) as Real + k as Real
                 };
                 assert_eq!(vector.lane(lane), expected, "float {k} of lane {lane}");
             }
@@ -227,26 +323,33 @@ pub(crate) mod tests {
             let expected = if written {
                 (Vec2::new(-1.0, -2.0), -3.0)
             } else {
-                let x = (10 * index) as f32;
+                let x = (10 * index) as Real;
                 (Vec2::new(x, x + 1.0), x + 2.0)
             };
             assert_eq!((state.v, state.w), expected, "lane {lane}");
-            assert_eq!(state.held, index % 2, "held untouched");
-            assert_eq!(state.dp.x, (10 * index) as f32 + 4.0, "positions untouched");
+            assert_eq!(state.held, (index % 2) as Held, "held untouched");
+            assert_eq!(
+                state.dp.x,
+                (10 * index) as Real + 4.0,
+                "positions untouched"
+            );
         }
     }
 
     /// The operations behave as the scalar ones, NaN included.
     pub(crate) fn check_operations<L: Lanes>() {
-        let values: Vec<f32> = (0..L::WIDTH)
-            .map(|i| [1.0, -2.0, f32::NAN, 0.5][i % 4])
+        let values: Vec<Real> = (0..L::WIDTH)
+            .map(|i| [1.0, -2.0, Real::NAN, 0.5][i % 4])
             .collect();
         let x = L::from_slice(&values);
         let one = L::splat(1.0);
         for (lane, &v) in values.iter().enumerate() {
             assert_eq!(x.max(one).lane(lane), v.max(1.0), "max, lane {lane}");
             assert_eq!(x.min(one).lane(lane), v.min(1.0), "min, lane {lane}");
-            assert_eq!(one.max(x).lane(lane).to_bits(), 1f32.max(v).to_bits());
+            assert_eq!(
+                one.max(x).lane(lane).to_bits(),
+                (1.0 as Real).max(v).to_bits()
+            );
             let gt = x.gt(L::splat(0.0));
             assert_eq!(gt.bits() & (1 << lane) != 0, v > 0.0);
             assert_eq!(
@@ -258,7 +361,7 @@ pub(crate) mod tests {
             assert_eq!(both.bits() & (1 << lane) != 0, v > 0.0 && v != 1.0);
         }
         assert_eq!((x + one - one * one).lane(1), -2.0);
-        assert_eq!((-L::splat(0.0)).lane(0).to_bits(), (-0.0f32).to_bits());
+        assert_eq!((-L::splat(0.0)).lane(0).to_bits(), (-0.0 as Real).to_bits());
         let mut y = x;
         y.lanes_mut()[L::WIDTH - 1] = 7.0;
         assert_eq!((y.lane(L::WIDTH - 1), y.lane(0)), (7.0, 1.0));
@@ -266,11 +369,11 @@ pub(crate) mod tests {
 
     #[test]
     fn four_lanes_gather_and_scatter() {
-        check_gather_and_scatter::<f32x4>();
+        check_gather_and_scatter::<Four>();
     }
 
     #[test]
     fn four_lanes_operate_as_scalars() {
-        check_operations::<f32x4>();
+        check_operations::<Four>();
     }
 }
