@@ -504,7 +504,7 @@ struct Walker {
 
 impl Walker {
     /// A 1 kg box that never turns, its foot (the middle of its bottom) `height` above
-    /// `x`, with a mover of at most `max_force` N along x.
+    /// `x`, walked by a mover of at most 70 N along x against `reference`.
     fn new(world: &mut World, reference: carom::BodyHandle, x: Real, height: Real) -> Self {
         let body = world
             .add_body(

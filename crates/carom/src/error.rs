@@ -111,7 +111,7 @@ pub enum CaromError {
     JointSetting {
         /// The joint's kind.
         kind: &'static str,
-        /// The setting: "limits", "motor" or "spring".
+        /// The setting: "limits", "motor", "spring", ...
         setting: &'static str,
     },
     /// A joint's settings were replaced with another kind's.

@@ -230,9 +230,9 @@ impl JointDef {
 
     /// A leg from world point `foot` on `body` down to world point `ground_point` on
     /// `ground`, whose surface there has normal `normal`: it holds the foot `rest_length`
-    /// above the ground through a spring of `hertz` and `damping_ratio`, pushing with at
-    /// most `max_compression` and pulling with at most `max_tension` (see [`PogoJoint`]).
-    /// The two still collide.
+    /// above the ground through a 5 Hz spring of damping ratio 0.8 (change it with
+    /// [`JointDef::spring`]), pushing with at most `max_compression` and pulling with at most
+    /// `max_tension` (see [`PogoJoint`]). The two still collide.
     #[allow(
         clippy::too_many_arguments,
         reason = "a leg is where it stands and how it pushes; a builder would hide none"
@@ -262,7 +262,7 @@ impl JointDef {
     pub fn continue_from(mut self, previous: &Joint) -> Self {
         self.carried = Some(previous.impulses);
         if std::mem::discriminant(&previous.kind) != std::mem::discriminant(&self.kind) {
-            self.misuse = Some("continue from a joint of another kind");
+            self.misuse = Some("way to continue from a joint of another kind");
         }
         self
     }
@@ -353,8 +353,8 @@ impl JointDef {
     }
 
     /// A spring of `hertz` and `damping_ratio`: the distance joint's, the revolute and
-    /// prismatic joints' (toward their targets), the wheel's suspension, both of a weld's, or
-    /// the mouse joint's.
+    /// prismatic joints' (toward their targets), the wheel's suspension, both of a weld's, the
+    /// mouse joint's, or a pogo leg's.
     pub fn spring(mut self, hertz: Real, damping_ratio: Real) -> Self {
         let spring = Spring::new(hertz, damping_ratio);
         match &mut self.kind {
@@ -364,6 +364,7 @@ impl JointDef {
             JointKind::Wheel(j) => j.spring = Some(spring),
             JointKind::Weld(j) => (j.linear, j.angular) = (Some(spring), Some(spring)),
             JointKind::Mouse(j) => j.spring = spring,
+            JointKind::Pogo(j) => j.spring = spring,
             _ => self.misuse = Some("spring"),
         }
         self
