@@ -169,11 +169,11 @@ fn the_documented_example_is_a_valid_scene() {
     let scene = carom_scene::parse(&readme[start..end], "demos/README.md")
         .unwrap_or_else(|e| panic!("{e}"));
     let mut built = carom_scene::build(&scene, "demos/README.md").unwrap_or_else(|e| panic!("{e}"));
-    // 20 bodies, a stack of 10, a pyramid of 15, grids of 8 and 5 and one compound, a joint
+    // 21 bodies, a stack of 10, a pyramid of 15, grids of 8 and 5 and one compound, a joint
     // grid of 3 x 2, 4 walls, 20 drops, 2 stacks of 3, a chain of 6 links, 2 groups of 2.
     assert_eq!(
         built.world.body_count(),
-        20 + 10 + 15 + 8 + 5 + 1 + 6 + 4 + 20 + 6 + 6 + 4
+        21 + 10 + 15 + 8 + 5 + 1 + 6 + 4 + 20 + 6 + 6 + 4
     );
     // Every kind of shape is there; the chain of 3 points is 2 links.
     let mut shapes: Vec<&str> = built
@@ -286,6 +286,58 @@ fn a_spun_frame_turns_rigidly_about_its_pivot() {
         );
         assert!((body.angular_velocity() - 1.0).abs() < 1e-3);
     }
+}
+
+#[test]
+fn a_shuttled_platform_goes_out_and_back_and_carries_its_load() {
+    // A kinematic platform sent 4 m right and back every 4 s, a box resting on it: at 2 s
+    // the platform is 4 m out, at 4 s home again, and the box went with it.
+    let text = r#"(
+        name: "shuttle",
+        bodies: [
+            (name: Some("platform"), kind: kinematic, shape: Box(width: 3.0, height: 0.2), position: (0.0, 0.0)),
+            (name: Some("load"), shape: Box(width: 0.5, height: 0.5), position: (0.0, 0.35)),
+        ],
+        events: [Shuttle(bodies: ["platform"], offset: (4.0, 0.0), period: 4.0)],
+    )"#;
+    let scene = carom_scene::parse(text, "shuttle.ron").unwrap();
+    let mut built = carom_scene::build(&scene, "shuttle.ron").unwrap();
+    let x = |built: &carom_scene::SceneWorld, name: &str| {
+        built.world.body(built.names[name]).unwrap().position().x
+    };
+    for _ in 0..120 {
+        built.step().unwrap();
+    }
+    assert!(
+        (x(&built, "platform") - 4.0).abs() < 1e-4,
+        "{}",
+        x(&built, "platform")
+    );
+    assert!(
+        (x(&built, "load") - 4.0).abs() < 0.05,
+        "the load is at {}",
+        x(&built, "load")
+    );
+    for _ in 0..120 {
+        built.step().unwrap();
+    }
+    assert!(
+        x(&built, "platform").abs() < 1e-4,
+        "{}",
+        x(&built, "platform")
+    );
+    assert!(
+        x(&built, "load").abs() < 0.05,
+        "the load is at {}",
+        x(&built, "load")
+    );
+    // Only a kinematic body shuttles.
+    let text = text.replace("kind: kinematic, ", "");
+    let scene = carom_scene::parse(&text, "shuttle.ron").unwrap();
+    let error = carom_scene::build(&scene, "shuttle.ron")
+        .unwrap_err()
+        .to_string();
+    assert!(error.contains("must be kinematic to shuttle"), "{error}");
 }
 
 proptest::proptest! {

@@ -1,5 +1,6 @@
 //! Timed events: launching a body at a moment, respawning one periodically, spinning a
-//! kinematic frame, making and remaking copies of bodies and joints in turn.
+//! kinematic frame, shuttling kinematic bodies back and forth, making and remaking copies of
+//! bodies and joints in turn.
 
 use crate::scene::EventSpec;
 use crate::spawn::Spawn;
@@ -27,6 +28,13 @@ enum Action {
         angular_velocity: f64,
         /// Each body with its offset from the pivot and its angle at time zero.
         bodies: Vec<(BodyHandle, carom::Vec2, f32)>,
+    },
+    Shuttle {
+        /// The way there and back, m.
+        offset: carom::Vec2,
+        period: f64,
+        /// Each body with where it starts.
+        bodies: Vec<(BodyHandle, carom::Vec2)>,
     },
     Spawn(Spawn),
 }
@@ -115,6 +123,35 @@ impl Events {
                         bodies: frame,
                     }
                 }
+                EventSpec::Shuttle {
+                    bodies,
+                    offset,
+                    period,
+                } => {
+                    let good = period.is_finite()
+                        && *period > 0.0
+                        && offset.0.is_finite()
+                        && offset.1.is_finite();
+                    if !good {
+                        return Err((index, "offset must be finite and period positive".into()));
+                    }
+                    let mut starts = Vec::with_capacity(bodies.len());
+                    for name in bodies {
+                        let handle = find(index, name)?;
+                        let body = world
+                            .body(handle)
+                            .ok_or((index, format!("{name:?} is gone")))?;
+                        if body.kind() != BodyKind::Kinematic {
+                            return Err((index, format!("{name:?} must be kinematic to shuttle")));
+                        }
+                        starts.push((handle, body.position()));
+                    }
+                    Action::Shuttle {
+                        offset: vec2(offset.0, offset.1),
+                        period: *period as f64,
+                        bodies: starts,
+                    }
+                }
                 EventSpec::Spawn {
                     at,
                     every,
@@ -154,6 +191,7 @@ impl Events {
                 Action::Spin { bodies, .. } => {
                     moved.extend(bodies.iter().map(|(body, _, _)| *body))
                 }
+                Action::Shuttle { bodies, .. } => moved.extend(bodies.iter().map(|(b, _)| *b)),
                 Action::Spawn(_) => {}
             }
         }
@@ -170,6 +208,7 @@ impl Events {
                 Action::Launch { .. } => others.push("launch"),
                 Action::Respawn { .. } => others.push("respawn"),
                 Action::Spin { .. } => others.push("spin"),
+                Action::Shuttle { .. } => others.push("shuttle"),
             }
         }
         (spawns, others)
@@ -231,6 +270,22 @@ impl Events {
                         if let Some(mut b) = world.body_mut(*handle) {
                             let _ =
                                 b.move_kinematic_to(*pivot + rotation * offset, angle + turn, dt);
+                        }
+                    }
+                }
+                Action::Shuttle {
+                    offset,
+                    period,
+                    bodies,
+                } => {
+                    // Eased out and back (a cosine), aimed at the exact place at the end of the
+                    // step so no drift builds up.
+                    let phase = std::f64::consts::TAU * (world.time() + dt as f64) / *period;
+                    let along = (0.5 * (1.0 - phase.cos())) as f32;
+                    for (handle, start) in bodies.iter() {
+                        if let Some(mut b) = world.body_mut(*handle) {
+                            let angle = b.angle();
+                            let _ = b.move_kinematic_to(*start + *offset * along, angle, dt);
                         }
                     }
                 }

@@ -871,6 +871,16 @@ pub enum EventSpec {
         /// Turn rate, rad/s (positive is counter-clockwise).
         angular_velocity: f32,
     },
+    /// From the start, the named kinematic bodies go `offset` from where they start and back
+    /// every `period` seconds, easing in and out (a lift, a moving platform).
+    Shuttle {
+        /// Which bodies (their `name`s); each must be kinematic.
+        bodies: Vec<String>,
+        /// How far they go, m.
+        offset: Pair,
+        /// Time there and back, s.
+        period: f32,
+    },
     /// Copies of a generator's bodies and joints made and remade in turn at the places of a
     /// `columns × rows` grid (Box2D's rain of ragdolls). Turn `n` comes at `at + n every`
     /// seconds, before the first step that starts then or later: it takes column `n` mod

@@ -200,7 +200,7 @@ pub struct SpawnSchedule {
     /// What happens, in order: before step `step` (0 is the first step from when the
     /// schedule was made), a copy is removed or made.
     pub changes: Vec<SpawnChange>,
-    /// The scene's events other than spawns ("launch", "respawn", "spin"), which a schedule
+    /// The scene's events other than spawns ("launch", "respawn", "spin", "shuttle"), which a schedule
     /// does not carry: a run elsewhere that follows only the schedule leaves them out.
     pub other_events: Vec<&'static str>,
 }
