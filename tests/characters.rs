@@ -486,6 +486,43 @@ fn its_weight_tips_a_seesaw_it_stands_on() {
     assert!(world.body(plank).unwrap().angle().abs() < 1e-3);
 }
 
+#[test]
+fn a_conveyor_belt_carries_it_at_the_belt_s_speed() {
+    // A static belt moving its top at 2 m/s to the right (clockwise round the box).
+    let mut world = World::new();
+    world
+        .add_body(
+            BodyDef::static_body(Shape::rect(20.0, 0.5))
+                .position(vec2(0.0, -0.5))
+                .surface(carom::Surface {
+                    tangent_speed: 2.0,
+                    ..carom::Surface::default()
+                }),
+        )
+        .unwrap();
+    let mut player = Player::standing_at(0.0, 0.0);
+    player.step(&mut world, 0.0);
+    let start = player.position().x;
+    for _ in 0..60 {
+        player.step(&mut world, 0.0);
+    }
+    let carried = player.position().x - start;
+    assert!(
+        (carried - 2.0).abs() < 0.02 * 2.0,
+        "carried {carried} m in 1 s"
+    );
+    // Walking against it at its speed, it stays put.
+    let before = player.position().x;
+    for _ in 0..60 {
+        player.step(&mut world, -2.0);
+    }
+    let moved = player.position().x - before;
+    assert!(
+        moved.abs() < 0.01,
+        "moved {moved} m walking against the belt"
+    );
+}
+
 // The dynamic character: a body that never turns, walked by a mover joint and held up by a
 // pogo leg re-made each step on what a ray from its foot hits, as Box2D's dynamic mover is.
 

@@ -340,6 +340,61 @@ fn a_shuttled_platform_goes_out_and_back_and_carries_its_load() {
     assert!(error.contains("must be kinematic to shuttle"), "{error}");
 }
 
+#[test]
+fn a_player_walks_jumps_onto_a_ledge_and_saves_as_it_is() {
+    // A floor, a ledge 1 m up from x = 4, the goal at x = 7. Walk right, jump at 0.5 s.
+    let text = r#"(
+        name: "player",
+        bodies: [
+            (kind: static, shape: Box(width: 20.0, height: 1.0), position: (0.0, -0.5)),
+            (kind: static, shape: Box(width: 6.0, height: 1.0), position: (7.0, 0.5)),
+        ],
+        player: (position: (0.0, 0.8), goal: Some(7.0)),
+    )"#;
+    let scene = carom_scene::parse(text, "player.ron").unwrap();
+    let mut built = carom_scene::build(&scene, "player.ron").unwrap();
+    let mut saved = None;
+    for step in 0..120 {
+        let player = built.player.as_mut().unwrap();
+        player.input = carom_scene::PlayerInput {
+            right: true,
+            jump: step == 30,
+            ..Default::default()
+        };
+        built.step().unwrap();
+        if step == 60 {
+            saved = Some(built.save(&scene));
+        }
+    }
+    let player = built.player.as_ref().unwrap();
+    let at = player.character().position();
+    // 2 s at 4 m/s, standing on the ledge.
+    assert!((at.x - 8.0).abs() < 0.05, "at {at}");
+    assert!((at.y - 1.8).abs() < 0.01, "at {at}");
+    assert!(player.character().is_grounded() && player.finished());
+    // Opened again at step 60, the rest of the run ends in the same place, to the bit.
+    let saved = saved.unwrap();
+    let text = carom_scene::to_text(&saved, "saved.ron").unwrap();
+    let again = carom_scene::parse(&text, "saved.ron").unwrap();
+    let mut reopened = carom_scene::build(&again, "saved.ron").unwrap();
+    for _ in 61..120 {
+        reopened.player.as_mut().unwrap().input.right = true;
+        reopened.step().unwrap();
+    }
+    let there = reopened.player.as_ref().unwrap().character().position();
+    assert_eq!(there, at);
+    assert_eq!(reopened.world.state_hash(), built.world.state_hash());
+    // A bad player is refused, naming it.
+    let bad = text_with_player("(position: (0.0, 0.8), radius: -1.0)");
+    let error = carom_scene::build(&bad, "bad.ron").unwrap_err().to_string();
+    assert!(error.contains("player"), "{error}");
+}
+
+fn text_with_player(player: &str) -> carom_scene::Scene {
+    let text = format!("(name: \"bad\", player: {player})");
+    carom_scene::parse(&text, "bad.ron").unwrap()
+}
+
 proptest::proptest! {
     #![proptest_config(proptest::prelude::ProptestConfig {
         cases: 300,

@@ -3,6 +3,7 @@
 use crate::error::SceneError;
 use crate::events::Events;
 use crate::one_way;
+use crate::player::Player;
 use crate::scene::{
     Accuracy, BodySpec, Camera, Cells, Generator, JointKindSpec, JointSpec, Material, Pair,
     RevoluteSpec, Scene, ShapeSpec,
@@ -36,14 +37,20 @@ pub struct SceneWorld {
     pub draw: DrawFlags,
     /// How `carom bench` measures the scene's error, its body names checked.
     pub accuracy: Option<Accuracy>,
+    /// The character the keyboard walks, if the scene has one: set its
+    /// [`Player::input`] before each step.
+    pub player: Option<Player>,
     pub(crate) events: Events,
 }
 
 impl SceneWorld {
-    /// Fires the events due and advances the world by one time step.
+    /// Fires the events due, moves the player, and advances the world by one time step.
     pub fn step(&mut self) -> Result<(), CaromError> {
         self.events
             .fire(&mut self.world, &mut self.colors, self.time_step);
+        if let Some(player) = &mut self.player {
+            player.step(&mut self.world, self.time_step)?;
+        }
         self.world.step(self.time_step)
     }
 
@@ -108,7 +115,13 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
             saved.world.set_pre_solve(one_way::solid_from_above);
         }
         let (world, names, colors, events) = (saved.world, saved.names, saved.colors, saved.events);
-        return finish(scene, world, names, colors, events, time_step, &invalid);
+        let mut built = finish(scene, world, names, colors, events, time_step, &invalid)?;
+        if let (Some(player), Some(state)) = (&mut built.player, saved.player) {
+            player
+                .restore(state)
+                .map_err(|reason| invalid("state".into(), reason))?;
+        }
+        return Ok(built);
     }
     let mut world =
         World::with_settings(scene.world).map_err(|e| invalid("world".into(), e.to_string()))?;
@@ -197,6 +210,12 @@ fn finish(
         check_accuracy(accuracy, &names, &world)
             .map_err(|reason| invalid("accuracy".into(), reason))?;
     }
+    let player = scene
+        .player
+        .as_ref()
+        .map(Player::new)
+        .transpose()
+        .map_err(|reason| invalid("player".into(), reason))?;
     Ok(SceneWorld {
         world,
         time_step,
@@ -205,6 +224,7 @@ fn finish(
         camera: scene.camera,
         draw: scene.draw,
         accuracy: scene.accuracy.clone(),
+        player,
         events,
     })
 }

@@ -5,6 +5,7 @@
 use crate::build::SceneWorld;
 use crate::error::SceneError;
 use crate::events::Events;
+use crate::player::{Player, SavedPlayer};
 use crate::scene::Scene;
 use carom::{BodyHandle, World};
 use serde::{Deserialize, Serialize};
@@ -20,6 +21,9 @@ pub struct SavedState {
     names: BTreeMap<String, BodyHandle>,
     colors: Vec<(BodyHandle, (f32, f32, f32))>,
     events: Events,
+    /// The player's motion, if the scene has one.
+    #[serde(default)]
+    player: Option<SavedPlayer>,
 }
 
 impl SceneWorld {
@@ -35,6 +39,7 @@ impl SceneWorld {
                 names: self.names.iter().map(|(n, &h)| (n.clone(), h)).collect(),
                 colors,
                 events: self.events.clone(),
+                player: self.player.as_ref().map(Player::saved),
             }),
             ..scene.clone()
         }
@@ -62,6 +67,7 @@ impl SavedState {
             names,
             colors,
             events: self.events.clone(),
+            player: self.player,
         })
     }
 }
@@ -72,6 +78,7 @@ pub(crate) struct Parts {
     pub names: HashMap<String, BodyHandle>,
     pub colors: HashMap<BodyHandle, (f32, f32, f32)>,
     pub events: Events,
+    pub player: Option<SavedPlayer>,
 }
 
 /// A scene as scene-file text (RON): the hand-written part laid out for reading, a saved

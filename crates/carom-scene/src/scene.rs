@@ -67,6 +67,9 @@ pub struct Scene {
     /// Things that happen at given times.
     #[serde(default)]
     pub events: Vec<EventSpec>,
+    /// A character the keyboard walks and jumps.
+    #[serde(default)]
+    pub player: Option<PlayerSpec>,
     /// What the demo and snapshots draw at first. Default: shapes, sleeping bodies dimmed.
     #[serde(default = "default_draw")]
     pub draw: DrawFlags,
@@ -666,6 +669,47 @@ pub struct RevoluteSpec {
     pub spring: Option<Spring>,
     /// The angle the spring pulls to, rad.
     pub target_angle: f32,
+}
+
+/// A character the keyboard walks and jumps (carom's kinematic `Character`: it climbs
+/// slopes up to 45° and steps up to 0.3 m, and rides what it stands on), falling under the
+/// world's gravity.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlayerSpec {
+    /// Where its capsule's middle starts, m.
+    pub position: Pair,
+    /// From its middle to its end circles' centres, m. Default 0.5.
+    #[serde(default = "player_half_height")]
+    pub half_height: f32,
+    /// Its capsule's radius, m. Default 0.3.
+    #[serde(default = "player_radius")]
+    pub radius: f32,
+    /// m/s. Default 4.
+    #[serde(default = "walk_speed")]
+    pub walk_speed: f32,
+    /// Its upward speed as it jumps, m/s. Default 7.
+    #[serde(default = "jump_speed")]
+    pub jump_speed: f32,
+    /// The x past which the level is done, m.
+    #[serde(default)]
+    pub goal: Option<f32>,
+}
+
+fn player_half_height() -> f32 {
+    0.5
+}
+
+fn player_radius() -> f32 {
+    0.3
+}
+
+fn walk_speed() -> f32 {
+    4.0
+}
+
+fn jump_speed() -> f32 {
+    7.0
 }
 
 /// What a joint does, with its settings (as in carom's joint types).

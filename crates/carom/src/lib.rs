@@ -73,7 +73,7 @@ mod solver;
 mod stats;
 mod world;
 
-pub use character::controller::{Character, CharacterDef, CharacterMove, Ground};
+pub use character::controller::{Character, CharacterDef, CharacterMove, CharacterState, Ground};
 pub use character::mover::MoverPlane;
 pub use character::planes::{CollisionPlane, PlaneSolution, clip_velocity, solve_planes};
 pub use collision::contact::{Contact, ContactEvent, ContactPair, MaterialMixer, PointImpulse};

@@ -8,9 +8,9 @@
 //! surface too steep pushes it straight back, level, so that walking into it does not lift
 //! it and falling against it slides it down. Walls and ceilings push along their normals.
 //! On top of that: steps up to a height, a snap down to the ground when walking downhill or
-//! off a low step, a ride on whatever body it stands on (moving or turning), its weight on
-//! that body when it is dynamic, and a push, bounded in force, on the dynamic bodies it
-//! walks into.
+//! off a low step, a ride on whatever body it stands on (moving or turning, or a conveyor
+//! belt's surface), its weight on that body when it is dynamic, and a push, bounded in
+//! force, on the dynamic bodies it walks into.
 //!
 //! The world does not see the character: bodies are not stopped by it, only pushed.
 
@@ -26,7 +26,7 @@ use crate::dynamics::collider::ColliderHandle;
 use crate::error::{CaromError, check_finite_not_negative, check_finite_vec};
 use crate::geometry::capsule::Capsule;
 use crate::geometry::segment::closest_on_segment;
-use crate::math::{Real, Vec2, cross, rotation, vec2};
+use crate::math::{Real, Vec2, cross, perp_cw, rotation, vec2};
 use crate::world::World;
 
 /// How a character is shaped and how it moves; build one with [`CharacterDef::capsule`] and
@@ -160,6 +160,7 @@ impl CharacterDef {
 
 /// What a character stands on.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Ground {
     /// The body.
     pub body: BodyHandle,
@@ -191,6 +192,18 @@ pub struct CharacterMove {
     pub snapped: bool,
     /// How far its ground carries it over this step, m (included in `translation`).
     pub ride: Vec2,
+}
+
+/// What a character carries from one move to the next: where it is and what it stands on.
+/// Keep it with a game's saved state and give it back with [`Character::restore`], and the
+/// character moves on as it would have.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct CharacterState {
+    /// Its capsule's middle.
+    pub position: Vec2,
+    /// What it stood on after its last move.
+    pub ground: Option<Ground>,
 }
 
 /// A kinematic character: a capsule the game moves with [`World::move_character`].
@@ -237,6 +250,32 @@ impl Character {
     pub fn set_position(&mut self, position: Vec2) -> Result<(), CaromError> {
         self.position = check_finite_vec("character position", position)?;
         self.ground = None;
+        self.touching.clear();
+        Ok(())
+    }
+
+    /// Where it is and what it stands on, to save ([`CharacterState`]).
+    pub fn state(&self) -> CharacterState {
+        CharacterState {
+            position: self.position,
+            ground: self.ground,
+        }
+    }
+
+    /// Puts it back as `state` left it: where it was, on what it stood on.
+    ///
+    /// # Errors
+    /// [`CaromError::NonFinite`] for a position or ground that is not finite; the character
+    /// is then left as it was.
+    pub fn restore(&mut self, state: CharacterState) -> Result<(), CaromError> {
+        check_finite_vec("character position", state.position)?;
+        if let Some(ground) = &state.ground {
+            check_finite_vec("character ground normal", ground.normal)?;
+            check_finite_vec("character ground point", ground.point)?;
+            check_finite_vec("character ground anchor", ground.anchor)?;
+        }
+        self.position = state.position;
+        self.ground = state.ground;
         self.touching.clear();
         Ok(())
     }
@@ -348,12 +387,19 @@ impl World {
         let rising = translation.dot(&up) > 0.0;
 
         // Ride: where the ground's motion over the coming step carries the character's foot,
-        // the character goes too, so that the two move together.
+        // the character goes too, so that the two move together; and a conveyor belt's
+        // surface (its tangent speed, clockwise around its shape) carries it along.
         let ride = character
             .ground
-            .and_then(|ground| {
-                let body = self.body(ground.body).filter(|body| body.moves())?;
-                Some(carried(body, ground.anchor, dt))
+            .map(|ground| {
+                let moved = self
+                    .body(ground.body)
+                    .filter(|body| body.moves())
+                    .map_or_else(Vec2::zeros, |body| carried(body, ground.anchor, dt));
+                let belt = self
+                    .collider(ground.collider)
+                    .map_or(0.0, |c| c.surface().tangent_speed);
+                moved + perp_cw(ground.normal) * (belt * dt)
             })
             .unwrap_or_else(Vec2::zeros);
 

@@ -1,0 +1,123 @@
+//! The scene's player: a kinematic character ([`carom::Character`]) that the host walks and
+//! jumps each step, as a game drives one: a walking speed from the keys held, the world's
+//! gravity added to its own vertical speed, the move, then its velocity clipped by what it
+//! touched.
+
+use crate::scene::PlayerSpec;
+use carom::{CaromError, Character, CharacterDef, CharacterState, Effect, Real, Vec2, World, vec2};
+use serde::{Deserialize, Serialize};
+
+/// The keys held this step.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct PlayerInput {
+    /// Walk left.
+    pub left: bool,
+    /// Walk right.
+    pub right: bool,
+    /// Jump, if standing on something.
+    pub jump: bool,
+}
+
+/// The scene's player, moved by [`crate::SceneWorld::step`] before the world steps.
+#[derive(Debug, Clone)]
+pub struct Player {
+    character: Character,
+    velocity: Vec2,
+    walk_speed: Real,
+    jump_speed: Real,
+    goal: Option<Real>,
+    /// The keys held; the host sets them before each step.
+    pub input: PlayerInput,
+}
+
+/// What a saved scene keeps of its player: where it is, what it stands on, how it moves.
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct SavedPlayer {
+    state: CharacterState,
+    velocity: Vec2,
+}
+
+impl Player {
+    /// The player `spec` describes, standing nowhere yet.
+    pub(crate) fn new(spec: &PlayerSpec) -> Result<Self, String> {
+        let finite = [spec.walk_speed, spec.jump_speed]
+            .iter()
+            .all(|x| x.is_finite());
+        if !finite || spec.walk_speed < 0.0 || spec.jump_speed < 0.0 {
+            return Err("walk_speed and jump_speed must be finite and not negative".into());
+        }
+        if spec.goal.is_some_and(|x| !x.is_finite()) {
+            return Err("goal must be finite".into());
+        }
+        let def = CharacterDef::capsule(spec.half_height, spec.radius)
+            .position(vec2(spec.position.0, spec.position.1));
+        let character = Character::new(def).map_err(|e| e.to_string())?;
+        Ok(Player {
+            character,
+            velocity: Vec2::zeros(),
+            walk_speed: spec.walk_speed,
+            jump_speed: spec.jump_speed,
+            goal: spec.goal,
+            input: PlayerInput::default(),
+        })
+    }
+
+    /// One step of `dt`: walk, jump, fall, move, clip.
+    pub(crate) fn step(&mut self, world: &mut World, dt: Real) -> Result<(), CaromError> {
+        let walk = match (self.input.left, self.input.right) {
+            (true, false) => -self.walk_speed,
+            (false, true) => self.walk_speed,
+            _ => 0.0,
+        };
+        let grounded = self.character.is_grounded();
+        // Walking steers in the air too; standing still stops only on the ground.
+        if grounded || walk != 0.0 {
+            self.velocity.x = walk;
+        }
+        if grounded && self.input.jump {
+            self.velocity.y = self.jump_speed;
+        }
+        let settings = world.settings();
+        if settings.effects.contains(Effect::Gravity) {
+            self.velocity += settings.gravity * dt;
+        }
+        world.move_character(&mut self.character, self.velocity * dt, dt)?;
+        self.velocity = self.character.clip_velocity(self.velocity);
+        Ok(())
+    }
+
+    /// Its character: where it is, what it stands on and touches.
+    pub fn character(&self) -> &Character {
+        &self.character
+    }
+
+    /// Its velocity, m/s.
+    pub fn velocity(&self) -> Vec2 {
+        self.velocity
+    }
+
+    /// Whether it is past the level's goal (never, for a scene without one).
+    pub fn finished(&self) -> bool {
+        self.goal
+            .is_some_and(|goal| self.character.position().x >= goal)
+    }
+
+    pub(crate) fn saved(&self) -> SavedPlayer {
+        SavedPlayer {
+            state: self.character.state(),
+            velocity: self.velocity,
+        }
+    }
+
+    pub(crate) fn restore(&mut self, saved: SavedPlayer) -> Result<(), String> {
+        if !(saved.velocity.x.is_finite() && saved.velocity.y.is_finite()) {
+            return Err("the player's velocity is not finite".into());
+        }
+        self.character
+            .restore(saved.state)
+            .map_err(|e| e.to_string())?;
+        self.velocity = saved.velocity;
+        Ok(())
+    }
+}
