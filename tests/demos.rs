@@ -975,3 +975,65 @@ fn the_ragdoll_rain_is_box2d_s_recipe() {
     run(&mut scene, 1);
     assert_eq!(scene.world.body_count(), 1 + 2 * 275);
 }
+
+/// The platformer, played as a player would: walk right; jump once under the one-way
+/// platform; at the pit, wait for the moving platform, stand on it while it crosses, walk
+/// off. The player reaches the goal, past every piece, within 30 s.
+#[test]
+fn the_platformer_can_be_played_to_its_goal() {
+    let mut scene = demo("platformer");
+    let lift = scene.names["lift"];
+    let plank = scene.names["plank"];
+    let mut jumped = false;
+    let mut highest: f32 = 0.0;
+    let mut tipped: f32 = 0.0;
+    let (mut rode, mut fastest) = (false, 0.0_f32);
+    for _ in 0..1800 {
+        let lift_x = scene.world.body(lift).unwrap().position().x;
+        let player = scene.player.as_mut().unwrap();
+        let at = player.character().position();
+        let on_lift = player.character().ground().is_some_and(|g| g.body == lift);
+        let jump = !jumped && at.x > 25.6 && player.character().is_grounded();
+        jumped |= jump;
+        rode |= on_lift;
+        let waiting = if on_lift {
+            lift_x < 51.8
+        } else {
+            at.x > 46.3 && at.x < 48.0 && lift_x > 48.2
+        };
+        player.input = carom_scene::PlayerInput {
+            right: !waiting,
+            jump,
+            ..Default::default()
+        };
+        scene.step().unwrap();
+        let player = scene.player.as_ref().unwrap();
+        let now = player.character().position();
+        if (19.5..24.5).contains(&at.x) && player.character().is_grounded() {
+            fastest = fastest.max((now.x - at.x) / scene.time_step);
+        }
+        highest = highest.max(now.y);
+        tipped = tipped.max(-scene.world.body(plank).unwrap().angle());
+        if player.finished() {
+            // Up the wall by the one-way platform (feet at 4 m), and the seesaw tipped.
+            assert!(highest > 4.7, "it never got above {highest} m");
+            assert!(
+                (0.45..0.55).contains(&tipped),
+                "the seesaw tipped {tipped} rad at most, its stop is at 0.5"
+            );
+            // On the belt it walked at 4 m/s and rode at 2.
+            assert!(
+                (fastest - 6.0).abs() < 0.1,
+                "at most {fastest} m/s on the belt"
+            );
+            assert!(rode, "it crossed the pit without the moving platform");
+            return;
+        }
+    }
+    let player = scene.player.as_ref().unwrap();
+    panic!(
+        "after 30 s the player is at {} (grounded: {}), short of the goal",
+        player.character().position(),
+        player.character().is_grounded()
+    );
+}

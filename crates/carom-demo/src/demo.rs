@@ -54,8 +54,10 @@ pub enum Button {
 /// The keys the demo answers to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Key {
-    /// Pause or play.
+    /// Pause or play (a scene with a player jumps with it instead; see [`Control`]).
     Space,
+    /// Pause or play, in every scene.
+    Pause,
     /// One step (pauses).
     Step,
     /// Reload the scene.
@@ -64,9 +66,21 @@ pub enum Key {
     Digit(u8),
 }
 
+/// What the keys held tell a scene's player.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Control {
+    /// Walk left (A or ←).
+    Left,
+    /// Walk right (D or →).
+    Right,
+    /// Jump (Space or ↑).
+    Jump,
+}
+
 /// The key hints the sidebar shows.
 pub const HINTS: &str = "Left drag: grab and throw · Right/middle drag: pan · Wheel: zoom\n\
-                         Space: pause · S: step · R: reset · W: save state · 1-9, 0: scenes\n\
+                         Space or P: pause · S: step · R: reset · W: save state · 1-9, 0: scenes\n\
+                         A/D or ←/→: walk, Space or ↑: jump (scenes with a player)\n\
                          Editing the open scene's file reloads it.";
 
 /// The demo, minus the window.
@@ -312,10 +326,27 @@ impl Demo {
         Ok(())
     }
 
+    /// Whether the scene has a player for the keys to walk ([`Demo::hold`]).
+    pub fn has_player(&self) -> bool {
+        self.scene.player.is_some()
+    }
+
+    /// A player's control held down (`true`) or let go, if the scene has a player.
+    pub fn hold(&mut self, control: Control, held: bool) {
+        if let Some(player) = &mut self.scene.player {
+            let input = &mut player.input;
+            match control {
+                Control::Left => input.left = held,
+                Control::Right => input.right = held,
+                Control::Jump => input.jump = held,
+            }
+        }
+    }
+
     /// A key was pressed.
     pub fn key(&mut self, key: Key) -> Result<(), String> {
         match key {
-            Key::Space => self.paused = !self.paused,
+            Key::Space | Key::Pause => self.paused = !self.paused,
             Key::Step => {
                 self.paused = true;
                 self.step()?;

@@ -6,7 +6,7 @@
 //! page) hears of each frame, of failures and of saves.
 
 use crate::capture::copy_to_buffer;
-use crate::demo::{Button, Demo, Key};
+use crate::demo::{Button, Control, Demo, Key};
 use crate::ui::{SIDEBAR_WIDTH, sidebar};
 use carom::{Color, DrawList, vec2};
 use carom_render::{Gpu, Renderer, clear_color};
@@ -456,9 +456,19 @@ impl Running {
                 self.demo.wheel(lines, local);
                 Ok(())
             }
+            // A scene's player: its keys held and let go.
+            WindowEvent::KeyboardInput { event, .. }
+                if self.demo.has_player() && control(event.physical_key).is_some() =>
+            {
+                if let Some(control) = control(event.physical_key) {
+                    self.demo.hold(control, event.state.is_pressed());
+                }
+                Ok(())
+            }
             WindowEvent::KeyboardInput { event, .. } if event.state.is_pressed() => {
                 let key = match event.physical_key {
                     PhysicalKey::Code(KeyCode::Space) => Some(Key::Space),
+                    PhysicalKey::Code(KeyCode::KeyP) => Some(Key::Pause),
                     PhysicalKey::Code(KeyCode::KeyS) => Some(Key::Step),
                     PhysicalKey::Code(KeyCode::KeyR) => Some(Key::Reset),
                     PhysicalKey::Code(code) => digit(code).map(Key::Digit),
@@ -658,6 +668,16 @@ impl Running {
 fn scene_viewport(width: u32, height: u32, scale: f32) -> [u32; 2] {
     let sidebar = (SIDEBAR_WIDTH * scale).ceil() as u32;
     [width.saturating_sub(sidebar).max(1), height.max(1)]
+}
+
+/// The player control a key gives, if any.
+fn control(key: PhysicalKey) -> Option<Control> {
+    match key {
+        PhysicalKey::Code(KeyCode::KeyA | KeyCode::ArrowLeft) => Some(Control::Left),
+        PhysicalKey::Code(KeyCode::KeyD | KeyCode::ArrowRight) => Some(Control::Right),
+        PhysicalKey::Code(KeyCode::Space | KeyCode::ArrowUp) => Some(Control::Jump),
+        _ => None,
+    }
 }
 
 fn digit(code: KeyCode) -> Option<u8> {

@@ -28,7 +28,7 @@ const CHANNEL_TOLERANCE: u8 = 40;
 const MAX_DIFFERING_FRACTION: f64 = 0.002;
 
 /// Each case: scene, steps before the picture, and what it shows.
-const CASES: [(&str, usize); 9] = [
+const CASES: [(&str, usize); 10] = [
     // Mixed shapes piled on the floor, contact points and normals drawn.
     ("collision", 150),
     // The worked example's reference and incident edges, and every edge normal.
@@ -47,6 +47,9 @@ const CASES: [(&str, usize); 9] = [
     ("terrain", 240),
     // 20 ragdolls falling into a pile, after a second and a half.
     ("ragdolls", 90),
+    // The platformer's level, its player (a capsule) standing at the start, the seesaw
+    // level, the moving platform on its way.
+    ("platformer", 30),
 ];
 
 fn workspace() -> PathBuf {

@@ -90,6 +90,9 @@ impl SceneWorld {
             },
             out,
         );
+        if let Some(player) = &self.player {
+            player.draw(out);
+        }
     }
 }
 

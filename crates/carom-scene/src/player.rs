@@ -4,7 +4,10 @@
 //! touched.
 
 use crate::scene::PlayerSpec;
-use carom::{CaromError, Character, CharacterDef, CharacterState, Effect, Real, Vec2, World, vec2};
+use carom::{
+    CaromError, Character, CharacterDef, CharacterState, Color, DebugDraw, Effect, Real, Vec2,
+    World, vec2,
+};
 use serde::{Deserialize, Serialize};
 
 /// The keys held this step.
@@ -101,6 +104,24 @@ impl Player {
     pub fn finished(&self) -> bool {
         self.goal
             .is_some_and(|goal| self.character.position().x >= goal)
+    }
+
+    /// Draws its capsule: an outline of two half circles joined, filled.
+    pub(crate) fn draw(&self, out: &mut impl DebugDraw) {
+        const HALF_TURN: usize = 8;
+        let capsule = self.character.capsule();
+        let (bottom, top, radius) = (capsule.center1(), capsule.center2(), capsule.radius());
+        let axis = (top - bottom).try_normalize(1e-9).unwrap_or(vec2(0.0, 1.0));
+        let side = vec2(axis.y, -axis.x);
+        let mut outline = Vec::with_capacity(2 * HALF_TURN + 2);
+        for (centre, start) in [(top, side), (bottom, -side)] {
+            for i in 0..=HALF_TURN {
+                let turn = carom::rotation(carom::consts::PI * i as Real / HALF_TURN as Real);
+                outline.push(centre + turn * start * radius);
+            }
+        }
+        let fill = Color::rgb(0.95, 0.55, 0.2);
+        out.polygon(&outline, fill.with_alpha(0.8), fill);
     }
 
     pub(crate) fn saved(&self) -> SavedPlayer {
