@@ -1037,3 +1037,21 @@ fn the_platformer_can_be_played_to_its_goal() {
         player.character().is_grounded()
     );
 }
+
+/// The platformer's recorded play (the play above, as key changes by step) replays to the
+/// goal: what the window's scripted run plays.
+#[test]
+fn the_platformer_s_recorded_play_reaches_its_goal() {
+    let mut scene = demo("platformer");
+    scene.player.as_mut().unwrap().replay();
+    for _ in 0..1800 {
+        scene.step().unwrap();
+        if scene.player.as_ref().unwrap().finished() {
+            let step = scene.world.step_count();
+            assert!((900..1000).contains(&step), "finished at step {step}");
+            return;
+        }
+    }
+    let at = scene.player.as_ref().unwrap().character().position();
+    panic!("the recorded play ends at {at}, short of the goal");
+}

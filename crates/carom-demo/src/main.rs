@@ -32,6 +32,9 @@ struct Cli {
     /// Save the window's contents (sidebar included) to this PNG after the last frame.
     #[arg(long, requires = "frames")]
     screenshot: Option<PathBuf>,
+    /// Play the scene's recorded play (a scene with a player and a `replay`).
+    #[arg(long)]
+    replay: bool,
 }
 
 #[derive(Subcommand, Debug, Clone)]
@@ -334,6 +337,7 @@ fn window_options(cli: &Cli) -> Result<WindowOptions, String> {
         size: cli.size,
         frames: cli.frames,
         screenshot: cli.screenshot.clone(),
+        replay: cli.replay,
     })
 }
 

@@ -32,6 +32,8 @@ pub struct WindowOptions {
     pub frames: Option<u64>,
     /// Save the window's contents to this PNG after the last frame.
     pub screenshot: Option<PathBuf>,
+    /// Play the opening scene's recorded play, if it has a player.
+    pub replay: bool,
 }
 
 /// A frame just shown, as a [`Host`] hears of it.
@@ -343,7 +345,12 @@ impl Running {
             egui_wgpu::Renderer::new(&device, format, egui_wgpu::RendererOptions::default());
         let scale = window.scale_factor() as f32;
         let viewport = scene_viewport(config.width, config.height, scale);
-        let demo = Demo::open(&options.scenes_folder, &options.scene, viewport)?;
+        let mut demo = Demo::open(&options.scenes_folder, &options.scene, viewport)?;
+        if options.replay
+            && let Some(player) = &mut demo.scene.player
+        {
+            player.replay();
+        }
         window.set_title(&format!("carom: {}", demo.scene_path.display()));
         let info = adapter.get_info();
         Ok(Running {

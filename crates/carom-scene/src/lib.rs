@@ -48,7 +48,7 @@ pub use error::SceneError;
 pub use load::{parse, read};
 pub use player::{Player, PlayerInput};
 pub use saved::{SavedState, to_text, write};
-pub use scene::{Accuracy, Camera, SCENE_FORMAT, Scene};
+pub use scene::{Accuracy, Camera, KeyChange, PlayerKey, SCENE_FORMAT, Scene};
 pub use spawn::{Made, SpawnChange, SpawnSchedule};
 
 /// Reads, parses and builds a scene file.

@@ -3,7 +3,7 @@
 //! gravity added to its own vertical speed, the move, then its velocity clipped by what it
 //! touched.
 
-use crate::scene::PlayerSpec;
+use crate::scene::{KeyChange, PlayerKey, PlayerSpec};
 use carom::{
     CaromError, Character, CharacterDef, CharacterState, Color, DebugDraw, Effect, Real, Vec2,
     World, vec2,
@@ -29,6 +29,9 @@ pub struct Player {
     walk_speed: Real,
     jump_speed: Real,
     goal: Option<Real>,
+    /// The scene's recorded play, and whether it is being played.
+    recorded: Vec<KeyChange>,
+    replaying: bool,
     /// The keys held; the host sets them before each step.
     pub input: PlayerInput,
 }
@@ -62,12 +65,36 @@ impl Player {
             walk_speed: spec.walk_speed,
             jump_speed: spec.jump_speed,
             goal: spec.goal,
+            recorded: spec.replay.clone(),
+            replaying: false,
             input: PlayerInput::default(),
         })
     }
 
+    /// Plays the scene's recorded play from here: its key changes take the keys over at
+    /// their steps (the world's step count), whatever the host sets.
+    pub fn replay(&mut self) {
+        self.replaying = true;
+    }
+
+    /// Whether it plays the scene's recorded play.
+    pub fn is_replaying(&self) -> bool {
+        self.replaying
+    }
+
     /// One step of `dt`: walk, jump, fall, move, clip.
     pub(crate) fn step(&mut self, world: &mut World, dt: Real) -> Result<(), CaromError> {
+        if self.replaying {
+            let now = world.step_count();
+            for change in self.recorded.iter().filter(|c| c.step == now) {
+                let key = match change.key {
+                    PlayerKey::Left => &mut self.input.left,
+                    PlayerKey::Right => &mut self.input.right,
+                    PlayerKey::Jump => &mut self.input.jump,
+                };
+                *key = change.down;
+            }
+        }
         let walk = match (self.input.left, self.input.right) {
             (true, false) => -self.walk_speed,
             (false, true) => self.walk_speed,

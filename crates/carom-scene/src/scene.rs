@@ -674,7 +674,7 @@ pub struct RevoluteSpec {
 /// A character the keyboard walks and jumps (carom's kinematic `Character`: it climbs
 /// slopes up to 45° and steps up to 0.3 m, and rides what it stands on), falling under the
 /// world's gravity.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlayerSpec {
     /// Where its capsule's middle starts, m.
@@ -694,6 +694,34 @@ pub struct PlayerSpec {
     /// The x past which the level is done, m.
     #[serde(default)]
     pub goal: Option<f32>,
+    /// A recorded play: the keys' changes, by step, that a host may replay
+    /// ([`crate::Player::replay`]).
+    #[serde(default)]
+    pub replay: Vec<KeyChange>,
+}
+
+/// A key of the player's going down or up before a step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KeyChange {
+    /// The world's step count when it happens (0: before the first step).
+    pub step: u64,
+    /// Which.
+    pub key: PlayerKey,
+    /// Down (held) or up.
+    pub down: bool,
+}
+
+/// The player's keys.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PlayerKey {
+    /// Walk left.
+    Left,
+    /// Walk right.
+    Right,
+    /// Jump.
+    Jump,
 }
 
 fn player_half_height() -> f32 {

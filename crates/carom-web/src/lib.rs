@@ -56,6 +56,7 @@ pub fn start() -> Result<(), JsValue> {
         size: (0, 0),
         frames: None,
         screenshot: None,
+        replay: false,
     };
     start_in_canvas(options, canvas, Box::new(Page)).map_err(|e| {
         fail(&e);
