@@ -35,6 +35,9 @@ struct Cli {
     /// Play the scene's recorded play (a scene with a player and a `replay`).
     #[arg(long)]
     replay: bool,
+    /// Take this many steps every frame, whatever the clock says (for scripted runs).
+    #[arg(long)]
+    steps_per_frame: Option<u32>,
 }
 
 #[derive(Subcommand, Debug, Clone)]
@@ -338,6 +341,7 @@ fn window_options(cli: &Cli) -> Result<WindowOptions, String> {
         frames: cli.frames,
         screenshot: cli.screenshot.clone(),
         replay: cli.replay,
+        steps_per_frame: cli.steps_per_frame,
     })
 }
 

@@ -34,6 +34,9 @@ pub struct WindowOptions {
     pub screenshot: Option<PathBuf>,
     /// Play the opening scene's recorded play, if it has a player.
     pub replay: bool,
+    /// Take this many steps every frame, whatever the time (a scripted run that must reach
+    /// a given step whatever the machine's speed), instead of keeping to the clock.
+    pub steps_per_frame: Option<u32>,
 }
 
 /// A frame just shown, as a [`Host`] hears of it.
@@ -505,7 +508,14 @@ impl Running {
             Ok(false) => {}
             Err(message) => self.error = Some(message),
         }
-        if let Err(message) = self.demo.frame(elapsed) {
+        // A fixed number of steps a frame (a scripted run), or as many as the time passed.
+        let stepped = match options.steps_per_frame {
+            Some(steps) if !self.demo.paused => (0..steps)
+                .try_for_each(|_| self.demo.step())
+                .map(|()| steps),
+            _ => self.demo.frame(elapsed),
+        };
+        if let Err(message) = stepped {
             self.error = Some(message);
         }
 
@@ -613,9 +623,17 @@ impl Running {
         let mut frame_ms = self.frame_ms.clone();
         frame_ms.sort_by(f64::total_cmp);
         let median = frame_ms.get(frame_ms.len() / 2).copied().unwrap_or(0.0);
+        let player = match &self.demo.scene.player {
+            Some(player) => {
+                let at = player.character().position();
+                let done = if player.finished() { ", finished" } else { "" };
+                format!(", player at ({:.2}, {:.2}){done}", at.x, at.y)
+            }
+            None => String::new(),
+        };
         format!(
             "{}: {} frames at {}x{} on {}: median frame {median:.1} ms ({:.1} frames/s), \
-             median step {:.3} ms, {} bodies",
+             median step {:.3} ms, {} bodies, {} steps{player}",
             self.demo.scene_path.display(),
             self.frames,
             self.config.width,
@@ -624,6 +642,7 @@ impl Running {
             1e3 / median.max(1e-6),
             self.demo.metrics.median(|s| s.step_ms),
             self.demo.scene.world.body_count(),
+            self.demo.scene.world.step_count(),
         )
     }
 

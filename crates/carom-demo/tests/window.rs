@@ -65,3 +65,43 @@ fn the_window_shows_the_scene_and_the_sidebar() {
         "no text in the sidebar ({text_pixels} light pixels)"
     );
 }
+
+/// The platformer, played through the window by its recorded play: 8 steps a frame for 130
+/// frames (1040 steps, the play needs about 950), whatever the machine's speed. The window
+/// reports the player finished, and the picture shows it at the goal.
+#[test]
+#[ignore = "needs a display: .ci/run runs it under Xvfb"]
+fn the_window_plays_the_platformer_to_its_goal() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let out = root.join("target/window");
+    std::fs::create_dir_all(&out).unwrap();
+    let screenshot = out.join("platformer.png");
+    let _ = std::fs::remove_file(&screenshot);
+    let output = Command::new(env!("CARGO_BIN_EXE_carom"))
+        .current_dir(&root)
+        .args([
+            "--scene",
+            "demos/platformer.ron",
+            "--replay",
+            "--steps-per-frame",
+            "8",
+            "--frames",
+            "130",
+            "--screenshot",
+        ])
+        .arg(&screenshot)
+        .output()
+        .unwrap();
+    let report = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "carom failed: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(report.contains("1040 steps"), "{report}");
+    assert!(
+        report.contains(", finished"),
+        "the player did not finish: {report}"
+    );
+    assert!(image::open(&screenshot).is_ok());
+}

@@ -57,6 +57,7 @@ pub fn start() -> Result<(), JsValue> {
         frames: None,
         screenshot: None,
         replay: false,
+        steps_per_frame: None,
     };
     start_in_canvas(options, canvas, Box::new(Page)).map_err(|e| {
         fail(&e);
