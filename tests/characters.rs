@@ -65,10 +65,15 @@ fn def_at(x: Real, ground: Real) -> CharacterDef {
 
 fn world_with_floor() -> World {
     let mut world = World::new();
+    add_floor(&mut world);
+    world
+}
+
+/// A static floor 100 m wide, its top at y = 0.
+fn add_floor(world: &mut World) -> carom::BodyHandle {
     world
         .add_body(BodyDef::static_body(Shape::rect(50.0, 0.5)).position(vec2(0.0, -0.5)))
-        .unwrap();
-    world
+        .unwrap()
 }
 
 /// A static triangle with corners `points` (counter-clockwise), in world coordinates.
@@ -626,9 +631,7 @@ fn a_dynamic_walker_stands_on_its_leg_and_walks_at_its_speed() {
         carom::SolverKind::SequentialImpulse,
     ] {
         let mut world = world_with_gravity(solver);
-        let ground = world
-            .add_body(BodyDef::static_body(Shape::rect(50.0, 0.5)).position(vec2(0.0, -0.5)))
-            .unwrap();
+        let ground = add_floor(&mut world);
         // Dropped from 0.3 m above its leg's length.
         let mut walker = Walker::new(&mut world, ground, 0.0, LEG + 0.3);
         for _ in 0..120 {
@@ -725,9 +728,7 @@ fn a_mover_drives_each_axis_within_its_force_and_leaves_the_other_free() {
 #[test]
 fn a_pogo_leg_pushes_and_pulls_no_harder_than_its_bounds() {
     let mut world = world_with_gravity(carom::SolverKind::SoftStep);
-    let ground = world
-        .add_body(BodyDef::static_body(Shape::rect(50.0, 0.5)).position(vec2(0.0, -0.5)))
-        .unwrap();
+    let ground = add_floor(&mut world);
     // A leg too weak to hold the walker: half its weight. It sinks to the ground, the leg
     // pushing its most the whole way.
     let body = world
@@ -795,9 +796,7 @@ fn a_pogo_leg_pushes_and_pulls_no_harder_than_its_bounds() {
 #[test]
 fn a_walker_falls_asleep_standing_and_goes_with_its_body() {
     let mut world = world_with_gravity(carom::SolverKind::SoftStep);
-    let ground = world
-        .add_body(BodyDef::static_body(Shape::rect(50.0, 0.5)).position(vec2(0.0, -0.5)))
-        .unwrap();
+    let ground = add_floor(&mut world);
     let mut walker = Walker::new(&mut world, ground, 0.0, LEG);
     // Standing still on the same leg (not re-made), it rests and sleeps.
     walker.step(&mut world, 0.0);

@@ -61,6 +61,23 @@ impl Events {
                 .copied()
                 .ok_or((index, format!("no body is named {name:?}")))
         };
+        // The named bodies, each kinematic (the events that move them drive them), with
+        // where they are and their angle.
+        let kinematic = |index: usize, bodies: &[String], verb: &str| {
+            bodies
+                .iter()
+                .map(|name| {
+                    let handle = find(index, name)?;
+                    let body = world
+                        .body(handle)
+                        .ok_or((index, format!("{name:?} is gone")))?;
+                    if body.kind() != BodyKind::Kinematic {
+                        return Err((index, format!("{name:?} must be kinematic to {verb}")));
+                    }
+                    Ok((handle, body.position(), body.angle()))
+                })
+                .collect::<Result<Vec<_>, _>>()
+        };
         let mut actions = Vec::new();
         for (index, spec) in specs.iter().enumerate() {
             actions.push(match spec {
@@ -106,17 +123,10 @@ impl Events {
                         return Err((index, "pivot and angular_velocity must be finite".into()));
                     }
                     let pivot = vec2(pivot.0, pivot.1);
-                    let mut frame = Vec::with_capacity(bodies.len());
-                    for name in bodies {
-                        let handle = find(index, name)?;
-                        let body = world
-                            .body(handle)
-                            .ok_or((index, format!("{name:?} is gone")))?;
-                        if body.kind() != BodyKind::Kinematic {
-                            return Err((index, format!("{name:?} must be kinematic to spin")));
-                        }
-                        frame.push((handle, body.position() - pivot, body.angle()));
-                    }
+                    let frame = kinematic(index, bodies, "spin")?
+                        .into_iter()
+                        .map(|(handle, at, angle)| (handle, at - pivot, angle))
+                        .collect();
                     Action::Spin {
                         pivot,
                         angular_velocity: *angular_velocity as f64,
@@ -135,17 +145,10 @@ impl Events {
                     if !good {
                         return Err((index, "offset must be finite and period positive".into()));
                     }
-                    let mut starts = Vec::with_capacity(bodies.len());
-                    for name in bodies {
-                        let handle = find(index, name)?;
-                        let body = world
-                            .body(handle)
-                            .ok_or((index, format!("{name:?} is gone")))?;
-                        if body.kind() != BodyKind::Kinematic {
-                            return Err((index, format!("{name:?} must be kinematic to shuttle")));
-                        }
-                        starts.push((handle, body.position()));
-                    }
+                    let starts = kinematic(index, bodies, "shuttle")?
+                        .into_iter()
+                        .map(|(handle, at, _)| (handle, at))
+                        .collect();
                     Action::Shuttle {
                         offset: vec2(offset.0, offset.1),
                         period: *period as f64,

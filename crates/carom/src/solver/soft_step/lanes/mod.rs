@@ -99,70 +99,78 @@ pub(crate) trait Kernel {
     fn run(self) -> Self::Output;
 }
 
+/// What `wide`'s four-lane vectors share as [`Lanes`]: all but how bodies are gathered
+/// into lanes and scattered back.
+macro_rules! four_wide_lanes {
+    ($lanes:ident) => {
+        const WIDTH: usize = 4;
+        type Indices = [u32; 4];
+
+        #[inline(always)]
+        fn run<K: Kernel>(kernel: K) -> K::Output {
+            kernel.run()
+        }
+
+        #[inline(always)]
+        fn splat(x: Real) -> Self {
+            $lanes::splat(x)
+        }
+
+        #[inline(always)]
+        fn write_to(self, out: &mut [Real]) {
+            out[..4].copy_from_slice(self.as_array());
+        }
+
+        #[inline(always)]
+        fn lanes_mut(&mut self) -> &mut [Real] {
+            self.as_mut_array()
+        }
+
+        #[inline(always)]
+        fn from_slice(values: &[Real]) -> Self {
+            $lanes::new([values[0], values[1], values[2], values[3]])
+        }
+
+        #[inline(always)]
+        fn max(self, other: Self) -> Self {
+            $lanes::max(self, other)
+        }
+
+        #[inline(always)]
+        fn min(self, other: Self) -> Self {
+            $lanes::min(self, other)
+        }
+
+        #[inline(always)]
+        fn gt(self, other: Self) -> Self {
+            self.simd_gt(other)
+        }
+
+        #[inline(always)]
+        fn ne(self, other: Self) -> Self {
+            self.simd_ne(other)
+        }
+
+        #[inline(always)]
+        fn select(self, if_set: Self, if_clear: Self) -> Self {
+            self.bitselect(if_set, if_clear)
+        }
+
+        #[inline(always)]
+        fn and(self, other: Self) -> Self {
+            self & other
+        }
+
+        #[inline(always)]
+        fn bits(self) -> u32 {
+            self.to_bitmask()
+        }
+    };
+}
+
 #[cfg(not(feature = "f64"))]
 impl Lanes for f32x4 {
-    const WIDTH: usize = 4;
-    type Indices = [u32; 4];
-
-    #[inline(always)]
-    fn run<K: Kernel>(kernel: K) -> K::Output {
-        kernel.run()
-    }
-
-    #[inline(always)]
-    fn splat(x: f32) -> Self {
-        f32x4::splat(x)
-    }
-
-    #[inline(always)]
-    fn write_to(self, out: &mut [f32]) {
-        out[..4].copy_from_slice(self.as_array());
-    }
-
-    #[inline(always)]
-    fn lanes_mut(&mut self) -> &mut [f32] {
-        self.as_mut_array()
-    }
-
-    #[inline(always)]
-    fn from_slice(values: &[f32]) -> Self {
-        f32x4::new([values[0], values[1], values[2], values[3]])
-    }
-
-    #[inline(always)]
-    fn max(self, other: Self) -> Self {
-        f32x4::max(self, other)
-    }
-
-    #[inline(always)]
-    fn min(self, other: Self) -> Self {
-        f32x4::min(self, other)
-    }
-
-    #[inline(always)]
-    fn gt(self, other: Self) -> Self {
-        self.simd_gt(other)
-    }
-
-    #[inline(always)]
-    fn ne(self, other: Self) -> Self {
-        self.simd_ne(other)
-    }
-
-    #[inline(always)]
-    fn select(self, if_set: Self, if_clear: Self) -> Self {
-        self.bitselect(if_set, if_clear)
-    }
-
-    #[inline(always)]
-    fn and(self, other: Self) -> Self {
-        self & other
-    }
-
-    #[inline(always)]
-    fn bits(self) -> u32 {
-        self.to_bitmask()
-    }
+    four_wide_lanes!(f32x4);
 
     #[inline(always)]
     fn gather(states: &SharedStates, indices: &[u32; 4]) -> [Self; 8] {
@@ -190,68 +198,7 @@ impl Lanes for f32x4 {
 /// Double precision's four lanes: the same operations, gathered and scattered field by field.
 #[cfg(feature = "f64")]
 impl Lanes for f64x4 {
-    const WIDTH: usize = 4;
-    type Indices = [u32; 4];
-
-    #[inline(always)]
-    fn run<K: Kernel>(kernel: K) -> K::Output {
-        kernel.run()
-    }
-
-    #[inline(always)]
-    fn splat(x: Real) -> Self {
-        f64x4::splat(x)
-    }
-
-    #[inline(always)]
-    fn write_to(self, out: &mut [Real]) {
-        out[..4].copy_from_slice(self.as_array());
-    }
-
-    #[inline(always)]
-    fn lanes_mut(&mut self) -> &mut [Real] {
-        self.as_mut_array()
-    }
-
-    #[inline(always)]
-    fn from_slice(values: &[Real]) -> Self {
-        f64x4::new([values[0], values[1], values[2], values[3]])
-    }
-
-    #[inline(always)]
-    fn max(self, other: Self) -> Self {
-        f64x4::max(self, other)
-    }
-
-    #[inline(always)]
-    fn min(self, other: Self) -> Self {
-        f64x4::min(self, other)
-    }
-
-    #[inline(always)]
-    fn gt(self, other: Self) -> Self {
-        self.simd_gt(other)
-    }
-
-    #[inline(always)]
-    fn ne(self, other: Self) -> Self {
-        self.simd_ne(other)
-    }
-
-    #[inline(always)]
-    fn select(self, if_set: Self, if_clear: Self) -> Self {
-        self.bitselect(if_set, if_clear)
-    }
-
-    #[inline(always)]
-    fn and(self, other: Self) -> Self {
-        self & other
-    }
-
-    #[inline(always)]
-    fn bits(self) -> u32 {
-        self.to_bitmask()
-    }
+    four_wide_lanes!(f64x4);
 
     #[inline(always)]
     fn gather(states: &SharedStates, indices: &[u32; 4]) -> [Self; 8] {
