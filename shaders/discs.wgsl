@@ -2,17 +2,15 @@
 // shaded by the signed distance to its rim, so edges are smooth at any size.
 
 struct View {
-    center: vec2<f32>,
-    viewport: vec2<f32>,
-    zoom: f32,
-    srgb_target: f32,
-    _pad: vec2<f32>,
+    viewport: vec2<f32>, // pixels
+    zoom: f32,           // pixels per metre
+    srgb_target: f32,    // 1 when the target encodes sRGB itself: colours are decoded first
 };
 
 @group(0) @binding(0) var<uniform> view: View;
 
 struct Disc {
-    @location(0) center: vec2<f32>,  // m
+    @location(0) center: vec2<f32>,  // m from the view's centre
     @location(1) radius: vec2<f32>,  // x: radius in m, y: extra radius in pixels
     @location(2) fill: vec4<f32>,
     @location(3) outline: vec4<f32>,
@@ -51,7 +49,7 @@ fn vs(@builtin(vertex_index) corner: u32, disc: Disc) -> VertexOut {
     let radius = disc.radius.x * view.zoom + disc.radius.y;
     // Two triangles covering the disc and one pixel of smoothing around it.
     let offset = quad_corner(corner) * (radius + 1.0);
-    let center = (disc.center - view.center) * view.zoom;
+    let center = disc.center * view.zoom;
     var out: VertexOut;
     out.clip = vec4<f32>(2.0 * (center + offset) / view.viewport, 0.0, 1.0);
     out.offset = offset;

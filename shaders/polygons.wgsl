@@ -9,15 +9,13 @@
 // software rasteriser pays for.
 
 struct View {
-    center: vec2<f32>,   // world point at the middle of the view, m
     viewport: vec2<f32>, // pixels
     zoom: f32,           // pixels per metre
     srgb_target: f32,    // 1 when the target encodes sRGB itself: colours are decoded first
-    _pad: vec2<f32>,
 };
 
 @group(0) @binding(0) var<uniform> view: View;
-// Texel i % CORNER_ROW, i / CORNER_ROW is corner i. xy: a vertex, m; zw: the outward unit
+// Texel i % CORNER_ROW, i / CORNER_ROW is corner i. xy: a vertex, m from the view's centre; zw: the outward unit
 // normal of the edge from it to the next vertex.
 @group(0) @binding(1) var corners: texture_2d<f32>;
 const CORNER_ROW: u32 = 1024u; // corners::WIDTH
@@ -70,7 +68,7 @@ fn vs(@builtin(vertex_index) index: u32, polygon: Polygon) -> VertexOut {
     let reach = (half_width + 1.0) / view.zoom;
     let world = here.xy + mitre * reach;
     var out: VertexOut;
-    out.clip = vec4<f32>(2.0 * (world - view.center) * view.zoom / view.viewport, 0.0, 1.0);
+    out.clip = vec4<f32>(2.0 * world * view.zoom / view.viewport, 0.0, 1.0);
     out.world = world;
     out.first = polygon.first;
     out.count = polygon.count;

@@ -2,18 +2,16 @@
 // the same at every zoom, shaded by the distance to the segment (round caps, smooth edges).
 
 struct View {
-    center: vec2<f32>,
-    viewport: vec2<f32>,
-    zoom: f32,
-    srgb_target: f32,
-    _pad: vec2<f32>,
+    viewport: vec2<f32>, // pixels
+    zoom: f32,           // pixels per metre
+    srgb_target: f32,    // 1 when the target encodes sRGB itself: colours are decoded first
 };
 
 @group(0) @binding(0) var<uniform> view: View;
 
 struct Segment {
-    @location(0) start: vec2<f32>, // m
-    @location(1) end: vec2<f32>,   // m
+    @location(0) start: vec2<f32>, // m from the view's centre
+    @location(1) end: vec2<f32>,   // m from the view's centre
     @location(2) width: f32,       // pixels
     @location(3) color: vec4<f32>,
 };
@@ -39,8 +37,8 @@ fn target_color(color: vec4<f32>) -> vec4<f32> {
 
 @vertex
 fn vs(@builtin(vertex_index) corner: u32, segment: Segment) -> VertexOut {
-    let start = (segment.start - view.center) * view.zoom;
-    let end = (segment.end - view.center) * view.zoom;
+    let start = segment.start * view.zoom;
+    let end = segment.end * view.zoom;
     let length_px = length(end - start);
     var along = vec2<f32>(1.0, 0.0);
     if length_px > 1e-4 {

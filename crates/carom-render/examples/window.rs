@@ -3,7 +3,7 @@
 //!
 //! `cargo run -p carom-render --example window` (`-- --frames 120` closes it after 120 frames).
 
-use carom::{BodyDef, Color, DrawList, DrawOptions, Shape, World, vec2};
+use carom::{BodyDef, Color, DrawList, DrawOptions, Real, Shape, World, vec2};
 use carom_render::{Camera, Screen};
 use std::error::Error;
 use std::sync::Arc;
@@ -14,7 +14,7 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::window::{Window, WindowId};
 
 /// The physics time step, s. A fixed step keeps the simulation the same at any frame rate.
-const STEP: f32 = 1.0 / 60.0;
+const STEP: Real = 1.0 / 60.0;
 
 fn main() -> Result<(), Box<dyn Error>> {
     let mut args = std::env::args().skip(1);
@@ -28,8 +28,8 @@ fn main() -> Result<(), Box<dyn Error>> {
     world.add_body(BodyDef::static_body(Shape::rect(10.0, 0.5)).position(vec2(0.0, -0.5)))?;
     for i in 0..12 {
         let shape = [Shape::rect(0.5, 0.4), Shape::circle(0.5)][i % 2].clone();
-        let at = vec2(0.7 * (i % 3) as f32 - 0.7, 1.0 + 1.2 * i as f32);
-        world.add_body(BodyDef::dynamic(shape).position(at).angle(0.3 * i as f32))?;
+        let at = vec2(0.7 * (i % 3) as Real - 0.7, 1.0 + 1.2 * i as Real);
+        world.add_body(BodyDef::dynamic(shape).position(at).angle(0.3 * i as Real))?;
     }
     let mut app = App {
         world,
@@ -64,7 +64,7 @@ struct Gfx {
     list: DrawList,
     last_frame: Instant,
     /// Real time not simulated yet, s.
-    behind: f32,
+    behind: Real,
 }
 
 impl ApplicationHandler for App {
@@ -123,7 +123,7 @@ impl Gfx {
         // Whole steps for the real time that passed. After a stall (a dragged window, a
         // debugger) at most five are owed, so the loop does not fall behind catching up.
         let now = Instant::now();
-        self.behind = (self.behind + (now - self.last_frame).as_secs_f32()).min(5.0 * STEP);
+        self.behind = (self.behind + (now - self.last_frame).as_secs_f64() as Real).min(5.0 * STEP);
         self.last_frame = now;
         while self.behind >= STEP {
             world.step(STEP).expect("the world's settings are valid");

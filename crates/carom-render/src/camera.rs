@@ -1,6 +1,6 @@
 //! The camera: which part of the world a view shows, and how screen pixels map to metres.
 
-use carom::{Vec2, vec2};
+use carom::{Real, Vec2, vec2};
 
 /// A 2D camera: the world point at the centre of the view and the scale in pixels per metre.
 /// One metre is `zoom` pixels both ways, so shapes keep their aspect ratio in any view. Screen
@@ -19,25 +19,25 @@ impl Camera {
 
     /// Where a world point appears in a view of `viewport` pixels.
     pub fn world_to_screen(&self, world: Vec2, viewport: [u32; 2]) -> Vec2 {
-        let offset = (world - self.center) * self.zoom;
+        let offset = (world - self.center) * self.zoom as Real;
         vec2(
-            viewport[0] as f32 * 0.5 + offset.x,
-            viewport[1] as f32 * 0.5 - offset.y,
+            viewport[0] as Real * 0.5 + offset.x,
+            viewport[1] as Real * 0.5 - offset.y,
         )
     }
 
     /// The world point under a screen point of a view of `viewport` pixels.
     pub fn screen_to_world(&self, screen: Vec2, viewport: [u32; 2]) -> Vec2 {
         let offset = vec2(
-            screen.x - viewport[0] as f32 * 0.5,
-            viewport[1] as f32 * 0.5 - screen.y,
+            screen.x - viewport[0] as Real * 0.5,
+            viewport[1] as Real * 0.5 - screen.y,
         );
-        self.center + offset / self.zoom
+        self.center + offset / self.zoom as Real
     }
 
     /// Drags the view by `delta` screen pixels: what was under the cursor stays under it.
     pub fn pan_by_pixels(&mut self, delta: Vec2) {
-        self.center -= vec2(delta.x, -delta.y) / self.zoom;
+        self.center -= vec2(delta.x, -delta.y) / self.zoom as Real;
     }
 
     /// Zooms by `factor` (above 1 zooms in) keeping the world point under `screen` in place.

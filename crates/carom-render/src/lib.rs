@@ -5,6 +5,10 @@
 //! lavapipe or llvmpipe do). WGSL lives in the workspace's top-level `shaders/` and is built
 //! in. The physics core does not depend on this crate.
 
+// The GPU takes `f32`. World values are carom's `Real`, `f32` or `f64` by its `f64` feature,
+// so each cast between them is a no-op in one of the two builds.
+#![allow(clippy::unnecessary_cast)]
+
 mod camera;
 mod corners;
 mod error;

@@ -8,18 +8,16 @@ use crate::error::RenderError;
 use crate::shaders;
 use bytemuck::{Pod, Zeroable};
 use carom::{ARROW_WIDTH, OUTLINE_WIDTH};
-use carom::{Color, DrawList, Vec2};
+use carom::{Color, DrawList, Real, Vec2};
 use std::ops::Range;
 
 /// The uniform all shaders share.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Pod, Zeroable)]
 struct View {
-    center: [f32; 2],
     viewport: [f32; 2],
     zoom: f32,
     srgb_target: f32,
-    _pad: [f32; 2],
 }
 
 /// One polygon: its corners in the corner texture and its colours.
@@ -286,45 +284,48 @@ impl Renderer {
         viewport: [u32; 2],
     ) {
         let view = View {
-            center: [camera.center.x, camera.center.y],
             viewport: [viewport[0].max(1) as f32, viewport[1].max(1) as f32],
             zoom: camera.zoom,
             srgb_target: if self.srgb_target { 1.0 } else { 0.0 },
-            _pad: [0.0; 2],
         };
+        // Everything goes up relative to the camera's centre, subtracted here in the engine's
+        // precision: 100 km out, a single-precision world position resolves to 8 mm, its
+        // offset from the camera to a few micrometres.
+        let origin = camera.center;
         queue.write_buffer(&self.view, 0, bytemuck::bytes_of(&view));
 
         self.segment_instances.clear();
         self.disc_instances.clear();
-        self.batch_polygons(list);
+        self.batch_polygons(list, origin);
         for line in &list.segments {
-            self.segment_instances
-                .push(segment(line.start, line.end, line.width, line.color));
+            self.segment_instances.push(segment(
+                line.start - origin,
+                line.end - origin,
+                line.width,
+                line.color,
+            ));
         }
-        let head = ARROW_HEAD / camera.zoom.max(1e-6);
+        let head = (ARROW_HEAD / camera.zoom.max(1e-6)) as Real;
         for arrow in &list.arrows {
+            let (start, end) = (arrow.start - origin, arrow.end - origin);
             self.segment_instances
-                .push(segment(arrow.start, arrow.end, arrow.width, arrow.color));
-            let shaft = arrow.end - arrow.start;
+                .push(segment(start, end, arrow.width, arrow.color));
+            let shaft = end - start;
             if shaft.norm() > 1e-9 {
                 let back = -shaft.normalize() * head.min(shaft.norm() * 0.5);
-                for turn in [0.45f32, -0.45] {
+                for turn in [0.45 as Real, -0.45] {
                     let (sin, cos) = turn.sin_cos();
                     let wing =
                         carom::vec2(back.x * cos - back.y * sin, back.x * sin + back.y * cos);
-                    self.segment_instances.push(segment(
-                        arrow.end,
-                        arrow.end + wing,
-                        ARROW_WIDTH,
-                        arrow.color,
-                    ));
+                    self.segment_instances
+                        .push(segment(end, end + wing, ARROW_WIDTH, arrow.color));
                 }
             }
         }
         for circle in &list.circles {
             self.disc_instances.push(DiscInstance {
-                center: [circle.center.x, circle.center.y],
-                radius: [circle.radius, 0.0],
+                center: relative(circle.center, origin),
+                radius: [circle.radius as f32, 0.0],
                 fill: circle.fill.to_array(),
                 outline: circle.outline.to_array(),
                 outline_width: OUTLINE_WIDTH,
@@ -333,7 +334,7 @@ impl Renderer {
         let circles = self.disc_instances.len() as u32;
         for point in &list.points {
             self.disc_instances.push(DiscInstance {
-                center: [point.at.x, point.at.y],
+                center: relative(point.at, origin),
                 radius: [0.0, point.size * 0.5],
                 fill: point.color.to_array(),
                 outline: point.color.to_array(),
@@ -403,7 +404,7 @@ impl Renderer {
 
     /// Fills the corner and polygon staging, polygons grouped by vertex count (a counting sort,
     /// so a frame allocates nothing once the staging has grown).
-    fn batch_polygons(&mut self, list: &DrawList) {
+    fn batch_polygons(&mut self, list: &DrawList, origin: Vec2) {
         self.corners.clear();
         self.polygon_scratch.clear();
         self.polygon_batches.clear();
@@ -418,12 +419,11 @@ impl Renderer {
                 continue;
             };
             counts[vertices.len().min(MAX_BATCHED_COUNT)] += 1;
-            self.corners.extend(
-                vertices
-                    .iter()
-                    .zip(normals)
-                    .map(|(v, n)| [v.x, v.y, n.x, n.y]),
-            );
+            self.corners
+                .extend(vertices.iter().zip(normals).map(|(v, n)| {
+                    let [x, y] = relative(*v, origin);
+                    [x, y, n.x as f32, n.y as f32]
+                }));
             self.polygon_scratch.push(PolygonInstance {
                 first: corners_before,
                 count: vertices.len() as u32,
@@ -556,10 +556,17 @@ fn bind_group(
     })
 }
 
+/// `point` less `origin`, in the GPU's single precision.
+fn relative(point: Vec2, origin: Vec2) -> [f32; 2] {
+    let offset = point - origin;
+    [offset.x as f32, offset.y as f32]
+}
+
+/// A segment between two points already relative to the camera.
 fn segment(start: Vec2, end: Vec2, width: f32, color: Color) -> SegmentInstance {
     SegmentInstance {
-        start: [start.x, start.y],
-        end: [end.x, end.y],
+        start: [start.x as f32, start.y as f32],
+        end: [end.x as f32, end.y as f32],
         width,
         color: color.to_array(),
     }

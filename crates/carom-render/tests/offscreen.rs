@@ -1,7 +1,7 @@
 //! Real pixels: draw lists rendered offscreen and read back. These need a wgpu adapter (Mesa's
 //! GL or Vulkan will do); without one they fail and say what to install.
 
-use carom::{Color, DebugDraw, DrawList, vec2};
+use carom::{Color, DebugDraw, DrawList, Real, vec2};
 use carom_render::{Camera, Offscreen};
 use image::RgbaImage;
 
@@ -79,7 +79,7 @@ fn an_empty_list_is_the_background_and_buffers_are_reused() {
     }));
     let mut list = DrawList::new();
     for i in 0..200 {
-        let x = i as f32 * 0.01;
+        let x = i as Real * 0.01;
         list.polygon(
             &[vec2(x, 0.0), vec2(x + 0.1, 0.0), vec2(x, 0.1)],
             Color::rgb(0.5, 0.5, 0.5),
@@ -106,10 +106,10 @@ fn polygons_have_their_outline_on_the_edge_whatever_their_vertex_count() {
     let fill = Color::rgb(0.2, 0.4, 0.9);
     let outline = Color::rgb(1.0, 0.9, 0.2);
     let mut list = DrawList::new();
-    let ngon = |center: carom::Vec2, sides: usize, radius: f32| -> Vec<carom::Vec2> {
+    let ngon = |center: carom::Vec2, sides: usize, radius: Real| -> Vec<carom::Vec2> {
         (0..sides)
             .map(|i| {
-                let angle = std::f32::consts::TAU * (i as f32 + 0.5) / sides as f32;
+                let angle = carom::consts::TAU * (i as Real + 0.5) / sides as Real;
                 center + vec2(angle.cos(), angle.sin()) * radius
             })
             .collect()
@@ -156,4 +156,56 @@ fn polygons_have_their_outline_on_the_edge_whatever_their_vertex_count() {
     close(&image, 154, 30, Color::BACKGROUND);
     // No stray fill colour anywhere the degenerate polygons were.
     close(&image, 30, 55, Color::BACKGROUND);
+}
+
+#[test]
+fn a_scene_far_from_the_origin_draws_as_it_does_at_the_origin() {
+    // The same shapes drawn at the origin and far away, the camera on them each time. In the
+    // double-precision build they sit 100 km out, their corners at tenths of a metre, which no
+    // `f32` out there holds. The single-precision build cannot place them there at all: it
+    // moves them by a power of two, their corners on eighths of a metre, which `f32` holds.
+    let (far, unit): (carom::Vec2, Real) = if std::mem::size_of::<Real>() == 8 {
+        (vec2(100_000.3, -70_000.7), 0.1)
+    } else {
+        (vec2(65_536.0, -32_768.0), 0.125)
+    };
+    let fill = Color::rgb(0.2, 0.4, 0.9);
+    let outline = Color::rgb(1.0, 0.9, 0.2);
+    let draw = |at: carom::Vec2| {
+        let p = |x: Real, y: Real| at + vec2(x, y) * unit;
+        let mut list = DrawList::new();
+        list.polygon(
+            &[p(-9.0, -8.0), p(8.0, -9.0), p(11.0, 7.0), p(-8.0, 9.0)],
+            fill,
+            outline,
+        );
+        list.circle(p(-21.0, 9.0), 7.0 * unit, fill, outline);
+        list.segment(p(-25.0, -17.0), p(23.0, -13.0), 2.0, outline);
+        list.arrow(p(16.0, 1.0), p(27.0, 11.0), outline);
+        list.point(p(3.0, 17.0), 5.0, outline);
+        list
+    };
+    let mut renderer = offscreen(160, 100);
+    let mut image_at = |at| {
+        let camera = Camera {
+            center: at + vec2(3.0, 1.0) * unit,
+            zoom: 20.0,
+        };
+        renderer
+            .render(&draw(at), &camera, Color::BACKGROUND)
+            .unwrap()
+    };
+    let near = image_at(vec2(0.0, 0.0));
+    let away = image_at(far);
+    assert!(
+        near.pixels().any(|p| p.0[..3] != [23, 26, 31]),
+        "the shapes were drawn"
+    );
+    let worst = near
+        .pixels()
+        .zip(away.pixels())
+        .flat_map(|(a, b)| (0..3).map(move |c| a.0[c].abs_diff(b.0[c])))
+        .max()
+        .unwrap_or(0);
+    assert!(worst <= 2, "a channel differs by {worst} levels 100 km out");
 }

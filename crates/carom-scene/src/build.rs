@@ -239,7 +239,7 @@ fn check_accuracy(
     names: &HashMap<String, BodyHandle>,
     world: &World,
 ) -> Result<(), String> {
-    let positive = |name: &str, value: f32| {
+    let positive = |name: &str, value: Real| {
         if value.is_finite() && value > 0.0 {
             Ok(())
         } else {
@@ -247,7 +247,7 @@ fn check_accuracy(
         }
     };
     // The bodies it names, and whether they must have a joint (the joint measures read it).
-    let (bodies, jointed, seconds): (&[String], bool, f32) = match accuracy {
+    let (bodies, jointed, seconds): (&[String], bool, Real) = match accuracy {
         Accuracy::Rest { bodies, seconds } => (bodies, false, *seconds),
         Accuracy::Conservation { seconds } => (&[], false, *seconds),
         Accuracy::SlideAngle {
@@ -310,8 +310,8 @@ fn shape(spec: &ShapeSpec) -> Result<Shape, String> {
 )]
 fn single_shape(spec: &ShapeSpec) -> Result<Shape, CaromError> {
     let points =
-        |points: &[(f32, f32)]| points.iter().map(|&(x, y)| vec2(x, y)).collect::<Vec<_>>();
-    let rounded = |shape: Shape, radius: f32| match shape {
+        |points: &[(Real, Real)]| points.iter().map(|&(x, y)| vec2(x, y)).collect::<Vec<_>>();
+    let rounded = |shape: Shape, radius: Real| match shape {
         Shape::Polygon(p) if radius != 0.0 => checked(Shape::Polygon(p.rounded(radius))),
         shape => Ok(shape),
     };
@@ -567,8 +567,8 @@ pub(crate) struct PendingJoint {
     anchor: Vec2,
     anchor_b: Option<Vec2>,
     collide_connected: bool,
-    break_force: Option<f32>,
-    break_torque: Option<f32>,
+    break_force: Option<Real>,
+    break_torque: Option<Real>,
 }
 
 fn point((x, y): Pair) -> Vec2 {
@@ -752,7 +752,7 @@ impl PendingJoint {
 /// The bodies and joints a generator makes.
 pub(crate) fn generate(generator: &Generator) -> Result<Batch, String> {
     let square =
-        |size: f32| checked(Shape::rect(0.5 * size, 0.5 * size)).map_err(|e| e.to_string());
+        |size: Real| checked(Shape::rect(0.5 * size, 0.5 * size)).map_err(|e| e.to_string());
     let (defs, material) = match generator {
         Generator::Stack {
             base,
@@ -765,7 +765,7 @@ pub(crate) fn generate(generator: &Generator) -> Result<Batch, String> {
             let defs = (0..*count)
                 .map(|i| {
                     let shift = if i % 2 == 0 { *offset } else { -*offset };
-                    let at = vec2(base.0 + shift, base.1 + (i as f32 + 0.5) * size);
+                    let at = vec2(base.0 + shift, base.1 + (i as Real + 0.5) * size);
                     with_material(BodyDef::dynamic(shape.clone()).position(at), material)
                 })
                 .collect();
@@ -789,8 +789,8 @@ pub(crate) fn generate(generator: &Generator) -> Result<Batch, String> {
             for row in 0..rows.unwrap_or(*count).min(*count) {
                 let in_row = count - row;
                 for column in 0..in_row {
-                    let x = base.0 + (column as f32 - 0.5 * (in_row as f32 - 1.0)) * pitch;
-                    let y = base.1 + 0.5 * size + row as f32 * pitch;
+                    let x = base.0 + (column as Real - 0.5 * (in_row as Real - 1.0)) * pitch;
+                    let y = base.1 + 0.5 * size + row as Real * pitch;
                     defs.push(with_material(
                         BodyDef::dynamic(shape.clone()).position(vec2(x, y)),
                         material,
@@ -828,8 +828,8 @@ pub(crate) fn generate(generator: &Generator) -> Result<Batch, String> {
             let cells = (0..count).map(|i| {
                 let (row, column) = (i / columns, i % columns);
                 let at = vec2(
-                    origin.0 + column as f32 * spacing.0,
-                    origin.1 + row as f32 * spacing.1,
+                    origin.0 + column as Real * spacing.0,
+                    origin.1 + row as Real * spacing.1,
                 );
                 (at, shapes[i as usize % shapes.len()].clone())
             });
@@ -891,7 +891,7 @@ pub(crate) fn generate(generator: &Generator) -> Result<Batch, String> {
                 state ^= state >> 12;
                 state ^= state << 25;
                 state ^= state >> 27;
-                (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as f32 / (1u64 << 24) as f32
+                (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 40) as Real / (1u64 << 24) as Real
             };
             let defs = (0..*count)
                 .map(|_| {
@@ -899,7 +899,7 @@ pub(crate) fn generate(generator: &Generator) -> Result<Batch, String> {
                         low.0 + (high.0 - low.0) * unit(),
                         low.1 + (high.1 - low.1) * unit(),
                     );
-                    let angle = std::f32::consts::TAU * unit();
+                    let angle = carom::consts::TAU * unit();
                     with_material(
                         BodyDef::dynamic(shape.clone()).position(at).angle(angle),
                         material,
@@ -922,7 +922,7 @@ pub(crate) fn generate(generator: &Generator) -> Result<Batch, String> {
                     let copy = row * columns + column;
                     let apart = one.apart.iter().map(|k| k.map(|k| k + copy * copies_apart));
                     all.apart.extend(apart);
-                    let shift = vec2(column as f32 * spacing.0, row as f32 * spacing.1);
+                    let shift = vec2(column as Real * spacing.0, row as Real * spacing.1);
                     let offset = all.defs.len();
                     all.defs.extend(one.defs.iter().cloned().map(|mut def| {
                         def.position += shift;
@@ -968,7 +968,7 @@ pub(crate) fn generate(generator: &Generator) -> Result<Batch, String> {
             material,
         } => {
             let (c, w, h, t) = (vec2(center.0, center.1), *width, *height, *thickness);
-            let wall = |half_w: f32, half_h: f32, dx: f32, dy: f32| {
+            let wall = |half_w: Real, half_h: Real, dx: Real, dy: Real| {
                 checked(Shape::rect(half_w, half_h))
                     .map(|s| {
                         with_material(BodyDef::static_body(s).position(c + vec2(dx, dy)), material)
@@ -993,7 +993,7 @@ fn chain(
     from: Vec2,
     to: Vec2,
     count: u32,
-    thickness: f32,
+    thickness: Real,
     (start, end): (&Option<String>, &Option<String>),
     joint: &RevoluteSpec,
     material: &Material,
@@ -1001,13 +1001,13 @@ fn chain(
     if count == 0 {
         return Err("a chain needs at least one link".into());
     }
-    let step = (to - from) / count as f32;
+    let step = (to - from) / count as Real;
     let length = step.norm();
     let link = checked(Shape::rect(0.5 * length, 0.5 * thickness)).map_err(|e| e.to_string())?;
     let angle = carom::atan2(step.y, step.x);
     let defs: Vec<BodyDef> = (0..count)
         .map(|i| {
-            let at = from + step * (i as f32 + 0.5);
+            let at = from + step * (i as Real + 0.5);
             with_material(
                 BodyDef::dynamic(link.clone()).position(at).angle(angle),
                 material,
@@ -1040,7 +1040,7 @@ fn chain(
             _ => Some(Target::Local(i)),
         };
         if let (Some(a), Some(b)) = (before, after) {
-            let at = from + step * i as f32;
+            let at = from + step * i as Real;
             joints.push(PendingJoint::with_targets(&spec, [a, b], at));
         }
     }
@@ -1083,7 +1083,7 @@ fn joint_grid(
     let mut defs = Vec::with_capacity(n * m);
     let mut joints = Vec::with_capacity(2 * n * m);
     let at =
-        |column: u32, row: u32| origin + vec2(column as f32 * spacing.x, row as f32 * spacing.y);
+        |column: u32, row: u32| origin + vec2(column as Real * spacing.x, row as Real * spacing.y);
     for column in 0..columns {
         for row in 0..rows {
             let kind = if fixed.iter().any(|cells| cells.contains(column, row)) {

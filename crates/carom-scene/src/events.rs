@@ -4,7 +4,7 @@
 
 use crate::scene::EventSpec;
 use crate::spawn::Spawn;
-use carom::{BodyDef, BodyHandle, BodyKind, World, vec2};
+use carom::{BodyDef, BodyHandle, BodyKind, Real, World, vec2};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
@@ -14,7 +14,7 @@ enum Action {
         at: f64,
         body: BodyHandle,
         velocity: carom::Vec2,
-        angular_velocity: f32,
+        angular_velocity: Real,
         done: bool,
     },
     Respawn {
@@ -27,7 +27,7 @@ enum Action {
         pivot: carom::Vec2,
         angular_velocity: f64,
         /// Each body with its offset from the pivot and its angle at time zero.
-        bodies: Vec<(BodyHandle, carom::Vec2, f32)>,
+        bodies: Vec<(BodyHandle, carom::Vec2, Real)>,
     },
     Shuttle {
         /// The way there and back, m.
@@ -223,7 +223,7 @@ impl Events {
         &mut self,
         world: &mut World,
         colors: &mut HashMap<BodyHandle, (f32, f32, f32)>,
-        dt: f32,
+        dt: Real,
     ) {
         let now = world.time() + 1e-9;
         for action in &mut self.actions {
@@ -267,7 +267,7 @@ impl Events {
                 } => {
                     // Aim at the exact pose at the end of the step, so the frame stays
                     // rigid however long it turns (velocities alone would spiral out).
-                    let turn = (*angular_velocity * (world.time() + dt as f64)) as f32;
+                    let turn = (*angular_velocity * (world.time() + dt as f64)) as Real;
                     let rotation = carom::rotation(turn);
                     for (handle, offset, angle) in bodies.iter() {
                         if let Some(mut b) = world.body_mut(*handle) {
@@ -284,7 +284,7 @@ impl Events {
                     // Eased out and back (a cosine), aimed at the exact place at the end of the
                     // step so no drift builds up.
                     let phase = std::f64::consts::TAU * (world.time() + dt as f64) / *period;
-                    let along = (0.5 * (1.0 - phase.cos())) as f32;
+                    let along = (0.5 * (1.0 - phase.cos())) as Real;
                     for (handle, start) in bodies.iter() {
                         if let Some(mut b) = world.body_mut(*handle) {
                             let angle = b.angle();

@@ -1,6 +1,6 @@
 //! The scene format: what a RON file in `demos/` holds. Every field but `name` has a default.
 
-use carom::{BodyKind, CollisionFilter, DrawFlags, Motor, Spring, WorldSettings};
+use carom::{BodyKind, CollisionFilter, DrawFlags, Motor, Real, Spring, WorldSettings};
 use serde::{Deserialize, Serialize};
 
 /// The version of the scene format this crate reads and writes. It changes when a file
@@ -27,7 +27,7 @@ fn read_format<'de, D: serde::Deserializer<'de>>(deserializer: D) -> Result<u32,
 }
 
 /// A 2D vector written `(x, y)`.
-pub type Pair = (f32, f32);
+pub type Pair = (Real, Real);
 
 /// One scene: a world to build, how to look at it, and what happens over time.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -54,7 +54,7 @@ pub struct Scene {
     pub world: WorldSettings,
     /// Seconds per step. Default 1/60.
     #[serde(default = "default_time_step")]
-    pub time_step: f32,
+    pub time_step: Real,
     /// Bodies listed one by one.
     #[serde(default)]
     pub bodies: Vec<BodySpec>,
@@ -96,14 +96,14 @@ pub enum Accuracy {
         #[serde(default)]
         bodies: Vec<String>,
         /// How long to run, s.
-        seconds: f32,
+        seconds: Real,
     },
     /// No gravity, no friction, restitution 1: momentum and kinetic energy must stay what they
     /// were once the scene's events at time 0 have fired. The error is the larger relative
     /// change of the two after `seconds`.
     Conservation {
         /// How long to run, s.
-        seconds: f32,
+        seconds: Real,
     },
     /// A box on a slope with friction coefficient `friction` (the mixed one) starts to slide
     /// when the slope is steeper than atan(μ). The bench tilts gravity instead of the slope,
@@ -114,9 +114,9 @@ pub enum Accuracy {
         /// The body on the slope (its `name`).
         body: String,
         /// The friction coefficient between it and the slope.
-        friction: f32,
+        friction: Real,
         /// How long each trial runs, s.
-        seconds: f32,
+        seconds: Real,
     },
     /// A body swinging on a joint (a pendulum) should swing with the period `expected`. The
     /// bench records the body's x less its pivot's (its first joint's anchor on the other
@@ -126,10 +126,10 @@ pub enum Accuracy {
         /// The swinging body (its `name`); it must have a joint.
         body: String,
         /// The exact period, s.
-        expected: f32,
+        expected: Real,
         /// How long to run, s (a few periods at least: fewer than three crossings is an
         /// infinite error).
-        seconds: f32,
+        seconds: Real,
     },
     /// A body hanging from `anchor` by a chain of joints should stay `length` from it: the
     /// error is the worst, over `seconds`, of |distance − length| / length, in %, where the
@@ -140,9 +140,9 @@ pub enum Accuracy {
         /// The fixed point it hangs from, m.
         anchor: Pair,
         /// Its joint anchor's exact distance from `anchor`, m.
-        length: f32,
+        length: Real,
         /// How long to run, s.
-        seconds: f32,
+        seconds: Real,
     },
 }
 
@@ -155,7 +155,7 @@ fn default_draw() -> DrawFlags {
     DrawFlags::SHAPES | DrawFlags::SLEEPING
 }
 
-fn default_time_step() -> f32 {
+fn default_time_step() -> Real {
     1.0 / 60.0
 }
 
@@ -204,41 +204,41 @@ pub enum ShapeSpec {
     /// A circle.
     Circle {
         /// Radius, m.
-        radius: f32,
+        radius: Real,
     },
     /// An axis-aligned box (before the body's angle).
     Box {
         /// Full width, m.
-        width: f32,
+        width: Real,
         /// Full height, m.
-        height: f32,
+        height: Real,
     },
     /// An axis-aligned box with rounded corners, `width` by `height` overall: a box smaller by
     /// `radius` on every side, grown by `radius`.
     RoundedBox {
         /// Full width, m.
-        width: f32,
+        width: Real,
         /// Full height, m.
-        height: f32,
+        height: Real,
         /// Corner radius, m: less than half the width and half the height.
-        radius: f32,
+        radius: Real,
     },
     /// A capsule along x, centred: two circles' centres `length` apart, joined.
     Capsule {
         /// Distance between the centres, m.
-        length: f32,
+        length: Real,
         /// Radius, m.
-        radius: f32,
+        radius: Real,
     },
     /// A regular polygon with a flat bottom.
     Regular {
         /// Number of sides.
         sides: u32,
         /// Distance from centre to corners, m.
-        radius: f32,
+        radius: Real,
         /// Rounding, m.
         #[serde(default)]
-        rounding: f32,
+        rounding: Real,
     },
     /// A convex polygon, its points in order (either winding); it is recentred on its centroid.
     Polygon {
@@ -246,7 +246,7 @@ pub enum ShapeSpec {
         points: Vec<Pair>,
         /// Rounding, m.
         #[serde(default)]
-        radius: f32,
+        radius: Real,
     },
     /// The convex hull of any points.
     Hull {
@@ -254,7 +254,7 @@ pub enum ShapeSpec {
         points: Vec<Pair>,
         /// Rounding, m.
         #[serde(default)]
-        radius: f32,
+        radius: Real,
     },
     /// A two-sided segment for static geometry, its ends where they are given (not
     /// recentred); it has no mass. Rounded by a `radius`, it is a capsule between those ends
@@ -266,7 +266,7 @@ pub enum ShapeSpec {
         to: Pair,
         /// Rounding, m: 0 for a bare segment.
         #[serde(default)]
-        radius: f32,
+        radius: Real,
     },
     /// A chain of one-sided segments for terrain, its points where they are given; it collides
     /// on its right, walking along the points (ground whose solid side is below runs right to
@@ -285,16 +285,16 @@ pub enum ShapeSpec {
 #[serde(deny_unknown_fields, default)]
 pub struct Material {
     /// kg/m².
-    pub density: f32,
+    pub density: Real,
     /// Coulomb coefficient.
-    pub friction: f32,
+    pub friction: Real,
     /// Bounciness.
-    pub restitution: f32,
+    pub restitution: Real,
     /// Resistance to rolling (carom's `Surface::rolling_resistance`).
-    pub rolling_resistance: f32,
+    pub rolling_resistance: Real,
     /// How fast the surface moves along itself, m/s, clockwise around the shape: a conveyor
     /// belt (carom's `Surface::tangent_speed`).
-    pub tangent_speed: f32,
+    pub tangent_speed: Real,
     /// Linear and angular drag coefficients.
     pub damping: Pair,
     /// RGB in 0..1, for drawing.
@@ -339,13 +339,13 @@ pub struct BodySpec {
     pub position: Pair,
     /// Starting angle, rad.
     #[serde(default)]
-    pub angle: f32,
+    pub angle: Real,
     /// Starting velocity, m/s.
     #[serde(default)]
     pub linear_velocity: Pair,
     /// Starting spin, rad/s.
     #[serde(default)]
-    pub angular_velocity: f32,
+    pub angular_velocity: Real,
     /// Density, friction, restitution, drag, colour.
     #[serde(default)]
     pub material: Material,
@@ -371,10 +371,10 @@ pub struct BodySpec {
     /// The speed of its fastest point below which it counts as resting, m/s (carom's
     /// `BodyDef::sleep_threshold`; Box2D's ragdolls use 0.1). Default 0.05.
     #[serde(default = "sleep_threshold")]
-    pub sleep_threshold: f32,
+    pub sleep_threshold: Real,
 }
 
-fn sleep_threshold() -> f32 {
+fn sleep_threshold() -> Real {
     carom::SLEEP_THRESHOLD
 }
 
@@ -389,16 +389,16 @@ pub struct ColliderSpec {
     pub offset: Pair,
     /// How it is turned in the body's frame, rad.
     #[serde(default)]
-    pub angle: f32,
+    pub angle: Real,
     /// kg/m²; the body's if not given.
     #[serde(default)]
-    pub density: Option<f32>,
+    pub density: Option<Real>,
     /// Coulomb coefficient; the body's if not given.
     #[serde(default)]
-    pub friction: Option<f32>,
+    pub friction: Option<Real>,
     /// Bounciness; the body's if not given.
     #[serde(default)]
-    pub restitution: Option<f32>,
+    pub restitution: Option<Real>,
     /// What it collides with; the body's if not given.
     #[serde(default)]
     pub filter: Option<CollisionFilter>,
@@ -422,10 +422,10 @@ pub enum Generator {
         count: u32,
         /// Box side, m.
         #[serde(default = "one")]
-        size: f32,
+        size: Real,
         /// Horizontal shift of every other box, m (Box2D offsets rows by ±0.01).
         #[serde(default)]
-        offset: f32,
+        offset: Real,
         /// Their material.
         #[serde(default)]
         material: Material,
@@ -439,14 +439,14 @@ pub enum Generator {
         count: u32,
         /// Box side, m.
         #[serde(default = "one")]
-        size: f32,
+        size: Real,
         /// Only this many rows from the bottom (the rest left to other bodies). Default all.
         #[serde(default)]
         rows: Option<u32>,
         /// Fraction of a box by which neighbours start overlapping (Box2D's overlap recovery
         /// uses 0.25). Default 0: touching.
         #[serde(default)]
-        overlap: f32,
+        overlap: Real,
         /// Their material.
         #[serde(default)]
         material: Material,
@@ -558,7 +558,7 @@ pub enum Generator {
         count: u32,
         /// Each link's thickness, m (its length is the chain's over `count`).
         #[serde(default = "tenth")]
-        thickness: f32,
+        thickness: Real,
         /// The body the first link hangs from, by name.
         #[serde(default)]
         start: Option<String>,
@@ -592,12 +592,12 @@ pub enum Generator {
         /// Centre of the room.
         center: Pair,
         /// Inside width, m.
-        width: f32,
+        width: Real,
         /// Inside height, m.
-        height: f32,
+        height: Real,
         /// Wall thickness, m.
         #[serde(default = "one")]
-        thickness: f32,
+        thickness: Real,
         /// The walls' material.
         #[serde(default)]
         material: Material,
@@ -623,11 +623,11 @@ impl Cells {
     }
 }
 
-fn one() -> f32 {
+fn one() -> Real {
     1.0
 }
 
-fn tenth() -> f32 {
+fn tenth() -> Real {
     0.1
 }
 
@@ -651,10 +651,10 @@ pub struct JointSpec {
     pub collide_connected: bool,
     /// It breaks when it applies more force, N.
     #[serde(default)]
-    pub break_force: Option<f32>,
+    pub break_force: Option<Real>,
     /// It breaks when it applies more torque, N·m.
     #[serde(default)]
-    pub break_torque: Option<f32>,
+    pub break_torque: Option<Real>,
 }
 
 /// A revolute joint's settings.
@@ -668,7 +668,7 @@ pub struct RevoluteSpec {
     /// Pulls toward `target_angle`.
     pub spring: Option<Spring>,
     /// The angle the spring pulls to, rad.
-    pub target_angle: f32,
+    pub target_angle: Real,
 }
 
 /// A character the keyboard walks and jumps (carom's kinematic `Character`: it climbs
@@ -681,19 +681,19 @@ pub struct PlayerSpec {
     pub position: Pair,
     /// From its middle to its end circles' centres, m. Default 0.5.
     #[serde(default = "player_half_height")]
-    pub half_height: f32,
+    pub half_height: Real,
     /// Its capsule's radius, m. Default 0.3.
     #[serde(default = "player_radius")]
-    pub radius: f32,
+    pub radius: Real,
     /// m/s. Default 4.
     #[serde(default = "walk_speed")]
-    pub walk_speed: f32,
+    pub walk_speed: Real,
     /// Its upward speed as it jumps, m/s. Default 7.
     #[serde(default = "jump_speed")]
-    pub jump_speed: f32,
+    pub jump_speed: Real,
     /// The x past which the level is done, m.
     #[serde(default)]
-    pub goal: Option<f32>,
+    pub goal: Option<Real>,
     /// A recorded play: the keys' changes, by step, that a host may replay
     /// ([`crate::Player::replay`]).
     #[serde(default)]
@@ -724,19 +724,19 @@ pub enum PlayerKey {
     Jump,
 }
 
-fn player_half_height() -> f32 {
+fn player_half_height() -> Real {
     0.5
 }
 
-fn player_radius() -> f32 {
+fn player_radius() -> Real {
     0.3
 }
 
-fn walk_speed() -> f32 {
+fn walk_speed() -> Real {
     4.0
 }
 
-fn jump_speed() -> f32 {
+fn jump_speed() -> Real {
     7.0
 }
 
@@ -748,7 +748,7 @@ pub enum JointKindSpec {
     Distance {
         /// Rest length, m; default the anchors' distance at the start.
         #[serde(default)]
-        length: Option<f32>,
+        length: Option<Real>,
         /// Makes it a spring (0 Hz: no spring force, a rope within `limits`).
         #[serde(default)]
         spring: Option<Spring>,
@@ -769,7 +769,7 @@ pub enum JointKindSpec {
         spring: Option<Spring>,
         /// The angle the spring pulls to, rad.
         #[serde(default)]
-        target_angle: f32,
+        target_angle: Real,
     },
     /// A slider through `anchor` along `axis`.
     Prismatic {
@@ -786,7 +786,7 @@ pub enum JointKindSpec {
         spring: Option<Spring>,
         /// m.
         #[serde(default)]
-        target_translation: f32,
+        target_translation: Real,
     },
     /// Glues the bodies together at `anchor`; springs make it soft.
     Weld {
@@ -820,31 +820,31 @@ pub enum JointKindSpec {
         linear_velocity: Pair,
         /// N (0: no linear velocity part).
         #[serde(default)]
-        max_velocity_force: f32,
+        max_velocity_force: Real,
         /// B's spin relative to A's, rad/s.
         #[serde(default)]
-        angular_velocity: f32,
+        angular_velocity: Real,
         /// N·m (0: no angular velocity part).
         #[serde(default)]
-        max_velocity_torque: f32,
+        max_velocity_torque: Real,
         /// Where the spring pulls B's anchor from A's, in A's frame, m. Default where it starts.
         #[serde(default)]
         linear_offset: Pair,
         /// The angle the spring turns B to from A's, more than at the start, rad.
         #[serde(default)]
-        angular_offset: f32,
+        angular_offset: Real,
         /// Default 4 Hz, critically damped.
         #[serde(default = "motor_spring")]
         linear_spring: Spring,
         /// N (0: no linear spring).
         #[serde(default)]
-        max_spring_force: f32,
+        max_spring_force: Real,
         /// Default 4 Hz, critically damped.
         #[serde(default = "motor_spring")]
         angular_spring: Spring,
         /// N·m (0: no angular spring).
         #[serde(default)]
-        max_spring_torque: f32,
+        max_spring_torque: Real,
     },
     /// Drives B's velocity relative to A's with at most `max_force` on each world axis, not
     /// turning it (a dynamic character's legs; the bodies still collide).
@@ -862,15 +862,15 @@ pub enum JointKindSpec {
         #[serde(default = "up")]
         normal: Pair,
         /// m.
-        rest_length: f32,
+        rest_length: Real,
         /// Default 5 Hz, damping ratio 0.8.
         #[serde(default = "pogo_spring")]
         spring: Spring,
         /// The most push, N.
-        max_compression: f32,
+        max_compression: Real,
         /// The most pull, N.
         #[serde(default)]
-        max_tension: f32,
+        max_tension: Real,
     },
     /// Pulls body B's point at `anchor` toward `target` (both names the same body).
     Mouse {
@@ -880,7 +880,7 @@ pub enum JointKindSpec {
         #[serde(default = "mouse_spring")]
         spring: Spring,
         /// N.
-        max_force: f32,
+        max_force: Real,
     },
     /// Only keeps the two bodies from colliding.
     Filter,
@@ -917,19 +917,19 @@ pub enum EventSpec {
     /// At `at` seconds, the named body gets this velocity.
     Launch {
         /// When, s.
-        at: f32,
+        at: Real,
         /// Which body (its `name`).
         body: String,
         /// Its new velocity, m/s.
         velocity: Pair,
         /// Its new spin, rad/s.
         #[serde(default)]
-        angular_velocity: f32,
+        angular_velocity: Real,
     },
     /// Every `every` seconds, the named body goes back to where and how it started.
     Respawn {
         /// Period, s.
-        every: f32,
+        every: Real,
         /// Which body (its `name`).
         body: String,
     },
@@ -941,7 +941,7 @@ pub enum EventSpec {
         /// The centre of the turn, m.
         pivot: Pair,
         /// Turn rate, rad/s (positive is counter-clockwise).
-        angular_velocity: f32,
+        angular_velocity: Real,
     },
     /// From the start, the named kinematic bodies go `offset` from where they start and back
     /// every `period` seconds, easing in and out (a lift, a moving platform).
@@ -951,7 +951,7 @@ pub enum EventSpec {
         /// How far they go, m.
         offset: Pair,
         /// Time there and back, s.
-        period: f32,
+        period: Real,
     },
     /// Copies of a generator's bodies and joints made and remade in turn at the places of a
     /// `columns × rows` grid (Box2D's rain of ragdolls). Turn `n` comes at `at + n every`
@@ -963,9 +963,9 @@ pub enum EventSpec {
     Spawn {
         /// When the first turn comes, s.
         #[serde(default)]
-        at: f32,
+        at: Real,
         /// Time from one turn to the next, s.
-        every: f32,
+        every: Real,
         /// Where the first place is: what `of` makes there is moved by this, m.
         #[serde(default)]
         origin: Pair,

@@ -48,7 +48,7 @@ impl Spawn {
     /// one copy in a world of its own with `world`'s settings, so that a copy that cannot be
     /// made is refused when the scene is built rather than skipped when it runs.
     pub fn new(
-        (at, every): (f32, f32),
+        (at, every): (Real, Real),
         origin: Vec2,
         (columns, rows): (u32, u32),
         spacing: Vec2,
