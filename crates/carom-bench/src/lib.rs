@@ -129,6 +129,19 @@
 //! Box2D's default (on); the tutorial drag model has no counterpart; of a scene's events only
 //! its spawns are replayed, as in Rapier. Details in [`box2d_world`].
 
+// Widening carom's numbers to `f64` is a no-op in its double-precision build.
+#![cfg_attr(
+    feature = "f64",
+    allow(clippy::unnecessary_cast, clippy::useless_conversion)
+)]
+
+// The peers take carom's world in single precision.
+#[cfg(all(feature = "f64", feature = "peers"))]
+compile_error!(
+    "Box2D and Rapier are single precision: build carom's f64 side without them \
+     (--no-default-features, then the features wanted, with f64)"
+);
+
 pub mod cases;
 pub mod notes;
 #[cfg(feature = "sweep")]

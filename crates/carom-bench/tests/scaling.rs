@@ -11,7 +11,7 @@ fn pyramid_rows_hold_their_boxes_on_their_strips() {
     let world = &built.world;
     assert_eq!(world.body_count(), rows * columns * 55 + rows);
     // Every pyramid sits on its strip, within the strip's width.
-    let strip_half_width = 0.5 * 11.0 * columns as f32;
+    let strip_half_width = 0.5 * 11.0 * columns as carom::Real;
     for body in world
         .bodies()
         .filter(|b| b.kind() == carom::BodyKind::Dynamic)

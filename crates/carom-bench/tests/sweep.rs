@@ -1,7 +1,7 @@
 //! `carom bench`'s measures agree with the physics they measure: each can tell a good solver
 //! setting from a bad one, against the exact answer.
 
-use carom::SolverKind;
+use carom::{Real, SolverKind};
 use carom_bench::sweep::{ErrorKind, Setting, SweepOptions, measure, sweep};
 use std::path::PathBuf;
 
@@ -114,7 +114,7 @@ fn a_joint_scene_is_swept_without_the_solvers_that_leave_joints_out() {
         ..SweepOptions::default()
     };
     let points = sweep(&options, |_, _, _| {}).unwrap();
-    let settings: Vec<(SolverKind, u32, Option<f32>)> = points
+    let settings: Vec<(SolverKind, u32, Option<Real>)> = points
         .iter()
         .map(|p| (p.setting.solver, p.setting.substeps, p.setting.joint_hertz))
         .collect();

@@ -5,7 +5,7 @@
 //! Nothing here draws: [`crate::ui`] draws what [`AccuracyPanel`] holds, so tests can drive
 //! the panel and read what the sidebar showed.
 
-use carom::{SolverKind, SolverParams};
+use carom::{Real, SolverKind, SolverParams};
 use carom_bench::sweep::{self, Engine, Point, Setting, SweepOptions, pareto_front, report};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -36,7 +36,7 @@ pub struct SceneInfo {
     /// solver, iterations, substeps and joint stiffness.
     pub params: SolverParams,
     /// Seconds per step (joint stiffness is capped by the substep rate).
-    pub time_step: f32,
+    pub time_step: Real,
     /// Whether it has joints (so soft step's joint stiffness matters).
     pub joints: bool,
 }
@@ -420,7 +420,7 @@ pub fn setting_of(params: &SolverParams) -> Setting {
 pub fn marker(
     points: &[Point],
     params: &SolverParams,
-    time_step: f32,
+    time_step: Real,
     joints: bool,
 ) -> Option<Marker> {
     let wanted = setting_of(params);
@@ -565,7 +565,7 @@ mod tests {
         }
     }
 
-    fn soft(iterations: u32, substeps: u32, joint_hertz: Option<f32>) -> Setting {
+    fn soft(iterations: u32, substeps: u32, joint_hertz: Option<Real>) -> Setting {
         Setting {
             joint_hertz,
             ..Setting::carom(SolverKind::SoftStep, iterations, substeps)
@@ -604,7 +604,7 @@ mod tests {
         ]
     }
 
-    const STEP: f32 = 1.0 / 60.0;
+    const STEP: Real = 1.0 / 60.0;
 
     #[test]
     fn the_marker_is_the_point_of_the_demos_setting() {
@@ -648,7 +648,7 @@ mod tests {
     #[test]
     fn joint_stiffness_counts_as_the_solver_runs_it() {
         let points = sweep();
-        let stiff = |hertz: f32, substeps: u32| SolverParams {
+        let stiff = |hertz: Real, substeps: u32| SolverParams {
             joint_hertz: hertz,
             ..params(SolverKind::SoftStep, 1, substeps)
         };

@@ -5,7 +5,7 @@
 use crate::accuracy_panel::AccuracyPanel;
 use crate::files;
 use crate::metrics::Metrics;
-use carom::{BodyHandle, Color, DrawList, DrawOptions, JointDef, JointHandle, Vec2};
+use carom::{BodyHandle, Color, DrawList, DrawOptions, JointDef, JointHandle, Real, Vec2};
 use carom_render::Camera;
 use carom_scene::SceneWorld;
 use std::path::{Path, PathBuf};
@@ -132,7 +132,7 @@ struct Grab {
 
 /// How hard the cursor may pull, as an acceleration of the held body's mass, m/s² (Box2D's
 /// samples pull with 1000 times the body's mass).
-const GRAB_ACCELERATION: f32 = 1000.0;
+const GRAB_ACCELERATION: Real = 1000.0;
 
 impl Demo {
     /// Opens `scene` (a file), listing the scenes of `folder` for the menu.
@@ -422,7 +422,7 @@ impl Demo {
     /// the view (over the sidebar, left of it) the wheel is the sidebar's: it scrolls that,
     /// and the scene stays as it is.
     pub fn wheel(&mut self, lines: f32, screen: Vec2) {
-        let [width, height] = self.viewport.map(|v| v as f32);
+        let [width, height] = self.viewport.map(|v| v as Real);
         if !(0.0..=width).contains(&screen.x) || !(0.0..=height).contains(&screen.y) {
             return;
         }

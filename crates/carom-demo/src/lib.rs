@@ -7,6 +7,10 @@
 //! window's pixels back for screenshots. [`files`] is where
 //! scenes and reports are read: the disk, or, in the web build, files built into the program.
 
+// Screen and plot values are `f32`; in the double-precision build the casts from world values
+// narrow, in the single-precision build they are no-ops.
+#![cfg_attr(feature = "f64", allow(clippy::unnecessary_cast))]
+
 pub mod accuracy_panel;
 pub mod capture;
 pub mod demo;

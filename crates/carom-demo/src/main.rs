@@ -5,7 +5,7 @@
 //! scene headless and reports what it measured; `carom snapshot` renders one to a PNG;
 //! `carom bench` sweeps solver settings and shows what accuracy costs in time.
 
-use carom::{Effect, SolverKind};
+use carom::{Effect, Real, SolverKind};
 use carom_bench::sweep::{Engine, SweepOptions, sweep_to_folder};
 use carom_demo::run::{RunOptions, run};
 use carom_demo::snapshot::{self, SnapshotOptions, parse_size};
@@ -93,10 +93,10 @@ enum Command {
         /// 60,240). Each is capped at a quarter of the substep rate; those the cap makes equal
         /// run once.
         #[arg(long, value_delimiter = ',', value_parser = joint_hertz)]
-        joint_hertz: Option<Vec<f32>>,
+        joint_hertz: Option<Vec<Real>>,
         /// How long scenes without an accuracy measure run, s.
         #[arg(long, default_value_t = 10.0)]
-        seconds: f32,
+        seconds: Real,
         /// Engines, comma separated: carom, box2d, rapier (default: carom). Box2D is swept
         /// over its substeps (1 to 16) and contact stiffness (30 and 60 Hz), Rapier over its
         /// solver and stabilization iterations (1 to 16), on the same scenes.
@@ -151,8 +151,8 @@ fn engine(text: &str) -> Result<Engine, String> {
 }
 
 /// A joint stiffness from the command line: finite and positive, as the solver requires.
-fn joint_hertz(text: &str) -> Result<f32, String> {
-    match text.parse::<f32>() {
+fn joint_hertz(text: &str) -> Result<Real, String> {
+    match text.parse::<Real>() {
         Ok(hertz) if hertz.is_finite() && hertz > 0.0 => Ok(hertz),
         _ => Err(format!("{text:?} is not a positive number of hertz")),
     }

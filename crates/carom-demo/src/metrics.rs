@@ -1,6 +1,6 @@
 //! What accuracy costs, live: step times and error measures over the last seconds.
 
-use carom::World;
+use carom::{Real, World};
 use std::collections::VecDeque;
 
 /// One step's cost and error.
@@ -13,7 +13,7 @@ pub struct StepSample {
     /// Broadphase, narrowphase, solver, continuous and sleep, ms.
     pub stage_ms: [f64; 5],
     /// Deepest overlap after the step, m.
-    pub max_penetration: f32,
+    pub max_penetration: Real,
     /// Mean speed of the bodies that should be at rest (slower than [`REST_SPEED`]), m/s.
     pub rest_drift: f32,
     /// Kinetic plus gravitational potential energy minus its value at the start, J.
@@ -21,7 +21,7 @@ pub struct StepSample {
 }
 
 /// Bodies slower than this count as resting for the drift measure, m/s.
-pub const REST_SPEED: f32 = 0.1;
+pub const REST_SPEED: Real = 0.1;
 
 /// The names of [`StepSample::stage_ms`], in order.
 pub const STAGES: [&str; 5] = ["broadphase", "narrowphase", "solve", "continuous", "sleep"];

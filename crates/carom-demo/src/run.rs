@@ -1,6 +1,6 @@
 //! `carom run`: a scene headless, and what it measured.
 
-use carom::{Effect, SolverKind};
+use carom::{Effect, Real, SolverKind};
 use carom_scene::SceneWorld;
 use std::path::Path;
 use web_time::Instant;
@@ -36,11 +36,11 @@ pub struct RunReport {
     /// Contacts at the end.
     pub contacts: usize,
     /// The deepest overlap seen in any step, m.
-    pub max_penetration: f32,
+    pub max_penetration: Real,
     /// Kinetic energy at the end, J.
-    pub kinetic_energy: f32,
+    pub kinetic_energy: Real,
     /// The fastest body seen in any step, m/s.
-    pub max_speed: f32,
+    pub max_speed: Real,
     /// True if any position or velocity ever went NaN or infinite.
     pub nan: bool,
     /// Bodies asleep at the end.
@@ -130,7 +130,7 @@ fn run_here(file: &Path, options: &RunOptions) -> Result<RunReport, String> {
     let mut scene = crate::files::load_scene(file).map_err(|e| e.to_string())?;
     apply(&mut scene, options)?;
     let mut times = Vec::with_capacity(options.steps);
-    let (mut max_penetration, mut max_speed, mut nan) = (0.0f32, 0.0f32, false);
+    let (mut max_penetration, mut max_speed, mut nan) = (0.0 as Real, 0.0 as Real, false);
     let mut stage_ms = [0.0; 7];
     for step in 0..options.steps {
         let clock = Instant::now();

@@ -8,7 +8,7 @@
 use crate::capture::copy_to_buffer;
 use crate::demo::{Button, Control, Demo, Key};
 use crate::ui::{SIDEBAR_WIDTH, sidebar};
-use carom::{Color, DrawList, vec2};
+use carom::{Color, DrawList, Real, vec2};
 use carom_render::{Gpu, Renderer, clear_color};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -410,7 +410,10 @@ impl Running {
         let result = match event {
             WindowEvent::CursorMoved { position, .. } => {
                 self.cursor = egui::pos2(position.x as f32, position.y as f32);
-                let local = vec2(self.cursor.x - self.scene_left(), self.cursor.y);
+                let local = vec2(
+                    (self.cursor.x - self.scene_left()) as Real,
+                    self.cursor.y as Real,
+                );
                 self.demo.move_to(local);
                 Ok(())
             }
@@ -421,7 +424,10 @@ impl Running {
                     MouseButton::Middle => Button::Middle,
                     _ => return,
                 };
-                let local = vec2(self.cursor.x - self.scene_left(), self.cursor.y);
+                let local = vec2(
+                    (self.cursor.x - self.scene_left()) as Real,
+                    self.cursor.y as Real,
+                );
                 match state {
                     ElementState::Pressed if local.x >= 0.0 => self.demo.press(button, local),
                     ElementState::Pressed => {}
@@ -438,7 +444,7 @@ impl Running {
                 ..
             }) => {
                 let at = egui::pos2(location.x as f32, location.y as f32);
-                let local = vec2(at.x - self.scene_left(), at.y);
+                let local = vec2((at.x - self.scene_left()) as Real, at.y as Real);
                 match phase {
                     TouchPhase::Started if self.touch.is_none() && local.x >= 0.0 => {
                         self.touch = Some(*id);
@@ -462,7 +468,10 @@ impl Running {
                     MouseScrollDelta::LineDelta(_, y) => *y,
                     MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
                 };
-                let local = vec2(self.cursor.x - self.scene_left(), self.cursor.y);
+                let local = vec2(
+                    (self.cursor.x - self.scene_left()) as Real,
+                    self.cursor.y as Real,
+                );
                 self.demo.wheel(lines, local);
                 Ok(())
             }

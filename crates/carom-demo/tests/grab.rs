@@ -56,7 +56,7 @@ fn a_body_is_grabbed_dragged_against_a_wall_and_thrown() {
     // order, under 0.1 m in contact order).
     let target = demo.camera.world_to_screen(vec2(12.0, 3.0), VIEWPORT);
     for i in 1..=90 {
-        let t = (i as f32 / 60.0).min(1.0);
+        let t = (i as carom::Real / 60.0).min(1.0);
         demo.move_to(screen + (target - screen) * t);
         frames(&mut demo, 1);
         let right = demo.scene.world.body(handle).unwrap().aabb().max.x;
@@ -80,7 +80,7 @@ fn a_body_is_grabbed_dragged_against_a_wall_and_thrown() {
     // Swing it up and to the left, then let go mid-swing: it flies on that way.
     let start = demo.camera.world_to_screen(pressed, VIEWPORT);
     for i in 1..=8 {
-        demo.move_to(start + vec2(-40.0, -20.0) * i as f32);
+        demo.move_to(start + vec2(-40.0, -20.0) * i as carom::Real);
         frames(&mut demo, 1);
     }
     demo.release(Button::Left);

@@ -28,7 +28,7 @@ const CHANNEL_TOLERANCE: u8 = 40;
 const MAX_DIFFERING_FRACTION: f64 = 0.002;
 
 /// Each case: scene, steps before the picture, and what it shows.
-const CASES: [(&str, usize); 10] = [
+const CASES: [(&str, usize); 11] = [
     // Mixed shapes piled on the floor, contact points and normals drawn.
     ("collision", 150),
     // The worked example's reference and incident edges, and every edge normal.
@@ -50,6 +50,9 @@ const CASES: [(&str, usize); 10] = [
     // The platformer's level, its player (a capsule) standing at the start, the seesaw
     // level, the moving platform on its way.
     ("platformer", 30),
+    // A pyramid and the player on a ramp 100 km from the origin on each axis, after a second:
+    // the same picture in the double-precision build, whose positions it shows.
+    ("far_away", 60),
 ];
 
 fn workspace() -> PathBuf {

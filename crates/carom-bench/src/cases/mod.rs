@@ -8,7 +8,7 @@ pub mod joint_measures;
 pub mod wall_shot;
 pub mod worlds;
 
-use carom::{BodyDef, ColliderDef, Shape, World, vec2};
+use carom::{BodyDef, ColliderDef, Real, Shape, World, vec2};
 
 /// A small deterministic random number generator (xorshift64*), so every suite sees the same
 /// "random" worlds on every machine without pulling in a dependency.
@@ -30,8 +30,8 @@ impl Rng {
     }
 
     /// A uniform float in `[lo, hi)`.
-    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        let unit = (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32;
+    pub fn range(&mut self, lo: Real, hi: Real) -> Real {
+        let unit = (self.next_u64() >> 40) as Real / (1u64 << 24) as Real;
         lo + (hi - lo) * unit
     }
 
@@ -44,12 +44,12 @@ impl Rng {
 /// Box2D's Skinny Box course, shared by the continuous-collision and stability suites and the
 /// hard cases: a 4 x 0.1 m plank dropped fast and spinning onto a thin floor beside a thin post.
 pub mod skinny_box {
-    use carom::{BodyDef, Shape, Vec2, World, vec2};
+    use carom::{BodyDef, Real, Shape, Vec2, World, vec2};
 
     /// The post's centre line, x (m).
-    pub const POST_X: f32 = 1.0;
+    pub const POST_X: Real = 1.0;
     /// The post's top, y (m).
-    pub const POST_TOP: f32 = 2.0;
+    pub const POST_TOP: Real = 2.0;
 
     /// Adds the course: the "segment", a 0.02 m thick static floor with its top at y = 0, long
     /// enough that a plank thrown off the post at 50 m/s still lands on it within a second, and
@@ -89,7 +89,7 @@ pub mod skinny_box {
 /// # Panics
 /// Never: the shapes are valid.
 pub fn compound_body() -> World {
-    let triangle = |points: [(f32, f32); 3]| {
+    let triangle = |points: [(Real, Real); 3]| {
         let points = points.map(|(x, y)| vec2(x, y));
         let centroid = (points[0] + points[1] + points[2]) / 3.0;
         ColliderDef::new(Shape::polygon(&points).expect("a triangle")).offset(centroid)

@@ -274,7 +274,7 @@ pub fn random_world(params: SolverParams, seed: u64, count: usize) -> World {
                         rng.range(-10.0 + reach, 10.0 - reach),
                         rng.range(reach, 20.0 - reach),
                     ))
-                    .angle(rng.range(-std::f32::consts::PI, std::f32::consts::PI))
+                    .angle(rng.range(-carom::consts::PI, carom::consts::PI))
                     .density(rng.range(0.1, 100.0))
                     .restitution(rng.range(0.0, 0.5)),
             )

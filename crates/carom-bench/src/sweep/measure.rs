@@ -24,9 +24,9 @@ pub struct Setting {
     /// Soft step's joint stiffness, Hz, where it is not the default: `None` runs the
     /// solver's 60 Hz (Box2D's), which the solver caps at a quarter of the substep rate.
     /// A scene's own stiffness is replaced either way, as its iterations and substeps are.
-    pub joint_hertz: Option<f32>,
+    pub joint_hertz: Option<Real>,
     /// Contact stiffness, Hz, where the sweep sets it (Box2D's); `None` keeps the scene's.
-    pub contact_hertz: Option<f32>,
+    pub contact_hertz: Option<Real>,
     /// Rapier's stabilization iterations per substep, where set.
     pub stabilization: Option<u32>,
 }
@@ -47,11 +47,11 @@ impl Setting {
 
     /// The joint stiffness the solver runs with `hertz` asked for, at `time_step` seconds per
     /// step: at most a quarter of the substep rate, as the solver caps it (Box2D's rule).
-    pub fn capped_joint_hertz(&self, hertz: f32, time_step: f32) -> f32 {
+    pub fn capped_joint_hertz(&self, hertz: Real, time_step: Real) -> Real {
         let cap = 0.25 * self.substeps as f64 / time_step as f64;
         // To a thousandth of a hertz: 1/60 s in f32 makes 8 substeps' cap 119.99999 Hz, which
         // is 120 Hz as far as the solver goes and should read so.
-        ((hertz as f64).min(cap) * 1000.0).round() as f32 / 1000.0
+        ((hertz as f64).min(cap) * 1000.0).round() as Real / 1000.0
     }
 }
 
@@ -131,11 +131,11 @@ pub fn measure(
     scene: &Scene,
     file: &str,
     setting: Setting,
-    default_seconds: f32,
+    default_seconds: Real,
 ) -> Result<Measurement, String> {
     let mut run = Run::new(scene, file, setting)?;
     let time_step = run.scene.time_step;
-    let seconds_to_steps = |seconds: f32| (seconds / time_step).ceil().max(1.0) as usize;
+    let seconds_to_steps = |seconds: Real| (seconds / time_step).ceil().max(1.0) as usize;
     let error = match &scene.accuracy {
         Some(Accuracy::Rest { bodies, seconds }) => {
             let bodies: Vec<carom::BodyHandle> = if bodies.is_empty() {

@@ -20,7 +20,7 @@ pub use engine::Engine;
 pub use front::pareto_front;
 pub use measure::{ErrorKind, Measurement, Setting, measure, solves_joints};
 
-use carom::{SolverKind, SolverParams};
+use carom::{Real, SolverKind, SolverParams};
 use carom_scene::SceneWorld;
 use std::path::PathBuf;
 
@@ -40,14 +40,14 @@ pub struct SweepOptions {
     /// Joint stiffnesses for soft step on scenes with joints, Hz. Each is capped at a quarter
     /// of the substep rate, as the solver caps it, and stiffnesses the cap makes equal run
     /// once.
-    pub joint_hertz: Vec<f32>,
+    pub joint_hertz: Vec<Real>,
     /// How long a scene without an accuracy measure runs, s.
-    pub seconds: f32,
+    pub seconds: Real,
     /// The engines: carom runs the settings above, each peer its own below.
     pub engines: Vec<Engine>,
     /// Contact stiffnesses for soft step and Box2D, Hz (the other solvers' contacts are not
     /// soft).
-    pub contact_hertz: Vec<f32>,
+    pub contact_hertz: Vec<Real>,
     /// Box2D's substep counts.
     pub box2d_substeps: Vec<u32>,
     /// Rapier's solver iterations (`num_solver_iterations`, which are its substeps).
@@ -155,7 +155,7 @@ impl SweepOptions {
                     }
                 }
                 // Soft contacts only in soft step.
-                let contact_hertz: Vec<Option<f32>> = if solver == SolverKind::SoftStep {
+                let contact_hertz: Vec<Option<Real>> = if solver == SolverKind::SoftStep {
                     self.contact_hertz.iter().map(|&h| Some(h)).collect()
                 } else {
                     vec![None]
@@ -372,7 +372,7 @@ mod tests {
     fn a_scene_with_joints_skips_the_solvers_without_them_and_sweeps_stiffness() {
         let settings = options().settings(&scene(true));
         assert!(settings.iter().all(|s| solves_joints(s.solver)));
-        let soft: Vec<(u32, Option<f32>)> = settings
+        let soft: Vec<(u32, Option<Real>)> = settings
             .iter()
             .filter(|s| s.solver == SolverKind::SoftStep)
             .map(|s| (s.substeps, s.joint_hertz))

@@ -3,7 +3,7 @@
 //! Box2D's C) there are no peers, and asking for one is an error.
 
 use super::Engine;
-use carom::{BodyHandle, Vec2, World};
+use carom::{BodyHandle, Real, Vec2, World};
 
 #[cfg(feature = "peers")]
 pub use with_peers::Peer;
@@ -31,7 +31,7 @@ mod with_peers {
         pub fn of(
             engine: Engine,
             world: &World,
-            time_step: f32,
+            time_step: Real,
             stabilization: Option<u32>,
         ) -> Result<Option<Peer>, String> {
             Ok(match engine {
@@ -53,7 +53,7 @@ mod with_peers {
         }
 
         /// One step of `time_step` seconds.
-        pub fn step(&mut self, time_step: f32) -> Result<(), String> {
+        pub fn step(&mut self, time_step: Real) -> Result<(), String> {
             match self {
                 Peer::Box2d(world) => world.step(time_step),
                 Peer::Rapier(world, _) => {
@@ -64,7 +64,7 @@ mod with_peers {
         }
 
         /// Where the body's origin is and how it is turned; `None` for a body the copy lacks.
-        pub fn pose(&mut self, body: BodyHandle) -> Option<(Vec2, f32)> {
+        pub fn pose(&mut self, body: BodyHandle) -> Option<(Vec2, Real)> {
             match self {
                 Peer::Box2d(world) => {
                     let i = world.index_of(body)?;
@@ -98,7 +98,7 @@ mod with_peers {
 
         /// A body's linear and angular velocity, mass and rotational inertia about its centre of
         /// mass, as the peer has them.
-        fn motion(&mut self, body: BodyHandle) -> Option<(Vec2, f32, f64, f64)> {
+        fn motion(&mut self, body: BodyHandle) -> Option<(Vec2, Real, f64, f64)> {
             match self {
                 Peer::Box2d(world) => {
                     let i = world.index_of(body)?;
@@ -140,7 +140,7 @@ mod without_peers {
         pub fn of(
             engine: Engine,
             _: &World,
-            _: f32,
+            _: Real,
             _: Option<u32>,
         ) -> Result<Option<Peer>, String> {
             match engine {
@@ -153,12 +153,12 @@ mod without_peers {
         }
 
         /// Never called: there is no peer to step.
-        pub fn step(&mut self, _: f32) -> Result<(), String> {
+        pub fn step(&mut self, _: Real) -> Result<(), String> {
             match *self {}
         }
 
         /// Never called: there is no peer to ask.
-        pub fn pose(&mut self, _: BodyHandle) -> Option<(Vec2, f32)> {
+        pub fn pose(&mut self, _: BodyHandle) -> Option<(Vec2, Real)> {
             match *self {}
         }
 

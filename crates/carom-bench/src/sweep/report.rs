@@ -1,6 +1,7 @@
 //! The sweep written down: a CSV of every point and a markdown report with one table per scene.
 
 use super::{Engine, Point, Setting, front};
+use carom::Real;
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -33,9 +34,9 @@ struct Row {
     #[serde(default, serialize_with = "micro_or_empty")]
     max_penetration_m: Option<f64>,
     #[serde(default, serialize_with = "shortest_or_empty")]
-    joint_hertz: Option<f32>,
+    joint_hertz: Option<Real>,
     #[serde(default, serialize_with = "shortest_or_empty")]
-    contact_hertz: Option<f32>,
+    contact_hertz: Option<Real>,
     #[serde(default)]
     stabilization: Option<u32>,
     /// Absent in files written before it was a column: then inferred (see [`parse_csv`]).
@@ -63,7 +64,7 @@ fn micro_or_empty<S: serde::Serializer>(
 
 /// `120`, not `120.0`: the shortest text that reads back as the same number.
 fn shortest_or_empty<S: serde::Serializer>(
-    value: &Option<f32>,
+    value: &Option<Real>,
     serializer: S,
 ) -> Result<S::Ok, S::Error> {
     match value {
@@ -555,7 +556,7 @@ fn point_of(
             Err(bad(name, not_a(name)))
         }
     };
-    let hertz = |hertz: Option<f32>, name: &str| match hertz {
+    let hertz = |hertz: Option<Real>, name: &str| match hertz {
         Some(h) if !(h.is_finite() && h > 0.0) => Err(bad(name, not_a(name))),
         other => Ok(other),
     };
@@ -623,7 +624,7 @@ mod tests {
     use crate::sweep::ErrorKind;
     use carom::SolverKind;
 
-    fn point(substeps: u32, joint_hertz: Option<f32>) -> Point {
+    fn point(substeps: u32, joint_hertz: Option<Real>) -> Point {
         Point {
             scene: "chain".into(),
             error_kind: ErrorKind::Stretch,
