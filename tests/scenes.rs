@@ -390,6 +390,36 @@ fn a_player_walks_jumps_onto_a_ledge_and_saves_as_it_is() {
     assert!(error.contains("player"), "{error}");
 }
 
+#[test]
+fn holding_jump_jumps_once_and_each_press_again() {
+    let text = r#"(
+        name: "hop",
+        bodies: [(kind: static, shape: Box(width: 20.0, height: 1.0), position: (0.0, -0.5))],
+        player: (position: (0.0, 0.8)),
+    )"#;
+    let scene = carom_scene::parse(text, "hop.ron").unwrap();
+    let mut built = carom_scene::build(&scene, "hop.ron").unwrap();
+    // Counts take-offs over `steps` steps with the jump key as `held` says.
+    let jumps =
+        |built: &mut carom_scene::SceneWorld, steps: usize, held: &dyn Fn(usize) -> bool| {
+            let mut count = 0;
+            for step in 0..steps {
+                let player = built.player.as_mut().unwrap();
+                let grounded = player.character().is_grounded();
+                player.input.jump = held(step);
+                built.step().unwrap();
+                let rising = built.player.as_ref().unwrap().velocity().y > 1.0;
+                count += usize::from(grounded && rising);
+            }
+            count
+        };
+    // Settle, then hold the key four seconds: one jump (about 1.4 s in the air).
+    assert_eq!(jumps(&mut built, 30, &|_| false), 0);
+    assert_eq!(jumps(&mut built, 240, &|_| true), 1);
+    // Let go a second, pressed a second, twice: a jump each press.
+    assert_eq!(jumps(&mut built, 240, &|step| step % 120 >= 60), 2);
+}
+
 fn text_with_player(player: &str) -> carom_scene::Scene {
     let text = format!("(name: \"bad\", player: {player})");
     carom_scene::parse(&text, "bad.ron").unwrap()

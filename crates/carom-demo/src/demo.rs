@@ -343,6 +343,14 @@ impl Demo {
         }
     }
 
+    /// Lets go of every control of the player (the window lost the keyboard), unless it plays
+    /// its recorded play, which holds the keys itself.
+    pub fn let_go_of_controls(&mut self) {
+        if let Some(player) = self.scene.player.as_mut().filter(|p| !p.is_replaying()) {
+            player.input = carom_scene::PlayerInput::default();
+        }
+    }
+
     /// A key was pressed.
     pub fn key(&mut self, key: Key) -> Result<(), String> {
         match key {

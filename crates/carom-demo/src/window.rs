@@ -227,8 +227,15 @@ impl ApplicationHandler<Started> for App {
             {
                 running.error = self.host.save(&mut running.demo).err();
             }
+            // A window that loses the keyboard hears no more key releases: the player's keys
+            // are let go, so it does not walk on by itself.
+            WindowEvent::Focused(false) => running.demo.let_go_of_controls(),
             // The cursor's position and a button's release always reach the demo, so a grab
-            // or a pan ends even when the button comes up over the sidebar; touches likewise.
+            // or a pan ends even when the button comes up over the sidebar; touches and key
+            // releases likewise (a player's key let go over the sidebar still stops it).
+            WindowEvent::KeyboardInput { event: ref key, .. } if !key.state.is_pressed() => {
+                running.input(&event)
+            }
             WindowEvent::CursorMoved { .. }
             | WindowEvent::MouseInput {
                 state: ElementState::Released,

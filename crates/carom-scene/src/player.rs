@@ -29,6 +29,8 @@ pub struct Player {
     walk_speed: Real,
     jump_speed: Real,
     goal: Option<Real>,
+    /// Whether the jump key has jumped since it went down: holding it jumps once.
+    jump_spent: bool,
     /// The scene's recorded play, and whether it is being played.
     recorded: Vec<KeyChange>,
     replaying: bool,
@@ -42,6 +44,8 @@ pub struct Player {
 pub(crate) struct SavedPlayer {
     state: CharacterState,
     velocity: Vec2,
+    #[serde(default)]
+    jump_spent: bool,
 }
 
 impl Player {
@@ -65,6 +69,7 @@ impl Player {
             walk_speed: spec.walk_speed,
             jump_speed: spec.jump_speed,
             goal: spec.goal,
+            jump_spent: false,
             recorded: spec.replay.clone(),
             replaying: false,
             input: PlayerInput::default(),
@@ -105,8 +110,12 @@ impl Player {
         if grounded || walk != 0.0 {
             self.velocity.x = walk;
         }
-        if grounded && self.input.jump {
+        // A jump per press, as games have it: holding the key down does not bounce.
+        if !self.input.jump {
+            self.jump_spent = false;
+        } else if grounded && !self.jump_spent {
             self.velocity.y = self.jump_speed;
+            self.jump_spent = true;
         }
         let settings = world.settings();
         if settings.effects.contains(Effect::Gravity) {
@@ -155,6 +164,7 @@ impl Player {
         SavedPlayer {
             state: self.character.state(),
             velocity: self.velocity,
+            jump_spent: self.jump_spent,
         }
     }
 
@@ -166,6 +176,7 @@ impl Player {
             .restore(saved.state)
             .map_err(|e| e.to_string())?;
         self.velocity = saved.velocity;
+        self.jump_spent = saved.jump_spent;
         Ok(())
     }
 }
