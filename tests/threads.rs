@@ -184,6 +184,28 @@ fn joints_give_the_same_world_on_every_thread_count() {
     assert_eq!(run(3), one);
 }
 
+/// The same hanging grid with direct joints: its spanning tree solved at once, the joints
+/// closing its loops iteratively, and both beside the threads sharing the joint colours.
+#[test]
+fn direct_joints_give_the_same_world_on_every_thread_count() {
+    let run = |threads: usize| {
+        carom_tests::on_threads(threads, || {
+            let mut world = World::new();
+            world
+                .update_settings(|s| s.solver.direct_joints = true)
+                .unwrap();
+            carom_tests::hanging_grid(&mut world, vec2(0.0, 0.0), 40);
+            for _ in 0..60 {
+                world.step(1.0 / 60.0).unwrap();
+            }
+            world.state_hash()
+        })
+    };
+    let one = run(1);
+    assert_eq!(run(2), one);
+    assert_eq!(run(3), one);
+}
+
 /// 300 dynamic walkers, each walked by a mover joint and held up by a pogo leg (600 joints:
 /// two colours of 300, each shared among threads), in two crowds walking into each other:
 /// the same world on every thread count.

@@ -152,6 +152,13 @@ fn solver_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>
         egui::Checkbox::new(&mut params.friction_in_bias_pass, "friction in biased pass"),
     )
     .on_hover_text("Solve friction in both passes (Box2D v3.1), not only when relaxing");
+    ui.add_enabled(
+        soft,
+        egui::Checkbox::new(&mut params.direct_joints, "direct joints"),
+    )
+    .on_hover_text(
+        "Solve each tree of hinges at once: a light chain holds a heavy load without stretching",
+    );
     if soft {
         ui.add(egui::Slider::new(&mut params.contact_hertz, 5.0..=120.0).text("contact Hz"));
         ui.add(egui::Slider::new(&mut params.damping_ratio, 0.1..=20.0).text("damping ratio"));

@@ -89,6 +89,7 @@ fn prepare(params: &SolverParams, set: &AwakeSet, dt: Real, workspace: &mut Work
         demoted,
         joints: joint_constraints,
         joint_colors,
+        joint_trees,
         ..
     } = workspace;
     // Soft step solves colour by colour; the classic solvers, and soft step without colours,
@@ -163,6 +164,11 @@ fn prepare(params: &SolverParams, set: &AwakeSet, dt: Real, workspace: &mut Work
         ITEMS_PER_TASK,
         |&i| joint_inputs.prepare(i, h, params.warm_starting),
     );
+    if kind == SolverKind::SoftStep && params.direct_joints {
+        joint_trees.plan(joint_constraints, states.len());
+    } else {
+        joint_trees.clear();
+    }
     Plan { kind, bias, h }
 }
 
@@ -182,6 +188,7 @@ fn solve(
         plan: stages,
         joints,
         joint_colors,
+        joint_trees,
         ..
     } = workspace;
     let context = SolverContext {
@@ -201,7 +208,7 @@ fn solve(
             &context,
             states,
             constraints,
-            (joints, joint_colors),
+            (joints, joint_colors, joint_trees),
             wide,
             stages,
             &plan.bias,

@@ -53,6 +53,62 @@ pub(crate) struct JointConstraint {
     pub impulses: JointImpulses,
     /// The kind's settings and what was prepared from them.
     data: JointData,
+    /// A hinge whose point the joint trees solve ([`super::joint_trees`]): its own solve
+    /// leaves the point alone, and so does its warm start.
+    point_in_tree: bool,
+}
+
+/// A hinge's point constraint, as the joint trees take it: what it needs to measure the
+/// anchors' drift and velocity and to push the bodies, copied out for the step.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct HingePoint {
+    frame_a: Vec2,
+    frame_b: Vec2,
+    delta_center: Vec2,
+    inv_mass_a: Real,
+    inv_inertia_a: Real,
+    inv_mass_b: Real,
+    inv_inertia_b: Real,
+}
+
+impl HingePoint {
+    /// The anchors' offsets from the centres of mass now.
+    #[inline]
+    pub fn anchors(&self, a: &BodyState, b: &BodyState) -> (Vec2, Vec2) {
+        (a.dq * self.frame_a, b.dq * self.frame_b)
+    }
+
+    /// B's anchor less A's now.
+    #[inline]
+    pub fn separation(&self, a: &BodyState, b: &BodyState, ra: Vec2, rb: Vec2) -> Vec2 {
+        (b.dp - a.dp) + (rb - ra) + self.delta_center
+    }
+
+    /// The velocity of B's anchor relative to A's.
+    #[inline]
+    pub fn velocity(a: &BodyState, b: &BodyState, ra: Vec2, rb: Vec2) -> Vec2 {
+        JointConstraint::relative_velocity(a, b, ra, rb)
+    }
+
+    /// `(1/mA, 1/IA, 1/mB, 1/IB)`, zero for a body that does not move.
+    #[inline]
+    pub fn inverse_masses(&self) -> (Real, Real, Real, Real) {
+        (
+            self.inv_mass_a,
+            self.inv_inertia_a,
+            self.inv_mass_b,
+            self.inv_inertia_b,
+        )
+    }
+
+    /// Applies impulse `p` at the anchors (to B, and its opposite to A).
+    #[inline]
+    pub fn push(&self, a: &mut BodyState, b: &mut BodyState, ra: Vec2, rb: Vec2, p: Vec2) {
+        a.v -= p * self.inv_mass_a;
+        a.w -= self.inv_inertia_a * cross(ra, p);
+        b.v += p * self.inv_mass_b;
+        b.w += self.inv_inertia_b * cross(rb, p);
+    }
 }
 
 /// Each kind's settings, and the spring softness and masses prepared for the step.
@@ -265,6 +321,7 @@ impl JointConstraint {
                 }
             },
             data: JointData::Filter,
+            point_in_tree: false,
         };
         c.data = match *joint.kind() {
             JointKind::Distance(s) => JointData::Distance(distance::prepare(&c, s, h)),
@@ -349,6 +406,25 @@ impl JointConstraint {
             state.dp += pushed.v * dt;
             state.dq = rotation(pushed.w * dt) * state.dq;
         }
+    }
+
+    /// Its point constraint, if it is a hinge (a revolute joint), which the joint trees may
+    /// solve.
+    pub fn hinge_point(&self) -> Option<HingePoint> {
+        matches!(self.data, JointData::Revolute(_)).then_some(HingePoint {
+            frame_a: self.frame_a,
+            frame_b: self.frame_b,
+            delta_center: self.delta_center,
+            inv_mass_a: self.inv_mass_a,
+            inv_inertia_a: self.inv_inertia_a,
+            inv_mass_b: self.inv_mass_b,
+            inv_inertia_b: self.inv_inertia_b,
+        })
+    }
+
+    /// Hands its point to the joint trees for the step: its own solve leaves it alone.
+    pub fn leave_point_to_tree(&mut self) {
+        self.point_in_tree = true;
     }
 
     /// The impulses for the next step's warm start: none if the speed caps cut either body's

@@ -32,7 +32,9 @@ pub(super) fn warm_start(c: &JointConstraint, a: &mut BodyState, b: &mut BodySta
     let (ra, rb) = c.anchors(a, b);
     let i = &c.impulses;
     c.apply_angular(a, b, i.axial + i.motor + i.lower - i.upper);
-    c.apply_linear(a, b, ra, rb, i.linear);
+    if !c.point_in_tree {
+        c.apply_linear(a, b, ra, rb, i.linear);
+    }
 }
 
 pub(super) fn solve(
@@ -77,7 +79,10 @@ pub(super) fn solve(
         );
         (c.impulses.lower, c.impulses.upper) = impulses;
     }
-    // The point.
+    // The point, unless the joint trees solve it.
+    if c.point_in_tree {
+        return;
+    }
     let (ra, rb) = c.anchors(a, b);
     let velocity = JointConstraint::relative_velocity(a, b, ra, rb);
     let (bias, mass_scale, impulse_scale) = if pass.use_bias {

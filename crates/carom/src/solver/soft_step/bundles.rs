@@ -14,6 +14,7 @@ use crate::graph::order::ContactGraph;
 use crate::math::Real;
 use crate::parallel::{for_each_chunk_with, worth_sharing};
 use crate::solver::contact_constraint::{BodyMass, ContactConstraint, SolverBody};
+use crate::solver::joint_trees::JointTrees;
 use crate::solver::joints::JointConstraint;
 #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
 use crate::solver::soft_step::lanes::avx::{self, Avx8};
@@ -254,7 +255,7 @@ impl WideContacts {
         plan: &[Stage],
         states: &mut [BodyState],
         overflow: &mut [ContactConstraint],
-        joints: (&mut [JointConstraint], &JointColors),
+        joints: (&mut [JointConstraint], &JointColors, &mut JointTrees),
         inputs: &StageInputs,
     ) -> (Work, usize) {
         let all = 0..states.len();
@@ -315,7 +316,8 @@ impl WideContacts {
             bias: &bias,
             params: &params,
         };
-        let joints = (&mut [][..], &JointColors::default());
+        let mut trees = JointTrees::default();
+        let joints = (&mut [][..], &JointColors::default(), &mut trees);
         self.execute(&plan, states, &mut [], joints, &inputs).1
     }
 

@@ -18,6 +18,7 @@ use crate::dynamics::body::Body;
 use crate::graph::joints::JointColors;
 use crate::math::Real;
 use crate::solver::body_state::{SpeedCaps, integrate_position, integrate_velocity};
+use crate::solver::joint_trees::JointTrees;
 use crate::solver::joints::{JointConstraint, JointPass};
 use crate::solver::{BodyState, ContactConstraint, Environment, SolverParams};
 use crate::stats::Work;
@@ -48,6 +49,8 @@ pub(crate) enum Stage {
     Overflow(Pass),
     /// A pass over the joints of a joint colour (the last is their overflow, one block).
     Joints(usize, Pass),
+    /// The joint trees' exact solve (one block).
+    JointTrees(Pass),
 }
 
 /// What the stages read besides the states and constraints.
@@ -75,7 +78,7 @@ pub(super) fn execute_stages<L: Lanes>(
     states: &SharedStates,
     all_states: Range<usize>,
     overflow: &mut [ContactConstraint],
-    (joints, joint_colors): (&mut [JointConstraint], &JointColors),
+    (joints, joint_colors, trees): (&mut [JointConstraint], &JointColors, &mut JointTrees),
     inputs: &StageInputs,
 ) -> (Work, usize) {
     let threads = rayon::current_num_threads();
@@ -117,12 +120,13 @@ pub(super) fn execute_stages<L: Lanes>(
         1
     };
     let overflow = Mutex::new(overflow);
+    let trees = Mutex::new(trees);
     let work = Mutex::new(Work::default());
     let bounces = AtomicUsize::new(0);
     let stage_blocks = |stage: usize| match plan[stage] {
         Stage::IntegrateVelocities | Stage::IntegratePositions => body_blocks,
         Stage::Color(color, _) => color_blocks[color],
-        Stage::Overflow(_) => 1,
+        Stage::Overflow(_) | Stage::JointTrees(_) => 1,
         Stage::Joints(color, _) => joint_block_counts[color],
     };
     run_stages(
@@ -162,6 +166,19 @@ pub(super) fn execute_stages<L: Lanes>(
             Stage::Joints(color, pass) => {
                 if let Some(block) = &joint_blocks[color][block] {
                     joint_pass(pass, &mut lock(block), states, &joint_passes);
+                }
+            }
+            Stage::JointTrees(pass) => {
+                let mut trees = lock(&trees);
+                // SAFETY: the trees' stage is one block, and no other stage runs.
+                #[allow(unsafe_code)]
+                let all = unsafe { states.range_mut(all_states.clone()) };
+                match pass {
+                    Pass::WarmStart => trees.warm_start(all),
+                    Pass::Solve(bias, _) => {
+                        trees.solve(all, &joint_passes[usize::from(!bias.use_bias)])
+                    }
+                    Pass::Restitution(_) => {}
                 }
             }
         },

@@ -30,6 +30,7 @@ pub(crate) use bundles::{BundleInputs, WideContacts};
 pub(crate) use executor::Stage;
 
 use super::body_state::SpeedCaps;
+use super::joint_trees::JointTrees;
 use super::joints::JointConstraint;
 use super::{BodyState, ContactConstraint, Environment, Softness, SolverContext, SolverParams};
 use crate::graph::joints::JointColors;
@@ -48,7 +49,7 @@ pub(super) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
     constraints: &mut [ContactConstraint],
-    (joints, joint_colors): (&mut [JointConstraint], &JointColors),
+    (joints, joint_colors, trees): (&mut [JointConstraint], &JointColors, &mut JointTrees),
     wide: &mut WideContacts,
     plan: &mut Vec<Stage>,
     bias: &Bias,
@@ -64,7 +65,14 @@ pub(super) fn solve(
     let bias_friction = environment.friction && params.friction_in_bias_pass;
     let bouncy = wide.bouncy() || constraints.iter().any(|c| c.restitution > 0.0);
     let shape = (wide.color_count(), !constraints.is_empty(), bouncy);
-    plan_stages(plan, params, environment, bias, joint_colors, shape);
+    plan_stages(
+        plan,
+        params,
+        environment,
+        bias,
+        (joint_colors, !trees.is_empty()),
+        shape,
+    );
     let inputs = StageInputs {
         bodies,
         environment,
@@ -73,8 +81,14 @@ pub(super) fn solve(
         bias,
         params,
     };
-    let (mut work, bounces) =
-        wide.execute(plan, states, constraints, (joints, joint_colors), &inputs);
+    let (mut work, bounces) = wide.execute(
+        plan,
+        states,
+        constraints,
+        (joints, joint_colors, &mut *trees),
+        &inputs,
+    );
+    trees.finish(joints);
     let points = wide.point_count() + constraints.iter().map(|c| c.points().len()).sum::<usize>();
     let friction_passes = u32::from(bias_friction) + u32::from(environment.friction);
     work.friction_impulses =
@@ -85,7 +99,8 @@ pub(super) fn solve(
 
 /// The stages of one step, into `plan`: each pass over the contacts' `colors` colours in turn,
 /// then the contacts' overflow if it has constraints, then the joint colours that have joints
-/// (the last being their overflow); the restitution pass (contacts only) only if `bouncy`
+/// (the last being their overflow), then the joint trees' exact solve if there are `trees`;
+/// the restitution pass (contacts only) only if `bouncy`
 /// (some contact has restitution: the pass does nothing for the others). Joints have the last
 /// word in each pass, as contacts with the ground have among contacts: a limb struck in a pile
 /// is pulled back onto its joint before the pass ends. (Box2D solves joints first; in a pile
@@ -95,7 +110,7 @@ fn plan_stages(
     params: &SolverParams,
     environment: Environment,
     bias: &Bias,
-    joint_colors: &JointColors,
+    (joint_colors, trees): (&JointColors, bool),
     (colors, overflow, bouncy): (usize, bool, bool),
 ) {
     plan.clear();
@@ -108,6 +123,9 @@ fn plan_stages(
             let joints = joint_colors.ranges.iter().enumerate();
             let used = joints.filter(|(_, range)| !range.is_empty());
             plan.extend(used.map(|(color, _)| Stage::Joints(color, pass)));
+            if trees {
+                plan.push(Stage::JointTrees(pass));
+            }
         }
     };
     let bias_friction = environment.friction && params.friction_in_bias_pass;
