@@ -247,3 +247,15 @@ pub(crate) const WALK_PIECES: usize = 128;
 /// fraction of the tree's leaves moved in a step (neighbours then share the walk down); when
 /// fewer moved, each queries the trees from the root.
 pub(crate) const WALK_MOVED_FRACTION: Real = 0.25;
+
+/// Direct joints: at most this many loop-closing hinges per this many tree hinges in a
+/// component solved directly. A few loops (a ragdoll holding a bar) are closed iteratively; a
+/// net is not treated as a tree, since its iterative loops would undo the exact tree each pass.
+pub(crate) const MAX_LOOPS_PER_JOINTS: (u32, u32) = (1, 8);
+
+/// Direct joints: the compliance added to each hinge's own effective mass when the drift is
+/// projected away at the end of a substep, as a fraction of it. It bounds the correction
+/// where the hinges' directions line up (a taut bridge cannot stretch along itself, and an
+/// exact projection there would throw its planks); a hundredth leaves the rest of the drift
+/// closed to a percent.
+pub(crate) const TREE_PROJECTION_GIVE: Real = 0.01;

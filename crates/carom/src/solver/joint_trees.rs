@@ -21,6 +21,7 @@
 
 use super::BodyState;
 use super::joints::{HingePoint, JointConstraint, JointPass};
+use crate::constants::{MAX_LOOPS_PER_JOINTS, TREE_PROJECTION_GIVE};
 use crate::math::{Real, Vec2};
 
 /// A symmetric 3x3 matrix over a body's `(vx, vy, w)`: `[xx, xy, xw, yy, yw, ww]`.
@@ -70,6 +71,11 @@ pub(crate) struct JointTrees {
     at_body: Vec<u32>,
     queue: Vec<u32>,
     removed: Vec<bool>,
+    /// Per state: its component's representative (union-find), then the component's tree
+    /// joints and loop joints.
+    parent: Vec<u32>,
+    tree_count: Vec<u32>,
+    loop_count: Vec<u32>,
 }
 
 impl JointTrees {
@@ -105,6 +111,21 @@ impl JointTrees {
         if count == 0 {
             return;
         }
+        // Which bodies the joints connect: a component is solved directly or not at all.
+        self.parent.clear();
+        self.parent.extend(0..states as u32 + 1);
+        for c in constraints.iter().filter(|c| candidate(c)) {
+            if c.moves_a && c.moves_b {
+                let (ra, rb) = (root(&mut self.parent, c.a), root(&mut self.parent, c.b));
+                // The smaller index leads, so the components do not depend on joint order.
+                let (low, high) = (ra.min(rb), ra.max(rb));
+                self.parent[high] = low as u32;
+            }
+        }
+        self.tree_count.clear();
+        self.tree_count.resize(states + 1, 0);
+        self.loop_count.clear();
+        self.loop_count.resize(states + 1, 0);
         // The joints at each moving state, in constraint order.
         self.starts.clear();
         self.starts.push(0);
@@ -152,6 +173,8 @@ impl JointTrees {
                     next_loop += 1;
                 }
                 let index = next_loop;
+                let component = component_of(&mut self.parent, &constraints[index]);
+                self.loop_count[component] += 1;
                 self.remove(constraints, index);
                 placed += 1;
                 continue;
@@ -185,9 +208,18 @@ impl JointTrees {
                 spread: [[0.0; 3]; 2],
                 z: Vec2::zeros(),
             });
+            let component = component_of(&mut self.parent, c);
+            self.tree_count[component] += 1;
             self.remove(constraints, index);
             placed += 1;
         }
+        // A component with many loops (a net, a grid) would have the iterative loop joints
+        // undo the exact tree each pass: it stays iterative whole, at iterative cost.
+        let (parent, trees, loops) = (&mut self.parent, &self.tree_count, &self.loop_count);
+        self.joints.retain(|tree| {
+            let component = component_of(parent, &constraints[tree.constraint]);
+            loops[component] * MAX_LOOPS_PER_JOINTS.1 <= trees[component] * MAX_LOOPS_PER_JOINTS.0
+        });
         for tree in &self.joints {
             constraints[tree.constraint].leave_point_to_tree();
         }
@@ -236,13 +268,63 @@ impl JointTrees {
             }
             let (ra, rb) = tree.point.anchors(&a, &b);
             tree.point.push(&mut a, &mut b, ra, rb, tree.impulse);
-            store(states, tree, &a, &b);
+            set_velocities(states, tree, &a, &b);
         }
     }
 
     /// One pass: the velocity error of every tree joint (with the pass's bias) solved away
     /// at once.
     pub fn solve(&mut self, states: &mut [BodyState], pass: &JointPass) {
+        self.exact(states, 0.0, |tree, a, b| {
+            let mut error = HingePoint::velocity(a, b, tree.ra, tree.rb);
+            if pass.use_bias {
+                error += tree.point.separation(a, b, tree.ra, tree.rb) * pass.softness.bias_rate;
+            }
+            error
+        });
+        let s = pass.softness;
+        let (mass_scale, impulse_scale) = if pass.use_bias {
+            (s.mass_scale, s.impulse_scale)
+        } else {
+            (1.0, 0.0)
+        };
+        for tree in &mut self.joints {
+            let impulse = -tree.z * mass_scale - tree.impulse * impulse_scale;
+            tree.impulse += impulse;
+            let (mut a, mut b) = (states[tree.a], states[tree.b]);
+            tree.point.push(&mut a, &mut b, tree.ra, tree.rb, impulse);
+            set_velocities(states, tree, &a, &b);
+        }
+    }
+
+    /// Closes the trees' drift in position (one Newton step on the anchors' separations,
+    /// the bodies moved as the same impulses would move them in a unit of time), leaving
+    /// their velocities alone: the end of a substep, where the soft bias would otherwise
+    /// leave what nonlinear motion opened for the next one.
+    pub fn project(&mut self, states: &mut [BodyState]) {
+        self.exact(states, TREE_PROJECTION_GIVE, |tree, a, b| {
+            tree.point.separation(a, b, tree.ra, tree.rb)
+        });
+        for tree in &self.joints {
+            let (mut a, mut b) = (states[tree.a], states[tree.b]);
+            tree.point.shift(&mut a, &mut b, tree.ra, tree.rb, -tree.z);
+            for (moves, index, state) in [(tree.moves_a, tree.a, a), (tree.moves_b, tree.b, b)] {
+                if moves {
+                    states[index].dp = state.dp;
+                    states[index].dq = state.dq;
+                }
+            }
+        }
+    }
+
+    /// Solves `A x = r` over every tree at once, `r` each joint's `error` given the bodies'
+    /// states, leaving `x` in each joint's `z` and its anchors in `ra`, `rb`.
+    fn exact(
+        &mut self,
+        states: &[BodyState],
+        give: Real,
+        error: impl Fn(&TreeJoint, &BodyState, &BodyState) -> Vec2,
+    ) {
         for &state in &self.bodies {
             self.accumulated[state] = [0.0; 3];
         }
@@ -260,24 +342,24 @@ impl JointTrees {
             let (a, b) = (states[tree.a], states[tree.b]);
             let (ra, rb) = tree.point.anchors(&a, &b);
             (tree.ra, tree.rb) = (ra, rb);
-            let mut error = HingePoint::velocity(&a, &b, ra, rb);
-            if pass.use_bias {
-                error += tree.point.separation(&a, &b, ra, rb) * pass.softness.bias_rate;
-            }
+            let mut y = error(tree, &a, &b);
             let mut d = [0.0; 3];
             for (moves, state, r, sign) in [
                 (tree.moves_a, tree.a, ra, -1.0),
                 (tree.moves_b, tree.b, rb, 1.0),
             ] {
                 if moves {
-                    let w = &self.inverse_mass[state];
-                    add_sandwich(&mut d, w, r);
-                    let q = self.accumulated[state];
-                    error -= jacobian(r, q) * sign;
+                    add_sandwich(&mut d, &self.inverse_mass[state], r);
+                    y -= jacobian(r, self.accumulated[state]) * sign;
                 }
             }
+            if give > 0.0 {
+                let (ma, ia, mb, ib) = tree.point.inverse_masses();
+                let own = ma + mb + 0.5 * (ia * ra.norm_squared() + ib * rb.norm_squared());
+                d[0] += give * own;
+                d[2] += give * own;
+            }
             tree.inverse = inverse22(d);
-            let y = error;
             tree.z = mul22(tree.inverse, y);
             let (pivot, r, sign, moves) = if tree.pivot_b {
                 (tree.b, rb, 1.0, tree.moves_b)
@@ -285,40 +367,31 @@ impl JointTrees {
                 (tree.a, ra, -1.0, tree.moves_a)
             };
             if moves {
-                let w = self.inverse_mass[pivot];
-                // W Gᵀ at the pivot: G = sign [[1, 0, -r.y], [0, 1, r.x]].
-                let columns = spread(&w, r, sign);
+                // W Gᵀ at the pivot, G = sign [[1, 0, -r.y], [0, 1, r.x]]: the pivot's share
+                // of this joint's solution, then W less what this joint now holds.
+                let columns = spread(&self.inverse_mass[pivot], r, sign);
                 tree.spread = columns;
                 let q = &mut self.accumulated[pivot];
-                for (k, column) in columns.iter().enumerate() {
-                    let zk = tree.z[k];
+                for (column, zk) in columns.iter().zip([tree.z.x, tree.z.y]) {
                     for i in 0..3 {
                         q[i] += column[i] * zk;
                     }
                 }
-                // W -= (W Gᵀ) D⁻¹ (W Gᵀ)ᵀ.
-                let w = &mut self.inverse_mass[pivot];
-                subtract_outer(w, &columns, tree.inverse);
+                subtract_outer(&mut self.inverse_mass[pivot], &columns, tree.inverse);
             } else {
                 tree.spread = [[0.0; 3]; 2];
             }
         }
-        // Root first: the impulses, each joint less what the joints beyond its pivot carry.
+        // Root first: each joint less what the joints beyond its pivot carry.
         for &state in &self.bodies {
             self.accumulated[state] = [0.0; 3];
         }
-        let s = pass.softness;
-        let (mass_scale, impulse_scale) = if pass.use_bias {
-            (s.mass_scale, s.impulse_scale)
-        } else {
-            (1.0, 0.0)
-        };
         for tree in self.joints.iter_mut().rev() {
             let pivot = if tree.pivot_b { tree.b } else { tree.a };
             let t = self.accumulated[pivot];
             let carried = Vec2::new(
-                tree.spread[0][0] * t[0] + tree.spread[0][1] * t[1] + tree.spread[0][2] * t[2],
-                tree.spread[1][0] * t[0] + tree.spread[1][1] * t[1] + tree.spread[1][2] * t[2],
+                tree.spread[0].iter().zip(t).map(|(c, t)| c * t).sum(),
+                tree.spread[1].iter().zip(t).map(|(c, t)| c * t).sum(),
             );
             let x = tree.z - mul22(tree.inverse, carried);
             for (moves, state, r, sign) in [
@@ -326,22 +399,14 @@ impl JointTrees {
                 (tree.moves_b, tree.b, tree.rb, 1.0),
             ] {
                 if moves {
-                    let t = &mut self.accumulated[state];
                     // Gᵀ x.
+                    let t = &mut self.accumulated[state];
                     t[0] += sign * x.x;
                     t[1] += sign * x.y;
                     t[2] += sign * (-r.y * x.x + r.x * x.y);
                 }
             }
-            let impulse = -x * mass_scale - tree.impulse * impulse_scale;
-            tree.impulse += impulse;
-            // Stored for the sweep below.
-            tree.z = impulse;
-        }
-        for tree in &self.joints {
-            let (mut a, mut b) = (states[tree.a], states[tree.b]);
-            tree.point.push(&mut a, &mut b, tree.ra, tree.rb, tree.z);
-            store(states, tree, &a, &b);
+            tree.z = x;
         }
     }
 
@@ -353,8 +418,24 @@ impl JointTrees {
     }
 }
 
+/// The representative of `state`'s component, compressing the path to it.
+fn root(parent: &mut [u32], state: usize) -> usize {
+    let mut at = state;
+    while parent[at] as usize != at {
+        let up = parent[at] as usize;
+        parent[at] = parent[up];
+        at = up;
+    }
+    at
+}
+
+/// The component of a joint's moving bodies.
+fn component_of(parent: &mut [u32], c: &JointConstraint) -> usize {
+    root(parent, if c.moves_a { c.a } else { c.b })
+}
+
 /// Writes a joint's bodies' velocities back (those that move).
-fn store(states: &mut [BodyState], tree: &TreeJoint, a: &BodyState, b: &BodyState) {
+fn set_velocities(states: &mut [BodyState], tree: &TreeJoint, a: &BodyState, b: &BodyState) {
     for (moves, index, state) in [(tree.moves_a, tree.a, a), (tree.moves_b, tree.b, b)] {
         if moves {
             states[index].v = state.v;

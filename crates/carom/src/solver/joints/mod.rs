@@ -101,6 +101,16 @@ impl HingePoint {
         )
     }
 
+    /// Moves the bodies as impulse `p` at the anchors would in a unit of time (B by it, A by
+    /// its opposite), their velocities left alone.
+    #[inline]
+    pub fn shift(&self, a: &mut BodyState, b: &mut BodyState, ra: Vec2, rb: Vec2, p: Vec2) {
+        a.dp -= p * self.inv_mass_a;
+        a.dq = rotation(-self.inv_inertia_a * cross(ra, p)) * a.dq;
+        b.dp += p * self.inv_mass_b;
+        b.dq = rotation(self.inv_inertia_b * cross(rb, p)) * b.dq;
+    }
+
     /// Applies impulse `p` at the anchors (to B, and its opposite to A).
     #[inline]
     pub fn push(&self, a: &mut BodyState, b: &mut BodyState, ra: Vec2, rb: Vec2, p: Vec2) {

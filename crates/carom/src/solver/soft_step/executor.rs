@@ -176,7 +176,10 @@ pub(super) fn execute_stages<L: Lanes>(
                 match pass {
                     Pass::WarmStart => trees.warm_start(all),
                     Pass::Solve(bias, _) => {
-                        trees.solve(all, &joint_passes[usize::from(!bias.use_bias)])
+                        trees.solve(all, &joint_passes[usize::from(!bias.use_bias)]);
+                        if bias.substep_end {
+                            trees.project(all);
+                        }
                     }
                     Pass::Restitution(_) => {}
                 }
