@@ -71,6 +71,8 @@ pub(crate) struct JointTrees {
     at_body: Vec<u32>,
     queue: Vec<u32>,
     removed: Vec<bool>,
+    /// Per constraint: a hinge of a component solved directly.
+    accepted: Vec<bool>,
     /// Per state: its component's representative (union-find), then the component's tree
     /// joints and loop joints.
     parent: Vec<u32>,
@@ -96,36 +98,57 @@ impl JointTrees {
     pub fn plan(&mut self, constraints: &mut [JointConstraint], states: usize) {
         self.joints.clear();
         self.bodies.clear();
-        let candidate = |c: &JointConstraint| c.hinge_point().is_some() && (c.moves_a || c.moves_b);
-        self.left.clear();
-        self.left.resize(states + 1, 0);
-        let mut count = 0usize;
-        for c in constraints.iter().filter(|c| candidate(c)) {
-            count += 1;
-            for (moves, state) in [(c.moves_a, c.a), (c.moves_b, c.b)] {
-                if moves {
-                    self.left[state] += 1;
-                }
-            }
-        }
-        if count == 0 {
-            return;
-        }
-        // Which bodies the joints connect: a component is solved directly or not at all.
+        let hinge = |c: &JointConstraint| c.hinge_point().is_some() && (c.moves_a || c.moves_b);
+        // Which moving bodies the hinges connect, and which hinges close a loop among them.
         self.parent.clear();
         self.parent.extend(0..states as u32 + 1);
-        for c in constraints.iter().filter(|c| candidate(c)) {
-            if c.moves_a && c.moves_b {
+        self.accepted.clear();
+        self.accepted.resize(constraints.len(), false);
+        for (index, c) in constraints.iter().enumerate() {
+            if hinge(c) && c.moves_a && c.moves_b {
                 let (ra, rb) = (root(&mut self.parent, c.a), root(&mut self.parent, c.b));
                 // The smaller index leads, so the components do not depend on joint order.
                 let (low, high) = (ra.min(rb), ra.max(rb));
                 self.parent[high] = low as u32;
+                // Marked for now: closes a loop.
+                self.accepted[index] = ra == rb;
             }
         }
         self.tree_count.clear();
         self.tree_count.resize(states + 1, 0);
         self.loop_count.clear();
         self.loop_count.resize(states + 1, 0);
+        for (index, c) in constraints.iter().enumerate().filter(|(_, c)| hinge(c)) {
+            let component = component_of(&mut self.parent, c);
+            if self.accepted[index] {
+                self.loop_count[component] += 1;
+            } else {
+                self.tree_count[component] += 1;
+            }
+        }
+        // A component with many loops (a net, a grid) would have its iterative loop hinges
+        // undo the exact tree each pass: it stays iterative whole, at iterative cost.
+        let (most_loops, per_tree) = MAX_LOOPS_PER_JOINTS;
+        self.left.clear();
+        self.left.resize(states + 1, 0);
+        let mut count = 0usize;
+        for (index, c) in constraints.iter().enumerate() {
+            let component = component_of(&mut self.parent, c);
+            let accepted = hinge(c)
+                && self.loop_count[component] * per_tree <= self.tree_count[component] * most_loops;
+            self.accepted[index] = accepted;
+            if accepted {
+                count += 1;
+                for (moves, state) in [(c.moves_a, c.a), (c.moves_b, c.b)] {
+                    if moves {
+                        self.left[state] += 1;
+                    }
+                }
+            }
+        }
+        if count == 0 {
+            return;
+        }
         // The joints at each moving state, in constraint order.
         self.starts.clear();
         self.starts.push(0);
@@ -138,7 +161,7 @@ impl JointTrees {
         self.fill.clear();
         self.fill.extend_from_slice(&self.starts[..states]);
         for (index, c) in constraints.iter().enumerate() {
-            if !candidate(c) {
+            if !self.accepted[index] {
                 continue;
             }
             for (moves, state) in [(c.moves_a, c.a), (c.moves_b, c.b)] {
@@ -154,7 +177,7 @@ impl JointTrees {
         let leaf = |left: &[u32], moves: bool, state: usize| !moves || left[state] <= 1;
         self.queue.clear();
         for (index, c) in constraints.iter().enumerate() {
-            if candidate(c)
+            if self.accepted[index]
                 && (leaf(&self.left, c.moves_a, c.a) || leaf(&self.left, c.moves_b, c.b))
             {
                 self.queue.push(index as u32);
@@ -169,12 +192,10 @@ impl JointTrees {
             } else {
                 // Only loops are left: the first joint left closes one, and goes to the
                 // iterative solve.
-                while self.removed[next_loop] || !candidate(&constraints[next_loop]) {
+                while self.removed[next_loop] || !self.accepted[next_loop] {
                     next_loop += 1;
                 }
                 let index = next_loop;
-                let component = component_of(&mut self.parent, &constraints[index]);
-                self.loop_count[component] += 1;
                 self.remove(constraints, index);
                 placed += 1;
                 continue;
@@ -208,18 +229,9 @@ impl JointTrees {
                 spread: [[0.0; 3]; 2],
                 z: Vec2::zeros(),
             });
-            let component = component_of(&mut self.parent, c);
-            self.tree_count[component] += 1;
             self.remove(constraints, index);
             placed += 1;
         }
-        // A component with many loops (a net, a grid) would have the iterative loop joints
-        // undo the exact tree each pass: it stays iterative whole, at iterative cost.
-        let (parent, trees, loops) = (&mut self.parent, &self.tree_count, &self.loop_count);
-        self.joints.retain(|tree| {
-            let component = component_of(parent, &constraints[tree.constraint]);
-            loops[component] * MAX_LOOPS_PER_JOINTS.1 <= trees[component] * MAX_LOOPS_PER_JOINTS.0
-        });
         for tree in &self.joints {
             constraints[tree.constraint].leave_point_to_tree();
         }
