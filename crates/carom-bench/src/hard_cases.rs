@@ -311,6 +311,9 @@ impl Outcome {
 pub struct Options {
     /// Soak one simulated minute instead of an hour.
     pub quick: bool,
+    /// carom's joint cases with `SolverParams::direct_joints` on (Box2D has no such option:
+    /// its side is as it always is).
+    pub direct_joints: bool,
 }
 
 /// A hard case: its name (for `--case`), its title in the table, and how to run it.
@@ -339,6 +342,8 @@ impl Case {
     pub fn title(&self, options: Options) -> String {
         if options.quick && self.name == "soak_one_hour" {
             "one minute of a base-10 pyramid (soak shortened by --quick)".into()
+        } else if options.direct_joints && JOINT_CASES.contains(&self.name) {
+            format!("{}, carom with direct joints", self.title)
         } else {
             self.title.into()
         }
@@ -458,22 +463,22 @@ pub fn cases() -> Vec<Case> {
         Case {
             name: "pendulum",
             title: "pendulum from 10°, 60 s (demos/pendulum.ron)",
-            run: |e, _, o| pendulum(e, o),
+            run: pendulum,
         },
         Case {
             name: "chain",
             title: "chain of 40 links holding 50 kg, 4 substeps and 60 Hz joints",
-            run: |e, _, o| chain(e, o),
+            run: chain,
         },
         Case {
             name: "bridge",
             title: "bridge of 160 planks with 30 boxes, 4 substeps and 60 Hz joints",
-            run: |e, _, o| bridge(e, o),
+            run: bridge,
         },
         Case {
             name: "ragdolls",
             title: "20 ragdolls in a pile, 4 substeps and 60 Hz joints",
-            run: |e, _, o| ragdolls(e, o),
+            run: ragdolls,
         },
     ]
 }
@@ -1054,11 +1059,18 @@ struct JointInfo {
 }
 
 /// A demo scene at soft step's defaults, and its joints.
-fn joint_scene(name: &str) -> Res<(carom_scene::SceneWorld, Vec<JointInfo>)> {
+/// The cases `Options::direct_joints` changes.
+const JOINT_CASES: [&str; 4] = ["pendulum", "chain", "bridge", "ragdolls"];
+
+fn joint_scene(name: &str, options: Options) -> Res<(carom_scene::SceneWorld, Vec<JointInfo>)> {
     let mut scene = worlds::scene(name, soft_step());
+    let params = SolverParams {
+        direct_joints: options.direct_joints,
+        ..soft_step()
+    };
     scene
         .world
-        .update_settings(|s| s.solver = soft_step())
+        .update_settings(|s| s.solver = params)
         .map_err(|e| e.to_string())?;
     let world = &scene.world;
     let mut joints = Vec::new();
@@ -1108,8 +1120,8 @@ fn limit_violation(w: &mut dyn CaseWorld, joint: &JointInfo) -> Res<f64> {
     Ok(f64::from((lower - angle).max(angle - upper).max(0.0)))
 }
 
-fn pendulum(engine: Engine, o: &mut Outcome) -> Res<()> {
-    let (scene, joints) = joint_scene("pendulum")?;
+fn pendulum(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
+    let (scene, joints) = joint_scene("pendulum", options)?;
     let bob = index(&scene.world, scene.names["bob"])?;
     on(engine, scene.world, |w| {
         let mut crossings = Vec::new();
@@ -1142,8 +1154,8 @@ fn pendulum(engine: Engine, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn chain(engine: Engine, o: &mut Outcome) -> Res<()> {
-    let (scene, joints) = joint_scene("chain")?;
+fn chain(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
+    let (scene, joints) = joint_scene("chain", options)?;
     let ball = index(&scene.world, scene.names["ball"])?;
     let held = joints
         .iter()
@@ -1167,8 +1179,8 @@ fn chain(engine: Engine, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn bridge(engine: Engine, o: &mut Outcome) -> Res<()> {
-    let (scene, joints) = joint_scene("bridge")?;
+fn bridge(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
+    let (scene, joints) = joint_scene("bridge", options)?;
     on(engine, scene.world, |w| {
         let mut worst: f64 = 0.0;
         for _ in 0..600 {
@@ -1184,8 +1196,8 @@ fn bridge(engine: Engine, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn ragdolls(engine: Engine, o: &mut Outcome) -> Res<()> {
-    let (scene, joints) = joint_scene("ragdolls")?;
+fn ragdolls(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
+    let (scene, joints) = joint_scene("ragdolls", options)?;
     on(engine, scene.world, |w| {
         let (mut gap, mut past): (f64, f64) = (0.0, 0.0);
         for _ in 0..600 {

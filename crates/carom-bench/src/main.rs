@@ -94,6 +94,9 @@ enum Command {
         /// Soak one simulated minute instead of an hour (the table says so).
         #[arg(long)]
         quick: bool,
+        /// Run carom's joint cases with direct joints (each tree of hinges solved at once).
+        #[arg(long)]
+        direct_joints: bool,
     },
 }
 
@@ -599,8 +602,18 @@ fn scaling_run(
 
 fn main() -> Result<(), String> {
     let args = Args::parse();
-    if let Some(Command::HardCases { case, out, quick }) = &args.command {
-        return hard_cases(case, out.as_deref(), Options { quick: *quick });
+    if let Some(Command::HardCases {
+        case,
+        out,
+        quick,
+        direct_joints,
+    }) = &args.command
+    {
+        let options = Options {
+            quick: *quick,
+            direct_joints: *direct_joints,
+        };
+        return hard_cases(case, out.as_deref(), options);
     }
     if args.runs == 0 {
         return Err("--runs must be at least 1".into());
