@@ -289,8 +289,8 @@ impl Renderer {
             srgb_target: if self.srgb_target { 1.0 } else { 0.0 },
         };
         // Everything goes up relative to the camera's centre, subtracted here in the engine's
-        // precision: 100 km out, a single-precision world position resolves to 8 mm, its
-        // offset from the camera to a few micrometres.
+        // precision: 100 km out, a double-precision world's positions would resolve to 8 mm
+        // as `f32`, their offsets from the camera resolve to micrometres.
         let origin = camera.center;
         queue.write_buffer(&self.view, 0, bytemuck::bytes_of(&view));
 

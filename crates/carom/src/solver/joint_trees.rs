@@ -13,8 +13,12 @@
 //! first and one back.
 //!
 //! The soft step's impulse is then Box2D's, with the matrix in place of the scalar mass:
-//! `Δλ = -mass_scale · A⁻¹ r - impulse_scale · λ`. A joint that closes a loop cannot be
-//! eliminated without fill-in: it stays with the other joints, solved iteratively.
+//! `Δλ = -mass_scale · A⁻¹ r - impulse_scale · λ`. At the end of each substep the same
+//! factorisation closes the drift in position ([`JointTrees::project`]), which the soft bias
+//! would otherwise leave to the next substep.
+//!
+//! A joint that closes a loop cannot be eliminated without fill-in: it stays with the other
+//! joints, solved iteratively, and a component with many loops (a net) stays iterative whole.
 //!
 //! The tree owns its joints' point impulses for the step: it warm starts them and hands them
 //! back for the next step and for the reactions.
