@@ -1137,6 +1137,18 @@ fn a_distance_motor_drives_the_length_within_its_force() {
     assert!(world.add_joint(on_a_hinge).is_err());
 }
 
+/// A soft-step world without gravity, its hinge trees solved directly or not.
+fn weightless(direct_joints: bool) -> World {
+    let mut world = world(SolverKind::SoftStep);
+    world
+        .update_settings(|s| {
+            s.gravity = Vec2::zeros();
+            s.solver.direct_joints = direct_joints;
+        })
+        .unwrap();
+    world
+}
+
 /// How fast each hinge's anchors part, at worst, m/s: zero when the joints hold exactly.
 fn worst_anchor_speed(world: &World) -> Real {
     let speed = |body: &carom::Body, at: Vec2| {
@@ -1160,13 +1172,7 @@ fn worst_anchor_speed(world: &World) -> Real {
 /// Gauss-Seidel leaves millimetres a second and apart.
 #[test]
 fn direct_joints_hold_a_branching_tree_exactly() {
-    let mut world = world(SolverKind::SoftStep);
-    world
-        .update_settings(|s| {
-            s.gravity = Vec2::zeros();
-            s.solver.direct_joints = true;
-        })
-        .unwrap();
+    let mut world = weightless(true);
     let body = world
         .add_body(
             BodyDef::dynamic(Shape::rect(1.0, 0.5))
@@ -1237,13 +1243,7 @@ fn worst_anchor_gap(world: &World) -> Real {
 #[test]
 fn direct_joints_close_a_loop() {
     for direct in [false, true] {
-        let mut world = world(SolverKind::SoftStep);
-        world
-            .update_settings(|s| {
-                s.gravity = Vec2::zeros();
-                s.solver.direct_joints = direct;
-            })
-            .unwrap();
+        let mut world = weightless(direct);
         let corners = [
             vec2(0.0, 0.0),
             vec2(2.0, 0.0),

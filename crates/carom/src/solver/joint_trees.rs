@@ -24,7 +24,7 @@
 //! back for the next step and for the reactions.
 
 use super::BodyState;
-use super::joints::{HingePoint, JointConstraint, JointPass};
+use super::joints::{JointConstraint, JointFrame, JointPass};
 use crate::constants::{MAX_LOOPS_PER_JOINTS, TREE_PROJECTION_GIVE};
 use crate::math::{Real, Vec2};
 
@@ -39,8 +39,8 @@ type Vec3 = [Real; 3];
 struct TreeJoint {
     /// Its index among the step's joint constraints.
     constraint: usize,
-    /// Its point constraint.
-    point: HingePoint,
+    /// Its anchors and its bodies' masses.
+    point: JointFrame,
     /// Its bodies' states, and whether each takes impulses.
     a: usize,
     b: usize,
@@ -137,9 +137,11 @@ impl JointTrees {
         self.left.resize(states + 1, 0);
         let mut count = 0usize;
         for (index, c) in constraints.iter().enumerate() {
-            let component = component_of(&mut self.parent, c);
-            let accepted = hinge(c)
-                && self.loop_count[component] * per_tree <= self.tree_count[component] * most_loops;
+            // The component's root is one hop away now: the counting compressed its path.
+            let accepted = hinge(c) && {
+                let component = component_of(&mut self.parent, c);
+                self.loop_count[component] * per_tree <= self.tree_count[component] * most_loops
+            };
             self.accepted[index] = accepted;
             if accepted {
                 count += 1;
@@ -292,7 +294,7 @@ impl JointTrees {
     /// at once.
     pub fn solve(&mut self, states: &mut [BodyState], pass: &JointPass) {
         self.exact(states, 0.0, |tree, a, b| {
-            let mut error = HingePoint::velocity(a, b, tree.ra, tree.rb);
+            let mut error = JointFrame::velocity(a, b, tree.ra, tree.rb);
             if pass.use_bias {
                 error += tree.point.separation(a, b, tree.ra, tree.rb) * pass.softness.bias_rate;
             }

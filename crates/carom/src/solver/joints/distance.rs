@@ -21,8 +21,8 @@ pub(super) struct Prepared {
 }
 
 pub(super) fn prepare(c: &JointConstraint, settings: DistanceJoint, h: Real) -> Prepared {
-    let (ra, rb) = (c.frame_a, c.frame_b);
-    let d = c.delta_center + rb - ra;
+    let (ra, rb) = (c.frame.frame_a, c.frame.frame_b);
+    let d = c.frame.delta_center + rb - ra;
     let length = d.norm();
     let axis = if length > 1.0e-9 {
         d / length

@@ -36,19 +36,12 @@ pub(crate) struct JointConstraint {
     /// Which of them take impulses (dynamic and awake).
     pub moves_a: bool,
     pub moves_b: bool,
-    inv_mass_a: Real,
-    inv_inertia_a: Real,
-    inv_mass_b: Real,
-    inv_inertia_b: Real,
-    /// From each centre of mass to its anchor, at the start of the step.
-    frame_a: Vec2,
-    frame_b: Vec2,
+    /// Its anchors and its bodies' masses.
+    frame: JointFrame,
     /// A's rotation, and B's less the reference angle, at the start of the step: the joint's
     /// angle is the one from the first to the second.
     rot_a: Rot,
     rot_b: Rot,
-    /// B's centre of mass less A's at the start of the step (a mouse joint: less the target).
-    delta_center: Vec2,
     /// The accumulated impulses, for the warm start and the reaction.
     pub impulses: JointImpulses,
     /// The kind's settings and what was prepared from them.
@@ -58,12 +51,14 @@ pub(crate) struct JointConstraint {
     point_in_tree: bool,
 }
 
-/// A hinge's point constraint, as the joint trees take it: what it needs to measure the
-/// anchors' drift and velocity and to push the bodies, copied out for the step.
+/// What a joint sees of its bodies for the step: where its anchors are, and the masses that
+/// take its impulses (zero for a body that does not move). The joint trees copy a hinge's.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct HingePoint {
+pub(crate) struct JointFrame {
+    /// From each centre of mass to its anchor, at the start of the step.
     frame_a: Vec2,
     frame_b: Vec2,
+    /// B's centre of mass less A's at the start of the step (a mouse joint: less the target).
     delta_center: Vec2,
     inv_mass_a: Real,
     inv_inertia_a: Real,
@@ -71,7 +66,7 @@ pub(crate) struct HingePoint {
     inv_inertia_b: Real,
 }
 
-impl HingePoint {
+impl JointFrame {
     /// The anchors' offsets from the centres of mass now.
     #[inline]
     pub fn anchors(&self, a: &BodyState, b: &BodyState) -> (Vec2, Vec2) {
@@ -312,15 +307,17 @@ impl JointConstraint {
             b: b.state,
             moves_a,
             moves_b: b.moves,
-            inv_mass_a: ma,
-            inv_inertia_a: ia,
-            inv_mass_b: mb,
-            inv_inertia_b: ib,
-            frame_a,
-            frame_b,
+            frame: JointFrame {
+                frame_a,
+                frame_b,
+                delta_center,
+                inv_mass_a: ma,
+                inv_inertia_a: ia,
+                inv_mass_b: mb,
+                inv_inertia_b: ib,
+            },
             rot_a,
             rot_b,
-            delta_center,
             impulses: if warm_starting {
                 joint.impulses
             } else {
@@ -420,16 +417,8 @@ impl JointConstraint {
 
     /// Its point constraint, if it is a hinge (a revolute joint), which the joint trees may
     /// solve.
-    pub fn hinge_point(&self) -> Option<HingePoint> {
-        matches!(self.data, JointData::Revolute(_)).then_some(HingePoint {
-            frame_a: self.frame_a,
-            frame_b: self.frame_b,
-            delta_center: self.delta_center,
-            inv_mass_a: self.inv_mass_a,
-            inv_inertia_a: self.inv_inertia_a,
-            inv_mass_b: self.inv_mass_b,
-            inv_inertia_b: self.inv_inertia_b,
-        })
+    pub fn hinge_point(&self) -> Option<JointFrame> {
+        matches!(self.data, JointData::Revolute(_)).then_some(self.frame)
     }
 
     /// Hands its point to the joint trees for the step: its own solve leaves it alone.
@@ -490,13 +479,13 @@ impl JointConstraint {
     /// The anchors' offsets from the centres of mass now.
     #[inline]
     fn anchors(&self, a: &BodyState, b: &BodyState) -> (Vec2, Vec2) {
-        (a.dq * self.frame_a, b.dq * self.frame_b)
+        self.frame.anchors(a, b)
     }
 
     /// B's anchor less A's now.
     #[inline]
     fn separation(&self, a: &BodyState, b: &BodyState, ra: Vec2, rb: Vec2) -> Vec2 {
-        (b.dp - a.dp) + (rb - ra) + self.delta_center
+        self.frame.separation(a, b, ra, rb)
     }
 
     /// The joint's angle now: B's rotation relative to A's, less the reference angle.
@@ -508,17 +497,14 @@ impl JointConstraint {
     /// Applies impulse `p` at the anchors (to B, and its opposite to A).
     #[inline]
     fn apply_linear(&self, a: &mut BodyState, b: &mut BodyState, ra: Vec2, rb: Vec2, p: Vec2) {
-        a.v -= p * self.inv_mass_a;
-        a.w -= self.inv_inertia_a * cross(ra, p);
-        b.v += p * self.inv_mass_b;
-        b.w += self.inv_inertia_b * cross(rb, p);
+        self.frame.push(a, b, ra, rb, p);
     }
 
     /// Applies angular impulse `l` (to B, and its opposite to A).
     #[inline]
     fn apply_angular(&self, a: &mut BodyState, b: &mut BodyState, l: Real) {
-        a.w -= self.inv_inertia_a * l;
-        b.w += self.inv_inertia_b * l;
+        a.w -= self.frame.inv_inertia_a * l;
+        b.w += self.frame.inv_inertia_b * l;
     }
 
     /// The point constraint's effective mass matrix, `K = [[k11, k12], [k12, k22]]`.
@@ -534,12 +520,7 @@ impl JointConstraint {
 
     #[inline]
     fn masses(&self) -> (Real, Real, Real, Real) {
-        (
-            self.inv_mass_a,
-            self.inv_inertia_a,
-            self.inv_mass_b,
-            self.inv_inertia_b,
-        )
+        self.frame.inverse_masses()
     }
 
     /// The velocity of B's anchor relative to A's.

@@ -26,7 +26,7 @@ pub(super) fn prepare(_c: &JointConstraint, settings: MouseJoint, h: Real) -> Pr
 
 pub(super) fn warm_start(c: &JointConstraint, b: &mut BodyState) {
     let (_, _, mb, ib) = c.masses();
-    let rb = b.dq * c.frame_b;
+    let rb = b.dq * c.frame.frame_b;
     b.w += ib * c.impulses.angular;
     b.v += c.impulses.linear * mb;
     b.w += ib * cross(rb, c.impulses.linear);
@@ -44,9 +44,9 @@ pub(super) fn solve(c: &mut JointConstraint, p: &Prepared, b: &mut BodyState, pa
         c.impulses.angular += impulse;
         b.w += ib * impulse;
     }
-    let rb = b.dq * c.frame_b;
+    let rb = b.dq * c.frame.frame_b;
     let velocity = b.v + crate::math::cross_sv(b.w, rb);
-    let separation = b.dp + rb + c.delta_center;
+    let separation = b.dp + rb + c.frame.delta_center;
     let bias = separation * p.linear.bias_rate;
     let k = [
         mb + rb.y * rb.y * ib,

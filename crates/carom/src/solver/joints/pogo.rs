@@ -25,7 +25,10 @@ pub(super) struct Prepared {
 pub(super) fn prepare(c: &JointConstraint, settings: PogoJoint, h: Real, up: Vec2) -> Prepared {
     let normal = c.rot_a * settings.normal;
     let (ma, ia, mb, ib) = c.masses();
-    let (ra, rb) = (cross(c.frame_a, normal), cross(c.frame_b, normal));
+    let (ra, rb) = (
+        cross(c.frame.frame_a, normal),
+        cross(c.frame.frame_b, normal),
+    );
     Prepared {
         settings,
         normal,
