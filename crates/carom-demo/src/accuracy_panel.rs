@@ -391,8 +391,8 @@ pub fn report_paths(scene: &Path) -> Vec<PathBuf> {
 }
 
 /// The demo's solver settings as the sweep names a carom setting: the solver that runs (push-
-/// out when impulse resolution is off), substeps only for the solvers that have them, and
-/// the joint stiffness only where it is not the default.
+/// out when impulse resolution is off), substeps only for the solvers that have them, the
+/// joint stiffness only where it is not the default, and direct joints only for soft step.
 pub fn setting_of(params: &SolverParams) -> Setting {
     let solver = params.effective_kind();
     let substeps = if solver.has_substeps() {
@@ -405,6 +405,7 @@ pub fn setting_of(params: &SolverParams) -> Setting {
         joint_hertz: (params.joint_hertz != default_hertz).then_some(params.joint_hertz),
         // Soft contacts are soft step's alone, and the sweep names their stiffness.
         contact_hertz: (solver == SolverKind::SoftStep).then_some(params.contact_hertz),
+        direct_joints: solver == SolverKind::SoftStep && params.direct_joints,
         ..Setting::carom(solver, params.effective_iterations(), substeps)
     }
 }
@@ -416,7 +417,8 @@ pub fn setting_of(params: &SolverParams) -> Setting {
 ///
 /// Joint stiffness is compared as the solver runs it, capped at a quarter of the substep rate
 /// at `time_step` seconds per step, and only for soft step on a scene with `joints`: a
-/// stiffness the cap makes the default's is the default's point.
+/// stiffness the cap makes the default's is the default's point. Direct joints count as one
+/// doubling apart, and only on a scene with `joints` (without, they change nothing).
 pub fn marker(
     points: &[Point],
     params: &SolverParams,
@@ -443,10 +445,16 @@ pub fn marker(
             (Some(measured), Some(wanted)) => (measured as f64 / wanted as f64).log2().abs(),
             _ => 0.0,
         };
+        let direct = if joints && p.setting.direct_joints != wanted.direct_joints {
+            1.0
+        } else {
+            0.0
+        };
         doublings(p.setting.iterations, wanted.iterations)
             + doublings(p.setting.substeps, wanted.substeps)
             + stiffness
             + contacts
+            + direct
     };
     let nearest = points
         .iter()
@@ -669,6 +677,39 @@ mod tests {
         let free = marker(&points, &stiff(120.0, 8), STEP, false).unwrap();
         assert!(free.exact);
         assert_eq!(free.point.setting, soft(1, 8, None));
+    }
+
+    #[test]
+    fn direct_joints_are_part_of_the_setting_on_a_scene_with_joints() {
+        let mut points = sweep();
+        let direct = Setting {
+            direct_joints: true,
+            ..soft(1, 4, None)
+        };
+        points.push(point(direct, 0.03, 0.01));
+        let with = |direct_joints: bool| SolverParams {
+            direct_joints,
+            ..params(SolverKind::SoftStep, 1, 4)
+        };
+        let here = marker(&points, &with(true), STEP, true).unwrap();
+        assert!(here.exact);
+        assert_eq!(here.point.error, 0.01);
+        assert!(here.title().contains("direct joints"), "{}", here.title());
+        let off = marker(&points, &with(false), STEP, true).unwrap();
+        assert!(off.exact);
+        assert_eq!(off.point.setting, soft(1, 4, None));
+        // Without a direct point measured, the nearest is the same numbers without.
+        let unmeasured = marker(&sweep(), &with(true), STEP, true).unwrap();
+        assert!(!unmeasured.exact);
+        assert_eq!(unmeasured.point.setting, soft(1, 4, None));
+        // The classic solvers have no direct joints to mark.
+        assert!(
+            !setting_of(&SolverParams {
+                direct_joints: true,
+                ..params(SolverKind::SequentialImpulse, 8, 1)
+            })
+            .direct_joints
+        );
     }
 
     #[test]

@@ -94,6 +94,10 @@ enum Command {
         /// run once.
         #[arg(long, value_delimiter = ',', value_parser = joint_hertz)]
         joint_hertz: Option<Vec<Real>>,
+        /// Direct joints for soft step on scenes with joints, comma separated: off, on or
+        /// both (default: off,on).
+        #[arg(long, value_delimiter = ',', value_parser = on_or_off)]
+        direct_joints: Option<Vec<bool>>,
         /// How long scenes without an accuracy measure run, s.
         #[arg(long, default_value_t = 10.0)]
         seconds: Real,
@@ -155,6 +159,15 @@ fn joint_hertz(text: &str) -> Result<Real, String> {
     match text.parse::<Real>() {
         Ok(hertz) if hertz.is_finite() && hertz > 0.0 => Ok(hertz),
         _ => Err(format!("{text:?} is not a positive number of hertz")),
+    }
+}
+
+/// `on` or `off` from the command line.
+fn on_or_off(text: &str) -> Result<bool, String> {
+    match text {
+        "on" => Ok(true),
+        "off" => Ok(false),
+        _ => Err(format!("{text:?} is neither on nor off")),
     }
 }
 
@@ -229,6 +242,7 @@ fn main() -> ExitCode {
             iterations,
             substeps,
             joint_hertz,
+            direct_joints,
             seconds,
             engines,
         }) => {
@@ -244,6 +258,7 @@ fn main() -> ExitCode {
                 iterations: iterations.unwrap_or(defaults.iterations),
                 substeps: substeps.unwrap_or(defaults.substeps),
                 joint_hertz: joint_hertz.unwrap_or(defaults.joint_hertz),
+                direct_joints: direct_joints.unwrap_or(defaults.direct_joints),
                 seconds,
                 engines: engines.unwrap_or(defaults.engines),
                 ..defaults

@@ -29,6 +29,8 @@ pub struct Setting {
     pub contact_hertz: Option<Real>,
     /// Rapier's stabilization iterations per substep, where set.
     pub stabilization: Option<u32>,
+    /// Soft step's direct joint trees ([`SolverParams::direct_joints`]).
+    pub direct_joints: bool,
 }
 
 impl Setting {
@@ -42,6 +44,7 @@ impl Setting {
             joint_hertz: None,
             contact_hertz: None,
             stabilization: None,
+            direct_joints: false,
         }
     }
 
@@ -251,6 +254,7 @@ impl Run {
         params.iterations = Some(setting.iterations);
         params.substeps = setting.substeps;
         params.joint_hertz = setting.joint_hertz.unwrap_or(defaults.joint_hertz);
+        params.direct_joints = setting.direct_joints;
         if let Some(hertz) = setting.contact_hertz {
             params.contact_hertz = hertz;
         }

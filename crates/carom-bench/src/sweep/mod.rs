@@ -41,6 +41,8 @@ pub struct SweepOptions {
     /// of the substep rate, as the solver caps it, and stiffnesses the cap makes equal run
     /// once.
     pub joint_hertz: Vec<Real>,
+    /// Soft step's direct joint trees on scenes with joints: off, on, or both.
+    pub direct_joints: Vec<bool>,
     /// How long a scene without an accuracy measure runs, s.
     pub seconds: Real,
     /// The engines: carom runs the settings above, each peer its own below.
@@ -59,7 +61,8 @@ pub struct SweepOptions {
 impl Default for SweepOptions {
     /// The sweep over the seven accuracy scenes in `demos/`: contacts at 30 Hz (Box2D's
     /// default) and 60 Hz, joints at Box2D's 60 Hz and at 240 Hz, which is as stiff as the
-    /// substeps allow at 16 substeps (120 Hz at 8).
+    /// substeps allow at 16 substeps (120 Hz at 8), and soft step with direct joints off and
+    /// on.
     fn default() -> Self {
         SweepOptions {
             scenes: [
@@ -79,6 +82,7 @@ impl Default for SweepOptions {
             iterations: vec![1, 2, 4, 8, 16, 32, 64],
             substeps: vec![1, 2, 4, 8, 16],
             joint_hertz: vec![60.0, 240.0],
+            direct_joints: vec![false, true],
             seconds: 10.0,
             engines: vec![Engine::Carom],
             contact_hertz: vec![30.0, 60.0],
@@ -93,7 +97,7 @@ impl SweepOptions {
     /// Every setting the sweep runs on `scene`, engine by engine, carom's solver by solver.
     /// On a scene with joints the solvers that leave joints out do not run
     /// ([`solves_joints`]), and soft step runs once per joint stiffness the cap leaves
-    /// distinct.
+    /// distinct and once per choice of direct joints.
     pub fn settings(&self, scene: &SceneWorld) -> Vec<Setting> {
         let mut settings = Vec::new();
         for &engine in &self.engines {
@@ -160,15 +164,24 @@ impl SweepOptions {
                 } else {
                     vec![None]
                 };
-                for contact_hertz in contact_hertz {
-                    for &joint_hertz in &joint_hertz {
-                        for &iterations in &self.iterations {
-                            settings.push(Setting {
-                                iterations,
-                                joint_hertz,
-                                contact_hertz,
-                                ..base
-                            });
+                // Direct joints only where there are joints for soft step to solve directly.
+                let direct_joints: &[bool] = if joints && solver == SolverKind::SoftStep {
+                    &self.direct_joints
+                } else {
+                    &[false]
+                };
+                for &direct_joints in direct_joints {
+                    for contact_hertz in &contact_hertz {
+                        for &joint_hertz in &joint_hertz {
+                            for &iterations in &self.iterations {
+                                settings.push(Setting {
+                                    iterations,
+                                    joint_hertz,
+                                    contact_hertz: *contact_hertz,
+                                    direct_joints,
+                                    ..base
+                                });
+                            }
                         }
                     }
                 }
@@ -346,6 +359,8 @@ mod tests {
         // Push-out, tutorial and sequential impulse, soft step at 1, 2, 4 and 8 substeps.
         assert_eq!(settings.len(), 3 + 4);
         assert!(settings.iter().all(|s| s.joint_hertz.is_none()));
+        // Direct joints would change nothing without joints.
+        assert!(settings.iter().all(|s| !s.direct_joints));
         // Soft contacts are soft step's alone.
         assert!(
             settings
@@ -370,7 +385,11 @@ mod tests {
 
     #[test]
     fn a_scene_with_joints_skips_the_solvers_without_them_and_sweeps_stiffness() {
-        let settings = options().settings(&scene(true));
+        let settings = SweepOptions {
+            direct_joints: vec![false],
+            ..options()
+        }
+        .settings(&scene(true));
         assert!(settings.iter().all(|s| solves_joints(s.solver)));
         let soft: Vec<(u32, Option<Real>)> = settings
             .iter()
@@ -385,5 +404,11 @@ mod tests {
         );
         let classic = settings.len() - soft.len();
         assert_eq!(classic, 1, "sequential impulse alone: {settings:?}");
+        // By default soft step runs each of those with direct joints too, and only soft step.
+        let both = options().settings(&scene(true));
+        assert_eq!(both.len(), 1 + 2 * soft.len());
+        let direct: Vec<&Setting> = both.iter().filter(|s| s.direct_joints).collect();
+        assert_eq!(direct.len(), soft.len());
+        assert!(direct.iter().all(|s| s.solver == SolverKind::SoftStep));
     }
 }

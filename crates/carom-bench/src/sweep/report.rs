@@ -10,7 +10,7 @@ use web_time::{SystemTime, UNIX_EPOCH};
 /// The CSV header, in the order [`csv()`] writes the columns.
 pub const CSV_HEADER: &str = "engine,scene,error_kind,solver,iterations,substeps,ms_per_step,\
                               error,error_unit,max_penetration_m,joint_hertz,contact_hertz,\
-                              stabilization,joints";
+                              stabilization,joints,direct_joints";
 
 /// One line of the CSV, column for column as [`CSV_HEADER`] names them. Numbers are written
 /// as the report prints them (a microsecond, three significant digits), so a sweep read back
@@ -42,6 +42,9 @@ struct Row {
     /// Absent in files written before it was a column: then inferred (see [`parse_csv`]).
     #[serde(default)]
     joints: Option<bool>,
+    /// Absent in files written before it was a column: then off.
+    #[serde(default)]
+    direct_joints: Option<bool>,
 }
 
 fn micro<S: serde::Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
@@ -77,7 +80,7 @@ fn shortest_or_empty<S: serde::Serializer>(
 /// the solver's default (60 Hz, capped at a quarter of the substep rate), `contact_hertz`
 /// where the scene's own contact stiffness ran, `stabilization` for all but Rapier, and
 /// `max_penetration_m` for the peers, whose overlap is not measured; `joints` says whether
-/// the scene has joints.
+/// the scene has joints, `direct_joints` whether soft step solved them directly.
 pub fn csv(points: &[Point]) -> String {
     // The header is written even for no points, so the columns are always named.
     let mut writer = csv::WriterBuilder::new()
@@ -101,6 +104,7 @@ pub fn csv(points: &[Point]) -> String {
                 contact_hertz: p.setting.contact_hertz,
                 stabilization: p.setting.stabilization,
                 joints: Some(p.joints),
+                direct_joints: Some(p.setting.direct_joints),
             })?;
         }
         Ok(())
@@ -341,7 +345,8 @@ pub const PEERS_NOTE: &str = "Box2D v3 (3.2.0) and Rapier 0.36 run the same scen
 pub const JOINTS_NOTE: &str = "The scene has joints: push-out and tutorial impulse leave \
     joints out, so they do not run on it. Soft step's joints are at 60 Hz (Box2D's default), \
     which the solver caps at a quarter of the substep rate (15 Hz at 1 substep, 30 Hz at 2), \
-    unless a row names another.";
+    unless a row names another. Rows named \"direct joints\" solve the hinges' points in one \
+    exact solve over each joint tree per pass instead of one joint at a time.";
 
 /// The points of one scene grouped into series: one per solver, and for solvers with substeps
 /// one per substep count, in sweep order.
@@ -358,8 +363,8 @@ pub fn series_of<'a>(points: &[&'a Point]) -> Vec<(String, Vec<&'a Point>)> {
 }
 
 /// "soft step, 4 substeps, 30 Hz contacts", "soft step, 8 substeps, 30 Hz contacts, 120 Hz
-/// joints" (a joint stiffness other than the default), or just the solver's name: carom's
-/// series, its iterations along each.
+/// joints" (a joint stiffness other than the default), "..., direct joints", or just the
+/// solver's name: carom's series, its iterations along each.
 pub fn series_name(point: &Point) -> String {
     let solver = point.setting.solver;
     let mut name = solver.name().to_string();
@@ -371,6 +376,9 @@ pub fn series_name(point: &Point) -> String {
     }
     if let Some(hertz) = point.setting.joint_hertz {
         let _ = write!(name, ", {hertz} Hz joints");
+    }
+    if point.setting.direct_joints {
+        name.push_str(", direct joints");
     }
     name
 }
@@ -391,6 +399,9 @@ pub fn setting_name(setting: &Setting) -> String {
             }
             if let Some(hertz) = setting.joint_hertz {
                 let _ = write!(name, ", {hertz} Hz joints");
+            }
+            if setting.direct_joints {
+                name.push_str(", direct joints");
             }
             name
         }
@@ -426,7 +437,8 @@ fn format_error(error: f64) -> String {
 ///
 /// Columns are found by their header names, so this header ([`CSV_HEADER`]) and older ones
 /// are read: the one before peers ran (no `engine`, `contact_hertz` nor `stabilization`: every
-/// point is carom's) and the one before `joints`. Empty `joint_hertz`, `contact_hertz` and
+/// point is carom's), the one before `joints` and the one before `direct_joints` (every point
+/// then ran without). Empty `joint_hertz`, `contact_hertz` and
 /// `stabilization` fields are `None`, an empty `max_penetration_m` is NaN (a peer's, not
 /// measured), `inf` is a world gone NaN. Without a `joints` column, whether a scene has joints
 /// is inferred as a sweep leaves it: when a point names a joint stiffness, or when carom ran on
@@ -512,7 +524,7 @@ fn not_a(column: &str) -> &'static str {
     match column {
         "iterations" | "substeps" | "stabilization" => "is not a count of 1 or more",
         "joint_hertz" | "contact_hertz" => "is not a stiffness in Hz",
-        "joints" => "is not true or false",
+        "joints" | "direct_joints" => "is not true or false",
         _ => "is not a number",
     }
 }
@@ -574,6 +586,11 @@ fn point_of(
                 .stabilization
                 .map(|k| count(k, "stabilization"))
                 .transpose()?,
+            direct_joints: match row.direct_joints {
+                None if !has("direct_joints") => false,
+                None => return Err(bad("direct_joints", not_a("direct_joints"))),
+                Some(direct) => direct,
+            },
         },
         ms_per_step: row.ms_per_step,
         error: row.error,
@@ -641,7 +658,14 @@ mod tests {
 
     #[test]
     fn a_joint_scene_says_what_it_leaves_out_and_names_its_stiffer_joints() {
-        let points = [point(4, None), point(8, None), point(8, Some(120.0))];
+        let mut direct = point(4, None);
+        direct.setting.direct_joints = true;
+        let points = [
+            point(4, None),
+            point(8, None),
+            point(8, Some(120.0)),
+            direct,
+        ];
         let machine = Machine {
             cpu: "cpu".into(),
             cores: 1,
@@ -654,17 +678,41 @@ mod tests {
             report.contains("| soft step, 8 substeps, 120 Hz joints |"),
             "{report}"
         );
+        assert!(
+            report.contains("| soft step, 4 substeps, direct joints |"),
+            "{report}"
+        );
         assert_eq!(series_name(&points[1]), "soft step, 8 substeps");
+        assert_eq!(
+            series_name(&points[3]),
+            "soft step, 4 substeps, direct joints"
+        );
         let csv = csv(&points);
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines[0], CSV_HEADER);
         assert!(
-            CSV_HEADER
-                .ends_with("max_penetration_m,joint_hertz,contact_hertz,stabilization,joints")
+            CSV_HEADER.ends_with("joint_hertz,contact_hertz,stabilization,joints,direct_joints")
         );
-        assert!(lines[2].ends_with(",%,0.000000,,,,true"), "{}", lines[2]);
-        assert!(lines[3].ends_with(",%,0.000000,120,,,true"), "{}", lines[3]);
+        assert!(
+            lines[2].ends_with(",%,0.000000,,,,true,false"),
+            "{}",
+            lines[2]
+        );
+        assert!(
+            lines[3].ends_with(",%,0.000000,120,,,true,false"),
+            "{}",
+            lines[3]
+        );
         assert!(lines[3].starts_with("carom,chain,"), "{}", lines[3]);
+        assert!(
+            lines[4].ends_with(",%,0.000000,,,,true,true"),
+            "{}",
+            lines[4]
+        );
+        // Read back, the direct joints are the point's.
+        let read = parse_csv(&csv).unwrap();
+        assert_eq!(read[3].setting, points[3].setting);
+        assert!(!read[0].setting.direct_joints);
     }
 
     #[test]
@@ -818,8 +866,20 @@ mod parse_tests {
         assert_eq!(points.len(), text.lines().count() - 1);
         assert!(points.iter().any(|p| p.scene == "pendulum" && p.joints));
         assert!(points.iter().any(|p| p.scene == "pyramid" && !p.joints));
-        // The file is exactly what the writer writes.
-        assert_eq!(csv(&points), text);
+        // The file is exactly what the writer writes, once it has every column: a sweep from
+        // before direct joints gains that column, off, on every line.
+        let current = if text.lines().next() == Some(CSV_HEADER) {
+            text.clone()
+        } else {
+            text.lines()
+                .enumerate()
+                .map(|(i, line)| {
+                    let added = if i == 0 { ",direct_joints" } else { ",false" };
+                    format!("{line}{added}\n")
+                })
+                .collect()
+        };
+        assert_eq!(csv(&points), current);
     }
 
     #[test]
@@ -832,7 +892,7 @@ mod parse_tests {
         short[3] = short[3].rsplit_once(',').unwrap().0.to_string();
         let message = error_of(&short);
         assert!(
-            message.starts_with("line 4: 13 fields, the header has 14"),
+            message.starts_with("line 4: 14 fields, the header has 15"),
             "{message}"
         );
 
