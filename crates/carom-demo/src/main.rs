@@ -69,8 +69,9 @@ enum Command {
         #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
         threads: Option<u32>,
     },
-    /// Sweep solvers, iterations and substeps (and joint stiffness on scenes with joints) over
-    /// scenes: ms/step against error, written as a CSV, a markdown report and a chart.
+    /// Sweep solvers, iterations and substeps (and joint stiffness and direct joints on scenes
+    /// with joints) over scenes: ms/step against error, written as a CSV, a markdown report
+    /// and a chart.
     Bench {
         /// Scene files (default: the seven accuracy scenes in demos/).
         scenes: Vec<PathBuf>,
