@@ -371,16 +371,21 @@ pub fn series_name(point: &Point) -> String {
     if solver.has_substeps() {
         let _ = write!(name, ", {}", substeps(point.setting.substeps));
     }
-    if let Some(hertz) = point.setting.contact_hertz {
+    name_stiffness_and_direct_joints(&mut name, &point.setting);
+    name
+}
+
+/// Appends a carom setting's contact and joint stiffness where named, and its direct joints.
+fn name_stiffness_and_direct_joints(name: &mut String, setting: &Setting) {
+    if let Some(hertz) = setting.contact_hertz {
         let _ = write!(name, ", {hertz} Hz contacts");
     }
-    if let Some(hertz) = point.setting.joint_hertz {
+    if let Some(hertz) = setting.joint_hertz {
         let _ = write!(name, ", {hertz} Hz joints");
     }
-    if point.setting.direct_joints {
+    if setting.direct_joints {
         name.push_str(", direct joints");
     }
-    name
 }
 
 /// A setting in words: "soft step, 4 substeps, 2 iterations", "Box2D, 4 substeps, 30 Hz
@@ -394,15 +399,7 @@ pub fn setting_name(setting: &Setting) -> String {
                 let _ = write!(name, ", {}", substeps(setting.substeps));
             }
             let _ = write!(name, ", {}", it(setting.iterations));
-            if let Some(hertz) = setting.contact_hertz {
-                let _ = write!(name, ", {hertz} Hz contacts");
-            }
-            if let Some(hertz) = setting.joint_hertz {
-                let _ = write!(name, ", {hertz} Hz joints");
-            }
-            if setting.direct_joints {
-                name.push_str(", direct joints");
-            }
+            name_stiffness_and_direct_joints(&mut name, setting);
             name
         }
         Engine::Box2d => match setting.contact_hertz {
