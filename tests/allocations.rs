@@ -83,6 +83,14 @@ fn fast_mixed_shapes() -> World {
 }
 
 /// Allocations over `steps` steps of `world` after `warm_up` steps, on `pool`'s threads.
+/// `world` with soft step's shock propagation on.
+fn with_shock_propagation(mut world: World) -> World {
+    world
+        .update_settings(|s| s.solver.shock_propagation = true)
+        .unwrap();
+    world
+}
+
 fn allocations(mut world: World, pool: &ThreadPool, warm_up: usize, steps: usize) -> usize {
     pool.install(|| {
         for _ in 0..warm_up {
@@ -115,6 +123,12 @@ fn a_world_in_steady_state_allocates_nothing_per_step() {
             pyramid(20, Effects::ALL),
             1,
             30,
+        ),
+        (
+            "pyramid of 20, awake, shock propagation, 2 threads",
+            with_shock_propagation(pyramid(20, awake)),
+            2,
+            60,
         ),
         (
             "fast circles, capsules and boxes swept in turn",

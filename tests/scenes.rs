@@ -577,6 +577,7 @@ fn a_scene_file_sets_every_world_setting() {
             joint_hertz: 90.0,
             joint_damping_ratio: 1.5,
             direct_joints: true,
+            shock_propagation: true,
             max_push_speed: 2.0,
             baumgarte: 0.3,
             restitution_threshold: 0.5,

@@ -382,3 +382,119 @@ fn the_spin_cap_holds_per_step_whatever_the_substeps() {
         );
     }
 }
+
+/// A 20 m box (400 kg) dropped from `drop` m onto two 1 m boxes standing 10 m apart, under
+/// `gravity`, with shock propagation on or off; returns the world and the big box.
+fn heavy_on_light(shock_propagation: bool, gravity: Vec2, drop: Real) -> (World, BodyHandle) {
+    let params = SolverParams {
+        shock_propagation,
+        ..SolverParams::for_kind(SolverKind::SoftStep)
+    };
+    let mut world = world(params, gravity);
+    add_ground(&mut world);
+    for x in [-5.0, 5.0] {
+        world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(x, 0.5)))
+            .unwrap();
+    }
+    let big = world
+        .add_body(BodyDef::dynamic(Shape::rect(10.0, 10.0)).position(vec2(0.0, 11.0 + drop)))
+        .unwrap();
+    (world, big)
+}
+
+/// The deepest overlap between the big box and what it stands on.
+fn deepest_under(world: &World, big: BodyHandle) -> Real {
+    world
+        .contacts()
+        .filter(|c| c.body_a() == big || c.body_b() == big)
+        .flat_map(|c| c.manifold().points().iter().map(|p| -p.separation))
+        .fold(0.0, Real::max)
+}
+
+#[test]
+fn shock_propagation_stops_a_heavy_box_on_light_ones_and_reports_its_weight() {
+    let gravity = vec2(0.0, -10.0);
+    let (mut plain, plain_big) = heavy_on_light(false, gravity, 1.0);
+    let (mut shocked, big) = heavy_on_light(true, gravity, 1.0);
+    for _ in 0..180 {
+        plain.step(DT).unwrap();
+        shocked.step(DT).unwrap();
+    }
+    // Gauss-Seidel moves the light boxes' share of the load per pass: the big box sinks into them.
+    let sunk = deepest_under(&plain, plain_big);
+    assert!(
+        sunk > 0.05,
+        "without shock propagation the big box sinks only {sunk} m"
+    );
+    let held = deepest_under(&shocked, big);
+    assert!(
+        held < 0.01,
+        "with shock propagation the big box still sinks {held} m"
+    );
+    // What the contacts under the big box report pushing over a step is its weight times the
+    // step, though most of it came from the extra pass.
+    let mass = shocked.body(big).unwrap().mass();
+    let pushed: Real = shocked
+        .contacts()
+        .filter(|c| c.body_a() == big || c.body_b() == big)
+        .map(|c| c.total_normal_impulse())
+        .sum();
+    let weight = mass * 10.0 * DT;
+    assert!(
+        (pushed / weight - 1.0).abs() < 0.02,
+        "the contacts report {pushed} N s against a weight of {weight} N s"
+    );
+}
+
+#[test]
+fn shock_propagation_holds_a_heavy_box_by_friction_on_a_slope() {
+    // Gravity 20° off the vertical: a 20° slope, with friction 0.6 holding (tan 20° ≈ 0.36).
+    // The big box starts at rest on the small ones.
+    let angle = (20.0 as Real).to_radians();
+    let gravity = vec2(angle.sin(), -angle.cos()) * 10.0;
+    let moved = |shock_propagation: bool| {
+        let (mut world, big) = heavy_on_light(shock_propagation, gravity, 0.0);
+        let start = world.body(big).unwrap().position();
+        for _ in 0..240 {
+            world.step(DT).unwrap();
+        }
+        (world.body(big).unwrap().position() - start).norm()
+    };
+    // The light boxes' share of friction lets it slide; held by them as by the ground, by the
+    // friction its weight gives, it stays.
+    let plain = moved(false);
+    assert!(
+        plain > 0.05,
+        "without shock propagation the big box moves only {plain} m"
+    );
+    let held = moved(true);
+    assert!(
+        held < 0.01,
+        "with shock propagation the big box moves {held} m in 4 s"
+    );
+}
+
+#[test]
+fn without_gravity_shock_propagation_changes_nothing() {
+    let run = |shock_propagation: bool| {
+        let params = SolverParams {
+            shock_propagation,
+            ..SolverParams::for_kind(SolverKind::SoftStep)
+        };
+        let mut world = world(params, Vec2::zeros());
+        add_ground(&mut world);
+        for i in 0..30 {
+            let at = vec2((i % 6) as Real * 0.9 - 2.5, (i / 6) as Real * 0.9 + 0.45);
+            let body = BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                .position(at)
+                .linear_velocity(vec2(0.0, -2.0));
+            world.add_body(body).unwrap();
+        }
+        for _ in 0..120 {
+            world.step(DT).unwrap();
+        }
+        world.state_hash()
+    };
+    assert_eq!(run(true), run(false));
+}

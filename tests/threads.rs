@@ -229,6 +229,28 @@ fn direct_joints_give_the_same_world_on_every_thread_count() {
     assert_eq!(run(3), one);
 }
 
+/// The busy pyramid with shock propagation (every contact between two rows solved once more
+/// from the ground up, on one thread, beside the colours shared among threads): the same world
+/// on every thread count.
+#[test]
+fn shock_propagation_gives_the_same_world_on_every_thread_count() {
+    let run = |threads: usize| {
+        carom_tests::on_threads(threads, || {
+            let mut world = busy_world(SolverKind::SoftStep, false);
+            world
+                .update_settings(|s| s.solver.shock_propagation = true)
+                .unwrap();
+            for _ in 0..60 {
+                world.step(1.0 / 60.0).unwrap();
+            }
+            world.state_hash()
+        })
+    };
+    let one = run(1);
+    assert_eq!(run(2), one);
+    assert_eq!(run(3), one);
+}
+
 /// 300 dynamic walkers, each walked by a mover joint and held up by a pogo leg (600 joints:
 /// two colours of 300, each shared among threads), in two crowds walking into each other:
 /// the same world on every thread count.

@@ -57,6 +57,8 @@
 //! - `friction_in_bias_pass` (carom's default on, as Box2D v3.1): this Box2D (3.2) solves
 //!   friction in the relax pass only, whatever carom does.
 //! - `graph_coloring`: Box2D always solves in graph colours, as carom's default does.
+//! - `direct_joints` and `shock_propagation` (carom's options, off by default): Box2D has
+//!   neither and runs its plain soft step.
 //! - `LINEAR_SLOP` (0.005 m) and `speculative_distance` (0.02 m) are compile-time constants in
 //!   Box2D with the same values; a carom world that changes them is not followed.
 //! - `max_rotation`: both turn a body at most π/4 per step (47 rad/s at 60 Hz); Box2D's is a

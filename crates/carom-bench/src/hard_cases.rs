@@ -314,6 +314,8 @@ pub struct Options {
     /// carom's joint cases with `SolverParams::direct_joints` on (Box2D has no such option:
     /// its side is as it always is).
     pub direct_joints: bool,
+    /// carom with `SolverParams::shock_propagation` on, in every case.
+    pub shock_propagation: bool,
 }
 
 /// A hard case: its name (for `--case`), its title in the table, and how to run it.
@@ -322,7 +324,7 @@ pub struct Case {
     pub name: &'static str,
     /// Title in the table.
     pub title: &'static str,
-    run: fn(Engine, Options, &mut Outcome) -> Res<()>,
+    run: fn(Side, Options, &mut Outcome) -> Res<()>,
 }
 
 impl Case {
@@ -333,19 +335,24 @@ impl Case {
     pub fn run(&self, engine: Engine, options: Options) -> Res<Outcome> {
         let mut outcome = Outcome::default();
         let started = Instant::now();
-        (self.run)(engine, options, &mut outcome)?;
+        (self.run)(Side { engine, options }, options, &mut outcome)?;
         outcome.time = started.elapsed();
         Ok(outcome)
     }
 
     /// The title, saying when `options` shortened the case.
     pub fn title(&self, options: Options) -> String {
-        if options.quick && self.name == "soak_one_hour" {
+        let title = if options.quick && self.name == "soak_one_hour" {
             "one minute of a base-10 pyramid (soak shortened by --quick)".into()
         } else if options.direct_joints && JOINT_CASES.contains(&self.name) {
             format!("{}, carom with direct joints", self.title)
         } else {
             self.title.into()
+        };
+        if options.shock_propagation {
+            format!("{title}, carom with shock propagation")
+        } else {
+            title
         }
     }
 }
@@ -488,10 +495,24 @@ fn soft_step() -> SolverParams {
     SolverParams::for_kind(SolverKind::SoftStep)
 }
 
-/// Runs `f` on `world` in `engine`: carom's world as it is, or its Box2D copy.
-fn on<T>(engine: Engine, mut world: World, f: impl FnOnce(&mut dyn CaseWorld) -> Res<T>) -> Res<T> {
-    match engine {
-        Engine::Carom => f(&mut world),
+/// One side of a comparison: the engine, and the options carom runs with.
+#[derive(Debug, Clone, Copy)]
+struct Side {
+    engine: Engine,
+    options: Options,
+}
+
+/// Runs `f` on `world` in `side`'s engine: carom's world with its options (shock
+/// propagation), or its Box2D copy.
+fn on<T>(side: Side, mut world: World, f: impl FnOnce(&mut dyn CaseWorld) -> Res<T>) -> Res<T> {
+    match side.engine {
+        Engine::Carom => {
+            let shock = side.options.shock_propagation;
+            world
+                .update_settings(|s| s.solver.shock_propagation |= shock)
+                .map_err(|e| e.to_string())?;
+            f(&mut world)
+        }
         Engine::Box2d => {
             let mut copy = Box2dWorld::from_carom(&world)?;
             drop(world);
@@ -555,7 +576,7 @@ fn below_ground(w: &mut dyn CaseWorld) -> Res<f64> {
     Ok(deepest)
 }
 
-fn stack_stands(engine: Engine, count: usize, o: &mut Outcome) -> Res<()> {
+fn stack_stands(engine: Side, count: usize, o: &mut Outcome) -> Res<()> {
     let (world, boxes) = worlds::vertical_stack(soft_step(), count, false);
     let top = index(&world, *boxes.last().ok_or("no boxes")?)?;
     on(engine, world, |w| {
@@ -575,7 +596,7 @@ fn stack_stands(engine: Engine, count: usize, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn stack_sleeps(engine: Engine, count: usize, o: &mut Outcome) -> Res<()> {
+fn stack_sleeps(engine: Side, count: usize, o: &mut Outcome) -> Res<()> {
     let (world, boxes) = worlds::vertical_stack(soft_step(), count, true);
     let boxes = boxes
         .iter()
@@ -598,7 +619,7 @@ fn stack_sleeps(engine: Engine, count: usize, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn pyramid_20(engine: Engine, o: &mut Outcome) -> Res<()> {
+fn pyramid_20(engine: Side, o: &mut Outcome) -> Res<()> {
     let mut scene = worlds::scene("pyramid", soft_step());
     scene
         .world
@@ -646,7 +667,7 @@ fn settles(w: &mut dyn CaseWorld, seconds: f64, settle: f64, o: &mut Outcome) ->
     o.check_finite(w)
 }
 
-fn heavy_tops(engine: Engine, o: &mut Outcome) -> Res<()> {
+fn heavy_tops(engine: Side, o: &mut Outcome) -> Res<()> {
     let mut scene = worlds::scene("high_mass_ratio", soft_step());
     scene
         .world
@@ -655,7 +676,7 @@ fn heavy_tops(engine: Engine, o: &mut Outcome) -> Res<()> {
     on(engine, scene.world, |w| settles(w, 4.0, 2.0, o))
 }
 
-fn overlap_recovery(engine: Engine, o: &mut Outcome) -> Res<()> {
+fn overlap_recovery(engine: Side, o: &mut Outcome) -> Res<()> {
     let scene = worlds::scene("overlap_recovery", soft_step());
     let cap = f64::from(scene.world.solver().max_push_speed);
     let slop = f64::from(carom::LINEAR_SLOP);
@@ -675,7 +696,7 @@ fn overlap_recovery(engine: Engine, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn tiny_pyramid(engine: Engine, o: &mut Outcome) -> Res<()> {
+fn tiny_pyramid(engine: Side, o: &mut Outcome) -> Res<()> {
     let size = f64::from(worlds::TINY_BOX_SIZE);
     on(engine, worlds::tiny_pyramid(soft_step()), |w| {
         let top = highest(w)?;
@@ -698,7 +719,7 @@ fn tiny_pyramid(engine: Engine, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn card_house(engine: Engine, o: &mut Outcome) -> Res<()> {
+fn card_house(engine: Side, o: &mut Outcome) -> Res<()> {
     let scene = worlds::scene("card_house", soft_step());
     on(engine, scene.world, |w| {
         let mut cards = Vec::new();
@@ -718,7 +739,7 @@ fn card_house(engine: Engine, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn confined(engine: Engine, o: &mut Outcome) -> Res<()> {
+fn confined(engine: Side, o: &mut Outcome) -> Res<()> {
     let scene = worlds::scene("confined", soft_step());
     on(engine, scene.world, |w| {
         // The circles start overlapped: the energy the push-apart gives them in the first
@@ -748,7 +769,7 @@ fn confined(engine: Engine, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn coincident(engine: Engine, o: &mut Outcome) -> Res<()> {
+fn coincident(engine: Side, o: &mut Outcome) -> Res<()> {
     let (world, circles) = worlds::coincident_circles(soft_step());
     let slop = f64::from(carom::LINEAR_SLOP);
     let circles = circles
@@ -773,7 +794,7 @@ fn coincident(engine: Engine, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn skinny(engine: Engine, o: &mut Outcome) -> Res<()> {
+fn skinny(engine: Side, o: &mut Outcome) -> Res<()> {
     // Box2D's Skinny Box: a 4 x 0.1 m plank falling at 100 m/s, spinning at ±50 rad/s, onto a
     // thin floor beside a thin post, relaunched every 60 steps from a different angle and place.
     let (world, plank) = worlds::skinny_plank(soft_step());
@@ -815,7 +836,7 @@ fn skinny(engine: Engine, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn bullets(engine: Engine, o: &mut Outcome) -> Res<()> {
+fn bullets(engine: Side, o: &mut Outcome) -> Res<()> {
     // Each of ten bullets into a fresh stack (a hit stack falls, and a bullet through the gap a
     // box left is no tunnel).
     let (mut tunnels, mut past_wall) = (0usize, 0usize);
@@ -849,7 +870,7 @@ fn bullets(engine: Engine, o: &mut Outcome) -> Res<()> {
     Ok(())
 }
 
-fn wall_shots(engine: Engine, o: &mut Outcome) -> Res<()> {
+fn wall_shots(engine: Side, o: &mut Outcome) -> Res<()> {
     // Each shot's deepest point into the wall after any step, and for a free wall how far its
     // velocity ends from the one its momentum and the bullet's give, of the closing speed.
     let (mut deepest, mut through, mut worst_push): (f64, usize, f64) = (0.0, 0, 0.0);
@@ -893,7 +914,7 @@ fn wall_shots(engine: Engine, o: &mut Outcome) -> Res<()> {
     Ok(())
 }
 
-fn soak(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
+fn soak(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
     // A base-10 pyramid at rest, sleeping off so every step is really solved.
     let total = if options.quick {
         QUICK_SOAK_STEPS
@@ -930,7 +951,7 @@ pub fn random_seeds() -> Vec<(u64, usize)> {
         .collect()
 }
 
-fn random_worlds(engine: Engine, o: &mut Outcome) -> Res<()> {
+fn random_worlds(engine: Side, o: &mut Outcome) -> Res<()> {
     let (mut escaped, mut worst) = (0usize, 0.0f64);
     let mut nan = false;
     for (seed, count) in random_seeds() {
@@ -1120,7 +1141,7 @@ fn limit_violation(w: &mut dyn CaseWorld, joint: &JointInfo) -> Res<f64> {
     Ok(f64::from((lower - angle).max(angle - upper).max(0.0)))
 }
 
-fn pendulum(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
+fn pendulum(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
     let (scene, joints) = joint_scene("pendulum", options)?;
     let bob = index(&scene.world, scene.names["bob"])?;
     on(engine, scene.world, |w| {
@@ -1154,7 +1175,7 @@ fn pendulum(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn chain(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
+fn chain(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
     let (scene, joints) = joint_scene("chain", options)?;
     let ball = index(&scene.world, scene.names["ball"])?;
     let held = joints
@@ -1179,7 +1200,7 @@ fn chain(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn bridge(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
+fn bridge(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
     let (scene, joints) = joint_scene("bridge", options)?;
     on(engine, scene.world, |w| {
         let mut worst: f64 = 0.0;
@@ -1196,7 +1217,7 @@ fn bridge(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn ragdolls(engine: Engine, options: Options, o: &mut Outcome) -> Res<()> {
+fn ragdolls(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
     let (scene, joints) = joint_scene("ragdolls", options)?;
     on(engine, scene.world, |w| {
         let (mut gap, mut past): (f64, f64) = (0.0, 0.0);

@@ -50,6 +50,7 @@
 //! | soft step's `substeps` (default 4) | `num_solver_iterations` (Rapier's solver iterations are its substeps) | yes |
 //! | soft step's `iterations` (default 1) | `num_internal_pgs_iterations` (default 1) | yes; the classic solvers (no substeps) map to 1 substep of `iterations` PGS sweeps, which is not the same algorithm |
 //! | `warm_starting` | `warmstart_coefficient` 1 or 0 | yes |
+//! | `direct_joints`, `shock_propagation` (off by default) | none: Rapier's impulse joints and contacts are solved as always | no |
 //! | `friction_in_bias_pass` (default on, as Box2D v3.1) | `friction_in_bias_pass` left at Rapier's default, off | no: Rapier's 5050-box pyramid collapses with it on (top box 34 m down in 500 steps), so Rapier keeps its own setting |
 //! | `speculative_distance` (0.02 m = 4 × slop) | `normalized_prediction_distance` (default 0.02, `length_unit` 1) | yes; collider `contact_skin` stays at its default 0 |
 //! | `LINEAR_SLOP` (0.005 m) | `normalized_allowed_linear_error` (default 0.005) | yes |

@@ -59,6 +59,10 @@ struct Args {
     /// Threads for the multi-threaded runs of carom and Box2D.
     #[arg(long, default_value_t = 2)]
     threads: usize,
+    /// Step carom with shock propagation (heavy bodies held by the light ones under them);
+    /// the peers step as they always do.
+    #[arg(long)]
+    shock_propagation: bool,
 }
 
 /// Other jobs than timing.
@@ -97,6 +101,9 @@ enum Command {
         /// Run carom's joint cases with direct joints (each tree of hinges solved at once).
         #[arg(long)]
         direct_joints: bool,
+        /// Run carom with shock propagation (heavy bodies held by the light ones under them).
+        #[arg(long)]
+        shock_propagation: bool,
     },
 }
 
@@ -186,17 +193,27 @@ fn resolve(path: &Path) -> PathBuf {
 
 fn bench_scene(
     path: &Path,
-    steps: u32,
-    runs: u32,
+    (steps, runs): (u32, u32),
+    shock_propagation: bool,
     one: &rayon::ThreadPool,
     many: &rayon::ThreadPool,
 ) -> Result<Row, String> {
     let path = &resolve(path);
-    let load = || carom_scene::load(path).map_err(|e| format!("{}: {e}", path.display()));
-    let name = path.file_stem().map_or_else(
+    let load = || {
+        let mut scene = carom_scene::load(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        scene
+            .world
+            .update_settings(|s| s.solver.shock_propagation |= shock_propagation)
+            .map_err(|e| e.to_string())?;
+        Ok(scene)
+    };
+    let mut name = path.file_stem().map_or_else(
         || path.display().to_string(),
         |s| s.to_string_lossy().into(),
     );
+    if shock_propagation {
+        name += " (carom: shock propagation)";
+    }
     bench_world(&name, load, steps, runs, one, many)
 }
 
@@ -607,11 +624,13 @@ fn main() -> Result<(), String> {
         out,
         quick,
         direct_joints,
+        shock_propagation,
     }) = &args.command
     {
         let options = Options {
             quick: *quick,
             direct_joints: *direct_joints,
+            shock_propagation: *shock_propagation,
         };
         return hard_cases(case, out.as_deref(), options);
     }
@@ -650,7 +669,8 @@ fn main() -> Result<(), String> {
     }
     let mut rows = Vec::new();
     for (path, steps) in &scenes {
-        rows.push(bench_scene(path, *steps, args.runs, &one, &many)?);
+        let shock = args.shock_propagation;
+        rows.push(bench_scene(path, (*steps, args.runs), shock, &one, &many)?);
     }
     println!(
         "dt 1/60, steps {}, first step untimed, minimum of {} run(s)\n",

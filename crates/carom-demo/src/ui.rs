@@ -159,6 +159,14 @@ fn solver_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>
     .on_hover_text(
         "Solve each tree of hinges at once: a light chain holds a heavy load without stretching",
     );
+    ui.add_enabled(
+        soft,
+        egui::Checkbox::new(&mut params.shock_propagation, "shock propagation"),
+    )
+    .on_hover_text(
+        "Solve each body resting on another once more, from the ground up, with the lower one \
+         immovable: a heavy body on light ones does not push them into the ground",
+    );
     if soft {
         ui.add(egui::Slider::new(&mut params.contact_hertz, 5.0..=120.0).text("contact Hz"));
         ui.add(egui::Slider::new(&mut params.damping_ratio, 0.1..=20.0).text("damping ratio"));

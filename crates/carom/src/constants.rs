@@ -259,3 +259,8 @@ pub(crate) const MAX_LOOPS_PER_JOINTS: (u32, u32) = (1, 8);
 /// exact projection there would throw its planks); a hundredth leaves the rest of the drift
 /// closed to a percent.
 pub(crate) const TREE_PROJECTION_GIVE: Real = 0.01;
+
+/// Shock propagation: a contact supports its upper body when its normal is within this cosine
+/// of straight up (against gravity), 60°: a pile's slanted contacts carry load, a wall's or a
+/// neighbour's side does not, and without gravity nothing is held.
+pub(crate) const SUPPORT_COSINE: Real = 0.5;

@@ -1068,9 +1068,14 @@ impl ContactSet {
                         .iter()
                         .flat_map(|v| v.iter())
                         .all(|x| x.is_finite())
-                        && [p.separation, p.normal_impulse, p.tangent_impulse]
-                            .iter()
-                            .all(|x| x.is_finite())
+                        && [
+                            p.separation,
+                            p.normal_impulse,
+                            p.tangent_impulse,
+                            p.shock_impulse,
+                        ]
+                        .iter()
+                        .all(|x| x.is_finite())
                 })
                 && contact.rolling_impulse.is_finite();
             let colored = (contact.color as usize) < COLOR_COUNT

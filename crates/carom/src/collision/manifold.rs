@@ -88,6 +88,10 @@ pub struct ManifoldPoint {
     pub normal_impulse: Real,
     /// Accumulated friction impulse, kept across steps for warm starting.
     pub tangent_impulse: Real,
+    /// Accumulated impulse of shock propagation on the upper body, kept across steps for warm
+    /// starting (0 unless [`crate::SolverParams::shock_propagation`] is on).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub shock_impulse: Real,
 }
 
 /// Which shape of a pair.
@@ -216,6 +220,7 @@ impl Manifold {
             if let Some(old) = previous.points().iter().find(|old| old.id == point.id) {
                 point.normal_impulse = old.normal_impulse;
                 point.tangent_impulse = old.tangent_impulse;
+                point.shock_impulse = old.shock_impulse;
             }
         }
     }

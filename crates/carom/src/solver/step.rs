@@ -6,6 +6,7 @@
 use super::body_state::SpeedCaps;
 use super::classic::{push_out, sequential_impulse, tutorial_impulse};
 use super::contact_constraint::BodyMass;
+use super::shock_propagation::ShockInputs;
 use super::soft_step::{self, Bias, BundleInputs};
 use super::{
     AwakeJoint, AwakeSet, BodyState, Environment, JointBody, JointConstraint, SolverContext,
@@ -43,7 +44,7 @@ pub(crate) fn step(
         "every awake contact's bodies are where the narrowphase found them"
     );
     let started = Instant::now();
-    let plan = prepare(params, &set, dt, workspace);
+    let plan = prepare(params, environment, &set, dt, workspace);
     let prepare = started.elapsed();
     let work = solve(params, environment, &set, dt, &plan, workspace);
     let storing = Instant::now();
@@ -68,7 +69,13 @@ struct Plan {
 
 /// Copies the awake bodies into states, orders the touching contacts and prepares them (soft
 /// step's coloured ones straight into SIMD bundles, the rest one by one), then the joints.
-fn prepare(params: &SolverParams, set: &AwakeSet, dt: Real, workspace: &mut Workspace) -> Plan {
+fn prepare(
+    params: &SolverParams,
+    environment: Environment,
+    set: &AwakeSet,
+    dt: Real,
+    workspace: &mut Workspace,
+) -> Plan {
     let AwakeSet {
         bodies,
         awake,
@@ -90,6 +97,7 @@ fn prepare(params: &SolverParams, set: &AwakeSet, dt: Real, workspace: &mut Work
         joints: joint_constraints,
         joint_colors,
         joint_trees,
+        shock,
         ..
     } = workspace;
     // Soft step solves colour by colour; the classic solvers, and soft step without colours,
@@ -130,6 +138,22 @@ fn prepare(params: &SolverParams, set: &AwakeSet, dt: Real, workspace: &mut Work
         static_soft: bias.static_soft,
         warm_starting: params.warm_starting,
     };
+    if kind == SolverKind::SoftStep && params.shock_propagation {
+        shock.plan(&ShockInputs {
+            awake: awake.clone(),
+            contacts,
+            body_indices,
+            order,
+            masses,
+            warm_starting: params.warm_starting,
+            up: environment
+                .gravity
+                .filter(|g| g.norm() > 0.0)
+                .map(|g| -g.normalize()),
+        });
+    } else {
+        shock.clear();
+    }
     let one_by_one: &[usize] = if colored {
         wide.prepare(&inputs);
         &wide.overflow
@@ -189,6 +213,7 @@ fn solve(
         joints,
         joint_colors,
         joint_trees,
+        shock,
         ..
     } = workspace;
     let context = SolverContext {
@@ -207,7 +232,7 @@ fn solve(
         SolverKind::SoftStep => soft_step::solve(
             &context,
             states,
-            constraints,
+            (constraints, shock),
             (joints, joint_colors, joint_trees),
             wide,
             stages,
@@ -231,6 +256,8 @@ fn store(
         constraints,
         wide,
         joints: joint_constraints,
+        shock,
+        order,
         ..
     } = workspace;
     let solved_joints = matches!(
@@ -249,6 +276,9 @@ fn store(
     wide.store(set.contacts);
     for constraint in constraints.iter() {
         constraint.store_impulses(&mut set.contacts[constraint.contact_index]);
+    }
+    if params.shock_propagation && plan.kind == SolverKind::SoftStep {
+        shock.store(set.contacts, order);
     }
     let bodies = &mut set.bodies[set.awake.clone()];
     for_each_with(states, bodies, ITEMS_PER_TASK, |state, body| {

@@ -16,6 +16,7 @@ use crate::parallel::{for_each_chunk_with, worth_sharing};
 use crate::solver::contact_constraint::{BodyMass, ContactConstraint, SolverBody};
 use crate::solver::joint_trees::JointTrees;
 use crate::solver::joints::JointConstraint;
+use crate::solver::shock_propagation::ShockPropagation;
 #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
 use crate::solver::soft_step::lanes::avx::{self, Avx8};
 use crate::solver::soft_step::lanes::{Four, Kernel, Lanes};
@@ -254,7 +255,7 @@ impl WideContacts {
         &mut self,
         plan: &[Stage],
         states: &mut [BodyState],
-        overflow: &mut [ContactConstraint],
+        overflow: (&mut [ContactConstraint], &mut ShockPropagation),
         joints: (&mut [JointConstraint], &JointColors, &mut JointTrees),
         inputs: &StageInputs,
     ) -> (Work, usize) {
@@ -318,7 +319,9 @@ impl WideContacts {
         };
         let mut trees = JointTrees::default();
         let joints = (&mut [][..], &JointColors::default(), &mut trees);
-        self.execute(&plan, states, &mut [], joints, &inputs).1
+        let mut shock = ShockPropagation::default();
+        self.execute(&plan, states, (&mut [], &mut shock), joints, &inputs)
+            .1
     }
 
     /// Applies the accumulated impulses (warm start).

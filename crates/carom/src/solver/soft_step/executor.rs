@@ -20,6 +20,7 @@ use crate::math::Real;
 use crate::solver::body_state::{SpeedCaps, integrate_position, integrate_velocity};
 use crate::solver::joint_trees::JointTrees;
 use crate::solver::joints::{JointConstraint, JointPass};
+use crate::solver::shock_propagation::ShockPropagation;
 use crate::solver::{BodyState, ContactConstraint, Environment, SolverParams};
 use crate::stats::Work;
 use std::ops::Range;
@@ -51,6 +52,8 @@ pub(crate) enum Stage {
     Joints(usize, Pass),
     /// The joint trees' exact solve (one block).
     JointTrees(Pass),
+    /// Shock propagation's contacts between levels, from the ground up (one block).
+    Shock(Pass),
 }
 
 /// What the stages read besides the states and constraints.
@@ -77,7 +80,7 @@ pub(super) fn execute_stages<L: Lanes>(
     plan: &[Stage],
     states: &SharedStates,
     all_states: Range<usize>,
-    overflow: &mut [ContactConstraint],
+    (overflow, shock): (&mut [ContactConstraint], &mut ShockPropagation),
     (joints, joint_colors, trees): (&mut [JointConstraint], &JointColors, &mut JointTrees),
     inputs: &StageInputs,
 ) -> (Work, usize) {
@@ -120,13 +123,14 @@ pub(super) fn execute_stages<L: Lanes>(
         1
     };
     let overflow = Mutex::new(overflow);
+    let shock = Mutex::new(shock);
     let trees = Mutex::new(trees);
     let work = Mutex::new(Work::default());
     let bounces = AtomicUsize::new(0);
     let stage_blocks = |stage: usize| match plan[stage] {
         Stage::IntegrateVelocities | Stage::IntegratePositions => body_blocks,
         Stage::Color(color, _) => color_blocks[color],
-        Stage::Overflow(_) | Stage::JointTrees(_) => 1,
+        Stage::Overflow(_) | Stage::JointTrees(_) | Stage::Shock(_) => 1,
         Stage::Joints(color, _) => joint_block_counts[color],
     };
     run_stages(
@@ -162,6 +166,19 @@ pub(super) fn execute_stages<L: Lanes>(
                 let all = unsafe { states.range_mut(all_states.clone()) };
                 let count = overflow_pass(pass, &mut constraints, all, inputs);
                 bounces.fetch_add(count, Ordering::Relaxed);
+            }
+            Stage::Shock(pass) => {
+                // SAFETY: shock propagation's stage is one block, and no other stage runs.
+                #[allow(unsafe_code)]
+                let all = unsafe { states.range_mut(all_states.clone()) };
+                let mut shock = lock(&shock);
+                match pass {
+                    Pass::WarmStart => shock.warm_start(all),
+                    Pass::Solve(bias, friction) => {
+                        shock.solve(all, inputs.bias, bias.use_bias, friction)
+                    }
+                    Pass::Restitution(_) => {}
+                }
             }
             Stage::Joints(color, pass) => {
                 if let Some(block) = &joint_blocks[color][block] {

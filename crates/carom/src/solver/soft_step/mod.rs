@@ -4,7 +4,9 @@
 //! heavily damped spring pulls overlap out at a bounded speed), integrate positions, then
 //! relax (solve again without bias, so the push-out leaves no energy behind). Anchors stay
 //! fixed for the step; each point's separation is updated from the bodies' motion. Joints are
-//! solved the same way, after the contacts in each pass ([`super::joints`]).
+//! solved the same way, after the contacts in each pass ([`super::joints`]); with the
+//! options on, so are shock propagation's supports ([`super::shock_propagation`]) and the
+//! joint trees ([`super::joint_trees`]).
 //!
 //! This file plans a step's stages; the rest of the folder runs them:
 //! - `bundles`: the coloured contacts in SIMD bundles, prepared and stored;
@@ -32,6 +34,7 @@ pub(crate) use executor::Stage;
 use super::body_state::SpeedCaps;
 use super::joint_trees::JointTrees;
 use super::joints::JointConstraint;
+use super::shock_propagation::ShockPropagation;
 use super::{BodyState, ContactConstraint, Environment, Softness, SolverContext, SolverParams};
 use crate::graph::joints::JointColors;
 use crate::math::Real;
@@ -48,7 +51,7 @@ use executor::{Pass, StageInputs};
 pub(super) fn solve(
     context: &SolverContext,
     states: &mut [BodyState],
-    constraints: &mut [ContactConstraint],
+    (constraints, shock): (&mut [ContactConstraint], &mut ShockPropagation),
     (joints, joint_colors, trees): (&mut [JointConstraint], &JointColors, &mut JointTrees),
     wide: &mut WideContacts,
     plan: &mut Vec<Stage>,
@@ -64,7 +67,12 @@ pub(super) fn solve(
     let h = dt / substeps as Real;
     let bias_friction = environment.friction && params.friction_in_bias_pass;
     let bouncy = wide.bouncy() || constraints.iter().any(|c| c.restitution > 0.0);
-    let shape = (wide.color_count(), !constraints.is_empty(), bouncy);
+    let shape = ContactStages {
+        colors: wide.color_count(),
+        overflow: !constraints.is_empty(),
+        shock: !shock.is_empty(),
+        bouncy,
+    };
     plan_stages(
         plan,
         params,
@@ -84,7 +92,7 @@ pub(super) fn solve(
     let (mut work, bounces) = wide.execute(
         plan,
         states,
-        constraints,
+        (constraints, shock),
         (joints, joint_colors, &mut *trees),
         &inputs,
     );
@@ -97,8 +105,19 @@ pub(super) fn solve(
     work
 }
 
-/// The stages of one step, into `plan`: each pass over the contacts' `colors` colours in turn,
-/// then the contacts' overflow if it has constraints, then the joint colours that have joints
+/// Which contact stages a step has: its colours, whether the overflow has constraints,
+/// whether shock propagation has contacts to solve, and whether any contact bounces.
+struct ContactStages {
+    colors: usize,
+    overflow: bool,
+    shock: bool,
+    bouncy: bool,
+}
+
+/// The stages of one step, into `plan`: each pass over the contacts' colours in turn,
+/// then the contacts' overflow if it has constraints, then shock propagation's supports if it
+/// has any (warm starting and solving: it has no restitution), then the joint colours that have
+/// joints
 /// (the last being their overflow), then the joint trees' exact solve if there are `trees`;
 /// the restitution pass (contacts only) only if `bouncy`
 /// (some contact has restitution: the pass does nothing for the others). Joints have the last
@@ -111,13 +130,16 @@ fn plan_stages(
     environment: Environment,
     bias: &Bias,
     (joint_colors, trees): (&JointColors, bool),
-    (colors, overflow, bouncy): (usize, bool, bool),
+    contacts: ContactStages,
 ) {
     plan.clear();
     let pass = |plan: &mut Vec<Stage>, pass: Pass| {
-        plan.extend((0..colors).map(|color| Stage::Color(color, pass)));
-        if overflow {
+        plan.extend((0..contacts.colors).map(|color| Stage::Color(color, pass)));
+        if contacts.overflow {
             plan.push(Stage::Overflow(pass));
+        }
+        if contacts.shock && !matches!(pass, Pass::Restitution(_)) {
+            plan.push(Stage::Shock(pass));
         }
         if !matches!(pass, Pass::Restitution(_)) {
             let joints = joint_colors.ranges.iter().enumerate();
@@ -145,7 +167,7 @@ fn plan_stages(
             pass(plan, Pass::Solve(relax, environment.friction));
         }
     }
-    if environment.restitution && bouncy {
+    if environment.restitution && contacts.bouncy {
         pass(plan, Pass::Restitution(params.restitution_threshold));
     }
 }
@@ -157,9 +179,9 @@ pub(super) struct Bias {
     /// Softness of contacts with static bodies (stiffer).
     pub static_soft: Softness,
     /// One over the substep.
-    inv_h: Real,
+    pub inv_h: Real,
     /// The fastest push-out, m/s.
-    max_push_speed: Real,
+    pub max_push_speed: Real,
 }
 
 impl Bias {
