@@ -392,7 +392,8 @@ pub fn report_paths(scene: &Path) -> Vec<PathBuf> {
 
 /// The demo's solver settings as the sweep names a carom setting: the solver that runs (push-
 /// out when impulse resolution is off), substeps only for the solvers that have them, the
-/// joint stiffness only where it is not the default, and direct joints only for soft step.
+/// joint stiffness only where it is not the default, and direct joints and shock propagation
+/// only for soft step.
 pub fn setting_of(params: &SolverParams) -> Setting {
     let solver = params.effective_kind();
     let substeps = if solver.has_substeps() {
@@ -406,6 +407,7 @@ pub fn setting_of(params: &SolverParams) -> Setting {
         // Soft contacts are soft step's alone, and the sweep names their stiffness.
         contact_hertz: (solver == SolverKind::SoftStep).then_some(params.contact_hertz),
         direct_joints: solver == SolverKind::SoftStep && params.direct_joints,
+        shock_propagation: solver == SolverKind::SoftStep && params.shock_propagation,
         ..Setting::carom(solver, params.effective_iterations(), substeps)
     }
 }
@@ -418,7 +420,8 @@ pub fn setting_of(params: &SolverParams) -> Setting {
 /// Joint stiffness is compared as the solver runs it, capped at a quarter of the substep rate
 /// at `time_step` seconds per step, and only for soft step on a scene with `joints`: a
 /// stiffness the cap makes the default's is the default's point. Direct joints count as one
-/// doubling apart, and only on a scene with `joints` (without, they change nothing).
+/// doubling apart, and only on a scene with `joints` (without, they change nothing); shock
+/// propagation counts as one doubling apart on every scene.
 pub fn marker(
     points: &[Point],
     params: &SolverParams,
@@ -450,11 +453,19 @@ pub fn marker(
         } else {
             0.0
         };
+        // The sweep runs shock propagation only on piles at rest under gravity: elsewhere a
+        // setting with it was not measured, and is shown as the nearest.
+        let shock = if p.setting.shock_propagation != wanted.shock_propagation {
+            1.0
+        } else {
+            0.0
+        };
         doublings(p.setting.iterations, wanted.iterations)
             + doublings(p.setting.substeps, wanted.substeps)
             + stiffness
             + contacts
             + direct
+            + shock
     };
     let nearest = points
         .iter()
@@ -710,6 +721,35 @@ mod tests {
             })
             .direct_joints
         );
+    }
+
+    #[test]
+    fn shock_propagation_is_part_of_the_setting() {
+        let mut points = sweep();
+        let shocked = Setting {
+            shock_propagation: true,
+            ..soft(1, 4, None)
+        };
+        points.push(point(shocked, 0.04, 0.001));
+        let with = |shock_propagation: bool| SolverParams {
+            shock_propagation,
+            ..params(SolverKind::SoftStep, 1, 4)
+        };
+        let here = marker(&points, &with(true), STEP, false).unwrap();
+        assert!(here.exact);
+        assert_eq!(here.point.error, 0.001);
+        assert!(
+            here.title().contains("shock propagation"),
+            "{}",
+            here.title()
+        );
+        let off = marker(&points, &with(false), STEP, false).unwrap();
+        assert!(off.exact);
+        assert_eq!(off.point.setting, soft(1, 4, None));
+        // Not measured with it: the nearest, not the same.
+        let unmeasured = marker(&sweep(), &with(true), STEP, false).unwrap();
+        assert!(!unmeasured.exact);
+        assert_eq!(unmeasured.point.setting, soft(1, 4, None));
     }
 
     #[test]

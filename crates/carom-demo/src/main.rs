@@ -70,8 +70,8 @@ enum Command {
         threads: Option<u32>,
     },
     /// Sweep solvers, iterations and substeps (and joint stiffness and direct joints on scenes
-    /// with joints) over scenes: ms/step against error, written as a CSV, a markdown report
-    /// and a chart.
+    /// with joints, shock propagation on piles at rest) over scenes: ms/step against error,
+    /// written as a CSV, a markdown report and a chart.
     Bench {
         /// Scene files (default: the seven accuracy scenes in demos/).
         scenes: Vec<PathBuf>,
@@ -99,6 +99,10 @@ enum Command {
         /// both (default: off,on).
         #[arg(long, value_delimiter = ',', value_parser = on_or_off)]
         direct_joints: Option<Vec<bool>>,
+        /// Shock propagation for soft step on scenes of bodies at rest under gravity, comma
+        /// separated: off, on or both (default: off,on).
+        #[arg(long, value_delimiter = ',', value_parser = on_or_off)]
+        shock_propagation: Option<Vec<bool>>,
         /// How long scenes without an accuracy measure run, s.
         #[arg(long, default_value_t = 10.0)]
         seconds: Real,
@@ -244,6 +248,7 @@ fn main() -> ExitCode {
             substeps,
             joint_hertz,
             direct_joints,
+            shock_propagation,
             seconds,
             engines,
         }) => {
@@ -260,6 +265,7 @@ fn main() -> ExitCode {
                 substeps: substeps.unwrap_or(defaults.substeps),
                 joint_hertz: joint_hertz.unwrap_or(defaults.joint_hertz),
                 direct_joints: direct_joints.unwrap_or(defaults.direct_joints),
+                shock_propagation: shock_propagation.unwrap_or(defaults.shock_propagation),
                 seconds,
                 engines: engines.unwrap_or(defaults.engines),
                 ..defaults

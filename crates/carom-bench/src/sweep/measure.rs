@@ -31,6 +31,8 @@ pub struct Setting {
     pub stabilization: Option<u32>,
     /// Soft step's direct joint trees ([`SolverParams::direct_joints`]).
     pub direct_joints: bool,
+    /// Soft step's shock propagation ([`SolverParams::shock_propagation`]).
+    pub shock_propagation: bool,
 }
 
 impl Setting {
@@ -45,6 +47,7 @@ impl Setting {
             contact_hertz: None,
             stabilization: None,
             direct_joints: false,
+            shock_propagation: false,
         }
     }
 
@@ -255,6 +258,7 @@ impl Run {
         params.substeps = setting.substeps;
         params.joint_hertz = setting.joint_hertz.unwrap_or(defaults.joint_hertz);
         params.direct_joints = setting.direct_joints;
+        params.shock_propagation = setting.shock_propagation;
         if let Some(hertz) = setting.contact_hertz {
             params.contact_hertz = hertz;
         }

@@ -20,8 +20,8 @@ pub use engine::Engine;
 pub use front::pareto_front;
 pub use measure::{ErrorKind, Measurement, Setting, measure, solves_joints};
 
-use carom::{Real, SolverKind, SolverParams};
-use carom_scene::SceneWorld;
+use carom::{Effect, Real, SolverKind, SolverParams, Vec2};
+use carom_scene::{Accuracy, SceneWorld};
 use std::path::PathBuf;
 
 /// What to sweep.
@@ -43,6 +43,9 @@ pub struct SweepOptions {
     pub joint_hertz: Vec<Real>,
     /// Soft step's direct joint trees on scenes with joints: off, on, or both.
     pub direct_joints: Vec<bool>,
+    /// Soft step's shock propagation on scenes of bodies at rest under gravity (those
+    /// measured by how far they drift from rest): off, on, or both.
+    pub shock_propagation: Vec<bool>,
     /// How long a scene without an accuracy measure runs, s.
     pub seconds: Real,
     /// The engines: carom runs the settings above, each peer its own below.
@@ -61,8 +64,8 @@ pub struct SweepOptions {
 impl Default for SweepOptions {
     /// The sweep over the seven accuracy scenes in `demos/`: contacts at 30 Hz (Box2D's
     /// default) and 60 Hz, joints at Box2D's 60 Hz and at 240 Hz, which is as stiff as the
-    /// substeps allow at 16 substeps (120 Hz at 8), and soft step with direct joints off and
-    /// on.
+    /// substeps allow at 16 substeps (120 Hz at 8), and soft step with direct joints and with
+    /// shock propagation off and on.
     fn default() -> Self {
         SweepOptions {
             scenes: [
@@ -83,6 +86,7 @@ impl Default for SweepOptions {
             substeps: vec![1, 2, 4, 8, 16],
             joint_hertz: vec![60.0, 240.0],
             direct_joints: vec![false, true],
+            shock_propagation: vec![false, true],
             seconds: 10.0,
             engines: vec![Engine::Carom],
             contact_hertz: vec![30.0, 60.0],
@@ -97,7 +101,8 @@ impl SweepOptions {
     /// Every setting the sweep runs on `scene`, engine by engine, carom's solver by solver.
     /// On a scene with joints the solvers that leave joints out do not run
     /// ([`solves_joints`]), and soft step runs once per joint stiffness the cap leaves
-    /// distinct and once per choice of direct joints.
+    /// distinct and once per choice of direct joints; on a pile at rest under gravity, once
+    /// per choice of shock propagation.
     pub fn settings(&self, scene: &SceneWorld) -> Vec<Setting> {
         let mut settings = Vec::new();
         for &engine in &self.engines {
@@ -133,6 +138,9 @@ impl SweepOptions {
     /// carom's settings of the sweep on `scene`.
     fn carom_settings(&self, scene: &SceneWorld) -> Vec<Setting> {
         let joints = scene.world.joint_count() > 0;
+        let piled = matches!(scene.accuracy, Some(Accuracy::Rest { .. }))
+            && scene.world.settings().effects.contains(Effect::Gravity)
+            && scene.world.settings().gravity != Vec2::zeros();
         let default_hertz = SolverParams::default().joint_hertz;
         let mut settings = Vec::new();
         for &solver in &self.solvers {
@@ -164,24 +172,32 @@ impl SweepOptions {
                 } else {
                     vec![None]
                 };
-                // Direct joints only where there are joints for soft step to solve directly.
-                let direct_joints: &[bool] = if joints && solver == SolverKind::SoftStep {
+                // Soft step's options only where they have something to act on: direct
+                // joints on joints, shock propagation on a pile at rest under gravity.
+                let soft = solver == SolverKind::SoftStep;
+                let direct_joints: &[bool] = if joints && soft {
                     &self.direct_joints
                 } else {
                     &[false]
                 };
-                for &direct_joints in direct_joints {
-                    for contact_hertz in &contact_hertz {
-                        for &joint_hertz in &joint_hertz {
-                            for &iterations in &self.iterations {
-                                settings.push(Setting {
-                                    iterations,
-                                    joint_hertz,
-                                    contact_hertz: *contact_hertz,
-                                    direct_joints,
-                                    ..base
-                                });
-                            }
+                let shock_propagation: &[bool] = if piled && soft {
+                    &self.shock_propagation
+                } else {
+                    &[false]
+                };
+                let options = product(direct_joints, shock_propagation);
+                let stiffness = product(&contact_hertz, &joint_hertz);
+                for (direct_joints, shock_propagation) in options {
+                    for &(contact_hertz, joint_hertz) in &stiffness {
+                        for &iterations in &self.iterations {
+                            settings.push(Setting {
+                                iterations,
+                                joint_hertz,
+                                contact_hertz,
+                                direct_joints,
+                                shock_propagation,
+                                ..base
+                            });
                         }
                     }
                 }
@@ -189,6 +205,13 @@ impl SweepOptions {
         }
         settings
     }
+}
+
+/// Every pair of an `a` and a `b`, `a` by `a`.
+fn product<A: Copy, B: Copy>(a: &[A], b: &[B]) -> Vec<(A, B)> {
+    a.iter()
+        .flat_map(|&a| b.iter().map(move |&b| (a, b)))
+        .collect()
 }
 
 /// One point of the sweep.
@@ -381,6 +404,40 @@ mod tests {
         assert_eq!(count(Engine::Carom), 3 + 4 * 2);
         assert_eq!(count(Engine::Box2d), 5 * 2);
         assert_eq!(count(Engine::Rapier), 5 * 5);
+    }
+
+    #[test]
+    fn a_pile_at_rest_under_gravity_sweeps_shock_propagation_with_soft_step_alone() {
+        let pile = |gravity: &str| {
+            let text = format!(
+                r#"(
+                    name: "pile",
+                    world: (gravity: {gravity}),
+                    bodies: [
+                        (name: "ground", kind: static, shape: Box(width: 10.0, height: 1.0)),
+                        (name: "box", shape: Box(width: 1.0, height: 1.0), position: (0.0, 1.0)),
+                    ],
+                    accuracy: Some(Rest(seconds: 1.0)),
+                )"#
+            );
+            let scene = carom_scene::parse(&text, "pile.ron").unwrap();
+            carom_scene::build(&scene, "pile.ron").unwrap()
+        };
+        let settings = options().settings(&pile("(0.0, -10.0)"));
+        let shocked: Vec<&Setting> = settings.iter().filter(|s| s.shock_propagation).collect();
+        // Soft step at 1, 2, 4 and 8 substeps, each with and without.
+        assert_eq!(shocked.len(), 4);
+        assert_eq!(settings.len(), 3 + 2 * 4);
+        assert!(shocked.iter().all(|s| s.solver == SolverKind::SoftStep));
+        // Without gravity nothing rests on anything, and a scene not at rest is not a pile.
+        let weightless = options().settings(&pile("(0.0, 0.0)"));
+        assert!(weightless.iter().all(|s| !s.shock_propagation));
+        assert!(
+            options()
+                .settings(&scene(false))
+                .iter()
+                .all(|s| !s.shock_propagation)
+        );
     }
 
     #[test]

@@ -10,7 +10,7 @@ use web_time::{SystemTime, UNIX_EPOCH};
 /// The CSV header, in the order [`csv()`] writes the columns.
 pub const CSV_HEADER: &str = "engine,scene,error_kind,solver,iterations,substeps,ms_per_step,\
                               error,error_unit,max_penetration_m,joint_hertz,contact_hertz,\
-                              stabilization,joints,direct_joints";
+                              stabilization,joints,direct_joints,shock_propagation";
 
 /// One line of the CSV, column for column as [`CSV_HEADER`] names them. Numbers are written
 /// as the report prints them (a microsecond, three significant digits), so a sweep read back
@@ -45,6 +45,9 @@ struct Row {
     /// Absent in files written before it was a column: then off.
     #[serde(default)]
     direct_joints: Option<bool>,
+    /// Absent in files written before it was a column: then off.
+    #[serde(default)]
+    shock_propagation: Option<bool>,
 }
 
 fn micro<S: serde::Serializer>(value: &f64, serializer: S) -> Result<S::Ok, S::Error> {
@@ -80,7 +83,8 @@ fn shortest_or_empty<S: serde::Serializer>(
 /// the solver's default (60 Hz, capped at a quarter of the substep rate), `contact_hertz`
 /// where the scene's own contact stiffness ran, `stabilization` for all but Rapier, and
 /// `max_penetration_m` for the peers, whose overlap is not measured; `joints` says whether
-/// the scene has joints, `direct_joints` whether soft step solved them directly.
+/// the scene has joints, `direct_joints` whether soft step solved them directly, and
+/// `shock_propagation` whether it held bodies on those under them as on the ground.
 pub fn csv(points: &[Point]) -> String {
     // The header is written even for no points, so the columns are always named.
     let mut writer = csv::WriterBuilder::new()
@@ -105,6 +109,7 @@ pub fn csv(points: &[Point]) -> String {
                 stabilization: p.setting.stabilization,
                 joints: Some(p.joints),
                 direct_joints: Some(p.setting.direct_joints),
+                shock_propagation: Some(p.setting.shock_propagation),
             })?;
         }
         Ok(())
@@ -363,20 +368,20 @@ pub fn series_of<'a>(points: &[&'a Point]) -> Vec<(String, Vec<&'a Point>)> {
 }
 
 /// "soft step, 4 substeps, 30 Hz contacts", "soft step, 8 substeps, 30 Hz contacts, 120 Hz
-/// joints" (a joint stiffness other than the default), "..., direct joints", or just the
-/// solver's name: carom's series, its iterations along each.
+/// joints" (a joint stiffness other than the default), "..., direct joints", "..., shock
+/// propagation", or just the solver's name: carom's series, its iterations along each.
 pub fn series_name(point: &Point) -> String {
     let solver = point.setting.solver;
     let mut name = solver.name().to_string();
     if solver.has_substeps() {
         let _ = write!(name, ", {}", substeps(point.setting.substeps));
     }
-    name_stiffness_and_direct_joints(&mut name, &point.setting);
+    name_stiffness_and_options(&mut name, &point.setting);
     name
 }
 
-/// Appends a carom setting's contact and joint stiffness where named, and its direct joints.
-fn name_stiffness_and_direct_joints(name: &mut String, setting: &Setting) {
+/// Appends a carom setting's contact and joint stiffness where named, and its options.
+fn name_stiffness_and_options(name: &mut String, setting: &Setting) {
     if let Some(hertz) = setting.contact_hertz {
         let _ = write!(name, ", {hertz} Hz contacts");
     }
@@ -385,6 +390,9 @@ fn name_stiffness_and_direct_joints(name: &mut String, setting: &Setting) {
     }
     if setting.direct_joints {
         name.push_str(", direct joints");
+    }
+    if setting.shock_propagation {
+        name.push_str(", shock propagation");
     }
 }
 
@@ -399,7 +407,7 @@ pub fn setting_name(setting: &Setting) -> String {
                 let _ = write!(name, ", {}", substeps(setting.substeps));
             }
             let _ = write!(name, ", {}", it(setting.iterations));
-            name_stiffness_and_direct_joints(&mut name, setting);
+            name_stiffness_and_options(&mut name, setting);
             name
         }
         Engine::Box2d => match setting.contact_hertz {
@@ -434,8 +442,8 @@ fn format_error(error: f64) -> String {
 ///
 /// Columns are found by their header names, so this header ([`CSV_HEADER`]) and older ones
 /// are read: the one before peers ran (no `engine`, `contact_hertz` nor `stabilization`: every
-/// point is carom's), the one before `joints` and the one before `direct_joints` (every point
-/// then ran without). Empty `joint_hertz`, `contact_hertz` and
+/// point is carom's), the one before `joints`, and the ones before `direct_joints` and before
+/// `shock_propagation` (every point then ran without). Empty `joint_hertz`, `contact_hertz` and
 /// `stabilization` fields are `None`, an empty `max_penetration_m` is NaN (a peer's, not
 /// measured), `inf` is a world gone NaN. Without a `joints` column, whether a scene has joints
 /// is inferred as a sweep leaves it: when a point names a joint stiffness, or when carom ran on
@@ -521,7 +529,7 @@ fn not_a(column: &str) -> &'static str {
     match column {
         "iterations" | "substeps" | "stabilization" => "is not a count of 1 or more",
         "joint_hertz" | "contact_hertz" => "is not a stiffness in Hz",
-        "joints" | "direct_joints" => "is not true or false",
+        "joints" | "direct_joints" | "shock_propagation" => "is not true or false",
         _ => "is not a number",
     }
 }
@@ -587,6 +595,11 @@ fn point_of(
                 None if !has("direct_joints") => false,
                 None => return Err(bad("direct_joints", not_a("direct_joints"))),
                 Some(direct) => direct,
+            },
+            shock_propagation: match row.shock_propagation {
+                None if !has("shock_propagation") => false,
+                None => return Err(bad("shock_propagation", not_a("shock_propagation"))),
+                Some(shock) => shock,
             },
         },
         ms_per_step: row.ms_per_step,
@@ -687,22 +700,22 @@ mod tests {
         let csv = csv(&points);
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines[0], CSV_HEADER);
+        assert!(CSV_HEADER.ends_with(
+            "joint_hertz,contact_hertz,stabilization,joints,direct_joints,shock_propagation"
+        ));
         assert!(
-            CSV_HEADER.ends_with("joint_hertz,contact_hertz,stabilization,joints,direct_joints")
-        );
-        assert!(
-            lines[2].ends_with(",%,0.000000,,,,true,false"),
+            lines[2].ends_with(",%,0.000000,,,,true,false,false"),
             "{}",
             lines[2]
         );
         assert!(
-            lines[3].ends_with(",%,0.000000,120,,,true,false"),
+            lines[3].ends_with(",%,0.000000,120,,,true,false,false"),
             "{}",
             lines[3]
         );
         assert!(lines[3].starts_with("carom,chain,"), "{}", lines[3]);
         assert!(
-            lines[4].ends_with(",%,0.000000,,,,true,true"),
+            lines[4].ends_with(",%,0.000000,,,,true,true,false"),
             "{}",
             lines[4]
         );
@@ -710,6 +723,33 @@ mod tests {
         let read = parse_csv(&csv).unwrap();
         assert_eq!(read[3].setting, points[3].setting);
         assert!(!read[0].setting.direct_joints);
+    }
+
+    #[test]
+    fn shock_propagation_is_named_and_read_back() {
+        let mut shock = point(4, None);
+        shock.scene = "high_mass_ratio".into();
+        shock.error_kind = ErrorKind::Rest;
+        shock.joints = false;
+        shock.setting.shock_propagation = true;
+        assert_eq!(
+            series_name(&shock),
+            "soft step, 4 substeps, shock propagation"
+        );
+        assert_eq!(
+            setting_name(&shock.setting),
+            "soft step, 4 substeps, 1 iteration, shock propagation"
+        );
+        let csv = csv(std::slice::from_ref(&shock));
+        assert!(csv.trim_end().ends_with(",false,false,true"), "{csv}");
+        let read = parse_csv(&csv).unwrap();
+        assert_eq!(read[0].setting, shock.setting);
+        // A file from before the column read as off.
+        let older: String = csv
+            .lines()
+            .map(|line| format!("{}\n", &line[..line.rfind(',').unwrap()]))
+            .collect();
+        assert!(!parse_csv(&older).unwrap()[0].setting.shock_propagation);
     }
 
     #[test]
@@ -864,18 +904,30 @@ mod parse_tests {
         assert!(points.iter().any(|p| p.scene == "pendulum" && p.joints));
         assert!(points.iter().any(|p| p.scene == "pyramid" && !p.joints));
         // The file is exactly what the writer writes, once it has every column: a sweep from
-        // before direct joints gains that column, off, on every line.
-        let current = if text.lines().next() == Some(CSV_HEADER) {
-            text.clone()
-        } else {
-            text.lines()
-                .enumerate()
-                .map(|(i, line)| {
-                    let added = if i == 0 { ",direct_joints" } else { ",false" };
-                    format!("{line}{added}\n")
-                })
-                .collect()
-        };
+        // before direct joints or shock propagation gains the missing columns, off, on every
+        // line.
+        let header = text.lines().next().unwrap_or_default();
+        let missing: Vec<&str> = ["direct_joints", "shock_propagation"]
+            .into_iter()
+            .filter(|column| !header.split(',').any(|c| c == *column))
+            .collect();
+        let current: String = text
+            .lines()
+            .enumerate()
+            .map(|(i, line)| {
+                let added: String = missing
+                    .iter()
+                    .map(|column| {
+                        if i == 0 {
+                            format!(",{column}")
+                        } else {
+                            ",false".into()
+                        }
+                    })
+                    .collect();
+                format!("{line}{added}\n")
+            })
+            .collect();
         assert_eq!(csv(&points), current);
     }
 
@@ -889,7 +941,7 @@ mod parse_tests {
         short[3] = short[3].rsplit_once(',').unwrap().0.to_string();
         let message = error_of(&short);
         assert!(
-            message.starts_with("line 4: 14 fields, the header has 15"),
+            message.starts_with("line 4: 15 fields, the header has 16"),
             "{message}"
         );
 
