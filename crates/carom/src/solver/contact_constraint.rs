@@ -197,8 +197,14 @@ impl ContactConstraint {
         a: &BodyState,
         b: &BodyState,
     ) -> Real {
-        let d = (b.dp - a.dp) + b.dq * point.anchor_b - a.dq * point.anchor_a;
-        point.base_separation + self.normal.dot(&d)
+        separation_now(
+            self.normal,
+            point.base_separation,
+            point.anchor_a,
+            point.anchor_b,
+            a,
+            b,
+        )
     }
 
     /// Applies an impulse `p` at a point: `-p` to A, `+p` to B.
@@ -276,6 +282,22 @@ pub(crate) fn rolling(contact: &Contact, ia: Real, ib: Real) -> (Real, Real) {
     } else {
         (0.0, 0.0)
     }
+}
+
+/// The separation now of a point of normal `normal` (A to B), with the separation
+/// `base_separation` at the start of the step less the anchors' offset along the normal, from
+/// the bodies' motion since the step began.
+#[inline]
+pub(crate) fn separation_now(
+    normal: Vec2,
+    base_separation: Real,
+    anchor_a: Vec2,
+    anchor_b: Vec2,
+    a: &BodyState,
+    b: &BodyState,
+) -> Real {
+    let d = (b.dp - a.dp) + b.dq * anchor_b - a.dq * anchor_a;
+    base_separation + normal.dot(&d)
 }
 
 /// Two distinct states out of one slice, mutably.

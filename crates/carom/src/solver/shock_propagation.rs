@@ -23,12 +23,12 @@
 //! anything.
 
 use super::BodyState;
-use super::contact_constraint::{BodyMass, pair_mut};
-use super::soft_step::Bias;
-use crate::collision::contact::{BodyIndices, Contact};
+use super::contact_constraint::{pair_mut, separation_now};
+use super::soft_step::scalar::point_bias;
+use super::soft_step::{Bias, BundleInputs};
+use crate::collision::contact::Contact;
 use crate::constants::SUPPORT_COSINE;
 use crate::math::{Real, Vec2, cross, cross_sv, perp_cw};
-use std::ops::Range;
 
 /// A level not (yet) reached from the ground.
 const UNREACHED: u32 = u32::MAX;
@@ -45,6 +45,9 @@ pub(crate) struct ShockPropagation {
     neighbours: Vec<u32>,
     /// The breadth-first search's queue.
     queue: Vec<u32>,
+    /// The step's supports of moving bodies as (lower state, upper state, contact index),
+    /// in solve order.
+    found: Vec<[u32; 3]>,
     /// The supports between levels as (lower level, contact index), lowest first.
     order: Vec<(u32, u32)>,
     /// Those supports prepared, in that order.
@@ -139,21 +142,6 @@ impl Support {
     }
 }
 
-/// What planning reads of the step.
-pub(crate) struct ShockInputs<'a> {
-    pub awake: Range<usize>,
-    pub contacts: &'a [Contact],
-    pub body_indices: &'a [BodyIndices],
-    /// The touching contacts (indices into `contacts`), in solve order.
-    pub order: &'a [usize],
-    /// The masses of the awake bodies, then the spare state's.
-    pub masses: &'a [BodyMass],
-    /// Start from last step's impulses.
-    pub warm_starting: bool,
-    /// Straight up, against gravity; `None` without gravity (nothing rests on anything).
-    pub up: Option<Vec2>,
-}
-
 impl ShockPropagation {
     /// Nothing to solve.
     pub fn clear(&mut self) {
@@ -165,36 +153,35 @@ impl ShockPropagation {
         self.supports.is_empty()
     }
 
-    /// Levels the bodies from the ground up over the supports and prepares the supports
-    /// between levels, lowest first (ties in contact order, so the same on every thread
-    /// count). Allocates only as the world grows.
-    pub fn plan(&mut self, inputs: &ShockInputs) {
+    /// Levels the bodies from the ground up over the supports (those of `inputs`' touching
+    /// contacts whose normals are within 60° of `up`) and prepares the supports between
+    /// levels, lowest first (ties in contact order, so the same on every thread count).
+    /// Nothing without `up` (no gravity). Allocates only as the world grows.
+    pub fn plan(&mut self, inputs: &BundleInputs, up: Option<Vec2>) {
         self.supports.clear();
-        let Some(up) = inputs.up else {
+        let Some(up) = up else {
             return;
         };
         let count = inputs.masses.len();
-        let state = |index: u32| {
-            let index = index as usize;
-            if inputs.awake.contains(&index) {
-                index - inputs.awake.start
-            } else {
-                count - 1
-            }
-        };
-        // Each support as (lower, upper) state: its normal, from A to B, points up or down.
-        let support = |i: usize| {
-            let [a, b] = inputs.body_indices[i].map(state);
-            let rise = inputs.contacts[i].manifold().normal.dot(&up);
-            if rise >= SUPPORT_COSINE {
-                Some((a, b))
-            } else if rise <= -SUPPORT_COSINE {
-                Some((b, a))
-            } else {
-                None
-            }
-        };
         let moves = |state: usize| inputs.masses[state].dynamic;
+        // Each support of a moving body as (lower, upper): its normal, from A to B, points up
+        // or down.
+        self.found.clear();
+        for &i in inputs.order {
+            let [a, b] = inputs.body_indices[i].map(|index| inputs.state(index as usize));
+            let rise = inputs.contacts[i].manifold().normal.dot(&up);
+            let support = if rise >= SUPPORT_COSINE {
+                (a, b)
+            } else if rise <= -SUPPORT_COSINE {
+                (b, a)
+            } else {
+                continue;
+            };
+            if moves(support.1) {
+                self.found
+                    .push([support.0 as u32, support.1 as u32, i as u32]);
+            }
+        }
         // Moving bodies resting on ones that do not move start the search at level 1; the
         // graph leads from each moving body to the moving bodies it supports.
         self.level.clear();
@@ -207,13 +194,8 @@ impl ShockPropagation {
         self.first.clear();
         self.first.resize(count + 1, 0);
         self.queue.clear();
-        for &i in inputs.order {
-            let Some((lower, upper)) = support(i) else {
-                continue;
-            };
-            if !moves(upper) {
-                continue;
-            }
+        for &[lower, upper, _] in &self.found {
+            let (lower, upper) = (lower as usize, upper as usize);
             if moves(lower) {
                 self.first[lower] += 1;
             } else if self.level[upper] == UNREACHED {
@@ -227,13 +209,11 @@ impl ShockPropagation {
         }
         self.neighbours.clear();
         self.neighbours.resize(self.first[count] as usize, 0);
-        for &i in inputs.order {
-            if let Some((lower, upper)) = support(i)
-                && moves(lower)
-                && moves(upper)
-            {
+        for &[lower, upper, _] in &self.found {
+            let lower = lower as usize;
+            if moves(lower) {
                 self.first[lower] -= 1;
-                self.neighbours[self.first[lower] as usize] = upper as u32;
+                self.neighbours[self.first[lower] as usize] = upper;
             }
         }
         let mut next = 0;
@@ -251,19 +231,16 @@ impl ShockPropagation {
         }
         // Every support from a lower level to a higher one, lowest first.
         self.order.clear();
-        for &i in inputs.order {
-            let Some((lower, upper)) = support(i) else {
-                continue;
-            };
-            let (below, above) = (self.level[lower], self.level[upper]);
-            if moves(lower) && moves(upper) && above != UNREACHED && below < above {
-                self.order.push((below, i as u32));
+        for &[lower, upper, i] in &self.found {
+            let (below, above) = (self.level[lower as usize], self.level[upper as usize]);
+            if moves(lower as usize) && above != UNREACHED && below < above {
+                self.order.push((below, i));
             }
         }
         self.order.sort_unstable();
         for &(_, i) in &self.order {
             let i = i as usize;
-            let [a, b] = inputs.body_indices[i].map(state);
+            let [a, b] = inputs.body_indices[i].map(|index| inputs.state(index as usize));
             let upper_b = self.level[b] > self.level[a];
             let mass = inputs.masses[if upper_b { b } else { a }];
             let contact = &inputs.contacts[i];
@@ -326,24 +303,14 @@ impl ShockPropagation {
     /// the lower, as a soft contact with the ground would, then (if `friction`) holds it by
     /// friction within `μ ×` that push, beside the ordinary passes' friction within theirs.
     pub fn solve(&mut self, states: &mut [BodyState], bias: &Bias, use_bias: bool, friction: bool) {
-        let soft = bias.soft;
         for c in &mut self.supports {
             let (a, b) = pair_mut(states, c.a, c.b);
             for i in 0..c.point_count {
                 let mut point = c.points[i];
-                let d = (b.dp - a.dp) + b.dq * point.anchor_b - a.dq * point.anchor_a;
-                let s = point.base_separation + c.normal.dot(&d);
-                let (velocity_bias, mass_scale, impulse_scale) = if s > 0.0 {
-                    (s * bias.inv_h, 1.0, 0.0)
-                } else if use_bias {
-                    (
-                        (soft.mass_scale * soft.bias_rate * s).max(-bias.max_push_speed),
-                        soft.mass_scale,
-                        soft.impulse_scale,
-                    )
-                } else {
-                    (0.0, 1.0, 0.0)
-                };
+                let (ra, rb) = (point.anchor_a, point.anchor_b);
+                let s = separation_now(c.normal, point.base_separation, ra, rb, a, b);
+                let (velocity_bias, mass_scale, impulse_scale) =
+                    point_bias(s, bias.soft, bias, use_bias);
                 let (va, vb) = c.velocities(&point, c.normal, true, a, b);
                 let impulse = -point.normal_mass * (mass_scale * (vb - va) + velocity_bias)
                     - impulse_scale * point.normal_impulse;

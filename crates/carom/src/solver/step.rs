@@ -6,7 +6,6 @@
 use super::body_state::SpeedCaps;
 use super::classic::{push_out, sequential_impulse, tutorial_impulse};
 use super::contact_constraint::BodyMass;
-use super::shock_propagation::ShockInputs;
 use super::soft_step::{self, Bias, BundleInputs};
 use super::{
     AwakeJoint, AwakeSet, BodyState, Environment, JointBody, JointConstraint, SolverContext,
@@ -139,18 +138,8 @@ fn prepare(
         warm_starting: params.warm_starting,
     };
     if kind == SolverKind::SoftStep && params.shock_propagation {
-        shock.plan(&ShockInputs {
-            awake: awake.clone(),
-            contacts,
-            body_indices,
-            order,
-            masses,
-            warm_starting: params.warm_starting,
-            up: environment
-                .gravity
-                .filter(|g| g.norm() > 0.0)
-                .map(|g| -g.normalize()),
-        });
+        let up = environment.gravity.filter(|g| g.norm() > 0.0);
+        shock.plan(&inputs, up.map(|g| -g.normalize()));
     } else {
         shock.clear();
     }

@@ -129,11 +129,7 @@ impl BundleInputs<'_> {
     /// spare state (past the awake ones) if it is not in the awake set.
     pub(super) fn solver_body(&self, index: usize) -> SolverBody {
         let awake = self.awake.contains(&index);
-        let index = if awake {
-            index - self.awake.start
-        } else {
-            self.awake.len()
-        };
+        let index = self.state(index);
         let state = &self.states[index];
         SolverBody {
             index,
@@ -141,6 +137,16 @@ impl BundleInputs<'_> {
             v: state.v,
             w: state.w,
             awake,
+        }
+    }
+
+    /// The state of the body at dense index `index`: its own, or the spare state (past the
+    /// awake ones) if it is not in the awake set.
+    pub(crate) fn state(&self, index: usize) -> usize {
+        if self.awake.contains(&index) {
+            index - self.awake.start
+        } else {
+            self.awake.len()
         }
     }
 

@@ -6,7 +6,7 @@
 use super::Bias;
 use crate::math::Real;
 use crate::solver::contact_constraint::pair_mut;
-use crate::solver::{BodyState, ContactConstraint, SolverParams};
+use crate::solver::{BodyState, ContactConstraint, Softness, SolverParams};
 
 /// Starts from zero impulses (warm starting off).
 pub(crate) fn forget_impulses(constraints: &mut [ContactConstraint]) {
@@ -62,19 +62,7 @@ pub(crate) fn solve_one(
     for i in 0..c.points().len() {
         let point = c.points()[i];
         let s = c.current_separation(&point, a, b);
-        let (velocity_bias, mass_scale, impulse_scale) = if s > 0.0 {
-            // Speculative: may close exactly the gap this substep.
-            (s * bias.inv_h, 1.0, 0.0)
-        } else if use_bias {
-            // The push-out speed capped after softening, so the cap is the real speed.
-            (
-                (softness.mass_scale * softness.bias_rate * s).max(-bias.max_push_speed),
-                softness.mass_scale,
-                softness.impulse_scale,
-            )
-        } else {
-            (0.0, 1.0, 0.0)
-        };
+        let (velocity_bias, mass_scale, impulse_scale) = point_bias(s, softness, bias, use_bias);
         let vn = ContactConstraint::relative_velocity(&point, a, b).dot(&c.normal);
         let impulse = -point.normal_mass * (mass_scale * vn + velocity_bias)
             - impulse_scale * point.normal_impulse;
@@ -82,6 +70,30 @@ pub(crate) fn solve_one(
     }
     if friction {
         solve_friction(c, a, b);
+    }
+}
+
+/// How a point `s` apart (negative: overlapping) is solved in a pass, biased or relaxing:
+/// its velocity bias, and the soft constraint's mass and impulse scales.
+#[inline]
+pub(crate) fn point_bias(
+    s: Real,
+    softness: Softness,
+    bias: &Bias,
+    use_bias: bool,
+) -> (Real, Real, Real) {
+    if s > 0.0 {
+        // Speculative: may close exactly the gap this substep.
+        (s * bias.inv_h, 1.0, 0.0)
+    } else if use_bias {
+        // The push-out speed capped after softening, so the cap is the real speed.
+        (
+            (softness.mass_scale * softness.bias_rate * s).max(-bias.max_push_speed),
+            softness.mass_scale,
+            softness.impulse_scale,
+        )
+    } else {
+        (0.0, 1.0, 0.0)
     }
 }
 
