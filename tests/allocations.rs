@@ -82,7 +82,6 @@ fn fast_mixed_shapes() -> World {
     world
 }
 
-/// Allocations over `steps` steps of `world` after `warm_up` steps, on `pool`'s threads.
 /// `world` with soft step's shock propagation on.
 fn with_shock_propagation(mut world: World) -> World {
     world
@@ -91,6 +90,18 @@ fn with_shock_propagation(mut world: World) -> World {
     world
 }
 
+/// The ragdolls scene with direct joints: twenty ragdolls in a pile, their hinge trees
+/// solved with the limits that hold.
+fn ragdolls_with_direct_joints() -> World {
+    let path = carom_bench::cases::worlds::workspace().join("demos/ragdolls.ron");
+    let mut world = carom_scene::load(&path).unwrap().world;
+    world
+        .update_settings(|s| s.solver.direct_joints = true)
+        .unwrap();
+    world
+}
+
+/// Allocations over `steps` steps of `world` after `warm_up` steps, on `pool`'s threads.
 fn allocations(mut world: World, pool: &ThreadPool, warm_up: usize, steps: usize) -> usize {
     pool.install(|| {
         for _ in 0..warm_up {
@@ -129,6 +140,12 @@ fn a_world_in_steady_state_allocates_nothing_per_step() {
             with_shock_propagation(pyramid(20, awake)),
             2,
             60,
+        ),
+        (
+            "ragdolls in a pile, direct joints, 2 threads",
+            ragdolls_with_direct_joints(),
+            2,
+            300,
         ),
         (
             "fast circles, capsules and boxes swept in turn",

@@ -63,6 +63,17 @@ struct Args {
     /// the peers step as they always do.
     #[arg(long)]
     shock_propagation: bool,
+    /// Step carom with direct joints (each tree of hinges solved at once); the peers step as
+    /// they always do.
+    #[arg(long)]
+    direct_joints: bool,
+}
+
+/// carom's solver options that the timing runs can turn on (the scene's own are kept).
+#[derive(Debug, Clone, Copy)]
+struct SolverOptions {
+    shock_propagation: bool,
+    direct_joints: bool,
 }
 
 /// Other jobs than timing.
@@ -194,7 +205,7 @@ fn resolve(path: &Path) -> PathBuf {
 fn bench_scene(
     path: &Path,
     (steps, runs): (u32, u32),
-    shock_propagation: bool,
+    options: SolverOptions,
     one: &rayon::ThreadPool,
     many: &rayon::ThreadPool,
 ) -> Result<Row, String> {
@@ -203,7 +214,10 @@ fn bench_scene(
         let mut scene = carom_scene::load(path).map_err(|e| format!("{}: {e}", path.display()))?;
         scene
             .world
-            .update_settings(|s| s.solver.shock_propagation |= shock_propagation)
+            .update_settings(|s| {
+                s.solver.shock_propagation |= options.shock_propagation;
+                s.solver.direct_joints |= options.direct_joints;
+            })
             .map_err(|e| e.to_string())?;
         Ok(scene)
     };
@@ -211,8 +225,17 @@ fn bench_scene(
         || path.display().to_string(),
         |s| s.to_string_lossy().into(),
     );
-    if shock_propagation {
-        name += " (carom: shock propagation)";
+    let named = [
+        (options.shock_propagation, "shock propagation"),
+        (options.direct_joints, "direct joints"),
+    ];
+    let on: Vec<&str> = named
+        .iter()
+        .filter(|(on, _)| *on)
+        .map(|(_, n)| *n)
+        .collect();
+    if !on.is_empty() {
+        name += &format!(" (carom: {})", on.join(", "));
     }
     bench_world(&name, load, steps, runs, one, many)
 }
@@ -669,8 +692,17 @@ fn main() -> Result<(), String> {
     }
     let mut rows = Vec::new();
     for (path, steps) in &scenes {
-        let shock = args.shock_propagation;
-        rows.push(bench_scene(path, (*steps, args.runs), shock, &one, &many)?);
+        let options = SolverOptions {
+            shock_propagation: args.shock_propagation,
+            direct_joints: args.direct_joints,
+        };
+        rows.push(bench_scene(
+            path,
+            (*steps, args.runs),
+            options,
+            &one,
+            &many,
+        )?);
     }
     println!(
         "dt 1/60, steps {}, first step untimed, minimum of {} run(s)\n",

@@ -260,6 +260,15 @@ pub(crate) const MAX_LOOPS_PER_JOINTS: (u32, u32) = (1, 8);
 /// closed to a percent.
 pub(crate) const TREE_PROJECTION_GIVE: Real = 0.01;
 
+/// Direct joints: the most times a pass solves the trees to find which hinge limits hold (a
+/// stop that would pull is let go, one passed is taken in). Most passes need one; the last
+/// round clamps what is still wrong.
+pub(crate) const TREE_LIMIT_ROUNDS: usize = 4;
+
+/// Direct joints: a hinge whose limits are closer than this (2°) is held at one angle within
+/// them, a two-sided row, rather than by one stop at a time.
+pub(crate) const LOCKED_HINGE_RANGE: Real = 0.035;
+
 /// Shock propagation: a contact supports its upper body when its normal is within this cosine
 /// of straight up (against gravity), 60°: a pile's slanted contacts carry load, a wall's or a
 /// neighbour's side does not, and without gravity nothing is held.

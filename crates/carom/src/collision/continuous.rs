@@ -14,6 +14,10 @@
 //! where it hit. (Sweeping against where the other body ended, as Box2D does, lets a wall
 //! coming at a bullet, or one the solver pushed on, pass the bullet through itself.)
 //!
+//! With direct joints, a body put back takes the bodies hinged to it back to the same time
+//! (along their own paths), so its hinges stay closed: put back alone, a ragdoll's limb would
+//! part from its body by as far as the rest went on.
+//!
 //! The sweep is the second line. The first is in the contacts: with this effect on, a pair's
 //! face points are kept as far apart as the pair can close in a step (see
 //! [`crate::collision::manifold::Margins`]) and moving bodies' broadphase boxes cover where they are going,
@@ -182,7 +186,9 @@ fn sink_allowance(min_extent: Real, target: Real) -> Real {
 /// that asked for the hook are left to it and their contacts. Returns the number of impacts
 /// and the number of bodies swept. A sweep stops only at colliders its collider may collide
 /// with: their collision filters agree and no joint (`joints`) keeps the two bodies apart.
-/// `scratch` keeps its memory from step to step.
+/// `scratch` keeps its memory from step to step. With `groups` (each awake body's group of
+/// hinged bodies, by its index in the awake set), a group is put back together to its first
+/// impact ([`rewind_groups`]).
 ///
 /// The other fast bodies are swept first, then the bullets against the world those left. In
 /// each pass the fast bodies are picked in order, swept on as many threads as rayon gives (each
@@ -198,13 +204,17 @@ pub(crate) fn solve_continuous(
     joints: &JointStore,
     target: Real,
     hooked: bool,
+    groups: Option<&[u32]>,
 ) -> (usize, usize) {
     let ContinuousScratch {
         fast,
         impacts,
         swept,
         paths,
+        earliest,
+        rewound,
     } = scratch;
+    rewound.clear();
     fast.clear();
     let all = bodies.as_slice();
     let mut bullets = 0;
@@ -254,9 +264,24 @@ pub(crate) fn solve_continuous(
             paths,
         };
         world.sweep_all(&pass, &mut impacts[pass.clone()], swept);
+        if let (Some(groups), 0) = (groups, pass.start) {
+            let jointed = Jointed {
+                groups,
+                awake: awake.clone(),
+                earliest: &mut *earliest,
+            };
+            count += rewind_groups(
+                bodies,
+                colliders,
+                jointed,
+                &fast[pass.clone()],
+                impacts,
+                rewound,
+            );
+        }
         let moved = bodies.as_mut_slice();
         for (&(index, _), impact) in fast[pass.clone()].iter().zip(&impacts[pass]) {
-            if let &Some((center, rotation)) = impact {
+            if let &Some((_, center, rotation)) = impact {
                 let body = &mut moved[index];
                 body.move_to_time_of_impact(center, rotation);
                 place_colliders(body, colliders);
@@ -265,6 +290,80 @@ pub(crate) fn solve_continuous(
         }
     }
     (count, fast.len())
+}
+
+/// What [`rewind_groups`] reads of the hinged groups.
+struct Jointed<'a> {
+    /// Each awake body's group, by its index in the awake set.
+    groups: &'a [u32],
+    awake: Range<usize>,
+    /// Scratch: each group put back, with its first impact.
+    earliest: &'a mut Vec<(u32, Real)>,
+}
+
+/// Puts every body of a hinged group back to the group's first impact this step, each along
+/// its own path: `fast` (the non-bullets, in storage order) and their `impacts` are changed
+/// to it, and the other bodies of the group, not fast themselves, are moved (and listed in
+/// `rewound`). Bullets are left to their own pass. Returns how many bodies were moved.
+fn rewind_groups(
+    bodies: &mut HandleMap<BodyHandle, Body>,
+    colliders: &mut HandleMap<ColliderHandle, Collider>,
+    jointed: Jointed,
+    fast: &[(usize, Sweep)],
+    impacts: &mut [Option<(Real, Vec2, Rot)>],
+    rewound: &mut Vec<usize>,
+) -> usize {
+    let Jointed {
+        groups,
+        awake,
+        earliest,
+    } = jointed;
+    let group = |index: usize| groups[index - awake.start];
+    earliest.clear();
+    for (&(index, _), impact) in fast.iter().zip(impacts.iter()) {
+        if let Some((t, ..)) = impact {
+            earliest.push((group(index), *t));
+        }
+    }
+    if earliest.is_empty() {
+        return 0;
+    }
+    earliest.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    earliest.dedup_by_key(|&mut (group, _)| group);
+    let first = |index: usize| {
+        let g = group(index);
+        earliest
+            .binary_search_by_key(&g, |&(group, _)| group)
+            .ok()
+            .map(|at| earliest[at].1)
+    };
+    // The fast bodies: to the group's impact if it is earlier than their own.
+    for (&(index, sweep), impact) in fast.iter().zip(impacts.iter_mut()) {
+        if let Some(t) = first(index)
+            && impact.is_none_or(|(own, ..)| t < own)
+        {
+            let (center, rotation) = sweep.pose_at(t);
+            *impact = Some((t, center, rotation));
+        }
+    }
+    // The others of each group.
+    let moved = bodies.as_mut_slice();
+    for index in awake.clone() {
+        let body = &mut moved[index];
+        if body.kind() != BodyKind::Dynamic
+            || body.is_bullet()
+            || fast.binary_search_by_key(&index, |&(fast, _)| fast).is_ok()
+        {
+            continue;
+        }
+        if let Some(t) = first(index) {
+            let (center, rotation) = Sweep::new(body.start_pose(), body).pose_at(t);
+            body.move_to_time_of_impact(center, rotation);
+            place_colliders(body, colliders);
+            rewound.push(index);
+        }
+    }
+    rewound.len()
 }
 
 /// A box around everywhere `body` went this step: its reach around its centre's path.
@@ -301,12 +400,12 @@ impl SweptWorld<'_> {
     fn sweep_all(
         &self,
         pass: &Range<usize>,
-        impacts: &mut [Option<(Vec2, Rot)>],
+        impacts: &mut [Option<(Real, Vec2, Rot)>],
         swept: &mut Vec<SweepShapes>,
     ) {
         let fast = &self.fast[pass.clone()];
         let sweep_run = |fast: &[(usize, Sweep)],
-                         impacts: &mut [Option<(Vec2, Rot)>],
+                         impacts: &mut [Option<(Real, Vec2, Rot)>],
                          shapes: &mut SweepShapes| {
             for (&(index, sweep), impact) in fast.iter().zip(impacts.iter_mut()) {
                 *impact = self.first_impact(index, &sweep, shapes);
@@ -343,7 +442,7 @@ impl SweptWorld<'_> {
         index: usize,
         sweep: &Sweep,
         shapes: &mut SweepShapes,
-    ) -> Option<(Vec2, Rot)> {
+    ) -> Option<(Real, Vec2, Rot)> {
         let body = &self.bodies[index];
         let mut first: Option<Impact> = None;
         for collider in body
@@ -380,13 +479,14 @@ impl SweptWorld<'_> {
         let (t, carrier) = first.filter(|&(t, _)| t < 1.0)?;
         let (center, rotation) = sweep.pose_at(t);
         Some(match carrier {
-            None => (center, rotation),
+            None => (t, center, rotation),
             Some((other, other_sweep)) => {
                 // Keep the place on the other body's face where the two met, to where it ended.
                 let (other_center, other_rotation) = other_sweep.pose_at(t);
                 let end = &self.bodies[other];
                 let turn = end.rotation() * other_rotation.inverse();
                 (
+                    t,
                     end.center_of_mass() + turn * (center - other_center),
                     turn * rotation,
                 )
@@ -468,12 +568,16 @@ struct SweepShapes {
 pub(crate) struct ContinuousScratch {
     /// The fast bodies of this step: storage index and sweep; the bullets last.
     fast: Vec<(usize, Sweep)>,
-    /// Where each fast body is put back, if it is.
-    impacts: Vec<Option<(Vec2, Rot)>>,
+    /// Where each fast body is put back, if it is: when, and its centre and rotation then.
+    impacts: Vec<Option<(Real, Vec2, Rot)>>,
     /// Scratch shapes, one set per task.
     swept: Vec<SweepShapes>,
     /// Where each fast body went, for the bullets' pass ([`swept_box`]).
     paths: Vec<Aabb>,
+    /// The groups of hinged bodies put back, each with its first impact ([`rewind_groups`]).
+    earliest: Vec<(u32, Real)>,
+    /// The bodies put back with their group that were not fast themselves.
+    rewound: Vec<usize>,
 }
 
 impl ContinuousScratch {
@@ -484,6 +588,7 @@ impl ContinuousScratch {
             .zip(&self.impacts)
             .filter(|(_, impact)| impact.is_some())
             .map(|(&(index, _), _)| index)
+            .chain(self.rewound.iter().copied())
     }
 }
 

@@ -17,22 +17,75 @@
 //! factorisation closes the drift in position ([`JointTrees::project`]), which the soft bias
 //! would otherwise leave to the next substep.
 //!
+//! A hinge's limits are a third row of its joint, on the angle, while a stop holds: the
+//! hinge is then a weld, and the tree stays exact. A stop may only push, so which stops
+//! hold is found by trying (an active set): a stop that would pull is let go, one the
+//! solution would turn past is taken in, and the tree solved again, a few rounds at most.
+//!
 //! A joint that closes a loop cannot be eliminated without fill-in: it stays with the other
 //! joints, solved iteratively, and a component with many loops (a net) stays iterative whole.
 //!
-//! The tree owns its joints' point impulses for the step: it warm starts them and hands them
+//! The tree owns its joints' point and limit impulses for the step: it warm starts them and hands them
 //! back for the next step and for the reactions.
 
 use super::BodyState;
-use super::joints::{JointConstraint, JointFrame, JointPass};
-use crate::constants::{MAX_LOOPS_PER_JOINTS, TREE_PROJECTION_GIVE};
-use crate::math::{Real, Vec2};
+use super::joints::{HingeLimit, JointConstraint, JointFrame, JointPass};
+use crate::constants::{
+    LOCKED_HINGE_RANGE, MAX_LOOPS_PER_JOINTS, TREE_LIMIT_ROUNDS, TREE_PROJECTION_GIVE,
+};
+use crate::math::{Real, Vec2, cross, rotation};
 
 /// A symmetric 3x3 matrix over a body's `(vx, vy, w)`: `[xx, xy, xw, yy, yw, ww]`.
 type Sym3 = [Real; 6];
 
-/// A 3-vector over a body's `(vx, vy, w)`.
+/// A 3-vector over a body's `(vx, vy, w)`, or over a joint's rows.
 type Vec3 = [Real; 3];
+
+/// A joint's rows at one of its bodies: the point's two and the limit's (zero when no stop
+/// holds), each over the body's `(vx, vy, w)`.
+type Rows = [Vec3; 3];
+
+/// A hinge's limits as the tree holds them.
+#[derive(Debug, Clone, Copy)]
+struct TreeLimit {
+    limit: HingeLimit,
+    /// The stop this pass: `1` the lower, `-1` the upper. The row is `stop · (wB - wA)`.
+    stop: Real,
+    /// The limits are so close that the hinge is held at one angle, a two-sided row.
+    locked: bool,
+    /// The stop holds in this round's system.
+    active: bool,
+    /// This pass's slack (positive: the stop not yet reached), and its bias, mass scale and
+    /// impulse scale.
+    slack: Real,
+    scales: (Real, Real, Real),
+}
+
+impl TreeLimit {
+    /// The slack at `angle` from the stop nearest it, which becomes the stop.
+    fn aim(&mut self, angle: Real) -> Real {
+        let l = self.limit.limits;
+        if self.locked {
+            self.stop = 1.0;
+            return angle - angle.clamp(l.lower, l.upper);
+        }
+        self.stop = if angle - l.lower <= l.upper - angle {
+            1.0
+        } else {
+            -1.0
+        };
+        if self.stop > 0.0 {
+            angle - l.lower
+        } else {
+            l.upper - angle
+        }
+    }
+
+    /// The limit row's sign at the bodies, `0` when no stop holds.
+    fn turn(this: &Option<Self>) -> Real {
+        this.filter(|l| l.active).map_or(0.0, |l| l.stop)
+    }
+}
 
 /// One joint of the tree, in elimination order, with what a pass needs of it.
 #[derive(Debug, Clone, Copy)]
@@ -41,6 +94,8 @@ struct TreeJoint {
     constraint: usize,
     /// Its anchors and its bodies' masses.
     point: JointFrame,
+    /// Its limits, if it has them.
+    limit: Option<TreeLimit>,
     /// Its bodies' states, and whether each takes impulses.
     a: usize,
     b: usize,
@@ -48,15 +103,55 @@ struct TreeJoint {
     moves_b: bool,
     /// Whether the pivot (the body whose other joints it couples) is B; else A.
     pivot_b: bool,
-    /// The accumulated point impulse, on B (A takes its opposite).
-    impulse: Vec2,
-    /// This pass: the anchors, `D⁻¹` (as `[d11, d12, d22]`), `W Gᵀ` at the pivot (two
-    /// columns), and the solve's intermediate `z`.
+    /// Which tree it belongs to (a component of the hinges, numbered from 0).
+    tree: u32,
+    /// Its own effective inverse mass, on the point's rows (averaged over the two) and on
+    /// the angle's, which the projection's give is in proportion to.
+    own: [Real; 2],
+    /// The accumulated impulses: the point's on B (A takes its opposite), and the stop's.
+    impulse: Vec3,
+    /// This pass: the anchors, `D⁻¹`, `W Gᵀ` at the pivot (three columns), the solve's
+    /// intermediate `z` and then its solution, and the round's change of impulse.
     ra: Vec2,
     rb: Vec2,
-    inverse: [Real; 3],
-    spread: [Vec3; 2],
-    z: Vec2,
+    inverse: Sym3,
+    spread: Rows,
+    z: Vec3,
+    change: Vec3,
+}
+
+impl TreeJoint {
+    /// Applies impulse `p` (the point's and the stop's) to the bodies' velocities.
+    fn push(&self, a: &mut BodyState, b: &mut BodyState, p: Vec3) {
+        self.point
+            .push(a, b, self.ra, self.rb, Vec2::new(p[0], p[1]));
+        let turn = TreeJoint::stop(self) * p[2];
+        let (_, ia, _, ib) = self.point.inverse_masses();
+        a.w -= ia * turn;
+        b.w += ib * turn;
+    }
+
+    /// The stop's sign, whether it holds or not (its impulse is zero when it does not).
+    fn stop(&self) -> Real {
+        self.limit.map_or(0.0, |l| l.stop)
+    }
+
+    /// Moves the bodies as impulse `p` would in a unit of time, their velocities left alone.
+    fn shift(&self, a: &mut BodyState, b: &mut BodyState, p: Vec3) {
+        let linear = Vec2::new(p[0], p[1]);
+        let turn = self.stop() * p[2];
+        let (ma, ia, mb, ib) = self.point.inverse_masses();
+        a.dp -= linear * ma;
+        a.dq = rotation(-ia * (cross(self.ra, linear) + turn)) * a.dq;
+        b.dp += linear * mb;
+        b.dq = rotation(ib * (cross(self.rb, linear) + turn)) * b.dq;
+    }
+
+    /// The rows' velocity error: the point's, and the stop's.
+    fn velocity(&self, a: &BodyState, b: &BodyState) -> Vec3 {
+        let point = JointFrame::velocity(a, b, self.ra, self.rb);
+        [point.x, point.y, self.stop() * (b.w - a.w)]
+    }
 }
 
 /// The joint trees of a step: which joints, in what order, and the pass's scratch.
@@ -65,9 +160,15 @@ pub(crate) struct JointTrees {
     joints: Vec<TreeJoint>,
     /// The moving bodies of the trees, whose scratch a pass resets.
     bodies: Vec<usize>,
-    /// Per state: the effective inverse mass, and the sweeps' accumulated vectors.
+    /// Per tree: its stops are found (its changes of impulse final this pass), and its
+    /// stops changed this round.
+    settled: Vec<bool>,
+    changed: Vec<bool>,
+    /// Per state: the effective inverse mass, the sweeps' accumulated vectors, and a round's
+    /// change of spin.
     inverse_mass: Vec<Sym3>,
     accumulated: Vec<Vec3>,
+    spin: Vec<Real>,
     /// Planning scratch: joints left per state, the joints at each state (in CSR).
     left: Vec<u32>,
     starts: Vec<u32>,
@@ -89,6 +190,13 @@ impl JointTrees {
     pub fn clear(&mut self) {
         self.joints.clear();
         self.bodies.clear();
+        self.parent.clear();
+    }
+
+    /// Each state's group of bodies joined by hinges (its representative), if there are
+    /// trees this step.
+    pub fn groups(&self) -> Option<&[u32]> {
+        (!self.joints.is_empty()).then_some(&self.parent[..])
     }
 
     /// Whether there is anything to solve.
@@ -118,6 +226,10 @@ impl JointTrees {
                 self.accepted[index] = ra == rb;
             }
         }
+        // Each state's representative, one hop away ([`JointTrees::groups`]).
+        for state in 0..=states {
+            self.parent[state] = root(&mut self.parent, state) as u32;
+        }
         self.tree_count.clear();
         self.tree_count.resize(states + 1, 0);
         self.loop_count.clear();
@@ -137,7 +249,7 @@ impl JointTrees {
         self.left.resize(states + 1, 0);
         let mut count = 0usize;
         for (index, c) in constraints.iter().enumerate() {
-            // The component's root is one hop away now: the counting compressed its path.
+            // Each state's parent is its component's root now.
             let accepted = hinge(c) && {
                 let component = component_of(&mut self.parent, c);
                 self.loop_count[component] * per_tree <= self.tree_count[component] * most_loops
@@ -220,20 +332,51 @@ impl JointTrees {
             let Some(point) = c.hinge_point() else {
                 continue;
             };
+            let limit = c.hinge_limit().map(|limit| {
+                let l = limit.limits;
+                let mut tree = TreeLimit {
+                    limit,
+                    stop: 1.0,
+                    locked: l.upper - l.lower < LOCKED_HINGE_RANGE,
+                    active: false,
+                    slack: 0.0,
+                    scales: (0.0, 1.0, 0.0),
+                };
+                tree.aim(limit.angle(&BodyState::spare(), &BodyState::spare()));
+                tree
+            });
+            let i = &c.impulses;
+            let held = match limit {
+                Some(l) if l.locked => i.lower - i.upper,
+                Some(l) if l.stop > 0.0 => i.lower,
+                Some(_) => i.upper,
+                None => 0.0,
+            };
+            let (ma, ia, mb, ib) = point.inverse_masses();
+            // The anchors' lengths do not change as the bodies turn.
+            let (ra, rb) = point.anchors(&BodyState::spare(), &BodyState::spare());
+            let own = [
+                ma + mb + 0.5 * (ia * ra.norm_squared() + ib * rb.norm_squared()),
+                ia + ib,
+            ];
             self.joints.push(TreeJoint {
                 constraint: index,
                 point,
+                limit,
+                tree: 0,
+                own,
                 a: c.a,
                 b: c.b,
                 moves_a: c.moves_a,
                 moves_b: c.moves_b,
                 pivot_b,
-                impulse: c.impulses.linear,
+                impulse: [i.linear.x, i.linear.y, held],
                 ra: Vec2::zeros(),
                 rb: Vec2::zeros(),
-                inverse: [0.0; 3],
-                spread: [[0.0; 3]; 2],
-                z: Vec2::zeros(),
+                inverse: [0.0; 6],
+                spread: [[0.0; 3]; 3],
+                z: [0.0; 3],
+                change: [0.0; 3],
             });
             self.remove(constraints, index);
             placed += 1;
@@ -250,9 +393,25 @@ impl JointTrees {
                 }
             }
         }
+        // Each tree numbered, in the order its first joint comes ([`TreeJoint::tree`]).
+        self.left.fill(u32::MAX);
+        let mut trees = 0;
+        for tree in &mut self.joints {
+            let root = self.parent[if tree.moves_a { tree.a } else { tree.b }] as usize;
+            if self.left[root] == u32::MAX {
+                self.left[root] = trees;
+                trees += 1;
+            }
+            tree.tree = self.left[root];
+        }
+        self.settled.clear();
+        self.settled.resize(trees as usize, false);
+        self.changed.clear();
+        self.changed.resize(trees as usize, false);
         if self.inverse_mass.len() < states + 1 {
             self.inverse_mass.resize(states + 1, [0.0; 6]);
             self.accumulated.resize(states + 1, [0.0; 3]);
+            self.spin.resize(states + 1, 0.0);
         }
     }
 
@@ -281,67 +440,268 @@ impl JointTrees {
         for tree in &mut self.joints {
             let (mut a, mut b) = (states[tree.a], states[tree.b]);
             if a.held != 0 || b.held != 0 {
-                tree.impulse = Vec2::zeros();
+                tree.impulse = [0.0; 3];
                 continue;
             }
-            let (ra, rb) = tree.point.anchors(&a, &b);
-            tree.point.push(&mut a, &mut b, ra, rb, tree.impulse);
+            (tree.ra, tree.rb) = tree.point.anchors(&a, &b);
+            tree.push(&mut a, &mut b, tree.impulse);
             set_velocities(states, tree, &a, &b);
         }
     }
 
     /// One pass: the velocity error of every tree joint (with the pass's bias) solved away
-    /// at once.
+    /// at once, with the stops that hold.
     pub fn solve(&mut self, states: &mut [BodyState], pass: &JointPass) {
-        self.exact(states, 0.0, |tree, a, b| {
-            let mut error = JointFrame::velocity(a, b, tree.ra, tree.rb);
-            if pass.use_bias {
-                error += tree.point.separation(a, b, tree.ra, tree.rb) * pass.softness.bias_rate;
-            }
-            error
-        });
         let s = pass.softness;
         let (mass_scale, impulse_scale) = if pass.use_bias {
             (s.mass_scale, s.impulse_scale)
         } else {
             (1.0, 0.0)
         };
+        // Each limit's stop this pass, and whether it starts in the system: it pushed last
+        // pass, or is passed, or would be by the velocities as they are.
         for tree in &mut self.joints {
-            let impulse = -tree.z * mass_scale - tree.impulse * impulse_scale;
-            tree.impulse += impulse;
+            let Some(mut limit) = tree.limit else {
+                continue;
+            };
             let (mut a, mut b) = (states[tree.a], states[tree.b]);
-            tree.point.push(&mut a, &mut b, tree.ra, tree.rb, impulse);
-            set_velocities(states, tree, &a, &b);
+            let was = limit.stop;
+            limit.slack = limit.aim(limit.limit.angle(&a, &b));
+            if limit.stop != was && tree.impulse[2] != 0.0 {
+                // The other stop is nearer now: the old one lets go.
+                let (_, ia, _, ib) = tree.point.inverse_masses();
+                let turn = -was * tree.impulse[2];
+                a.w -= ia * turn;
+                b.w += ib * turn;
+                tree.impulse[2] = 0.0;
+                set_velocities(states, tree, &a, &b);
+            }
+            limit.scales = if limit.locked {
+                pass.rigid(limit.slack)
+            } else {
+                pass.limit(limit.slack)
+            };
+            let closing = limit.stop * (b.w - a.w) + limit.scales.0;
+            limit.active =
+                limit.locked || tree.impulse[2] > 0.0 || limit.slack <= 0.0 || closing < 0.0;
+            tree.limit = Some(limit);
         }
-    }
-
-    /// Closes the trees' drift in position (one Newton step on the anchors' separations,
-    /// the bodies moved as the same impulses would move them in a unit of time), leaving
-    /// their velocities alone: the end of a substep, where the soft bias would otherwise
-    /// leave what nonlinear motion opened for the next one.
-    pub fn project(&mut self, states: &mut [BodyState]) {
-        self.exact(states, TREE_PROJECTION_GIVE, |tree, a, b| {
-            tree.point.separation(a, b, tree.ra, tree.rb)
-        });
-        for tree in &self.joints {
-            let (mut a, mut b) = (states[tree.a], states[tree.b]);
-            tree.point.shift(&mut a, &mut b, tree.ra, tree.rb, -tree.z);
-            for (moves, index, state) in [(tree.moves_a, tree.a, a), (tree.moves_b, tree.b, b)] {
-                if moves {
-                    states[index].dp = state.dp;
-                    states[index].dq = state.dq;
+        // Rounds: each tree is solved with the stops that hold until no stop changes, and its
+        // changes are then applied; the trees are independent, so one tree's stops do not
+        // make the others solve again.
+        self.settled.fill(false);
+        for round in 0..TREE_LIMIT_ROUNDS {
+            let last = round + 1 == TREE_LIMIT_ROUNDS;
+            self.exact(states, 0.0, |tree, a, b| {
+                let mut error = tree.velocity(a, b);
+                if pass.use_bias {
+                    let drift = tree.point.separation(a, b, tree.ra, tree.rb) * s.bias_rate;
+                    error[0] += drift.x;
+                    error[1] += drift.y;
                 }
+                if let Some(limit) = tree.limit {
+                    error[2] += limit.scales.0;
+                }
+                error
+            });
+            // The change of impulse; a stop that would pull lets go.
+            self.changed.fill(false);
+            for tree in self.joints.iter_mut() {
+                if self.settled[tree.tree as usize] {
+                    continue;
+                }
+                let z = tree.z;
+                let mut change = [
+                    -z[0] * mass_scale - tree.impulse[0] * impulse_scale,
+                    -z[1] * mass_scale - tree.impulse[1] * impulse_scale,
+                    0.0,
+                ];
+                if let Some(limit) = tree.limit.as_mut().filter(|l| l.active) {
+                    let (_, mass_scale, impulse_scale) = limit.scales;
+                    change[2] = -z[2] * mass_scale - tree.impulse[2] * impulse_scale;
+                    if !limit.locked && tree.impulse[2] + change[2] < 0.0 {
+                        if last {
+                            change[2] = -tree.impulse[2];
+                        } else {
+                            limit.active = false;
+                            self.changed[tree.tree as usize] = true;
+                        }
+                    }
+                }
+                tree.change = change;
+            }
+            // A stop the solution would turn past is taken in.
+            if !last {
+                self.take_in_passed_stops(states);
+            }
+            self.let_go(states);
+            // The trees whose stops held are done.
+            for tree in &mut self.joints {
+                let t = tree.tree as usize;
+                if self.settled[t] || self.changed[t] {
+                    continue;
+                }
+                let (mut a, mut b) = (states[tree.a], states[tree.b]);
+                tree.push(&mut a, &mut b, tree.change);
+                for k in 0..3 {
+                    tree.impulse[k] += tree.change[k];
+                }
+                set_velocities(states, tree, &a, &b);
+            }
+            if !self.settle() {
+                break;
             }
         }
     }
 
-    /// Solves `A x = r` over every tree at once, `r` each joint's `error` given the bodies'
-    /// states, leaving `x` in each joint's `z` and its anchors in `ra`, `rb`.
+    /// Marks every tree whose stops did not change this round as done; returns whether any
+    /// tree is left.
+    fn settle(&mut self) -> bool {
+        let mut left = false;
+        for (settled, &changed) in self.settled.iter_mut().zip(&self.changed) {
+            *settled |= !changed;
+            left |= !*settled;
+        }
+        left
+    }
+
+    /// Takes the impulse of every stop let go out of the bodies' velocities, in the trees
+    /// that changed.
+    fn let_go(&mut self, states: &mut [BodyState]) {
+        for tree in &mut self.joints {
+            let Some(limit) = tree.limit else {
+                continue;
+            };
+            let t = tree.tree as usize;
+            if self.settled[t] || !self.changed[t] || limit.active || tree.impulse[2] == 0.0 {
+                continue;
+            }
+            let (mut a, mut b) = (states[tree.a], states[tree.b]);
+            tree.push(&mut a, &mut b, [0.0, 0.0, -tree.impulse[2]]);
+            tree.impulse[2] = 0.0;
+            set_velocities(states, tree, &a, &b);
+        }
+    }
+
+    /// Takes in the stops that the round's changes would turn a hinge past, in the trees
+    /// that did not change otherwise; such a tree has changed.
+    fn take_in_passed_stops(&mut self, states: &[BodyState]) {
+        let open = |settled: &[bool], changed: &[bool], tree: &TreeJoint| {
+            let t = tree.tree as usize;
+            !settled[t] && !changed[t]
+        };
+        for tree in &self.joints {
+            if !open(&self.settled, &self.changed, tree) {
+                continue;
+            }
+            for (moves, state) in [(tree.moves_a, tree.a), (tree.moves_b, tree.b)] {
+                if moves {
+                    self.spin[state] = 0.0;
+                }
+            }
+        }
+        for tree in &self.joints {
+            if !open(&self.settled, &self.changed, tree) {
+                continue;
+            }
+            let p = tree.change;
+            let (_, ia, _, ib) = tree.point.inverse_masses();
+            let turn = tree.stop() * p[2];
+            let linear = Vec2::new(p[0], p[1]);
+            if tree.moves_a {
+                self.spin[tree.a] -= ia * (cross(tree.ra, linear) + turn);
+            }
+            if tree.moves_b {
+                self.spin[tree.b] += ib * (cross(tree.rb, linear) + turn);
+            }
+        }
+        for index in 0..self.joints.len() {
+            let tree = &self.joints[index];
+            if !open(&self.settled, &self.changed, tree) {
+                continue;
+            }
+            let Some(limit) = tree.limit.filter(|l| !l.active) else {
+                continue;
+            };
+            let spin = |moves: bool, state: usize| {
+                states[state].w + if moves { self.spin[state] } else { 0.0 }
+            };
+            let turning = spin(tree.moves_b, tree.b) - spin(tree.moves_a, tree.a);
+            if limit.stop * turning + limit.scales.0 < 0.0 {
+                let t = tree.tree as usize;
+                if let Some(limit) = self.joints[index].limit.as_mut() {
+                    limit.active = true;
+                }
+                self.changed[t] = true;
+            }
+        }
+    }
+
+    /// Closes the trees' drift in position (one Newton step on the anchors' separations and
+    /// the passed stops, the bodies moved as the same impulses would move them in a unit of
+    /// time), leaving their velocities alone: the end of a substep, where the soft bias would
+    /// otherwise leave what nonlinear motion opened for the next one.
+    pub fn project(&mut self, states: &mut [BodyState]) {
+        for tree in &mut self.joints {
+            if let Some(limit) = &mut tree.limit {
+                limit.slack = limit.aim(limit.limit.angle(&states[tree.a], &states[tree.b]));
+                limit.active = limit.locked || limit.slack < 0.0;
+            }
+        }
+        self.settled.fill(false);
+        for round in 0..TREE_LIMIT_ROUNDS {
+            let last = round + 1 == TREE_LIMIT_ROUNDS;
+            self.exact(states, TREE_PROJECTION_GIVE, |tree, a, b| {
+                let drift = tree.point.separation(a, b, tree.ra, tree.rb);
+                [drift.x, drift.y, tree.limit.map_or(0.0, |l| l.slack)]
+            });
+            // A stop only pushes out.
+            self.changed.fill(false);
+            for tree in &mut self.joints {
+                if self.settled[tree.tree as usize] {
+                    continue;
+                }
+                tree.change = [-tree.z[0], -tree.z[1], -tree.z[2]];
+                if let Some(limit) = tree.limit.as_mut().filter(|l| l.active && !l.locked)
+                    && tree.change[2] < 0.0
+                {
+                    if last {
+                        tree.change[2] = 0.0;
+                    } else {
+                        limit.active = false;
+                        self.changed[tree.tree as usize] = true;
+                    }
+                }
+            }
+            for tree in &self.joints {
+                let t = tree.tree as usize;
+                if self.settled[t] || self.changed[t] {
+                    continue;
+                }
+                let (mut a, mut b) = (states[tree.a], states[tree.b]);
+                tree.shift(&mut a, &mut b, tree.change);
+                for (moves, index, state) in [(tree.moves_a, tree.a, a), (tree.moves_b, tree.b, b)]
+                {
+                    if moves {
+                        states[index].dp = state.dp;
+                        states[index].dq = state.dq;
+                    }
+                }
+            }
+            if !self.settle() {
+                break;
+            }
+        }
+    }
+
+    /// Solves `A x = r` over every tree not yet settled, `r` each joint's `error` given the
+    /// bodies' states (its anchors already in `ra`, `rb`), with the stops that hold, leaving
+    /// `x` in each joint's `z`.
     fn exact(
         &mut self,
         states: &[BodyState],
         give: Real,
-        error: impl Fn(&TreeJoint, &BodyState, &BodyState) -> Vec2,
+        error: impl Fn(&TreeJoint, &BodyState, &BodyState) -> Vec3,
     ) {
         for &state in &self.bodies {
             self.accumulated[state] = [0.0; 3];
@@ -355,49 +715,20 @@ impl JointTrees {
                 self.inverse_mass[tree.b] = [mb, 0.0, 0.0, mb, 0.0, ib];
             }
         }
-        // Leaf first: factor, and carry each joint's part of the error to its pivot.
+        // Leaf first: factor, and carry each joint's part of the error to its pivot. A joint
+        // without a stop that holds has two rows, and costs what a plain hinge does.
         for tree in &mut self.joints {
+            if self.settled[tree.tree as usize] {
+                continue;
+            }
             let (a, b) = (states[tree.a], states[tree.b]);
-            let (ra, rb) = tree.point.anchors(&a, &b);
-            (tree.ra, tree.rb) = (ra, rb);
-            let mut y = error(tree, &a, &b);
-            let mut d = [0.0; 3];
-            for (moves, state, r, sign) in [
-                (tree.moves_a, tree.a, ra, -1.0),
-                (tree.moves_b, tree.b, rb, 1.0),
-            ] {
-                if moves {
-                    add_sandwich(&mut d, &self.inverse_mass[state], r);
-                    y -= jacobian(r, self.accumulated[state]) * sign;
-                }
-            }
-            if give > 0.0 {
-                let (ma, ia, mb, ib) = tree.point.inverse_masses();
-                let own = ma + mb + 0.5 * (ia * ra.norm_squared() + ib * rb.norm_squared());
-                d[0] += give * own;
-                d[2] += give * own;
-            }
-            tree.inverse = inverse22(d);
-            tree.z = mul22(tree.inverse, y);
-            let (pivot, r, sign, moves) = if tree.pivot_b {
-                (tree.b, rb, 1.0, tree.moves_b)
+            (tree.ra, tree.rb) = tree.point.anchors(&a, &b);
+            let y = error(tree, &a, &b);
+            let (w, q) = (&mut self.inverse_mass, &mut self.accumulated);
+            if TreeLimit::turn(&tree.limit) == 0.0 {
+                eliminate::<2>(tree, w, q, y, give);
             } else {
-                (tree.a, ra, -1.0, tree.moves_a)
-            };
-            if moves {
-                // W Gᵀ at the pivot, G = sign [[1, 0, -r.y], [0, 1, r.x]]: the pivot's share
-                // of this joint's solution, then W less what this joint now holds.
-                let columns = spread(&self.inverse_mass[pivot], r, sign);
-                tree.spread = columns;
-                let q = &mut self.accumulated[pivot];
-                for (column, zk) in columns.iter().zip([tree.z.x, tree.z.y]) {
-                    for i in 0..3 {
-                        q[i] += column[i] * zk;
-                    }
-                }
-                subtract_outer(&mut self.inverse_mass[pivot], &columns, tree.inverse);
-            } else {
-                tree.spread = [[0.0; 3]; 2];
+                eliminate::<3>(tree, w, q, y, give);
             }
         }
         // Root first: each joint less what the joints beyond its pivot carry.
@@ -405,35 +736,129 @@ impl JointTrees {
             self.accumulated[state] = [0.0; 3];
         }
         for tree in self.joints.iter_mut().rev() {
-            let pivot = if tree.pivot_b { tree.b } else { tree.a };
-            let t = self.accumulated[pivot];
-            let carried = Vec2::new(
-                tree.spread[0].iter().zip(t).map(|(c, t)| c * t).sum(),
-                tree.spread[1].iter().zip(t).map(|(c, t)| c * t).sum(),
-            );
-            let x = tree.z - mul22(tree.inverse, carried);
-            for (moves, state, r, sign) in [
-                (tree.moves_a, tree.a, tree.ra, -1.0),
-                (tree.moves_b, tree.b, tree.rb, 1.0),
-            ] {
-                if moves {
-                    // Gᵀ x.
-                    let t = &mut self.accumulated[state];
-                    t[0] += sign * x.x;
-                    t[1] += sign * x.y;
-                    t[2] += sign * (-r.y * x.x + r.x * x.y);
-                }
+            if self.settled[tree.tree as usize] {
+                continue;
+            } else if TreeLimit::turn(&tree.limit) == 0.0 {
+                substitute::<2>(tree, &mut self.accumulated);
+            } else {
+                substitute::<3>(tree, &mut self.accumulated);
             }
-            tree.z = x;
         }
     }
 
-    /// Hands the accumulated point impulses back to their joints.
+    /// Hands the accumulated point and stop impulses back to their joints.
     pub fn finish(&self, constraints: &mut [JointConstraint]) {
         for tree in &self.joints {
-            constraints[tree.constraint].impulses.linear = tree.impulse;
+            let c = &mut constraints[tree.constraint];
+            c.impulses.linear = Vec2::new(tree.impulse[0], tree.impulse[1]);
+            if let Some(limit) = tree.limit {
+                let held = tree.impulse[2];
+                (c.impulses.lower, c.impulses.upper) = if limit.locked {
+                    (held.max(0.0), (-held).max(0.0))
+                } else if limit.stop > 0.0 {
+                    (held, 0.0)
+                } else {
+                    (0.0, held)
+                };
+            }
         }
     }
+}
+
+/// Eliminates `tree`'s `N` rows (the point's two, and its stop's if it holds) leaf first:
+/// its `D⁻¹` and intermediate `z` from its error `y` less what the joints eliminated before
+/// it carry (`accumulated`), then its pivot's effective inverse mass (`inverse_mass`) less
+/// what it now holds, and its share of the solution carried to the pivot. `give` is added
+/// to `D` in proportion to each row's own effective mass.
+fn eliminate<const N: usize>(
+    tree: &mut TreeJoint,
+    inverse_mass: &mut [Sym3],
+    accumulated: &mut [Vec3],
+    mut y: Vec3,
+    give: Real,
+) {
+    let (ra, rb) = (tree.ra, tree.rb);
+    let turn = TreeLimit::turn(&tree.limit);
+    let mut d = [0.0; 6];
+    for (moves, state, r, sign) in [
+        (tree.moves_a, tree.a, ra, -1.0),
+        (tree.moves_b, tree.b, rb, 1.0),
+    ] {
+        if moves {
+            let g = rows::<N>(r, turn, sign);
+            add_sandwich(&mut d, &inverse_mass[state], &g);
+            let q = accumulated[state];
+            for (y, g) in y.iter_mut().zip(g) {
+                *y -= dot(g, q);
+            }
+        }
+    }
+    if give > 0.0 {
+        let [linear, angular] = tree.own;
+        d[0] += give * linear;
+        d[3] += give * linear;
+        d[5] += give * angular;
+    }
+    tree.inverse = if N == 3 {
+        inverse33(d)
+    } else {
+        let [i11, i12, i22] = inverse22([d[0], d[1], d[3]]);
+        [i11, i12, 0.0, i22, 0.0, 0.0]
+    };
+    tree.z = sym_mul(&tree.inverse, y);
+    let (pivot, r, sign, moves) = if tree.pivot_b {
+        (tree.b, rb, 1.0, tree.moves_b)
+    } else {
+        (tree.a, ra, -1.0, tree.moves_a)
+    };
+    tree.spread = [[0.0; 3]; 3];
+    if moves {
+        // W Gᵀ at the pivot: the pivot's share of this joint's solution, then W less what
+        // this joint now holds.
+        let w = &inverse_mass[pivot];
+        let columns = rows::<N>(r, turn, sign).map(|g| sym_mul(w, g));
+        tree.spread[..N].copy_from_slice(&columns);
+        let q = &mut accumulated[pivot];
+        for (column, zk) in columns.iter().zip(tree.z) {
+            for i in 0..3 {
+                q[i] += column[i] * zk;
+            }
+        }
+        subtract_outer(&mut inverse_mass[pivot], &columns, &tree.inverse);
+    }
+}
+
+/// Solves for `tree`'s `N` rows root first: its `z` less what the joints beyond its pivot
+/// carry (`accumulated`), then its bodies' share of the solution added to `accumulated`.
+fn substitute<const N: usize>(tree: &mut TreeJoint, accumulated: &mut [Vec3]) {
+    let pivot = if tree.pivot_b { tree.b } else { tree.a };
+    let t = accumulated[pivot];
+    let mut carried = [0.0; 3];
+    for (carried, column) in carried.iter_mut().zip(&tree.spread[..N]) {
+        *carried = dot(*column, t);
+    }
+    let solved = sym_mul(&tree.inverse, carried);
+    let x = [
+        tree.z[0] - solved[0],
+        tree.z[1] - solved[1],
+        tree.z[2] - solved[2],
+    ];
+    let turn = TreeLimit::turn(&tree.limit);
+    for (moves, state, r, sign) in [
+        (tree.moves_a, tree.a, tree.ra, -1.0),
+        (tree.moves_b, tree.b, tree.rb, 1.0),
+    ] {
+        if moves {
+            // Gᵀ x.
+            let t = &mut accumulated[state];
+            for (g, xk) in rows::<N>(r, turn, sign).iter().zip(x) {
+                for i in 0..3 {
+                    t[i] += g[i] * xk;
+                }
+            }
+        }
+    }
+    tree.z = x;
 }
 
 /// The representative of `state`'s component, compressing the path to it.
@@ -462,51 +887,67 @@ fn set_velocities(states: &mut [BodyState], tree: &TreeJoint, a: &BodyState, b: 
     }
 }
 
-/// `G q` for `G = [[1, 0, -r.y], [0, 1, r.x]]` (the sign left to the caller).
-fn jacobian(r: Vec2, q: Vec3) -> Vec2 {
-    Vec2::new(q[0] - r.y * q[2], q[1] + r.x * q[2])
+/// A joint's first `N` rows at a body with anchor `r`, of `sign` times `[[1, 0, -r.y],
+/// [0, 1, r.x], [0, 0, turn]]`.
+fn rows<const N: usize>(r: Vec2, turn: Real, sign: Real) -> [Vec3; N] {
+    let all = [
+        [sign, 0.0, -sign * r.y],
+        [0.0, sign, sign * r.x],
+        [0.0, 0.0, sign * turn],
+    ];
+    let mut first = [[0.0; 3]; N];
+    first.copy_from_slice(&all[..N]);
+    first
 }
 
-/// `d += G W Gᵀ` for `G = ±[[1, 0, -r.y], [0, 1, r.x]]` (the sign squares away).
-fn add_sandwich(d: &mut [Real; 3], w: &Sym3, r: Vec2) {
-    let [xx, xy, xw, yy, yw, ww] = *w;
-    // Rows of G W.
-    let g0 = [xx - r.y * xw, xy - r.y * yw, xw - r.y * ww];
-    let g1 = [xy + r.x * xw, yy + r.x * yw, yw + r.x * ww];
-    d[0] += g0[0] - r.y * g0[2];
-    d[1] += g0[1] + r.x * g0[2];
-    d[2] += g1[1] + r.x * g1[2];
+fn dot(a: Vec3, b: Vec3) -> Real {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// The two columns of `W Gᵀ` for `G = sign [[1, 0, -r.y], [0, 1, r.x]]`.
-fn spread(w: &Sym3, r: Vec2, sign: Real) -> [Vec3; 2] {
-    let [xx, xy, xw, yy, yw, ww] = *w;
+/// `m v` for the symmetric `m`.
+fn sym_mul(m: &Sym3, v: Vec3) -> Vec3 {
+    let [xx, xy, xw, yy, yw, ww] = *m;
     [
-        [
-            sign * (xx - r.y * xw),
-            sign * (xy - r.y * yw),
-            sign * (xw - r.y * ww),
-        ],
-        [
-            sign * (xy + r.x * xw),
-            sign * (yy + r.x * yw),
-            sign * (yw + r.x * ww),
-        ],
+        xx * v[0] + xy * v[1] + xw * v[2],
+        xy * v[0] + yy * v[1] + yw * v[2],
+        xw * v[0] + yw * v[1] + ww * v[2],
     ]
 }
 
-/// `w -= C D⁻¹ Cᵀ` for the 3x2 `C` given by its columns and the symmetric 2x2 `D⁻¹`.
-fn subtract_outer(w: &mut Sym3, c: &[Vec3; 2], [d11, d12, d22]: [Real; 3]) {
-    // C D⁻¹: 3x2.
-    let e = |i: usize| [c[0][i] * d11 + c[1][i] * d12, c[0][i] * d12 + c[1][i] * d22];
-    let (e0, e1, e2) = (e(0), e(1), e(2));
-    let dot = |e: [Real; 2], j: usize| e[0] * c[0][j] + e[1] * c[1][j];
-    w[0] -= dot(e0, 0);
-    w[1] -= dot(e0, 1);
-    w[2] -= dot(e0, 2);
-    w[3] -= dot(e1, 1);
-    w[4] -= dot(e1, 2);
-    w[5] -= dot(e2, 2);
+/// Where entry `(i, j)` of a symmetric 3x3 matrix is kept in a [`Sym3`].
+const SYM: [[usize; 3]; 3] = [[0, 1, 2], [1, 3, 4], [2, 4, 5]];
+
+/// `d += G W Gᵀ` for the `N` rows `g`.
+fn add_sandwich<const N: usize>(d: &mut Sym3, w: &Sym3, g: &[Vec3; N]) {
+    let wg = g.map(|row| sym_mul(w, row));
+    for i in 0..N {
+        for j in i..N {
+            d[SYM[i][j]] += dot(g[i], wg[j]);
+        }
+    }
+}
+
+/// `w -= C D⁻¹ Cᵀ` for the 3xN `C` given by its columns and the symmetric `D⁻¹` (its first
+/// `N` rows and columns).
+fn subtract_outer<const N: usize>(w: &mut Sym3, c: &[Vec3; N], inverse: &Sym3) {
+    // Row i of C D⁻¹.
+    let mut e = [[0.0; N]; 3];
+    for (i, row) in e.iter_mut().enumerate() {
+        for (l, entry) in row.iter_mut().enumerate() {
+            for (k, column) in c.iter().enumerate() {
+                *entry += column[i] * inverse[SYM[k][l]];
+            }
+        }
+    }
+    for i in 0..3 {
+        for j in i..3 {
+            let mut outer = 0.0;
+            for (l, column) in c.iter().enumerate() {
+                outer += e[i][l] * column[j];
+            }
+            w[SYM[i][j]] -= outer;
+        }
+    }
 }
 
 /// The inverse of the symmetric `[[d11, d12], [d12, d22]]`, regularised so that a joint
@@ -529,6 +970,30 @@ fn inverse22([d11, d12, d22]: [Real; 3]) -> [Real; 3] {
     }
 }
 
-fn mul22([m11, m12, m22]: [Real; 3], v: Vec2) -> Vec2 {
-    Vec2::new(m11 * v.x + m12 * v.y, m12 * v.x + m22 * v.y)
+/// The inverse of the symmetric `d`, regularised as [`inverse22`] is (relative to each
+/// diagonal entry, since the rows mix lengths and angles).
+fn inverse33(d: Sym3) -> Sym3 {
+    let det =
+        |[a, b, c, e, f, i]: Sym3| a * (e * i - f * f) - b * (b * i - f * c) + c * (b * f - e * c);
+    let scale = d[0] * d[3] * d[5];
+    let d = if det(d) > 1e-6 * scale {
+        d
+    } else {
+        let grow = 1.0 + 1e-3;
+        [d[0] * grow, d[1], d[2], d[3] * grow, d[4], d[5] * grow]
+    };
+    let det = det(d);
+    if !(det > 0.0 && det.is_finite()) {
+        return [0.0; 6];
+    }
+    let [a, b, c, e, f, i] = d;
+    let inv = 1.0 / det;
+    [
+        (e * i - f * f) * inv,
+        (c * f - b * i) * inv,
+        (b * f - c * e) * inv,
+        (a * i - c * c) * inv,
+        (b * c - a * f) * inv,
+        (a * e - b * b) * inv,
+    ]
 }

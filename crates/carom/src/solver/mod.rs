@@ -150,10 +150,12 @@ pub struct SolverParams {
     /// Soft step: the joints' damping ratio. Default 2, as Box2D.
     pub joint_damping_ratio: Real,
     /// Soft step: solve the points of hinged bodies (revolute joints) exactly, a whole tree
-    /// of them at once, in each pass, where Gauss-Seidel moves a light body's share of the
-    /// momentum at a time and lets a heavy load stretch a light chain. A joint that closes
-    /// a loop is still solved iteratively, as are limits, motors, springs and other joints.
-    /// Costs a few dozen flops a hinge per pass, on one thread. Default off.
+    /// of them at once, with the hinge limits that hold, in each pass, where Gauss-Seidel
+    /// moves a light body's share of the momentum at a time and lets a heavy load stretch a
+    /// light chain or a falling ragdoll part. Continuous collision then puts a hinged group
+    /// back together when it puts back one of its bodies. A joint that closes a loop is
+    /// still solved iteratively, as are motors, springs and other joints. Costs some dozens
+    /// of flops a hinge per pass, on one thread. Default off.
     pub direct_joints: bool,
     /// Soft step: after each pass over the contacts, solve once more, from the ground up,
     /// each contact where a body rests on one lower in the pile (its normal within 60° of
@@ -356,6 +358,15 @@ pub(crate) struct Workspace {
     joint_trees: joint_trees::JointTrees,
     /// Soft step's contacts between levels ([`SolverParams::shock_propagation`]).
     shock: shock_propagation::ShockPropagation,
+}
+
+impl Workspace {
+    /// With direct joints, after a step: each awake body's group of bodies joined by hinges
+    /// (a representative state index, by state index), for continuous collision to put a
+    /// group back together.
+    pub(crate) fn joint_groups(&self) -> Option<&[u32]> {
+        self.joint_trees.groups()
+    }
 }
 
 /// The awake set's bodies and contacts as the solver takes them.

@@ -127,6 +127,7 @@ impl World {
                     &self.joints,
                     LINEAR_SLOP,
                     self.pre_solve.is_some(),
+                    self.solver_workspace.joint_groups(),
                 )
             });
         }

@@ -46,8 +46,8 @@ pub(crate) struct JointConstraint {
     pub impulses: JointImpulses,
     /// The kind's settings and what was prepared from them.
     data: JointData,
-    /// A hinge whose point the joint trees solve ([`super::joint_trees`]): its own solve
-    /// leaves the point alone, and so does its warm start.
+    /// A hinge whose point (and limits) the joint trees solve ([`super::joint_trees`]): its
+    /// own solve leaves them alone, and so does its warm start.
     point_in_tree: bool,
 }
 
@@ -96,16 +96,6 @@ impl JointFrame {
         )
     }
 
-    /// Moves the bodies as impulse `p` at the anchors would in a unit of time (B by it, A by
-    /// its opposite), their velocities left alone.
-    #[inline]
-    pub fn shift(&self, a: &mut BodyState, b: &mut BodyState, ra: Vec2, rb: Vec2, p: Vec2) {
-        a.dp -= p * self.inv_mass_a;
-        a.dq = rotation(-self.inv_inertia_a * cross(ra, p)) * a.dq;
-        b.dp += p * self.inv_mass_b;
-        b.dq = rotation(self.inv_inertia_b * cross(rb, p)) * b.dq;
-    }
-
     /// Applies impulse `p` at the anchors (to B, and its opposite to A).
     #[inline]
     pub fn push(&self, a: &mut BodyState, b: &mut BodyState, ra: Vec2, rb: Vec2, p: Vec2) {
@@ -113,6 +103,24 @@ impl JointFrame {
         a.w -= self.inv_inertia_a * cross(ra, p);
         b.v += p * self.inv_mass_b;
         b.w += self.inv_inertia_b * cross(rb, p);
+    }
+}
+
+/// A hinge's limits on its angle, as the joint trees hold them.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct HingeLimit {
+    pub limits: Limits,
+    /// As the joint's own: A's rotation, and B's less the reference angle, at the start of
+    /// the step.
+    rot_a: Rot,
+    rot_b: Rot,
+}
+
+impl HingeLimit {
+    /// The hinge's angle now.
+    #[inline]
+    pub fn angle(&self, a: &BodyState, b: &BodyState) -> Real {
+        angle_of(&((a.dq * self.rot_a).inverse() * (b.dq * self.rot_b)))
     }
 }
 
@@ -196,7 +204,7 @@ impl JointPass {
 
     /// The bias, mass scale and impulse scale of a rigid constraint with error `c`.
     #[inline]
-    fn rigid(&self, c: Real) -> (Real, Real, Real) {
+    pub(crate) fn rigid(&self, c: Real) -> (Real, Real, Real) {
         if self.use_bias {
             let s = self.softness;
             (s.bias_rate * c, s.mass_scale, s.impulse_scale)
@@ -208,7 +216,7 @@ impl JointPass {
     /// The same for a limit with slack `c` (positive: not yet reached, which may close
     /// exactly this substep).
     #[inline]
-    fn limit(&self, c: Real) -> (Real, Real, Real) {
+    pub(crate) fn limit(&self, c: Real) -> (Real, Real, Real) {
         if c > 0.0 {
             (c * self.inv_h, 1.0, 0.0)
         } else {
@@ -421,7 +429,20 @@ impl JointConstraint {
         matches!(self.data, JointData::Revolute(_)).then_some(self.frame)
     }
 
-    /// Hands its point to the joint trees for the step: its own solve leaves it alone.
+    /// A hinge's limits, which the joint trees solve with its point.
+    pub fn hinge_limit(&self) -> Option<HingeLimit> {
+        match self.data {
+            JointData::Revolute(p) => p.limits().map(|limits| HingeLimit {
+                limits,
+                rot_a: self.rot_a,
+                rot_b: self.rot_b,
+            }),
+            _ => None,
+        }
+    }
+
+    /// Hands its point and limits to the joint trees for the step: its own solve leaves them
+    /// alone.
     pub fn leave_point_to_tree(&mut self) {
         self.point_in_tree = true;
     }

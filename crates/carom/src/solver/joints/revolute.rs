@@ -6,7 +6,7 @@
 use super::{
     JointConstraint, JointPass, inverse_or_zero, push_only, solve_limits, solve22, spring_softness,
 };
-use crate::joint::RevoluteJoint;
+use crate::joint::{Limits, RevoluteJoint};
 use crate::math::{Real, unwind_angle};
 use crate::solver::{BodyState, Softness};
 
@@ -16,6 +16,13 @@ pub(super) struct Prepared {
     /// `1 / (iA + iB)`: the mass the angle feels.
     axial_mass: Real,
     spring: Softness,
+}
+
+impl Prepared {
+    /// Its limits, if it has them and its angle can turn.
+    pub(super) fn limits(&self) -> Option<Limits> {
+        self.settings.limits.filter(|_| self.axial_mass > 0.0)
+    }
 }
 
 pub(super) fn prepare(c: &JointConstraint, settings: RevoluteJoint, h: Real) -> Prepared {
@@ -31,8 +38,11 @@ pub(super) fn prepare(c: &JointConstraint, settings: RevoluteJoint, h: Real) -> 
 pub(super) fn warm_start(c: &JointConstraint, a: &mut BodyState, b: &mut BodyState) {
     let (ra, rb) = c.anchors(a, b);
     let i = &c.impulses;
-    c.apply_angular(a, b, i.axial + i.motor + i.lower - i.upper);
-    if !c.point_in_tree {
+    if c.point_in_tree {
+        // The tree warm starts the point and the limits.
+        c.apply_angular(a, b, i.axial + i.motor);
+    } else {
+        c.apply_angular(a, b, i.axial + i.motor + i.lower - i.upper);
         c.apply_linear(a, b, ra, rb, i.linear);
     }
 }
@@ -61,7 +71,7 @@ pub(super) fn solve(
         c.impulses.motor = (old + impulse).clamp(-max, max);
         c.apply_angular(a, b, c.impulses.motor - old);
     }
-    if let (true, Some(limits)) = (turns, settings.limits) {
+    if let (false, Some(limits)) = (c.point_in_tree, p.limits()) {
         let angle = c.angle(a, b);
         let mut impulses = (c.impulses.lower, c.impulses.upper);
         let (lower, upper) = (&mut impulses.0, &mut impulses.1);
@@ -79,7 +89,7 @@ pub(super) fn solve(
         );
         (c.impulses.lower, c.impulses.upper) = impulses;
     }
-    // The point, unless the joint trees solve it.
+    // The point, unless the joint trees solve it (and the limits with it).
     if c.point_in_tree {
         return;
     }

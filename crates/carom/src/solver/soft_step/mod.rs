@@ -123,7 +123,9 @@ struct ContactStages {
 /// (some contact has restitution: the pass does nothing for the others). Joints have the last
 /// word in each pass, as contacts with the ground have among contacts: a limb struck in a pile
 /// is pulled back onto its joint before the pass ends. (Box2D solves joints first; in a pile
-/// of ragdolls that parts their joints about twice as far.)
+/// of ragdolls that parts their joints about twice as far.) With joint trees, the relaxation
+/// solves the joints first: the trees hold exactly, and the drift they leave is projected
+/// away at the end of the substep.
 fn plan_stages(
     plan: &mut Vec<Stage>,
     params: &SolverParams,
@@ -134,6 +136,24 @@ fn plan_stages(
 ) {
     plan.clear();
     let pass = |plan: &mut Vec<Stage>, pass: Pass| {
+        // With joint trees, the relaxation solves the joints first and leaves the contacts
+        // the last word: the exact trees would otherwise end each substep on velocities that
+        // drive bodies into their contacts, which the next substep pushes back out, and a
+        // pile of ragdolls would never come to rest.
+        let joints_first = trees && matches!(pass, Pass::Solve(bias, _) if !bias.use_bias);
+        let add_joints = |plan: &mut Vec<Stage>| {
+            if !matches!(pass, Pass::Restitution(_)) {
+                let joints = joint_colors.ranges.iter().enumerate();
+                let used = joints.filter(|(_, range)| !range.is_empty());
+                plan.extend(used.map(|(color, _)| Stage::Joints(color, pass)));
+                if trees {
+                    plan.push(Stage::JointTrees(pass));
+                }
+            }
+        };
+        if joints_first {
+            add_joints(plan);
+        }
         plan.extend((0..contacts.colors).map(|color| Stage::Color(color, pass)));
         if contacts.overflow {
             plan.push(Stage::Overflow(pass));
@@ -141,13 +161,8 @@ fn plan_stages(
         if contacts.shock && !matches!(pass, Pass::Restitution(_)) {
             plan.push(Stage::Shock(pass));
         }
-        if !matches!(pass, Pass::Restitution(_)) {
-            let joints = joint_colors.ranges.iter().enumerate();
-            let used = joints.filter(|(_, range)| !range.is_empty());
-            plan.extend(used.map(|(color, _)| Stage::Joints(color, pass)));
-            if trees {
-                plan.push(Stage::JointTrees(pass));
-            }
+        if !joints_first {
+            add_joints(plan);
         }
     };
     let bias_friction = environment.friction && params.friction_in_bias_pass;
