@@ -318,11 +318,12 @@ fn rewind_groups(
         awake,
         earliest,
     } = jointed;
-    let group = |index: usize| groups[index - awake.start];
+    // A body the solve did not see (none should be) is in no group.
+    let group = |index: usize| groups.get(index - awake.start).copied();
     earliest.clear();
     for (&(index, _), impact) in fast.iter().zip(impacts.iter()) {
-        if let Some((t, ..)) = impact {
-            earliest.push((group(index), *t));
+        if let (Some((t, ..)), Some(group)) = (impact, group(index)) {
+            earliest.push((group, *t));
         }
     }
     if earliest.is_empty() {
@@ -331,7 +332,7 @@ fn rewind_groups(
     earliest.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
     earliest.dedup_by_key(|&mut (group, _)| group);
     let first = |index: usize| {
-        let g = group(index);
+        let g = group(index)?;
         earliest
             .binary_search_by_key(&g, |&(group, _)| group)
             .ok()

@@ -117,6 +117,13 @@ impl World {
         let joints_broke = self.break_joints(&scratch.awake_joints);
         (times.prepare, times.store) = (solved.prepare, solved.store);
         if continuous {
+            // The solve's hinged groups are by its states, the awake bodies as it found them:
+            // a broken joint may have woken more since.
+            let groups = if joints_broke {
+                None
+            } else {
+                self.solver_workspace.joint_groups()
+            };
             (stats.continuous_impacts, stats.work.sweeps) = timed(&mut times.continuous, || {
                 continuous::solve_continuous(
                     &mut self.bodies,
@@ -127,7 +134,7 @@ impl World {
                     &self.joints,
                     LINEAR_SLOP,
                     self.pre_solve.is_some(),
-                    self.solver_workspace.joint_groups(),
+                    groups,
                 )
             });
         }
