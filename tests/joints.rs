@@ -1337,9 +1337,7 @@ fn a_hinge_stop_solved_in_the_tree_reports_the_load_it_holds() {
         world
             .update_settings(|s| s.solver.direct_joints = direct)
             .unwrap();
-        let wall = world
-            .add_body(BodyDef::static_body(Shape::rect(0.1, 0.1)))
-            .unwrap();
+        let wall = anchor(&mut world, Vec2::zeros());
         let arm = world
             .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.05)).position(vec2(0.5, 0.0)))
             .unwrap();

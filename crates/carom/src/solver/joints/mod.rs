@@ -120,7 +120,7 @@ impl HingeLimit {
     /// The hinge's angle now.
     #[inline]
     pub fn angle(&self, a: &BodyState, b: &BodyState) -> Real {
-        angle_of(&((a.dq * self.rot_a).inverse() * (b.dq * self.rot_b)))
+        relative_angle(a, b, self.rot_a, self.rot_b)
     }
 }
 
@@ -512,7 +512,7 @@ impl JointConstraint {
     /// The joint's angle now: B's rotation relative to A's, less the reference angle.
     #[inline]
     fn angle(&self, a: &BodyState, b: &BodyState) -> Real {
-        angle_of(&((a.dq * self.rot_a).inverse() * (b.dq * self.rot_b)))
+        relative_angle(a, b, self.rot_a, self.rot_b)
     }
 
     /// Applies impulse `p` at the anchors (to B, and its opposite to A).
@@ -549,6 +549,13 @@ impl JointConstraint {
     fn relative_velocity(a: &BodyState, b: &BodyState, ra: Vec2, rb: Vec2) -> Vec2 {
         b.v + crate::math::cross_sv(b.w, rb) - a.v - crate::math::cross_sv(a.w, ra)
     }
+}
+
+/// B's rotation relative to A's now, from their rotations at the start of the step (`rot_a`,
+/// and `rot_b` less the reference angle).
+#[inline]
+fn relative_angle(a: &BodyState, b: &BodyState, rot_a: Rot, rot_b: Rot) -> Real {
+    angle_of(&((a.dq * rot_a).inverse() * (b.dq * rot_b)))
 }
 
 /// `K⁻¹ rhs` for the symmetric `K = [[k11, k12], [k12, k22]]`; zero if `K` is singular.
