@@ -34,6 +34,7 @@ use crate::constants::{
     LOCKED_HINGE_RANGE, MAX_LOOPS_PER_JOINTS, TREE_LIMIT_ROUNDS, TREE_PROJECTION_GIVE,
 };
 use crate::math::{Real, Vec2, cross, rotation};
+use std::ops::Range;
 
 /// A symmetric 3x3 matrix over a body's `(vx, vy, w)`: `[xx, xy, xw, yy, yw, ww]`.
 type Sym3 = [Real; 6];
@@ -103,8 +104,11 @@ struct TreeJoint {
     moves_b: bool,
     /// Whether the pivot (the body whose other joints it couples) is B; else A.
     pivot_b: bool,
-    /// Which tree it belongs to (a component of the hinges, numbered from 0).
+    /// Which tree it belongs to (a component of the hinges, numbered from 0), and its
+    /// moving bodies' places among the tree's ([`Tree::bodies`]).
     tree: u32,
+    slot_a: u32,
+    slot_b: u32,
     /// Its own effective inverse mass, on the point's rows (averaged over the two) and on
     /// the angle's, which the projection's give is in proportion to.
     own: [Real; 2],
@@ -154,28 +158,35 @@ impl TreeJoint {
     }
 }
 
+/// One tree: its joints and its moving bodies, as ranges of [`JointTrees`]' lists.
+#[derive(Debug, Clone)]
+struct Tree {
+    joints: Range<usize>,
+    bodies: Range<usize>,
+}
+
 /// The joint trees of a step: which joints, in what order, and the pass's scratch.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct JointTrees {
+    /// Every tree's joints, tree after tree, each tree's leaf first.
     joints: Vec<TreeJoint>,
-    /// The moving bodies of the trees, whose scratch a pass resets.
+    trees: Vec<Tree>,
+    /// Every tree's moving bodies (their states), tree after tree.
     bodies: Vec<usize>,
-    /// Per tree: its stops are found (its changes of impulse final this pass), and its
-    /// stops changed this round.
-    settled: Vec<bool>,
-    changed: Vec<bool>,
-    /// Per state: the effective inverse mass, the sweeps' accumulated vectors, and a round's
-    /// change of spin.
+    /// Per body of the trees, as `bodies`: the effective inverse mass, the sweeps'
+    /// accumulated vectors, and a round's change of spin.
     inverse_mass: Vec<Sym3>,
     accumulated: Vec<Vec3>,
     spin: Vec<Real>,
-    /// Planning scratch: joints left per state, the joints at each state (in CSR).
+    /// Planning scratch: joints left per state, the joints at each state (in CSR), the
+    /// joints in elimination order.
     left: Vec<u32>,
     starts: Vec<u32>,
     fill: Vec<u32>,
     at_body: Vec<u32>,
     queue: Vec<u32>,
     removed: Vec<bool>,
+    ordered: Vec<TreeJoint>,
     /// Per constraint: a hinge of a component solved directly.
     accepted: Vec<bool>,
     /// Per state: its component's representative (union-find), then the component's tree
@@ -185,10 +196,19 @@ pub(crate) struct JointTrees {
     loop_count: Vec<u32>,
 }
 
+/// One tree's joints and its bodies' scratch, which a pass works through alone.
+struct TreeWork<'a> {
+    joints: &'a mut [TreeJoint],
+    inverse_mass: &'a mut [Sym3],
+    accumulated: &'a mut [Vec3],
+    spin: &'a mut [Real],
+}
+
 impl JointTrees {
     /// No trees this step.
     pub fn clear(&mut self) {
         self.joints.clear();
+        self.trees.clear();
         self.bodies.clear();
         self.parent.clear();
     }
@@ -209,6 +229,7 @@ impl JointTrees {
     /// joints that close loops to the iterative solve. Allocates only as the world grows.
     pub fn plan(&mut self, constraints: &mut [JointConstraint], states: usize) {
         self.joints.clear();
+        self.trees.clear();
         self.bodies.clear();
         let hinge = |c: &JointConstraint| c.hinge_point().is_some() && (c.moves_a || c.moves_b);
         // Which moving bodies the hinges connect, and which hinges close a loop among them.
@@ -364,6 +385,8 @@ impl JointTrees {
                 point,
                 limit,
                 tree: 0,
+                slot_a: 0,
+                slot_b: 0,
                 own,
                 a: c.a,
                 b: c.b,
@@ -384,34 +407,66 @@ impl JointTrees {
         for tree in &self.joints {
             constraints[tree.constraint].leave_point_to_tree();
         }
-        // The moving bodies, once each.
-        for tree in &self.joints {
-            for (moves, state) in [(tree.moves_a, tree.a), (tree.moves_b, tree.b)] {
-                if moves && self.left[state] != u32::MAX {
-                    self.left[state] = u32::MAX;
-                    self.bodies.push(state);
+        self.group_by_tree();
+    }
+
+    /// Puts the planned joints tree after tree, each tree's in its order (which eliminates
+    /// it leaf first on its own), numbers each tree's moving bodies, and sizes the scratch.
+    fn group_by_tree(&mut self) {
+        // Each tree numbered in the order its first joint comes, and its joints counted.
+        self.left.fill(u32::MAX);
+        self.starts.clear();
+        self.starts.push(0);
+        for joint in &mut self.joints {
+            let root = self.parent[if joint.moves_a { joint.a } else { joint.b }] as usize;
+            if self.left[root] == u32::MAX {
+                self.left[root] = self.starts.len() as u32 - 1;
+                self.starts.push(0);
+            }
+            joint.tree = self.left[root];
+            self.starts[joint.tree as usize + 1] += 1;
+        }
+        for tree in 1..self.starts.len() {
+            self.starts[tree] += self.starts[tree - 1];
+        }
+        self.ordered.clear();
+        self.ordered.extend_from_slice(&self.joints);
+        self.fill.clear();
+        self.fill.extend_from_slice(&self.starts);
+        for joint in &self.ordered {
+            let place = &mut self.fill[joint.tree as usize];
+            self.joints[*place as usize] = *joint;
+            *place += 1;
+        }
+        // Each tree's moving bodies, once each, in the order its joints come.
+        self.left.fill(u32::MAX);
+        for tree in 0..self.starts.len() - 1 {
+            let joints = self.starts[tree] as usize..self.starts[tree + 1] as usize;
+            let first = self.bodies.len();
+            for joint in &mut self.joints[joints.clone()] {
+                for (moves, state, slot) in [
+                    (joint.moves_a, joint.a, &mut joint.slot_a),
+                    (joint.moves_b, joint.b, &mut joint.slot_b),
+                ] {
+                    if moves {
+                        if self.left[state] == u32::MAX {
+                            self.left[state] = (self.bodies.len() - first) as u32;
+                            self.bodies.push(state);
+                        }
+                        *slot = self.left[state];
+                    }
                 }
             }
+            self.trees.push(Tree {
+                joints,
+                bodies: first..self.bodies.len(),
+            });
         }
-        // Each tree numbered, in the order its first joint comes ([`TreeJoint::tree`]).
-        self.left.fill(u32::MAX);
-        let mut trees = 0;
-        for tree in &mut self.joints {
-            let root = self.parent[if tree.moves_a { tree.a } else { tree.b }] as usize;
-            if self.left[root] == u32::MAX {
-                self.left[root] = trees;
-                trees += 1;
-            }
-            tree.tree = self.left[root];
-        }
-        self.settled.clear();
-        self.settled.resize(trees as usize, false);
-        self.changed.clear();
-        self.changed.resize(trees as usize, false);
-        if self.inverse_mass.len() < states + 1 {
-            self.inverse_mass.resize(states + 1, [0.0; 6]);
-            self.accumulated.resize(states + 1, [0.0; 3]);
-            self.spin.resize(states + 1, 0.0);
+        let bodies = self.bodies.len();
+        if self.inverse_mass.len() < bodies {
+            self.inverse_mass.resize(bodies, [0.0; 6]);
+            self.accumulated.resize(bodies, [0.0; 3]);
+            self.spin.resize(bodies, 0.0);
         }
     }
 
@@ -452,6 +507,54 @@ impl JointTrees {
     /// One pass: the velocity error of every tree joint (with the pass's bias) solved away
     /// at once, with the stops that hold.
     pub fn solve(&mut self, states: &mut [BodyState], pass: &JointPass) {
+        self.each_tree(|tree| tree.solve(states, pass));
+    }
+
+    /// Closes the trees' drift in position (one Newton step on the anchors' separations and
+    /// the passed stops, the bodies moved as the same impulses would move them in a unit of
+    /// time), leaving their velocities alone: the end of a substep, where the soft bias would
+    /// otherwise leave what nonlinear motion opened for the next one.
+    pub fn project(&mut self, states: &mut [BodyState]) {
+        self.each_tree(|tree| tree.project(states));
+    }
+
+    /// Runs `work` on each tree, with its joints and its bodies' scratch.
+    fn each_tree(&mut self, mut work: impl FnMut(&mut TreeWork)) {
+        for tree in &self.trees {
+            let bodies = tree.bodies.clone();
+            work(&mut TreeWork {
+                joints: &mut self.joints[tree.joints.clone()],
+                inverse_mass: &mut self.inverse_mass[bodies.clone()],
+                accumulated: &mut self.accumulated[bodies.clone()],
+                spin: &mut self.spin[bodies],
+            });
+        }
+    }
+
+    /// Hands the accumulated point and stop impulses back to their joints.
+    pub fn finish(&self, constraints: &mut [JointConstraint]) {
+        for tree in &self.joints {
+            let c = &mut constraints[tree.constraint];
+            c.impulses.linear = Vec2::new(tree.impulse[0], tree.impulse[1]);
+            if let Some(limit) = tree.limit {
+                let held = tree.impulse[2];
+                (c.impulses.lower, c.impulses.upper) = if limit.locked {
+                    (held.max(0.0), (-held).max(0.0))
+                } else if limit.stop > 0.0 {
+                    (held, 0.0)
+                } else {
+                    (0.0, held)
+                };
+            }
+        }
+    }
+}
+
+impl TreeWork<'_> {
+    /// One pass over the tree: its stops aimed, then solved in rounds with the stops that
+    /// hold until none changes (a stop that would pull is let go, one passed is taken in),
+    /// and the change of impulse applied.
+    fn solve(&mut self, states: &mut [BodyState], pass: &JointPass) {
         let s = pass.softness;
         let (mass_scale, impulse_scale) = if pass.use_bias {
             (s.mass_scale, s.impulse_scale)
@@ -460,7 +563,7 @@ impl JointTrees {
         };
         // Each limit's stop this pass, and whether it starts in the system: it pushed last
         // pass, or is passed, or would be by the velocities as they are.
-        for tree in &mut self.joints {
+        for tree in self.joints.iter_mut() {
             let Some(mut limit) = tree.limit else {
                 continue;
             };
@@ -486,10 +589,6 @@ impl JointTrees {
                 limit.locked || tree.impulse[2] > 0.0 || limit.slack <= 0.0 || closing < 0.0;
             tree.limit = Some(limit);
         }
-        // Rounds: each tree is solved with the stops that hold until no stop changes, and its
-        // changes are then applied; the trees are independent, so one tree's stops do not
-        // make the others solve again.
-        self.settled.fill(false);
         for round in 0..TREE_LIMIT_ROUNDS {
             let last = round + 1 == TREE_LIMIT_ROUNDS;
             self.exact(states, 0.0, |tree, a, b| {
@@ -505,11 +604,8 @@ impl JointTrees {
                 error
             });
             // The change of impulse; a stop that would pull lets go.
-            self.changed.fill(false);
+            let mut changed = false;
             for tree in self.joints.iter_mut() {
-                if self.settled[tree.tree as usize] {
-                    continue;
-                }
                 let z = tree.z;
                 let mut change = [
                     -z[0] * mass_scale - tree.impulse[0] * impulse_scale,
@@ -524,23 +620,22 @@ impl JointTrees {
                             change[2] = -tree.impulse[2];
                         } else {
                             limit.active = false;
-                            self.changed[tree.tree as usize] = true;
+                            changed = true;
                         }
                     }
                 }
                 tree.change = change;
             }
             // A stop the solution would turn past is taken in.
-            if !last {
-                self.take_in_passed_stops(states);
+            if !(last || changed) {
+                changed = self.take_in_passed_stop(states);
             }
-            self.let_go(states);
-            // The trees whose stops held are done.
-            for tree in &mut self.joints {
-                let t = tree.tree as usize;
-                if self.settled[t] || self.changed[t] {
-                    continue;
-                }
+            if changed {
+                self.let_go(states);
+                continue;
+            }
+            // The stops held: the changes are final.
+            for tree in self.joints.iter_mut() {
                 let (mut a, mut b) = (states[tree.a], states[tree.b]);
                 tree.push(&mut a, &mut b, tree.change);
                 for k in 0..3 {
@@ -548,32 +643,17 @@ impl JointTrees {
                 }
                 set_velocities(states, tree, &a, &b);
             }
-            if !self.settle() {
-                break;
-            }
+            break;
         }
     }
 
-    /// Marks every tree whose stops did not change this round as done; returns whether any
-    /// tree is left.
-    fn settle(&mut self) -> bool {
-        let mut left = false;
-        for (settled, &changed) in self.settled.iter_mut().zip(&self.changed) {
-            *settled |= !changed;
-            left |= !*settled;
-        }
-        left
-    }
-
-    /// Takes the impulse of every stop let go out of the bodies' velocities, in the trees
-    /// that changed.
+    /// Takes the impulse of every stop let go out of the bodies' velocities.
     fn let_go(&mut self, states: &mut [BodyState]) {
-        for tree in &mut self.joints {
+        for tree in self.joints.iter_mut() {
             let Some(limit) = tree.limit else {
                 continue;
             };
-            let t = tree.tree as usize;
-            if self.settled[t] || !self.changed[t] || limit.active || tree.impulse[2] == 0.0 {
+            if limit.active || tree.impulse[2] == 0.0 {
                 continue;
             }
             let (mut a, mut b) = (states[tree.a], states[tree.b]);
@@ -583,84 +663,56 @@ impl JointTrees {
         }
     }
 
-    /// Takes in the stops that the round's changes would turn a hinge past, in the trees
-    /// that did not change otherwise; such a tree has changed.
-    fn take_in_passed_stops(&mut self, states: &[BodyState]) {
-        let open = |settled: &[bool], changed: &[bool], tree: &TreeJoint| {
-            let t = tree.tree as usize;
-            !settled[t] && !changed[t]
-        };
-        for tree in &self.joints {
-            if !open(&self.settled, &self.changed, tree) {
-                continue;
-            }
-            for (moves, state) in [(tree.moves_a, tree.a), (tree.moves_b, tree.b)] {
-                if moves {
-                    self.spin[state] = 0.0;
-                }
-            }
-        }
-        for tree in &self.joints {
-            if !open(&self.settled, &self.changed, tree) {
-                continue;
-            }
+    /// Takes in the first stop (leaf first) that the round's changes would turn a hinge
+    /// past; returns whether there was one.
+    fn take_in_passed_stop(&mut self, states: &[BodyState]) -> bool {
+        self.spin.fill(0.0);
+        for tree in self.joints.iter() {
             let p = tree.change;
             let (_, ia, _, ib) = tree.point.inverse_masses();
             let turn = tree.stop() * p[2];
             let linear = Vec2::new(p[0], p[1]);
             if tree.moves_a {
-                self.spin[tree.a] -= ia * (cross(tree.ra, linear) + turn);
+                self.spin[tree.slot_a as usize] -= ia * (cross(tree.ra, linear) + turn);
             }
             if tree.moves_b {
-                self.spin[tree.b] += ib * (cross(tree.rb, linear) + turn);
+                self.spin[tree.slot_b as usize] += ib * (cross(tree.rb, linear) + turn);
             }
         }
-        for index in 0..self.joints.len() {
-            let tree = &self.joints[index];
-            if !open(&self.settled, &self.changed, tree) {
-                continue;
-            }
-            let Some(limit) = tree.limit.filter(|l| !l.active) else {
+        for tree in self.joints.iter_mut() {
+            let Some(limit) = tree.limit.as_mut().filter(|l| !l.active) else {
                 continue;
             };
-            let spin = |moves: bool, state: usize| {
-                states[state].w + if moves { self.spin[state] } else { 0.0 }
+            let spin = |moves: bool, state: usize, slot: u32| {
+                states[state].w + if moves { self.spin[slot as usize] } else { 0.0 }
             };
-            let turning = spin(tree.moves_b, tree.b) - spin(tree.moves_a, tree.a);
+            let turning =
+                spin(tree.moves_b, tree.b, tree.slot_b) - spin(tree.moves_a, tree.a, tree.slot_a);
             if limit.stop * turning + limit.scales.0 < 0.0 {
-                let t = tree.tree as usize;
-                if let Some(limit) = self.joints[index].limit.as_mut() {
-                    limit.active = true;
-                }
-                self.changed[t] = true;
+                limit.active = true;
+                return true;
             }
         }
+        false
     }
 
-    /// Closes the trees' drift in position (one Newton step on the anchors' separations and
-    /// the passed stops, the bodies moved as the same impulses would move them in a unit of
-    /// time), leaving their velocities alone: the end of a substep, where the soft bias would
-    /// otherwise leave what nonlinear motion opened for the next one.
-    pub fn project(&mut self, states: &mut [BodyState]) {
-        for tree in &mut self.joints {
+    /// Closes the tree's drift in position ([`JointTrees::project`]), in rounds as the
+    /// solve's: a passed stop only pushes out.
+    fn project(&mut self, states: &mut [BodyState]) {
+        for tree in self.joints.iter_mut() {
             if let Some(limit) = &mut tree.limit {
                 limit.slack = limit.aim(limit.limit.angle(&states[tree.a], &states[tree.b]));
                 limit.active = limit.locked || limit.slack < 0.0;
             }
         }
-        self.settled.fill(false);
         for round in 0..TREE_LIMIT_ROUNDS {
             let last = round + 1 == TREE_LIMIT_ROUNDS;
             self.exact(states, TREE_PROJECTION_GIVE, |tree, a, b| {
                 let drift = tree.point.separation(a, b, tree.ra, tree.rb);
                 [drift.x, drift.y, tree.limit.map_or(0.0, |l| l.slack)]
             });
-            // A stop only pushes out.
-            self.changed.fill(false);
-            for tree in &mut self.joints {
-                if self.settled[tree.tree as usize] {
-                    continue;
-                }
+            let mut changed = false;
+            for tree in self.joints.iter_mut() {
                 tree.change = [-tree.z[0], -tree.z[1], -tree.z[2]];
                 if let Some(limit) = tree.limit.as_mut().filter(|l| l.active && !l.locked)
                     && tree.change[2] < 0.0
@@ -669,15 +721,14 @@ impl JointTrees {
                         tree.change[2] = 0.0;
                     } else {
                         limit.active = false;
-                        self.changed[tree.tree as usize] = true;
+                        changed = true;
                     }
                 }
             }
-            for tree in &self.joints {
-                let t = tree.tree as usize;
-                if self.settled[t] || self.changed[t] {
-                    continue;
-                }
+            if changed {
+                continue;
+            }
+            for tree in self.joints.iter() {
                 let (mut a, mut b) = (states[tree.a], states[tree.b]);
                 tree.shift(&mut a, &mut b, tree.change);
                 for (moves, index, state) in [(tree.moves_a, tree.a, a), (tree.moves_b, tree.b, b)]
@@ -688,43 +739,36 @@ impl JointTrees {
                     }
                 }
             }
-            if !self.settle() {
-                break;
-            }
+            break;
         }
     }
 
-    /// Solves `A x = r` over every tree not yet settled, `r` each joint's `error` given the
-    /// bodies' states (its anchors already in `ra`, `rb`), with the stops that hold, leaving
-    /// `x` in each joint's `z`.
+    /// Solves `A x = r` over the tree, `r` each joint's `error` given the bodies' states
+    /// (its anchors already in `ra`, `rb`), with the stops that hold, leaving `x` in each
+    /// joint's `z`. `give` is added to each joint's own effective inverse mass, in proportion.
     fn exact(
         &mut self,
         states: &[BodyState],
         give: Real,
         error: impl Fn(&TreeJoint, &BodyState, &BodyState) -> Vec3,
     ) {
-        for &state in &self.bodies {
-            self.accumulated[state] = [0.0; 3];
-        }
-        for tree in &self.joints {
+        self.accumulated.fill([0.0; 3]);
+        for tree in self.joints.iter() {
             let (ma, ia, mb, ib) = tree.point.inverse_masses();
             if tree.moves_a {
-                self.inverse_mass[tree.a] = [ma, 0.0, 0.0, ma, 0.0, ia];
+                self.inverse_mass[tree.slot_a as usize] = [ma, 0.0, 0.0, ma, 0.0, ia];
             }
             if tree.moves_b {
-                self.inverse_mass[tree.b] = [mb, 0.0, 0.0, mb, 0.0, ib];
+                self.inverse_mass[tree.slot_b as usize] = [mb, 0.0, 0.0, mb, 0.0, ib];
             }
         }
         // Leaf first: factor, and carry each joint's part of the error to its pivot. A joint
         // without a stop that holds has two rows, and costs what a plain hinge does.
-        for tree in &mut self.joints {
-            if self.settled[tree.tree as usize] {
-                continue;
-            }
+        for tree in self.joints.iter_mut() {
             let (a, b) = (states[tree.a], states[tree.b]);
             (tree.ra, tree.rb) = tree.point.anchors(&a, &b);
             let y = error(tree, &a, &b);
-            let (w, q) = (&mut self.inverse_mass, &mut self.accumulated);
+            let (w, q) = (&mut *self.inverse_mass, &mut *self.accumulated);
             if TreeLimit::turn(&tree.limit) == 0.0 {
                 eliminate::<2>(tree, w, q, y, give);
             } else {
@@ -732,34 +776,12 @@ impl JointTrees {
             }
         }
         // Root first: each joint less what the joints beyond its pivot carry.
-        for &state in &self.bodies {
-            self.accumulated[state] = [0.0; 3];
-        }
+        self.accumulated.fill([0.0; 3]);
         for tree in self.joints.iter_mut().rev() {
-            if self.settled[tree.tree as usize] {
-                continue;
-            } else if TreeLimit::turn(&tree.limit) == 0.0 {
-                substitute::<2>(tree, &mut self.accumulated);
+            if TreeLimit::turn(&tree.limit) == 0.0 {
+                substitute::<2>(tree, self.accumulated);
             } else {
-                substitute::<3>(tree, &mut self.accumulated);
-            }
-        }
-    }
-
-    /// Hands the accumulated point and stop impulses back to their joints.
-    pub fn finish(&self, constraints: &mut [JointConstraint]) {
-        for tree in &self.joints {
-            let c = &mut constraints[tree.constraint];
-            c.impulses.linear = Vec2::new(tree.impulse[0], tree.impulse[1]);
-            if let Some(limit) = tree.limit {
-                let held = tree.impulse[2];
-                (c.impulses.lower, c.impulses.upper) = if limit.locked {
-                    (held.max(0.0), (-held).max(0.0))
-                } else if limit.stop > 0.0 {
-                    (held, 0.0)
-                } else {
-                    (0.0, held)
-                };
+                substitute::<3>(tree, self.accumulated);
             }
         }
     }
@@ -777,20 +799,33 @@ fn eliminate<const N: usize>(
     mut y: Vec3,
     give: Real,
 ) {
-    let (ra, rb) = (tree.ra, tree.rb);
     let turn = TreeLimit::turn(&tree.limit);
     let mut d = [0.0; 6];
-    for (moves, state, r, sign) in [
-        (tree.moves_a, tree.a, ra, -1.0),
-        (tree.moves_b, tree.b, rb, 1.0),
+    let mut spread = [[0.0; 3]; 3];
+    for (moves, slot, r, sign, pivot) in [
+        (tree.moves_a, tree.slot_a, tree.ra, -1.0, !tree.pivot_b),
+        (tree.moves_b, tree.slot_b, tree.rb, 1.0, tree.pivot_b),
     ] {
-        if moves {
-            let g = rows::<N>(r, turn, sign);
-            add_sandwich(&mut d, &inverse_mass[state], &g);
-            let q = accumulated[state];
-            for (y, g) in y.iter_mut().zip(g) {
-                *y -= dot(g, q);
-            }
+        if !moves {
+            continue;
+        }
+        let slot = slot as usize;
+        // `G W Gᵀ` at the body, from `W Gᵀ` (less its sign, which the product squares).
+        let [u, v, t] = columns::<N>(&inverse_mass[slot], r, turn);
+        d[0] += u[0] - r.y * u[2];
+        d[1] += v[0] - r.y * v[2];
+        d[3] += v[1] + r.x * v[2];
+        if N == 3 {
+            d[2] += t[0] - r.y * t[2];
+            d[4] += t[1] + r.x * t[2];
+            d[5] += turn * t[2];
+        }
+        let q = on_rows::<N>(r, turn, accumulated[slot]);
+        for k in 0..N {
+            y[k] -= sign * q[k];
+        }
+        if pivot {
+            spread = [u, v, t].map(|column| column.map(|e| sign * e));
         }
     }
     if give > 0.0 {
@@ -805,19 +840,19 @@ fn eliminate<const N: usize>(
         let [i11, i12, i22] = inverse22([d[0], d[1], d[3]]);
         [i11, i12, 0.0, i22, 0.0, 0.0]
     };
-    tree.z = sym_mul(&tree.inverse, y);
-    let (pivot, r, sign, moves) = if tree.pivot_b {
-        (tree.b, rb, 1.0, tree.moves_b)
+    tree.z = sym_mul::<N>(&tree.inverse, y);
+    tree.spread = spread;
+    let (moves, pivot) = if tree.pivot_b {
+        (tree.moves_b, tree.slot_b)
     } else {
-        (tree.a, ra, -1.0, tree.moves_a)
+        (tree.moves_a, tree.slot_a)
     };
-    tree.spread = [[0.0; 3]; 3];
     if moves {
-        // W Gᵀ at the pivot: the pivot's share of this joint's solution, then W less what
-        // this joint now holds.
-        let w = &inverse_mass[pivot];
-        let columns = rows::<N>(r, turn, sign).map(|g| sym_mul(w, g));
-        tree.spread[..N].copy_from_slice(&columns);
+        // `W Gᵀ` at the pivot carries this joint's share of the solution there, and the
+        // pivot's `W` is less what this joint now holds.
+        let pivot = pivot as usize;
+        let mut columns = [[0.0; 3]; N];
+        columns.copy_from_slice(&spread[..N]);
         let q = &mut accumulated[pivot];
         for (column, zk) in columns.iter().zip(tree.z) {
             for i in 0..3 {
@@ -831,30 +866,36 @@ fn eliminate<const N: usize>(
 /// Solves for `tree`'s `N` rows root first: its `z` less what the joints beyond its pivot
 /// carry (`accumulated`), then its bodies' share of the solution added to `accumulated`.
 fn substitute<const N: usize>(tree: &mut TreeJoint, accumulated: &mut [Vec3]) {
-    let pivot = if tree.pivot_b { tree.b } else { tree.a };
+    let pivot = if tree.pivot_b {
+        tree.slot_b
+    } else {
+        tree.slot_a
+    } as usize;
     let t = accumulated[pivot];
     let mut carried = [0.0; 3];
     for (carried, column) in carried.iter_mut().zip(&tree.spread[..N]) {
         *carried = dot(*column, t);
     }
-    let solved = sym_mul(&tree.inverse, carried);
+    let solved = sym_mul::<N>(&tree.inverse, carried);
     let x = [
         tree.z[0] - solved[0],
         tree.z[1] - solved[1],
         tree.z[2] - solved[2],
     ];
     let turn = TreeLimit::turn(&tree.limit);
-    for (moves, state, r, sign) in [
-        (tree.moves_a, tree.a, tree.ra, -1.0),
-        (tree.moves_b, tree.b, tree.rb, 1.0),
+    for (moves, slot, r, sign) in [
+        (tree.moves_a, tree.slot_a, tree.ra, -1.0),
+        (tree.moves_b, tree.slot_b, tree.rb, 1.0),
     ] {
         if moves {
-            // Gᵀ x.
-            let t = &mut accumulated[state];
-            for (g, xk) in rows::<N>(r, turn, sign).iter().zip(x) {
-                for i in 0..3 {
-                    t[i] += g[i] * xk;
-                }
+            // `Gᵀ x`.
+            let t = &mut accumulated[slot as usize];
+            t[0] += sign * x[0];
+            t[1] += sign * x[1];
+            t[2] += -sign * r.y * x[0];
+            t[2] += sign * r.x * x[1];
+            if N == 3 {
+                t[2] += sign * turn * x[2];
             }
         }
     }
@@ -887,45 +928,58 @@ fn set_velocities(states: &mut [BodyState], tree: &TreeJoint, a: &BodyState, b: 
     }
 }
 
-/// A joint's first `N` rows at a body with anchor `r`, of `sign` times `[[1, 0, -r.y],
-/// [0, 1, r.x], [0, 0, turn]]`.
-fn rows<const N: usize>(r: Vec2, turn: Real, sign: Real) -> [Vec3; N] {
-    let all = [
-        [sign, 0.0, -sign * r.y],
-        [0.0, sign, sign * r.x],
-        [0.0, 0.0, sign * turn],
-    ];
-    let mut first = [[0.0; 3]; N];
-    first.copy_from_slice(&all[..N]);
-    first
+/// `W Gᵀ` for a joint's rows at a body with anchor `r` and effective inverse mass `W`, less
+/// their sign: the rows are `[1, 0, -r.y]`, `[0, 1, r.x]` and `[0, 0, turn]` (the last only
+/// when `N` is 3, else zero) over the body's `(vx, vy, w)`.
+#[inline]
+fn columns<const N: usize>(w: &Sym3, r: Vec2, turn: Real) -> [Vec3; 3] {
+    let [xx, xy, xw, yy, yw, ww] = *w;
+    let angular = [xw, yw, ww];
+    let turned = if N == 3 {
+        angular.map(|e| turn * e)
+    } else {
+        [0.0; 3]
+    };
+    [
+        [xx - r.y * xw, xy - r.y * yw, xw - r.y * ww],
+        [xy + r.x * xw, yy + r.x * yw, yw + r.x * ww],
+        turned,
+    ]
+}
+
+/// `G c` for a joint's rows at a body (as [`columns`], less their sign): what vector `c`
+/// over the body's `(vx, vy, w)` is on each row.
+#[inline]
+fn on_rows<const N: usize>(r: Vec2, turn: Real, c: Vec3) -> Vec3 {
+    [
+        c[0] - r.y * c[2],
+        c[1] + r.x * c[2],
+        if N == 3 { turn * c[2] } else { 0.0 },
+    ]
 }
 
 fn dot(a: Vec3, b: Vec3) -> Real {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// `m v` for the symmetric `m`.
-fn sym_mul(m: &Sym3, v: Vec3) -> Vec3 {
+/// `m v` for the symmetric `m`, of which only the first `N` rows and columns are read (the
+/// rest of the result is zero).
+#[inline]
+fn sym_mul<const N: usize>(m: &Sym3, v: Vec3) -> Vec3 {
     let [xx, xy, xw, yy, yw, ww] = *m;
-    [
-        xx * v[0] + xy * v[1] + xw * v[2],
-        xy * v[0] + yy * v[1] + yw * v[2],
-        xw * v[0] + yw * v[1] + ww * v[2],
-    ]
+    if N == 3 {
+        [
+            xx * v[0] + xy * v[1] + xw * v[2],
+            xy * v[0] + yy * v[1] + yw * v[2],
+            xw * v[0] + yw * v[1] + ww * v[2],
+        ]
+    } else {
+        [xx * v[0] + xy * v[1], xy * v[0] + yy * v[1], 0.0]
+    }
 }
 
 /// Where entry `(i, j)` of a symmetric 3x3 matrix is kept in a [`Sym3`].
 const SYM: [[usize; 3]; 3] = [[0, 1, 2], [1, 3, 4], [2, 4, 5]];
-
-/// `d += G W Gᵀ` for the `N` rows `g`.
-fn add_sandwich<const N: usize>(d: &mut Sym3, w: &Sym3, g: &[Vec3; N]) {
-    let wg = g.map(|row| sym_mul(w, row));
-    for i in 0..N {
-        for j in i..N {
-            d[SYM[i][j]] += dot(g[i], wg[j]);
-        }
-    }
-}
 
 /// `w -= C D⁻¹ Cᵀ` for the 3xN `C` given by its columns and the symmetric `D⁻¹` (its first
 /// `N` rows and columns).
