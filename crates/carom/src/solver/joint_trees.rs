@@ -30,8 +30,9 @@
 
 use super::BodyState;
 use super::joints::{HingeLimit, JointConstraint, JointFrame, JointPass};
+use super::soft_step::{SharedStates, block_range};
 use crate::constants::{
-    LOCKED_HINGE_RANGE, MAX_LOOPS_PER_JOINTS, TREE_LIMIT_ROUNDS, TREE_PROJECTION_GIVE,
+    LOCKED_HINGE_RANGE, MAX_BLOCKS, MAX_LOOPS_PER_JOINTS, TREE_LIMIT_ROUNDS, TREE_PROJECTION_GIVE,
 };
 use crate::math::{Real, Vec2, cross, rotation};
 use std::ops::Range;
@@ -194,6 +195,65 @@ pub(crate) struct JointTrees {
     parent: Vec<u32>,
     tree_count: Vec<u32>,
     loop_count: Vec<u32>,
+}
+
+/// A run of whole trees, with their joints and their bodies' scratch, lent to one thread
+/// for a pass ([`JointTrees::blocks`]).
+pub(crate) struct TreeBlock<'a> {
+    trees: &'a [Tree],
+    joints: &'a mut [TreeJoint],
+    inverse_mass: &'a mut [Sym3],
+    accumulated: &'a mut [Vec3],
+    spin: &'a mut [Real],
+}
+
+impl TreeBlock<'_> {
+    /// Applies the accumulated impulses (the warm start), or forgets them where the speed
+    /// caps cut a body's velocities, as the other joints do.
+    pub fn warm_start(&mut self, states: &SharedStates) {
+        for tree in self.joints.iter_mut() {
+            let (mut a, mut b) = (states.get(tree.a), states.get(tree.b));
+            if a.held != 0 || b.held != 0 {
+                tree.impulse = [0.0; 3];
+                continue;
+            }
+            (tree.ra, tree.rb) = tree.point.anchors(&a, &b);
+            tree.push(&mut a, &mut b, tree.impulse);
+            set_velocities(states, tree, &a, &b);
+        }
+    }
+
+    /// One pass: the velocity error of every joint of the block's trees (with the pass's
+    /// bias) solved away at once, with the stops that hold.
+    pub fn solve(&mut self, states: &SharedStates, pass: &JointPass) {
+        self.each_tree(|tree| tree.solve(states, pass));
+    }
+
+    /// Closes the trees' drift in position (one Newton step on the anchors' separations and
+    /// the passed stops, the bodies moved as the same impulses would move them in a unit of
+    /// time), leaving their velocities alone: the end of a substep, where the soft bias would
+    /// otherwise leave what nonlinear motion opened for the next one.
+    pub fn project(&mut self, states: &SharedStates) {
+        self.each_tree(|tree| tree.project(states));
+    }
+
+    /// Runs `work` on each tree, with its joints and its bodies' scratch.
+    fn each_tree(&mut self, mut work: impl FnMut(&mut TreeWork)) {
+        let (Some(first), Some(_)) = (self.trees.first(), self.trees.last()) else {
+            return;
+        };
+        let (joint0, body0) = (first.joints.start, first.bodies.start);
+        for tree in self.trees {
+            let joints = tree.joints.start - joint0..tree.joints.end - joint0;
+            let bodies = tree.bodies.start - body0..tree.bodies.end - body0;
+            work(&mut TreeWork {
+                joints: &mut self.joints[joints],
+                inverse_mass: &mut self.inverse_mass[bodies.clone()],
+                accumulated: &mut self.accumulated[bodies.clone()],
+                spin: &mut self.spin[bodies],
+            });
+        }
+    }
 }
 
 /// One tree's joints and its bodies' scratch, which a pass works through alone.
@@ -489,46 +549,59 @@ impl JointTrees {
         }
     }
 
-    /// Applies the accumulated impulses (the warm start), or forgets them where the speed
-    /// caps cut a body's velocities, as the other joints do.
-    pub fn warm_start(&mut self, states: &mut [BodyState]) {
-        for tree in &mut self.joints {
-            let (mut a, mut b) = (states[tree.a], states[tree.b]);
-            if a.held != 0 || b.held != 0 {
-                tree.impulse = [0.0; 3];
+    /// How many joints the trees have.
+    pub fn joint_count(&self) -> usize {
+        self.joints.len()
+    }
+
+    /// The trees cut into at most `count` runs of whole trees, of about as many joints
+    /// each, for threads to solve apart: the trees share no moving body, so each run's
+    /// results are the same whoever solves it, and whichever run goes first.
+    pub fn blocks(&mut self, count: usize) -> [Option<TreeBlock<'_>>; MAX_BLOCKS] {
+        let mut blocks = std::array::from_fn(|_| None);
+        let count = count.clamp(1, MAX_BLOCKS);
+        let total = self.joints.len();
+        let mut joints = &mut self.joints[..];
+        let bodies = self.bodies.len();
+        let mut inverse_mass = &mut self.inverse_mass[..bodies];
+        let mut accumulated = &mut self.accumulated[..bodies];
+        let mut spin = &mut self.spin[..bodies];
+        let (mut first, mut made) = (0, 0);
+        for block in 0..count {
+            // The trees that start before this block's share of the joints ends.
+            let end = block_range(total, count, block).end;
+            let mut last = first;
+            while last < self.trees.len() && (self.trees[last].joints.start < end) {
+                last += 1;
+            }
+            if block + 1 == count {
+                last = self.trees.len();
+            }
+            if last == first {
                 continue;
             }
-            (tree.ra, tree.rb) = tree.point.anchors(&a, &b);
-            tree.push(&mut a, &mut b, tree.impulse);
-            set_velocities(states, tree, &a, &b);
-        }
-    }
-
-    /// One pass: the velocity error of every tree joint (with the pass's bias) solved away
-    /// at once, with the stops that hold.
-    pub fn solve(&mut self, states: &mut [BodyState], pass: &JointPass) {
-        self.each_tree(|tree| tree.solve(states, pass));
-    }
-
-    /// Closes the trees' drift in position (one Newton step on the anchors' separations and
-    /// the passed stops, the bodies moved as the same impulses would move them in a unit of
-    /// time), leaving their velocities alone: the end of a substep, where the soft bias would
-    /// otherwise leave what nonlinear motion opened for the next one.
-    pub fn project(&mut self, states: &mut [BodyState]) {
-        self.each_tree(|tree| tree.project(states));
-    }
-
-    /// Runs `work` on each tree, with its joints and its bodies' scratch.
-    fn each_tree(&mut self, mut work: impl FnMut(&mut TreeWork)) {
-        for tree in &self.trees {
-            let bodies = tree.bodies.clone();
-            work(&mut TreeWork {
-                joints: &mut self.joints[tree.joints.clone()],
-                inverse_mass: &mut self.inverse_mass[bodies.clone()],
-                accumulated: &mut self.accumulated[bodies.clone()],
-                spin: &mut self.spin[bodies],
+            let trees = &self.trees[first..last];
+            let joint_count = trees[trees.len() - 1].joints.end - trees[0].joints.start;
+            let body_count = trees[trees.len() - 1].bodies.end - trees[0].bodies.start;
+            let (these, rest) = std::mem::take(&mut joints).split_at_mut(joint_count);
+            joints = rest;
+            let (w, rest) = std::mem::take(&mut inverse_mass).split_at_mut(body_count);
+            inverse_mass = rest;
+            let (q, rest) = std::mem::take(&mut accumulated).split_at_mut(body_count);
+            accumulated = rest;
+            let (turns, rest) = std::mem::take(&mut spin).split_at_mut(body_count);
+            spin = rest;
+            blocks[made] = Some(TreeBlock {
+                trees,
+                joints: these,
+                inverse_mass: w,
+                accumulated: q,
+                spin: turns,
             });
+            made += 1;
+            first = last;
         }
+        blocks
     }
 
     /// Hands the accumulated point and stop impulses back to their joints.
@@ -554,7 +627,7 @@ impl TreeWork<'_> {
     /// One pass over the tree: its stops aimed, then solved in rounds with the stops that
     /// hold until none changes (a stop that would pull is let go, one passed is taken in),
     /// and the change of impulse applied.
-    fn solve(&mut self, states: &mut [BodyState], pass: &JointPass) {
+    fn solve(&mut self, states: &SharedStates, pass: &JointPass) {
         let s = pass.softness;
         let (mass_scale, impulse_scale) = if pass.use_bias {
             (s.mass_scale, s.impulse_scale)
@@ -567,7 +640,7 @@ impl TreeWork<'_> {
             let Some(mut limit) = tree.limit else {
                 continue;
             };
-            let (mut a, mut b) = (states[tree.a], states[tree.b]);
+            let (mut a, mut b) = (states.get(tree.a), states.get(tree.b));
             let was = limit.stop;
             limit.slack = limit.aim(limit.limit.angle(&a, &b));
             if limit.stop != was && tree.impulse[2] != 0.0 {
@@ -636,7 +709,7 @@ impl TreeWork<'_> {
             }
             // The stops held: the changes are final.
             for tree in self.joints.iter_mut() {
-                let (mut a, mut b) = (states[tree.a], states[tree.b]);
+                let (mut a, mut b) = (states.get(tree.a), states.get(tree.b));
                 tree.push(&mut a, &mut b, tree.change);
                 for k in 0..3 {
                     tree.impulse[k] += tree.change[k];
@@ -648,7 +721,7 @@ impl TreeWork<'_> {
     }
 
     /// Takes the impulse of every stop let go out of the bodies' velocities.
-    fn let_go(&mut self, states: &mut [BodyState]) {
+    fn let_go(&mut self, states: &SharedStates) {
         for tree in self.joints.iter_mut() {
             let Some(limit) = tree.limit else {
                 continue;
@@ -656,7 +729,7 @@ impl TreeWork<'_> {
             if limit.active || tree.impulse[2] == 0.0 {
                 continue;
             }
-            let (mut a, mut b) = (states[tree.a], states[tree.b]);
+            let (mut a, mut b) = (states.get(tree.a), states.get(tree.b));
             tree.push(&mut a, &mut b, [0.0, 0.0, -tree.impulse[2]]);
             tree.impulse[2] = 0.0;
             set_velocities(states, tree, &a, &b);
@@ -665,7 +738,7 @@ impl TreeWork<'_> {
 
     /// Takes in the first stop (leaf first) that the round's changes would turn a hinge
     /// past; returns whether there was one.
-    fn take_in_passed_stop(&mut self, states: &[BodyState]) -> bool {
+    fn take_in_passed_stop(&mut self, states: &SharedStates) -> bool {
         self.spin.fill(0.0);
         for tree in self.joints.iter() {
             let p = tree.change;
@@ -684,7 +757,7 @@ impl TreeWork<'_> {
                 continue;
             };
             let spin = |moves: bool, state: usize, slot: u32| {
-                states[state].w + if moves { self.spin[slot as usize] } else { 0.0 }
+                states.get(state).w + if moves { self.spin[slot as usize] } else { 0.0 }
             };
             let turning =
                 spin(tree.moves_b, tree.b, tree.slot_b) - spin(tree.moves_a, tree.a, tree.slot_a);
@@ -698,10 +771,11 @@ impl TreeWork<'_> {
 
     /// Closes the tree's drift in position ([`JointTrees::project`]), in rounds as the
     /// solve's: a passed stop only pushes out.
-    fn project(&mut self, states: &mut [BodyState]) {
+    fn project(&mut self, states: &SharedStates) {
         for tree in self.joints.iter_mut() {
             if let Some(limit) = &mut tree.limit {
-                limit.slack = limit.aim(limit.limit.angle(&states[tree.a], &states[tree.b]));
+                limit.slack =
+                    limit.aim(limit.limit.angle(&states.get(tree.a), &states.get(tree.b)));
                 limit.active = limit.locked || limit.slack < 0.0;
             }
         }
@@ -729,13 +803,12 @@ impl TreeWork<'_> {
                 continue;
             }
             for tree in self.joints.iter() {
-                let (mut a, mut b) = (states[tree.a], states[tree.b]);
+                let (mut a, mut b) = (states.get(tree.a), states.get(tree.b));
                 tree.shift(&mut a, &mut b, tree.change);
                 for (moves, index, state) in [(tree.moves_a, tree.a, a), (tree.moves_b, tree.b, b)]
                 {
                     if moves {
-                        states[index].dp = state.dp;
-                        states[index].dq = state.dq;
+                        states.set_motion(index, &state);
                     }
                 }
             }
@@ -748,7 +821,7 @@ impl TreeWork<'_> {
     /// joint's `z`. `give` is added to each joint's own effective inverse mass, in proportion.
     fn exact(
         &mut self,
-        states: &[BodyState],
+        states: &SharedStates,
         give: Real,
         error: impl Fn(&TreeJoint, &BodyState, &BodyState) -> Vec3,
     ) {
@@ -765,7 +838,7 @@ impl TreeWork<'_> {
         // Leaf first: factor, and carry each joint's part of the error to its pivot. A joint
         // without a stop that holds has two rows, and costs what a plain hinge does.
         for tree in self.joints.iter_mut() {
-            let (a, b) = (states[tree.a], states[tree.b]);
+            let (a, b) = (states.get(tree.a), states.get(tree.b));
             (tree.ra, tree.rb) = tree.point.anchors(&a, &b);
             let y = error(tree, &a, &b);
             let (w, q) = (&mut *self.inverse_mass, &mut *self.accumulated);
@@ -919,11 +992,10 @@ fn component_of(parent: &mut [u32], c: &JointConstraint) -> usize {
 }
 
 /// Writes a joint's bodies' velocities back (those that move).
-fn set_velocities(states: &mut [BodyState], tree: &TreeJoint, a: &BodyState, b: &BodyState) {
+fn set_velocities(states: &SharedStates, tree: &TreeJoint, a: &BodyState, b: &BodyState) {
     for (moves, index, state) in [(tree.moves_a, tree.a, a), (tree.moves_b, tree.b, b)] {
         if moves {
-            states[index].v = state.v;
-            states[index].w = state.w;
+            states.set_velocity(index, state);
         }
     }
 }

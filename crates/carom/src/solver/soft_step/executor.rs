@@ -50,7 +50,7 @@ pub(crate) enum Stage {
     Overflow(Pass),
     /// A pass over the joints of a joint colour (the last is their overflow, one block).
     Joints(usize, Pass),
-    /// The joint trees' exact solve (one block).
+    /// The joint trees' exact solve (blocks of whole trees).
     JointTrees(Pass),
     /// Shock propagation's contacts between levels, from the ground up (one block).
     Shock(Pass),
@@ -124,13 +124,21 @@ pub(super) fn execute_stages<L: Lanes>(
     };
     let overflow = Mutex::new(overflow);
     let shock = Mutex::new(shock);
-    let trees = Mutex::new(trees);
+    // Whole trees per block: they share no moving body.
+    let tree_count = if shared {
+        block_count(trees.joint_count(), MIN_JOINT_BLOCK, threads)
+    } else {
+        1
+    };
+    let tree_blocks = trees.blocks(tree_count).map(|block| block.map(Mutex::new));
+    let tree_block_count = tree_blocks.iter().filter(|b| b.is_some()).count();
     let work = Mutex::new(Work::default());
     let bounces = AtomicUsize::new(0);
     let stage_blocks = |stage: usize| match plan[stage] {
         Stage::IntegrateVelocities | Stage::IntegratePositions => body_blocks,
         Stage::Color(color, _) => color_blocks[color],
-        Stage::Overflow(_) | Stage::JointTrees(_) | Stage::Shock(_) => 1,
+        Stage::Overflow(_) | Stage::Shock(_) => 1,
+        Stage::JointTrees(_) => tree_block_count,
         Stage::Joints(color, _) => joint_block_counts[color],
     };
     run_stages(
@@ -186,19 +194,18 @@ pub(super) fn execute_stages<L: Lanes>(
                 }
             }
             Stage::JointTrees(pass) => {
-                let mut trees = lock(&trees);
-                // SAFETY: the trees' stage is one block, and no other stage runs.
-                #[allow(unsafe_code)]
-                let all = unsafe { states.range_mut(all_states.clone()) };
-                match pass {
-                    Pass::WarmStart => trees.warm_start(all),
-                    Pass::Solve(bias, _) => {
-                        trees.solve(all, &joint_passes[usize::from(!bias.use_bias)]);
-                        if bias.substep_end {
-                            trees.project(all);
+                if let Some(block) = &tree_blocks[block] {
+                    let mut trees = lock(block);
+                    match pass {
+                        Pass::WarmStart => trees.warm_start(states),
+                        Pass::Solve(bias, _) => {
+                            trees.solve(states, &joint_passes[usize::from(!bias.use_bias)]);
+                            if bias.substep_end {
+                                trees.project(states);
+                            }
                         }
+                        Pass::Restitution(_) => {}
                     }
-                    Pass::Restitution(_) => {}
                 }
             }
         },

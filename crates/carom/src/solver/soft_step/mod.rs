@@ -30,6 +30,8 @@ mod tests;
 
 pub(crate) use bundles::{BundleInputs, WideContacts};
 pub(crate) use executor::Stage;
+pub(crate) use scheduler::block_range;
+pub(crate) use shared_states::SharedStates;
 
 use super::body_state::SpeedCaps;
 use super::joint_trees::JointTrees;

@@ -80,6 +80,21 @@ impl<'a> SharedStates<'a> {
         self.write_velocity(index as u32, velocity);
     }
 
+    /// Sets state `index`'s motion since the step began (`dp`, `dq`) from `state` (a joint
+    /// tree's copy, its drift projected away); its velocities stay as they were.
+    #[inline(always)]
+    pub fn set_motion(&self, index: usize, state: &BodyState) {
+        assert!(index < self.len, "state {index} of {}", self.len);
+        // SAFETY: in bounds (checked).
+        let target = unsafe { self.states.add(index) };
+        // SAFETY: in bounds (checked) and aligned; no other thread touches it (promised in
+        // `new`).
+        unsafe {
+            std::ptr::addr_of_mut!((*target).dp).write(state.dp);
+            std::ptr::addr_of_mut!((*target).dq).write(state.dq);
+        }
+    }
+
     /// States `range`, to change whole (integration, the overflow's one-by-one solve).
     ///
     /// # Safety
