@@ -155,7 +155,7 @@ pub struct SolverParams {
     /// light chain or a falling ragdoll part. Continuous collision then puts a hinged group
     /// back together when it puts back one of its bodies. A joint that closes a loop is
     /// still solved iteratively, as are motors, springs and other joints. Costs some dozens
-    /// of flops a hinge per pass, on one thread. Default off.
+    /// of flops a hinge per pass, whole trees shared among threads. Default off.
     pub direct_joints: bool,
     /// Soft step: after each pass over the contacts, solve once more, from the ground up,
     /// each contact where a body rests on one lower in the pile (its normal within 60° of
