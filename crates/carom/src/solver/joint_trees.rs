@@ -239,7 +239,7 @@ impl TreeBlock<'_> {
 
     /// Runs `work` on each tree, with its joints and its bodies' scratch.
     fn each_tree(&mut self, mut work: impl FnMut(&mut TreeWork)) {
-        let (Some(first), Some(_)) = (self.trees.first(), self.trees.last()) else {
+        let Some(first) = self.trees.first() else {
             return;
         };
         let (joint0, body0) = (first.joints.start, first.bodies.start);
