@@ -232,7 +232,8 @@ impl TreeBlock<'_> {
     /// Closes the trees' drift in position (one Newton step on the anchors' separations and
     /// the passed stops, the bodies moved as the same impulses would move them in a unit of
     /// time), leaving their velocities alone: the end of a substep, where the soft bias would
-    /// otherwise leave what nonlinear motion opened for the next one.
+    /// otherwise leave what nonlinear motion opened for the next one. Called right after the
+    /// relaxation's [`TreeBlock::solve`], whose stops it takes as they were aimed.
     pub fn project(&mut self, states: &SharedStates) {
         self.each_tree(|tree| tree.project(states));
     }
@@ -772,10 +773,10 @@ impl TreeWork<'_> {
     /// Closes the tree's drift in position ([`JointTrees::project`]), in rounds as the
     /// solve's: a passed stop only pushes out.
     fn project(&mut self, states: &SharedStates) {
+        // The relaxation's solve has just aimed each stop at these same positions (it moves
+        // no body): its slack is the stop's now.
         for tree in self.joints.iter_mut() {
             if let Some(limit) = &mut tree.limit {
-                limit.slack =
-                    limit.aim(limit.limit.angle(&states.get(tree.a), &states.get(tree.b)));
                 limit.active = limit.locked || limit.slack < 0.0;
             }
         }
