@@ -899,7 +899,11 @@ fn eliminate<const N: usize>(
             y[k] -= sign * q[k];
         }
         if pivot {
-            spread = [u, v, t].map(|column| column.map(|e| sign * e));
+            for (signed, column) in spread.iter_mut().zip([u, v, t]) {
+                for i in 0..3 {
+                    signed[i] = sign * column[i];
+                }
+            }
         }
     }
     if give > 0.0 {
@@ -1007,9 +1011,8 @@ fn set_velocities(states: &SharedStates, tree: &TreeJoint, a: &BodyState, b: &Bo
 #[inline]
 fn columns<const N: usize>(w: &Sym3, r: Vec2, turn: Real) -> [Vec3; 3] {
     let [xx, xy, xw, yy, yw, ww] = *w;
-    let angular = [xw, yw, ww];
     let turned = if N == 3 {
-        angular.map(|e| turn * e)
+        [turn * xw, turn * yw, turn * ww]
     } else {
         [0.0; 3]
     };
