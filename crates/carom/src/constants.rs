@@ -182,7 +182,8 @@ pub(crate) const MAX_CONDITION: Real = 1000.0;
 /// contacts, in colours of their own solved after the contacts' in each pass.
 pub(crate) const JOINT_COLOR_COUNT: usize = 12;
 
-/// Joints per block, at least, when a joint colour is shared among threads.
+/// Joints per block, at least, when a joint colour or the joint trees are shared among
+/// threads.
 pub(crate) const MIN_JOINT_BLOCK: usize = 64;
 
 /// The mouse joint's spin damping: a soft constraint toward no spin (Box2D v3.0's).

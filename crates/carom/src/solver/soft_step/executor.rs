@@ -124,7 +124,8 @@ pub(super) fn execute_stages<L: Lanes>(
     };
     let overflow = Mutex::new(overflow);
     let shock = Mutex::new(shock);
-    // Whole trees per block: they share no moving body.
+    // Whole trees per block: the trees share no moving body, so a block writes only its own
+    // trees' states, and reads besides only bodies that no joint moves.
     let tree_count = if shared {
         block_count(trees.joint_count(), MIN_JOINT_BLOCK, threads)
     } else {
