@@ -2,7 +2,7 @@
 //! step to step. Counted by an instrumented global allocator, so this file holds one test (the
 //! count is process-wide).
 
-use carom::{BodyDef, Effect, Effects, Shape, World, WorldSettings, vec2};
+use carom::{BodyDef, Effect, Effects, Shape, Snapshot, World, WorldSettings, vec2};
 use rayon::{ThreadPool, ThreadPoolBuilder};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
 use std::alloc::System;
@@ -115,6 +115,34 @@ fn allocations(mut world: World, pool: &ThreadPool, warm_up: usize, steps: usize
     })
 }
 
+/// Allocations over `rounds` rounds of a rollback loop on `world` after `warm_up` steps and
+/// eight rounds: each round takes a snapshot into the oldest of a ring of four, steps, and
+/// every fourth round goes back to the oldest snapshot kept and steps again from there.
+fn rollback_allocations(mut world: World, warm_up: usize, rounds: usize) -> usize {
+    for _ in 0..warm_up {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    let mut ring: Vec<Snapshot> = (0..4).map(|_| world.snapshot()).collect();
+    let mut round = |world: &mut World, index: usize| {
+        world.snapshot_into(&mut ring[index % 4]);
+        world.step(1.0 / 60.0).unwrap();
+        if index % 4 == 3 {
+            world.restore(&ring[(index + 1) % 4]);
+            for _ in 0..4 {
+                world.step(1.0 / 60.0).unwrap();
+            }
+        }
+    };
+    for index in 0..8 {
+        round(&mut world, index);
+    }
+    let region = Region::new(&INSTRUMENTED_SYSTEM);
+    for index in 8..8 + rounds {
+        round(&mut world, index);
+    }
+    region.change().allocations
+}
+
 #[test]
 fn a_world_in_steady_state_allocates_nothing_per_step() {
     let awake = Effects::ALL.without(Effect::Sleeping);
@@ -182,6 +210,16 @@ fn a_world_in_steady_state_allocates_nothing_per_step() {
         let count = allocations(world, &pools[threads - 1], warm_up, 60);
         if count > 0 {
             failures.push(format!("{name}: {count} allocations in 60 steps"));
+        }
+    }
+    // Rolling back: taking snapshots into old ones and restoring them reuse their memory.
+    for (name, world, warm_up) in [
+        ("pyramid of 20, rolled back", pyramid(20, awake), 60),
+        ("ragdolls, rolled back", ragdolls_with_direct_joints(), 300),
+    ] {
+        let count = pools[0].install(|| rollback_allocations(world, warm_up, 40));
+        if count > 0 {
+            failures.push(format!("{name}: {count} allocations in 40 rounds"));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

@@ -158,6 +158,8 @@ pub mod hard_cases;
 pub mod rapier_world;
 #[cfg(feature = "native")]
 pub mod scaling;
+#[cfg(feature = "native")]
+pub mod snapshot_cost;
 
 #[cfg(feature = "peers")]
 pub use box2d_world::Box2dWorld;

@@ -79,6 +79,19 @@ struct SolverOptions {
 /// Other jobs than timing.
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Times taking a snapshot of a scene and restoring it beside one step (on one thread and
+    /// on `--threads`), and counts a snapshot's bytes: by default on demos/large_pyramid.ron
+    /// and demos/mixed_1000.ron.
+    Snapshots {
+        /// Scene files.
+        scenes: Vec<PathBuf>,
+        /// Steps before the timed rounds.
+        #[arg(long, default_value_t = 100)]
+        warm_up: u32,
+        /// Timed rounds of snapshot, step and restore; medians are reported.
+        #[arg(long, default_value_t = 60)]
+        rounds: u32,
+    },
     /// Times rows of Box2D's base-10 pyramids at about 1k, 5k, 20k and 100k boxes in every
     /// engine (one thread and `--threads`), and writes scaling.csv, scaling.md and a log-log
     /// chart of ms per step against bodies, scaling.png, to `--out`.
@@ -586,6 +599,65 @@ fn hard_cases(filter: &[String], out: Option<&Path>, options: Options) -> Result
 
 /// Times the pyramid rows of [`scaling::SIZES`] in every engine and writes the CSV, table and
 /// chart to `out`.
+/// `carom-bench snapshots`: the table of what a snapshot and a restore cost beside a step.
+fn snapshots_run(
+    scenes: &[PathBuf],
+    warm_up: u32,
+    rounds: u32,
+    (one, many): (&rayon::ThreadPool, &rayon::ThreadPool),
+) -> Result<(), String> {
+    if rounds == 0 {
+        return Err("--rounds must be at least 1".into());
+    }
+    let defaults = [
+        PathBuf::from("demos/large_pyramid.ron"),
+        PathBuf::from("demos/mixed_1000.ron"),
+    ];
+    let scenes = if scenes.is_empty() {
+        &defaults[..]
+    } else {
+        scenes
+    };
+    let pools = if many.current_num_threads() > 1 {
+        vec![one, many]
+    } else {
+        vec![one]
+    };
+    println!(
+        "{warm_up} steps, then {rounds} rounds of snapshot, step, restore; medians, ms \
+         (bytes: the heap a new snapshot takes)\n"
+    );
+    println!(
+        "| scene | bodies | threads | step | snapshot | restore | (snapshot + restore) / step | \
+         bytes | bytes per body |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|");
+    for path in scenes {
+        for &pool in &pools {
+            let mut scene = carom_scene::load(path).map_err(|e| e.to_string())?;
+            let cost =
+                pool.install(|| carom_bench::snapshot_cost::measure(&mut scene, warm_up, rounds))?;
+            let region = Region::new(&INSTRUMENTED_SYSTEM);
+            let snapshot = scene.world.snapshot();
+            let bytes = region.change().bytes_allocated;
+            drop(snapshot);
+            let bodies = scene.world.body_count();
+            let ms = |d: std::time::Duration| format!("{:.3}", d.as_secs_f64() * 1e3);
+            println!(
+                "| {} | {bodies} | {} | {} | {} | {} | {:.2} | {bytes} | {:.0} |",
+                path.display(),
+                pool.current_num_threads(),
+                ms(cost.step.median),
+                ms(cost.snapshot.median),
+                ms(cost.restore.median),
+                cost.ratio(),
+                bytes as f64 / bodies.max(1) as f64,
+            );
+        }
+    }
+    Ok(())
+}
+
 fn scaling_run(
     out: &Path,
     steps: u32,
@@ -689,6 +761,14 @@ fn main() -> Result<(), String> {
             return Err("scaling needs --runs of at least 1 and --steps of at least 2".into());
         }
         return scaling_run(out, *steps, *runs, *max_bodies, (&one, &many));
+    }
+    if let Some(Command::Snapshots {
+        scenes,
+        warm_up,
+        rounds,
+    }) = &args.command
+    {
+        return snapshots_run(scenes, *warm_up, *rounds, (&one, &many));
     }
     let mut rows = Vec::new();
     for (path, steps) in &scenes {

@@ -44,6 +44,7 @@ mod one_way;
 mod player;
 mod saved;
 pub mod scene;
+mod snapshot;
 mod spawn;
 
 pub use build::{SceneWorld, build};
@@ -52,6 +53,7 @@ pub use load::{parse, read};
 pub use player::{Player, PlayerInput};
 pub use saved::{SavedState, to_text, write};
 pub use scene::{Accuracy, Camera, KeyChange, PlayerKey, SCENE_FORMAT, Scene};
+pub use snapshot::SceneSnapshot;
 pub use spawn::{Made, SpawnChange, SpawnSchedule};
 
 /// Reads, parses and builds a scene file.

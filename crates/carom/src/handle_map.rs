@@ -5,6 +5,7 @@
 //! handle never answers again: its slot comes back with a new generation, and a slot whose
 //! generation would wrap is retired.
 
+use crate::clone_in_place::clone_in_place;
 use crate::error::CaromError;
 
 /// A generational handle: a slot index and the generation the slot had when it was issued.
@@ -75,7 +76,7 @@ struct Slot {
 }
 
 /// Items of type `T` behind handles of type `H`.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct HandleMap<H, T> {
     items: Vec<T>,
@@ -84,6 +85,8 @@ pub(crate) struct HandleMap<H, T> {
     slots: Vec<Slot>,
     free_slots: Vec<u32>,
 }
+
+clone_in_place!(HandleMap<H, T> { items, handles, slots, free_slots });
 
 impl<H, T> Default for HandleMap<H, T> {
     fn default() -> Self {

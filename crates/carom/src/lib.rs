@@ -54,6 +54,7 @@
 #![cfg_attr(feature = "f64", allow(clippy::large_enum_variant))]
 
 mod character;
+mod clone_in_place;
 mod collision;
 mod constants;
 mod debug_draw;
@@ -119,6 +120,7 @@ pub use world::effects::{Effect, Effects};
 pub use world::explosion::ExplosionDef;
 pub use world::joint_mut::JointMut;
 pub use world::settings::WorldSettings;
+pub use world::snapshot::Snapshot;
 pub use world::{CastHit, World};
 
 /// Internals for carom's own tests, benchmarks and fuzz targets: reference implementations

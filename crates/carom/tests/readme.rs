@@ -57,6 +57,26 @@ fn shape_cast_example() -> Result<(), carom::CaromError> {
 }
 
 #[rustfmt::skip]
+fn snapshot_example() -> Result<(), carom::CaromError> {
+    use carom::{BodyDef, Shape, World, vec2};
+
+    let mut world = World::new();
+    let ball = world.add_body(BodyDef::dynamic(Shape::circle(0.5)).position(vec2(0.0, 4.0)))?;
+    let start = world.snapshot();
+    for _ in 0..30 {
+        world.step(1.0 / 60.0)?;
+    }
+    let first = world.body(ball).unwrap().position();
+
+    world.restore(&start); // back to step 0: the ball is at (0, 4) again
+    for _ in 0..30 {
+        world.step(1.0 / 60.0)?;
+    }
+    assert_eq!(world.body(ball).unwrap().position(), first);
+    Ok(())
+}
+
+#[rustfmt::skip]
 fn character_example() -> Result<(), carom::CaromError> {
     use carom::{BodyDef, Character, CharacterDef, Shape, World, vec2};
 
@@ -149,6 +169,7 @@ fn the_readme_examples_run() {
     shape_cast_example().unwrap();
     character_example().unwrap();
     dynamic_character_example().unwrap();
+    snapshot_example().unwrap();
 }
 
 /// Lines without their leading spaces, blank ones dropped.
@@ -190,7 +211,7 @@ fn every_rust_example_in_the_features_guide_is_one_of_these() {
     let guide = include_str!("../../../docs/features.md");
     assert_eq!(
         examples_in("docs/features.md", guide),
-        5,
+        6,
         "a new example in docs/features.md: add it here"
     );
 }

@@ -13,6 +13,7 @@
 use super::dynamic_tree::{DynamicTree, Walk};
 use super::filter::CollisionFilter;
 use super::look_ahead::Motion;
+use crate::clone_in_place::clone_in_place;
 use crate::constants::{MOVES_PER_TASK, WALK_MOVED_FRACTION, WALK_PIECES};
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
@@ -83,7 +84,7 @@ fn tree_for(kind: BodyKind) -> usize {
 }
 
 /// The broadphase of a world: one proxy per collider, keyed by the collider's handle.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BroadPhase {
     trees: [DynamicTree; 2],
@@ -105,6 +106,8 @@ pub struct BroadPhase {
     #[cfg_attr(feature = "serde", serde(skip))]
     pieces: Vec<Walk>,
 }
+
+clone_in_place!(BroadPhase { trees, proxies, move_buffer, moved } keep { found, candidates, pieces });
 
 impl BroadPhase {
     /// An empty broadphase.

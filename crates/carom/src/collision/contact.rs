@@ -16,6 +16,7 @@
 //! short, as sequential impulse's restitution can) never touches. Changes of touching are
 //! reported as begin and end events, readable after the step.
 
+use crate::clone_in_place::clone_in_place;
 use crate::collision::manifold::Manifold;
 use crate::collision::recycle::ManifoldFrame;
 use crate::constants::CONTACTS_PER_TASK;
@@ -308,7 +309,7 @@ pub(super) fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
 /// Each contact also has an id, kept from its creation to its destruction (Box2D's contact
 /// id), which the lookup and the bodies' lists hold: moving a contact between parts only
 /// tells its id where it went, and walking a body's contacts hashes nothing.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Default)]
 pub struct ContactSet {
     pub(super) contacts: Vec<Contact>,
     /// Where each part of `contacts` begins and ends.
@@ -434,6 +435,11 @@ fn edge_side(edge: Edge) -> usize {
 
 /// The bodies of the contacts that started touching, and of those that stopped.
 pub(crate) type TouchChanges = (Vec<(BodyHandle, BodyHandle)>, Vec<(BodyHandle, BodyHandle)>);
+
+clone_in_place!(ContactSet {
+    contacts, parts, asleep_touching, colors, began, ended, lookup, ids, slots, free, edges,
+    events, pending, body_indices, made, mixers,
+} keep { doomed });
 
 impl ContactSet {
     /// True when the pair of colliders in slots `low < high` already has a contact.

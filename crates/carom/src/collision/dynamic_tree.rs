@@ -2,6 +2,7 @@
 //! payloads, kept balanced by the surface-area heuristic and tree rotations where leaves go in,
 //! and by a median-split rebuild of the part that leaves enlarged in place.
 
+use crate::clone_in_place::clone_in_place;
 use crate::geometry::aabb::Aabb;
 use crate::math::{Real, Vec2};
 
@@ -119,7 +120,7 @@ impl TreeNode {
 /// Leaves that move every step take the cheaper way, also Box2D v3's:
 /// [`DynamicTree::enlarge_proxy`] gives a leaf its new box in place and grows and marks its
 /// ancestors, and [`DynamicTree::rebuild`] then builds the marked part again, top down.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DynamicTree {
     nodes: Vec<TreeNode>,
@@ -130,6 +131,8 @@ pub struct DynamicTree {
     #[cfg_attr(feature = "serde", serde(skip))]
     scratch: RebuildScratch,
 }
+
+clone_in_place!(DynamicTree { nodes, root, free_list, proxy_count } keep { scratch });
 
 impl Default for DynamicTree {
     fn default() -> Self {

@@ -16,6 +16,7 @@
 //! sensor no longer finds it); removing a sensor ends all of its overlaps, reported after the
 //! next step as removals' contact ends are.
 
+use crate::clone_in_place::clone_in_place;
 use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
 use crate::collision::distance::separation;
 use crate::constants::SENSORS_PER_TASK;
@@ -59,7 +60,7 @@ impl SensorEvent {
 }
 
 /// One sensor and what overlaps it.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Sensor {
     collider: ColliderHandle,
@@ -71,7 +72,7 @@ struct Sensor {
 }
 
 /// The sensors of a world, in the order they were added, and their events.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Sensors {
     sensors: Vec<Sensor>,
@@ -82,6 +83,9 @@ pub(crate) struct Sensors {
     /// Events raised between steps (removing a sensor), reported after the next step.
     pending: Vec<SensorEvent>,
 }
+
+clone_in_place!(Sensor { collider, overlaps } keep { previous });
+clone_in_place!(Sensors { sensors, events, pending } keep { changed });
 
 impl Sensors {
     /// Starts watching a sensor collider; it sees nothing until the next step.

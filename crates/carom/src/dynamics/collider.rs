@@ -7,6 +7,7 @@
 //! broadphase holds one box per collider and contacts join pairs of colliders; the body's
 //! mass, centre of mass and inertia are summed over its colliders.
 
+use crate::clone_in_place::clone_in_place;
 use crate::collision::filter::CollisionFilter;
 use crate::constants::{CONTACTS_PER_TASK, ITEMS_PER_TASK};
 use crate::dynamics::body::{Body, BodyHandle};
@@ -224,7 +225,7 @@ pub(crate) fn check_non_negative(name: &'static str, value: Real) -> Result<Real
 
 /// A shape attached to a body: its geometry, placement in the body's frame and material, and
 /// where it is in the world as of the last step or edit.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Collider {
     body: BodyHandle,
@@ -245,6 +246,21 @@ pub struct Collider {
     world_shape: WorldShape,
     aabb: Aabb,
 }
+
+clone_in_place!(Collider {
+    body,
+    body_index,
+    shape,
+    local,
+    density,
+    surface,
+    filter,
+    hit_events,
+    sensor,
+    pre_solve,
+    world_shape,
+    aabb,
+});
 
 impl Collider {
     /// A collider of `body` (placed by `body_transform`) from a checked definition.

@@ -12,6 +12,7 @@
 //! island wakes when an awake dynamic body or a moving kinematic one touches it; a still
 //! kinematic platform lets what rests on it sleep.
 
+use crate::clone_in_place::clone_in_place;
 #[cfg(feature = "serde")]
 use crate::dynamics::body::Body;
 use crate::dynamics::body::BodyHandle;
@@ -20,7 +21,7 @@ use crate::handle_map::HandleMap;
 use crate::math::Real;
 
 /// One island's record.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Copy, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Island {
     /// The first and last bodies of its list.
@@ -39,12 +40,14 @@ pub(crate) struct Island {
 }
 
 /// Every island's record, by island id.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Islands {
     records: Vec<Island>,
     free: Vec<u32>,
 }
+
+clone_in_place!(Islands { records, free });
 
 impl Islands {
     /// A new empty island; returns its id.

@@ -1,4 +1,4 @@
-//! The points of a placed polygon: its vertices, or its edges' normals.
+//! The points of a polygon, placed or not: its vertices, its edges or their normals.
 
 use crate::math::Vec2;
 use smallvec::SmallVec;
@@ -9,13 +9,25 @@ use std::ops::Deref;
 /// polygons have at most eight vertices, and so do nearly all that games use.
 const INLINE_POINTS: usize = 8;
 
-/// Points held inline with what owns them (up to eight), so that reading a placed polygon
-/// reads its collider's memory and nothing beyond: the narrowphase reads two per contact, in
-/// no order a cache can guess. Read as a slice; made from any iterator of points.
-#[derive(Clone, PartialEq, Default)]
+/// Points held inline with what owns them (up to eight), so that reading a polygon reads its
+/// collider's memory and nothing beyond: the narrowphase reads two placed ones per contact, in
+/// no order a cache can guess, and a snapshot copies them with the collider. Read as a slice;
+/// made from any iterator of points.
+#[derive(PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(transparent))]
 pub struct Points(SmallVec<[Vec2; INLINE_POINTS]>);
+
+// Cloned into the old points' storage (the derive's would make new storage for many).
+impl Clone for Points {
+    fn clone(&self) -> Self {
+        Points(self.0.clone())
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.0.clone_from(&source.0);
+    }
+}
 
 impl Points {
     /// Becomes `points`, keeping its storage.

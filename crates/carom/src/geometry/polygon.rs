@@ -1,9 +1,11 @@
 //! Convex polygons: counter-clockwise, recentred on their centroid, optionally rounded.
 
+use crate::clone_in_place::clone_in_place;
 use crate::constants::{COLLINEAR_SINE, CONTAINMENT_TOLERANCE, WELD_TOLERANCE};
 use crate::error::{CaromError, check_finite};
 use crate::geometry::checks::{check_extent, check_point};
 use crate::geometry::mass;
+use crate::geometry::points::Points;
 use crate::geometry::segment::distance_to_segment;
 use crate::math::{Real, Vec2, atan2_f64, cross, perp_cw, sin_cos_f64};
 use std::f64::consts::TAU;
@@ -15,11 +17,13 @@ use std::f64::consts::TAU;
 /// clockwise perpendicular of the edge. Edges and normals are computed once, here. A rounded
 /// polygon's vertices are its *core*: the shape is every point within [`Polygon::radius`] of
 /// the core, so its corners are arcs and its faces lie `radius` out from the core's edges.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct Polygon {
-    vertices: Vec<Vec2>,
-    edges: Vec<Vec2>,
-    normals: Vec<Vec2>,
+    // Inline up to eight points (as Box2D holds them), so a polygon is read, placed and
+    // copied without a visit to the heap.
+    vertices: Points,
+    edges: Points,
+    normals: Points,
     /// Where the centroid was in the coordinates the points were given in.
     source_centroid: Vec2,
     /// Distance from the centroid to the farthest vertex of the core.
@@ -33,6 +37,17 @@ pub struct Polygon {
     /// [`Polygon::validate`] reports it. The vertices are then a unit square's.
     problem: Option<Box<CaromError>>,
 }
+
+clone_in_place!(Polygon {
+    vertices,
+    edges,
+    normals,
+    source_centroid,
+    circumradius,
+    inradius,
+    radius,
+    problem,
+});
 
 impl Polygon {
     /// Builds a convex polygon from its vertices in order around the outline.
@@ -254,10 +269,10 @@ impl Polygon {
             return Err(CaromError::ZeroArea);
         }
         let n = vertices.len();
-        let edges: Vec<Vec2> = (0..n)
+        let edges: Points = (0..n)
             .map(|i| vertices[(i + 1) % n] - vertices[i])
             .collect();
-        let normals: Vec<Vec2> = edges.iter().map(|e| perp_cw(*e).normalize()).collect();
+        let normals: Points = edges.iter().map(|e| perp_cw(*e).normalize()).collect();
         if normals
             .iter()
             .any(|n| !(n.x.is_finite() && n.y.is_finite()))
@@ -271,7 +286,7 @@ impl Polygon {
             .map(|(v, n)| n.dot(v))
             .fold(Real::INFINITY, Real::min);
         Ok(Polygon {
-            vertices,
+            vertices: vertices.into_iter().collect(),
             edges,
             normals,
             source_centroid,

@@ -17,7 +17,10 @@ pub use crate::geometry::segment::{ChainSegment, Segment};
 ///
 /// Circles and polygons are centred on their centroid when built; capsules, segments and chain
 /// segments keep the points they are given, in the collider's frame.
-#[derive(Debug, Clone, PartialEq)]
+// A polygon holds its points inline, so the polygon variant is the large one: boxing it would
+// bring back the visit to the heap that holding them inline saves.
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug, PartialEq)]
 pub enum Shape {
     /// A circle centred on the local origin.
     Circle(Circle),
@@ -29,6 +32,26 @@ pub enum Shape {
     Segment(Segment),
     /// One link of a chain: one-sided, with ghost vertices (see [`crate::ChainDef`]).
     ChainSegment(ChainSegment),
+}
+
+// A polygon's arrays are cloned into the old polygon's, so restoring a snapshot reuses them.
+impl Clone for Shape {
+    fn clone(&self) -> Self {
+        match self {
+            Shape::Circle(circle) => Shape::Circle(*circle),
+            Shape::Capsule(capsule) => Shape::Capsule(*capsule),
+            Shape::Polygon(polygon) => Shape::Polygon(polygon.clone()),
+            Shape::Segment(segment) => Shape::Segment(*segment),
+            Shape::ChainSegment(chain) => Shape::ChainSegment(*chain),
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        match (self, source) {
+            (Shape::Polygon(into), Shape::Polygon(from)) => into.clone_from(from),
+            (into, from) => *into = from.clone(),
+        }
+    }
 }
 
 impl Shape {

@@ -11,6 +11,7 @@
 //! hold bodies up against the ground are solved last in each pass and have the last word.
 //! A contact that finds no colour free goes to the overflow, solved one by one after the colours.
 
+use crate::clone_in_place::clone_in_place;
 use crate::constants::{COLOR_COUNT, DYNAMIC_COLOR_COUNT};
 
 /// The colour of a contact that has none (not touching, or asleep).
@@ -20,9 +21,19 @@ pub(crate) const NO_COLOR: u8 = u8::MAX;
 pub(crate) const OVERFLOW: u8 = COLOR_COUNT as u8;
 
 /// One bit per body slot.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct BodyBits(Vec<u64>);
+
+impl Clone for BodyBits {
+    fn clone(&self) -> Self {
+        BodyBits(self.0.clone())
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.0.clone_from(&source.0);
+    }
+}
 
 impl BodyBits {
     fn get(&self, slot: u32) -> bool {
@@ -56,11 +67,13 @@ pub(crate) struct ColorBody {
 
 /// Which dynamic bodies each colour holds. Each colour's contacts are a part of the contact
 /// array (see `graph::layout`).
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct ContactColors {
     bodies: [BodyBits; COLOR_COUNT],
 }
+
+clone_in_place!(ContactColors { bodies });
 
 impl ContactColors {
     /// Gives a contact between `a` and `b` a colour, which then holds their dynamic bodies

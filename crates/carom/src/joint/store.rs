@@ -10,7 +10,7 @@ use std::collections::HashMap;
 use std::ops::Range;
 
 /// Every joint of a world.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct JointStore {
     /// Stored in solver sets: those the step solves, then joints with no dynamic body, then
@@ -31,6 +31,45 @@ pub(crate) struct JointStore {
 /// The pair key of two bodies, in a fixed order.
 fn pair(a: BodyHandle, b: BodyHandle) -> (BodyHandle, BodyHandle) {
     if a <= b { (a, b) } else { (b, a) }
+}
+
+impl Clone for JointStore {
+    fn clone(&self) -> Self {
+        let JointStore {
+            joints,
+            sets,
+            by_body,
+            filters,
+            events,
+        } = self;
+        JointStore {
+            joints: joints.clone(),
+            sets: *sets,
+            by_body: by_body.clone(),
+            filters: filters.clone(),
+            events: events.clone(),
+        }
+    }
+
+    /// Each body's list is cloned into its old one: a map's own `clone_from` clones every
+    /// list anew.
+    fn clone_from(&mut self, source: &Self) {
+        let JointStore {
+            joints,
+            sets,
+            by_body,
+            filters,
+            events,
+        } = self;
+        joints.clone_from(&source.joints);
+        *sets = source.sets;
+        by_body.retain(|body, _| source.by_body.contains_key(body));
+        for (body, list) in &source.by_body {
+            by_body.entry(*body).or_default().clone_from(list);
+        }
+        filters.clone_from(&source.filters);
+        events.clone_from(&source.events);
+    }
 }
 
 impl JointStore {

@@ -12,6 +12,7 @@ pub(crate) mod queries;
 mod saved;
 pub(crate) mod settings;
 mod sleep;
+pub(crate) mod snapshot;
 pub(crate) mod solver_sets;
 mod step;
 

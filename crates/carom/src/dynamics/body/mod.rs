@@ -49,7 +49,7 @@ struct MassData {
 }
 
 /// A rigid body: where it is, how it moves, its mass; its shapes are its colliders.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Body {
     handle: BodyHandle,
@@ -127,6 +127,27 @@ impl Default for Pose {
             center: Vec2::zeros(),
             rotation: Rot::identity(),
         }
+    }
+}
+
+// A body's one array is its list of colliders; the rest is plain values, copied whole (a
+// field that is not `Copy` fails to compile here). Restoring a snapshot clones every body into
+// the old one, and the list keeps its buffer.
+impl Clone for Body {
+    fn clone(&self) -> Self {
+        Body {
+            colliders: self.colliders.clone(),
+            ..*self
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        let colliders = std::mem::take(&mut self.colliders);
+        *self = Body {
+            colliders,
+            ..*source
+        };
+        self.colliders.clone_from(&source.colliders);
     }
 }
 

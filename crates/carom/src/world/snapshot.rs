@@ -1,0 +1,137 @@
+//! A world's state kept in memory, to go back to: rewinding, replaying from a keyframe,
+//! rolling back a prediction.
+//!
+//! A snapshot holds what a saved world holds (every field of [`World`] that outlives a step),
+//! copied rather than serialised, so taking one and restoring it cost about as much as copying
+//! the world's arrays. Restoring copies into the world's own arrays and taking a snapshot into
+//! an old one reuses its arrays, so a rollback loop that keeps a ring of snapshots allocates
+//! only while the world grows.
+
+use crate::collision::broadphase::BroadPhase;
+use crate::collision::contact::ContactSet;
+use crate::collision::hits::HitEvent;
+use crate::collision::sensor::Sensors;
+use crate::dynamics::body::{Body, BodyHandle};
+use crate::dynamics::collider::{Collider, ColliderHandle};
+use crate::dynamics::island::Islands;
+use crate::handle_map::HandleMap;
+use crate::joint::store::JointStore;
+use crate::parallel::worth_sharing;
+use crate::world::World;
+use crate::world::settings::WorldSettings;
+use crate::world::solver_sets::SetBounds;
+
+/// A world's whole state at one moment, in memory: bodies, colliders, joints, contacts with
+/// their warm-start impulses, islands, sleep, the broadphase and the settings.
+///
+/// [`World::restore`] puts it back, and the world then steps on to exactly the bits it stepped
+/// to the first time. The pre-solve hook is code and is not part of a snapshot: a restored
+/// world keeps the hook it has.
+///
+/// ```
+/// use carom::{BodyDef, Shape, World, vec2};
+///
+/// let mut world = World::new();
+/// let ball = world.add_body(BodyDef::dynamic(Shape::circle(0.5)).position(vec2(0.0, 4.0)))?;
+/// let start = world.snapshot();
+/// for _ in 0..30 {
+///     world.step(1.0 / 60.0)?;
+/// }
+/// let first = world.body(ball).unwrap().position();
+/// world.restore(&start);
+/// for _ in 0..30 {
+///     world.step(1.0 / 60.0)?;
+/// }
+/// assert_eq!(world.body(ball).unwrap().position(), first);
+/// # Ok::<(), carom::CaromError>(())
+/// ```
+#[derive(Debug, Clone, Default)]
+pub struct Snapshot {
+    settings: WorldSettings,
+    time: f64,
+    step_count: u64,
+    bodies: HandleMap<BodyHandle, Body>,
+    colliders: HandleMap<ColliderHandle, Collider>,
+    joints: JointStore,
+    islands: Islands,
+    body_sets: SetBounds,
+    collider_sets: SetBounds,
+    broadphase: BroadPhase,
+    contacts: ContactSet,
+    sensors: Sensors,
+    hit_events: Vec<HitEvent>,
+    hit_event_colliders: usize,
+}
+
+impl Snapshot {
+    /// How many steps the world had taken when the snapshot was taken.
+    pub fn step_count(&self) -> u64 {
+        self.step_count
+    }
+
+    /// The world's simulated time when the snapshot was taken, s.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+}
+
+/// A world large enough to copy on two threads: the contacts on one, the rest on the other.
+const SHARED_COPY_ITEMS: usize = 2000;
+
+/// Clones every part of a world's state from `$from` into `$into` (a world or a snapshot, which
+/// name their parts alike), each into its old memory.
+macro_rules! copy_state {
+    ($into:expr, $from:expr) => {{
+        let (into, from) = ($into, $from);
+        into.settings.clone_from(&from.settings);
+        into.time = from.time;
+        into.step_count = from.step_count;
+        into.hit_event_colliders = from.hit_event_colliders;
+        into.hit_events.clone_from(&from.hit_events);
+        into.joints.clone_from(&from.joints);
+        into.islands.clone_from(&from.islands);
+        into.body_sets.clone_from(&from.body_sets);
+        into.collider_sets.clone_from(&from.collider_sets);
+        into.sensors.clone_from(&from.sensors);
+        let mut contacts = || into.contacts.clone_from(&from.contacts);
+        let mut bodies = || {
+            into.bodies.clone_from(&from.bodies);
+            into.colliders.clone_from(&from.colliders);
+            into.broadphase.clone_from(&from.broadphase);
+        };
+        // The copy is bound by memory traffic, which a second core adds to.
+        if worth_sharing(
+            from.contacts.len() + from.bodies.len(),
+            SHARED_COPY_ITEMS / 2,
+        ) {
+            rayon::join(contacts, bodies);
+        } else {
+            contacts();
+            bodies();
+        }
+    }};
+}
+
+impl World {
+    /// The world's state now, to [`restore`](World::restore) later.
+    pub fn snapshot(&self) -> Snapshot {
+        let mut snapshot = Snapshot::default();
+        self.snapshot_into(&mut snapshot);
+        snapshot
+    }
+
+    /// Takes the world's state now into `snapshot`, replacing what it held and reusing its
+    /// memory: a snapshot taken again of a world of the same size allocates nothing.
+    pub fn snapshot_into(&self, snapshot: &mut Snapshot) {
+        copy_state!(snapshot, self);
+    }
+
+    /// Puts the world back in the state `snapshot` holds: every body, collider, joint, contact
+    /// and setting as they were, the step count and time too. Stepping on from there gives
+    /// the same bits as it did from the snapshot's moment. A handle made since then names
+    /// nothing now, or what is made again in its place; the pre-solve hook stays as it is.
+    /// The world's memory is reused, so restoring into a world as large allocates nothing.
+    pub fn restore(&mut self, snapshot: &Snapshot) {
+        copy_state!(self, snapshot);
+    }
+}
