@@ -5,9 +5,9 @@
 use crate::accuracy_panel::AccuracyPanel;
 use crate::files;
 use crate::metrics::Metrics;
-use carom::{BodyHandle, Color, DrawList, DrawOptions, JointDef, JointHandle, Real, Vec2};
+use carom::{Color, DrawList, DrawOptions, Effect, Real, Vec2};
 use carom_render::Camera;
-use carom_scene::SceneWorld;
+use carom_scene::{Hand, Input, PlayerInput, Recording, SceneWorld};
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 use web_time::Instant;
@@ -119,26 +119,19 @@ pub struct Demo {
     /// When the open scene's file was last changed, as last seen: a later change reloads it.
     file_changed: Option<SystemTime>,
     accumulator: f64,
-    grab: Option<Grab>,
+    /// The body the cursor holds, if any.
+    hand: Hand,
+    /// The run since the scene was opened or reset: every input and every step's hash.
+    recording: Recording,
     pan_from: Option<Vec2>,
 }
-
-/// A body held by the cursor through a mouse joint.
-#[derive(Debug, Clone, Copy)]
-struct Grab {
-    joint: JointHandle,
-    body: BodyHandle,
-}
-
-/// How hard the cursor may pull, as an acceleration of the held body's mass, m/s² (Box2D's
-/// samples pull with 1000 times the body's mass).
-const GRAB_ACCELERATION: Real = 1000.0;
 
 impl Demo {
     /// Opens `scene` (a file), listing the scenes of `folder` for the menu.
     pub fn open(folder: &Path, scene: &Path, viewport: [u32; 2]) -> Result<Demo, String> {
         let (scenes, _) = find_scenes(folder);
         let loaded = files::load_scene(scene).map_err(|e| e.to_string())?;
+        let recording = start_recording(scene)?;
         let current = scenes.iter().position(|s| same_file(&s.path, scene));
         let mut demo = Demo {
             scenes,
@@ -160,7 +153,8 @@ impl Demo {
             notice: None,
             file_changed: modified(scene),
             accumulator: 0.0,
-            grab: None,
+            hand: Hand::default(),
+            recording,
             pan_from: None,
         };
         demo.metrics.clear();
@@ -182,13 +176,13 @@ impl Demo {
         let draw = self.draw;
         let camera = self.camera;
         self.load(&path)?;
-        self.scene
-            .world
-            .update_settings(|s| {
-                s.solver = solver;
-                s.effects = effects;
-            })
-            .map_err(|e| e.to_string())?;
+        self.input(Input::Solver(solver))?;
+        for effect in Effect::ALL {
+            let on = effects.contains(effect);
+            if self.scene.world.effects().contains(effect) != on {
+                self.input(Input::Effect { effect, on })?;
+            }
+        }
         self.draw = draw;
         self.camera = camera;
         Ok(())
@@ -197,6 +191,7 @@ impl Demo {
     fn load(&mut self, path: &Path) -> Result<(), String> {
         let changed = modified(path);
         let loaded = files::load_scene(path).map_err(|e| e.to_string())?;
+        self.recording = start_recording(path)?;
         self.file_changed = changed;
         self.notice = None;
         self.camera = scene_camera(&loaded, self.viewport);
@@ -205,7 +200,7 @@ impl Demo {
         self.scene_path = path.to_path_buf();
         self.metrics.clear();
         self.accumulator = 0.0;
-        self.grab = None;
+        self.hand = Hand::default();
         self.pan_from = None;
         Ok(())
     }
@@ -232,7 +227,7 @@ impl Demo {
             scene.name = format!("{} (saved)", scene.name);
         }
         // The grab's spring is the cursor's, not the scene's: let go before saving.
-        self.let_go();
+        self.let_go()?;
         Ok((path, self.scene.save(&scene)))
     }
 
@@ -317,13 +312,26 @@ impl Demo {
         let ms = clock.elapsed().as_secs_f64() * 1e3;
         self.metrics.record(&self.scene.world, ms);
         // The held body may be gone, and its joint with it (or the joint broke).
-        if self
-            .grab
-            .is_some_and(|grab| self.scene.world.joint(grab.joint).is_none())
-        {
-            self.grab = None;
-        }
+        self.hand.after_step(&self.scene.world);
+        self.recording.step(&self.scene.world);
         Ok(())
+    }
+
+    /// Applies a user's input to the scene and records it with the step it comes before, so
+    /// the run can be played back exactly ([`Demo::recording`]).
+    ///
+    /// # Errors
+    /// A setting out of range; the scene is then left as it was, and nothing is recorded.
+    pub fn input(&mut self, input: Input) -> Result<(), String> {
+        self.hand.apply(&mut self.scene, &input)?;
+        self.recording.input(input);
+        Ok(())
+    }
+
+    /// The run since the scene was opened, reloaded or reset: its file's text, every input,
+    /// and the state hash after every step.
+    pub fn recording(&self) -> &Recording {
+        &self.recording
     }
 
     /// Whether the scene has a player for the keys to walk ([`Demo::hold`]).
@@ -333,12 +341,16 @@ impl Demo {
 
     /// A player's control held down (`true`) or let go, if the scene has a player.
     pub fn hold(&mut self, control: Control, held: bool) {
-        if let Some(player) = &mut self.scene.player {
-            let input = &mut player.input;
+        if let Some(player) = &self.scene.player {
+            let mut keys = player.input;
             match control {
-                Control::Left => input.left = held,
-                Control::Right => input.right = held,
-                Control::Jump => input.jump = held,
+                Control::Left => keys.left = held,
+                Control::Right => keys.right = held,
+                Control::Jump => keys.jump = held,
+            }
+            if keys != player.input {
+                // Keys always apply.
+                let _ = self.input(Input::keys(keys));
             }
         }
     }
@@ -346,8 +358,11 @@ impl Demo {
     /// Lets go of every control of the player (the window lost the keyboard), unless it plays
     /// its recorded play, which holds the keys itself.
     pub fn let_go_of_controls(&mut self) {
-        if let Some(player) = self.scene.player.as_mut().filter(|p| !p.is_replaying()) {
-            player.input = carom_scene::PlayerInput::default();
+        if let Some(player) = self.scene.player.as_ref().filter(|p| !p.is_replaying())
+            && player.input != PlayerInput::default()
+        {
+            // Keys always apply.
+            let _ = self.input(Input::keys(PlayerInput::default()));
         }
     }
 
@@ -375,21 +390,11 @@ impl Demo {
     pub fn press(&mut self, button: Button, screen: Vec2) {
         match button {
             Button::Left => {
-                self.let_go();
                 let point = self.camera.screen_to_world(screen, self.viewport);
-                let world = &mut self.scene.world;
-                let Some(body) = world.body_at(point) else {
-                    return;
-                };
-                let Some(mass) = world
-                    .body(body)
-                    .filter(|b| b.is_dynamic())
-                    .map(|b| b.mass())
-                else {
-                    return;
-                };
-                let def = JointDef::mouse(body, point, GRAB_ACCELERATION * mass);
-                self.grab = world.add_joint(def).ok().map(|joint| Grab { joint, body });
+                // A grab only adds a joint at a finite point; it cannot fail.
+                let _ = self.input(Input::Grab {
+                    point: (point.x, point.y),
+                });
             }
             Button::Right | Button::Middle => self.pan_from = Some(screen),
         }
@@ -397,12 +402,12 @@ impl Demo {
 
     /// The cursor moved to `screen`.
     pub fn move_to(&mut self, screen: Vec2) {
-        if let Some(grab) = self.grab {
+        if self.hand.grabbed().is_some() {
             let point = self.camera.screen_to_world(screen, self.viewport);
             // Screen points map to finite world points; a failure would leave the old target.
-            if let Some(mut joint) = self.scene.world.joint_mut(grab.joint) {
-                let _ = joint.set_mouse_target(point);
-            }
+            let _ = self.input(Input::Drag {
+                point: (point.x, point.y),
+            });
         }
         if let Some(from) = self.pan_from {
             self.camera.pan_by_pixels(screen - from);
@@ -413,16 +418,19 @@ impl Demo {
     /// A button went up: a held body is let go with the velocity it has (a throw).
     pub fn release(&mut self, button: Button) {
         match button {
-            Button::Left => self.let_go(),
+            Button::Left => {
+                // Letting go cannot fail.
+                let _ = self.let_go();
+            }
             Button::Right | Button::Middle => self.pan_from = None,
         }
     }
 
     /// Lets go of the held body, if any: it keeps the velocity it has.
-    fn let_go(&mut self) {
-        if let Some(grab) = self.grab.take() {
-            // Gone already if the body was removed or the joint broke.
-            let _ = self.scene.world.remove_joint(grab.joint);
+    fn let_go(&mut self) -> Result<(), String> {
+        match self.hand.grabbed() {
+            Some(_) => self.input(Input::LetGo),
+            None => Ok(()),
         }
     }
 
@@ -440,7 +448,7 @@ impl Demo {
 
     /// The body held, if any.
     pub fn grabbed(&self) -> Option<carom::BodyHandle> {
-        self.grab.map(|grab| grab.body)
+        self.hand.grabbed().map(|(_, body)| body)
     }
 
     /// Describes the scene and the grab's spring to `out` (cleared first).
@@ -448,9 +456,9 @@ impl Demo {
         out.clear();
         self.scene.debug_draw(&self.draw, out);
         let world = &self.scene.world;
-        if let Some(grab) = self.grab
-            && let Some(joint) = world.joint(grab.joint)
-            && let Some(body) = world.body(grab.body)
+        if let Some((joint, body)) = self.hand.grabbed()
+            && let Some(joint) = world.joint(joint)
+            && let Some(body) = world.body(body)
             && let carom::JointKind::Mouse(mouse) = joint.kind()
         {
             let anchor = body.world_point(joint.local_anchors()[1]);
@@ -460,6 +468,12 @@ impl Demo {
             carom::DebugDraw::point(out, mouse.target, 4.0, spring);
         }
     }
+}
+
+/// A recording of the scene in `path` as its file reads now.
+fn start_recording(path: &Path) -> Result<Recording, String> {
+    let text = files::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(Recording::new(&path.display().to_string(), &text))
 }
 
 /// When a file was last changed, if it can be told.

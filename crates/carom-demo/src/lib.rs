@@ -1,5 +1,6 @@
 //! The carom demo app's library. Most of it knows nothing of windows, so tests can drive it:
-//! [`run`] runs a scene headless and measures it; [`demo`] is the interactive demo's state
+//! [`run`] runs a scene headless and measures it; [`recording`] records a run and plays one
+//! back; [`demo`] is the interactive demo's state
 //! (scene, camera, grab, fixed-step clock) and [`metrics`] what it measures live; [`snapshot`]
 //! renders a scene offscreen to an image; [`accuracy_panel`] holds what the sidebar shows of
 //! the accuracy sweep (`carom_bench::sweep`, which `carom bench` runs) for the scene running.
@@ -16,6 +17,7 @@ pub mod capture;
 pub mod demo;
 pub mod files;
 pub mod metrics;
+pub mod recording;
 pub mod run;
 pub mod snapshot;
 pub mod ui;

@@ -7,6 +7,7 @@
 
 use carom::{Effect, Real, SolverKind};
 use carom_bench::sweep::{Engine, SweepOptions, sweep_to_folder};
+use carom_demo::recording;
 use carom_demo::run::{RunOptions, run};
 use carom_demo::snapshot::{self, SnapshotOptions, parse_size};
 use carom_demo::window::{self, WindowOptions};
@@ -111,6 +112,28 @@ enum Command {
         /// solver and stabilization iterations (1 to 16), on the same scenes.
         #[arg(long, value_delimiter = ',', value_parser = engine)]
         engines: Option<Vec<Engine>>,
+    },
+    /// Run a scene headless and write the run as a recording: the scene and the state hash
+    /// after every step, for `carom replay` (natively or in the web build) to check.
+    Record {
+        /// The scene file, for example demos/pyramid.ron.
+        scene: PathBuf,
+        /// How many steps.
+        #[arg(long, default_value_t = 600)]
+        steps: u64,
+        /// Where to write the recording (a `.run` file is RON text).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Play a recording back (one from `carom record`, or saved from the app with its grabs,
+    /// throws, keys and setting changes) and check every step's state hash; exits with an error
+    /// at the first step that ends elsewhere, naming it.
+    Replay {
+        /// The recording.
+        run: PathBuf,
+        /// Print one JSON object instead of a summary.
+        #[arg(long)]
+        json: bool,
     },
     /// Render a scene after some steps to a PNG, offscreen (no window needed).
     Snapshot {
@@ -279,6 +302,45 @@ fn main() -> ExitCode {
                         out.join("README.md").display()
                     );
                     ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
+                }
+            }
+        }
+        Some(Command::Record { scene, steps, out }) => {
+            let written = recording::record(&scene, steps).and_then(|recording| {
+                std::fs::write(&out, recording.to_text())
+                    .map_err(|e| format!("cannot write {}: {e}", out.display()))
+            });
+            match written {
+                Ok(()) => {
+                    println!("{}: {steps} steps -> {}", scene.display(), out.display());
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::FAILURE
+                }
+            }
+        }
+        Some(Command::Replay { run, json }) => {
+            let replayed = std::fs::read_to_string(&run)
+                .map_err(|e| format!("cannot read {}: {e}", run.display()))
+                .and_then(|text| recording::replay(&text, &run.display().to_string()));
+            match replayed {
+                Ok(replayed) => {
+                    if json {
+                        println!("{}", replayed.to_json());
+                    } else {
+                        println!("{}", replayed.summary());
+                    }
+                    if replayed.parting.is_none() {
+                        ExitCode::SUCCESS
+                    } else {
+                        ExitCode::FAILURE
+                    }
                 }
                 Err(e) => {
                     eprintln!("error: {e}");

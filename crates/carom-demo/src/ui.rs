@@ -172,9 +172,9 @@ fn solver_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>
         ui.add(egui::Slider::new(&mut params.damping_ratio, 0.1..=20.0).text("damping ratio"));
     }
     if params != before
-        && let Err(e) = demo.scene.world.update_settings(|s| s.solver = params)
+        && let Err(e) = demo.input(carom_scene::Input::Solver(params))
     {
-        *error = Some(e.to_string());
+        *error = Some(e);
     }
 }
 
@@ -192,9 +192,7 @@ fn effects_section(ui: &mut egui::Ui, demo: &mut Demo) {
         for effect in Effect::ALL {
             let mut on = demo.scene.world.effects().contains(effect);
             if ui.checkbox(&mut on, effect.name()).changed() {
-                demo.scene
-                    .world
-                    .update_settings(|s| s.effects.set(effect, on))
+                demo.input(carom_scene::Input::Effect { effect, on })
                     .expect("switching an effect keeps the settings valid");
             }
         }
@@ -362,7 +360,8 @@ fn measure_controls(ui: &mut egui::Ui, panel: &mut AccuracyPanel) {
     } else {
         "Measure it again here"
     };
-    ui.horizontal(|ui| {
+    // Wrapped: the button and the checkbox are wider together than the sidebar.
+    ui.horizontal_wrapped(|ui| {
         if ui
             .button(label)
             .on_hover_text(

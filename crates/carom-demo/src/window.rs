@@ -356,10 +356,8 @@ impl Running {
         let scale = window.scale_factor() as f32;
         let viewport = scene_viewport(config.width, config.height, scale);
         let mut demo = Demo::open(&options.scenes_folder, &options.scene, viewport)?;
-        if options.replay
-            && let Some(player) = &mut demo.scene.player
-        {
-            player.replay();
+        if options.replay && demo.has_player() {
+            demo.input(carom_scene::Input::PlayRecordedKeys)?;
         }
         window.set_title(&format!("carom: {}", demo.scene_path.display()));
         let info = adapter.get_info();

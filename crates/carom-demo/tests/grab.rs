@@ -187,3 +187,69 @@ fn a_slow_scene_takes_one_step_per_frame_when_the_budget_is_spent() {
     }
     assert_eq!(demo.scene.world.step_count(), 5);
 }
+
+/// A grab, a drag and a throw in the grabbing scene, with a solver change between them.
+fn recorded_throw() -> carom_scene::Recording {
+    let mut demo = open("grabbing.ron");
+    frames(&mut demo, 30);
+    let (_, screen) = the_box(&demo);
+    demo.press(Button::Left, screen);
+    // A step after each drag, so each drag has a step of its own.
+    for i in 1..=20 {
+        demo.move_to(screen + vec2(-8.0 * i as carom::Real, -6.0 * i as carom::Real));
+        demo.step().unwrap();
+    }
+    let mut solver = *demo.scene.world.solver();
+    solver.substeps = 6;
+    demo.input(carom_scene::Input::Solver(solver)).unwrap();
+    demo.release(Button::Left);
+    for _ in 0..60 {
+        demo.step().unwrap();
+    }
+    demo.recording().clone()
+}
+
+#[test]
+fn a_recorded_throw_replays_to_the_same_hash_at_every_step() {
+    let recording = recorded_throw();
+    assert!(recording.steps() >= 100, "{} steps", recording.steps());
+    // The grab, twenty drags, the solver change and the throw.
+    assert_eq!(recording.inputs.len(), 23, "{:?}", recording.inputs);
+    assert!(matches!(
+        recording.inputs[0].input,
+        carom_scene::Input::Grab { .. }
+    ));
+    // Written out and read back, as `carom replay` reads it.
+    let text = recording.to_text();
+    let replayed = carom_demo::recording::replay(&text, "throw.run").unwrap();
+    assert_eq!(replayed.parting, None, "{}", replayed.summary());
+    assert_eq!(replayed.steps, recording.steps());
+}
+
+#[test]
+fn a_tampered_recording_parts_at_the_step_after_the_changed_input() {
+    let mut recording = recorded_throw();
+    // Move the tenth drag's target by 1 cm: the replay must part at the step that follows it.
+    let timed = &mut recording.inputs[10];
+    let carom_scene::Input::Drag { point } = &mut timed.input else {
+        panic!("input 10 is a drag: {timed:?}");
+    };
+    point.0 += 0.01;
+    let expected = timed.step + 1;
+    let replayed = carom_demo::recording::replay(&recording.to_text(), "tampered.run").unwrap();
+    let parting = replayed.parting.expect("the tampered recording parts");
+    assert_eq!(parting.step, expected, "{}", replayed.summary());
+    assert!(replayed.summary().contains(&format!("step {expected} ")));
+}
+
+#[test]
+fn a_recording_that_is_not_one_is_refused_with_its_line() {
+    let error = carom_demo::recording::replay("(format: 1, name: \"x\",", "bad.run").unwrap_err();
+    assert!(error.contains("bad.run:"), "{error}");
+    let other = carom_scene::Recording {
+        format: 99,
+        ..carom_scene::Recording::new("x.ron", "()")
+    };
+    let error = carom_demo::recording::replay(&other.to_text(), "old.run").unwrap_err();
+    assert!(error.contains("format 99"), "{error}");
+}

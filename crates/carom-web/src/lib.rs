@@ -3,8 +3,10 @@
 //! with every scene of `demos/` and the accuracy report built in.
 //! `crates/carom-web/build-site.sh` builds the site (see `docs/web.md`).
 //!
-//! The page's script can ask the running demo what it shows (`probe`) and run a scene
-//! headless as `carom run` does (`run_scene`); the browser test uses both.
+//! The page's script can ask the running demo what it shows (`probe`), run a scene headless as
+//! `carom run` does (`run_scene`), take the run so far as a recording (`request_recording`,
+//! then `recording`) and play a recording back as `carom replay` does (`replay_run`); the
+//! browser test uses them all.
 //!
 //! Built for the machine (not wasm32) the crate is empty, so the workspace builds as before.
 
@@ -13,7 +15,7 @@
 use carom_demo::demo::Demo;
 use carom_demo::run::{RunOptions, run};
 use carom_demo::window::{FrameInfo, Host, WindowOptions, start_in_canvas};
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use wasm_bindgen::prelude::*;
@@ -32,6 +34,10 @@ const PROBED_BODIES: usize = 64;
 thread_local! {
     /// What the last frame showed, as [`probe`] returns it.
     static LAST_FRAME: RefCell<String> = const { RefCell::new(String::new()) };
+    /// Whether the page asked for the run as a recording, and the recording written by the
+    /// first frame after it asked ([`request_recording`], [`recording`]).
+    static RECORDING_ASKED: Cell<bool> = const { Cell::new(false) };
+    static RECORDING: RefCell<String> = const { RefCell::new(String::new()) };
 }
 
 /// Starts the demo in the page's `<canvas id="carom-canvas">` (run by the module's `init`).
@@ -86,6 +92,31 @@ pub fn run_scene(file: &str, steps: usize) -> Result<String, JsValue> {
         .map_err(JsValue::from)
 }
 
+/// Asks for the running scene's run so far as a recording: the next frame writes it, and
+/// [`recording`] returns it from then on.
+#[wasm_bindgen]
+pub fn request_recording() {
+    RECORDING.with(|text| text.borrow_mut().clear());
+    RECORDING_ASKED.with(|asked| asked.set(true));
+}
+
+/// The recording the first frame after [`request_recording`] wrote (RON text, as `carom
+/// replay` reads it); empty until then.
+#[wasm_bindgen]
+pub fn recording() -> String {
+    RECORDING.with(|text| text.borrow().clone())
+}
+
+/// Plays back the recording `text` (one from `carom record`, or saved from a demo) as `carom
+/// replay --json` does, and returns its report as JSON: `parted_at` is the first step whose
+/// hash differs, or null.
+#[wasm_bindgen]
+pub fn replay_run(text: &str) -> Result<String, JsValue> {
+    carom_demo::recording::replay(text, "the recording")
+        .map(|replayed| replayed.to_json())
+        .map_err(JsValue::from)
+}
+
 /// The built-in scene files, one path a line.
 #[wasm_bindgen]
 pub fn scene_files() -> String {
@@ -102,6 +133,9 @@ struct Page;
 impl Host for Page {
     fn frame(&mut self, demo: &Demo, frame: &FrameInfo<'_>) {
         LAST_FRAME.with(|last| describe(demo, frame, &mut last.borrow_mut()));
+        if RECORDING_ASKED.with(|asked| asked.replace(false)) {
+            RECORDING.with(|text| *text.borrow_mut() = demo.recording().to_text());
+        }
     }
 
     fn failed(&mut self, message: &str) {

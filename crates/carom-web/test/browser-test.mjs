@@ -8,6 +8,8 @@
 //   - the demo draws: frames arrive, the sidebar has text and the scene has shapes;
 //   - a body dragged with the mouse, and another with a finger, follows the drag;
 //   - every built-in scene run in the page ends in the same state hash as the native `carom run`;
+//   - the page's run with those drags, recorded, replays natively (`carom replay`) to the same
+//     hash at every step, and a native recording (`carom record`) replays so in the page;
 //   - the page logs no error.
 // Screenshots and results.json go to the output folder. --frame-rates also measures the frame
 // rate of three scenes (frames 30 to 300). Exits 1 with the reason on the first failure.
@@ -65,6 +67,7 @@ try {
     await drawsTheDemo(page);
     await dragsWithTheMouse(page);
     await dragsWithAFinger(page);
+    await recordingsCrossOver(page);
     await sameHashesAsNative(page);
     // One page at a time: a second one drawing beside it would halve its frame rate.
     await page.close();
@@ -192,6 +195,31 @@ async function dragsWithAFinger(page) {
         up: (at) => touch("touchEnd", at),
     };
     await drag(page, body, { x: 150, y: -180 }, finger, "touch drag");
+}
+
+async function recordingsCrossOver(page) {
+    check(fs.existsSync(options.carom), `no native carom at ${options.carom} (build it or pass --carom)`);
+    // The page's run so far, with the two drags: replayed natively.
+    await page.evaluate(() => window.carom.request_recording());
+    await waitForFrames(page, 2, 30_000);
+    const text = await page.evaluate(() => window.carom.recording());
+    check(text.length > 0, "the page wrote no recording");
+    const fromPage = path.join(options.out, "browser.run");
+    fs.writeFileSync(fromPage, text);
+    const native = JSON.parse(execFileSync(options.carom, ["replay", fromPage, "--json"]).toString());
+    check(native.inputs >= 4, `the page's recording holds ${native.inputs} inputs, not the drags'`);
+    check(native.parted_at === null,
+        `the page's recording parts from its native replay at step ${native.parted_at}`);
+    // A native recording of a pile of ragdolls: replayed in the page.
+    const fromNative = path.join(options.out, "native.run");
+    execFileSync(options.carom, ["record", "demos/ragdolls.ron", "--steps", "200", "--out", fromNative]);
+    const web = JSON.parse(await page.evaluate((t) => window.carom.replay_run(t),
+        fs.readFileSync(fromNative, "utf8")));
+    check(web.parted_at === null, `the native recording parts from its replay in the page at ` +
+        `step ${web.parted_at}`);
+    results.recordings = { browser_to_native: native, native_to_browser: web };
+    passed(`recordings cross over: the page's (${native.steps} steps, ${native.inputs} inputs) ` +
+        `replays natively, and a native one (${web.steps} steps) in the page, every step's hash equal`);
 }
 
 async function sameHashesAsNative(page) {
