@@ -225,6 +225,11 @@ pub(crate) const MOVES_PER_TASK: usize = 64;
 /// exact overlap tests cost about a microsecond, a fork several).
 pub(crate) const SENSORS_PER_TASK: usize = 32;
 
+/// Contacts and bodies, together, per thread before a snapshot or a restore is copied on two
+/// threads (the contacts on one, the rest on the other): below it, a fork costs more than the
+/// second core's share of the copy gains.
+pub(crate) const COPY_ITEMS_PER_THREAD: usize = 1000;
+
 /// Blocks a stage (a colour's bundles, the bodies) is cut into, at most, when soft step's
 /// stages are shared among threads.
 pub(crate) const MAX_BLOCKS: usize = 8;

@@ -11,6 +11,7 @@ use crate::collision::broadphase::BroadPhase;
 use crate::collision::contact::ContactSet;
 use crate::collision::hits::HitEvent;
 use crate::collision::sensor::Sensors;
+use crate::constants::COPY_ITEMS_PER_THREAD;
 use crate::dynamics::body::{Body, BodyHandle};
 use crate::dynamics::collider::{Collider, ColliderHandle};
 use crate::dynamics::island::Islands;
@@ -75,9 +76,6 @@ impl Snapshot {
     }
 }
 
-/// A world large enough to copy on two threads: the contacts on one, the rest on the other.
-const SHARED_COPY_ITEMS: usize = 2000;
-
 /// Clones every part of a world's state from `$from` into `$into` (a world or a snapshot, which
 /// name their parts alike), each into its old memory.
 macro_rules! copy_state {
@@ -102,7 +100,7 @@ macro_rules! copy_state {
         // The copy is bound by memory traffic, which a second core adds to.
         if worth_sharing(
             from.contacts.len() + from.bodies.len(),
-            SHARED_COPY_ITEMS / 2,
+            COPY_ITEMS_PER_THREAD,
         ) {
             rayon::join(contacts, bodies);
         } else {
@@ -135,3 +133,33 @@ impl World {
         copy_state!(self, snapshot);
     }
 }
+
+// Names every field of `World`, so a field added later fails to compile here until it is
+// sorted: state that outlives a step, which `copy_state!` copies (and a saved world saves), or
+// what a step only works in, or code.
+const _: fn(&World) = |world| {
+    let World {
+        // Copied.
+        bodies: _,
+        colliders: _,
+        joints: _,
+        islands: _,
+        body_sets: _,
+        collider_sets: _,
+        broadphase: _,
+        contacts: _,
+        settings: _,
+        time: _,
+        step_count: _,
+        hit_event_colliders: _,
+        hit_events: _,
+        sensors: _,
+        // Working memory, and the last step's figures.
+        island_scratch: _,
+        stats: _,
+        solver_workspace: _,
+        scratch: _,
+        // Code: the world keeps its own.
+        pre_solve: _,
+    } = world;
+};
