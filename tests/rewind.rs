@@ -57,28 +57,23 @@ fn every_demo_rewound_to_a_snapshot_steps_to_the_same_bits() {
         }
     }
 }
-/// A pyramid of 10 on the ground, its boxes named by handle, stepped until it settles.
+
+/// A pyramid of 10 on the ground, every effect on, stepped for a second, with its boxes.
 fn pyramid() -> (World, Vec<carom::BodyHandle>) {
     use carom::{BodyDef, Shape, vec2};
     let mut world = World::new();
     world
         .add_body(BodyDef::static_body(Shape::rect(20.0, 0.5)).position(vec2(0.0, -0.5)))
         .unwrap();
-    let mut boxes = Vec::new();
-    for row in 0..10 {
-        for column in 0..10 - row {
-            let x = column as f32 - (9 - row) as f32 * 0.5;
-            let position = vec2(x, row as f32 + 0.5);
-            boxes.push(
-                world
-                    .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(position))
-                    .unwrap(),
-            );
-        }
-    }
+    carom_bench::cases::worlds::add_pyramid(&mut world, 10, 1.0);
     for _ in 0..60 {
         world.step(1.0 / 60.0).unwrap();
     }
+    let boxes = world
+        .bodies()
+        .filter(|b| b.is_dynamic())
+        .map(|b| b.handle())
+        .collect();
     (world, boxes)
 }
 

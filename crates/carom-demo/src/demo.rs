@@ -5,6 +5,7 @@
 use crate::accuracy_panel::AccuracyPanel;
 use crate::files;
 use crate::metrics::Metrics;
+use crate::recording;
 use carom::{Color, DrawList, DrawOptions, Effect, Real, Vec2};
 use carom_render::Camera;
 use carom_scene::{Hand, Input, PlayerInput, Recording, SceneWorld};
@@ -130,8 +131,7 @@ impl Demo {
     /// Opens `scene` (a file), listing the scenes of `folder` for the menu.
     pub fn open(folder: &Path, scene: &Path, viewport: [u32; 2]) -> Result<Demo, String> {
         let (scenes, _) = find_scenes(folder);
-        let loaded = files::load_scene(scene).map_err(|e| e.to_string())?;
-        let recording = start_recording(scene)?;
+        let (loaded, recording) = recording::open(scene)?;
         let current = scenes.iter().position(|s| same_file(&s.path, scene));
         let mut demo = Demo {
             scenes,
@@ -190,8 +190,8 @@ impl Demo {
 
     fn load(&mut self, path: &Path) -> Result<(), String> {
         let changed = modified(path);
-        let loaded = files::load_scene(path).map_err(|e| e.to_string())?;
-        self.recording = start_recording(path)?;
+        let (loaded, recording) = recording::open(path)?;
+        self.recording = recording;
         self.file_changed = changed;
         self.notice = None;
         self.camera = scene_camera(&loaded, self.viewport);
@@ -468,12 +468,6 @@ impl Demo {
             carom::DebugDraw::point(out, mouse.target, 4.0, spring);
         }
     }
-}
-
-/// A recording of the scene in `path` as its file reads now.
-fn start_recording(path: &Path) -> Result<Recording, String> {
-    let text = files::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(Recording::new(&path.display().to_string(), &text))
 }
 
 /// When a file was last changed, if it can be told.

@@ -3,17 +3,34 @@
 //! build plays recordings back the same way, so a run recorded on one replays on the other.
 
 use crate::files;
-use carom_scene::{Parting, Recording};
+use carom_scene::{Parting, Recording, SceneError, SceneWorld};
 use std::path::Path;
+
+/// Opens the scene file `path` for a recorded run: the file is read once, and the scene is
+/// built from the text the recording keeps.
+///
+/// # Errors
+/// A scene that does not read, parse or build, named as loading it names it.
+pub fn open(path: &Path) -> Result<(SceneWorld, Recording), String> {
+    let file = path.display().to_string();
+    let text = files::read_to_string(path).map_err(|source| {
+        SceneError::Io {
+            file: file.clone(),
+            source,
+        }
+        .to_string()
+    })?;
+    let recording = Recording::new(&file, &text);
+    let scene = recording.start().map_err(|e| e.to_string())?;
+    Ok((scene, recording))
+}
 
 /// Runs the scene in `scene` headless for `steps` steps, with no input, and records it.
 ///
 /// # Errors
 /// A scene that does not read, parse or build, or a step that fails.
 pub fn record(scene: &Path, steps: u64) -> Result<Recording, String> {
-    let text = files::read_to_string(scene).map_err(|e| format!("{}: {e}", scene.display()))?;
-    let mut recording = Recording::new(&scene.display().to_string(), &text);
-    let mut world = recording.start().map_err(|e| e.to_string())?;
+    let (mut world, mut recording) = open(scene)?;
     for _ in 0..steps {
         world.step().map_err(|e| e.to_string())?;
         recording.step(&world.world);
