@@ -1,6 +1,7 @@
 //! A world in steady state steps without touching the heap: every stage keeps its memory from
-//! step to step. Counted by an instrumented global allocator, so this file holds one test (the
-//! count is process-wide).
+//! step to step; and a snapshot's count of the heap it holds is what taking it allocated.
+//! Counted by an instrumented global allocator, so this file holds one test (the count is
+//! process-wide).
 
 use carom::{BodyDef, Effect, Effects, Shape, Snapshot, World, WorldSettings, vec2};
 use rayon::{ThreadPool, ThreadPoolBuilder};
@@ -115,6 +116,25 @@ fn allocations(mut world: World, pool: &ThreadPool, warm_up: usize, steps: usize
     })
 }
 
+/// The mixed scene: a thousand circles, boxes, pentagons and triangles raining into a room.
+fn mixed_1000() -> World {
+    let path = carom_bench::cases::worlds::workspace().join("demos/mixed_1000.ron");
+    carom_scene::load(&path).unwrap().world
+}
+
+/// What a snapshot of `world` after `steps` steps says it holds on the heap, and what taking
+/// it allocated, less what it freed, as the allocator counted it.
+fn snapshot_heap(mut world: World, steps: usize) -> (usize, usize) {
+    for _ in 0..steps {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    let region = Region::new(&INSTRUMENTED_SYSTEM);
+    let snapshot = world.snapshot();
+    let change = region.change();
+    let counted = change.bytes_allocated - change.bytes_deallocated;
+    (snapshot.heap_bytes(), counted)
+}
+
 /// Allocations over `rounds` rounds of a rollback loop on `world` after `warm_up` steps and
 /// eight rounds: each round takes a snapshot into the oldest of a ring of four, steps, and
 /// every fourth round goes back to the oldest snapshot kept and steps again from there.
@@ -220,6 +240,25 @@ fn a_world_in_steady_state_allocates_nothing_per_step() {
         let count = pools[0].install(|| rollback_allocations(world, warm_up, 40));
         if count > 0 {
             failures.push(format!("{name}: {count} allocations in 40 rounds"));
+        }
+    }
+    // A snapshot's own count of its heap is the allocator's, within 5 % (its maps' tables are
+    // estimated a little under). On one thread, the copy all on the counting one.
+    for (name, world, steps) in [
+        ("mixed 1000, 120 steps", mixed_1000(), 120),
+        ("pyramid of 100, 5 steps", pyramid(100, awake), 5),
+    ] {
+        let (reported, counted) = pools[0].install(|| snapshot_heap(world, steps));
+        let off = reported.abs_diff(counted) as f64 / counted as f64;
+        println!(
+            "{name}: a snapshot says it holds {reported} B, the allocator counted {counted} B"
+        );
+        if off > 0.05 {
+            failures.push(format!(
+                "{name}: a snapshot says it holds {reported} B, the allocator counted \
+                 {counted} B ({:.1} % off)",
+                off * 100.0
+            ));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

@@ -7,6 +7,7 @@
 
 use crate::clone_in_place::clone_in_place;
 use crate::error::CaromError;
+use crate::heap_bytes::{HeapBytes, OwnsNothing, array};
 
 /// A generational handle: a slot index and the generation the slot had when it was issued.
 pub(crate) trait Handle: Copy + Eq {
@@ -87,6 +88,26 @@ pub(crate) struct HandleMap<H, T> {
 }
 
 clone_in_place!(HandleMap<H, T> { items, handles, slots, free_slots });
+
+impl<H: OwnsNothing, T> HandleMap<H, T> {
+    /// The heap its arrays hold, bytes, `items` counting the array of items (with what each
+    /// owns, if any).
+    pub(crate) fn heap_bytes_with(&self, items: fn(&Vec<T>) -> usize) -> usize {
+        let HandleMap {
+            items: item_array,
+            handles,
+            slots,
+            free_slots,
+        } = self;
+        items(item_array) + array(handles) + array(slots) + array(free_slots)
+    }
+}
+
+impl<H: OwnsNothing, T: HeapBytes> HeapBytes for HandleMap<H, T> {
+    fn heap_bytes(&self) -> usize {
+        self.heap_bytes_with(Vec::heap_bytes)
+    }
+}
 
 impl<H, T> Default for HandleMap<H, T> {
     fn default() -> Self {

@@ -63,6 +63,7 @@ mod error;
 mod geometry;
 mod graph;
 mod handle_map;
+mod heap_bytes;
 mod joint;
 mod math;
 mod parallel;

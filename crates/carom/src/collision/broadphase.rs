@@ -18,6 +18,7 @@ use crate::constants::{MOVES_PER_TASK, WALK_MOVED_FRACTION, WALK_PIECES};
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
 use crate::geometry::aabb::Aabb;
+use crate::heap_bytes::{HeapBytes, array};
 use crate::math::{Real, Vec2};
 use crate::parallel::worth_sharing;
 use crate::prefetch::prefetch;
@@ -108,6 +109,21 @@ pub struct BroadPhase {
 }
 
 clone_in_place!(BroadPhase { trees, proxies, move_buffer, moved } keep { found, candidates, pieces });
+
+impl HeapBytes for BroadPhase {
+    fn heap_bytes(&self) -> usize {
+        let BroadPhase {
+            trees,
+            proxies,
+            move_buffer,
+            moved,
+            found: _,
+            candidates: _,
+            pieces: _,
+        } = self;
+        trees.heap_bytes() + array(proxies) + array(move_buffer) + array(moved)
+    }
+}
 
 impl BroadPhase {
     /// An empty broadphase.

@@ -30,6 +30,7 @@ use crate::graph::layout::{
     ASLEEP, ColorRanges, ContactPartition, NOT_TOUCHING, color_part, color_ranges,
 };
 use crate::handle_map::HandleMap;
+use crate::heap_bytes::{HeapBytes, OwnsNothing, array, map_table, nothing};
 use crate::math::Real;
 use crate::parallel::for_each_with;
 use crate::partition::shift_along;
@@ -81,6 +82,11 @@ pub struct Contact {
     /// one take them in this order.
     serial: u64,
 }
+
+// Plain values: every field is `Copy` (one that is not fails to compile in the pattern below,
+// which moves each out of a borrowed contact), so an array of contacts is its capacity alone.
+impl OwnsNothing for Contact {}
+const _: fn(&Contact) -> Contact = |contact| Contact { ..*contact };
 
 impl Contact {
     /// Takes its material from its colliders (both live).
@@ -440,6 +446,46 @@ clone_in_place!(ContactSet {
     contacts, parts, asleep_touching, colors, began, ended, lookup, ids, slots, free, edges,
     events, pending, body_indices, made, mixers,
 } keep { doomed });
+
+impl HeapBytes for ContactSet {
+    fn heap_bytes(&self) -> usize {
+        let ContactSet {
+            contacts,
+            parts,
+            asleep_touching,
+            colors,
+            began,
+            ended,
+            lookup,
+            ids,
+            slots,
+            free,
+            edges,
+            events,
+            pending,
+            body_indices,
+            made,
+            doomed: _,
+            mixers,
+        } = self;
+        array(contacts)
+            + nothing(parts)
+            + nothing(asleep_touching)
+            + colors.heap_bytes()
+            + array(began)
+            + array(ended)
+            + map_table(lookup)
+            + array(ids)
+            + array(slots)
+            + nothing(free)
+            + array(edges)
+            + array(events)
+            + array(pending)
+            + array(body_indices)
+            + nothing(made)
+            + nothing(mixers)
+    }
+}
 
 impl ContactSet {
     /// True when the pair of colliders in slots `low < high` already has a contact.

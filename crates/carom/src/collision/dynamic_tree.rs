@@ -4,6 +4,7 @@
 
 use crate::clone_in_place::clone_in_place;
 use crate::geometry::aabb::Aabb;
+use crate::heap_bytes::{HeapBytes, OwnsNothing, array, nothing};
 use crate::math::{Real, Vec2};
 
 mod overlaps;
@@ -37,6 +38,11 @@ struct TreeNode {
     /// while the pair walk runs (see [`overlaps`]); at any other time no node is marked.
     moved: bool,
 }
+
+// Plain values: every field is `Copy` (one that is not fails to compile in the pattern below,
+// which moves each out of a borrowed node), so an array of nodes is its capacity alone.
+impl OwnsNothing for TreeNode {}
+const _: fn(&TreeNode) -> TreeNode = |node| TreeNode { ..*node };
 
 // Queries walk the nodes: one per half cache line (in single precision).
 #[cfg(not(feature = "f64"))]
@@ -133,6 +139,19 @@ pub struct DynamicTree {
 }
 
 clone_in_place!(DynamicTree { nodes, root, free_list, proxy_count } keep { scratch });
+
+impl HeapBytes for DynamicTree {
+    fn heap_bytes(&self) -> usize {
+        let DynamicTree {
+            nodes,
+            root,
+            free_list,
+            proxy_count,
+            scratch: _,
+        } = self;
+        array(nodes) + nothing(root) + nothing(free_list) + nothing(proxy_count)
+    }
+}
 
 impl Default for DynamicTree {
     fn default() -> Self {

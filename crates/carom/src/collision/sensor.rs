@@ -23,6 +23,7 @@ use crate::constants::SENSORS_PER_TASK;
 use crate::dynamics::body::{Body, BodyHandle};
 use crate::dynamics::collider::{Collider, ColliderHandle};
 use crate::handle_map::HandleMap;
+use crate::heap_bytes::{HeapBytes, array, nothing};
 use crate::parallel::map_mut_into;
 
 /// A collider overlapping a sensor: which sensor, which visitor, and their bodies.
@@ -86,6 +87,29 @@ pub(crate) struct Sensors {
 
 clone_in_place!(Sensor { collider, overlaps } keep { previous });
 clone_in_place!(Sensors { sensors, events, pending } keep { changed });
+
+impl HeapBytes for Sensor {
+    fn heap_bytes(&self) -> usize {
+        let Sensor {
+            collider,
+            overlaps,
+            previous: _,
+        } = self;
+        nothing(collider) + array(overlaps)
+    }
+}
+
+impl HeapBytes for Sensors {
+    fn heap_bytes(&self) -> usize {
+        let Sensors {
+            sensors,
+            changed: _,
+            events,
+            pending,
+        } = self;
+        sensors.heap_bytes() + array(events) + array(pending)
+    }
+}
 
 impl Sensors {
     /// Starts watching a sensor collider; it sees nothing until the next step.

@@ -19,6 +19,7 @@ use crate::geometry::mass::MassProperties;
 use crate::geometry::ray::{Ray, RayHit};
 use crate::geometry::shape::{Shape, WorldShape};
 use crate::handle_map::{HandleMap, generational_handle};
+use crate::heap_bytes::HeapBytes;
 use crate::math::{Isometry, Real, Vec2};
 use crate::parallel::{for_each_mut, map_zip_mut_into};
 use std::ops::Range;
@@ -261,6 +262,28 @@ clone_in_place!(Collider {
     world_shape,
     aabb,
 });
+
+// Its shape, in its own frame and placed in the world (a polygon of many points holds them
+// on the heap); the rest is plain values.
+impl HeapBytes for Collider {
+    fn heap_bytes(&self) -> usize {
+        let Collider {
+            body: _,
+            body_index: _,
+            shape,
+            local: _,
+            density: _,
+            surface: _,
+            filter: _,
+            hit_events: _,
+            sensor: _,
+            pre_solve: _,
+            world_shape,
+            aabb: _,
+        } = self;
+        shape.heap_bytes() + world_shape.heap_bytes()
+    }
+}
 
 impl Collider {
     /// A collider of `body` (placed by `body_transform`) from a checked definition.

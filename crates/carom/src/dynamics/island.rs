@@ -18,6 +18,7 @@ use crate::dynamics::body::Body;
 use crate::dynamics::body::BodyHandle;
 #[cfg(feature = "serde")]
 use crate::handle_map::HandleMap;
+use crate::heap_bytes::{HeapBytes, array};
 use crate::math::Real;
 
 /// One island's record.
@@ -48,6 +49,13 @@ pub(crate) struct Islands {
 }
 
 clone_in_place!(Islands { records, free });
+
+impl HeapBytes for Islands {
+    fn heap_bytes(&self) -> usize {
+        let Islands { records, free } = self;
+        array(records) + array(free)
+    }
+}
 
 impl Islands {
     /// A new empty island; returns its id.

@@ -1,5 +1,6 @@
 //! The points of a polygon, placed or not: its vertices, its edges or their normals.
 
+use crate::heap_bytes::HeapBytes;
 use crate::math::Vec2;
 use smallvec::SmallVec;
 use std::fmt;
@@ -26,6 +27,18 @@ impl Clone for Points {
 
     fn clone_from(&mut self, source: &Self) {
         self.0.clone_from(&source.0);
+    }
+}
+
+// Nothing while the points fit inline; past that, the heap array they spilled into.
+impl HeapBytes for Points {
+    fn heap_bytes(&self) -> usize {
+        let Points(points) = self;
+        if points.spilled() {
+            points.capacity() * size_of::<Vec2>()
+        } else {
+            0
+        }
     }
 }
 

@@ -7,6 +7,7 @@ use crate::geometry::checks::{check_extent, check_point};
 use crate::geometry::mass;
 use crate::geometry::points::Points;
 use crate::geometry::segment::distance_to_segment;
+use crate::heap_bytes::HeapBytes;
 use crate::math::{Real, Vec2, atan2_f64, cross, perp_cw, sin_cos_f64};
 use std::f64::consts::TAU;
 
@@ -48,6 +49,25 @@ clone_in_place!(Polygon {
     radius,
     problem,
 });
+
+impl HeapBytes for Polygon {
+    fn heap_bytes(&self) -> usize {
+        let Polygon {
+            vertices,
+            edges,
+            normals,
+            source_centroid: _,
+            circumradius: _,
+            inradius: _,
+            radius: _,
+            problem,
+        } = self;
+        // A world refuses a polygon with a problem, so a snapshot's have none: the box alone
+        // is counted, not the text an error may hold.
+        let problem = problem.as_ref().map_or(0, |_| size_of::<CaromError>());
+        vertices.heap_bytes() + edges.heap_bytes() + normals.heap_bytes() + problem
+    }
+}
 
 impl Polygon {
     /// Builds a convex polygon from its vertices in order around the outline.

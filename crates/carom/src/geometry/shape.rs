@@ -6,6 +6,7 @@ use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::{self, MassProperties};
 pub use crate::geometry::points::Points;
 use crate::geometry::ray::{self, Ray, RayHit};
+use crate::heap_bytes::{HeapBytes, nothing};
 use crate::math::{Isometry, Real, Vec2, perp_cw};
 
 pub use crate::geometry::capsule::Capsule;
@@ -50,6 +51,20 @@ impl Clone for Shape {
         match (self, source) {
             (Shape::Polygon(into), Shape::Polygon(from)) => into.clone_from(from),
             (into, from) => *into = from.clone(),
+        }
+    }
+}
+
+// A polygon's points, when it has more than it holds inline; the other shapes are plain
+// values.
+impl HeapBytes for Shape {
+    fn heap_bytes(&self) -> usize {
+        match self {
+            Shape::Polygon(polygon) => polygon.heap_bytes(),
+            Shape::Circle(circle) => nothing(circle),
+            Shape::Capsule(capsule) => nothing(capsule),
+            Shape::Segment(segment) => nothing(segment),
+            Shape::ChainSegment(chain) => nothing(chain),
         }
     }
 }
@@ -252,6 +267,28 @@ pub enum WorldShape {
         /// The next link's second point.
         ghost2: Vec2,
     },
+}
+
+impl HeapBytes for WorldShape {
+    fn heap_bytes(&self) -> usize {
+        match self {
+            WorldShape::Polygon {
+                vertices,
+                normals,
+                radius: _,
+            } => vertices.heap_bytes() + normals.heap_bytes(),
+            WorldShape::Circle {
+                center: _,
+                radius: _,
+            }
+            | WorldShape::ChainSegment {
+                ghost1: _,
+                point1: _,
+                point2: _,
+                ghost2: _,
+            } => 0,
+        }
+    }
 }
 
 impl WorldShape {

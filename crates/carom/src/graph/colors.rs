@@ -13,6 +13,7 @@
 
 use crate::clone_in_place::clone_in_place;
 use crate::constants::{COLOR_COUNT, DYNAMIC_COLOR_COUNT};
+use crate::heap_bytes::{HeapBytes, array};
 
 /// The colour of a contact that has none (not touching, or asleep).
 pub(crate) const NO_COLOR: u8 = u8::MAX;
@@ -32,6 +33,13 @@ impl Clone for BodyBits {
 
     fn clone_from(&mut self, source: &Self) {
         self.0.clone_from(&source.0);
+    }
+}
+
+impl HeapBytes for BodyBits {
+    fn heap_bytes(&self) -> usize {
+        let BodyBits(words) = self;
+        array(words)
     }
 }
 
@@ -74,6 +82,13 @@ pub(crate) struct ContactColors {
 }
 
 clone_in_place!(ContactColors { bodies });
+
+impl HeapBytes for ContactColors {
+    fn heap_bytes(&self) -> usize {
+        let ContactColors { bodies } = self;
+        bodies.heap_bytes()
+    }
+}
 
 impl ContactColors {
     /// Gives a contact between `a` and `b` a colour, which then holds their dynamic bodies

@@ -44,6 +44,7 @@ use crate::error::check_finite;
 use crate::error::{CaromError, check_finite_vec};
 use crate::geometry::checks::check_extent;
 use crate::handle_map::generational_handle;
+use crate::heap_bytes::OwnsNothing;
 use crate::math::{Real, Vec2, angle_of, rotation};
 
 generational_handle!(
@@ -498,6 +499,11 @@ pub struct Joint {
     torque: Real,
     pub(crate) impulses: JointImpulses,
 }
+
+// Plain values: every field is `Copy` (one that is not fails to compile in the pattern below,
+// which moves each out of a borrowed joint), so an array of joints is its capacity alone.
+impl OwnsNothing for Joint {}
+const _: fn(&Joint) -> Joint = |joint| Joint { ..*joint };
 
 impl Joint {
     /// Its handle.

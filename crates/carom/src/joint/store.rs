@@ -5,6 +5,7 @@
 use super::{Joint, JointEvent, JointHandle};
 use crate::dynamics::body::BodyHandle;
 use crate::handle_map::HandleMap;
+use crate::heap_bytes::{HeapBytes, array, map_table, nothing};
 use crate::world::solver_sets::{JointSetBounds, SolverSet};
 use std::collections::HashMap;
 use std::ops::Range;
@@ -69,6 +70,25 @@ impl Clone for JointStore {
         }
         filters.clone_from(&source.filters);
         events.clone_from(&source.events);
+    }
+}
+
+impl HeapBytes for JointStore {
+    fn heap_bytes(&self) -> usize {
+        let JointStore {
+            joints,
+            sets,
+            by_body,
+            filters,
+            events,
+        } = self;
+        let lists: usize = by_body.values().map(array).sum();
+        joints.heap_bytes_with(array)
+            + nothing(sets)
+            + map_table(by_body)
+            + lists
+            + map_table(filters)
+            + array(events)
     }
 }
 

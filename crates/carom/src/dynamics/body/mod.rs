@@ -13,6 +13,7 @@ use crate::error::{CaromError, check_finite, check_finite_vec};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::MassProperties;
 use crate::handle_map::generational_handle;
+use crate::heap_bytes::{HeapBytes, array};
 use crate::math::{Isometry, Mat3, Real, Rot, Vec2, angle_of, cross, cross_sv, rotation};
 
 /// How a body moves.
@@ -148,6 +149,46 @@ impl Clone for Body {
             ..*source
         };
         self.colliders.clone_from(&source.colliders);
+    }
+}
+
+// Its list of colliders; the rest is plain values (see `Clone`).
+impl HeapBytes for Body {
+    fn heap_bytes(&self) -> usize {
+        let Body {
+            handle: _,
+            kind: _,
+            colliders,
+            position: _,
+            rotation: _,
+            center: _,
+            local_center: _,
+            reach: _,
+            min_extent: _,
+            linear_velocity: _,
+            angular_velocity: _,
+            force: _,
+            torque: _,
+            mass: _,
+            gravity_scale: _,
+            linear_damping: _,
+            angular_damping: _,
+            bullet: _,
+            user_tag: _,
+            aabb: _,
+            had_time_of_impact: _,
+            start: _,
+            last_motion: _,
+            sleep_time: _,
+            sleep_threshold: _,
+            sweep_threshold: _,
+            fixed_rotation: _,
+            sleeping: _,
+            island: _,
+            island_prev: _,
+            island_next: _,
+        } = self;
+        array(colliders)
     }
 }
 
