@@ -8,7 +8,7 @@ use crate::metrics::Metrics;
 use crate::recording;
 use carom::{Color, DrawList, DrawOptions, Effect, Real, Vec2};
 use carom_render::Camera;
-use carom_scene::{Hand, Input, PlayerInput, Recording, SceneWorld};
+use carom_scene::{Course, Input, PlayerInput, Recording, SceneWorld, Timeline};
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 use web_time::Instant;
@@ -63,6 +63,8 @@ pub enum Key {
     Step,
     /// Reload the scene.
     Reset,
+    /// One step back (pauses).
+    StepBack,
     /// Scene by number: 1 is the first, 0 the tenth.
     Digit(u8),
 }
@@ -80,7 +82,8 @@ pub enum Control {
 
 /// The key hints the sidebar shows.
 pub const HINTS: &str = "Left drag: grab and throw · Right/middle drag: pan · Wheel: zoom\n\
-                         Space or P: pause · S: step · R: reset · W: save state · 1-9, 0: scenes\n\
+                         Space or P: pause · S or .: step · ,: step back · R: reset\n\
+                         W: save state · 1-9, 0: scenes\n\
                          A/D or ←/→: walk, Space or ↑: jump (scenes with a player)\n\
                          Editing the open scene's file reloads it.";
 
@@ -120,10 +123,11 @@ pub struct Demo {
     /// When the open scene's file was last changed, as last seen: a later change reloads it.
     file_changed: Option<SystemTime>,
     accumulator: f64,
-    /// The body the cursor holds, if any.
-    hand: Hand,
-    /// The run since the scene was opened or reset: every input and every step's hash.
-    recording: Recording,
+    /// The run since the scene was opened or reset, its keyframes, and the hand that
+    /// applies inputs (the body the cursor holds).
+    timeline: Timeline,
+    /// The step the timeline is being played to, a frame's step budget at a time.
+    seeking: Option<u64>,
     pan_from: Option<Vec2>,
 }
 
@@ -133,6 +137,7 @@ impl Demo {
         let (scenes, _) = find_scenes(folder);
         let (loaded, recording) = recording::open(scene)?;
         let current = scenes.iter().position(|s| same_file(&s.path, scene));
+        let timeline = Timeline::new(recording, &loaded);
         let mut demo = Demo {
             scenes,
             current,
@@ -153,8 +158,8 @@ impl Demo {
             notice: None,
             file_changed: modified(scene),
             accumulator: 0.0,
-            hand: Hand::default(),
-            recording,
+            timeline,
+            seeking: None,
             pan_from: None,
         };
         demo.metrics.clear();
@@ -191,7 +196,8 @@ impl Demo {
     fn load(&mut self, path: &Path) -> Result<(), String> {
         let changed = modified(path);
         let (loaded, recording) = recording::open(path)?;
-        self.recording = recording;
+        self.timeline = Timeline::new(recording, &loaded);
+        self.seeking = None;
         self.file_changed = changed;
         self.notice = None;
         self.camera = scene_camera(&loaded, self.viewport);
@@ -200,7 +206,6 @@ impl Demo {
         self.scene_path = path.to_path_buf();
         self.metrics.clear();
         self.accumulator = 0.0;
-        self.hand = Hand::default();
         self.pan_from = None;
         Ok(())
     }
@@ -250,6 +255,26 @@ impl Demo {
         Ok(path)
     }
 
+    /// The file the run's recording saves to: `NAME.run` beside the scene's file (a saved
+    /// scene's run saves beside it too).
+    pub fn recording_path(&self) -> PathBuf {
+        self.scene_path.with_extension("run")
+    }
+
+    /// Saves the run so far ([`Demo::recording`]) to [`Demo::recording_path`], for `carom
+    /// replay` to play back.
+    pub fn save_recording(&mut self) -> Result<PathBuf, String> {
+        let path = self.recording_path();
+        std::fs::write(&path, self.recording().to_text())
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        self.notice = Some(format!(
+            "recording of {} steps saved to {}",
+            self.recording().steps(),
+            path.display()
+        ));
+        Ok(path)
+    }
+
     /// Reloads the open scene if its file changed since it was loaded, keeping the camera
     /// and what is drawn; true if it did. A file that does not load (saved half-edited, say)
     /// is an error naming its line and column, and the scene runs on until the next change.
@@ -279,7 +304,12 @@ impl Demo {
     /// Advances by a frame of `seconds` of real time: as many fixed steps as are due (scaled
     /// by `time_scale`), at most `max_steps_per_frame` and no more once `step_budget` is spent.
     /// Returns the steps taken.
+    /// A timeline being played to a step ([`Demo::go_to`]) goes on toward it first, paused or
+    /// not, within the same budget.
     pub fn frame(&mut self, seconds: f64) -> Result<u32, String> {
+        if let Some(target) = self.seeking {
+            return self.seek(target);
+        }
         if self.paused {
             return Ok(0);
         }
@@ -305,33 +335,77 @@ impl Demo {
         Ok(steps)
     }
 
-    /// One fixed step, with its cost recorded.
+    /// Steps toward `target` within the frame's budget; the seek ends there.
+    fn seek(&mut self, target: u64) -> Result<u32, String> {
+        let started = Instant::now();
+        let mut steps = 0;
+        while self.timeline.at() < target {
+            if steps > 0 && started.elapsed() > self.step_budget {
+                return Ok(steps);
+            }
+            self.step()?;
+            steps += 1;
+        }
+        self.seeking = None;
+        Ok(steps)
+    }
+
+    /// One fixed step, with its cost recorded: a new one at the end of the run, or the
+    /// recorded run's next one after going back.
     pub fn step(&mut self) -> Result<(), String> {
         let clock = Instant::now();
-        self.scene.step().map_err(|e| e.to_string())?;
+        self.timeline
+            .step(&mut self.scene)
+            .map_err(|e| e.to_string())?;
         let ms = clock.elapsed().as_secs_f64() * 1e3;
         self.metrics.record(&self.scene.world, ms);
-        // The held body may be gone, and its joint with it (or the joint broke).
-        self.hand.after_step(&self.scene.world);
-        self.recording.step(&self.scene.world);
         Ok(())
     }
 
+    /// Goes back (or forward) to step `step` of the run and pauses there. The scene is put
+    /// back from the keyframe at or before it, and the recorded run is played on from there,
+    /// a frame's step budget at a time ([`Demo::frame`]), so it is at exactly the state it
+    /// had. Playing on replays the run; any new input starts a new branch.
+    pub fn go_to(&mut self, step: u64) -> Result<(), String> {
+        self.paused = true;
+        self.accumulator = 0.0;
+        let target = self
+            .timeline
+            .start_toward(&mut self.scene, step)
+            .map_err(|e| e.to_string())?;
+        self.seeking = (self.timeline.at() < target).then_some(target);
+        Ok(())
+    }
+
+    /// Where the scene is on its run, and the run: see [`Timeline`].
+    pub fn timeline(&self) -> &Timeline {
+        &self.timeline
+    }
+
     /// Applies a user's input to the scene and records it with the step it comes before, so
-    /// the run can be played back exactly ([`Demo::recording`]).
+    /// the run can be played back exactly ([`Demo::recording`]). After going back in time it
+    /// starts a new branch of the run, and says so.
     ///
     /// # Errors
     /// A setting out of range; the scene is then left as it was, and nothing is recorded.
     pub fn input(&mut self, input: Input) -> Result<(), String> {
-        self.hand.apply(&mut self.scene, &input)?;
-        self.recording.input(input);
+        self.seeking = None;
+        let course = self
+            .timeline
+            .input(&mut self.scene, input)
+            .map_err(|e| e.to_string())?;
+        if let Course::Branched { at, forgotten } = course {
+            self.notice = Some(format!(
+                "a new branch from step {at}: the old run's {forgotten} steps after it are gone"
+            ));
+        }
         Ok(())
     }
 
     /// The run since the scene was opened, reloaded or reset: its file's text, every input,
-    /// and the state hash after every step.
+    /// and the state hash after every step, to the end of its newest branch.
     pub fn recording(&self) -> &Recording {
-        &self.recording
+        self.timeline.recording()
     }
 
     /// Whether the scene has a player for the keys to walk ([`Demo::hold`]).
@@ -374,6 +448,14 @@ impl Demo {
                 self.paused = true;
                 self.step()?;
             }
+            Key::StepBack => {
+                let back = self.timeline.at().saturating_sub(1);
+                self.go_to(back)?;
+                // One step back is at most a keyframe's interval away: done at once.
+                while let Some(target) = self.seeking {
+                    self.seek(target)?;
+                }
+            }
             Key::Reset => self.reset()?,
             Key::Digit(digit) => {
                 let index = if digit == 0 { 9 } else { digit as usize - 1 };
@@ -391,10 +473,19 @@ impl Demo {
         match button {
             Button::Left => {
                 let point = self.camera.screen_to_world(screen, self.viewport);
-                // A grab only adds a joint at a finite point; it cannot fail.
-                let _ = self.input(Input::Grab {
-                    point: (point.x, point.y),
-                });
+                // Only a grab of something is an input: a click on empty space after going
+                // back in time must not branch the run.
+                let world = &self.scene.world;
+                let grabbable = world
+                    .body_at(point)
+                    .and_then(|body| world.body(body))
+                    .is_some_and(|body| body.is_dynamic());
+                if grabbable {
+                    // A grab only adds a joint at a finite point; it cannot fail.
+                    let _ = self.input(Input::Grab {
+                        point: (point.x, point.y),
+                    });
+                }
             }
             Button::Right | Button::Middle => self.pan_from = Some(screen),
         }
@@ -402,7 +493,7 @@ impl Demo {
 
     /// The cursor moved to `screen`.
     pub fn move_to(&mut self, screen: Vec2) {
-        if self.hand.grabbed().is_some() {
+        if self.timeline.hand().grabbed().is_some() {
             let point = self.camera.screen_to_world(screen, self.viewport);
             // Screen points map to finite world points; a failure would leave the old target.
             let _ = self.input(Input::Drag {
@@ -428,7 +519,7 @@ impl Demo {
 
     /// Lets go of the held body, if any: it keeps the velocity it has.
     fn let_go(&mut self) -> Result<(), String> {
-        match self.hand.grabbed() {
+        match self.timeline.hand().grabbed() {
             Some(_) => self.input(Input::LetGo),
             None => Ok(()),
         }
@@ -448,7 +539,7 @@ impl Demo {
 
     /// The body held, if any.
     pub fn grabbed(&self) -> Option<carom::BodyHandle> {
-        self.hand.grabbed().map(|(_, body)| body)
+        self.timeline.hand().grabbed().map(|(_, body)| body)
     }
 
     /// Describes the scene and the grab's spring to `out` (cleared first).
@@ -456,7 +547,7 @@ impl Demo {
         out.clear();
         self.scene.debug_draw(&self.draw, out);
         let world = &self.scene.world;
-        if let Some((joint, body)) = self.hand.grabbed()
+        if let Some((joint, body)) = self.timeline.hand().grabbed()
             && let Some(joint) = world.joint(joint)
             && let Some(body) = world.body(body)
             && let carom::JointKind::Mouse(mouse) = joint.kind()

@@ -39,6 +39,11 @@ struct Cli {
     /// Take this many steps every frame, whatever the clock says (for scripted runs).
     #[arg(long)]
     steps_per_frame: Option<u32>,
+    /// At a frame, act as a user would: FRAME:ACTION, the action one of pause, play,
+    /// step-back, go-to=STEP, grab=X,Y (a world point), let-go, print (the step and the state
+    /// hash). Repeatable; a frame's actions run in the order given, before its steps.
+    #[arg(long = "at", value_parser = window::parse_scripted)]
+    script: Vec<window::Scripted>,
 }
 
 #[derive(Subcommand, Debug, Clone)]
@@ -426,6 +431,7 @@ fn window_options(cli: &Cli) -> Result<WindowOptions, String> {
         screenshot: cli.screenshot.clone(),
         replay: cli.replay,
         steps_per_frame: cli.steps_per_frame,
+        script: cli.script.clone(),
     })
 }
 

@@ -2,7 +2,7 @@
 //! measured front with the demo's setting on it, and the live step cost.
 
 use crate::accuracy_panel::{self, AccuracyPanel, Marker, Source};
-use crate::demo::{Demo, HINTS};
+use crate::demo::{Demo, HINTS, Key};
 use crate::metrics::{Metrics, STAGES};
 use carom::{DrawFlags, Effect, SolverKind};
 use carom_bench::sweep::{Engine, Point};
@@ -13,11 +13,23 @@ use std::ops::RangeInclusive;
 /// Sidebar width, points.
 pub const SIDEBAR_WIDTH: f32 = 300.0;
 
+/// What the sidebar asks of the window's surroundings, which alone can write files (natively)
+/// or offer downloads (on the web).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ask {
+    /// Save the run so far as a recording.
+    SaveRecording,
+}
+
 /// Draws the sidebar and applies what the user changed. Errors (a scene that fails to load)
-/// come back as text for the sidebar to show.
-pub fn sidebar(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>) {
+/// come back as text for the sidebar to show; what only the host can do comes back as an
+/// [`Ask`].
+pub fn sidebar(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>) -> Option<Ask> {
+    let mut ask = None;
     egui::ScrollArea::vertical().show(ui, |ui| {
         scene_section(ui, demo, error);
+        ui.separator();
+        timeline_section(ui, demo, error, &mut ask);
         ui.separator();
         // The cost of accuracy right under the settings that change it.
         solver_section(ui, demo, error);
@@ -35,6 +47,7 @@ pub fn sidebar(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>) {
             ui.colored_label(egui::Color32::from_rgb(255, 120, 100), message.as_str());
         }
     });
+    ask
 }
 
 fn scene_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>) {
@@ -85,6 +98,73 @@ fn scene_section(ui: &mut egui::Ui, demo: &mut Demo, error: &mut Option<String>)
         demo.scene.world.body_count(),
         demo.scene.world.stats().touching_contacts
     ));
+}
+
+/// The run so far: a scrubber over every step, buttons to go back and forth, and the memory
+/// its keyframes take.
+fn timeline_section(
+    ui: &mut egui::Ui,
+    demo: &mut Demo,
+    error: &mut Option<String>,
+    ask: &mut Option<Ask>,
+) {
+    ui.heading("Timeline");
+    let (at, end) = (demo.timeline().at(), demo.timeline().end());
+    let mut chosen = at;
+    let scrubbed = ui
+        .scope(|ui| {
+            ui.spacing_mut().slider_width = SIDEBAR_WIDTH - 100.0;
+            ui.add(egui::Slider::new(&mut chosen, 0..=end).text("step"))
+        })
+        .inner
+        .on_hover_text("Drag back to any step of the run; playing on replays it exactly");
+    let mut go = scrubbed.changed().then_some(chosen);
+    ui.horizontal(|ui| {
+        if ui
+            .button("|<")
+            .on_hover_text("The run's first step")
+            .clicked()
+        {
+            go = Some(0);
+        }
+        if ui.button("<").on_hover_text("One step back (,)").clicked() {
+            *error = demo.key(Key::StepBack).err();
+        }
+        if ui
+            .button(">")
+            .on_hover_text("One step forward (S or .)")
+            .clicked()
+        {
+            *error = demo.key(Key::Step).err();
+        }
+        if ui
+            .button(">|")
+            .on_hover_text("The run's newest step")
+            .clicked()
+        {
+            go = Some(end);
+        }
+        if ui
+            .button("Save recording")
+            .on_hover_text("The run as a file `carom replay` plays back")
+            .clicked()
+        {
+            *ask = Some(Ask::SaveRecording);
+        }
+    });
+    if let Some(step) = go {
+        *error = demo.go_to(step).err();
+    }
+    let timeline = demo.timeline();
+    ui.label(format!(
+        "step {at} of {end} · {} keyframes, {:.1} MB",
+        timeline.keyframe_count(),
+        timeline.bytes() as f64 / (1 << 20) as f64
+    ))
+    .on_hover_text(
+        "Keyframes keep the scene's state every few steps to go back to; past their memory \
+         budget the older ones are thinned",
+    );
 }
 
 fn key_label(index: usize) -> String {

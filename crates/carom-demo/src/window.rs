@@ -7,7 +7,7 @@
 
 use crate::capture::copy_to_buffer;
 use crate::demo::{Button, Control, Demo, Key};
-use crate::ui::{SIDEBAR_WIDTH, sidebar};
+use crate::ui::{Ask, SIDEBAR_WIDTH, sidebar};
 use carom::{Color, DrawList, Real, vec2};
 use carom_render::{Gpu, Renderer, clear_color};
 use std::path::PathBuf;
@@ -37,6 +37,80 @@ pub struct WindowOptions {
     /// Take this many steps every frame, whatever the time (a scripted run that must reach
     /// a given step whatever the machine's speed), instead of keeping to the clock.
     pub steps_per_frame: Option<u32>,
+    /// What to do at given frames, as a user would (for tests and demonstrations).
+    pub script: Vec<Scripted>,
+}
+
+/// An action at a frame: done at the frame's start, before its steps, in the order given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scripted {
+    /// The frame, counted from 1.
+    pub frame: u64,
+    /// What to do.
+    pub action: Action,
+}
+
+/// What a script does, as the keys, the sidebar and the mouse would.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Action {
+    /// Pause.
+    Pause,
+    /// Play.
+    Play,
+    /// One step back (the `,` key).
+    StepBack,
+    /// Go to a step of the run (the sidebar's scrubber).
+    GoTo(u64),
+    /// Press the left button over this world point (m), grabbing what is there.
+    Grab(Real, Real),
+    /// Release the left button.
+    LetGo,
+    /// Print the frame, the step, the run's end, the state hash and the notice shown.
+    Print,
+}
+
+/// Reads a scripted action, `FRAME:ACTION`, where the action is `pause`, `play`, `step-back`,
+/// `go-to=STEP`, `grab=X,Y` (a world point, m), `let-go` or `print`.
+pub fn parse_scripted(text: &str) -> Result<Scripted, String> {
+    let (frame, action) = text
+        .split_once(':')
+        .ok_or("expected FRAME:ACTION, for example 30:pause")?;
+    let frame: u64 = frame
+        .parse()
+        .map_err(|_| format!("{frame:?} is not a frame number"))?;
+    let (name, value) = action.split_once('=').unwrap_or((action, ""));
+    let number = |text: &str| -> Result<Real, String> {
+        text.trim()
+            .parse::<Real>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or(format!("{text:?} is not a finite number"))
+    };
+    let action = match name {
+        "pause" => Action::Pause,
+        "play" => Action::Play,
+        "step-back" => Action::StepBack,
+        "go-to" => Action::GoTo(
+            value
+                .parse()
+                .map_err(|_| format!("go-to takes a step number, not {value:?}"))?,
+        ),
+        "grab" => {
+            let (x, y) = value
+                .split_once(',')
+                .ok_or("grab takes a world point, grab=X,Y")?;
+            Action::Grab(number(x)?, number(y)?)
+        }
+        "let-go" => Action::LetGo,
+        "print" => Action::Print,
+        _ => {
+            return Err(format!(
+                "no action {name:?}: pause, play, step-back, go-to=STEP, grab=X,Y, let-go or \
+                 print"
+            ));
+        }
+    };
+    Ok(Scripted { frame, action })
 }
 
 /// A frame just shown, as a [`Host`] hears of it.
@@ -64,6 +138,11 @@ pub trait Host {
     /// The user asked to save the running scene (W). Natively it is written beside its file.
     fn save(&mut self, demo: &mut Demo) -> Result<(), String> {
         demo.save().map(|_| ())
+    }
+    /// The user asked to save the run as a recording. Natively it is written beside the
+    /// scene's file.
+    fn save_recording(&mut self, demo: &mut Demo) -> Result<(), String> {
+        demo.save_recording().map(|_| ())
     }
 }
 
@@ -215,7 +294,12 @@ impl ApplicationHandler<Started> for App {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => running.resize(size.width, size.height),
             WindowEvent::RedrawRequested => match running.redraw(&self.options) {
-                Ok(true) => self.host.frame(&running.demo, &running.frame_info()),
+                Ok(true) => {
+                    if let Some(Ask::SaveRecording) = running.asked.take() {
+                        running.error = self.host.save_recording(&mut running.demo).err();
+                    }
+                    self.host.frame(&running.demo, &running.frame_info());
+                }
                 Ok(false) => event_loop.exit(),
                 Err(message) => self.fail(event_loop, message),
             },
@@ -271,6 +355,8 @@ struct Running {
     demo: Demo,
     list: DrawList,
     error: Option<String>,
+    /// What the sidebar last asked of the host.
+    asked: Option<Ask>,
     cursor: egui::Pos2,
     /// The touch that grabs, while a finger is down.
     touch: Option<u64>,
@@ -374,6 +460,7 @@ impl Running {
             demo,
             list: DrawList::new(),
             error: None,
+            asked: None,
             cursor: egui::Pos2::ZERO,
             touch: None,
             last_frame: Instant::now(),
@@ -493,7 +580,8 @@ impl Running {
                 let key = match event.physical_key {
                     PhysicalKey::Code(KeyCode::Space) => Some(Key::Space),
                     PhysicalKey::Code(KeyCode::KeyP) => Some(Key::Pause),
-                    PhysicalKey::Code(KeyCode::KeyS) => Some(Key::Step),
+                    PhysicalKey::Code(KeyCode::KeyS | KeyCode::Period) => Some(Key::Step),
+                    PhysicalKey::Code(KeyCode::Comma) => Some(Key::StepBack),
                     PhysicalKey::Code(KeyCode::KeyR) => Some(Key::Reset),
                     PhysicalKey::Code(code) => digit(code).map(Key::Digit),
                     _ => None,
@@ -505,6 +593,34 @@ impl Running {
         if let Err(message) = result {
             self.error = Some(message);
         }
+    }
+
+    /// Does what a script says, the way the keys, the sidebar and the mouse do it.
+    fn act(&mut self, action: Action) -> Result<(), String> {
+        let demo = &mut self.demo;
+        match action {
+            Action::Pause => demo.paused = true,
+            Action::Play => demo.paused = false,
+            Action::StepBack => demo.key(Key::StepBack)?,
+            Action::GoTo(step) => demo.go_to(step)?,
+            Action::Grab(x, y) => {
+                let screen = demo.camera.world_to_screen(vec2(x, y), demo.viewport);
+                demo.press(Button::Left, screen);
+            }
+            Action::LetGo => demo.release(Button::Left),
+            Action::Print => {
+                let timeline = demo.timeline();
+                println!(
+                    "frame {}: step {} of {}, hash {:016x}, notice: {}",
+                    self.frames + 1,
+                    timeline.at(),
+                    timeline.end(),
+                    demo.scene.world.state_hash(),
+                    demo.notice.as_deref().unwrap_or("none")
+                );
+            }
+        }
+        Ok(())
     }
 
     /// One frame: steps due, sidebar, scene, present. False when it is time to close.
@@ -522,6 +638,12 @@ impl Running {
             Ok(false) => {}
             Err(message) => self.error = Some(message),
         }
+        let frame = self.frames + 1;
+        for scripted in options.script.iter().filter(|s| s.frame == frame) {
+            if let Err(message) = self.act(scripted.action) {
+                self.error = Some(message);
+            }
+        }
         // A fixed number of steps a frame (a scripted run), or as many as the time passed.
         let stepped = match options.steps_per_frame {
             Some(steps) if !self.demo.paused => (0..steps)
@@ -534,7 +656,7 @@ impl Running {
         }
 
         let raw_input = self.egui_input.take_egui_input(&self.window);
-        let (demo, error) = (&mut self.demo, &mut self.error);
+        let (demo, error, asked) = (&mut self.demo, &mut self.error, &mut self.asked);
         let fps = 1.0 / self.frame_seconds.max(1e-6);
         let output = self.egui.run_ui(raw_input, |ui| {
             egui::Panel::left("sidebar")
@@ -542,7 +664,7 @@ impl Running {
                 .resizable(false)
                 .show(ui, |ui| {
                     ui.label(format!("{fps:.0} frames/s"));
-                    sidebar(ui, demo, error);
+                    *asked = sidebar(ui, demo, error);
                 });
         });
         self.egui_input

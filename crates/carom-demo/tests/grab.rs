@@ -253,3 +253,57 @@ fn a_recording_that_is_not_one_is_refused_with_its_line() {
     let error = carom_demo::recording::replay(&other.to_text(), "old.run").unwrap_err();
     assert!(error.contains("format 99"), "{error}");
 }
+
+/// Steps the demo, one at a time, until it is at `step` of its run.
+fn step_to(demo: &mut Demo, step: u64) {
+    while demo.timeline().at() < step {
+        demo.step().unwrap();
+    }
+}
+
+#[test]
+fn going_back_replays_the_run_and_a_grab_after_it_branches() {
+    let mut demo = open("grabbing.ron");
+    let mut first = Vec::new();
+    step_to(&mut demo, 300);
+    first.extend_from_slice(&demo.recording().hashes);
+
+    // Back to step 100 through the scrubber: a frame's budget at a time, paused there.
+    demo.go_to(100).unwrap();
+    assert!(demo.paused);
+    for _ in 0..200 {
+        demo.frame(FRAME).unwrap();
+    }
+    assert_eq!(demo.timeline().at(), 100);
+    assert_eq!(demo.scene.world.state_hash(), first[99]);
+    // Playing on replays the run: step 300 is as it was.
+    demo.paused = false;
+    while demo.timeline().at() < 300 {
+        demo.frame(FRAME).unwrap();
+    }
+    assert_eq!(demo.scene.world.state_hash(), first[299]);
+    assert_eq!(demo.notice, None);
+
+    // One step back, with the key.
+    demo.key(Key::StepBack).unwrap();
+    assert_eq!(demo.timeline().at(), 299);
+    assert_eq!(demo.scene.world.state_hash(), first[298]);
+
+    // A click on empty space after going back is no input: the run stays whole.
+    demo.go_to(100).unwrap();
+    frames(&mut demo, 200);
+    demo.press(Button::Left, Vec2::new(2.0, 2.0));
+    demo.release(Button::Left);
+    assert_eq!(demo.timeline().end(), 300);
+
+    // A grab is: the run branches at step 100, and the demo says so.
+    let (_, screen) = the_box(&demo);
+    demo.press(Button::Left, screen);
+    assert_eq!(demo.timeline().end(), 100);
+    let notice = demo.notice.clone().unwrap_or_default();
+    assert!(notice.contains("a new branch from step 100"), "{notice}");
+    demo.move_to(screen + vec2(0.0, -200.0));
+    step_to(&mut demo, 300);
+    assert_ne!(demo.scene.world.state_hash(), first[299]);
+    assert_eq!(demo.recording().replay().unwrap(), None);
+}

@@ -105,3 +105,94 @@ fn the_window_plays_the_platformer_to_its_goal() {
     );
     assert!(image::open(&screenshot).is_ok());
 }
+
+/// The timeline, driven through the window as the keys and the scrubber drive it: 300 steps
+/// of the pyramid, back to step 100, played on to 300 (the same state as the first time), back
+/// again, and a grab there, which branches the run and says so.
+#[test]
+#[ignore = "needs a display: .ci/run runs it under Xvfb"]
+fn the_window_goes_back_in_time_and_branches() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let out = root.join("target/window");
+    std::fs::create_dir_all(&out).unwrap();
+    let screenshot = out.join("timeline.png");
+    let _ = std::fs::remove_file(&screenshot);
+    // Ten steps a frame: frame F begins at step 10 (F - 1) while playing.
+    let script = [
+        "11:print",
+        "31:pause",
+        "31:print",
+        "31:go-to=100",
+        "32:print",
+        "32:play",
+        "52:pause",
+        "52:print",
+        "52:go-to=100",
+        "53:grab=0,19.5",
+        "53:print",
+        "53:play",
+        "73:pause",
+        "73:print",
+        "74:go-to=150",
+    ];
+    let mut command = Command::new(env!("CARGO_BIN_EXE_carom"));
+    command.current_dir(&root).args([
+        "--scene",
+        "demos/pyramid.ron",
+        "--steps-per-frame",
+        "10",
+        "--frames",
+        "76",
+        "--screenshot",
+    ]);
+    command.arg(&screenshot);
+    for action in script {
+        command.args(["--at", action]);
+    }
+    let output = command.output().unwrap();
+    let report = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "carom failed: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    // "frame F: step S of E, hash H, notice: N", one line per print.
+    let prints: Vec<(u64, u64, String, String)> = report
+        .lines()
+        .filter_map(|line| {
+            let (_, rest) = line.split_once(": step ")?;
+            let (step, rest) = rest.split_once(" of ")?;
+            let (end, rest) = rest.split_once(", hash ")?;
+            let (hash, notice) = rest.split_once(", notice: ")?;
+            Some((
+                step.parse().ok()?,
+                end.parse().ok()?,
+                hash.into(),
+                notice.into(),
+            ))
+        })
+        .collect();
+    let steps: Vec<(u64, u64)> = prints.iter().map(|p| (p.0, p.1)).collect();
+    assert_eq!(
+        steps,
+        [
+            (100, 100),
+            (300, 300),
+            (100, 300),
+            (300, 300),
+            (100, 100),
+            (300, 300)
+        ],
+        "{report}"
+    );
+    let hash = |i: usize| prints[i].2.as_str();
+    assert_eq!(hash(2), hash(0), "step 100 gone back to: {report}");
+    assert_eq!(hash(3), hash(1), "step 300 replayed: {report}");
+    assert!(prints[3].3 == "none", "{report}");
+    assert!(
+        prints[4].3.contains("a new branch from step 100"),
+        "the grab did not say it branched: {report}"
+    );
+    assert_ne!(hash(5), hash(1), "the grab changed nothing: {report}");
+    assert!(image::open(&screenshot).is_ok());
+}

@@ -46,6 +46,12 @@ pub(crate) struct Events {
 }
 
 impl Events {
+    /// About the heap memory the events hold, bytes: their list (not what a spawn's bodies
+    /// own in turn, which is small beside a world).
+    pub(crate) fn heap_bytes(&self) -> usize {
+        self.actions.capacity() * size_of::<Action>()
+    }
+
     /// Resolves body names; an error gives the event's index and the reason. Spawned copies
     /// that keep apart take collision groups after the first `groups_used`.
     pub fn new(

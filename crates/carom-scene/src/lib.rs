@@ -47,6 +47,7 @@ mod saved;
 pub mod scene;
 mod snapshot;
 mod spawn;
+mod timeline;
 
 pub use build::{SceneWorld, build};
 pub use error::SceneError;
@@ -57,6 +58,7 @@ pub use saved::{SavedState, to_text, write};
 pub use scene::{Accuracy, Camera, KeyChange, PlayerKey, SCENE_FORMAT, Scene};
 pub use snapshot::SceneSnapshot;
 pub use spawn::{Made, SpawnChange, SpawnSchedule};
+pub use timeline::{Course, KEYFRAME_BUDGET, KEYFRAME_EVERY, Timeline, TimelineError};
 
 /// Reads, parses and builds a scene file.
 pub fn load(path: &std::path::Path) -> Result<SceneWorld, SceneError> {

@@ -49,6 +49,11 @@ pub(crate) struct SavedPlayer {
 }
 
 impl Player {
+    /// About the heap memory the player holds, bytes: its recorded play.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        self.recorded.capacity() * size_of::<KeyChange>()
+    }
+
     /// The player `spec` describes, standing nowhere yet.
     pub(crate) fn new(spec: &PlayerSpec) -> Result<Self, String> {
         let finite = [spec.walk_speed, spec.jump_speed]

@@ -23,6 +23,20 @@ impl SceneSnapshot {
     pub fn world(&self) -> &Snapshot {
         &self.world
     }
+
+    /// About the heap memory the snapshot holds, bytes: the world's
+    /// ([`Snapshot::heap_bytes`]) and the scene's arrays beside it.
+    pub fn heap_bytes(&self) -> usize {
+        let SceneSnapshot {
+            world,
+            events,
+            player,
+            colors,
+        } = self;
+        let colors = colors.capacity() * (size_of::<(BodyHandle, (f32, f32, f32))>() + 1);
+        let player = player.as_ref().map_or(0, Player::heap_bytes);
+        world.heap_bytes() + events.heap_bytes() + colors + player
+    }
 }
 
 impl SceneWorld {

@@ -64,6 +64,7 @@ pub fn start() -> Result<(), JsValue> {
         screenshot: None,
         replay: false,
         steps_per_frame: None,
+        script: Vec::new(),
     };
     start_in_canvas(options, canvas, Box::new(Page)).map_err(|e| {
         fail(&e);
@@ -149,6 +150,16 @@ impl Host for Page {
         let text = carom_scene::to_text(&scene, &name).map_err(|e| e.to_string())?;
         download(&name, &text).map_err(|e| format!("cannot offer {name} for download: {e:?}"))?;
         demo.notice = Some(format!("saved as the download {name}"));
+        Ok(())
+    }
+
+    /// The run is offered as a download, as a saved scene is.
+    fn save_recording(&mut self, demo: &mut Demo) -> Result<(), String> {
+        let path = demo.recording_path();
+        let name = path.file_name().unwrap_or_default().to_string_lossy();
+        download(&name, &demo.recording().to_text())
+            .map_err(|e| format!("cannot offer {name} for download: {e:?}"))?;
+        demo.notice = Some(format!("recording saved as the download {name}"));
         Ok(())
     }
 }
