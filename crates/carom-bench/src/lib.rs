@@ -160,6 +160,8 @@ pub mod rapier_world;
 pub mod scaling;
 #[cfg(feature = "native")]
 pub mod snapshot_cost;
+#[cfg(feature = "native")]
+pub mod timeline_cost;
 
 #[cfg(feature = "peers")]
 pub use box2d_world::Box2dWorld;

@@ -92,6 +92,18 @@ enum Command {
         #[arg(long, default_value_t = 60)]
         rounds: u32,
     },
+    /// Plays a scene for a long run with the demo's timeline (a keyframe every 20 steps in
+    /// 192 MB, older ones thinned past it), and reports the memory its keyframes take as the
+    /// run grows and the time to go back to steps across it: by default ten minutes of
+    /// demos/mixed_1000.ron.
+    Timeline {
+        /// The scene file.
+        #[arg(default_value = "demos/mixed_1000.ron")]
+        scene: PathBuf,
+        /// Steps to play (36,000 is ten minutes at 60 Hz).
+        #[arg(long, default_value_t = 36_000)]
+        steps: u64,
+    },
     /// Times rows of Box2D's base-10 pyramids at about 1k, 5k, 20k and 100k boxes in every
     /// engine (one thread and `--threads`), and writes scaling.csv, scaling.md and a log-log
     /// chart of ms per step against bodies, scaling.png, to `--out`.
@@ -599,6 +611,67 @@ fn hard_cases(filter: &[String], out: Option<&Path>, options: Options) -> Result
 
 /// Times the pyramid rows of [`scaling::SIZES`] in every engine and writes the CSV, table and
 /// chart to `out`.
+/// `carom-bench timeline`: the timeline's memory over a long run of `scene`, and the time to go
+/// back to steps across it.
+fn timeline_run(scene: &Path, steps: u64) -> Result<(), String> {
+    let mut world = carom_scene::load(scene).map_err(|e| e.to_string())?;
+    let text = std::fs::read_to_string(scene).map_err(|e| format!("{}: {e}", scene.display()))?;
+    let recording = carom_scene::Recording::new(&scene.display().to_string(), &text);
+    let heap =
+        |stats: stats_alloc::Stats| stats.bytes_allocated as f64 - stats.bytes_deallocated as f64;
+    let region = Region::new(&INSTRUMENTED_SYSTEM);
+    let mut timeline = carom_scene::Timeline::new(recording, &world);
+    let started = std::time::Instant::now();
+    let growth =
+        carom_bench::timeline_cost::play(&mut world, &mut timeline, steps, (steps / 6).max(1))
+            .map_err(|e| e.to_string())?;
+    let played = started.elapsed();
+    let live = heap(region.change());
+    let mb = |bytes: f64| bytes / (1 << 20) as f64;
+    println!(
+        "{} played {steps} steps in {:.1} s ({} bodies at the end), a keyframe every {} steps \
+         within {:.0} MB\n",
+        scene.display(),
+        played.as_secs_f64(),
+        world.world.body_count(),
+        carom_scene::KEYFRAME_EVERY,
+        mb(carom_scene::KEYFRAME_BUDGET as f64)
+    );
+    println!("| steps | keyframes | timeline, MB |\n|---|---|---|");
+    for g in &growth {
+        println!(
+            "| {} | {} | {:.1} |",
+            g.steps,
+            g.keyframes,
+            mb(g.bytes as f64)
+        );
+    }
+    println!(
+        "\nheap the timeline and the world hold at the end, counted by the allocator: {:.1} MB\n",
+        mb(live)
+    );
+    let kept: Vec<String> = timeline.keyframe_steps().map(|s| s.to_string()).collect();
+    println!("keyframes at steps {}\n", kept.join(", "));
+    let end = timeline.end();
+    let targets: Vec<u64> = [0.01, 0.25, 0.5, 0.75, 0.9, 0.99]
+        .iter()
+        .map(|f| (end as f64 * f) as u64)
+        .chain([end - 1])
+        .collect();
+    let seeks = carom_bench::timeline_cost::seeks(&mut world, &mut timeline, &targets)
+        .map_err(|e| e.to_string())?;
+    println!("| go to step | steps replayed from its keyframe | ms |\n|---|---|---|");
+    for seek in &seeks {
+        println!(
+            "| {} | {} | {:.1} |",
+            seek.to,
+            seek.replayed,
+            seek.time.as_secs_f64() * 1e3
+        );
+    }
+    Ok(())
+}
+
 /// `carom-bench snapshots`: the table of what a snapshot and a restore cost beside a step.
 fn snapshots_run(
     scenes: &[PathBuf],
@@ -769,6 +842,9 @@ fn main() -> Result<(), String> {
     }) = &args.command
     {
         return snapshots_run(scenes, *warm_up, *rounds, (&one, &many));
+    }
+    if let Some(Command::Timeline { scene, steps }) = &args.command {
+        return many.install(|| timeline_run(scene, *steps));
     }
     let mut rows = Vec::new();
     for (path, steps) in &scenes {

@@ -7,8 +7,9 @@
 //! something new: the run then branches, and what came after that step is forgotten.
 //!
 //! Keyframes are bounded by a memory budget. Past it the oldest are thinned, more of them the
-//! further back they lie, so the recent past stays a few steps away and the whole run stays
-//! reachable.
+//! further back they lie and the less work replaying their stretch of the run takes (a pile
+//! asleep replays almost for free; its collapse does not), so the recent past stays a few
+//! steps away and the whole run stays reachable.
 
 use crate::build::SceneWorld;
 use crate::recording::{Hand, Input, Recording};
@@ -91,6 +92,9 @@ pub struct Timeline {
     keyframes: Vec<Keyframe>,
     /// Steps the scene has taken: at most the recording's.
     at: u64,
+    /// The work of replaying the run's steps, summed: `work[k]` is that of its first `k`
+    /// steps, a step's work the bodies awake and the friction impulses it solved, plus one.
+    work: Vec<u64>,
     every: u64,
     budget: usize,
     /// A thinned keyframe's snapshot, whose memory the next keyframe reuses.
@@ -120,6 +124,7 @@ impl Timeline {
             hand: Hand::default(),
             keyframes: Vec::new(),
             at: 0,
+            work: vec![0],
             every: every.max(1),
             budget,
             spare: None,
@@ -166,7 +171,8 @@ impl Timeline {
     /// The memory the timeline holds, bytes: its keyframes and its recording.
     pub fn bytes(&self) -> usize {
         let keyframes: usize = self.keyframes.iter().map(|k| k.bytes).sum();
-        let recording = self.recording.hashes.capacity() * size_of::<u64>()
+        let recording = (self.recording.hashes.capacity() + self.work.capacity())
+            * size_of::<u64>()
             + self.recording.inputs.capacity() * size_of::<crate::recording::Timed>()
             + self.recording.scene.capacity();
         keyframes + recording
@@ -186,6 +192,7 @@ impl Timeline {
         } else {
             let forgotten = self.end() - self.at;
             self.recording.truncate(self.at);
+            self.work.truncate(self.at as usize + 1);
             self.keyframes.retain(|k| k.step <= self.at);
             Course::Branched {
                 at: self.at,
@@ -209,6 +216,10 @@ impl Timeline {
         self.at += 1;
         if live {
             self.recording.step(&scene.world);
+            let stats = scene.world.stats();
+            let work = (stats.bodies - stats.sleeping_bodies + stats.work.friction_impulses) as u64;
+            let before = self.work.last().copied().unwrap_or(0);
+            self.work.push(before + work + 1);
             if self.at.is_multiple_of(self.every) {
                 self.keep_keyframe(scene);
             }
@@ -298,14 +309,17 @@ impl Timeline {
         }
     }
 
-    /// The keyframe whose loss costs least: the one whose neighbours are nearest, weighed by
-    /// its age, so gaps grow with age. Never the first or the newest.
+    /// The keyframe whose loss costs least: the one whose neighbours are nearest in the work
+    /// of replaying from one to the other, weighed by its age, so gaps grow with age and
+    /// with quiet. Never the first or the newest.
     fn thinnest(&self) -> Option<usize> {
         let newest = self.keyframes.last()?.step;
         let slack = (self.every * THINNING_SLACK) as f64;
+        let work = |step: u64| self.work.get(step as usize).copied().unwrap_or(0);
         (1..self.keyframes.len().saturating_sub(1)).min_by(|&a, &b| {
             let cost = |i: usize| {
-                let gap = (self.keyframes[i + 1].step - self.keyframes[i - 1].step) as f64;
+                let (before, after) = (self.keyframes[i - 1].step, self.keyframes[i + 1].step);
+                let gap = (work(after) - work(before)) as f64;
                 gap / ((newest - self.keyframes[i].step) as f64 + slack)
             };
             cost(a).total_cmp(&cost(b))

@@ -183,12 +183,11 @@ fn keyframes_are_thinned_inside_their_budget_and_the_run_stays_reachable() {
     assert!(steps.len() <= 9, "{steps:?}");
     assert_eq!(steps.first(), Some(&0));
     assert_eq!(steps.last(), Some(&600));
-    // The gaps grow with age: the newest is the smallest.
+    // Thinning weighs the work of replaying a stretch: the first hundred steps (boxes
+    // falling, one thrown) keep their keyframes closer than the quiet end, where only the
+    // held circle is awake, although they are older.
     let gaps: Vec<u64> = steps.windows(2).map(|w| w[1] - w[0]).collect();
-    assert!(
-        gaps.iter().all(|&gap| gap >= gaps[gaps.len() - 1]),
-        "{steps:?}"
-    );
+    assert!(gaps[0] < gaps[gaps.len() - 1], "{steps:?}");
     for target in [3, 250, 599, 404] {
         timeline.go_to(&mut scene, target).unwrap();
         assert_eq!(scene.world.state_hash(), first[target as usize - 1]);
