@@ -174,12 +174,13 @@ impl Demo {
         Ok(())
     }
 
-    /// Reloads the scene from its file, keeping the user's solver and effect choices.
+    /// Reloads the scene from its file, keeping the user's solver, effect and drawing
+    /// choices; the view starts again where the scene's camera starts (its own, or one that
+    /// frames its bodies).
     pub fn reset(&mut self) -> Result<(), String> {
         let (solver, effects) = (*self.scene.world.solver(), self.scene.world.effects());
         let path = self.scene_path.clone();
         let draw = self.draw;
-        let camera = self.camera;
         self.load(&path)?;
         self.input(Input::Solver(solver))?;
         for effect in Effect::ALL {
@@ -189,7 +190,6 @@ impl Demo {
             }
         }
         self.draw = draw;
-        self.camera = camera;
         Ok(())
     }
 
@@ -223,10 +223,10 @@ impl Demo {
         let stem = stem.strip_suffix("-saved").unwrap_or(&stem);
         let path = self.scene_path.with_file_name(format!("{stem}-saved.ron"));
         let scale = carom_scene::Camera::view_scale(self.viewport[0], self.viewport[1]);
-        scene.camera = carom_scene::Camera {
+        scene.camera = Some(carom_scene::Camera {
             center: (self.camera.center.x, self.camera.center.y),
             zoom: self.camera.zoom / scale,
-        };
+        });
         scene.draw = self.draw.flags;
         if !scene.name.ends_with("(saved)") {
             scene.name = format!("{} (saved)", scene.name);

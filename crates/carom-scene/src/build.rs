@@ -31,7 +31,7 @@ pub struct SceneWorld {
     pub names: HashMap<String, BodyHandle>,
     /// Colours the scene asked for.
     pub colors: HashMap<BodyHandle, (f32, f32, f32)>,
-    /// Where the scene's camera starts.
+    /// Where the scene's camera starts: its own, or one that frames its bodies.
     pub camera: Camera,
     /// What the scene asks to be drawn.
     pub draw: DrawFlags,
@@ -219,12 +219,13 @@ fn finish(
         .map(Player::new)
         .transpose()
         .map_err(|reason| invalid("player".into(), reason))?;
+    let camera = scene.camera.unwrap_or_else(|| Camera::framing(&world));
     Ok(SceneWorld {
         world,
         time_step,
         names,
         colors,
-        camera: scene.camera,
+        camera,
         draw: scene.draw,
         accuracy: scene.accuracy.clone(),
         player,

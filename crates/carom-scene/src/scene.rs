@@ -1,6 +1,6 @@
 //! The scene format: what a RON file in `demos/` holds. Every field but `name` has a default.
 
-use carom::{BodyKind, CollisionFilter, DrawFlags, Motor, Real, Spring, WorldSettings};
+use carom::{BodyKind, CollisionFilter, DrawFlags, Motor, Real, Spring, World, WorldSettings};
 use serde::{Deserialize, Serialize};
 
 /// The version of the scene format this crate reads and writes. It changes when a file
@@ -43,9 +43,10 @@ pub struct Scene {
     /// What the scene shows and what to try.
     #[serde(default)]
     pub description: String,
-    /// Where the camera starts.
-    #[serde(default)]
-    pub camera: Camera,
+    /// Where the camera starts. Without one, the view frames the scene's bodies
+    /// ([`Camera::framing`]).
+    #[serde(default, with = "present", skip_serializing_if = "Option::is_none")]
+    pub camera: Option<Camera>,
     /// The world's settings, every field of [`carom::WorldSettings`] and each optional: gravity,
     /// the solver and its tuning (`solver: (kind: sequential_impulse, substeps: 8, ..)`), the
     /// effects simulated (anything not named is not computed; default all), margins, contact
@@ -184,6 +185,73 @@ impl Camera {
     pub fn view_scale(width: u32, height: u32) -> f32 {
         let (reference_width, reference_height) = Camera::REFERENCE_VIEW;
         (height.max(1) as f32 / reference_height).min(width.max(1) as f32 / reference_width)
+    }
+}
+
+impl Camera {
+    /// A camera that frames `world`'s moving bodies as they are (all its bodies if none
+    /// moves), with the ground under them near the bottom of the view: the top of the highest
+    /// static body below them, wherever they overlap it across.
+    // Lengths are `Real`, f32 or f64 by the core's feature; the zoom is f32 either way.
+    #[allow(clippy::unnecessary_cast)]
+    pub fn framing(world: &World) -> Camera {
+        let moving = |b: &&carom::Body| b.kind() != BodyKind::Static;
+        let any_moving = world.bodies().any(|b| moving(&b));
+        let Some(bodies) = world
+            .bodies()
+            .filter(|b| !any_moving || moving(b))
+            .map(|b| b.aabb())
+            .reduce(|a, b| a.union(&b))
+        else {
+            return Camera::default();
+        };
+        let ground = world
+            .bodies()
+            .filter(|b| b.kind() == BodyKind::Static)
+            .map(|b| b.aabb())
+            .filter(|s| s.min.x < bodies.max.x && s.max.x > bodies.min.x)
+            .filter(|s| s.max.y <= bodies.min.y + 0.25 * (bodies.max.y - bodies.min.y))
+            .map(|s| s.max.y)
+            .reduce(Real::max)
+            .filter(|_| any_moving)
+            .map_or(bodies.min.y, |top| top.min(bodies.min.y));
+        let (view_width, view_height) = Camera::REFERENCE_VIEW;
+        // The ground a tenth up the view, the top a tenth down, the sides a tenth in.
+        let height = ((bodies.max.y - ground) as f32 / 0.8)
+            .max((bodies.max.x - bodies.min.x) as f32 / 0.8 * view_height / view_width)
+            .max(FRAMING_LEAST);
+        let center_x = 0.5 * (bodies.min.x + bodies.max.x);
+        let center_y = ground + (0.4 * height) as Real;
+        Camera {
+            center: (center_x, center_y),
+            zoom: view_height / height,
+        }
+    }
+}
+
+/// The least height, m, a framing camera shows: a lone small body is not blown up to fill
+/// the view.
+const FRAMING_LEAST: f32 = 4.0;
+
+/// An `Option` written as its value when it has one and left out when not, so a file
+/// writes `camera: (center: ..)`, not `camera: Some((center: ..))`.
+mod present {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    pub fn serialize<T: Serialize, S: Serializer>(
+        value: &Option<T>,
+        serializer: S,
+    ) -> Result<S::Ok, S::Error> {
+        match value {
+            Some(value) => value.serialize(serializer),
+            None => serializer.serialize_none(),
+        }
+    }
+
+    pub fn deserialize<'de, T: Deserialize<'de>, D: Deserializer<'de>>(
+        deserializer: D,
+    ) -> Result<Option<T>, D::Error> {
+        T::deserialize(deserializer).map(Some)
     }
 }
 

@@ -36,7 +36,9 @@ fn moved(scene: &Scene, by: (Real, Real)) -> Scene {
             other => panic!("moving {other:?} is not written"),
         }
     }
-    shift(&mut scene.camera.center);
+    if let Some(camera) = &mut scene.camera {
+        shift(&mut camera.center);
+    }
     let player = scene.player.as_mut().expect("the scene has a player");
     shift(&mut player.position);
     player.goal = player.goal.map(|x| x + by.0);

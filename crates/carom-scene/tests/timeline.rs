@@ -42,10 +42,8 @@ fn play(timeline: &mut Timeline, scene: &mut SceneWorld, steps: u64) -> Vec<u64>
                     .unwrap();
             }
             21..50 => {
-                let point = (
-                    -0.1 + 0.1 * (step - 20) as f32,
-                    2.5 + 0.05 * (step - 20) as f32,
-                );
+                let moved = (step - 20) as carom::Real;
+                let point = (-0.1 + 0.1 * moved, 2.5 + 0.05 * moved);
                 timeline.input(scene, Input::Drag { point }).unwrap();
             }
             50 => {
