@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Drives the real demo window under Xvfb: grabs the box of the grabbing scene, swings it up and
 # throws it, and saves the window while held (docs/images/window.png) and the throw as a strip
-# of three moments (docs/images/throw.png). Needs xvfb, xdotool, x11-apps and netpbm (Debian).
+# of three moments (docs/images/throw.png), and the smash gone back in time
+# (docs/images/timeline.png). Needs xvfb, xdotool, x11-apps and netpbm (Debian).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release -q -p carom-demo
@@ -48,4 +49,8 @@ for moment in held thrown landed; do
 done
 pnmcat -lr "$work/held.small.pnm" "$work/thrown.small.pnm" "$work/landed.small.pnm" |
     pnmtopng >docs/images/throw.png
-echo "wrote docs/images/window.png and docs/images/throw.png"
+# The timeline: the smash played 320 steps, then taken back to step 150 through the window's
+# script (what the sidebar's scrubber does).
+target/release/carom --scene demos/smash.ron --size 1280x720 --steps-per-frame 4 --frames 92 \
+    --at 81:pause --at 81:go-to=150 --screenshot docs/images/timeline.png >"$work/timeline.log"
+echo "wrote docs/images/window.png, docs/images/throw.png and docs/images/timeline.png"
