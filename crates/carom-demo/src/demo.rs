@@ -430,8 +430,12 @@ impl Demo {
     }
 
     /// Lets go of every control of the player (the window lost the keyboard), unless it plays
-    /// its recorded play, which holds the keys itself.
+    /// its recorded play, which holds the keys itself, or the run is being replayed after
+    /// going back, whose keys are the run's, not the keyboard's.
     pub fn let_go_of_controls(&mut self) {
+        if !self.timeline.is_live() {
+            return;
+        }
         if let Some(player) = self.scene.player.as_ref().filter(|p| !p.is_replaying())
             && player.input != PlayerInput::default()
         {
