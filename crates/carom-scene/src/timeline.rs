@@ -20,7 +20,8 @@ use std::mem::size_of;
 /// Steps between keyframes, before any are thinned: a third of a second at 60 Hz.
 pub const KEYFRAME_EVERY: u64 = 20;
 
-/// The keyframes' memory budget, bytes, before older ones are thinned.
+/// The keyframes' memory budget, bytes, before older ones are thinned. The timeline holds one
+/// keyframe's worth more: the last one thinned, whose memory the next one reuses.
 pub const KEYFRAME_BUDGET: usize = 192 << 20;
 
 /// The scene's state at one step, before the inputs applied at that step.
@@ -110,7 +111,8 @@ impl Timeline {
     }
 
     /// [`Timeline::new`] with a keyframe every `every` steps (at least 1) and at most
-    /// `budget` bytes of them (the first keyframe and the newest are always kept).
+    /// `budget` bytes of them (the first keyframe and the newest are always kept; the last one
+    /// thinned is held for its memory's reuse beside them).
     pub fn with_keyframes(
         mut recording: Recording,
         scene: &SceneWorld,
@@ -168,9 +170,11 @@ impl Timeline {
         self.keyframes.iter().map(|k| k.step)
     }
 
-    /// The memory the timeline holds, bytes: its keyframes and its recording.
+    /// The memory the timeline holds, bytes: its keyframes (and the memory of the last one
+    /// thinned, kept for the next) and its recording.
     pub fn bytes(&self) -> usize {
-        let keyframes: usize = self.keyframes.iter().map(|k| k.bytes).sum();
+        let spare = self.spare.as_ref().map_or(0, SceneSnapshot::heap_bytes);
+        let keyframes: usize = self.keyframes.iter().map(|k| k.bytes).sum::<usize>() + spare;
         let recording = (self.recording.hashes.capacity() + self.work.capacity())
             * size_of::<u64>()
             + self.recording.inputs.capacity() * size_of::<crate::recording::Timed>()
