@@ -155,12 +155,6 @@ impl Hand {
         }
     }
 
-    /// Forgets the grab without touching the world: the world was put back to a moment
-    /// whose joints are its own (a snapshot restored).
-    pub fn forget(&mut self) {
-        self.grab = None;
-    }
-
     fn let_go(&mut self, world: &mut World) {
         if let Some((joint, _)) = self.grab.take() {
             // Gone already if the body was removed or the joint broke.
