@@ -3,6 +3,7 @@
 //
 //   node crates/carom-web/test/browser-test.mjs [--site target/web] [--out target/web-test]
 //       [--carom target/debug/carom] [--steps 200] [--frame-rates]
+//       [--physics-speed --carom target/release/carom [--rounds 3]]
 //
 // It serves the site on 127.0.0.1, opens it, and checks that
 //   - the demo draws: frames arrive, the sidebar has text and the scene has shapes;
@@ -12,7 +13,10 @@
 //     hash at every step, and a native recording (`carom record`) replays so in the page;
 //   - the page logs no error.
 // Screenshots and results.json go to the output folder. --frame-rates also measures the frame
-// rate of three scenes (frames 30 to 300). Exits 1 with the reason on the first failure.
+// rate of three scenes (frames 30 to 300). --physics-speed measures only the physics: three
+// scenes stepped in the page and by the native `carom run` on one thread, alternately, the mean
+// step time of each (give it a release build of carom). Exits 1 with the reason on the
+// first failure.
 
 import { chromium } from "playwright-core";
 import { execFileSync } from "node:child_process";
@@ -27,6 +31,8 @@ const options = parseArguments(process.argv.slice(2), {
     chromium: process.env.CHROMIUM ?? "/usr/bin/chromium",
     steps: "200",
     "frame-rates": false,
+    "physics-speed": false,
+    rounds: "3",
 });
 const VIEW = { width: 1280, height: 720 };
 
@@ -64,14 +70,19 @@ let status = 0;
 try {
     const page = await open();
     results.browser = browser.version();
-    await drawsTheDemo(page);
-    await dragsWithTheMouse(page);
-    await dragsWithAFinger(page);
-    await recordingsCrossOver(page);
-    await sameHashesAsNative(page);
-    // One page at a time: a second one drawing beside it would halve its frame rate.
-    await page.close();
-    if (options["frame-rates"]) await frameRates();
+    if (options["physics-speed"]) {
+        await physicsSpeed(page);
+        await page.close();
+    } else {
+        await drawsTheDemo(page);
+        await dragsWithTheMouse(page);
+        await dragsWithAFinger(page);
+        await recordingsCrossOver(page);
+        await sameHashesAsNative(page);
+        // One page at a time: a second one drawing beside it would halve its frame rate.
+        await page.close();
+        if (options["frame-rates"]) await frameRates();
+    }
     check(errors.length === 0, `the page logged errors:\n  ${errors.join("\n  ")}`);
     passed("the page logged no error");
 } catch (error) {
@@ -241,6 +252,30 @@ async function sameHashesAsNative(page) {
         `browser after ${steps} steps:\n  ` +
         differ.map((r) => `${r.file}: browser ${r.web}, native ${r.native}`).join("\n  "));
     passed(`all ${rows.length} built-in scenes end in the native state hash after ${steps} steps`);
+}
+
+async function physicsSpeed(page) {
+    const steps = Number(options.steps);
+    const rows = [];
+    for (let round = 0; round < Number(options.rounds); round++) {
+        for (const scene of ["pyramid", "mixed_1000", "large_pyramid"]) {
+            const file = `demos/${scene}.ron`;
+            const web = JSON.parse(await page.evaluate(([f, s]) => window.carom.run_scene(f, s),
+                [file, steps]));
+            const native = JSON.parse(execFileSync(options.carom,
+                ["run", file, "--steps", String(steps), "--json", "--threads", "1"]).toString());
+            check(web.hash === native.hash, `${scene}: the page ended in ${web.hash}, native in ` +
+                `${native.hash}`);
+            // The mean after the first step: the page's clock ticks in 0.1 ms, too coarse for
+            // a median of steps that take less.
+            const row = { round, scene, page_ms: web.ms_per_step, native_ms: native.ms_per_step };
+            row.ratio = row.page_ms / row.native_ms;
+            rows.push(row);
+            console.log(`     round ${round + 1} ${scene}: page ${row.page_ms.toFixed(4)} ms, ` +
+                `native ${row.native_ms.toFixed(4)} ms, page / native ${row.ratio.toFixed(2)}`);
+        }
+    }
+    results.physics_speed = { steps, rows };
 }
 
 async function frameRates() {

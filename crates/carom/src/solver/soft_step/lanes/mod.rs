@@ -64,9 +64,11 @@ pub(crate) trait Lanes:
         self.write_to(&mut values);
         values[lane]
     }
-    /// Per lane, the larger, as `Real::max` (a NaN in `other` gives `self`).
+    /// Per lane, the larger (a NaN in `other` gives `self`; of +0 and -0, `other`), as x86's
+    /// `maxps` on every CPU.
     fn max(self, other: Self) -> Self;
-    /// Per lane, the smaller, as `Real::min` (a NaN in `other` gives `self`).
+    /// Per lane, the smaller (a NaN in `other` gives `self`; of +0 and -0, `other`), as x86's
+    /// `minps` on every CPU.
     fn min(self, other: Self) -> Self;
     /// Per lane: `self > other`, as a mask.
     fn gt(self, other: Self) -> Self;
@@ -131,14 +133,17 @@ macro_rules! four_wide_lanes {
             $lanes::new([values[0], values[1], values[2], values[3]])
         }
 
+        // Spelt out as x86's `maxps` and `minps` are (`self` where it wins or `other` is NaN,
+        // else `other`), so a tie of +0 and -0 gives the same zero everywhere: WASM's `pmax`
+        // and Neon's `fmaxnm`, which `wide` uses there, settle it otherwise.
         #[inline(always)]
         fn max(self, other: Self) -> Self {
-            $lanes::max(self, other)
+            (self.simd_gt(other) | other.simd_ne(other)).bitselect(self, other)
         }
 
         #[inline(always)]
         fn min(self, other: Self) -> Self {
-            $lanes::min(self, other)
+            (self.simd_lt(other) | other.simd_ne(other)).bitselect(self, other)
         }
 
         #[inline(always)]
@@ -307,6 +312,13 @@ pub(crate) mod tests {
             let both = gt.and(x.ne(one));
             assert_eq!(both.bits() & (1 << lane) != 0, v > 0.0 && v != 1.0);
         }
+        // A tie of zeros gives `other`, as x86's maxps and minps, on every CPU.
+        let (zero, negative_zero) = (L::splat(0.0), L::splat(-0.0));
+        let bits = |lanes: L| lanes.lane(0).to_bits();
+        assert_eq!(bits(zero.max(negative_zero)), (-0.0 as Real).to_bits());
+        assert_eq!(bits(negative_zero.max(zero)), (0.0 as Real).to_bits());
+        assert_eq!(bits(zero.min(negative_zero)), (-0.0 as Real).to_bits());
+        assert_eq!(bits(negative_zero.min(zero)), (0.0 as Real).to_bits());
         assert_eq!((x + one - one * one).lane(1), -2.0);
         assert_eq!((-L::splat(0.0)).lane(0).to_bits(), (-0.0 as Real).to_bits());
         let mut y = x;
