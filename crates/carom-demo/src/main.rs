@@ -432,6 +432,7 @@ fn window_options(cli: &Cli) -> Result<WindowOptions, String> {
         replay: cli.replay,
         steps_per_frame: cli.steps_per_frame,
         script: cli.script.clone(),
+        backends: None,
     })
 }
 

@@ -39,6 +39,9 @@ pub struct WindowOptions {
     pub steps_per_frame: Option<u32>,
     /// What to do at given frames, as a user would (for tests and demonstrations).
     pub script: Vec<Scripted>,
+    /// The graphics backends to choose from; `None` takes the environment's `WGPU_BACKEND`,
+    /// or else any (on the web: WebGPU where the browser has it, WebGL2 otherwise).
+    pub backends: Option<wgpu::Backends>,
 }
 
 /// An action at a frame: done at the frame's start, before its steps, in the order given.
@@ -379,7 +382,10 @@ impl Running {
         options: WindowOptions,
     ) -> Result<Running, String> {
         let mut descriptor = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(display));
-        descriptor.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
+        descriptor.backends = options
+            .backends
+            .or_else(wgpu::Backends::from_env)
+            .unwrap_or(wgpu::Backends::all());
         // WebGPU where the browser has it, WebGL2 otherwise.
         let instance = wgpu::util::new_instance_with_webgpu_detection(descriptor).await;
         let surface = instance

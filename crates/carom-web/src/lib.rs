@@ -65,6 +65,7 @@ pub fn start() -> Result<(), JsValue> {
         replay: false,
         steps_per_frame: None,
         script: Vec::new(),
+        backends: query("backend").map(|names| wgpu::Backends::from_comma_list(&names)),
     };
     start_in_canvas(options, canvas, Box::new(Page)).map_err(|e| {
         fail(&e);
@@ -225,9 +226,15 @@ fn describe(demo: &Demo, frame: &FrameInfo<'_>, out: &mut String) {
 
 /// The scene the page's address asks for (`?scene=NAME`), if any.
 fn scene_asked() -> Option<String> {
+    query("scene")
+}
+
+/// The page address's query parameter `name`, if it is there and not empty: `scene` (a
+/// built-in scene's name) and `backend` (`webgpu` or `gl`, to draw with that one only).
+fn query(name: &str) -> Option<String> {
     let search = web_sys::window()?.location().search().ok()?;
     let params = web_sys::UrlSearchParams::new_with_str(&search).ok()?;
-    params.get("scene").filter(|name| !name.is_empty())
+    params.get(name).filter(|value| !value.is_empty())
 }
 
 /// Says `message` in the console (where the browser test sees it) and in the page's

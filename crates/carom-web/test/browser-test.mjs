@@ -1,13 +1,16 @@
-// The web build in a real browser: Debian's Chromium, headless, drawing through SwiftShader
-// (WebGL2 in software), driven through the DevTools protocol by playwright-core.
+// The web build in a real browser: Debian's Chromium, headless, drawing in software through
+// SwiftShader (WebGPU through Dawn on its Vulkan, and WebGL2 through ANGLE), driven through the
+// DevTools protocol by playwright-core.
 //
 //   node crates/carom-web/test/browser-test.mjs [--site target/web] [--out target/web-test]
-//       [--carom target/debug/carom] [--steps 200] [--frame-rates]
+//       [--carom target/debug/carom] [--steps 200] [--backends webgpu,gl] [--frame-rates]
 //       [--physics-speed --carom target/release/carom [--rounds 3]]
 //
-// It serves the site on 127.0.0.1, opens it, and checks that
-//   - the demo draws: frames arrive, the sidebar has text and the scene has shapes;
+// It serves the site on 127.0.0.1, opens it once for each backend (`?backend=`), and checks that
+//   - the demo draws with that backend: frames arrive, the sidebar has text and the scene has
+//     shapes;
 //   - a body dragged with the mouse, and another with a finger, follows the drag;
+// and once, on the last backend (the physics is the renderer's no business), that
 //   - every built-in scene run in the page ends in the same state hash as the native `carom run`;
 //   - the page's run with those drags, recorded, replays natively (`carom replay`) to the same
 //     hash at every step, and a native recording (`carom record`) replays so in the page;
@@ -33,7 +36,10 @@ const options = parseArguments(process.argv.slice(2), {
     "frame-rates": false,
     "physics-speed": false,
     rounds: "3",
+    backends: "webgpu,gl",
 });
+/// What the page says it draws with, by the backend asked for.
+const BACKENDS = { webgpu: "BrowserWebGpu", gl: "Gl" };
 const VIEW = { width: 1280, height: 720 };
 
 class Failure extends Error {}
@@ -63,24 +69,38 @@ const browser = await chromium.launch({
         // WebGL2 through SwiftShader, the software rasteriser Chromium ships.
         "--use-angle=swiftshader",
         "--enable-unsafe-swiftshader",
+        // WebGPU through Dawn on SwiftShader's Vulkan: Chromium offers a CPU adapter only when
+        // WebGPU is "unsafe", and a WebGPU canvas shows (rather than white) only when the
+        // compositor runs on Vulkan too, there being no GL interop on SwiftShader.
+        "--enable-unsafe-webgpu",
+        "--enable-features=Vulkan,CDPScreenshotNewSurface",
+        "--use-vulkan=swiftshader",
     ],
 });
 const errors = [];
 let status = 0;
 try {
-    const page = await open();
     results.browser = browser.version();
+    results.backends = {};
     if (options["physics-speed"]) {
+        const page = await open();
         await physicsSpeed(page);
         await page.close();
     } else {
-        await drawsTheDemo(page);
-        await dragsWithTheMouse(page);
-        await dragsWithAFinger(page);
-        await recordingsCrossOver(page);
-        await sameHashesAsNative(page);
-        // One page at a time: a second one drawing beside it would halve its frame rate.
-        await page.close();
+        const backends = options.backends.split(",");
+        for (const [i, backend] of backends.entries()) {
+            check(backend in BACKENDS, `no backend ${backend}: ${Object.keys(BACKENDS)}`);
+            const page = await open("", backend);
+            await drawsTheDemo(page, backend);
+            await dragsWithTheMouse(page, backend);
+            await dragsWithAFinger(page, backend);
+            if (i === backends.length - 1) {
+                await recordingsCrossOver(page);
+                await sameHashesAsNative(page);
+            }
+            // One page at a time: a second one drawing beside it would halve its frame rate.
+            await page.close();
+        }
         if (options["frame-rates"]) await frameRates();
     }
     check(errors.length === 0, `the page logged errors:\n  ${errors.join("\n  ")}`);
@@ -100,16 +120,18 @@ process.exit(status);
 
 // ---------------------------------------------------------------------------------------------
 
-/// Opens the site (with `query`) in a new page of 1280x720 with touch, collecting its errors
-/// in `errors`, and waits for 30 frames.
-async function open(query = "") {
+/// Opens the site (with `query`, drawing with `backend`) in a new page of 1280x720 with touch,
+/// collecting its errors in `errors`, and waits for 30 frames.
+async function open(query = "", backend = "webgpu") {
     const page = await browser.newPage({ viewport: VIEW, hasTouch: true });
     page.on("console", (message) => {
         if (message.type() === "error") errors.push(`console: ${message.text()}`);
     });
     page.on("pageerror", (error) => errors.push(`uncaught: ${error.message}`));
     page.on("requestfailed", (request) => errors.push(`request failed: ${request.url()}`));
-    await page.goto(address + query);
+    const params = new URLSearchParams(query);
+    params.set("backend", backend);
+    await page.goto(`${address}?${params}`);
     await waitForFrames(page, 30, 90_000);
     return page;
 }
@@ -132,20 +154,28 @@ async function waitForFrames(page, count, timeout) {
     }
 }
 
-async function drawsTheDemo(page) {
+async function drawsTheDemo(page, backend) {
     const state = await probe(page);
-    results.adapter = state.adapter;
-    console.log(`     drawing with ${state.adapter}`);
+    // wgpu names no WebGPU adapter (Chromium leaves its description empty): ask the page.
+    const webgpu = await page.evaluate(async () => {
+        const info = (await navigator.gpu?.requestAdapter())?.info;
+        return info ? `${info.vendor} ${info.architecture}` : "";
+    });
+    const adapter = backend === "webgpu" ? `${webgpu}${state.adapter}` : state.adapter;
+    results.backends[backend] = { adapter };
+    console.log(`     ${backend}: drawing with ${adapter}`);
+    check(state.adapter.endsWith(` on ${BACKENDS[backend]}`),
+        `asked for ${backend}, the page draws with ${state.adapter}`);
     check(state.scene === "demos/grabbing.ron", `opened ${state.scene}, not the grabbing scene`);
-    const shot = await screenshot(page, "grabbing.png");
+    const shot = await screenshot(page, `${backend}-grabbing.png`);
     const sidebar = await pixelStats(page, shot, [0, 0, state.sidebar_css, VIEW.height]);
     const scene = await pixelStats(page, shot, [state.sidebar_css, 0, VIEW.width, VIEW.height]);
-    results.pixels = { sidebar, scene };
+    results.backends[backend].pixels = { sidebar, scene };
     // Text is many small light marks on the dark panel; shapes are areas in several colours.
     check(sidebar.light > 0.01, `the sidebar shows no text (${pct(sidebar.light)} light pixels)`);
     check(scene.colors >= 8, `the scene is nearly blank (${scene.colors} colours)`);
     check(scene.changed > 0.02, `the scene is nearly blank (${pct(scene.changed)} drawn)`);
-    passed(`draws: sidebar ${pct(sidebar.light)} text, scene ${scene.colors} colours, ` +
+    passed(`${backend} draws: sidebar ${pct(sidebar.light)} text, scene ${scene.colors} colours, ` +
         `${pct(scene.changed)} drawn`);
 }
 
@@ -179,7 +209,7 @@ async function drag(page, body, by, pointer, what) {
     passed(`${what}: the body followed the drag ${fmt(from)} -> ${fmt(to)} (held ${fmt(held)})`);
 }
 
-async function dragsWithTheMouse(page) {
+async function dragsWithTheMouse(page, backend) {
     const state = await probe(page);
     const body = nearest(state.bodies, { x: (state.sidebar_css + VIEW.width) / 2, y: 540 });
     const mouse = {
@@ -187,10 +217,10 @@ async function dragsWithTheMouse(page) {
         move: (at) => page.mouse.move(at.x, at.y),
         up: async (at) => { await page.mouse.move(at.x, at.y); await page.mouse.up(); },
     };
-    await drag(page, body, { x: 120, y: -220 }, mouse, "mouse drag");
+    await drag(page, body, { x: 120, y: -220 }, mouse, `${backend} mouse drag`);
 }
 
-async function dragsWithAFinger(page) {
+async function dragsWithAFinger(page, backend) {
     // Wait for the thrown body to come down, then take another one.
     await page.waitForTimeout(1500);
     const state = await probe(page);
@@ -205,7 +235,7 @@ async function dragsWithAFinger(page) {
         move: (at) => touch("touchMove", at),
         up: (at) => touch("touchEnd", at),
     };
-    await drag(page, body, { x: 150, y: -180 }, finger, "touch drag");
+    await drag(page, body, { x: 150, y: -180 }, finger, `${backend} touch drag`);
 }
 
 async function recordingsCrossOver(page) {
