@@ -28,7 +28,9 @@ fi
 cargo build --profile web --target wasm32-unknown-unknown -p carom-web
 rm -rf "$out"
 mkdir -p "$out"
-"$bindgen" --target web --no-typescript --out-dir "$out" \
+# The function names (a sixth of the module) only name frames in a browser's stack traces;
+# a panic's message reaches the page without them.
+"$bindgen" --target web --no-typescript --remove-name-section --out-dir "$out" \
     "$target_dir/wasm32-unknown-unknown/web/carom_web.wasm"
 cp crates/carom-web/index.html "$out/"
 echo "built $out: serve it with any static server, for example"
