@@ -614,9 +614,11 @@ fn hard_cases(filter: &[String], out: Option<&Path>, options: Options) -> Result
 /// `carom-bench timeline`: the timeline's memory over a long run of `scene`, and the time to go
 /// back to steps across it.
 fn timeline_run(scene: &Path, steps: u64) -> Result<(), String> {
-    let mut world = carom_scene::load(scene).map_err(|e| e.to_string())?;
-    let text = std::fs::read_to_string(scene).map_err(|e| format!("{}: {e}", scene.display()))?;
-    let recording = carom_scene::Recording::new(&scene.display().to_string(), &text);
+    // The file is read once: the recording keeps the text the world is built from.
+    let name = scene.display().to_string();
+    let text = std::fs::read_to_string(scene).map_err(|e| format!("{name}: {e}"))?;
+    let recording = carom_scene::Recording::new(&name, &text);
+    let mut world = recording.start().map_err(|e| e.to_string())?;
     let heap =
         |stats: stats_alloc::Stats| stats.bytes_allocated as f64 - stats.bytes_deallocated as f64;
     let region = Region::new(&INSTRUMENTED_SYSTEM);

@@ -5,14 +5,21 @@
 use std::path::PathBuf;
 use std::process::Command;
 
-#[test]
-#[ignore = "needs a display: .ci/run runs it under Xvfb"]
-fn the_window_shows_the_scene_and_the_sidebar() {
+/// The project's root, and where under `target/window` the screenshot `name` goes (any earlier
+/// one removed, so a run that writes none is caught).
+fn fresh_screenshot(name: &str) -> (PathBuf, PathBuf) {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
     let out = root.join("target/window");
     std::fs::create_dir_all(&out).unwrap();
-    let screenshot = out.join("collision.png");
+    let screenshot = out.join(name);
     let _ = std::fs::remove_file(&screenshot);
+    (root, screenshot)
+}
+
+#[test]
+#[ignore = "needs a display: .ci/run runs it under Xvfb"]
+fn the_window_shows_the_scene_and_the_sidebar() {
+    let (root, screenshot) = fresh_screenshot("collision.png");
     let output = Command::new(env!("CARGO_BIN_EXE_carom"))
         .current_dir(&root)
         .args([
@@ -72,11 +79,7 @@ fn the_window_shows_the_scene_and_the_sidebar() {
 #[test]
 #[ignore = "needs a display: .ci/run runs it under Xvfb"]
 fn the_window_plays_the_platformer_to_its_goal() {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let out = root.join("target/window");
-    std::fs::create_dir_all(&out).unwrap();
-    let screenshot = out.join("platformer.png");
-    let _ = std::fs::remove_file(&screenshot);
+    let (root, screenshot) = fresh_screenshot("platformer.png");
     let output = Command::new(env!("CARGO_BIN_EXE_carom"))
         .current_dir(&root)
         .args([
@@ -112,11 +115,7 @@ fn the_window_plays_the_platformer_to_its_goal() {
 #[test]
 #[ignore = "needs a display: .ci/run runs it under Xvfb"]
 fn the_window_goes_back_in_time_and_branches() {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let out = root.join("target/window");
-    std::fs::create_dir_all(&out).unwrap();
-    let screenshot = out.join("timeline.png");
-    let _ = std::fs::remove_file(&screenshot);
+    let (root, screenshot) = fresh_screenshot("timeline.png");
     // Ten steps a frame: frame F begins at step 10 (F - 1) while playing.
     let script = [
         "11:print",

@@ -28,18 +28,7 @@ fn play(timeline: &mut Timeline, scene: &mut SceneWorld, steps: u64) -> Vec<u64>
     for step in 0..steps {
         match step {
             20 => {
-                let top = scene
-                    .world
-                    .body(scene.world.body_at(carom::vec2(-0.1, 2.5)).unwrap());
-                let at = top.unwrap().position();
-                timeline
-                    .input(
-                        scene,
-                        Input::Grab {
-                            point: (at.x, at.y),
-                        },
-                    )
-                    .unwrap();
+                grab_body_at(timeline, scene, carom::vec2(-0.1, 2.5));
             }
             21..50 => {
                 let moved = (step - 20) as carom::Real;
@@ -50,18 +39,7 @@ fn play(timeline: &mut Timeline, scene: &mut SceneWorld, steps: u64) -> Vec<u64>
                 timeline.input(scene, Input::LetGo).unwrap();
             }
             90 => {
-                let circle = scene
-                    .world
-                    .body(scene.world.body_at(carom::vec2(3.0, 0.5)).unwrap());
-                let at = circle.unwrap().position();
-                timeline
-                    .input(
-                        scene,
-                        Input::Grab {
-                            point: (at.x, at.y),
-                        },
-                    )
-                    .unwrap();
+                grab_body_at(timeline, scene, carom::vec2(3.0, 0.5));
             }
             _ => {}
         }
@@ -69,6 +47,16 @@ fn play(timeline: &mut Timeline, scene: &mut SceneWorld, steps: u64) -> Vec<u64>
         hashes.push(scene.world.state_hash());
     }
     hashes
+}
+
+/// Grabs the body under `point`, at its centre.
+fn grab_body_at(timeline: &mut Timeline, scene: &mut SceneWorld, point: carom::Vec2) {
+    let body = scene.world.body_at(point).unwrap();
+    let at = scene.world.body(body).unwrap().position();
+    let grab = Input::Grab {
+        point: (at.x, at.y),
+    };
+    timeline.input(scene, grab).unwrap();
 }
 
 #[test]
