@@ -3,7 +3,7 @@
 # the demo compiled to WebAssembly and its JavaScript glue. Any static server serves it, e.g.
 #   python3 -m http.server -d target/web 8000    and open http://127.0.0.1:8000
 # It adds the wasm32 target with rustup and installs the wasm-bindgen command line the
-# version Cargo.lock names (through cargo, into target/tools) when they are missing.
+# version Cargo.lock names (scripts/wasm-bindgen-cli.sh) when they are missing.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 out="${1:-target/web}"
@@ -12,18 +12,8 @@ target_dir="${CARGO_TARGET_DIR:-target}"
 rustup target list --installed | grep -qx wasm32-unknown-unknown \
     || rustup target add wasm32-unknown-unknown
 
-# wasm-bindgen's command line must be the exact version of the wasm-bindgen crate built in.
-version=$(awk '$0 == "name = \"wasm-bindgen\"" { getline; gsub(/version = |"/, ""); print; exit }' Cargo.lock)
-bindgen="$target_dir/tools/bin/wasm-bindgen"
-if [ "$("$bindgen" --version 2>/dev/null)" != "wasm-bindgen $version" ]; then
-    echo "installing wasm-bindgen-cli $version into $target_dir/tools"
-    # A tool that runs for seconds: unoptimised, it installs in a third of the time and runs
-    # a few seconds longer, with the same output. Its default feature is TLS for the test
-    # runner's downloads, which the site never makes.
-    CARGO_PROFILE_RELEASE_OPT_LEVEL=0 CARGO_PROFILE_RELEASE_DEBUG=false \
-        cargo install wasm-bindgen-cli --version "$version" --no-default-features \
-        --root "$target_dir/tools"
-fi
+# wasm-bindgen's command line, the version of the crate built in.
+bindgen=$(scripts/wasm-bindgen-cli.sh)
 
 cargo build --profile web --target wasm32-unknown-unknown -p carom-web
 rm -rf "$out"
