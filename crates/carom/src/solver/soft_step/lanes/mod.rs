@@ -179,7 +179,14 @@ impl Lanes for f32x4 {
 
     #[inline(always)]
     fn gather(states: &SharedStates, indices: &[u32; 4]) -> [Self; 8] {
-        let [r0, r1, r2, r3] = [0, 1, 2, 3].map(|lane| states.read(indices[lane]));
+        // Read one by one: an array `map` here stays a call in WebAssembly builds.
+        let [i0, i1, i2, i3] = *indices;
+        let (r0, r1, r2, r3) = (
+            states.read(i0),
+            states.read(i1),
+            states.read(i2),
+            states.read(i3),
+        );
         let half = |row: &[f32; 8], from: usize| Self::from_slice(&row[from..]);
         let [v_x, v_y, w, held] =
             f32x4::transpose([half(&r0, 0), half(&r1, 0), half(&r2, 0), half(&r3, 0)]);
