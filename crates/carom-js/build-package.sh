@@ -14,14 +14,13 @@ rustup target list --installed | grep -qx wasm32-unknown-unknown \
     || rustup target add wasm32-unknown-unknown
 bindgen=$(scripts/wasm-bindgen-cli.sh)
 
-# The web profile: the physics at full speed, the rest (the bindings, the scene parser) for
-# size.
-cargo build --profile web --target wasm32-unknown-unknown -p carom-js
+# The js profile (Cargo.toml): the physics at full speed, the rest for size, linked whole.
+cargo build --profile js --target wasm32-unknown-unknown -p carom-js
 rm -rf "$out"
 mkdir -p "$out"
 # Function names only name frames in stack traces; the package's errors carry messages.
 "$bindgen" --target web --remove-name-section --out-dir "$out" \
-    "$target_dir/wasm32-unknown-unknown/web/carom_js.wasm"
+    "$target_dir/wasm32-unknown-unknown/js/carom_js.wasm"
 cp crates/carom-js/package/* "$out/"
 cp LICENSE-MIT LICENSE-APACHE "$out/"
 

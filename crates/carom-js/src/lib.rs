@@ -3,7 +3,7 @@
 //!
 //! JavaScript holds small handles (`Body`, `Collider`, `Joint`) that name a world by key and
 //! an object by carom's generational handle; the worlds themselves live here, in
-//! [`registry`], so freeing a `World` frees its memory at once. Every value that comes in is
+//! `registry`, so freeing a `World` frees its memory at once. Every value that comes in is
 //! checked (`convert`, `defs`): bad input, a stale handle or another world's handle is a
 //! JavaScript `Error` with a message, never a trap.
 
