@@ -5,9 +5,10 @@
 //! cargo run --release -p carom-scene --example scene_hashes -- --steps 300 demos/*.ron
 //! ```
 //!
-//! Prints one `name hash` line a scene, in the order given; a scene that fails to load or step
-//! prints `name FAILED: reason` and makes the exit status 1. The hash is the one `carom run`
-//! prints after the same steps.
+//! Prints one `name hash steps` line a scene, in the order given, so that another build can
+//! step each scene as far and compare; a scene that fails to load or step prints
+//! `name FAILED: reason` and makes the exit status 1. The hash is the one `carom run` prints
+//! after the same steps.
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -40,7 +41,7 @@ fn main() -> ExitCode {
             .file_stem()
             .map_or(file.as_str(), |s| s.to_str().unwrap_or(file));
         match hash_after(path, steps) {
-            Ok(hash) => println!("{name} {hash:016x}"),
+            Ok(hash) => println!("{name} {hash:016x} {steps}"),
             Err(reason) => {
                 println!("{name} FAILED: {reason}");
                 status = ExitCode::FAILURE;
