@@ -78,7 +78,11 @@ export interface BodyDef extends ColliderFields {
     colliders?: ColliderDef[];
 }
 
-/** A static chain of segments, one-sided, for ground and tracks. */
+/**
+ * A static chain of segments for ground and tracks. Its links collide on their right side,
+ * seen walking along the points: ground runs from right to left, a counter-clockwise loop is
+ * solid outside.
+ */
 export interface ChainDef {
     points: Vec2[];
     /** A loop (the last point joins the first). Default false. */

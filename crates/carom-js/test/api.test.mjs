@@ -235,3 +235,71 @@ test("the package reports its version", () => {
     const manifest = JSON.parse(fs.readFileSync(new URL("../package/package.json", import.meta.url)));
     assert.equal(carom.version(), manifest.version);
 });
+
+test("chains, filters, sensors' overlaps, body types and forces do what they say", () => {
+    const world = new World();
+    // A chain collides on the right of its direction: right to left, its top is solid.
+    const track = world.createChain({
+        points: [{ x: 10, y: 0 }, { x: 0, y: -1 }, { x: -10, y: 0 }],
+        friction: 0.8,
+    });
+    assert.equal(track.type(), "static");
+    assert.equal(track.colliders().length, 2);
+    assert.equal(track.colliders()[0].shapeType(), "chainSegment");
+    const ball = world.createBody({ shape: { kind: "circle", radius: 0.5 }, position: { x: -5, y: 3 } });
+    for (let i = 0; i < 240; i++) world.step();
+    assert.ok(ball.position().y > -1 && ball.position().y < 0.5, "the ball rolls along the chain");
+
+    const ghost = world.createBody({ shape: box(), position: { x: 0, y: 10 }, filter: { category: 2, mask: 0 } });
+    assert.deepEqual(ghost.colliders()[0].filter(), { category: 2n, mask: 0n, group: 0 });
+    for (let i = 0; i < 120; i++) world.step();
+    assert.ok(ghost.position().y < -5, "a collider that collides with nothing falls through the chain");
+    ghost.colliders()[0].setFilter({ mask: 2n ** 64n - 1n });
+    assert.equal(ghost.colliders()[0].filter().mask, 2n ** 64n - 1n);
+
+    const zone = world.createBody({ type: "static", shape: { kind: "circle", radius: 3 },
+        position: { x: 20, y: 0 }, sensor: true });
+    const visitor = world.createBody({ shape: box(), position: { x: 20, y: 0 }, gravityScale: 0 });
+    world.step();
+    const overlaps = zone.colliders()[0].sensorOverlaps();
+    assert.equal(overlaps.length, 1);
+    assert.ok(overlaps[0].body().equals(visitor));
+    assert.equal(zone.colliders()[0].isSensor(), true);
+
+    visitor.setType("kinematic");
+    assert.equal(visitor.type(), "kinematic");
+    assert.equal(visitor.mass(), 0);
+    visitor.setLinearVelocity({ x: 1, y: 0 });
+    world.step(0.5);
+    near(visitor.position().x, 20.5, 1e-5, "a kinematic body moves at its velocity");
+    visitor.setType("dynamic");
+    visitor.setLinearVelocity({ x: 0, y: 0 });
+    visitor.applyImpulse({ x: 2, y: 0 });
+    near(visitor.linearVelocity().x, 2 / visitor.mass(), 1e-5, "an impulse at the centre");
+    visitor.applyAngularImpulse(visitor.inertia());
+    near(visitor.angularVelocity(), 1, 1e-5, "an angular impulse");
+    const local = visitor.localPoint({ x: 21, y: 0.5 });
+    const back = visitor.worldPoint(local);
+    near(back.x, 21, 1e-5, "local and world points round-trip");
+    near(back.y, 0.5, 1e-5, "local and world points round-trip");
+    const edge = visitor.velocityAt(visitor.worldPoint({ x: 0, y: 1 }));
+    near(Math.hypot(edge.x - visitor.linearVelocity().x, edge.y - visitor.linearVelocity().y), 1, 1e-4,
+        "a point 1 m from the centre moves at 1 m/s more");
+
+    world.setGravity({ x: 0, y: 0 });
+    assert.deepEqual(world.gravity(), { x: 0, y: 0 });
+    world.free();
+});
+
+test("bodies at rest fall asleep, and waking one wakes it", () => {
+    const { world } = withGround();
+    const body = world.createBody({ shape: box(), position: { x: 0, y: 0.5 } });
+    for (let i = 0; i < 120 && !body.isSleeping(); i++) world.step();
+    assert.equal(body.isSleeping(), true);
+    body.wakeUp();
+    assert.equal(body.isSleeping(), false);
+    for (let i = 0; i < 120 && !body.isSleeping(); i++) world.step();
+    world.wakeAll();
+    assert.equal(body.isSleeping(), false);
+    world.free();
+});
