@@ -343,7 +343,11 @@ pub(crate) fn joint(value: &JsValue, a: BodyHandle, b: BodyHandle) -> Result<Joi
             let known: Vec<&str> = OWN.iter().map(|(name, _)| *name).collect();
             error(
                 &format!("{WHAT}.kind"),
-                format!("unknown joint kind {kind:?} (known: {})", known.join(", ")),
+                format!(
+                    "unknown joint kind {kind:?} (known: {}; a mouse joint is made by \
+                     World.createMouseJoint)",
+                    known.join(", ")
+                ),
             )
         })?;
     let known: Vec<&str> = COMMON.iter().chain(own).copied().collect();

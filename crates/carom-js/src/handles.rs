@@ -65,6 +65,49 @@ pub(crate) fn carom_error(e: CaromError) -> JsError {
     JsError::new(&e.to_string())
 }
 
+/// What every handle has: its `id`, `isValid()`, `equals()`, and the hidden key by which one
+/// passed inside an options object is read.
+macro_rules! handle_basics {
+    ($handle:ident, $what:literal, $tag:expr) => {
+        #[wasm_bindgen]
+        impl $handle {
+            #[doc = concat!("Its index in its world: unique among the world's ", $what, "s while")]
+            #[doc = concat!("it lives (a ", $what, " added after it is removed may get it).")]
+            #[wasm_bindgen(getter)]
+            pub fn id(&self) -> u32 {
+                self.handle.index()
+            }
+
+            /// Whether it is still in its world: not removed, its world not freed.
+            #[wasm_bindgen(js_name = isValid)]
+            pub fn is_valid(&self) -> bool {
+                self.read(|_, _| ()).is_ok()
+            }
+
+            #[doc = concat!("Whether `other` is the same ", $what, " (two handles to one ", $what)]
+            #[doc = "are different objects)."]
+            pub fn equals(&self, other: &$handle) -> bool {
+                self.world == other.world && self.handle == other.handle
+            }
+
+            /// Its hidden key, read when it is passed inside an options object (`excludeBody`).
+            #[wasm_bindgen(js_name = __caromKey, skip_typescript)]
+            pub fn carom_key(&self) -> Vec<u32> {
+                key(
+                    self.world,
+                    $tag,
+                    self.handle.index(),
+                    self.handle.generation(),
+                )
+            }
+        }
+    };
+}
+
+handle_basics!(Body, "body", Tag::Body);
+handle_basics!(Collider, "collider", Tag::Collider);
+handle_basics!(Joint, "joint", Tag::Joint);
+
 /// A rigid body in a world. Get one from `World.createBody` (or a query, an event, a scene's
 /// name); it stays valid until removed or until its world is freed.
 #[wasm_bindgen]
@@ -102,35 +145,6 @@ impl Body {
 
 #[wasm_bindgen]
 impl Body {
-    /// Its index in its world: unique among the world's bodies while it lives (a body added
-    /// after it is removed may get it).
-    #[wasm_bindgen(getter)]
-    pub fn id(&self) -> u32 {
-        self.handle.index()
-    }
-
-    /// Whether it is still in its world (not removed, its world not freed).
-    #[wasm_bindgen(js_name = isValid)]
-    pub fn is_valid(&self) -> bool {
-        self.read(|_, _| ()).is_ok()
-    }
-
-    /// Whether `other` is the same body (two handles to one body are different objects).
-    pub fn equals(&self, other: &Body) -> bool {
-        self.world == other.world && self.handle == other.handle
-    }
-
-    /// Its hidden key, read when it is passed inside an options object (`excludeBody`).
-    #[wasm_bindgen(js_name = __caromKey, skip_typescript)]
-    pub fn carom_key(&self) -> Vec<u32> {
-        key(
-            self.world,
-            Tag::Body,
-            self.handle.index(),
-            self.handle.generation(),
-        )
-    }
-
     /// `"dynamic"`, `"static"` or `"kinematic"`.
     #[wasm_bindgen(js_name = "type", unchecked_return_type = "BodyType")]
     pub fn kind(&self) -> Result<String, JsError> {
@@ -422,34 +436,6 @@ impl Collider {
 
 #[wasm_bindgen]
 impl Collider {
-    /// Its index in its world: unique among the world's colliders while it lives.
-    #[wasm_bindgen(getter)]
-    pub fn id(&self) -> u32 {
-        self.handle.index()
-    }
-
-    /// Whether it is still in its world.
-    #[wasm_bindgen(js_name = isValid)]
-    pub fn is_valid(&self) -> bool {
-        self.read(|_, _| ()).is_ok()
-    }
-
-    /// Whether `other` is the same collider.
-    pub fn equals(&self, other: &Collider) -> bool {
-        self.world == other.world && self.handle == other.handle
-    }
-
-    /// Its hidden key, read when it is passed inside an options object (`excludeBody`).
-    #[wasm_bindgen(js_name = __caromKey, skip_typescript)]
-    pub fn carom_key(&self) -> Vec<u32> {
-        key(
-            self.world,
-            Tag::Collider,
-            self.handle.index(),
-            self.handle.generation(),
-        )
-    }
-
     /// The body it is on.
     pub fn body(&self) -> Result<Body, JsError> {
         self.read(|c, _| Body::new(self.world, c.body()))
@@ -589,34 +575,6 @@ impl Joint {
 
 #[wasm_bindgen]
 impl Joint {
-    /// Its index in its world: unique among the world's joints while it lives.
-    #[wasm_bindgen(getter)]
-    pub fn id(&self) -> u32 {
-        self.handle.index()
-    }
-
-    /// Whether it is still in its world (not removed, not broken, its world not freed).
-    #[wasm_bindgen(js_name = isValid)]
-    pub fn is_valid(&self) -> bool {
-        self.read(|_, _| ()).is_ok()
-    }
-
-    /// Whether `other` is the same joint.
-    pub fn equals(&self, other: &Joint) -> bool {
-        self.world == other.world && self.handle == other.handle
-    }
-
-    /// Its hidden key, read when it is passed inside an options object (`excludeBody`).
-    #[wasm_bindgen(js_name = __caromKey, skip_typescript)]
-    pub fn carom_key(&self) -> Vec<u32> {
-        key(
-            self.world,
-            Tag::Joint,
-            self.handle.index(),
-            self.handle.generation(),
-        )
-    }
-
     /// Its kind: `"distance"`, `"revolute"`, `"prismatic"`, `"weld"`, `"wheel"`, `"motor"`,
     /// `"mover"`, `"pogo"`, `"mouse"` or `"filter"`.
     pub fn kind(&self) -> Result<String, JsError> {
