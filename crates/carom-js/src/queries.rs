@@ -4,7 +4,7 @@ use crate::convert::{finite, object, vec2, vec2_out};
 use crate::defs;
 use crate::handles::{Body, Collider, Tag, key_of};
 use crate::world::World;
-use carom::{Aabb, BodyHandle, CastHit, QueryFilter, Ray, WorldShape};
+use carom::{Aabb, BodyHandle, CastHit, ColliderHandle, QueryFilter, Ray, WorldShape};
 use wasm_bindgen::prelude::*;
 
 impl World {
@@ -17,6 +17,13 @@ impl World {
         })
     }
 
+    fn colliders(&self, handles: Vec<ColliderHandle>) -> Vec<Collider> {
+        handles
+            .into_iter()
+            .map(|c| Collider::new(self.key, c))
+            .collect()
+    }
+
     fn hit(&self, hit: CastHit) -> JsValue {
         object(&[
             ("body", Body::new(self.key, hit.body).into()),
@@ -26,6 +33,15 @@ impl World {
             ("fraction", (hit.fraction as f64).into()),
         ])
     }
+}
+
+/// A query's shape, placed at `position` and turned by `angle`.
+fn placed_shape(shape: &JsValue, position: &JsValue, angle: f64) -> Result<WorldShape, JsError> {
+    Ok(WorldShape::at(
+        &defs::shape(shape, "shape")?,
+        vec2(position, "position")?,
+        finite(angle, "angle")?,
+    ))
 }
 
 #[wasm_bindgen]
@@ -79,11 +95,7 @@ impl World {
         #[wasm_bindgen(unchecked_param_type = "Vec2")] translation: JsValue,
         #[wasm_bindgen(unchecked_param_type = "QueryFilter | undefined")] filter: JsValue,
     ) -> Result<JsValue, JsError> {
-        let shape = WorldShape::at(
-            &defs::shape(&shape, "shape")?,
-            vec2(&position, "position")?,
-            finite(angle, "angle")?,
-        );
+        let shape = placed_shape(&shape, &position, angle)?;
         let translation = vec2(&translation, "translation")?;
         let filter = self.query_filter(&filter)?;
         self.with(|sim| {
@@ -107,14 +119,7 @@ impl World {
             max: vec2(&max, "max")?,
         };
         let filter = self.query_filter(&filter)?;
-        self.with(|sim| {
-            Ok(sim
-                .world()
-                .query_aabb(&aabb, filter)
-                .into_iter()
-                .map(|c| Collider::new(self.key, c))
-                .collect())
-        })
+        self.with(|sim| Ok(self.colliders(sim.world().query_aabb(&aabb, filter))))
     }
 
     /// The colliders that overlap `shape` placed at `position` turned by `angle`.
@@ -126,20 +131,9 @@ impl World {
         angle: f64,
         #[wasm_bindgen(unchecked_param_type = "QueryFilter | undefined")] filter: JsValue,
     ) -> Result<Vec<Collider>, JsError> {
-        let shape = WorldShape::at(
-            &defs::shape(&shape, "shape")?,
-            vec2(&position, "position")?,
-            finite(angle, "angle")?,
-        );
+        let shape = placed_shape(&shape, &position, angle)?;
         let filter = self.query_filter(&filter)?;
-        self.with(|sim| {
-            Ok(sim
-                .world()
-                .query_shape(&shape, filter)
-                .into_iter()
-                .map(|c| Collider::new(self.key, c))
-                .collect())
-        })
+        self.with(|sim| Ok(self.colliders(sim.world().query_shape(&shape, filter))))
     }
 
     /// The body under `point`, for picking with a mouse: dynamic over kinematic over static.
