@@ -16,8 +16,9 @@ pub enum RigidBody {
     /// Moved by gravity, forces, contacts and joints.
     #[default]
     Dynamic,
-    /// Moved only by its velocity, or toward a `Transform` set each step; pushes dynamic
-    /// bodies, is not pushed.
+    /// Moved only by its [`Velocity`], or to a `Transform` the game sets (over the next fixed
+    /// step, stopping there unless set again: set it in `FixedUpdate` to drive the body along
+    /// a path); pushes dynamic bodies, is not pushed.
     Kinematic,
     /// Never moves (unless its `Transform` is set): ground, walls.
     Static,
@@ -144,6 +145,9 @@ pub(crate) struct BodyMirror {
     pub locked: bool,
     /// Whether it is a [`Bullet`], as the world has it.
     pub bullet: bool,
+    /// A kinematic body given a `Transform` to move to over the last step: it stops there
+    /// unless given another.
+    pub targeted: bool,
     /// The pose before the last step.
     pub previous: Pose,
     /// The pose after it.

@@ -134,6 +134,7 @@ fn load(world: &mut World, text: &str, file: &str) -> Result<SceneEntities, Stri
                 sleeping: body.is_sleeping(),
                 locked: body.fixed_rotation(),
                 bullet: body.is_bullet(),
+                targeted: false,
                 previous: pose,
                 current: pose,
             },

@@ -573,3 +573,42 @@ fn interpolated_bodies_are_drawn_between_their_last_two_steps() {
     }
     assert!(between >= 4, "frames drawn between steps: {between}");
 }
+
+#[test]
+fn a_kinematic_body_moves_to_a_set_transform_and_stops_there() {
+    let mut app = app();
+    let lift = app
+        .world_mut()
+        .spawn((RigidBody::Kinematic, Collider::rectangle(2.0, 0.5)))
+        .id();
+    let rider = ball(&mut app, 0.0, 0.75);
+    steps(&mut app, 30);
+    app.world_mut()
+        .get_mut::<Transform>(lift)
+        .unwrap()
+        .translation
+        .y = 0.5;
+    steps(&mut app, 1);
+    let y = |app: &App, e| app.world().get::<Transform>(e).unwrap().translation.y;
+    assert!(
+        (y(&app, lift) - 0.5).abs() < 1e-4,
+        "moved there in one step: {}",
+        y(&app, lift)
+    );
+    assert!(app.world().get::<Velocity>(lift).unwrap().linear.y > 20.0);
+    steps(&mut app, 30);
+    assert!(
+        (y(&app, lift) - 0.5).abs() < 1e-4,
+        "and stayed: {}",
+        y(&app, lift)
+    );
+    assert_eq!(
+        app.world().get::<Velocity>(lift).unwrap().linear,
+        Vec2::ZERO
+    );
+    assert!(
+        y(&app, rider) > 1.2,
+        "the lift pushed the ball up: {}",
+        y(&app, rider)
+    );
+}

@@ -177,6 +177,7 @@ pub(crate) fn create_bodies(
                 sleeping: sleeping.0,
                 locked,
                 bullet,
+                targeted: false,
                 previous: pose,
                 current: pose,
             },

@@ -81,6 +81,7 @@ pub(crate) fn update_bodies(
             || pushed
             || woken
             || flags
+            || mirror.targeted
             || edited(&kind)
             || edited(&damping)
             || edited(&gravity))
@@ -99,15 +100,22 @@ pub(crate) fn update_bodies(
         if edited(&kind) {
             check(b.set_kind((*kind).into()));
         }
+        let arrived = mirror.targeted;
+        mirror.targeted = false;
         if moved {
             let pose = Pose::of_transform(transform);
             if b.kind() == BodyKind::Kinematic && dt > 0.0 {
                 check(b.move_kinematic_to(to_carom(pose.position), pose.angle() as Real, dt));
+                mirror.targeted = true;
             } else {
                 check(b.set_position(to_carom(pose.position)));
                 check(b.set_angle(pose.angle() as Real));
             }
             mirror.transform = *transform;
+        } else if arrived && !pushed {
+            // It reached the last pose it was sent to and was sent nowhere since.
+            check(b.set_linear_velocity(carom::Vec2::zeros()));
+            check(b.set_angular_velocity(0.0));
         }
         if pushed {
             check(b.set_linear_velocity(to_carom(velocity.linear)));
