@@ -142,13 +142,14 @@ impl CaromQuery<'_> {
         self.hit(hit)
     }
 
-    /// The colliders whose bounding boxes overlap the box from `min` to `max`.
+    /// The collider entities whose bounding boxes overlap the box from `min` to `max`, each
+    /// once.
     pub fn overlap_aabb(&self, min: Vec2, max: Vec2, filter: QueryFilter) -> Vec<Entity> {
         let aabb = Aabb::new(to_carom(min), to_carom(max));
         self.entities(self.world.world.query_aabb(&aabb, self.filter(filter)))
     }
 
-    /// The colliders `shape`, at `position` and `angle`, overlaps.
+    /// The collider entities `shape`, at `position` and `angle`, overlaps, each once.
     pub fn overlap_shape(
         &self,
         shape: &Collider,
@@ -174,6 +175,7 @@ impl CaromQuery<'_> {
             .filter_map(|c| self.world.collider_entity(c))
             .collect();
         // A chain's links are one entity.
+        entities.sort_unstable();
         entities.dedup();
         entities
     }

@@ -612,3 +612,28 @@ fn a_kinematic_body_moves_to_a_set_transform_and_stops_there() {
         y(&app, rider)
     );
 }
+
+#[test]
+fn a_teleported_interpolated_body_is_drawn_where_it_was_sent() {
+    let mut app = app();
+    let body = app
+        .world_mut()
+        .spawn((
+            RigidBody::Dynamic,
+            Collider::circle(0.5),
+            GravityScale(0.0),
+            Interpolated,
+        ))
+        .id();
+    steps(&mut app, 3);
+    app.world_mut()
+        .get_mut::<Transform>(body)
+        .unwrap()
+        .translation
+        .x = 5.0;
+    steps(&mut app, 1);
+    // Every update is exactly one step, so it is drawn at its pose before the step: where it
+    // was sent, not where it came from.
+    let x = app.world().get::<Transform>(body).unwrap().translation.x;
+    assert!((x - 5.0).abs() < 1e-5, "{x}");
+}

@@ -110,6 +110,8 @@ pub(crate) fn update_bodies(
             } else {
                 check(b.set_position(to_carom(pose.position)));
                 check(b.set_angle(pose.angle() as Real));
+                // A teleport is not drawn as a sweep from where the body was.
+                mirror.current = pose;
             }
             mirror.transform = *transform;
         } else if arrived && !pushed {
