@@ -40,7 +40,8 @@ type NewBody<'a> = (
     Has<Bullet>,
 );
 
-type NewCollider<'a> = (
+/// What a collider's definition is made from; a query's data.
+pub(crate) type NewCollider<'a> = (
     Entity,
     &'a Collider,
     Option<&'a ColliderMaterial>,

@@ -13,7 +13,7 @@ use crate::collider::{
 use crate::convert::{Pose, to_carom};
 use crate::joint::{CaromJoint, Joint, JointMirror};
 use crate::messages::PhysicsError;
-use crate::sync::create::make_colliders;
+use crate::sync::create::{NewCollider, make_colliders};
 use crate::world::CaromWorld;
 use bevy::ecs::change_detection::{DetectChanges, Ref};
 use bevy::ecs::component::Component;
@@ -172,15 +172,7 @@ pub(crate) fn collider_flag_removed(
 
 type ColliderEdits<'a> = (
     &'a CaromCollider,
-    (
-        Entity,
-        &'a Collider,
-        Option<&'a ColliderMaterial>,
-        Option<&'a CollisionFilter>,
-        Has<Sensor>,
-        Has<HitEvents>,
-        &'a Transform,
-    ),
+    NewCollider<'a>,
     Ref<'a, Collider>,
     Option<Ref<'a, ColliderMaterial>>,
     Option<Ref<'a, CollisionFilter>>,
