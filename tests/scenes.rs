@@ -7,6 +7,17 @@ fn path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(name)
 }
 
+/// The first RON code block after `heading` in `text`.
+fn ron_block<'a>(text: &'a str, heading: &str) -> &'a str {
+    let after = &text[text.find(heading).expect("the heading")..];
+    let start = after
+        .find("```ron\n")
+        .expect("a RON block after the heading")
+        + 7;
+    let end = start + after[start..].find("```").expect("the block's end");
+    &after[start..end]
+}
+
 /// Loads a bad file and returns its error message, which must start with the file's path.
 fn error_of(name: &str) -> (SceneError, String) {
     let file = path(name);
@@ -114,6 +125,16 @@ fn semantic_errors_name_the_body_or_event_and_the_reason() {
             "\"crate\" has no joint to measure",
         ),
         (
+            "scenes/bad_accuracy_hinges.ron",
+            "accuracy",
+            "no hinges (revolute joints) to measure",
+        ),
+        (
+            "scenes/bad_accuracy_gaps.ron",
+            "accuracy",
+            "no joints to measure",
+        ),
+        (
             "scenes/bad_joint_body.ron",
             "joint 1 (\"hook\" to \"lamb\")",
             "no body is named \"lamb\"",
@@ -161,12 +182,7 @@ fn a_missing_file_is_an_error_not_a_panic() {
 fn the_documented_example_is_a_valid_scene() {
     // The commented example in demos/README.md must parse and build as documented.
     let readme = std::fs::read_to_string(path("../demos/README.md")).unwrap();
-    let start = readme
-        .find("```ron\n")
-        .expect("the README has a RON example")
-        + 7;
-    let end = start + readme[start..].find("```").unwrap();
-    let scene = carom_scene::parse(&readme[start..end], "demos/README.md")
+    let scene = carom_scene::parse(ron_block(&readme, "## Every field"), "demos/README.md")
         .unwrap_or_else(|e| panic!("{e}"));
     let mut built = carom_scene::build(&scene, "demos/README.md").unwrap_or_else(|e| panic!("{e}"));
     // 21 bodies, a stack of 10, a pyramid of 15, grids of 8 and 5 and one compound, a joint
@@ -527,13 +543,11 @@ fn definitions_and_settings_survive_a_round_trip_through_ron() {
 
 #[test]
 fn the_front_page_scene_rolls_its_ball_into_the_boxes() {
-    // The scene the top-level README offers to start from must load and do what it says.
-    let readme = std::fs::read_to_string(path("../README.md")).unwrap();
-    let start = readme.find("```ron\n").expect("the README has a RON scene") + 7;
-    let end = start + readme[start..].find("```").unwrap();
-    let scene =
-        carom_scene::parse(&readme[start..end], "README.md").unwrap_or_else(|e| panic!("{e}"));
-    let mut built = carom_scene::build(&scene, "README.md").unwrap_or_else(|e| panic!("{e}"));
+    // The first scene demos/README.md offers to start from must load and do what it says.
+    let readme = std::fs::read_to_string(path("../demos/README.md")).unwrap();
+    let scene = carom_scene::parse(ron_block(&readme, "## A first scene"), "demos/README.md")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut built = carom_scene::build(&scene, "demos/README.md").unwrap_or_else(|e| panic!("{e}"));
     let ball = built.names["ball"];
     let boxes: Vec<_> = built
         .world

@@ -152,6 +152,8 @@ pub mod sweep;
 pub mod box2d_world;
 #[cfg(all(feature = "peers", feature = "native"))]
 pub mod compare;
+#[cfg(all(feature = "peers", feature = "sweep"))]
+pub mod docs;
 #[cfg(feature = "peers")]
 pub mod hard_cases;
 #[cfg(feature = "peers")]

@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use carom_bench::hard_cases::{self, Options};
+use carom_bench::hard_cases;
 use carom_bench::scaling;
 use carom_bench::{Box2dWorld, RapierWorld, RunResult, run_box2d, run_carom, run_rapier};
 use clap::{Parser, Subcommand};
@@ -121,25 +121,63 @@ enum Command {
         #[arg(long)]
         max_bodies: Option<usize>,
     },
-    /// Runs every hard case of tests/stability.rs in carom (soft step, its defaults) and in
-    /// Box2D v3 with the same geometry and settings, and prints a markdown table: case, measure,
-    /// bar, carom, Box2D (a figure that misses its bar is bold).
-    HardCases {
-        /// Only the cases whose name contains this (repeatable), e.g. `vertical_stack`.
-        #[arg(long)]
-        case: Vec<String>,
-        /// Also write the table to this file.
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// Soak one simulated minute instead of an hour (the table says so).
+    /// Measures what accuracy costs in time: every solver setting of carom, Box2D and Rapier
+    /// on the scenes whose exact answer is known, each point's ms per step and error. Writes
+    /// accuracy.csv, README.md (the tables) and accuracy.png (each engine's front) to --out.
+    Sweep {
+        /// Scene files (default: the accuracy scenes in demos/).
+        scenes: Vec<PathBuf>,
+        /// Folder for the CSV, the report and the chart (with --check: where the committed
+        /// sweep is read from).
+        #[arg(long, default_value = "docs/accuracy")]
+        out: PathBuf,
+        /// A part of the settings, one run each: a minute or two instead of ten.
         #[arg(long)]
         quick: bool,
-        /// Run carom's joint cases with direct joints (each tree of hinges solved at once).
+        /// Write nothing; measure the points and compare their errors and overlaps (not their
+        /// times) with --out's accuracy.csv, failing where they differ.
         #[arg(long)]
-        direct_joints: bool,
-        /// Run carom with shock propagation (heavy bodies held by the light ones under them).
+        check: bool,
+        /// Runs per point; its time is the median of the runs' medians (default 3, 1 with
+        /// --quick or --check).
         #[arg(long)]
-        shock_propagation: bool,
+        runs: Option<usize>,
+        /// Points measured at once (default: every core).
+        #[arg(long)]
+        jobs: Option<usize>,
+    },
+    /// Draws the figures of README.md and docs/ again from the measurements committed in
+    /// docs/ (docs/accuracy/accuracy.csv, docs/hard-cases/hard-cases.csv,
+    /// docs/bench/peers.csv): every part marked `<!-- figures: NAME -->`, the accuracy report
+    /// and its chart.
+    Docs {
+        /// Write nothing; fail when a doc differs from what would be drawn.
+        #[arg(long)]
+        check: bool,
+    },
+    /// Runs every hard case of tests/stability.rs in each of carom's solvers, in soft step with
+    /// each of its options, and in Box2D v3 with the same geometry and settings, and prints the
+    /// table: case, measure, bar, a column each (a figure that misses its bar is bold). The
+    /// whole run writes hard-cases.csv to --out, which the docs' tables are drawn from.
+    HardCases {
+        /// Only the cases whose name contains this (repeatable), e.g. `vertical_stack`; the
+        /// table is then printed, not written.
+        #[arg(long)]
+        case: Vec<String>,
+        /// Folder for hard-cases.csv (with --check: where the committed table is read from).
+        #[arg(long, default_value = "docs/hard-cases")]
+        out: PathBuf,
+        /// Soak one simulated minute instead of an hour; the table is then printed, not
+        /// written.
+        #[arg(long)]
+        quick: bool,
+        /// Write nothing; compare every figure with --out's hard-cases.csv, failing where
+        /// they differ (with --quick, the soak is not compared).
+        #[arg(long)]
+        check: bool,
+        /// Cases run at once (default: every core).
+        #[arg(long)]
+        jobs: Option<usize>,
     },
 }
 
@@ -564,49 +602,171 @@ fn csv(rows: &[Row]) -> String {
     s
 }
 
-/// Runs the hard cases `filter` names (all if empty) in both engines and prints the table.
-fn hard_cases(filter: &[String], out: Option<&Path>, options: Options) -> Result<(), String> {
-    let cases: Vec<_> = hard_cases::cases()
-        .into_iter()
-        .filter(|c| filter.is_empty() || filter.iter().any(|f| c.name.contains(f.as_str())))
-        .collect();
-    if cases.is_empty() {
-        let names: Vec<_> = hard_cases::cases().iter().map(|c| c.name).collect();
-        return Err(format!(
-            "no case matches {filter:?}; the cases: {}",
-            names.join(", ")
-        ));
-    }
+/// What `carom-bench hard-cases` was asked.
+struct HardCaseArgs<'a> {
+    filter: &'a [String],
+    out: &'a Path,
+    quick: bool,
+    check: bool,
+    jobs: Option<usize>,
+}
+
+/// `carom-bench hard-cases`: runs the cases `filter` names (all if empty) in every column and
+/// prints the table; writes it for a whole run, or with `check` compares it with the
+/// committed one.
+fn hard_cases(args: HardCaseArgs) -> Result<(), String> {
+    use hard_cases::table::{self, Column};
     let started = std::time::Instant::now();
-    let mut results = Vec::new();
-    for case in &cases {
-        let result = hard_cases::run_both(case, options);
-        let time = |r: &Result<hard_cases::Outcome, String>| {
-            r.as_ref().map_or_else(
-                |e| format!("error: {e}"),
-                |o| format!("{:.1} s", o.time.as_secs_f64()),
-            )
-        };
+    let jobs = args
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let rows = table::run(
+        args.filter,
+        &Column::ALL,
+        args.quick,
+        jobs,
+        |done, total, what| {
+            eprintln!("[{done}/{total}] {what}");
+        },
+    )?;
+    let seconds = started.elapsed().as_secs_f64();
+    let path = args.out.join("hard-cases.csv");
+    if args.check {
+        let committed = std::fs::read_to_string(&path)
+            .map_err(|e| format!("{}: {e}", path.display()))
+            .and_then(|text| {
+                table::parse_csv(&text).map_err(|e| format!("{}: {e}", path.display()))
+            })?;
+        // The quick soak is a minute: its figures are not the hour's.
+        let skip: &[&str] = if args.quick { &["soak_one_hour"] } else { &[] };
+        let differences = table::differences(&rows, &committed, skip);
+        for line in &differences {
+            eprintln!("{line}");
+        }
+        if !differences.is_empty() {
+            return Err(format!(
+                "{} of {} figures differ from {}: run `carom-bench hard-cases` and commit what \
+                 it writes",
+                differences.len(),
+                rows.len(),
+                path.display()
+            ));
+        }
         eprintln!(
-            "{}: carom {}, Box2D {}",
-            case.name,
-            time(&result.carom),
-            time(&result.box2d)
+            "{} figures in {seconds:.0} s: every one as in {}{}",
+            rows.len(),
+            path.display(),
+            if args.quick {
+                " (the soak left out)"
+            } else {
+                ""
+            }
         );
-        results.push(result);
+        return Ok(());
     }
-    let table = format!(
-        "dt 1/60; carom: soft step at its defaults; Box2D 3.2.0 (boxdd 0.6): 4 substeps (8 for \
-         the card house, as the scene sets), 30 Hz, damping ratio 10, push 3 m/s. A figure that \
-         misses its bar is bold. {:.0} s in all.\n\n{}",
-        started.elapsed().as_secs_f64(),
-        hard_cases::markdown(&results)
-    );
-    print!("{table}");
-    if let Some(path) = out {
-        std::fs::write(path, &table).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut names: Vec<&str> = Vec::new();
+    for row in &rows {
+        if !names.contains(&row.case.as_str()) {
+            names.push(&row.case);
+        }
+    }
+    print!("{}", table::markdown(&rows, &names, &Column::ALL));
+    if args.filter.is_empty() && !args.quick {
+        std::fs::create_dir_all(args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
+        let provenance = carom_bench::sweep::report::Provenance {
+            machine: carom_bench::sweep::report::Machine::here(),
+            command: typed_command(),
+            runs: 1,
+        };
+        std::fs::write(&path, provenance.header() + &table::csv(&rows))
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        eprintln!(
+            "{} figures in {seconds:.0} s -> {}",
+            rows.len(),
+            path.display()
+        );
     }
     Ok(())
+}
+
+/// This command as typed, the program named `carom-bench` wherever it was run from.
+fn typed_command() -> String {
+    let command: Vec<String> = std::env::args()
+        .enumerate()
+        .map(|(i, a)| if i == 0 { "carom-bench".into() } else { a })
+        .collect();
+    command.join(" ")
+}
+
+/// What `carom-bench sweep` was asked.
+struct SweepArgs<'a> {
+    scenes: &'a [PathBuf],
+    out: &'a Path,
+    quick: bool,
+    check: bool,
+    runs: Option<usize>,
+    jobs: Option<usize>,
+}
+
+/// `carom-bench sweep`: measures and writes the report, or with `check` compares what the
+/// code gives now with the committed CSV.
+fn sweep_run(args: SweepArgs) -> Result<(), String> {
+    use carom_bench::sweep::{self, SweepOptions, report};
+    let mut options = if args.quick {
+        SweepOptions::quick()
+    } else {
+        SweepOptions::full()
+    };
+    if !args.scenes.is_empty() {
+        options.scenes = args.scenes.to_vec();
+    }
+    options.scenes = options.scenes.iter().map(|p| resolve(p)).collect();
+    options.runs = args
+        .runs
+        .unwrap_or(if args.quick || args.check { 1 } else { 3 });
+    if options.runs == 0 || args.jobs == Some(0) {
+        return Err("--runs and --jobs must be at least 1".into());
+    }
+    if let Some(jobs) = args.jobs {
+        options.jobs = jobs;
+    }
+    let started = std::time::Instant::now();
+    if !args.check {
+        let points = sweep::sweep_to_folder(&options, args.out, &typed_command())?;
+        eprintln!(
+            "{} points in {:.0} s -> {}",
+            points.len(),
+            started.elapsed().as_secs_f64(),
+            args.out.display()
+        );
+        return Ok(());
+    }
+    let committed_path = args.out.join("accuracy.csv");
+    let committed = std::fs::read_to_string(&committed_path)
+        .map_err(|e| format!("{}: {e}", committed_path.display()))
+        .and_then(|text| {
+            report::parse_csv(&text).map_err(|e| format!("{}: {e}", committed_path.display()))
+        })?;
+    let measured = sweep::sweep(&options, |_, _, _| {})?;
+    let differences = report::differences(&measured, &committed);
+    if differences.is_empty() {
+        eprintln!(
+            "{} points in {:.0} s: every error and overlap as in {}",
+            measured.len(),
+            started.elapsed().as_secs_f64(),
+            committed_path.display()
+        );
+        return Ok(());
+    }
+    for line in &differences {
+        eprintln!("{line}");
+    }
+    Err(format!(
+        "{} of {} points differ from {}: run `carom-bench sweep` and commit what it writes",
+        differences.len(),
+        measured.len(),
+        committed_path.display()
+    ))
 }
 
 /// Times the pyramid rows of [`scaling::SIZES`] in every engine and writes the CSV, table and
@@ -793,16 +953,66 @@ fn main() -> Result<(), String> {
         case,
         out,
         quick,
-        direct_joints,
-        shock_propagation,
+        check,
+        jobs,
     }) = &args.command
     {
-        let options = Options {
+        return hard_cases(HardCaseArgs {
+            filter: case,
+            out,
             quick: *quick,
-            direct_joints: *direct_joints,
-            shock_propagation: *shock_propagation,
+            check: *check,
+            jobs: *jobs,
+        });
+    }
+    if let Some(Command::Docs { check }) = &args.command {
+        // The repository: here, or where this program was built from.
+        let root = if Path::new("docs").is_dir() && Path::new("README.md").is_file() {
+            PathBuf::from(".")
+        } else {
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
         };
-        return hard_cases(case, out.as_deref(), options);
+        let changed = carom_bench::docs::update(&root, !check)?;
+        for path in &changed {
+            eprintln!(
+                "{} {}",
+                if *check { "stale:" } else { "drawn again:" },
+                path.display()
+            );
+        }
+        if *check && !changed.is_empty() {
+            return Err(format!(
+                "{} docs differ from what their measurements draw: run `carom-bench docs`",
+                changed.len()
+            ));
+        }
+        if !*check {
+            // The chart too, from the same points (it is a picture, so not checked).
+            let csv = root.join(carom_bench::docs::ACCURACY_CSV);
+            let text =
+                std::fs::read_to_string(&csv).map_err(|e| format!("{}: {e}", csv.display()))?;
+            let points = carom_bench::sweep::report::parse_csv(&text)?;
+            carom_bench::sweep::chart::write_chart(&points, &csv.with_file_name("accuracy.png"))?;
+        }
+        return Ok(());
+    }
+    if let Some(Command::Sweep {
+        scenes,
+        out,
+        quick,
+        check,
+        runs,
+        jobs,
+    }) = &args.command
+    {
+        return sweep_run(SweepArgs {
+            scenes,
+            out,
+            quick: *quick,
+            check: *check,
+            runs: *runs,
+            jobs: *jobs,
+        });
     }
     if args.runs == 0 {
         return Err("--runs must be at least 1".into());
@@ -884,7 +1094,13 @@ fn main() -> Result<(), String> {
         }
     }
     if let Some(path) = &args.csv {
-        std::fs::write(path, csv(&rows)).map_err(|e| format!("{}: {e}", path.display()))?;
+        let provenance = carom_bench::sweep::report::Provenance {
+            machine: carom_bench::sweep::report::Machine::here(),
+            command: typed_command(),
+            runs: args.runs as usize,
+        };
+        std::fs::write(path, provenance.header() + &csv(&rows))
+            .map_err(|e| format!("{}: {e}", path.display()))?;
     }
     Ok(())
 }

@@ -23,13 +23,17 @@ fn setting(solver: SolverKind, iterations: u32, substeps: u32) -> Setting {
 fn the_slide_angle_is_found_near_atan_mu_and_missed_without_friction() {
     let (incline, file) = scene("incline_friction.ron");
     let soft = measure(&incline, &file, setting(SolverKind::SoftStep, 1, 4), 10.0).unwrap();
-    assert!(soft.error < 0.5, "soft step slides {} deg off", soft.error);
+    assert!(
+        soft.error() < 0.5,
+        "soft step slides {} deg off",
+        soft.error()
+    );
     // Push-out has no friction: the box slides on any slope, atan(0.5) = 26.6 deg early.
     let push = measure(&incline, &file, setting(SolverKind::PushOut, 8, 1), 10.0).unwrap();
     assert!(
-        (push.error - 26.57).abs() < 0.1,
+        (push.error() - 26.57).abs() < 0.1,
         "push-out: {} deg",
-        push.error
+        push.error()
     );
     assert!(!soft.step_ms.is_empty());
 }
@@ -38,12 +42,12 @@ fn the_slide_angle_is_found_near_atan_mu_and_missed_without_friction() {
 fn the_cradle_conserves_with_impulses_and_loses_energy_with_push_out() {
     let (cradle, file) = scene("newtons_cradle.ron");
     let impulse = measure(&cradle, &file, setting(SolverKind::SoftStep, 1, 4), 10.0).unwrap();
-    assert!(impulse.error < 1e-3, "soft step: {}", impulse.error);
+    assert!(impulse.error() < 1e-3, "soft step: {}", impulse.error());
     let push = measure(&cradle, &file, setting(SolverKind::PushOut, 8, 1), 10.0).unwrap();
     assert!(
-        push.error > 0.5,
+        push.error() > 0.5,
         "push-out conserved energy: {}",
-        push.error
+        push.error()
     );
 }
 
@@ -53,15 +57,15 @@ fn a_resting_stack_sinks_less_with_a_better_solver() {
     let good = measure(&stack, &file, setting(SolverKind::SoftStep, 1, 4), 10.0).unwrap();
     let bad = measure(&stack, &file, setting(SolverKind::PushOut, 1, 1), 10.0).unwrap();
     assert!(
-        good.error < 0.05,
+        good.error() < 0.05,
         "soft step moved the top box {} m",
-        good.error
+        good.error()
     );
     assert!(
-        bad.error > 10.0 * good.error,
+        bad.error() > 10.0 * good.error(),
         "push-out {} vs {}",
-        bad.error,
-        good.error
+        bad.error(),
+        good.error()
     );
 }
 
@@ -71,9 +75,9 @@ fn a_hinged_pendulum_keeps_its_period_and_a_soft_chain_stretches_less_when_stiff
     let soft = measure(&pendulum, &file, setting(SolverKind::SoftStep, 1, 4), 10.0).unwrap();
     // Box2D 3.2 on the same scene: 0.0002 %.
     assert!(
-        soft.error < 1e-3,
+        soft.error() < 1e-3,
         "soft step period off by {} %",
-        soft.error
+        soft.error()
     );
     let si = measure(
         &pendulum,
@@ -81,23 +85,27 @@ fn a_hinged_pendulum_keeps_its_period_and_a_soft_chain_stretches_less_when_stiff
         setting(SolverKind::SequentialImpulse, 8, 1),
         10.0,
     );
-    let si = si.unwrap().error;
+    let si = si.unwrap().error();
     assert!(si < 0.5, "sequential impulse period off by {si} %");
 
     let (chain, file) = scene("chain.ron");
     // Box2D's settings: 4 substeps, 60 Hz joints; Box2D 3.2 stretches 6.48 %.
     let box2d = measure(&chain, &file, setting(SolverKind::SoftStep, 1, 4), 10.0).unwrap();
     assert!(
-        (box2d.error - 6.48).abs() < 0.2,
+        (box2d.error() - 6.48).abs() < 0.2,
         "4 substeps, 60 Hz: {} %",
-        box2d.error
+        box2d.error()
     );
     let stiff = Setting {
         joint_hertz: Some(120.0),
         ..setting(SolverKind::SoftStep, 1, 8)
     };
     let stiff = measure(&chain, &file, stiff, 10.0).unwrap();
-    assert!(stiff.error < 2.0, "8 substeps, 120 Hz: {} %", stiff.error);
+    assert!(
+        stiff.error() < 2.0,
+        "8 substeps, 120 Hz: {} %",
+        stiff.error()
+    );
 }
 
 #[test]
@@ -178,7 +186,8 @@ fn a_sweep_has_a_point_per_setting_and_substeps_only_for_soft_step() {
     let points = sweep(&options, |_, _, _| calls += 1).unwrap();
     // Sequential impulse: 2 iteration counts; soft step: 2 x 2.
     assert_eq!(points.len(), 6);
-    assert_eq!(calls, 6 * 2 + 1);
+    // Told as each point ends, and once when all have.
+    assert_eq!(calls, 6 + 1);
     assert!(
         points
             .iter()
@@ -244,4 +253,129 @@ fn peers_run_the_same_scene_over_their_own_settings_and_box2d_times_the_pendulum
             .error
     };
     assert!(rapier(4) < rapier(1), "{} against {}", rapier(4), rapier(1));
+}
+
+#[test]
+fn the_joint_and_sink_measures_tell_the_options_from_plain_soft_step() {
+    let soft = setting(SolverKind::SoftStep, 1, 4);
+    let direct = Setting {
+        direct_joints: true,
+        ..soft
+    };
+    // A taut bridge stretches along its span less when its hinges are solved directly.
+    let (bridge, file) = scene("bridge.ron");
+    let iterative = measure(&bridge, &file, soft, 10.0).unwrap();
+    let exact = measure(&bridge, &file, direct, 10.0).unwrap();
+    assert_eq!(iterative.errors[0].0, ErrorKind::Gaps);
+    assert!(
+        exact.error() < 0.5 * iterative.error() && exact.error() > 0.0,
+        "bridge: {} % direct, {} % iterative",
+        exact.error(),
+        iterative.error()
+    );
+    // A pile of ragdolls gives two errors, both smaller with direct joints.
+    let (ragdolls, file) = scene("ragdolls.ron");
+    let iterative = measure(&ragdolls, &file, soft, 10.0).unwrap();
+    let exact = measure(&ragdolls, &file, direct, 10.0).unwrap();
+    let kinds: Vec<ErrorKind> = exact.errors.iter().map(|e| e.0).collect();
+    assert_eq!(kinds, [ErrorKind::HingeGap, ErrorKind::PastLimit]);
+    for (exact, iterative) in exact.errors.iter().zip(&iterative.errors) {
+        assert!(
+            exact.1 < iterative.1 && iterative.1.is_finite(),
+            "{:?}: {} direct, {} iterative",
+            exact.0,
+            exact.1,
+            iterative.1
+        );
+    }
+    // Triangles under a box a thousand times heavier are pushed into the ground, unless shock
+    // propagation holds the box on them.
+    let (heavy, file) = scene("heavy_on_light.ron");
+    let plain = measure(&heavy, &file, soft, 10.0).unwrap();
+    let shock = Setting {
+        shock_propagation: true,
+        ..soft
+    };
+    let held = measure(&heavy, &file, shock, 10.0).unwrap();
+    assert_eq!(plain.errors[0].0, ErrorKind::Sink);
+    assert!(
+        plain.error() > 0.05 && held.error() < 0.01,
+        "sunk {} m plain, {} m with shock propagation",
+        plain.error(),
+        held.error()
+    );
+}
+
+#[cfg(feature = "peers")]
+#[test]
+fn the_peers_are_measured_by_the_joint_and_sink_measures_too() {
+    use carom_bench::sweep::Engine;
+    let box2d = Setting {
+        engine: Engine::Box2d,
+        contact_hertz: Some(30.0),
+        ..setting(SolverKind::SoftStep, 1, 4)
+    };
+    let carom = setting(SolverKind::SoftStep, 1, 4);
+    // At the same settings the two soft steps give the bridge and the heavy box alike.
+    for name in ["bridge.ron", "heavy_on_light.ron"] {
+        let (scene, file) = scene(name);
+        let theirs = measure(&scene, &file, box2d, 10.0).unwrap().error();
+        let ours = measure(&scene, &file, carom, 10.0).unwrap().error();
+        assert!(
+            theirs.is_finite() && ours.is_finite() && theirs < 3.0 * ours && ours < 3.0 * theirs,
+            "{name}: Box2D {theirs}, carom {ours}"
+        );
+    }
+    let (ragdolls, file) = scene("ragdolls.ron");
+    let theirs = measure(&ragdolls, &file, box2d, 10.0).unwrap();
+    assert_eq!(theirs.errors.len(), 2);
+    assert!(theirs.errors.iter().all(|e| e.1.is_finite() && e.1 > 0.0));
+}
+
+#[test]
+fn the_quick_sweep_is_a_part_of_the_whole_measured_alike() {
+    let (quick, full) = (SweepOptions::quick(), SweepOptions::full());
+    assert_eq!(quick.scenes, full.scenes);
+    assert_eq!(quick.seconds, full.seconds);
+    assert_eq!(quick.runs, 1);
+    for path in &full.scenes {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("../..")
+            .join(path);
+        let file = path.display().to_string();
+        let scene = carom_scene::build(&carom_scene::read(&path).unwrap(), &file).unwrap();
+        let (part, whole) = (quick.settings(&scene), full.settings(&scene));
+        assert!(
+            !part.is_empty() && part.len() * 2 < whole.len(),
+            "{file}: {} of {}",
+            part.len(),
+            whole.len()
+        );
+        for setting in &part {
+            assert!(
+                whole.contains(setting),
+                "{file}: {setting:?} is not swept whole"
+            );
+        }
+        // Every engine, and soft step with each option it sweeps on the scene.
+        for engine in carom_bench::sweep::Engine::ALL {
+            assert!(
+                part.iter().any(|s| s.engine == engine),
+                "{file}: no {engine:?}"
+            );
+        }
+        for (option, of) in [
+            (
+                "direct joints",
+                &(|s: &Setting| s.direct_joints) as &dyn Fn(&Setting) -> bool,
+            ),
+            ("shock propagation", &|s: &Setting| s.shock_propagation),
+        ] {
+            assert_eq!(
+                part.iter().any(of),
+                whole.iter().any(of),
+                "{file}: {option}"
+            );
+        }
+    }
 }

@@ -12,6 +12,19 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 
+/// The points of the scene named `name` with its first error: a scene measured by two (a
+/// pile of ragdolls: its hinges' gap and their turn past their limits) shows the first.
+fn front_of(points: Vec<Point>, name: &str) -> Vec<Point> {
+    let kind = points
+        .iter()
+        .find(|p| p.scene == name)
+        .map(|p| p.error_kind);
+    points
+        .into_iter()
+        .filter(|p| p.scene == name && Some(p.error_kind) == kind)
+        .collect()
+}
+
 /// Where a report is, relative to the working directory or to the scene folder's parent.
 pub const REPORT_CSV: &str = "docs/accuracy/accuracy.csv";
 
@@ -73,11 +86,11 @@ pub enum Source {
 /// How far a background sweep has got.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Progress {
-    /// Runs done.
+    /// Points measured.
     pub done: usize,
-    /// Runs in all (0 until the sweep has counted them).
+    /// Points in all (0 until the sweep has counted them).
     pub total: usize,
-    /// What runs now.
+    /// The point measured last.
     pub what: String,
 }
 
@@ -178,11 +191,8 @@ impl AccuracyPanel {
         if self.scene.as_ref().is_none_or(|s| s.path != scene_path) {
             self.open(scene_path);
         }
-        let name = self.scene.as_ref().map(|s| s.name.clone());
-        self.points = points
-            .into_iter()
-            .filter(|p| Some(&p.scene) == name.as_ref())
-            .collect();
+        let name = self.scene.as_ref().map_or("", |s| s.name.as_str());
+        self.points = front_of(points, name);
         self.source = Some(Source::Given);
     }
 
@@ -223,8 +233,7 @@ impl AccuracyPanel {
             };
             match report::parse_csv(&text) {
                 Ok(points) => {
-                    let of_scene: Vec<Point> =
-                        points.into_iter().filter(|p| p.scene == name).collect();
+                    let of_scene = front_of(points, name);
                     if !of_scene.is_empty() {
                         self.points = of_scene;
                         self.source = Some(Source::Report(path));
@@ -249,6 +258,8 @@ impl AccuracyPanel {
         let mut options = SweepOptions {
             scenes: vec![scene.path.clone()],
             runs: 1,
+            // One point at a time, so the app keeps a core.
+            jobs: 1,
             ..SweepOptions::default()
         };
         if self.with_peers && CAN_MEASURE_PEERS {
@@ -302,6 +313,9 @@ impl AccuracyPanel {
         let shown = self.scene.as_ref().is_some_and(|s| s.path == sweep.scene);
         match result {
             Ok(points) => {
+                // The sweep ran the one scene: its first error's points.
+                let name = points.first().map(|p| p.scene.clone()).unwrap_or_default();
+                let points = front_of(points, &name);
                 if shown {
                     self.points = points.clone();
                     self.source = Some(Source::Sweep);

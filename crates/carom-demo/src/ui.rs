@@ -398,7 +398,7 @@ fn front_section(ui: &mut egui::Ui, demo: &mut Demo) {
             .filter(|p| !p.error.is_finite())
             .count();
         let mut source = match panel.source() {
-            Some(Source::Report(path)) => format!("From {} (`carom bench`).", path.display()),
+            Some(Source::Report(path)) => format!("From {}.", path.display()),
             Some(Source::Sweep) => "Measured here, one run each, beside the app: times are \
                                     rough."
                 .into(),
@@ -424,7 +424,7 @@ fn measure_controls(ui: &mut egui::Ui, panel: &mut AccuracyPanel) {
         ui.add(
             egui::ProgressBar::new(progress.fraction())
                 .show_percentage()
-                .text(format!("{}/{} runs", progress.done, progress.total)),
+                .text(format!("{}/{} points", progress.done, progress.total)),
         );
         ui.small(format!("measuring {}: {}", scene.display(), progress.what));
         // The thread reports progress between frames; keep drawing it.
@@ -432,7 +432,9 @@ fn measure_controls(ui: &mut egui::Ui, panel: &mut AccuracyPanel) {
         return;
     }
     if !accuracy_panel::CAN_MEASURE {
-        ui.small("The desktop app measures scenes here, and `carom bench` writes the report.");
+        ui.small(
+            "The desktop app measures scenes here, and `carom-bench sweep` writes the report.",
+        );
         return;
     }
     let label = if panel.points().is_empty() {

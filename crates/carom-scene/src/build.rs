@@ -279,6 +279,28 @@ fn check_accuracy(
             }
             (std::slice::from_ref(body), true, *seconds)
         }
+        Accuracy::Gaps { length, seconds } => {
+            positive("length", *length)?;
+            if world.joint_count() == 0 {
+                return Err("the scene has no joints to measure".into());
+            }
+            (&[], false, *seconds)
+        }
+        Accuracy::Hinges { seconds } => {
+            let hinges = world
+                .joints()
+                .any(|j| matches!(j.kind(), carom::JointKind::Revolute(_)));
+            if !hinges {
+                return Err("the scene has no hinges (revolute joints) to measure".into());
+            }
+            (&[], false, *seconds)
+        }
+        Accuracy::Sink { ground, seconds } => {
+            if !ground.is_finite() {
+                return Err(format!("ground must be finite, got {ground}"));
+            }
+            (&[], false, *seconds)
+        }
     };
     positive("seconds", seconds)?;
     for name in bodies {

@@ -145,6 +145,30 @@ pub enum Accuracy {
         /// How long to run, s.
         seconds: Real,
     },
+    /// A structure of joints spanning a fixed length (a bridge between two posts) can only
+    /// sag by stretching its joints: the error is the worst, over `seconds`, of the sum of
+    /// every joint's anchor separation, in % of `length`.
+    Gaps {
+        /// The length the joints span, m.
+        length: Real,
+        /// How long to run, s.
+        seconds: Real,
+    },
+    /// Hinges should hold together and turn no further than their limits (a pile of
+    /// ragdolls). Two errors: the worst, over `seconds`, of any hinge's anchor separation (m)
+    /// and of how far any hinge has turned past its limits (degrees).
+    Hinges {
+        /// How long to run, s.
+        seconds: Real,
+    },
+    /// Light bodies under heavy ones should not be pushed into the ground: the error is how
+    /// far, at worst over `seconds`, any dynamic body's lowest point gets below `ground`.
+    Sink {
+        /// The height of the ground's top, m.
+        ground: Real,
+        /// How long to run, s.
+        seconds: Real,
+    },
 }
 
 /// Bodies are dynamic unless a scene says otherwise.

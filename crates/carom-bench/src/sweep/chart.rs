@@ -20,8 +20,7 @@ pub fn write_chart(points: &[Point], path: &Path) -> Result<(), String> {
 /// Draws the chart of `points`: a panel per scene and one for the legend, two columns.
 pub fn draw_chart(points: &[Point]) -> Result<image::RgbImage, String> {
     crate::register_fonts();
-    let mut scenes: Vec<&str> = points.iter().map(|p| p.scene.as_str()).collect();
-    scenes.dedup();
+    let scenes = super::report::fronts(points);
     let rows = (scenes.len() + 1).div_ceil(2) as u32;
     let (width, height) = (2 * PANEL.0, rows * PANEL.1);
     let mut pixels = vec![0u8; (width * height * 3) as usize];
@@ -29,9 +28,8 @@ pub fn draw_chart(points: &[Point]) -> Result<image::RgbImage, String> {
         let root = BitMapBackend::with_buffer(&mut pixels, (width, height)).into_drawing_area();
         root.fill(&WHITE).map_err(draw_error)?;
         let panels = root.split_evenly((rows as usize, 2));
-        for (panel, scene) in panels.iter().zip(&scenes) {
-            let of_scene: Vec<&Point> = points.iter().filter(|p| p.scene == *scene).collect();
-            draw_panel(panel, scene, &of_scene)?;
+        for (panel, (scene, of_scene)) in panels.iter().zip(&scenes) {
+            draw_panel(panel, scene, of_scene)?;
         }
         if let Some(panel) = panels.get(scenes.len()) {
             let mut engines: Vec<Engine> = points.iter().map(|p| p.setting.engine).collect();

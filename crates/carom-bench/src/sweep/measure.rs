@@ -51,6 +51,17 @@ impl Setting {
         }
     }
 
+    /// Solver passes over the constraints a step makes: iterations times substeps in carom,
+    /// a solve and a relaxation per substep in Box2D, and the velocity and stabilization
+    /// iterations of each substep in Rapier. What a step costs grows with it.
+    pub fn passes_per_step(&self) -> u32 {
+        match self.engine {
+            Engine::Carom => self.iterations * self.substeps,
+            Engine::Box2d => 2 * self.substeps,
+            Engine::Rapier => self.substeps * (1 + self.stabilization.unwrap_or(1)),
+        }
+    }
+
     /// The joint stiffness the solver runs with `hertz` asked for, at `time_step` seconds per
     /// step: at most a quarter of the substep rate, as the solver caps it (Box2D's rule).
     pub fn capped_joint_hertz(&self, hertz: Real, time_step: Real) -> Real {
@@ -72,10 +83,18 @@ pub fn solves_joints(solver: SolverKind) -> bool {
 pub struct Measurement {
     /// Wall time of every step taken, ms.
     pub step_ms: Vec<f64>,
-    /// The error, in [`ErrorKind::unit`]s; infinite if the world went NaN.
-    pub error: f64,
+    /// The errors, one per kind the scene's measure gives (two for [`Accuracy::Hinges`],
+    /// one for the others), each in its [`ErrorKind::unit`]s; infinite if the world went NaN.
+    pub errors: Vec<(ErrorKind, f64)>,
     /// The deepest overlap seen in any step, m.
     pub max_penetration: f64,
+}
+
+impl Measurement {
+    /// The first error: the only one, for every measure but [`Accuracy::Hinges`].
+    pub fn error(&self) -> f64 {
+        self.errors.first().map_or(f64::INFINITY, |e| e.1)
+    }
 }
 
 /// How a scene's error is defined.
@@ -91,6 +110,14 @@ pub enum ErrorKind {
     Period,
     /// Worst relative stretch of what a body hangs by.
     Stretch,
+    /// Worst sum of joint separations along a span.
+    Gaps,
+    /// Worst separation of a hinge's anchors.
+    HingeGap,
+    /// Worst turn of a hinge past its limits.
+    PastLimit,
+    /// Deepest a body gets below the ground.
+    Sink,
     /// No exact answer: the deepest overlap.
     Overlap,
 }
@@ -104,7 +131,26 @@ impl ErrorKind {
             Some(Accuracy::SlideAngle { .. }) => ErrorKind::SlideAngle,
             Some(Accuracy::Period { .. }) => ErrorKind::Period,
             Some(Accuracy::Stretch { .. }) => ErrorKind::Stretch,
+            Some(Accuracy::Gaps { .. }) => ErrorKind::Gaps,
+            Some(Accuracy::Hinges { .. }) => ErrorKind::HingeGap,
+            Some(Accuracy::Sink { .. }) => ErrorKind::Sink,
             None => ErrorKind::Overlap,
+        }
+    }
+
+    /// A short name, to tell apart the errors of one scene.
+    pub fn name(self) -> &'static str {
+        match self {
+            ErrorKind::Rest => "drift",
+            ErrorKind::Conservation => "conservation",
+            ErrorKind::SlideAngle => "slide angle",
+            ErrorKind::Period => "period",
+            ErrorKind::Stretch => "stretch",
+            ErrorKind::Gaps => "span stretch",
+            ErrorKind::HingeGap => "hinge gap",
+            ErrorKind::PastLimit => "past limits",
+            ErrorKind::Sink => "sink",
+            ErrorKind::Overlap => "overlap",
         }
     }
 
@@ -116,6 +162,10 @@ impl ErrorKind {
             ErrorKind::SlideAngle => "error of the angle at which the box starts to slide",
             ErrorKind::Period => "error of the swing's period",
             ErrorKind::Stretch => "worst stretch of the joints holding the body",
+            ErrorKind::Gaps => "worst stretch of the joints over their span",
+            ErrorKind::HingeGap => "worst gap between a hinge's anchors",
+            ErrorKind::PastLimit => "worst turn of a hinge past its limits",
+            ErrorKind::Sink => "deepest a body gets below the ground",
             ErrorKind::Overlap => "deepest overlap (no exact answer)",
         }
     }
@@ -123,10 +173,10 @@ impl ErrorKind {
     /// The error's unit.
     pub fn unit(self) -> &'static str {
         match self {
-            ErrorKind::Rest | ErrorKind::Overlap => "m",
+            ErrorKind::Rest | ErrorKind::Overlap | ErrorKind::HingeGap | ErrorKind::Sink => "m",
             ErrorKind::Conservation => "ratio",
-            ErrorKind::SlideAngle => "deg",
-            ErrorKind::Period | ErrorKind::Stretch => "%",
+            ErrorKind::SlideAngle | ErrorKind::PastLimit => "deg",
+            ErrorKind::Period | ErrorKind::Stretch | ErrorKind::Gaps => "%",
         }
     }
 }
@@ -142,8 +192,56 @@ pub fn measure(
     let mut run = Run::new(scene, file, setting)?;
     let time_step = run.scene.time_step;
     let seconds_to_steps = |seconds: Real| (seconds / time_step).ceil().max(1.0) as usize;
-    let error = match &scene.accuracy {
-        Some(Accuracy::Rest { bodies, seconds }) => {
+    let kind = ErrorKind::of(scene.accuracy.as_ref());
+    let errors = match &scene.accuracy {
+        Some(Accuracy::Gaps { length, seconds }) => {
+            let joints = JointFrame::all(&run.scene.world);
+            let mut worst: f64 = 0.0;
+            for _ in 0..seconds_to_steps(*seconds) {
+                run.steps(1)?;
+                let mut gaps = 0.0;
+                for joint in &joints {
+                    gaps += run.gap(joint);
+                }
+                worst = worse(worst, 100.0 * gaps / *length as f64);
+            }
+            vec![(kind, worst)]
+        }
+        Some(Accuracy::Hinges { seconds }) => {
+            let hinges: Vec<JointFrame> = JointFrame::all(&run.scene.world)
+                .into_iter()
+                .filter(|j| j.hinge)
+                .collect();
+            let (mut gap, mut past): (f64, f64) = (0.0, 0.0);
+            for _ in 0..seconds_to_steps(*seconds) {
+                run.steps(1)?;
+                for hinge in &hinges {
+                    gap = worse(gap, run.gap(hinge));
+                    past = worse(past, run.past_limit(hinge).to_degrees());
+                }
+            }
+            vec![(ErrorKind::HingeGap, gap), (ErrorKind::PastLimit, past)]
+        }
+        Some(Accuracy::Sink { ground, seconds }) => {
+            let bodies = dynamic_shapes(&run.scene.world);
+            let mut worst: f64 = 0.0;
+            for _ in 0..seconds_to_steps(*seconds) {
+                run.steps(1)?;
+                for (body, shapes) in &bodies {
+                    let (origin, angle) = run.pose(*body);
+                    let placed = carom::Isometry::new(origin, angle);
+                    for (shape, local) in shapes {
+                        let low = carom::WorldShape::new(shape, &(placed * local))
+                            .aabb()
+                            .min
+                            .y;
+                        worst = worse(worst, (*ground - low) as f64);
+                    }
+                }
+            }
+            vec![(kind, worst)]
+        }
+        Some(Accuracy::Rest { bodies, seconds }) => vec![(kind, {
             let bodies: Vec<carom::BodyHandle> = if bodies.is_empty() {
                 highest_dynamic_body(&run.scene.world).into_iter().collect()
             } else {
@@ -156,8 +254,8 @@ pub fn measure(
                 .zip(&starts)
                 .map(|(&h, start)| (run.position(h) - start).norm() as f64)
                 .fold(0.0, f64::max)
-        }
-        Some(Accuracy::Conservation { seconds }) => {
+        })],
+        Some(Accuracy::Conservation { seconds }) => vec![(kind, {
             run.scene.fire_events();
             let (momentum, energy) = run.momentum_and_energy();
             run.steps(seconds_to_steps(*seconds))?;
@@ -166,22 +264,22 @@ pub fn measure(
             let momentum_error = change / momentum[0].hypot(momentum[1]).max(1e-12);
             let energy_error = (energy_end - energy).abs() / energy.max(1e-12);
             momentum_error.max(energy_error)
-        }
+        })],
         Some(Accuracy::SlideAngle {
             body,
             friction,
             seconds,
-        }) => {
+        }) => vec![(kind, {
             let steps = seconds_to_steps(*seconds);
             let critical = (*friction as f64).atan();
             let angle = slide_angle(scene, file, setting, body, critical, steps, &mut run)?;
             (angle - critical).abs().to_degrees()
-        }
+        })],
         Some(Accuracy::Period {
             body,
             expected,
             seconds,
-        }) => {
+        }) => vec![(kind, {
             let handle = run.scene.names[body];
             let steps = seconds_to_steps(*seconds);
             let mut samples = Vec::with_capacity(steps);
@@ -198,13 +296,13 @@ pub fn measure(
             period(&samples).map_or(f64::INFINITY, |measured| {
                 100.0 * (measured - *expected as f64).abs() / *expected as f64
             })
-        }
+        })],
         Some(Accuracy::Stretch {
             body,
             anchor,
             length,
             seconds,
-        }) => {
+        }) => vec![(kind, {
             let handle = run.scene.names[body];
             let anchor = carom::vec2(anchor.0, anchor.1);
             let length = *length as f64;
@@ -221,17 +319,79 @@ pub fn measure(
                 };
             }
             worst
-        }
-        None => {
+        })],
+        None => vec![(kind, {
             run.steps(seconds_to_steps(default_seconds))?;
             run.max_penetration
-        }
+        })],
     };
+    let errors = errors
+        .into_iter()
+        .map(|(kind, error)| (kind, if run.nan { f64::INFINITY } else { error }))
+        .collect();
     Ok(Measurement {
-        error: if run.nan { f64::INFINITY } else { error },
+        errors,
         max_penetration: run.max_penetration,
         step_ms: run.step_ms,
     })
+}
+
+/// The larger of a worst-so-far and a new figure; a NaN is a world gone wrong, the worst of
+/// all (`max` would drop it).
+fn worse(worst: f64, figure: f64) -> f64 {
+    if figure.is_nan() {
+        f64::INFINITY
+    } else {
+        worst.max(figure)
+    }
+}
+
+/// A joint as the joint measures read it: its bodies, its anchors in their frames, and a
+/// hinge's reference angle and limits.
+struct JointFrame {
+    bodies: [BodyHandle; 2],
+    anchors: [Vec2; 2],
+    reference_angle: Real,
+    limits: Option<(Real, Real)>,
+    hinge: bool,
+}
+
+impl JointFrame {
+    fn all(world: &World) -> Vec<JointFrame> {
+        world
+            .joints()
+            .map(|joint| {
+                let (hinge, limits) = match joint.kind() {
+                    carom::JointKind::Revolute(r) => (true, r.limits.map(|l| (l.lower, l.upper))),
+                    _ => (false, None),
+                };
+                JointFrame {
+                    bodies: joint.bodies(),
+                    anchors: joint.local_anchors(),
+                    reference_angle: joint.reference_angle(),
+                    limits,
+                    hinge,
+                }
+            })
+            .collect()
+    }
+}
+
+/// Every dynamic body with its colliders' shapes, each with where it sits in its body.
+fn dynamic_shapes(world: &World) -> Vec<(BodyHandle, Vec<(carom::Shape, carom::Isometry)>)> {
+    world
+        .bodies()
+        .filter(|b| b.kind() == BodyKind::Dynamic)
+        .map(|b| {
+            let shapes = b
+                .colliders()
+                .iter()
+                .filter_map(|&c| world.collider(c))
+                .map(|c| (c.shape().clone(), c.local_transform()))
+                .collect();
+            (b.handle(), shapes)
+        })
+        .collect()
 }
 
 /// A scene being run with a setting, timing every step.
@@ -300,6 +460,10 @@ impl Run {
             )?;
         }
         for _ in 0..count {
+            // A world gone NaN has its error: stepping it further would only take time.
+            if self.nan {
+                break;
+            }
             let clock = Instant::now();
             match &mut self.peer {
                 Some(peer) => peer.step(time_step)?,
@@ -357,6 +521,24 @@ impl Run {
         } else {
             [anchors[1], anchors[0]]
         }
+    }
+
+    /// How far apart a joint's two anchors are, m.
+    fn gap(&mut self, joint: &JointFrame) -> f64 {
+        let [a, b] = joint.bodies.map(|body| self.pose(body));
+        let at =
+            |(origin, angle): (Vec2, Real), local: Vec2| origin + carom::Rot::new(angle) * local;
+        (at(a, joint.anchors[0]) - at(b, joint.anchors[1])).norm() as f64
+    }
+
+    /// How far a hinge has turned past its limits, rad (0 within them, or without limits).
+    fn past_limit(&mut self, joint: &JointFrame) -> f64 {
+        let Some((lower, upper)) = joint.limits else {
+            return 0.0;
+        };
+        let [(_, a), (_, b)] = joint.bodies.map(|body| self.pose(body));
+        let angle = carom::Rot::new(b - a - joint.reference_angle).angle();
+        f64::from((lower - angle).max(angle - upper).max(0.0))
     }
 
     /// Total linear momentum and kinetic energy of the dynamic bodies, in whichever engine

@@ -37,14 +37,19 @@ pub struct SweepOptions {
     pub iterations: Vec<u32>,
     /// Substep counts (for the solvers that have substeps; the others run 1).
     pub substeps: Vec<u32>,
+    /// carom's settings of more passes per step than this (iterations times substeps) are
+    /// left out: a step costs in proportion to them, and past 64 the error of every scene
+    /// swept is as flat as its cost is steep.
+    pub max_passes: u32,
     /// Joint stiffnesses for soft step on scenes with joints, Hz. Each is capped at a quarter
     /// of the substep rate, as the solver caps it, and stiffnesses the cap makes equal run
     /// once.
     pub joint_hertz: Vec<Real>,
     /// Soft step's direct joint trees on scenes with joints: off, on, or both.
     pub direct_joints: Vec<bool>,
-    /// Soft step's shock propagation on scenes of bodies at rest under gravity (those
-    /// measured by how far they drift from rest): off, on, or both.
+    /// Soft step's shock propagation on scenes of bodies resting on bodies under gravity
+    /// (those measured by how far they drift from rest, or by how far the light ones sink):
+    /// off, on, or both.
     pub shock_propagation: Vec<bool>,
     /// How long a scene without an accuracy measure runs, s.
     pub seconds: Real,
@@ -59,10 +64,12 @@ pub struct SweepOptions {
     pub rapier_substeps: Vec<u32>,
     /// Rapier's stabilization iterations per substep.
     pub rapier_stabilization: Vec<u32>,
+    /// Points measured at once, each on a thread of its own.
+    pub jobs: usize,
 }
 
 impl Default for SweepOptions {
-    /// The sweep over the seven accuracy scenes in `demos/`: contacts at 30 Hz (Box2D's
+    /// The sweep over the ten accuracy scenes in `demos/`: contacts at 30 Hz (Box2D's
     /// default) and 60 Hz, joints at Box2D's 60 Hz and at 240 Hz, which is as stiff as the
     /// substeps allow at 16 substeps (120 Hz at 8), and soft step with direct joints and with
     /// shock propagation off and on.
@@ -76,6 +83,9 @@ impl Default for SweepOptions {
                 "incline_friction",
                 "pendulum",
                 "chain",
+                "bridge",
+                "ragdolls",
+                "heavy_on_light",
             ]
             .iter()
             .map(|name| PathBuf::from(format!("demos/{name}.ron")))
@@ -84,6 +94,7 @@ impl Default for SweepOptions {
             solvers: SolverKind::ALL.to_vec(),
             iterations: vec![1, 2, 4, 8, 16, 32, 64],
             substeps: vec![1, 2, 4, 8, 16],
+            max_passes: 64,
             joint_hertz: vec![60.0, 240.0],
             direct_joints: vec![false, true],
             shock_propagation: vec![false, true],
@@ -93,11 +104,38 @@ impl Default for SweepOptions {
             box2d_substeps: vec![1, 2, 4, 8, 16],
             rapier_substeps: vec![1, 2, 4, 8, 16],
             rapier_stabilization: vec![1, 2, 4, 8, 16],
+            jobs: std::thread::available_parallelism().map_or(1, |n| n.get()),
         }
     }
 }
 
 impl SweepOptions {
+    /// The whole sweep, every engine: what `carom-bench sweep` runs and `docs/accuracy/`
+    /// holds.
+    pub fn full() -> Self {
+        SweepOptions {
+            engines: Engine::ALL.to_vec(),
+            ..SweepOptions::default()
+        }
+    }
+
+    /// A part of [`SweepOptions::full`], one run each, in under a minute: each engine at 1
+    /// substep and at Box2D's 4, carom's solvers at 1 and 8 iterations (soft step's default
+    /// and the others'), both contact stiffnesses, Rapier at 1 stabilization iteration, with
+    /// every option. Every point of it is a point of the whole sweep, measured the same way,
+    /// so its errors must equal those the whole sweep wrote (CI checks that they do).
+    pub fn quick() -> Self {
+        SweepOptions {
+            runs: 1,
+            iterations: vec![1, 8],
+            substeps: vec![1, 4],
+            box2d_substeps: vec![1, 4],
+            rapier_substeps: vec![1, 4],
+            rapier_stabilization: vec![1],
+            ..SweepOptions::full()
+        }
+    }
+
     /// Every setting the sweep runs on `scene`, engine by engine, carom's solver by solver.
     /// On a scene with joints the solvers that leave joints out do not run
     /// ([`solves_joints`]), and soft step runs once per joint stiffness the cap leaves
@@ -138,8 +176,13 @@ impl SweepOptions {
     /// carom's settings of the sweep on `scene`.
     fn carom_settings(&self, scene: &SceneWorld) -> Vec<Setting> {
         let joints = scene.world.joint_count() > 0;
-        let piled = matches!(scene.accuracy, Some(Accuracy::Rest { .. }))
-            && scene.world.settings().effects.contains(Effect::Gravity)
+        // Bodies resting on bodies under gravity: a pile at rest, or light bodies under a
+        // heavy one. (A heap of ragdolls is measured by its hinges, which direct joints
+        // hold.)
+        let piled = matches!(
+            scene.accuracy,
+            Some(Accuracy::Rest { .. } | Accuracy::Sink { .. })
+        ) && scene.world.settings().effects.contains(Effect::Gravity)
             && scene.world.settings().gravity != Vec2::zeros();
         let default_hertz = SolverParams::default().joint_hertz;
         let mut settings = Vec::new();
@@ -190,6 +233,9 @@ impl SweepOptions {
                 for (direct_joints, shock_propagation) in options {
                     for &(contact_hertz, joint_hertz) in &stiffness {
                         for &iterations in &self.iterations {
+                            if iterations * substeps > self.max_passes {
+                                continue;
+                            }
                             settings.push(Setting {
                                 iterations,
                                 joint_hertz,
@@ -233,7 +279,13 @@ pub struct Point {
     pub joints: bool,
 }
 
-/// Runs the sweep; `progress(done, total, what)` is told before each run.
+/// Runs the sweep; `progress(done, total, what)` is told as each point ends (`what` names
+/// it), on the calling thread.
+///
+/// The points are independent, so [`SweepOptions::jobs`] of them run at once, each on a
+/// thread of its own with carom on one thread (as Box2D, on one worker, and Rapier run), the
+/// costliest first so the last to finish are short. The points come back in sweep order,
+/// whatever order they ran in: scene by scene, setting by setting.
 pub fn sweep(
     options: &SweepOptions,
     mut progress: impl FnMut(usize, usize, &str),
@@ -251,44 +303,124 @@ pub fn sweep(
             Ok((scene, file, settings, joints))
         })
         .collect::<Result<Vec<_>, String>>()?;
+    let cells: Vec<(usize, Setting)> = scenes
+        .iter()
+        .enumerate()
+        .flat_map(|(i, (_, _, settings, _))| settings.iter().map(move |&s| (i, s)))
+        .collect();
+    let total = cells.len();
+    // Longest first: a cell's work grows with its passes per step.
+    let mut order: Vec<usize> = (0..total).collect();
+    order.sort_by_key(|&c| std::cmp::Reverse(cells[c].1.passes_per_step()));
     let runs = options.runs.max(1);
-    let total = scenes.iter().map(|s| s.2.len()).sum::<usize>() * runs;
-    let one_thread = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .map_err(|e| e.to_string())?;
-    let mut done = 0;
-    let mut points = Vec::with_capacity(total / runs);
-    for (scene, file, settings, joints) in &scenes {
-        for &setting in settings {
-            let what = format!("{}: {}", scene.name, report::setting_name(&setting));
-            let mut medians = Vec::with_capacity(runs);
-            let mut first: Option<Measurement> = None;
-            for _ in 0..runs {
-                progress(done, total, &what);
-                // On one thread, as Box2D (one worker) and Rapier run, so all are timed alike
-                // (on the process's shared pool carom's small scenes timed slower beside the
-                // peers' runs).
-                let measurement =
-                    one_thread.install(|| measure(scene, file, setting, options.seconds))?;
-                medians.push(median(&measurement.step_ms));
-                first.get_or_insert(measurement);
-                done += 1;
-            }
-            let first = first.expect("at least one run");
-            points.push(Point {
-                scene: scene.name.clone(),
-                error_kind: ErrorKind::of(scene.accuracy.as_ref()),
-                setting,
-                ms_per_step: median(&medians),
-                error: first.error,
-                max_penetration: first.max_penetration,
-                joints: *joints,
+    let jobs = options.jobs.clamp(1, total.max(1));
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let (send, receive) = std::sync::mpsc::channel();
+    let mut results: Vec<Option<Measured>> = vec![None; total];
+    std::thread::scope(|scope| -> Result<(), String> {
+        for _ in 0..jobs {
+            let (send, next, order, cells, scenes) = (send.clone(), &next, &order, &cells, &scenes);
+            scope.spawn(move || {
+                let one_thread = match rayon::ThreadPoolBuilder::new().num_threads(1).build() {
+                    Ok(pool) => pool,
+                    Err(e) => {
+                        let _ = send.send(Err(e.to_string()));
+                        return;
+                    }
+                };
+                loop {
+                    let taken = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    let Some(&cell) = order.get(taken) else {
+                        return;
+                    };
+                    let (scene, setting) = cells[cell];
+                    let (scene, file, _, _) = &scenes[scene];
+                    let measured = one_thread
+                        .install(|| measure_runs(scene, file, setting, options.seconds, runs));
+                    if send.send(measured.map(|m| (cell, m))).is_err() {
+                        return;
+                    }
+                }
             });
         }
-    }
-    progress(done, total, "done");
+        drop(send);
+        for (done, received) in receive.iter().enumerate() {
+            let (cell, measured) = match received {
+                Ok(received) => received,
+                Err(e) => {
+                    // The workers stop at the next cell they take.
+                    next.store(total, std::sync::atomic::Ordering::Relaxed);
+                    return Err(e);
+                }
+            };
+            let (scene, setting) = cells[cell];
+            let what = format!(
+                "{}: {}",
+                scenes[scene].0.name,
+                report::setting_name(&setting)
+            );
+            results[cell] = Some(measured);
+            progress(done + 1, total, &what);
+        }
+        Ok(())
+    })?;
+    // A point per error: a measure of two (a hinge's gap and its turn past its limits) makes
+    // two points of one run.
+    let points = cells
+        .iter()
+        .zip(results)
+        .flat_map(|(&(scene, setting), measured)| {
+            let (scene, _, _, joints) = &scenes[scene];
+            let measured = measured.expect("every cell was measured");
+            measured
+                .errors
+                .into_iter()
+                .map(move |(error_kind, error)| Point {
+                    scene: scene.name.clone(),
+                    error_kind,
+                    setting,
+                    ms_per_step: measured.ms_per_step,
+                    error,
+                    max_penetration: measured.max_penetration,
+                    joints: *joints,
+                })
+        })
+        .collect();
+    progress(total, total, "done");
     Ok(points)
+}
+
+/// What the runs of one cell gave: the median over the runs of each run's median ms/step, and
+/// the first run's errors and overlap (every run gives the same: the physics is
+/// deterministic).
+#[derive(Debug, Clone)]
+struct Measured {
+    ms_per_step: f64,
+    errors: Vec<(ErrorKind, f64)>,
+    max_penetration: f64,
+}
+
+/// Runs one cell `runs` times.
+fn measure_runs(
+    scene: &carom_scene::Scene,
+    file: &str,
+    setting: Setting,
+    seconds: Real,
+    runs: usize,
+) -> Result<Measured, String> {
+    let mut medians = Vec::with_capacity(runs);
+    let mut first: Option<Measurement> = None;
+    for _ in 0..runs {
+        let measurement = measure(scene, file, setting, seconds)?;
+        medians.push(median(&measurement.step_ms));
+        first.get_or_insert(measurement);
+    }
+    let first = first.expect("at least one run");
+    Ok(Measured {
+        ms_per_step: median(&medians),
+        errors: first.errors,
+        max_penetration: first.max_penetration,
+    })
 }
 
 /// The median of some times (0 for none).
@@ -319,7 +451,7 @@ pub fn sweep_to_folder(
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let bar = ProgressBar::new(0);
     bar.set_style(
-        ProgressStyle::with_template("{bar:30} {pos}/{len} runs, {elapsed} (eta {eta})  {msg}")
+        ProgressStyle::with_template("{bar:30} {pos}/{len} points, {elapsed} (eta {eta})  {msg}")
             .map_err(|e| e.to_string())?,
     );
     let points = sweep(options, |done, total, what| {
@@ -332,13 +464,18 @@ pub fn sweep_to_folder(
         let path = out.join(name);
         std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))
     };
-    write("accuracy.csv", &report::csv(&points))?;
-    let machine = report::Machine::here();
-    write(
-        "README.md",
-        &report::markdown(&points, &machine, command, options.runs),
-    )?;
-    chart::write_chart(&points, &out.join("accuracy.png"))?;
+    let provenance = report::Provenance {
+        machine: report::Machine::here(),
+        command: command.into(),
+        runs: options.runs,
+    };
+    let text = provenance.header() + &report::csv(&points);
+    write("accuracy.csv", &text)?;
+    // The report and the chart from the points as the CSV keeps them, so that drawing them
+    // again from the CSV (`carom-bench docs`) gives the same text.
+    let kept = report::parse_csv(&text)?;
+    write("README.md", &report::markdown(&kept, &provenance))?;
+    chart::write_chart(&kept, &out.join("accuracy.png"))?;
     Ok(points)
 }
 

@@ -155,6 +155,48 @@ impl Machine {
     }
 }
 
+/// Where, when and how a measurement ran. It heads the CSV the measurement writes, as
+/// `# key: value` lines, so a report drawn from the CSV later names them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Provenance {
+    /// The machine and the date.
+    pub machine: Machine,
+    /// The command that measured, as typed.
+    pub command: String,
+    /// Runs per point.
+    pub runs: usize,
+}
+
+impl Provenance {
+    /// The CSV's first lines.
+    pub fn header(&self) -> String {
+        format!(
+            "# measured: {}\n# machine: {}\n# cores: {}\n# command: {}\n# runs: {}\n",
+            self.machine.date, self.machine.cpu, self.machine.cores, self.command, self.runs
+        )
+    }
+
+    /// Reads the lines [`Provenance::header`] wrote at the top of `text`; `None` when any is
+    /// missing.
+    pub fn parse(text: &str) -> Option<Provenance> {
+        let value = |key: &str| {
+            text.lines()
+                .take_while(|line| line.starts_with('#'))
+                .find_map(|line| line.strip_prefix(&format!("# {key}: ")))
+                .map(str::to_string)
+        };
+        Some(Provenance {
+            machine: Machine {
+                cpu: value("machine")?,
+                cores: value("cores")?.parse().ok()?,
+                date: value("measured")?,
+            },
+            command: value("command")?,
+            runs: value("runs")?.parse().ok()?,
+        })
+    }
+}
+
 /// Days since 1970-01-01 as YYYY-MM-DD (Howard Hinnant's civil-from-days).
 fn civil_date(days: i64) -> String {
     let z = days + 719_468;
@@ -179,7 +221,8 @@ fn civil_date(days: i64) -> String {
 /// substep count) and a column per iteration count, Box2D's with a row per contact
 /// stiffness, Rapier's with a row per stabilization count, and their substeps in columns;
 /// each cell "ms/step · error".
-pub fn markdown(points: &[Point], machine: &Machine, command: &str, runs: usize) -> String {
+pub fn markdown(points: &[Point], provenance: &Provenance) -> String {
+    let (machine, command, runs) = (&provenance.machine, &provenance.command, provenance.runs);
     let mut out = String::new();
     let _ = writeln!(out, "# What accuracy costs in time\n");
     let _ = writeln!(
@@ -197,10 +240,7 @@ pub fn markdown(points: &[Point], machine: &Machine, command: &str, runs: usize)
         let _ = writeln!(out, "{PEERS_NOTE}\n");
     }
     let _ = writeln!(out, "![error against time](accuracy.png)\n");
-    let mut scenes: Vec<&str> = points.iter().map(|p| p.scene.as_str()).collect();
-    scenes.dedup();
-    for scene in scenes {
-        let of_scene: Vec<&Point> = points.iter().filter(|p| p.scene == scene).collect();
+    for (scene, of_scene) in fronts(points) {
         let kind = of_scene[0].error_kind;
         let _ = writeln!(
             out,
@@ -251,6 +291,35 @@ pub fn markdown(points: &[Point], machine: &Machine, command: &str, runs: usize)
         }
     }
     out
+}
+
+/// The points grouped by what a front is drawn over, in the order they first come: one
+/// group per scene, or per scene and error where a scene's measure gives more than one (a
+/// pile of ragdolls: its hinges' gap and their turn past their limits). Each group's label is
+/// the scene's name, with the error's name where the scene has several.
+pub fn fronts(points: &[Point]) -> Vec<(String, Vec<&Point>)> {
+    let mut groups: Vec<(&str, super::ErrorKind, Vec<&Point>)> = Vec::new();
+    for p in points {
+        match groups
+            .iter_mut()
+            .find(|(scene, kind, _)| *scene == p.scene && *kind == p.error_kind)
+        {
+            Some((_, _, members)) => members.push(p),
+            None => groups.push((&p.scene, p.error_kind, vec![p])),
+        }
+    }
+    let kinds_of = |scene: &str| groups.iter().filter(|g| g.0 == scene).count();
+    groups
+        .iter()
+        .map(|(scene, kind, members)| {
+            let label = if kinds_of(scene) > 1 {
+                format!("{scene}, {}", kind.name())
+            } else {
+                scene.to_string()
+            };
+            (label, members.clone())
+        })
+        .collect()
 }
 
 /// The time budgets the report compares engines at, ms per step.
@@ -438,6 +507,50 @@ fn format_error(error: f64) -> String {
     }
 }
 
+/// Where `measured` disagrees with `committed` (a sweep read back from its CSV) in what the
+/// physics decides: each measured point's error and overlap, as the CSV prints them, against
+/// the committed point of the same scene and setting. Times are not compared: they are the
+/// machine's. One line per difference, naming the scene and the setting; empty when they
+/// agree. A measured point the committed sweep does not have is a difference too.
+pub fn differences(measured: &[Point], committed: &[Point]) -> Vec<String> {
+    let penetration = |p: &Point| {
+        if p.max_penetration.is_finite() {
+            format!("{:.6}", p.max_penetration)
+        } else {
+            "not measured".into()
+        }
+    };
+    let mut lines = Vec::new();
+    for point in measured {
+        let name = format!(
+            "{} ({}): {}",
+            point.scene,
+            point.error_kind.name(),
+            setting_name(&point.setting)
+        );
+        let Some(old) = committed.iter().find(|c| {
+            c.scene == point.scene && c.error_kind == point.error_kind && c.setting == point.setting
+        }) else {
+            lines.push(format!("{name}: not in the committed sweep"));
+            continue;
+        };
+        let (error, old_error) = (format_error(point.error), format_error(old.error));
+        if error != old_error {
+            lines.push(format!(
+                "{name}: error {error} {}, the committed sweep has {old_error}",
+                point.error_kind.unit()
+            ));
+        }
+        let (overlap, old_overlap) = (penetration(point), penetration(old));
+        if overlap != old_overlap {
+            lines.push(format!(
+                "{name}: deepest overlap {overlap} m, the committed sweep has {old_overlap}"
+            ));
+        }
+    }
+    lines
+}
+
 /// Reads back a CSV that [`csv()`] wrote: the points of a sweep, in file order.
 ///
 /// Columns are found by their header names, so this header ([`CSV_HEADER`]) and older ones
@@ -464,6 +577,8 @@ pub fn parse_csv(text: &str) -> Result<Vec<Point>, String> {
     ];
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
+        // The provenance lines (`# measured: ...`).
+        .comment(Some(b'#'))
         // Lines of the wrong length are read, to be named with what is wrong.
         .flexible(true)
         .from_reader(text.as_bytes());
@@ -635,12 +750,16 @@ fn infer_joints(points: &mut [Point]) {
 }
 
 /// Every [`super::ErrorKind`], as the CSV names them (their `Debug` names).
-const CSV_ERROR_KINDS: [super::ErrorKind; 6] = [
+const CSV_ERROR_KINDS: [super::ErrorKind; 10] = [
     super::ErrorKind::Rest,
     super::ErrorKind::Conservation,
     super::ErrorKind::SlideAngle,
     super::ErrorKind::Period,
     super::ErrorKind::Stretch,
+    super::ErrorKind::Gaps,
+    super::ErrorKind::HingeGap,
+    super::ErrorKind::PastLimit,
+    super::ErrorKind::Sink,
     super::ErrorKind::Overlap,
 ];
 
@@ -676,12 +795,20 @@ mod tests {
             point(8, Some(120.0)),
             direct,
         ];
-        let machine = Machine {
-            cpu: "cpu".into(),
-            cores: 1,
-            date: "2026-11-24".into(),
+        let provenance = Provenance {
+            machine: Machine {
+                cpu: "cpu".into(),
+                cores: 1,
+                date: "2026-11-24".into(),
+            },
+            command: "carom bench".into(),
+            runs: 1,
         };
-        let report = markdown(&points, &machine, "carom bench", 1);
+        assert_eq!(
+            Provenance::parse(&provenance.header()).as_ref(),
+            Some(&provenance)
+        );
+        let report = markdown(&points, &provenance);
         assert!(report.contains(JOINTS_NOTE), "{report}");
         assert!(report.contains("worst stretch"), "{report}");
         assert!(
@@ -900,35 +1027,12 @@ mod parse_tests {
         );
         let text = std::fs::read_to_string(path).unwrap();
         let points = parse_csv(&text).unwrap();
-        assert_eq!(points.len(), text.lines().count() - 1);
+        // It says where and how it was measured, then holds exactly what the writer writes.
+        let provenance = Provenance::parse(&text).expect("the provenance lines");
+        assert!(provenance.command.starts_with("carom-bench sweep"));
+        assert_eq!(text, provenance.header() + &csv(&points));
         assert!(points.iter().any(|p| p.scene == "pendulum" && p.joints));
         assert!(points.iter().any(|p| p.scene == "pyramid" && !p.joints));
-        // The file is exactly what the writer writes, once it has every column: a sweep from
-        // before direct joints or shock propagation gains the missing columns, off, on every
-        // line.
-        let header = text.lines().next().unwrap_or_default();
-        let missing: Vec<&str> = ["direct_joints", "shock_propagation"]
-            .into_iter()
-            .filter(|column| !header.split(',').any(|c| c == *column))
-            .collect();
-        let current: String = text
-            .lines()
-            .enumerate()
-            .map(|(i, line)| {
-                let added: String = missing
-                    .iter()
-                    .map(|column| {
-                        if i == 0 {
-                            format!(",{column}")
-                        } else {
-                            ",false".into()
-                        }
-                    })
-                    .collect();
-                format!("{line}{added}\n")
-            })
-            .collect();
-        assert_eq!(csv(&points), current);
     }
 
     #[test]

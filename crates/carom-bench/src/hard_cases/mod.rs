@@ -8,7 +8,6 @@
 //! Demo scenes (`demos/*.ron`) are loaded with `carom_scene::load` and stepped at 1/60 s; none
 //! of the scenes used has events, and scene events would not be replayed in Box2D anyway.
 
-use std::fmt::Write as _;
 use std::time::{Duration, Instant};
 
 use crate::cases::skinny_box;
@@ -16,6 +15,9 @@ use crate::cases::{wall_shot, worlds};
 use carom::{BodyHandle, BodyKind, Effect, Real, SolverKind, SolverParams, World, vec2};
 
 use crate::box2d_world::Box2dWorld;
+
+#[cfg(feature = "sweep")]
+pub mod table;
 
 /// Time step of every case, s.
 pub const DT: Real = 1.0 / 60.0;
@@ -311,6 +313,8 @@ impl Outcome {
 pub struct Options {
     /// Soak one simulated minute instead of an hour.
     pub quick: bool,
+    /// carom's solver (soft step, Box2D's, by default); Box2D is always itself.
+    pub solver: SolverKind,
     /// carom's joint cases with `SolverParams::direct_joints` on (Box2D has no such option:
     /// its side is as it always is).
     pub direct_joints: bool,
@@ -338,6 +342,11 @@ impl Case {
         (self.run)(Side { engine, options }, options, &mut outcome)?;
         outcome.time = started.elapsed();
         Ok(outcome)
+    }
+
+    /// Whether the case is one of joints, which `Options::direct_joints` changes.
+    pub fn has_joints(&self) -> bool {
+        JOINT_CASES.contains(&self.name)
     }
 
     /// The title, saying when `options` shortened the case.
@@ -405,7 +414,7 @@ pub fn cases() -> Vec<Case> {
             name: "high_mass_ratio_boxes",
             title: "20 m box on two 1 m boxes",
             run: |e, _, o| {
-                let world = worlds::big_box_on(soft_step(), carom::Shape::rect(0.5, 0.5));
+                let world = worlds::big_box_on(e.params(), carom::Shape::rect(0.5, 0.5));
                 on(e, world, |w| settles(w, 4.0, 2.0, o))
             },
         },
@@ -413,7 +422,7 @@ pub fn cases() -> Vec<Case> {
             name: "high_mass_ratio_triangles",
             title: "20 m box on two triangles",
             run: |e, _, o| {
-                let world = worlds::big_box_on(soft_step(), worlds::small_triangle());
+                let world = worlds::big_box_on(e.params(), worlds::small_triangle());
                 on(e, world, |w| settles(w, 4.0, 2.0, o))
             },
         },
@@ -502,17 +511,27 @@ struct Side {
     options: Options,
 }
 
-/// Runs `f` on `world` in `side`'s engine: carom's world with its options (shock
-/// propagation), or its Box2D copy.
+impl Side {
+    /// The solver a case's world is built with: carom's with the options' solver and
+    /// settings at their defaults, or soft step at its defaults, which the Box2D copy maps
+    /// to Box2D's settings.
+    fn params(self) -> SolverParams {
+        match self.engine {
+            Engine::Carom => SolverParams {
+                direct_joints: self.options.direct_joints,
+                shock_propagation: self.options.shock_propagation,
+                ..SolverParams::for_kind(self.options.solver)
+            },
+            Engine::Box2d => soft_step(),
+        }
+    }
+}
+
+/// Runs `f` on `world` (built with [`Side::params`]) in `side`'s engine: carom's world, or its
+/// Box2D copy.
 fn on<T>(side: Side, mut world: World, f: impl FnOnce(&mut dyn CaseWorld) -> Res<T>) -> Res<T> {
     match side.engine {
-        Engine::Carom => {
-            let shock = side.options.shock_propagation;
-            world
-                .update_settings(|s| s.solver.shock_propagation |= shock)
-                .map_err(|e| e.to_string())?;
-            f(&mut world)
-        }
+        Engine::Carom => f(&mut world),
         Engine::Box2d => {
             let mut copy = Box2dWorld::from_carom(&world)?;
             drop(world);
@@ -577,7 +596,7 @@ fn below_ground(w: &mut dyn CaseWorld) -> Res<f64> {
 }
 
 fn stack_stands(engine: Side, count: usize, o: &mut Outcome) -> Res<()> {
-    let (world, boxes) = worlds::vertical_stack(soft_step(), count, false);
+    let (world, boxes) = worlds::vertical_stack(engine.params(), count, false);
     let top = index(&world, *boxes.last().ok_or("no boxes")?)?;
     on(engine, world, |w| {
         let start = w.body_position(top)?;
@@ -597,7 +616,7 @@ fn stack_stands(engine: Side, count: usize, o: &mut Outcome) -> Res<()> {
 }
 
 fn stack_sleeps(engine: Side, count: usize, o: &mut Outcome) -> Res<()> {
-    let (world, boxes) = worlds::vertical_stack(soft_step(), count, true);
+    let (world, boxes) = worlds::vertical_stack(engine.params(), count, true);
     let boxes = boxes
         .iter()
         .map(|b| index(&world, *b))
@@ -620,7 +639,7 @@ fn stack_sleeps(engine: Side, count: usize, o: &mut Outcome) -> Res<()> {
 }
 
 fn pyramid_20(engine: Side, o: &mut Outcome) -> Res<()> {
-    let mut scene = worlds::scene("pyramid", soft_step());
+    let mut scene = worlds::scene("pyramid", engine.params());
     scene
         .world
         .update_settings(|s| s.effects.set(Effect::Sleeping, false))
@@ -668,7 +687,7 @@ fn settles(w: &mut dyn CaseWorld, seconds: f64, settle: f64, o: &mut Outcome) ->
 }
 
 fn heavy_tops(engine: Side, o: &mut Outcome) -> Res<()> {
-    let mut scene = worlds::scene("high_mass_ratio", soft_step());
+    let mut scene = worlds::scene("high_mass_ratio", engine.params());
     scene
         .world
         .update_settings(|s| s.effects.set(Effect::Sleeping, false))
@@ -677,7 +696,7 @@ fn heavy_tops(engine: Side, o: &mut Outcome) -> Res<()> {
 }
 
 fn overlap_recovery(engine: Side, o: &mut Outcome) -> Res<()> {
-    let scene = worlds::scene("overlap_recovery", soft_step());
+    let scene = worlds::scene("overlap_recovery", engine.params());
     let cap = f64::from(scene.world.solver().max_push_speed);
     let slop = f64::from(carom::LINEAR_SLOP);
     on(engine, scene.world, |w| {
@@ -698,7 +717,7 @@ fn overlap_recovery(engine: Side, o: &mut Outcome) -> Res<()> {
 
 fn tiny_pyramid(engine: Side, o: &mut Outcome) -> Res<()> {
     let size = f64::from(worlds::TINY_BOX_SIZE);
-    on(engine, worlds::tiny_pyramid(soft_step()), |w| {
+    on(engine, worlds::tiny_pyramid(engine.params()), |w| {
         let top = highest(w)?;
         let start = w.body_position(top)?;
         // Stands: once settled (the first second), the top box creeps less than a fifth of its
@@ -720,7 +739,7 @@ fn tiny_pyramid(engine: Side, o: &mut Outcome) -> Res<()> {
 }
 
 fn card_house(engine: Side, o: &mut Outcome) -> Res<()> {
-    let scene = worlds::scene("card_house", soft_step());
+    let scene = worlds::scene("card_house", engine.params());
     on(engine, scene.world, |w| {
         let mut cards = Vec::new();
         for i in 0..w.body_total() {
@@ -740,7 +759,7 @@ fn card_house(engine: Side, o: &mut Outcome) -> Res<()> {
 }
 
 fn confined(engine: Side, o: &mut Outcome) -> Res<()> {
-    let scene = worlds::scene("confined", soft_step());
+    let scene = worlds::scene("confined", engine.params());
     on(engine, scene.world, |w| {
         // The circles start overlapped: the energy the push-apart gives them in the first
         // second is the start; after it, the energy may only fall.
@@ -770,7 +789,7 @@ fn confined(engine: Side, o: &mut Outcome) -> Res<()> {
 }
 
 fn coincident(engine: Side, o: &mut Outcome) -> Res<()> {
-    let (world, circles) = worlds::coincident_circles(soft_step());
+    let (world, circles) = worlds::coincident_circles(engine.params());
     let slop = f64::from(carom::LINEAR_SLOP);
     let circles = circles
         .iter()
@@ -797,7 +816,7 @@ fn coincident(engine: Side, o: &mut Outcome) -> Res<()> {
 fn skinny(engine: Side, o: &mut Outcome) -> Res<()> {
     // Box2D's Skinny Box: a 4 x 0.1 m plank falling at 100 m/s, spinning at ±50 rad/s, onto a
     // thin floor beside a thin post, relaunched every 60 steps from a different angle and place.
-    let (world, plank) = worlds::skinny_plank(soft_step());
+    let (world, plank) = worlds::skinny_plank(engine.params());
     let plank = index(&world, plank)?;
     on(engine, world, |w| {
         let mut rng = crate::cases::Rng::new(500);
@@ -841,7 +860,7 @@ fn bullets(engine: Side, o: &mut Outcome) -> Res<()> {
     // box left is no tunnel).
     let (mut tunnels, mut past_wall) = (0usize, 0usize);
     for shot in 0..10 {
-        let (world, bullet) = worlds::bullet_shot(soft_step(), shot);
+        let (world, bullet) = worlds::bullet_shot(engine.params(), shot);
         let bullet = index(&world, bullet)?;
         on(engine, world, |w| {
             let mut checked_stack = false;
@@ -875,7 +894,7 @@ fn wall_shots(engine: Side, o: &mut Outcome) -> Res<()> {
     // velocity ends from the one its momentum and the bullet's give, of the closing speed.
     let (mut deepest, mut through, mut worst_push): (f64, usize, f64) = (0.0, 0, 0.0);
     for shot in &wall_shot::SHOTS {
-        let made = shot.world(soft_step());
+        let made = shot.world(engine.params());
         let (bullet, wall) = (
             index(&made.world, made.bullet)?,
             index(&made.world, made.wall)?,
@@ -921,7 +940,7 @@ fn soak(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
     } else {
         SOAK_STEPS
     };
-    on(engine, worlds::pyramid_world(soft_step(), 10), |w| {
+    on(engine, worlds::pyramid_world(engine.params(), 10), |w| {
         let top = highest(w)?;
         steps(w, 120)?;
         let settled = w.body_position(top)?;
@@ -955,7 +974,7 @@ fn random_worlds(engine: Side, o: &mut Outcome) -> Res<()> {
     let (mut escaped, mut worst) = (0usize, 0.0f64);
     let mut nan = false;
     for (seed, count) in random_seeds() {
-        let world = worlds::random_world(soft_step(), seed, count);
+        let world = worlds::random_world(engine.params(), seed, count);
         let work = worlds::gravity_work(&world);
         let (e, ratio, n) = on(engine, world, |w| {
             let mut first_second: f64 = 0.0;
@@ -992,7 +1011,8 @@ fn random_worlds(engine: Side, o: &mut Outcome) -> Res<()> {
 
 /// A figure as the table shows it: bold when it misses its bar.
 fn cell(figure: &Figure, nan: bool) -> String {
-    let value = figure.value;
+    // Adding zero makes -0 plain 0.
+    let value = figure.value + 0.0;
     let text = if value.is_infinite() {
         "never".to_string()
     } else if value == value.trunc() && value.abs() < 1e9 {
@@ -1009,60 +1029,6 @@ fn cell(figure: &Figure, nan: bool) -> String {
     } else {
         format!("**{text}**")
     }
-}
-
-/// One case's result in both engines (an engine that failed has its error).
-#[derive(Debug)]
-pub struct CaseResult {
-    /// The case's title (as the run's options make it).
-    pub title: String,
-    /// carom's outcome.
-    pub carom: Res<Outcome>,
-    /// Box2D's outcome.
-    pub box2d: Res<Outcome>,
-}
-
-/// Runs `case` in both engines, carom first.
-pub fn run_both(case: &Case, options: Options) -> CaseResult {
-    CaseResult {
-        title: case.title(options),
-        carom: case.run(Engine::Carom, options),
-        box2d: case.run(Engine::Box2d, options),
-    }
-}
-
-/// The markdown table of `results`: case, measure, bar, carom, Box2D; one row per measure.
-/// A figure that misses its bar is bold.
-pub fn markdown(results: &[CaseResult]) -> String {
-    let mut s = String::from("| case | measure | bar | carom | Box2D |\n|---|---|---|---|---|\n");
-    for r in results {
-        let measures: Vec<(String, Bar)> = match (&r.carom, &r.box2d) {
-            (Ok(o), _) | (Err(_), Ok(o)) => o
-                .figures
-                .iter()
-                .map(|f| (f.measure.clone(), f.bar))
-                .collect(),
-            (Err(_), Err(_)) => vec![("-".into(), Bar::None)],
-        };
-        let value = |outcome: &Res<Outcome>, k: usize| match outcome {
-            Ok(o) => o
-                .figures
-                .get(k)
-                .map_or_else(|| "-".into(), |f| cell(f, o.nan)),
-            Err(e) => format!("error: {e}"),
-        };
-        for (k, (measure, bar)) in measures.iter().enumerate() {
-            let _ = writeln!(
-                s,
-                "| {} | {measure} | {} | {} | {} |",
-                r.title,
-                bar.label(),
-                value(&r.carom, k),
-                value(&r.box2d, k)
-            );
-        }
-    }
-    s
 }
 
 // Joints. The joint scenes run at soft step's defaults, Box2D's (4 substeps, 60 Hz joints),
@@ -1083,12 +1049,9 @@ struct JointInfo {
 /// The cases `Options::direct_joints` changes.
 const JOINT_CASES: [&str; 4] = ["pendulum", "chain", "bridge", "ragdolls"];
 
-fn joint_scene(name: &str, options: Options) -> Res<(carom_scene::SceneWorld, Vec<JointInfo>)> {
-    let mut scene = worlds::scene(name, soft_step());
-    let params = SolverParams {
-        direct_joints: options.direct_joints,
-        ..soft_step()
-    };
+fn joint_scene(name: &str, side: Side) -> Res<(carom_scene::SceneWorld, Vec<JointInfo>)> {
+    let mut scene = worlds::scene(name, side.params());
+    let params = side.params();
     scene
         .world
         .update_settings(|s| s.solver = params)
@@ -1141,8 +1104,8 @@ fn limit_violation(w: &mut dyn CaseWorld, joint: &JointInfo) -> Res<f64> {
     Ok(f64::from((lower - angle).max(angle - upper).max(0.0)))
 }
 
-fn pendulum(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
-    let (scene, joints) = joint_scene("pendulum", options)?;
+fn pendulum(engine: Side, _: Options, o: &mut Outcome) -> Res<()> {
+    let (scene, joints) = joint_scene("pendulum", engine)?;
     let bob = index(&scene.world, scene.names["bob"])?;
     on(engine, scene.world, |w| {
         let mut crossings = Vec::new();
@@ -1175,8 +1138,8 @@ fn pendulum(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn chain(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
-    let (scene, joints) = joint_scene("chain", options)?;
+fn chain(engine: Side, _: Options, o: &mut Outcome) -> Res<()> {
+    let (scene, joints) = joint_scene("chain", engine)?;
     let ball = index(&scene.world, scene.names["ball"])?;
     let held = joints
         .iter()
@@ -1200,8 +1163,8 @@ fn chain(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn bridge(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
-    let (scene, joints) = joint_scene("bridge", options)?;
+fn bridge(engine: Side, _: Options, o: &mut Outcome) -> Res<()> {
+    let (scene, joints) = joint_scene("bridge", engine)?;
     on(engine, scene.world, |w| {
         let mut worst: f64 = 0.0;
         for _ in 0..600 {
@@ -1217,8 +1180,8 @@ fn bridge(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
     })
 }
 
-fn ragdolls(engine: Side, options: Options, o: &mut Outcome) -> Res<()> {
-    let (scene, joints) = joint_scene("ragdolls", options)?;
+fn ragdolls(engine: Side, _: Options, o: &mut Outcome) -> Res<()> {
+    let (scene, joints) = joint_scene("ragdolls", engine)?;
     on(engine, scene.world, |w| {
         let (mut gap, mut past): (f64, f64) = (0.0, 0.0);
         for _ in 0..600 {

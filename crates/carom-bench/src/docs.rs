@@ -1,0 +1,512 @@
+//! The figures the docs print, drawn from the files the measuring commands write, so that no
+//! figure is typed by hand and none goes stale unseen.
+//!
+//! A doc marks each generated part with a pair of lines:
+//!
+//! ```text
+//! <!-- figures: hard-cases/contacts -->
+//! ...drawn here...
+//! <!-- end figures -->
+//! ```
+//!
+//! `carom-bench docs` draws every marked part of `README.md` and `docs/**/*.md` again from
+//! the measurements committed beside them ([`SOURCES`]), and the accuracy report
+//! (`docs/accuracy/README.md`) whole; `carom-bench docs --check` (and the `docs` test) fails
+//! when one of them differs from what it would draw. Whether the measurements themselves
+//! still hold is the business of `carom-bench sweep --check` and
+//! `carom-bench hard-cases --check`, which measure again.
+
+use crate::hard_cases::table::{self, Column};
+use crate::sweep::{self, Engine, Point, front, report};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The accuracy sweep's points, written by `carom-bench sweep`.
+pub const ACCURACY_CSV: &str = "docs/accuracy/accuracy.csv";
+/// The report `carom-bench sweep` writes beside them.
+pub const ACCURACY_REPORT: &str = "docs/accuracy/README.md";
+/// The hard cases' figures, written by `carom-bench hard-cases`.
+pub const HARD_CASES_CSV: &str = "docs/hard-cases/hard-cases.csv";
+/// carom, Box2D and Rapier timed on Box2D's recipes, written by `carom-bench --csv`.
+pub const SPEED_CSV: &str = "docs/bench/peers.csv";
+/// Every file figures are drawn from.
+pub const SOURCES: [&str; 3] = [ACCURACY_CSV, HARD_CASES_CSV, SPEED_CSV];
+
+const BEGIN: &str = "<!-- figures: ";
+const END: &str = "<!-- end figures -->";
+
+/// The committed measurements, read once.
+pub struct Sources {
+    accuracy: Vec<Point>,
+    accuracy_provenance: report::Provenance,
+    hard_cases: Vec<table::Row>,
+    hard_cases_provenance: report::Provenance,
+    speed: Vec<SpeedRow>,
+    speed_provenance: report::Provenance,
+}
+
+/// One recipe of [`SPEED_CSV`]: ms per step of each engine, and on `--threads` threads.
+struct SpeedRow {
+    scene: String,
+    bodies: usize,
+    carom: f64,
+    box2d: f64,
+    rapier: f64,
+    carom_threads: f64,
+    box2d_threads: f64,
+}
+
+/// Reads [`SPEED_CSV`]'s rows by their column names.
+fn parse_speed(text: &str) -> Result<Vec<SpeedRow>, String> {
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().ok_or("no header")?.split(',').collect();
+    let column = |name: &str| {
+        header
+            .iter()
+            .position(|c| *c == name)
+            .ok_or_else(|| format!("no `{name}` column"))
+    };
+    let [
+        scene,
+        bodies,
+        carom,
+        box2d,
+        rapier,
+        carom_threads,
+        box2d_threads,
+    ] = [
+        "scene",
+        "bodies",
+        "carom_ms_per_step",
+        "box2d_ms_per_step",
+        "rapier_ms_per_step",
+        "carom_threads_ms_per_step",
+        "box2d_threads_ms_per_step",
+    ]
+    .map(column);
+    let (scene, bodies) = (scene?, bodies?);
+    let numbers = [carom?, box2d?, rapier?, carom_threads?, box2d_threads?];
+    lines
+        .enumerate()
+        .map(|(i, line)| {
+            let fields: Vec<&str> = line.split(',').collect();
+            let field = |k: usize| {
+                fields
+                    .get(k)
+                    .copied()
+                    .ok_or_else(|| format!("line {}: too few fields", i + 2))
+            };
+            let number = |k: usize| {
+                field(k)?
+                    .parse::<f64>()
+                    .map_err(|e| format!("line {}: {e}", i + 2))
+            };
+            Ok(SpeedRow {
+                scene: field(scene)?.to_string(),
+                bodies: field(bodies)?
+                    .parse()
+                    .map_err(|e| format!("line {}: {e}", i + 2))?,
+                carom: number(numbers[0])?,
+                box2d: number(numbers[1])?,
+                rapier: number(numbers[2])?,
+                carom_threads: number(numbers[3])?,
+                box2d_threads: number(numbers[4])?,
+            })
+        })
+        .collect()
+}
+
+impl Sources {
+    /// Reads [`SOURCES`] under the repository's `root`.
+    pub fn read(root: &Path) -> Result<Sources, String> {
+        let read = |name: &str| {
+            let path = root.join(name);
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))
+        };
+        let provenance = |name: &str, text: &str| {
+            report::Provenance::parse(text)
+                .ok_or_else(|| format!("{name}: no `# measured: ...` lines at its top"))
+        };
+        let accuracy_text = read(ACCURACY_CSV)?;
+        let hard_text = read(HARD_CASES_CSV)?;
+        let speed_text = read(SPEED_CSV)?;
+        Ok(Sources {
+            accuracy: report::parse_csv(&accuracy_text)
+                .map_err(|e| format!("{ACCURACY_CSV}: {e}"))?,
+            accuracy_provenance: provenance(ACCURACY_CSV, &accuracy_text)?,
+            hard_cases: table::parse_csv(&hard_text)
+                .map_err(|e| format!("{HARD_CASES_CSV}: {e}"))?,
+            hard_cases_provenance: provenance(HARD_CASES_CSV, &hard_text)?,
+            speed: parse_speed(&speed_text).map_err(|e| format!("{SPEED_CSV}: {e}"))?,
+            speed_provenance: provenance(SPEED_CSV, &speed_text)?,
+        })
+    }
+
+    /// The part named `name`, drawn.
+    pub fn draw(&self, name: &str) -> Result<String, String> {
+        match name {
+            "accuracy/fronts" => Ok(self.accuracy_fronts()),
+            "accuracy/summary" => Ok(self.accuracy_summary()),
+            "hard-cases/contacts" => Ok(self.hard_case_table(
+                false,
+                &[
+                    Column::SoftStep,
+                    Column::Box2d,
+                    Column::SequentialImpulse,
+                    Column::TutorialImpulse,
+                    Column::PushOut,
+                ],
+            )),
+            "hard-cases/shock-propagation" => Ok(self.hard_case_table(
+                false,
+                &[Column::SoftStep, Column::ShockPropagation, Column::Box2d],
+            )),
+            "hard-cases/joints" => Ok(self.hard_case_table(
+                true,
+                &[
+                    Column::SoftStep,
+                    Column::DirectJoints,
+                    Column::BothOptions,
+                    Column::Box2d,
+                    Column::SequentialImpulse,
+                ],
+            )),
+            "hard-cases/summary" => Ok(self.hard_case_summary()),
+            "speed/recipes" => Ok(self.speed_recipes()),
+            "speed/summary" => Ok(self.speed_summary()),
+            _ => Err(format!(
+                "no figures named `{name}`: the names are {}",
+                NAMES.join(", ")
+            )),
+        }
+    }
+
+    /// The accuracy report, as `carom-bench sweep` wrote it from the same points.
+    pub fn accuracy_report(&self) -> String {
+        report::markdown(&self.accuracy, &self.accuracy_provenance)
+    }
+
+    /// "Measured DATE on CPU (N cores) by `COMMAND`."
+    fn measured(provenance: &report::Provenance) -> String {
+        format!(
+            "Measured {} on {} ({} cores) by `{}`.",
+            provenance.machine.date,
+            provenance.machine.cpu,
+            provenance.machine.cores,
+            provenance.command
+        )
+    }
+
+    /// Per scene and budget, each engine's smallest error within it and its setting.
+    fn accuracy_fronts(&self) -> String {
+        let mut out = Self::measured(&self.accuracy_provenance);
+        out.push_str(
+            " Each engine's smallest error within the time a step may take, and the setting \
+             that gives it (a dash: no setting that fast).\n\n\
+             | scene (error) | within | carom | Box2D | Rapier |\n|---|---|---|---|---|\n",
+        );
+        for (scene, points) in report::fronts(&self.accuracy) {
+            let kind = points[0].error_kind;
+            for (k, budget) in BUDGETS.into_iter().enumerate() {
+                let label = if k == 0 {
+                    format!("{scene} ({})", kind.unit())
+                } else {
+                    String::new()
+                };
+                let _ = write!(out, "| {label} | {budget} ms |");
+                for engine in Engine::ALL {
+                    match front::best_within(&points, engine, budget) {
+                        Some(p) => {
+                            let _ = write!(
+                                out,
+                                " {} ({}) |",
+                                figure(p.error),
+                                short_setting(&p.setting)
+                            );
+                        }
+                        None => out.push_str(" - |"),
+                    }
+                }
+                out.push('\n');
+            }
+        }
+        out
+    }
+
+    /// One sentence per budget: on how many scenes carom's best error within it is the
+    /// smallest of the three engines'.
+    fn accuracy_summary(&self) -> String {
+        let scenes = report::fronts(&self.accuracy);
+        let mut out = format!("{}:", self.accuracy_provenance.machine.date);
+        for (k, budget) in BUDGETS.into_iter().enumerate() {
+            let (mut best, mut tied) = (0, 0);
+            for (_, points) in &scenes {
+                let error = |engine| front::best_within(points, engine, budget).map(|p| p.error);
+                let carom = error(Engine::Carom).unwrap_or(f64::INFINITY);
+                let peers = [error(Engine::Box2d), error(Engine::Rapier)]
+                    .into_iter()
+                    .flatten()
+                    .fold(f64::INFINITY, f64::min);
+                if carom < peers {
+                    best += 1;
+                } else if carom == peers && carom.is_finite() {
+                    tied += 1;
+                }
+            }
+            let _ = write!(
+                out,
+                "{} within {budget} ms a step, carom's most accurate setting beats Box2D's and \
+                 Rapier's on {best} of {} fronts{}",
+                if k == 0 { "" } else { ";" },
+                scenes.len(),
+                if tied > 0 {
+                    format!(" and ties on {tied}")
+                } else {
+                    String::new()
+                }
+            );
+        }
+        out.push_str(".\n");
+        out
+    }
+
+    /// The hard cases with joints (or without), in `columns`.
+    fn hard_case_table(&self, joints: bool, columns: &[Column]) -> String {
+        let names: Vec<&str> = crate::hard_cases::cases()
+            .iter()
+            .filter(|c| c.has_joints() == joints)
+            .map(|c| c.name)
+            .collect();
+        format!(
+            "{} A figure that misses its bar is bold.\n\n{}",
+            Self::measured(&self.hard_cases_provenance),
+            table::markdown(&self.hard_cases, &names, columns)
+        )
+    }
+
+    /// Each recipe's ms per step in each engine, and their ratios.
+    fn speed_recipes(&self) -> String {
+        let mut out = format!(
+            "{} ms per step, the best of {} runs; threads as the command sets them (2 by \
+             default).\n\n| scene | carom | Box2D v3 | Rapier | carom / Box2D | carom / Rapier \
+             | carom on threads / Box2D on threads | carom's speed-up on threads | Box2D's \
+             |\n|---|---|---|---|---|---|---|---|---|\n",
+            Self::measured(&self.speed_provenance),
+            self.speed_provenance.runs
+        );
+        for r in &self.speed {
+            let _ = writeln!(
+                out,
+                "| `{}` ({} bodies) | {:.3} | {:.3} | {:.3} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
+                r.scene,
+                r.bodies,
+                r.carom,
+                r.box2d,
+                r.rapier,
+                r.carom / r.box2d,
+                r.carom / r.rapier,
+                r.carom_threads / r.box2d_threads,
+                r.carom / r.carom_threads,
+                r.box2d / r.box2d_threads
+            );
+        }
+        out
+    }
+
+    /// The ranges of carom's time over Box2D's and Rapier's, one thread and several.
+    fn speed_summary(&self) -> String {
+        let range = |ratio: &dyn Fn(&SpeedRow) -> f64| {
+            let (low, high) = self
+                .speed
+                .iter()
+                .map(ratio)
+                .fold((f64::INFINITY, 0.0f64), |(l, h), x| (l.min(x), h.max(x)));
+            format!("{low:.2} to {high:.2}")
+        };
+        format!(
+            "{}: on {} of Box2D's benchmark recipes, carom's step takes {} times Box2D v3's \
+             time and {} times Rapier's on one thread, and {} times Box2D's on two \
+             ([docs/bench](docs/bench/README.md)).\n",
+            self.speed_provenance.machine.date,
+            self.speed.len(),
+            range(&|r| r.carom / r.box2d),
+            range(&|r| r.carom / r.rapier),
+            range(&|r| r.carom_threads / r.box2d_threads),
+        )
+    }
+
+    /// How many bars each column meets, over the cases it runs.
+    fn hard_case_summary(&self) -> String {
+        let met = |columns: &[Column]| {
+            let mut counts = (0, 0);
+            for row in self.hard_cases.iter().filter(|r| r.bar != "-") {
+                if columns.iter().any(|c| c.id() == row.column) {
+                    counts.1 += 1;
+                    if !row.cell.starts_with("**") && !row.cell.starts_with("error") {
+                        counts.0 += 1;
+                    }
+                }
+            }
+            counts
+        };
+        // Soft step's options: shock propagation on contacts, both options on joints.
+        let soft = met(&[Column::SoftStep]);
+        let options = met(&[Column::ShockPropagation, Column::BothOptions]);
+        let box2d = met(&[Column::Box2d]);
+        format!(
+            "{}: of the hard cases' bars, soft step at its defaults meets {} of {}, with shock \
+             propagation and direct joints on {} of {}, and Box2D v3 {} of {}.\n",
+            self.hard_cases_provenance.machine.date,
+            soft.0,
+            soft.1,
+            options.0,
+            options.1,
+            box2d.0,
+            box2d.1
+        )
+    }
+}
+
+/// Every part [`Sources::draw`] draws.
+pub const NAMES: [&str; 8] = [
+    "accuracy/fronts",
+    "accuracy/summary",
+    "hard-cases/contacts",
+    "hard-cases/shock-propagation",
+    "hard-cases/joints",
+    "hard-cases/summary",
+    "speed/recipes",
+    "speed/summary",
+];
+
+/// The budgets the fronts are read at, ms per step.
+const BUDGETS: [f64; 2] = [0.1, 1.0];
+
+/// An error with three significant digits (in exponent form below a thousandth), `inf` for a
+/// world gone NaN.
+fn figure(error: f64) -> String {
+    if !error.is_finite() {
+        return "inf".into();
+    }
+    if error == 0.0 {
+        return "0".into();
+    }
+    if !(1e-3..1e4).contains(&error) {
+        return format!("{error:.2e}");
+    }
+    let decimals = (2 - error.log10().floor() as i32).max(0) as usize;
+    format!("{error:.decimals$}")
+}
+
+/// A setting in a few words: "4 sub, 2 it, 60 Hz", "SI 64 it", with its options.
+fn short_setting(setting: &sweep::Setting) -> String {
+    let mut name = match setting.engine {
+        Engine::Carom if !setting.solver.has_substeps() => {
+            format!("{} {} it", setting.solver.name(), setting.iterations)
+        }
+        Engine::Carom => format!("{} sub, {} it", setting.substeps, setting.iterations),
+        Engine::Box2d => format!("{} sub", setting.substeps),
+        Engine::Rapier => format!(
+            "{} sub, {} stab",
+            setting.substeps,
+            setting.stabilization.unwrap_or(1)
+        ),
+    };
+    if let Some(hertz) = setting.contact_hertz {
+        let _ = write!(name, ", {hertz} Hz");
+    }
+    if let Some(hertz) = setting.joint_hertz {
+        let _ = write!(name, ", {hertz} Hz joints");
+    }
+    if setting.direct_joints {
+        name.push_str(", direct joints");
+    }
+    if setting.shock_propagation {
+        name.push_str(", shock propagation");
+    }
+    name
+}
+
+/// The docs figures are drawn into: `README.md` and every `.md` under `docs/` but the
+/// accuracy report (drawn whole).
+pub fn marked_files(root: &Path) -> Result<Vec<PathBuf>, String> {
+    let mut files = vec![root.join("README.md")];
+    let mut folders = vec![root.join("docs")];
+    while let Some(folder) = folders.pop() {
+        let entries =
+            std::fs::read_dir(&folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+        for entry in entries {
+            let path = entry.map_err(|e| e.to_string())?.path();
+            if path.is_dir() {
+                folders.push(path);
+            } else if path.extension().is_some_and(|e| e == "md")
+                && path != root.join(ACCURACY_REPORT)
+            {
+                files.push(path);
+            }
+        }
+    }
+    files.sort();
+    Ok(files)
+}
+
+/// `text` with every marked part drawn again; an unknown name or a part never ended is an
+/// error naming its line.
+pub fn redraw(text: &str, sources: &Sources) -> Result<String, String> {
+    let mut out = String::with_capacity(text.len());
+    let mut lines = text.split_inclusive('\n').enumerate();
+    while let Some((number, line)) = lines.next() {
+        out.push_str(line);
+        let Some(name) = line
+            .trim_end()
+            .strip_prefix(BEGIN)
+            .and_then(|rest| rest.strip_suffix("-->"))
+            .map(str::trim)
+        else {
+            continue;
+        };
+        let drawn = sources
+            .draw(name)
+            .map_err(|e| format!("line {}: {e}", number + 1))?;
+        // Skip the old part up to its end marker.
+        let ended = lines.by_ref().any(|(_, line)| line.trim_end() == END);
+        if !ended {
+            return Err(format!(
+                "line {}: `{name}` has no `{END}` after it",
+                number + 1
+            ));
+        }
+        out.push_str(&drawn);
+        out.push_str(END);
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// Draws every marked part and the accuracy report from the committed measurements under
+/// `root`. With `write`, rewrites the files that change; either way returns the files that
+/// differed from what was drawn.
+pub fn update(root: &Path, write: bool) -> Result<Vec<PathBuf>, String> {
+    let sources = Sources::read(root)?;
+    let mut drawn = Vec::new();
+    for path in marked_files(root)? {
+        let text =
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let new = redraw(&text, &sources).map_err(|e| format!("{}: {e}", path.display()))?;
+        drawn.push((path, text, new));
+    }
+    let report = root.join(ACCURACY_REPORT);
+    let text =
+        std::fs::read_to_string(&report).map_err(|e| format!("{}: {e}", report.display()))?;
+    drawn.push((report, text, sources.accuracy_report()));
+    let mut changed = Vec::new();
+    for (path, old, new) in drawn {
+        if old != new {
+            if write {
+                std::fs::write(&path, &new).map_err(|e| format!("{}: {e}", path.display()))?;
+            }
+            changed.push(path);
+        }
+    }
+    Ok(changed)
+}

@@ -1,0 +1,46 @@
+//! The docs print only figures drawn from the measurements committed beside them: every part
+//! marked `<!-- figures: NAME -->` in README.md and docs/, and the accuracy report, is what
+//! `carom-bench docs` would draw from docs/accuracy/accuracy.csv and
+//! docs/hard-cases/hard-cases.csv.
+
+use std::path::Path;
+
+#[test]
+fn every_drawn_figure_in_the_docs_is_what_its_measurements_give() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let stale = carom_bench::docs::update(&root, false).unwrap();
+    assert!(
+        stale.is_empty(),
+        "these docs differ from what their committed measurements draw (run `cargo run \
+         --release -p carom-bench -- docs`): {stale:?}"
+    );
+}
+
+#[test]
+fn a_marked_part_is_drawn_again_and_a_broken_one_is_refused() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let sources = carom_bench::docs::Sources::read(&root).unwrap();
+    let text = "# A page\n\n<!-- figures: hard-cases/summary -->\nan old figure: 42\n<!-- end figures -->\n\nAfter.\n";
+    let drawn = carom_bench::docs::redraw(text, &sources).unwrap();
+    assert!(!drawn.contains("42"), "{drawn}");
+    assert!(drawn.contains("Box2D v3"), "{drawn}");
+    assert!(drawn.starts_with("# A page\n\n<!-- figures: hard-cases/summary -->\n"));
+    assert!(
+        drawn.ends_with("<!-- end figures -->\n\nAfter.\n"),
+        "{drawn}"
+    );
+    // Drawing twice changes nothing.
+    assert_eq!(carom_bench::docs::redraw(&drawn, &sources).unwrap(), drawn);
+    let unknown = "<!-- figures: no/such -->\n<!-- end figures -->\n";
+    let error = carom_bench::docs::redraw(unknown, &sources).unwrap_err();
+    assert!(
+        error.contains("line 1") && error.contains("no/such"),
+        "{error}"
+    );
+    let unended = "x\n<!-- figures: accuracy/summary -->\nold\n";
+    let error = carom_bench::docs::redraw(unended, &sources).unwrap_err();
+    assert!(
+        error.contains("line 2") && error.contains("end figures"),
+        "{error}"
+    );
+}
