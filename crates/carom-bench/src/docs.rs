@@ -172,6 +172,7 @@ impl Sources {
                 ],
             )),
             "hard-cases/summary" => Ok(self.hard_case_summary()),
+            "accuracy/options" => Ok(self.option_costs()),
             "speed/recipes" => Ok(self.speed_recipes()),
             "speed/summary" => Ok(self.speed_summary()),
             _ => Err(format!(
@@ -228,6 +229,62 @@ impl Sources {
                     }
                 }
                 out.push('\n');
+            }
+        }
+        out
+    }
+
+    /// What each of soft step's options costs and buys on each scene it is swept on, at
+    /// Box2D's settings (4 substeps, 1 iteration, 30 Hz contacts, 60 Hz joints), beside
+    /// Box2D's own step there.
+    fn option_costs(&self) -> String {
+        let mut out = format!(
+            "{} Soft step at Box2D's settings (4 substeps, 1 iteration, 30 Hz contacts, 60 Hz \
+             joints) with each option off and on, and Box2D at the same; ms per step on one \
+             thread, the median of {} runs, all from the same sweep.\n\n\
+             | scene (error) | option | soft step | with the option | time, on / off | Box2D v3 \
+             |\n|---|---|---|---|---|---|\n",
+            Self::measured(&self.accuracy_provenance),
+            self.accuracy_provenance.runs
+        );
+        let base = |p: &&Point| {
+            p.setting.engine == Engine::Carom
+                && p.setting.solver == carom::SolverKind::SoftStep
+                && p.setting.substeps == 4
+                && p.setting.iterations == 1
+                && p.setting.contact_hertz == Some(30.0)
+                && p.setting.joint_hertz.is_none()
+        };
+        for (scene, points) in report::fronts(&self.accuracy) {
+            let unit = points[0].error_kind.unit();
+            let box2d = points.iter().find(|p| {
+                p.setting.engine == Engine::Box2d
+                    && p.setting.substeps == 4
+                    && p.setting.contact_hertz == Some(30.0)
+            });
+            let plain = points
+                .iter()
+                .find(|p| base(p) && !p.setting.direct_joints && !p.setting.shock_propagation);
+            // Each option alone: (direct joints, shock propagation).
+            for (name, option) in [
+                ("direct joints", (true, false)),
+                ("shock propagation", (false, true)),
+            ] {
+                let on = |s: &sweep::Setting| (s.direct_joints, s.shock_propagation) == option;
+                let (Some(plain), Some(with)) =
+                    (plain, points.iter().find(|p| base(p) && on(&p.setting)))
+                else {
+                    continue;
+                };
+                let cell = |p: &Point| format!("{:.3} ms, {}", p.ms_per_step, figure(p.error));
+                let _ = writeln!(
+                    out,
+                    "| {scene} ({unit}) | {name} | {} | {} | {:.2} | {} |",
+                    cell(plain),
+                    cell(with),
+                    with.ms_per_step / plain.ms_per_step,
+                    box2d.map_or_else(|| "-".into(), |p| cell(p))
+                );
             }
         }
         out
@@ -368,8 +425,9 @@ impl Sources {
 }
 
 /// Every part [`Sources::draw`] draws.
-pub const NAMES: [&str; 8] = [
+pub const NAMES: [&str; 9] = [
     "accuracy/fronts",
+    "accuracy/options",
     "accuracy/summary",
     "hard-cases/contacts",
     "hard-cases/shock-propagation",
