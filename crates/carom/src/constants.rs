@@ -279,3 +279,8 @@ pub(crate) const LOCKED_HINGE_RANGE: Real = 0.035;
 /// of straight up (against gravity), 60°: a pile's slanted contacts carry load, a wall's or a
 /// neighbour's side does not, and without gravity nothing is held.
 pub(crate) const SUPPORT_COSINE: Real = 0.5;
+
+/// Shock propagation: a level's round of at least this many supports (each of a different
+/// upper body) is solved in SIMD bundles; a smaller one, a column's single support, costs
+/// less one at a time than a bundle of empty lanes.
+pub(crate) const MIN_WIDE_ROUND: usize = 2;

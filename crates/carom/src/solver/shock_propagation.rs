@@ -23,12 +23,16 @@
 //! anything.
 
 use super::BodyState;
-use super::contact_constraint::{pair_mut, separation_now};
+use super::contact_constraint::separation_now;
 use super::soft_step::scalar::point_bias;
-use super::soft_step::{Bias, BundleInputs};
+use super::soft_step::{
+    Bias, BundleInputs, SharedStates, ShockBundles, ShockPassInputs, shock_test_hooks as test_hooks,
+};
 use crate::collision::contact::Contact;
+use crate::constants::MIN_WIDE_ROUND;
 use crate::constants::SUPPORT_COSINE;
 use crate::math::{Real, Vec2, cross, cross_sv, perp_cw};
+use std::ops::Range;
 
 /// A level not (yet) reached from the ground.
 const UNREACHED: u32 = u32::MAX;
@@ -52,49 +56,136 @@ pub(crate) struct ShockPropagation {
     order: Vec<(u32, u32)>,
     /// Those supports prepared, in that order.
     supports: Vec<Support>,
+    /// Each support's (lower level, round, index): the `k`-th support of an upper body in a
+    /// level is in the level's round `k`; sorted, the order the bundles take them in.
+    rounds: Vec<(u32, u32, u32)>,
+    /// Per state, its supports so far in the current level: (level, count).
+    seen: Vec<(u32, u32)>,
+    /// The supports' indices in solve order (level by level, round by round).
+    lanes: Vec<u32>,
+    /// That order in runs, each solved in SIMD bundles or one support at a time.
+    runs: Vec<Run>,
+    /// The bundles of the wide runs.
+    wide: ShockBundles,
+}
+
+/// A run of the solve order.
+#[derive(Debug, Clone)]
+enum Run {
+    /// Bundles (a range of them) of one level's round.
+    Wide(Range<usize>),
+    /// Supports one at a time (a range of [`ShockPropagation::lanes`]): a round too small
+    /// to fill a bundle's lanes.
+    Single(Range<usize>),
 }
 
 /// A support between levels: a contact whose lower body counts as immovable, so its impulses
 /// move the upper body only.
 #[derive(Debug, Clone, Copy)]
-struct Support {
+pub(crate) struct Support {
     contact_index: usize,
     /// The bodies' states, A and B as in the contact.
-    a: usize,
-    b: usize,
+    pub a: usize,
+    pub b: usize,
     /// Whether the upper body is B (else A).
-    upper_b: bool,
+    pub upper_b: bool,
     /// The upper body's inverse mass and inertia.
-    inv_mass: Real,
-    inv_inertia: Real,
+    pub inv_mass: Real,
+    pub inv_inertia: Real,
     /// Unit normal from A to B.
-    normal: Vec2,
-    friction: Real,
-    tangent_speed: Real,
+    pub normal: Vec2,
+    pub friction: Real,
+    pub tangent_speed: Real,
     points: [SupportPoint; 2],
-    point_count: usize,
+    pub point_count: usize,
 }
 
 /// One point of a support.
 #[derive(Debug, Clone, Copy, Default)]
-struct SupportPoint {
-    anchor_a: Vec2,
-    anchor_b: Vec2,
+pub(crate) struct SupportPoint {
+    pub anchor_a: Vec2,
+    pub anchor_b: Vec2,
     /// As [`super::contact_constraint::ConstraintPoint::base_separation`].
-    base_separation: Real,
+    pub base_separation: Real,
     /// `1 / k` along the normal and the tangent, of the upper body alone.
-    normal_mass: Real,
-    tangent_mass: Real,
+    pub normal_mass: Real,
+    pub tangent_mass: Real,
     /// The accumulated impulses (the normal one kept across steps, friction within the step).
-    normal_impulse: Real,
-    tangent_impulse: Real,
+    pub normal_impulse: Real,
+    pub tangent_impulse: Real,
     /// The normal impulse applied over the step, warm start included.
-    total_normal_impulse: Real,
+    pub total_normal_impulse: Real,
 }
 
 impl Support {
-    fn points(&self) -> &[SupportPoint] {
+    pub fn points(&self) -> &[SupportPoint] {
         &self.points[..self.point_count]
+    }
+
+    pub fn points_mut(&mut self) -> &mut [SupportPoint] {
+        &mut self.points[..self.point_count]
+    }
+
+    /// The upper body's state.
+    fn upper(&self) -> usize {
+        if self.upper_b { self.b } else { self.a }
+    }
+
+    /// Applies the accumulated impulses to the upper body (and counts them as pushed this
+    /// step).
+    fn warm_start(&mut self, states: &SharedStates) {
+        let (mut a, mut b) = (states.get(self.a), states.get(self.b));
+        let tangent = perp_cw(self.normal);
+        for i in 0..self.point_count {
+            let point = self.points[i];
+            let p = self.normal * point.normal_impulse + tangent * point.tangent_impulse;
+            self.push(&point, p, &mut a, &mut b);
+            self.points[i].total_normal_impulse += point.normal_impulse;
+        }
+        self.write(states, &a, &b);
+    }
+
+    /// Stops the upper body on the lower as a soft contact with the ground would, then (if
+    /// `friction`) holds it within `μ ×` that push.
+    fn solve(&mut self, states: &SharedStates, bias: &Bias, use_bias: bool, friction: bool) {
+        let (mut a, mut b) = (states.get(self.a), states.get(self.b));
+        let (a, b) = (&mut a, &mut b);
+        for i in 0..self.point_count {
+            let mut point = self.points[i];
+            let (ra, rb) = (point.anchor_a, point.anchor_b);
+            let s = separation_now(self.normal, point.base_separation, ra, rb, a, b);
+            let (velocity_bias, mass_scale, impulse_scale) =
+                point_bias(s, bias.soft, bias, use_bias);
+            let (va, vb) = self.velocities(&point, self.normal, true, a, b);
+            let impulse = -point.normal_mass * (mass_scale * (vb - va) + velocity_bias)
+                - impulse_scale * point.normal_impulse;
+            let total = (point.normal_impulse + impulse).max(0.0);
+            let applied = total - point.normal_impulse;
+            point.normal_impulse = total;
+            point.total_normal_impulse += applied;
+            self.push(&point, self.normal * applied, a, b);
+            self.points[i] = point;
+        }
+        if friction {
+            let tangent = perp_cw(self.normal);
+            for i in 0..self.point_count {
+                let mut point = self.points[i];
+                let (va, vb) = self.velocities(&point, tangent, false, a, b);
+                let vt = vb - va - self.tangent_speed;
+                let limit = self.friction * point.normal_impulse;
+                let total = (point.tangent_impulse - point.tangent_mass * vt).clamp(-limit, limit);
+                let applied = total - point.tangent_impulse;
+                point.tangent_impulse = total;
+                self.push(&point, tangent * applied, a, b);
+                self.points[i] = point;
+            }
+        }
+        self.write(states, a, b);
+    }
+
+    /// Writes back the upper body's velocities.
+    fn write(&self, states: &SharedStates, a: &BodyState, b: &BodyState) {
+        states.set_velocity(self.upper(), if self.upper_b { b } else { a });
     }
 
     /// Applies `p`, along A to B, to the upper body alone at a point.
@@ -282,19 +373,64 @@ impl ShockPropagation {
             }
             self.supports.push(support);
         }
+        self.pack(count);
+    }
+
+    /// Puts the supports into bundles, level by level and round by round (`count` states,
+    /// the last the spare one, which empty lanes name).
+    fn pack(&mut self, count: usize) {
+        self.seen.clear();
+        self.seen.resize(count, (UNREACHED, 0));
+        self.rounds.clear();
+        for (index, (&(level, _), support)) in self.order.iter().zip(&self.supports).enumerate() {
+            let upper = if support.upper_b {
+                support.b
+            } else {
+                support.a
+            };
+            let seen = &mut self.seen[upper];
+            if seen.0 != level {
+                *seen = (level, 0);
+            }
+            self.rounds.push((level, seen.1, index as u32));
+            seen.1 += 1;
+        }
+        self.rounds.sort_unstable();
+        self.lanes.clear();
+        self.lanes
+            .extend(self.rounds.iter().map(|&(_, _, index)| index));
+        self.runs.clear();
+        self.wide.clear();
+        let spare = count as u32 - 1;
+        let mut start = 0;
+        for group in self.rounds.chunk_by(|x, y| (x.0, x.1) == (y.0, y.1)) {
+            let range = start..start + group.len();
+            start = range.end;
+            let run = if group.len() >= MIN_WIDE_ROUND && !test_hooks::ONE_AT_A_TIME.get() {
+                let members = &self.lanes[range];
+                Run::Wide(self.wide.push(&self.supports, members, spare))
+            } else {
+                Run::Single(range)
+            };
+            // Neighbouring single runs are one.
+            match (self.runs.last_mut(), run) {
+                (Some(Run::Single(last)), Run::Single(next)) => last.end = next.end,
+                (_, run) => self.runs.push(run),
+            }
+        }
     }
 
     /// Applies the accumulated impulses to the upper bodies (and counts the pushes as pushed
     /// this step).
-    pub fn warm_start(&mut self, states: &mut [BodyState]) {
-        for c in &mut self.supports {
-            let (a, b) = pair_mut(states, c.a, c.b);
-            let tangent = perp_cw(c.normal);
-            for i in 0..c.point_count {
-                let point = c.points[i];
-                let p = c.normal * point.normal_impulse + tangent * point.tangent_impulse;
-                c.push(&point, p, a, b);
-                c.points[i].total_normal_impulse += point.normal_impulse;
+    pub fn warm_start(&mut self, states: &SharedStates) {
+        for run in &self.runs {
+            match run {
+                Run::Wide(range) => self.wide.warm_start(states, range.clone()),
+                Run::Single(range) => {
+                    for &i in &self.lanes[range.clone()] {
+                        self.supports[i as usize].warm_start(states);
+                    }
+                }
             }
         }
     }
@@ -302,38 +438,23 @@ impl ShockPropagation {
     /// One pass from the ground up, biased or relaxing: each support stops its upper body on
     /// the lower, as a soft contact with the ground would, then (if `friction`) holds it by
     /// friction within `μ ×` that push, beside the ordinary passes' friction within theirs.
-    pub fn solve(&mut self, states: &mut [BodyState], bias: &Bias, use_bias: bool, friction: bool) {
-        for c in &mut self.supports {
-            let (a, b) = pair_mut(states, c.a, c.b);
-            for i in 0..c.point_count {
-                let mut point = c.points[i];
-                let (ra, rb) = (point.anchor_a, point.anchor_b);
-                let s = separation_now(c.normal, point.base_separation, ra, rb, a, b);
-                let (velocity_bias, mass_scale, impulse_scale) =
-                    point_bias(s, bias.soft, bias, use_bias);
-                let (va, vb) = c.velocities(&point, c.normal, true, a, b);
-                let impulse = -point.normal_mass * (mass_scale * (vb - va) + velocity_bias)
-                    - impulse_scale * point.normal_impulse;
-                let total = (point.normal_impulse + impulse).max(0.0);
-                let applied = total - point.normal_impulse;
-                point.normal_impulse = total;
-                point.total_normal_impulse += applied;
-                c.push(&point, c.normal * applied, a, b);
-                c.points[i] = point;
-            }
-            if friction {
-                let tangent = perp_cw(c.normal);
-                for i in 0..c.point_count {
-                    let mut point = c.points[i];
-                    let (va, vb) = c.velocities(&point, tangent, false, a, b);
-                    let vt = vb - va - c.tangent_speed;
-                    let limit = c.friction * point.normal_impulse;
-                    let total =
-                        (point.tangent_impulse - point.tangent_mass * vt).clamp(-limit, limit);
-                    let applied = total - point.tangent_impulse;
-                    point.tangent_impulse = total;
-                    c.push(&point, tangent * applied, a, b);
-                    c.points[i] = point;
+    pub fn solve(&mut self, states: &SharedStates, bias: &Bias, use_bias: bool, friction: bool) {
+        let inputs = ShockPassInputs {
+            use_bias,
+            friction,
+            inv_h: bias.inv_h,
+            max_push_speed: bias.max_push_speed,
+            bias_rate: bias.soft.bias_rate,
+            mass_scale: bias.soft.mass_scale,
+            impulse_scale: bias.soft.impulse_scale,
+        };
+        for run in &self.runs {
+            match run {
+                Run::Wide(range) => self.wide.solve(states, range.clone(), inputs),
+                Run::Single(range) => {
+                    for &i in &self.lanes[range.clone()] {
+                        self.supports[i as usize].solve(states, bias, use_bias, friction);
+                    }
                 }
             }
         }
@@ -342,7 +463,8 @@ impl ShockPropagation {
     /// Keeps the accumulated pushes in the contacts' manifolds for the next step's warm start
     /// (and forgets those of the touching contacts `order` names that are not supports between
     /// levels now), and adds what each pushed this step to its contact's reported impulse.
-    pub fn store(&self, contacts: &mut [Contact], order: &[usize]) {
+    pub fn store(&mut self, contacts: &mut [Contact], order: &[usize]) {
+        self.wide.unpack(&mut self.supports);
         for &i in order {
             let (manifold, _) = contacts[i].manifold_and_impulses_mut();
             for point in manifold.points_mut() {
@@ -357,5 +479,87 @@ impl ShockPropagation {
                 report.total_normal_impulse += point.total_normal_impulse;
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::test_hooks::{BUNDLES_MADE, FOUR_LANES, ONE_AT_A_TIME};
+    use crate::dynamics::body_def::BodyDef;
+    use crate::geometry::shape::Shape;
+    use crate::math::{Real, vec2};
+    use crate::world::World;
+
+    /// The bits of every body after two seconds of three pyramids of boxes under heavy tops,
+    /// with shock propagation, built and stepped on this thread as the hooks say.
+    fn pyramids_with_shock(four_lanes: bool, one_at_a_time: bool) -> Vec<Real> {
+        FOUR_LANES.set(four_lanes);
+        ONE_AT_A_TIME.set(one_at_a_time);
+        let mut world = World::new();
+        world
+            .update_settings(|s| {
+                s.solver.shock_propagation = true;
+                s.solver.substeps = 4;
+            })
+            .unwrap();
+        let ground = BodyDef::static_body(Shape::rect(40.0, 0.5)).position(vec2(0.0, -0.5));
+        world.add_body(ground).unwrap();
+        for (pyramid, density) in [(-12.0, 50.0), (0.0, 100.0), (12.0, 200.0)] {
+            let base = 7;
+            for row in 0..base {
+                for i in 0..base - row {
+                    let x = pyramid + (i as Real - (base - row - 1) as Real * 0.5) * 1.02;
+                    let y = 0.5 + row as Real;
+                    let tilt = 0.01 * ((row + i) % 3) as Real;
+                    let body = BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                        .position(vec2(x, y))
+                        .angle(tilt);
+                    world.add_body(body).unwrap();
+                }
+            }
+            let top = BodyDef::dynamic(Shape::rect(0.5, 0.5))
+                .position(vec2(pyramid, base as Real + 0.5))
+                .density(density);
+            world.add_body(top).unwrap();
+        }
+        for _ in 0..120 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        let state = world
+            .bodies()
+            .flat_map(|b| {
+                let (p, v) = (b.position(), b.linear_velocity());
+                [p.x, p.y, b.angle(), v.x, v.y, b.angular_velocity()]
+            })
+            .collect();
+        FOUR_LANES.set(false);
+        ONE_AT_A_TIME.set(false);
+        state
+    }
+
+    /// Whether two states are the same bits.
+    fn same_bits(a: &[Real], b: &[Real]) -> bool {
+        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+    }
+
+    #[test]
+    fn bundles_give_the_bits_of_one_support_at_a_time_at_either_width() {
+        BUNDLES_MADE.set(0);
+        let wide = pyramids_with_shock(false, false);
+        assert!(
+            BUNDLES_MADE.get() > 0,
+            "the pyramids' rounds are solved in bundles"
+        );
+        let made = BUNDLES_MADE.get();
+        let four = pyramids_with_shock(true, false);
+        assert!(BUNDLES_MADE.get() > made);
+        let made = BUNDLES_MADE.get();
+        let single = pyramids_with_shock(false, true);
+        assert_eq!(BUNDLES_MADE.get(), made, "no bundles one at a time");
+        assert!(same_bits(&wide, &single), "bundles against one at a time");
+        assert!(
+            same_bits(&four, &single),
+            "four lanes against one at a time"
+        );
     }
 }

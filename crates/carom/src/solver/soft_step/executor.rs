@@ -177,14 +177,12 @@ pub(super) fn execute_stages<L: Lanes>(
                 bounces.fetch_add(count, Ordering::Relaxed);
             }
             Stage::Shock(pass) => {
-                // SAFETY: shock propagation's stage is one block, and no other stage runs.
-                #[allow(unsafe_code)]
-                let all = unsafe { states.range_mut(all_states.clone()) };
+                // Shock propagation's stage is one block, and no other stage runs.
                 let mut shock = lock(&shock);
                 match pass {
-                    Pass::WarmStart => shock.warm_start(all),
+                    Pass::WarmStart => shock.warm_start(states),
                     Pass::Solve(bias, friction) => {
-                        shock.solve(all, inputs.bias, bias.use_bias, friction)
+                        shock.solve(states, inputs.bias, bias.use_bias, friction)
                     }
                     Pass::Restitution(_) => {}
                 }

@@ -25,6 +25,7 @@ mod lanes;
 pub(crate) mod scalar;
 mod scheduler;
 mod shared_states;
+mod shock_bundles;
 #[cfg(test)]
 mod tests;
 
@@ -32,6 +33,9 @@ pub(crate) use bundles::{BundleInputs, WideContacts};
 pub(crate) use executor::Stage;
 pub(crate) use scheduler::block_range;
 pub(crate) use shared_states::SharedStates;
+pub(crate) use shock_bundles::{
+    PassInputs as ShockPassInputs, ShockBundles, test_hooks as shock_test_hooks,
+};
 
 use super::body_state::SpeedCaps;
 use super::joint_trees::JointTrees;
