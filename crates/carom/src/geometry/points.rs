@@ -49,6 +49,19 @@ impl Points {
         self.0.extend(points);
     }
 
+    /// Becomes `from`'s points each mapped by `place`, in place when it holds as many (a
+    /// moved shape's world points every step), else in fresh storage as [`Points::set`].
+    #[inline]
+    pub(crate) fn set_mapped(&mut self, from: &[Vec2], place: impl Fn(Vec2) -> Vec2) {
+        if self.0.len() == from.len() {
+            for (point, &p) in self.0.iter_mut().zip(from) {
+                *point = place(p);
+            }
+        } else {
+            self.set(from.iter().map(|&p| place(p)));
+        }
+    }
+
     /// The points, to change in place.
     pub(crate) fn as_mut_slice(&mut self) -> &mut [Vec2] {
         &mut self.0

@@ -362,8 +362,8 @@ impl WorldShape {
                 },
                 Shape::Polygon(p),
             ) => {
-                vertices.set(p.vertices().iter().map(|&v| place(v)));
-                normals.set(p.normals().iter().map(|n| rotation * n));
+                vertices.set_mapped(p.vertices(), place);
+                normals.set_mapped(p.normals(), |n| rotation * n);
                 *radius = p.radius();
             }
             (

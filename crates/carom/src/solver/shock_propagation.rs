@@ -21,6 +21,12 @@
 //! reports less than the load it bears. Bodies not resting on static or kinematic ones, and
 //! contacts within a level, are left to the ordinary passes; without gravity nothing rests on
 //! anything.
+//!
+//! The pass goes level by level. Within a level the supports of different upper bodies
+//! commute (each moves only its own upper body and reads a lower one that this level does not
+//! move), so a level's rounds (the first support of each upper body, then the second, ...)
+//! are solved in SIMD bundles ([`super::soft_step::ShockBundles`]) with the bits of the
+//! one-at-a-time solve here, which a round of one takes.
 
 use super::BodyState;
 use super::contact_constraint::separation_now;

@@ -16,6 +16,7 @@
 //! - `scheduler`: blocks of a stage handed to threads, with a barrier between stages;
 //! - `shared_states`: the body states the threads write in place (with all of carom's
 //!   `unsafe` code, here and in `lanes::avx`, saying why it is sound);
+//! - `shock_bundles`: shock propagation's supports, a level's round at a time in SIMD lanes;
 //! - `lanes`: the SIMD lanes, `wide`'s four or AVX's eight.
 
 mod bundles;
