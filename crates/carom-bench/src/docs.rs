@@ -470,18 +470,7 @@ fn short_setting(setting: &sweep::Setting) -> String {
             setting.stabilization.unwrap_or(1)
         ),
     };
-    if let Some(hertz) = setting.contact_hertz {
-        let _ = write!(name, ", {hertz} Hz");
-    }
-    if let Some(hertz) = setting.joint_hertz {
-        let _ = write!(name, ", {hertz} Hz joints");
-    }
-    if setting.direct_joints {
-        name.push_str(", direct joints");
-    }
-    if setting.shock_propagation {
-        name.push_str(", shock propagation");
-    }
+    report::name_stiffness_and_options(&mut name, setting, true);
     name
 }
 

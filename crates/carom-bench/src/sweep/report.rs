@@ -445,14 +445,16 @@ pub fn series_name(point: &Point) -> String {
     if solver.has_substeps() {
         let _ = write!(name, ", {}", substeps(point.setting.substeps));
     }
-    name_stiffness_and_options(&mut name, &point.setting);
+    name_stiffness_and_options(&mut name, &point.setting, false);
     name
 }
 
-/// Appends a carom setting's contact and joint stiffness where named, and its options.
-fn name_stiffness_and_options(name: &mut String, setting: &Setting) {
+/// Appends a setting's contact and joint stiffness where named ("30 Hz contacts", or
+/// "30 Hz" where `short`), and its options.
+pub(crate) fn name_stiffness_and_options(name: &mut String, setting: &Setting, short: bool) {
     if let Some(hertz) = setting.contact_hertz {
-        let _ = write!(name, ", {hertz} Hz contacts");
+        let contacts = if short { "" } else { " contacts" };
+        let _ = write!(name, ", {hertz} Hz{contacts}");
     }
     if let Some(hertz) = setting.joint_hertz {
         let _ = write!(name, ", {hertz} Hz joints");
@@ -476,7 +478,7 @@ pub fn setting_name(setting: &Setting) -> String {
                 let _ = write!(name, ", {}", substeps(setting.substeps));
             }
             let _ = write!(name, ", {}", it(setting.iterations));
-            name_stiffness_and_options(&mut name, setting);
+            name_stiffness_and_options(&mut name, setting, false);
             name
         }
         Engine::Box2d => match setting.contact_hertz {
