@@ -241,11 +241,11 @@ impl Sources {
         let mut out = format!(
             "{} Soft step at Box2D's settings (4 substeps, 1 iteration, 30 Hz contacts, 60 Hz \
              joints) with each option off and on, and Box2D at the same; ms per step on one \
-             thread, the median of {} runs, all from the same sweep.\n\n\
+             thread, the median {}, all from the same sweep.\n\n\
              | scene (error) | option | soft step | with the option | time, on / off | Box2D v3 \
              |\n|---|---|---|---|---|---|\n",
             Self::measured(&self.accuracy_provenance),
-            self.accuracy_provenance.runs
+            crate::sweep::report::of_runs(self.accuracy_provenance.runs)
         );
         let base = |p: &&Point| {
             p.setting.engine == Engine::Carom

@@ -138,11 +138,11 @@ enum Command {
         /// times) with --out's accuracy.csv, failing where they differ.
         #[arg(long)]
         check: bool,
-        /// Runs per point; its time is the median of the runs' medians (default 3, 1 with
-        /// --quick or --check).
+        /// Runs per point; its time is the median of the runs' medians (default 1).
         #[arg(long)]
         runs: Option<usize>,
-        /// Points measured at once (default: every core).
+        /// Points measured at once (default: one, so that no point slows another; every core
+        /// with --check, which compares no times).
         #[arg(long)]
         jobs: Option<usize>,
     },
@@ -721,15 +721,15 @@ fn sweep_run(args: SweepArgs) -> Result<(), String> {
         options.scenes = args.scenes.to_vec();
     }
     options.scenes = options.scenes.iter().map(|p| resolve(p)).collect();
-    options.runs = args
-        .runs
-        .unwrap_or(if args.quick || args.check { 1 } else { 3 });
+    options.runs = args.runs.unwrap_or(1);
     if options.runs == 0 || args.jobs == Some(0) {
         return Err("--runs and --jobs must be at least 1".into());
     }
-    if let Some(jobs) = args.jobs {
-        options.jobs = jobs;
-    }
+    options.jobs = args.jobs.unwrap_or(if args.check {
+        std::thread::available_parallelism().map_or(1, |n| n.get())
+    } else {
+        1
+    });
     let started = std::time::Instant::now();
     if !args.check {
         let points = sweep::sweep_to_folder(&options, args.out, &typed_command())?;

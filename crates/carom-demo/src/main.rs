@@ -85,7 +85,7 @@ enum Command {
         #[arg(long, default_value = "target/bench")]
         out: PathBuf,
         /// Runs per point (the time is their median).
-        #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=100))]
         runs: u32,
         /// Solvers, comma separated (default: all).
         #[arg(long, value_delimiter = ',', value_parser = solver_kind)]

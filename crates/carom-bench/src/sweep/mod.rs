@@ -29,7 +29,9 @@ use std::path::PathBuf;
 pub struct SweepOptions {
     /// The scene files.
     pub scenes: Vec<PathBuf>,
-    /// Runs per point; the point's time is the median of the runs' medians.
+    /// Runs per point; the point's time is the median of the runs' medians. One by default:
+    /// back to back, more runs of a point meet the same moment of the machine, so they do not
+    /// steady its time (two sweeps of one run and of three each move a point's time as much).
     pub runs: usize,
     /// The solvers.
     pub solvers: Vec<SolverKind>,
@@ -64,7 +66,9 @@ pub struct SweepOptions {
     pub rapier_substeps: Vec<u32>,
     /// Rapier's stabilization iterations per substep.
     pub rapier_stabilization: Vec<u32>,
-    /// Points measured at once, each on a thread of its own.
+    /// Points measured at once, each on a thread of its own. One by default: on two cores two
+    /// points at once slow each other unevenly, which the times would show. More for a sweep
+    /// whose errors alone are wanted (the errors do not depend on it).
     pub jobs: usize,
 }
 
@@ -90,7 +94,7 @@ impl Default for SweepOptions {
             .iter()
             .map(|name| PathBuf::from(format!("demos/{name}.ron")))
             .collect(),
-            runs: 3,
+            runs: 1,
             solvers: SolverKind::ALL.to_vec(),
             iterations: vec![1, 2, 4, 8, 16, 32, 64],
             substeps: vec![1, 2, 4, 8, 16],
@@ -104,7 +108,7 @@ impl Default for SweepOptions {
             box2d_substeps: vec![1, 2, 4, 8, 16],
             rapier_substeps: vec![1, 2, 4, 8, 16],
             rapier_stabilization: vec![1, 2, 4, 8, 16],
-            jobs: std::thread::available_parallelism().map_or(1, |n| n.get()),
+            jobs: 1,
         }
     }
 }
@@ -282,10 +286,12 @@ pub struct Point {
 /// Runs the sweep; `progress(done, total, what)` is told as each point ends (`what` names
 /// it), on the calling thread.
 ///
-/// The points are independent, so [`SweepOptions::jobs`] of them run at once, each on a
-/// thread of its own with carom on one thread (as Box2D, on one worker, and Rapier run), the
-/// costliest first so the last to finish are short. The points come back in sweep order,
-/// whatever order they ran in: scene by scene, setting by setting.
+/// Every point runs with carom on one thread (as Box2D, on one worker, and Rapier run). One at
+/// a time, the points run in sweep order, so the engines' points on a scene are measured
+/// within moments of each other. The points are independent, so with [`SweepOptions::jobs`]
+/// above one that many run at once, each on a thread of its own, the costliest first so the
+/// last to finish are short. The points come back in sweep order, whatever order they ran in:
+/// scene by scene, setting by setting.
 pub fn sweep(
     options: &SweepOptions,
     mut progress: impl FnMut(usize, usize, &str),
@@ -309,11 +315,13 @@ pub fn sweep(
         .flat_map(|(i, (_, _, settings, _))| settings.iter().map(move |&s| (i, s)))
         .collect();
     let total = cells.len();
-    // Longest first: a cell's work grows with its passes per step.
-    let mut order: Vec<usize> = (0..total).collect();
-    order.sort_by_key(|&c| std::cmp::Reverse(cells[c].1.passes_per_step()));
     let runs = options.runs.max(1);
     let jobs = options.jobs.clamp(1, total.max(1));
+    let mut order: Vec<usize> = (0..total).collect();
+    if jobs > 1 {
+        // Longest first: a cell's work grows with its passes per step.
+        order.sort_by_key(|&c| std::cmp::Reverse(cells[c].1.passes_per_step()));
+    }
     let next = std::sync::atomic::AtomicUsize::new(0);
     let (send, receive) = std::sync::mpsc::channel();
     let mut results: Vec<Option<Measured>> = vec![None; total];

@@ -227,11 +227,14 @@ pub fn markdown(points: &[Point], provenance: &Provenance) -> String {
     let _ = writeln!(out, "# What accuracy costs in time\n");
     let _ = writeln!(
         out,
-        "Measured {} on {} ({} cores) with `{command}`: every cell is the median ms/step over \
-         {runs} runs and the error against the scene's exact answer. Release build, sleeping \
-         off (every step is solved), scenes this size run on one thread. `inf` means the world \
-         went NaN.\n",
-        machine.date, machine.cpu, machine.cores
+        "Measured {} on {} ({} cores) with `{command}`: every cell is the median ms/step {} \
+         and the error against the scene's exact answer. Release build, sleeping off (every \
+         step is solved), scenes this size run on one thread. `inf` means the world went \
+         NaN.\n",
+        machine.date,
+        machine.cpu,
+        machine.cores,
+        of_runs(runs)
     );
     let mut engines: Vec<Engine> = points.iter().map(|p| p.setting.engine).collect();
     engines.sort_unstable();
@@ -764,6 +767,15 @@ const CSV_ERROR_KINDS: [super::ErrorKind; 10] = [
     super::ErrorKind::Sink,
     super::ErrorKind::Overlap,
 ];
+
+/// Where a point's median ms/step comes from, for the reports: "of one run" or "over N runs
+/// (the median of their medians)".
+pub fn of_runs(runs: usize) -> String {
+    match runs {
+        1 => "of one run".to_string(),
+        n => format!("over {n} runs (the median of their medians)"),
+    }
+}
 
 #[cfg(test)]
 mod tests {
