@@ -29,8 +29,11 @@ pub const ACCURACY_REPORT: &str = "docs/accuracy/README.md";
 pub const HARD_CASES_CSV: &str = "docs/hard-cases/hard-cases.csv";
 /// carom, Box2D and Rapier timed on Box2D's recipes, written by `carom-bench --csv`.
 pub const SPEED_CSV: &str = "docs/bench/peers.csv";
+/// Instructions per step of a resting pyramid with each set of effects, written by
+/// `scripts/effect_cost.sh`.
+pub const EFFECTS_CSV: &str = "docs/effects/effect-cost.csv";
 /// Every file figures are drawn from.
-pub const SOURCES: [&str; 3] = [ACCURACY_CSV, HARD_CASES_CSV, SPEED_CSV];
+pub const SOURCES: [&str; 4] = [ACCURACY_CSV, HARD_CASES_CSV, SPEED_CSV, EFFECTS_CSV];
 
 const BEGIN: &str = "<!-- figures: ";
 const END: &str = "<!-- end figures -->";
@@ -43,6 +46,40 @@ pub struct Sources {
     hard_cases_provenance: report::Provenance,
     speed: Vec<SpeedRow>,
     speed_provenance: report::Provenance,
+    effects: Vec<EffectCost>,
+    effects_provenance: report::Provenance,
+}
+
+/// One row of [`EFFECTS_CSV`]: the effects switched from all six (`-sleeping,-drag`), and
+/// the instructions a step costs with them.
+struct EffectCost {
+    effects: String,
+    instructions: u64,
+}
+
+/// Reads [`EFFECTS_CSV`]'s rows (the effects may hold commas: the count is the last field).
+fn parse_effects(text: &str) -> Result<Vec<EffectCost>, String> {
+    let mut lines = text.lines().filter(|line| !line.starts_with('#'));
+    if lines.next() != Some("effects,instructions_per_step") {
+        return Err("its header is not `effects,instructions_per_step`".into());
+    }
+    let rows: Vec<EffectCost> = lines
+        .map(|line| {
+            let (effects, count) = line
+                .rsplit_once(',')
+                .ok_or_else(|| format!("`{line}` has no count"))?;
+            Ok(EffectCost {
+                effects: effects.trim_matches('"').to_string(),
+                instructions: count
+                    .parse()
+                    .map_err(|e| format!("`{line}`: the count: {e}"))?,
+            })
+        })
+        .collect::<Result<_, String>>()?;
+    if rows.is_empty() {
+        return Err("no rows".into());
+    }
+    Ok(rows)
 }
 
 /// One recipe of [`SPEED_CSV`]: ms per step of each engine, and on `--threads` threads.
@@ -130,6 +167,7 @@ impl Sources {
         let accuracy_text = read(ACCURACY_CSV)?;
         let hard_text = read(HARD_CASES_CSV)?;
         let speed_text = read(SPEED_CSV)?;
+        let effects_text = read(EFFECTS_CSV)?;
         Ok(Sources {
             accuracy: report::parse_csv(&accuracy_text)
                 .map_err(|e| format!("{ACCURACY_CSV}: {e}"))?,
@@ -139,6 +177,8 @@ impl Sources {
             hard_cases_provenance: provenance(HARD_CASES_CSV, &hard_text)?,
             speed: parse_speed(&speed_text).map_err(|e| format!("{SPEED_CSV}: {e}"))?,
             speed_provenance: provenance(SPEED_CSV, &speed_text)?,
+            effects: parse_effects(&effects_text).map_err(|e| format!("{EFFECTS_CSV}: {e}"))?,
+            effects_provenance: provenance(EFFECTS_CSV, &effects_text)?,
         })
     }
 
@@ -175,6 +215,7 @@ impl Sources {
             "accuracy/options" => Ok(self.option_costs()),
             "speed/recipes" => Ok(self.speed_recipes()),
             "speed/summary" => Ok(self.speed_summary()),
+            "effects/cost" => Ok(self.effect_costs()),
             _ => Err(format!(
                 "no figures named `{name}`: the names are {}",
                 NAMES.join(", ")
@@ -392,6 +433,51 @@ impl Sources {
         )
     }
 
+    /// Instructions per step with each set of effects, against the first row (the baseline),
+    /// and what the effects the page discusses cost.
+    fn effect_costs(&self) -> String {
+        let base = self.effects[0].instructions as f64;
+        let ratio = |row: &EffectCost| row.instructions as f64 / base;
+        let mut out = format!(
+            "{} Instructions per step, counted by callgrind; the first row is the baseline.\n\n\
+             | effects (from all six) | instructions/step | ratio |\n|---|---|---|\n",
+            Self::measured(&self.effects_provenance)
+        );
+        for (index, row) in self.effects.iter().enumerate() {
+            let label = if index == 0 {
+                format!("`{}` (the baseline)", row.effects)
+            } else if row.effects.split(',').count() == 6 {
+                "none".to_string()
+            } else {
+                format!("`{}`", row.effects)
+            };
+            let _ = writeln!(
+                out,
+                "| {label} | {} | {:.3} |",
+                row.instructions,
+                ratio(row)
+            );
+        }
+        // The share of the baseline an effect costs: what switching it off saves.
+        let share = |effects: &str| {
+            self.effects
+                .iter()
+                .find(|row| row.effects == effects)
+                .map_or("-".to_string(), |row| {
+                    format!("{:.1} %", 100.0 * (1.0 - ratio(row)).abs())
+                })
+        };
+        let _ = writeln!(
+            out,
+            "\nHere continuous collision costs {} of the baseline's step and friction {}, \
+             and sleeping removes {} of the work once the pyramid rests.",
+            share("-sleeping,-continuous"),
+            share("-sleeping,-friction"),
+            share("+sleeping"),
+        );
+        out
+    }
+
     /// How many bars each column meets, over the cases it runs.
     fn hard_case_summary(&self) -> String {
         let met = |columns: &[Column]| {
@@ -425,7 +511,8 @@ impl Sources {
 }
 
 /// Every part [`Sources::draw`] draws.
-pub const NAMES: [&str; 9] = [
+pub const NAMES: [&str; 10] = [
+    "effects/cost",
     "accuracy/fronts",
     "accuracy/options",
     "accuracy/summary",

@@ -1,7 +1,6 @@
 //! The docs print only figures drawn from the measurements committed beside them: every part
 //! marked `<!-- figures: NAME -->` in README.md and docs/, and the accuracy report, is what
-//! `carom-bench docs` would draw from docs/accuracy/accuracy.csv and
-//! docs/hard-cases/hard-cases.csv.
+//! `carom-bench docs` would draw from the measurements `carom_bench::docs::SOURCES` names.
 
 use std::path::Path;
 
@@ -43,4 +42,24 @@ fn a_marked_part_is_drawn_again_and_a_broken_one_is_refused() {
         error.contains("line 2") && error.contains("end figures"),
         "{error}"
     );
+}
+
+#[test]
+fn the_effect_table_is_drawn_against_its_first_row() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let sources = carom_bench::docs::Sources::read(&root).unwrap();
+    let drawn = sources.draw("effects/cost").unwrap();
+    let rows: Vec<&str> = drawn.lines().filter(|l| l.starts_with("| `")).collect();
+    assert!(rows.len() >= 2, "{drawn}");
+    assert!(
+        rows[0].contains("(the baseline)") && rows[0].ends_with("| 1.000 |"),
+        "{drawn}"
+    );
+    // Sleeping removes most of a resting pyramid's work.
+    let asleep = rows
+        .iter()
+        .find(|r| r.starts_with("| `+sleeping`"))
+        .unwrap();
+    let ratio: f64 = asleep.rsplit('|').nth(1).unwrap().trim().parse().unwrap();
+    assert!(ratio < 0.5, "{asleep}");
 }
