@@ -458,13 +458,14 @@ impl Sources {
                 ratio(row)
             );
         }
-        // The share of the baseline an effect costs: what switching it off saves.
+        // The share of the baseline an effect costs: what switching it off saves (sleeping's,
+        // what switching it on saves).
         let share = |effects: &str| {
             self.effects
                 .iter()
                 .find(|row| row.effects == effects)
                 .map_or("-".to_string(), |row| {
-                    format!("{:.1} %", 100.0 * (1.0 - ratio(row)).abs())
+                    format!("{:.1} %", 100.0 * (1.0 - ratio(row)))
                 })
         };
         let _ = writeln!(
