@@ -10,7 +10,9 @@ use crate::collision::contact::{Contact, ContactEvent, ContactSet};
 use crate::collision::manifold::{self, Manifold, Margins};
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::recycle::ManifoldFrame;
-use crate::constants::{CONTACTS_PER_TASK, PREFETCH_AHEAD, TOUCH_BEGIN, TOUCH_END};
+use crate::constants::{
+    CONTACTS_PER_TASK, PREFETCH_AHEAD, PREFETCH_MIN_CONTACTS, TOUCH_BEGIN, TOUCH_END,
+};
 use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
 use crate::handle_map::HandleMap;
@@ -89,6 +91,11 @@ impl Narrowphase {
         let awake = set.awake_range();
         self.refresh.clear();
         self.refresh.resize(awake.len(), Refresh::Unchanged);
+        let ahead = if awake.len() >= PREFETCH_MIN_CONTACTS {
+            PREFETCH_AHEAD
+        } else {
+            0
+        };
         let contacts = &mut set.contacts[awake];
         for_each_chunk_mut_with(
             contacts,
@@ -97,8 +104,11 @@ impl Narrowphase {
             |contacts, out| {
                 for (index, refresh) in out.iter_mut().enumerate() {
                     // What a contact a few ahead reads is asked for now, so that those reads
-                    // overlap this contact's work instead of each stalling in turn.
-                    if let Some(ahead) = contacts.get(index + PREFETCH_AHEAD) {
+                    // overlap this contact's work instead of each stalling in turn (in a set
+                    // too large to stay cached).
+                    if ahead > 0
+                        && let Some(ahead) = contacts.get(index + ahead)
+                    {
                         fetch_ahead(ahead, bodies, fat_boxes);
                     }
                     *refresh = refresh_manifold(
