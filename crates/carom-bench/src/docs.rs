@@ -32,8 +32,16 @@ pub const SPEED_CSV: &str = "docs/bench/peers.csv";
 /// Instructions per step of a resting pyramid with each set of effects, written by
 /// `scripts/effect_cost.sh`.
 pub const EFFECTS_CSV: &str = "docs/effects/effect-cost.csv";
+/// What a snapshot and a restore cost beside a step, written by `carom-bench snapshots --csv`.
+pub const SNAPSHOTS_CSV: &str = "docs/bench/snapshots.csv";
 /// Every file figures are drawn from.
-pub const SOURCES: [&str; 4] = [ACCURACY_CSV, HARD_CASES_CSV, SPEED_CSV, EFFECTS_CSV];
+pub const SOURCES: [&str; 5] = [
+    ACCURACY_CSV,
+    HARD_CASES_CSV,
+    SPEED_CSV,
+    EFFECTS_CSV,
+    SNAPSHOTS_CSV,
+];
 
 const BEGIN: &str = "<!-- figures: ";
 const END: &str = "<!-- end figures -->";
@@ -48,6 +56,59 @@ pub struct Sources {
     speed_provenance: report::Provenance,
     effects: Vec<EffectCost>,
     effects_provenance: report::Provenance,
+    snapshots: Vec<SnapshotRow>,
+    snapshots_provenance: report::Provenance,
+}
+
+/// One row of [`SNAPSHOTS_CSV`]: a scene on some threads, the medians of its rounds, ms, and
+/// the bytes a snapshot takes.
+struct SnapshotRow {
+    scene: String,
+    bodies: usize,
+    threads: usize,
+    step: f64,
+    snapshot: f64,
+    restore: f64,
+    bytes: u64,
+}
+
+impl SnapshotRow {
+    /// Snapshot plus restore over one step.
+    fn ratio(&self) -> f64 {
+        (self.snapshot + self.restore) / self.step
+    }
+}
+
+/// Reads [`SNAPSHOTS_CSV`]'s rows, its columns in the order `carom-bench snapshots` writes them.
+fn parse_snapshots(text: &str) -> Result<Vec<SnapshotRow>, String> {
+    const HEADER: &str = "scene,bodies,threads,step_ms,snapshot_ms,restore_ms,bytes";
+    let mut lines = text.lines().filter(|line| !line.starts_with('#'));
+    if lines.next() != Some(HEADER) {
+        return Err(format!("its header is not `{HEADER}`"));
+    }
+    let rows: Vec<SnapshotRow> = lines
+        .map(|line| {
+            let fields: Vec<&str> = line.split(',').collect();
+            let [scene, bodies, threads, step, snapshot, restore, bytes] = fields[..] else {
+                return Err(format!("`{line}` has not seven fields"));
+            };
+            let bad = |e: &dyn std::fmt::Display| format!("`{line}`: {e}");
+            let ms = |field: &str| field.parse::<f64>().map_err(|e| bad(&e));
+            Ok(SnapshotRow {
+                scene: scene.to_string(),
+                bodies: bodies.parse().map_err(|e| bad(&e))?,
+                threads: threads.parse().map_err(|e| bad(&e))?,
+                step: ms(step)?,
+                snapshot: ms(snapshot)?,
+                restore: ms(restore)?,
+                bytes: bytes.parse().map_err(|e| bad(&e))?,
+            })
+        })
+        .collect::<Result<_, String>>()?;
+    if rows.is_empty() {
+        return Err("no rows".into());
+    }
+    Ok(rows)
 }
 
 /// One row of [`EFFECTS_CSV`]: the effects switched from all six (`-sleeping,-drag`), and
@@ -168,6 +229,7 @@ impl Sources {
         let hard_text = read(HARD_CASES_CSV)?;
         let speed_text = read(SPEED_CSV)?;
         let effects_text = read(EFFECTS_CSV)?;
+        let snapshots_text = read(SNAPSHOTS_CSV)?;
         Ok(Sources {
             accuracy: report::parse_csv(&accuracy_text)
                 .map_err(|e| format!("{ACCURACY_CSV}: {e}"))?,
@@ -179,6 +241,9 @@ impl Sources {
             speed_provenance: provenance(SPEED_CSV, &speed_text)?,
             effects: parse_effects(&effects_text).map_err(|e| format!("{EFFECTS_CSV}: {e}"))?,
             effects_provenance: provenance(EFFECTS_CSV, &effects_text)?,
+            snapshots: parse_snapshots(&snapshots_text)
+                .map_err(|e| format!("{SNAPSHOTS_CSV}: {e}"))?,
+            snapshots_provenance: provenance(SNAPSHOTS_CSV, &snapshots_text)?,
         })
     }
 
@@ -216,6 +281,7 @@ impl Sources {
             "speed/recipes" => Ok(self.speed_recipes()),
             "speed/summary" => Ok(self.speed_summary()),
             "effects/cost" => Ok(self.effect_costs()),
+            "bench/snapshots" => Ok(self.snapshot_costs()),
             _ => Err(format!(
                 "no figures named `{name}`: the names are {}",
                 NAMES.join(", ")
@@ -479,6 +545,43 @@ impl Sources {
         out
     }
 
+    /// What a snapshot and a restore cost beside a step, per scene and thread count, and the
+    /// most they cost of a step.
+    fn snapshot_costs(&self) -> String {
+        let mut out = format!(
+            "{} Each time is the median of the rounds, ms.\n\n\
+             | scene | bodies | threads | step | snapshot | restore | (snapshot + restore) / step \
+             | bytes | bytes per body |\n|---|---|---|---|---|---|---|---|---|\n",
+            Self::measured(&self.snapshots_provenance)
+        );
+        for row in &self.snapshots {
+            let _ = writeln!(
+                out,
+                "| {} | {} | {} | {:.3} | {:.3} | {:.3} | {:.2} | {:.1} MB | {:.0} |",
+                row.scene,
+                row.bodies,
+                row.threads,
+                row.step,
+                row.snapshot,
+                row.restore,
+                row.ratio(),
+                row.bytes as f64 / 1e6,
+                row.bytes as f64 / row.bodies.max(1) as f64
+            );
+        }
+        let most = self
+            .snapshots
+            .iter()
+            .map(SnapshotRow::ratio)
+            .fold(0.0, f64::max);
+        let _ = writeln!(
+            out,
+            "\nA snapshot plus a restore costs at most {most:.2} of a step here, on every scene \
+             and thread count."
+        );
+        out
+    }
+
     /// How many bars each column meets, over the cases it runs.
     fn hard_case_summary(&self) -> String {
         let met = |columns: &[Column]| {
@@ -512,7 +615,8 @@ impl Sources {
 }
 
 /// Every part [`Sources::draw`] draws.
-pub const NAMES: [&str; 10] = [
+pub const NAMES: [&str; 11] = [
+    "bench/snapshots",
     "effects/cost",
     "accuracy/fronts",
     "accuracy/options",

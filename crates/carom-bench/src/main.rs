@@ -91,6 +91,10 @@ enum Command {
         /// Timed rounds of snapshot, step and restore; medians are reported.
         #[arg(long, default_value_t = 60)]
         rounds: u32,
+        /// Also write the table as CSV to this file (docs/bench/snapshots.csv is the one the
+        /// docs draw from).
+        #[arg(long)]
+        csv: Option<PathBuf>,
     },
     /// Plays a scene for a long run with the demo's timeline (a keyframe every 20 steps in
     /// 192 MB, older ones thinned past it), and reports the memory its keyframes take as the
@@ -148,8 +152,8 @@ enum Command {
     },
     /// Draws the figures of README.md and docs/ again from the measurements committed in
     /// docs/ (docs/accuracy/accuracy.csv, docs/hard-cases/hard-cases.csv,
-    /// docs/bench/peers.csv): every part marked `<!-- figures: NAME -->`, the accuracy report
-    /// and its chart.
+    /// docs/bench/peers.csv, docs/bench/snapshots.csv, docs/effects/effect-cost.csv): every
+    /// part marked `<!-- figures: NAME -->`, the accuracy report and its chart.
     Docs {
         /// Write nothing; fail when a doc differs from what would be drawn.
         #[arg(long)]
@@ -837,8 +841,8 @@ fn timeline_run(scene: &Path, steps: u64) -> Result<(), String> {
 /// `carom-bench snapshots`: the table of what a snapshot and a restore cost beside a step.
 fn snapshots_run(
     scenes: &[PathBuf],
-    warm_up: u32,
-    rounds: u32,
+    (warm_up, rounds): (u32, u32),
+    csv: Option<&Path>,
     (one, many): (&rayon::ThreadPool, &rayon::ThreadPool),
 ) -> Result<(), String> {
     if rounds == 0 {
@@ -867,6 +871,7 @@ fn snapshots_run(
          bytes | bytes per body |"
     );
     println!("|---|---|---|---|---|---|---|---|---|");
+    let mut rows = String::from("scene,bodies,threads,step_ms,snapshot_ms,restore_ms,bytes\n");
     for path in scenes {
         for &pool in &pools {
             let mut scene = carom_scene::load(path).map_err(|e| e.to_string())?;
@@ -888,7 +893,28 @@ fn snapshots_run(
                 cost.ratio(),
                 bytes as f64 / bodies.max(1) as f64,
             );
+            let scene_name = path.file_stem().map_or_else(
+                || path.display().to_string(),
+                |s| s.to_string_lossy().into_owned(),
+            );
+            let _ = writeln!(
+                rows,
+                "{scene_name},{bodies},{},{},{},{},{bytes}",
+                pool.current_num_threads(),
+                ms(cost.step.median),
+                ms(cost.snapshot.median),
+                ms(cost.restore.median),
+            );
         }
+    }
+    if let Some(path) = csv {
+        let provenance = carom_bench::sweep::report::Provenance {
+            machine: carom_bench::sweep::report::Machine::here(),
+            command: typed_command(),
+            runs: 1,
+        };
+        std::fs::write(path, provenance.header() + &rows)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
     }
     Ok(())
 }
@@ -1051,9 +1077,10 @@ fn main() -> Result<(), String> {
         scenes,
         warm_up,
         rounds,
+        csv,
     }) = &args.command
     {
-        return snapshots_run(scenes, *warm_up, *rounds, (&one, &many));
+        return snapshots_run(scenes, (*warm_up, *rounds), csv.as_deref(), (&one, &many));
     }
     if let Some(Command::Timeline { scene, steps }) = &args.command {
         return many.install(|| timeline_run(scene, *steps));

@@ -63,3 +63,22 @@ fn the_effect_table_is_drawn_against_its_first_row() {
     let ratio: f64 = asleep.rsplit('|').nth(1).unwrap().trim().parse().unwrap();
     assert!(ratio < 0.5, "{asleep}");
 }
+
+#[test]
+fn the_snapshot_table_states_the_largest_ratio_of_its_rows() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let sources = carom_bench::docs::Sources::read(&root).unwrap();
+    let drawn = sources.draw("bench/snapshots").unwrap();
+    // The ratio column, (snapshot + restore) / step, of every row.
+    let ratios: Vec<f64> = drawn
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| scene"))
+        .map(|l| l.split('|').nth(7).unwrap().trim().parse().unwrap())
+        .collect();
+    assert!(!ratios.is_empty(), "{drawn}");
+    let most = ratios.iter().copied().fold(0.0, f64::max);
+    assert!(
+        drawn.contains(&format!("at most {most:.2} of a step")),
+        "{drawn}"
+    );
+}
