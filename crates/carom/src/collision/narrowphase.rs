@@ -331,6 +331,7 @@ fn refresh_manifold(
 /// whether it is solved this step; one turned down loses its points (and with them what it
 /// would warm start from) and its recycling frame, so next step builds it afresh. Then what
 /// the bookkeeping needs to know of it (`recycled`: its manifold was carried along).
+#[inline]
 fn settled(
     contact: &mut Contact,
     colliders: &HandleMap<ColliderHandle, Collider>,

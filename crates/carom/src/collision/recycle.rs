@@ -63,6 +63,7 @@ impl ManifoldFrame {
     /// `distance` relative to each other since it was built (less for small bodies, and the
     /// speculative distance for a pair apart); false (leaving it as it was) if it must be
     /// built again.
+    #[inline]
     pub fn carry(&self, manifold: &mut Manifold, a: &Body, b: &Body, distance: Real) -> bool {
         if !self.valid {
             return false;

@@ -146,8 +146,9 @@ pub(crate) fn integrate_velocities(
     })
 }
 
-/// [`integrate_velocities`] of one body.
-#[inline]
+/// [`integrate_velocities`] of one body. Always inlined: called once per body per substep,
+/// a call (and its `Work` returned through memory) costs as much as the integration.
+#[inline(always)]
 pub(crate) fn integrate_velocity(
     environment: Environment,
     body: &Body,
