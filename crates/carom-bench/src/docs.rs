@@ -34,13 +34,17 @@ pub const SPEED_CSV: &str = "docs/bench/peers.csv";
 pub const EFFECTS_CSV: &str = "docs/effects/effect-cost.csv";
 /// What a snapshot and a restore cost beside a step, written by `carom-bench snapshots --csv`.
 pub const SNAPSHOTS_CSV: &str = "docs/bench/snapshots.csv";
+/// carom's and Box2D's stages on Box2D's recipes, written by `carom-bench --stages-csv` in the
+/// run that writes [`SPEED_CSV`].
+pub const STAGES_CSV: &str = "docs/bench/stages.csv";
 /// Every file figures are drawn from.
-pub const SOURCES: [&str; 5] = [
+pub const SOURCES: [&str; 6] = [
     ACCURACY_CSV,
     HARD_CASES_CSV,
     SPEED_CSV,
     EFFECTS_CSV,
     SNAPSHOTS_CSV,
+    STAGES_CSV,
 ];
 
 const BEGIN: &str = "<!-- figures: ";
@@ -58,6 +62,53 @@ pub struct Sources {
     effects_provenance: report::Provenance,
     snapshots: Vec<SnapshotRow>,
     snapshots_provenance: report::Provenance,
+    stages: Vec<StageRow>,
+    stages_provenance: report::Provenance,
+}
+
+/// One row of [`STAGES_CSV`]: a recipe in one engine, its stages' ms per step and the work
+/// behind them (NaN where the engine does not count it), in the file's column order.
+struct StageRow {
+    scene: String,
+    engine: String,
+    /// step, broadphase, narrowphase, solve, continuous, sleep.
+    ms: [f64; 6],
+    /// contacts, awake contacts, recycled, touching, created, destroyed, proxies moved, pair
+    /// candidates, island splits.
+    work: [f64; 9],
+}
+
+/// Reads [`STAGES_CSV`]'s rows.
+fn parse_stages(text: &str) -> Result<Vec<StageRow>, String> {
+    const HEADER: &str = "scene,engine,step_ms,broadphase_ms,narrowphase_ms,solve_ms,\
+                          continuous_ms,sleep_ms,contacts,awake_contacts,recycled,touching,\
+                          created,destroyed,proxies_moved,pair_candidates,island_splits";
+    let mut lines = text.lines().filter(|line| !line.starts_with('#'));
+    if lines.next() != Some(HEADER) {
+        return Err(format!("its header is not `{HEADER}`"));
+    }
+    let rows: Vec<StageRow> = lines
+        .map(|line| {
+            let fields: Vec<&str> = line.split(',').collect();
+            if fields.len() != 17 {
+                return Err(format!("`{line}` has not 17 fields"));
+            }
+            let numbers = fields[2..]
+                .iter()
+                .map(|f| f.parse::<f64>().map_err(|e| format!("`{line}`: {e}")))
+                .collect::<Result<Vec<f64>, String>>()?;
+            Ok(StageRow {
+                scene: fields[0].to_string(),
+                engine: fields[1].to_string(),
+                ms: std::array::from_fn(|k| numbers[k]),
+                work: std::array::from_fn(|k| numbers[6 + k]),
+            })
+        })
+        .collect::<Result<_, String>>()?;
+    if rows.is_empty() {
+        return Err("no rows".into());
+    }
+    Ok(rows)
 }
 
 /// One row of [`SNAPSHOTS_CSV`]: a scene on some threads, the medians of its rounds, ms, and
@@ -152,6 +203,14 @@ struct SpeedRow {
     rapier: f64,
     carom_threads: f64,
     box2d_threads: f64,
+    /// How far the top body fell, m: carom's, Box2D's, Rapier's (NaN: no body to follow).
+    drops: [f64; 3],
+    /// Whether a body went non-finite: carom, Box2D, Rapier.
+    nan: [bool; 3],
+    /// Heap allocations per step: carom's, Rapier's.
+    allocations: [f64; 2],
+    /// Heap bytes per body: carom's, Rapier's.
+    bytes_per_body: [f64; 2],
 }
 
 /// Reads [`SPEED_CSV`]'s rows by their column names.
@@ -184,6 +243,29 @@ fn parse_speed(text: &str) -> Result<Vec<SpeedRow>, String> {
     .map(column);
     let (scene, bodies) = (scene?, bodies?);
     let numbers = [carom?, box2d?, rapier?, carom_threads?, box2d_threads?];
+    let [carom_drop, box2d_drop, rapier_drop] =
+        ["carom_top_drop_m", "box2d_top_drop_m", "rapier_top_drop_m"].map(column);
+    let drops = [carom_drop?, box2d_drop?, rapier_drop?];
+    let [carom_nan, box2d_nan, rapier_nan] = ["carom_nan", "box2d_nan", "rapier_nan"].map(column);
+    let nans = [carom_nan?, box2d_nan?, rapier_nan?];
+    let [
+        carom_allocations,
+        rapier_allocations,
+        carom_bytes,
+        rapier_bytes,
+    ] = [
+        "carom_allocations_per_step",
+        "rapier_allocations_per_step",
+        "carom_bytes_per_body",
+        "rapier_bytes_per_body",
+    ]
+    .map(column);
+    let memory = [
+        carom_allocations?,
+        rapier_allocations?,
+        carom_bytes?,
+        rapier_bytes?,
+    ];
     lines
         .enumerate()
         .map(|(i, line)| {
@@ -209,6 +291,14 @@ fn parse_speed(text: &str) -> Result<Vec<SpeedRow>, String> {
                 rapier: number(numbers[2])?,
                 carom_threads: number(numbers[3])?,
                 box2d_threads: number(numbers[4])?,
+                drops: [number(drops[0])?, number(drops[1])?, number(drops[2])?],
+                nan: [
+                    field(nans[0])? == "true",
+                    field(nans[1])? == "true",
+                    field(nans[2])? == "true",
+                ],
+                allocations: [number(memory[0])?, number(memory[1])?],
+                bytes_per_body: [number(memory[2])?, number(memory[3])?],
             })
         })
         .collect()
@@ -230,6 +320,7 @@ impl Sources {
         let speed_text = read(SPEED_CSV)?;
         let effects_text = read(EFFECTS_CSV)?;
         let snapshots_text = read(SNAPSHOTS_CSV)?;
+        let stages_text = read(STAGES_CSV)?;
         Ok(Sources {
             accuracy: report::parse_csv(&accuracy_text)
                 .map_err(|e| format!("{ACCURACY_CSV}: {e}"))?,
@@ -244,6 +335,8 @@ impl Sources {
             snapshots: parse_snapshots(&snapshots_text)
                 .map_err(|e| format!("{SNAPSHOTS_CSV}: {e}"))?,
             snapshots_provenance: provenance(SNAPSHOTS_CSV, &snapshots_text)?,
+            stages: parse_stages(&stages_text).map_err(|e| format!("{STAGES_CSV}: {e}"))?,
+            stages_provenance: provenance(STAGES_CSV, &stages_text)?,
         })
     }
 
@@ -282,6 +375,10 @@ impl Sources {
             "speed/summary" => Ok(self.speed_summary()),
             "effects/cost" => Ok(self.effect_costs()),
             "bench/snapshots" => Ok(self.snapshot_costs()),
+            "speed/drops" => Ok(self.speed_drops()),
+            "speed/memory" => Ok(self.speed_memory()),
+            "speed/stages" => Ok(self.speed_stages()),
+            "speed/work" => Ok(self.speed_work()),
             _ => Err(format!(
                 "no figures named `{name}`: the names are {}",
                 NAMES.join(", ")
@@ -545,6 +642,105 @@ impl Sources {
         out
     }
 
+    /// How far each engine let the top body of each recipe fall over the run.
+    fn speed_drops(&self) -> String {
+        let mut out = format!(
+            "{} How far the body highest at the start fell by the end, m (a dash: the scene \
+             starts with no dynamic body to follow; NaN: a body went non-finite).\n\n\
+             | scene | carom | Box2D v3 | Rapier |\n|---|---|---|---|\n",
+            Self::measured(&self.speed_provenance)
+        );
+        for row in &self.speed {
+            let cell = |k: usize| {
+                if row.nan[k] {
+                    "NaN".to_string()
+                } else if row.drops[k].is_nan() {
+                    "-".to_string()
+                } else {
+                    format!("{:.3}", row.drops[k])
+                }
+            };
+            let _ = writeln!(
+                out,
+                "| `{}` | {} | {} | {} |",
+                row.scene,
+                cell(0),
+                cell(1),
+                cell(2)
+            );
+        }
+        out
+    }
+
+    /// Heap allocations per step and bytes per body, carom's beside Rapier's.
+    fn speed_memory(&self) -> String {
+        let mut out = format!(
+            "{} Heap allocations per timed step and heap bytes per body after the run, counted \
+             by the bench's allocator (Box2D allocates through C's, which it does not see).\n\n\
+             | scene | carom allocations/step | Rapier allocations/step | carom bytes/body | \
+             Rapier bytes/body |\n|---|---|---|---|---|\n",
+            Self::measured(&self.speed_provenance)
+        );
+        for row in &self.speed {
+            let _ = writeln!(
+                out,
+                "| `{}` | {:.2} | {:.1} | {:.0} | {:.0} |",
+                row.scene,
+                row.allocations[0],
+                row.allocations[1],
+                row.bytes_per_body[0],
+                row.bytes_per_body[1]
+            );
+        }
+        out
+    }
+
+    /// carom's stages beside Box2D's profile, one thread.
+    fn speed_stages(&self) -> String {
+        let mut out = format!(
+            "{} ms per step on one thread, the fastest run's means.\n\n\
+             | scene | engine | step | broadphase | narrowphase | solve | continuous | sleep | \
+             other |\n|---|---|---|---|---|---|---|---|---|\n",
+            Self::measured(&self.stages_provenance)
+        );
+        for row in &self.stages {
+            let [step, broad, narrow, solve, continuous, sleep] = row.ms;
+            let other = step - broad - narrow - solve - continuous - sleep;
+            let _ = writeln!(
+                out,
+                "| `{}` | {} | {step:.3} | {broad:.3} | {narrow:.3} | {solve:.3} | \
+                 {continuous:.3} | {sleep:.3} | {other:.3} |",
+                row.scene, row.engine
+            );
+        }
+        out
+    }
+
+    /// The work behind the stages: contacts, recycling, pairs, island splits.
+    fn speed_work(&self) -> String {
+        let mut out = format!(
+            "{} Means per step on one thread; a dash where the engine does not count it.\n\n\
+             | scene | engine | contacts | awake contacts | recycled | touching | created | \
+             destroyed | proxies moved | pair candidates | island splits |\n\
+             |---|---|---|---|---|---|---|---|---|---|---|\n",
+            Self::measured(&self.stages_provenance)
+        );
+        for row in &self.stages {
+            let _ = write!(out, "| `{}` | {} |", row.scene, row.engine);
+            for (k, value) in row.work.iter().enumerate() {
+                if value.is_nan() {
+                    out.push_str(" - |");
+                } else if k == row.work.len() - 1 {
+                    let _ = write!(out, " {value:.3} |");
+                } else {
+                    let _ = write!(out, " {value:.0} |");
+                }
+            }
+            out.push('\n');
+        }
+        out
+    }
+
     /// What a snapshot and a restore cost beside a step, per scene and thread count, and the
     /// most they cost of a step.
     fn snapshot_costs(&self) -> String {
@@ -615,8 +811,12 @@ impl Sources {
 }
 
 /// Every part [`Sources::draw`] draws.
-pub const NAMES: [&str; 11] = [
+pub const NAMES: [&str; 15] = [
     "bench/snapshots",
+    "speed/drops",
+    "speed/memory",
+    "speed/stages",
+    "speed/work",
     "effects/cost",
     "accuracy/fronts",
     "accuracy/options",

@@ -56,6 +56,10 @@ struct Args {
     /// Also write the table as CSV to this file.
     #[arg(long)]
     csv: Option<PathBuf>,
+    /// Also write carom's and Box2D's stage profiles and the work behind them as CSV to this
+    /// file.
+    #[arg(long)]
+    stages_csv: Option<PathBuf>,
     /// Threads for the multi-threaded runs of carom and Box2D.
     #[arg(long, default_value_t = 2)]
     threads: usize,
@@ -1129,5 +1133,51 @@ fn main() -> Result<(), String> {
         std::fs::write(path, provenance.header() + &csv(&rows))
             .map_err(|e| format!("{}: {e}", path.display()))?;
     }
+    if let Some(path) = &args.stages_csv {
+        let provenance = carom_bench::sweep::report::Provenance {
+            machine: carom_bench::sweep::report::Machine::here(),
+            command: typed_command(),
+            runs: args.runs as usize,
+        };
+        std::fs::write(path, provenance.header() + &stages_csv(&rows))
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+    }
     Ok(())
+}
+
+/// [`stage_tables`] as CSV: a row per scene and engine (carom's, Box2D's), the stages' ms per
+/// step and the work behind them; `NaN` where the engine does not count it.
+fn stages_csv(rows: &[Row]) -> String {
+    let mut s = String::from(
+        "scene,engine,step_ms,broadphase_ms,narrowphase_ms,solve_ms,continuous_ms,sleep_ms,\
+         contacts,awake_contacts,recycled,touching,created,destroyed,proxies_moved,\
+         pair_candidates,island_splits\n",
+    );
+    for r in rows {
+        for (engine, stages) in [("carom", r.carom.stages), ("Box2D", r.box2d.stages)] {
+            let Some(p) = stages else { continue };
+            let _ = writeln!(
+                s,
+                "{},{engine},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.1},{:.1},{:.1},{:.1},{:.2},\
+                 {:.2},{:.1},{:.1},{:.3}",
+                r.scene,
+                p.step_ms,
+                p.broadphase_ms,
+                p.narrowphase_ms,
+                p.solve_ms,
+                p.continuous_ms,
+                p.sleep_ms,
+                p.contacts,
+                p.awake_contacts,
+                p.recycled,
+                p.touching,
+                p.created,
+                p.destroyed,
+                p.proxies_moved,
+                p.candidates,
+                p.island_splits
+            );
+        }
+    }
+    s
 }

@@ -82,3 +82,28 @@ fn the_snapshot_table_states_the_largest_ratio_of_its_rows() {
         "{drawn}"
     );
 }
+
+#[test]
+fn the_stage_tables_cover_every_recipe_of_the_speed_table_in_both_engines() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let sources = carom_bench::docs::Sources::read(&root).unwrap();
+    let scenes = |name: &str| -> Vec<String> {
+        let drawn = sources.draw(name).unwrap();
+        drawn
+            .lines()
+            .filter(|l| l.starts_with("| `"))
+            .map(|l| l.split('`').nth(1).unwrap().to_string())
+            .collect()
+    };
+    let recipes = scenes("speed/recipes");
+    assert!(!recipes.is_empty());
+    for part in ["speed/stages", "speed/work"] {
+        let rows = scenes(part);
+        for recipe in &recipes {
+            // One row of carom's and one of Box2D's, from the same run.
+            let count = rows.iter().filter(|s| *s == recipe).count();
+            assert_eq!(count, 2, "{part}: {recipe} has {count} rows");
+        }
+        assert_eq!(rows.len(), 2 * recipes.len(), "{part}: {rows:?}");
+    }
+}
