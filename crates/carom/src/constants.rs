@@ -209,7 +209,7 @@ pub(crate) const PREFETCH_AHEAD: usize = 8;
 
 /// Awake contacts below which the narrowphase asks for nothing ahead: a set this small (its
 /// contacts, their bodies and fat boxes, about 0.4 MB) stays in a core's L2 cache from step
-/// to step, so the hints would only add instructions (2 % of a resting pyramid's step).
+/// to step, so the hints would only add instructions.
 pub(crate) const PREFETCH_MIN_CONTACTS: usize = 1024;
 
 /// Fast bodies per task when continuous collision's sweeps are shared among threads (a sweep
