@@ -156,8 +156,9 @@ enum Command {
     },
     /// Draws the figures of README.md and docs/ again from the measurements committed in
     /// docs/ (docs/accuracy/accuracy.csv, docs/hard-cases/hard-cases.csv,
-    /// docs/bench/peers.csv, docs/bench/snapshots.csv, docs/effects/effect-cost.csv): every
-    /// part marked `<!-- figures: NAME -->`, the accuracy report and its chart.
+    /// docs/bench/peers.csv, docs/bench/stages.csv, docs/bench/snapshots.csv,
+    /// docs/effects/effect-cost.csv): every part marked `<!-- figures: NAME -->`, the accuracy
+    /// report and its chart.
     Docs {
         /// Write nothing; fail when a doc differs from what would be drawn.
         #[arg(long)]
