@@ -83,11 +83,7 @@ fn parse_stages(text: &str) -> Result<Vec<StageRow>, String> {
     const HEADER: &str = "scene,engine,step_ms,broadphase_ms,narrowphase_ms,solve_ms,\
                           continuous_ms,sleep_ms,contacts,awake_contacts,recycled,touching,\
                           created,destroyed,proxies_moved,pair_candidates,island_splits";
-    let mut lines = text.lines().filter(|line| !line.starts_with('#'));
-    if lines.next() != Some(HEADER) {
-        return Err(format!("its header is not `{HEADER}`"));
-    }
-    let rows: Vec<StageRow> = lines
+    data_lines(text, HEADER)?
         .map(|line| {
             let fields: Vec<&str> = line.split(',').collect();
             if fields.len() != 17 {
@@ -104,11 +100,26 @@ fn parse_stages(text: &str) -> Result<Vec<StageRow>, String> {
                 work: std::array::from_fn(|k| numbers[6 + k]),
             })
         })
-        .collect::<Result<_, String>>()?;
-    if rows.is_empty() {
+        .collect()
+}
+
+/// The data lines of a measurement's CSV `text`: past its `#` lines, after a header that
+/// must be `header`; an error when the header differs or no line follows it.
+fn data_lines<'a>(
+    text: &'a str,
+    header: &str,
+) -> Result<impl Iterator<Item = &'a str> + 'a, String> {
+    let mut lines = text
+        .lines()
+        .filter(|line| !line.starts_with('#'))
+        .peekable();
+    if lines.next() != Some(header) {
+        return Err(format!("its header is not `{header}`"));
+    }
+    if lines.peek().is_none() {
         return Err("no rows".into());
     }
-    Ok(rows)
+    Ok(lines)
 }
 
 /// One row of [`SNAPSHOTS_CSV`]: a scene on some threads, the medians of its rounds, ms, and
@@ -133,11 +144,7 @@ impl SnapshotRow {
 /// Reads [`SNAPSHOTS_CSV`]'s rows, its columns in the order `carom-bench snapshots` writes them.
 fn parse_snapshots(text: &str) -> Result<Vec<SnapshotRow>, String> {
     const HEADER: &str = "scene,bodies,threads,step_ms,snapshot_ms,restore_ms,bytes";
-    let mut lines = text.lines().filter(|line| !line.starts_with('#'));
-    if lines.next() != Some(HEADER) {
-        return Err(format!("its header is not `{HEADER}`"));
-    }
-    let rows: Vec<SnapshotRow> = lines
+    data_lines(text, HEADER)?
         .map(|line| {
             let fields: Vec<&str> = line.split(',').collect();
             let [scene, bodies, threads, step, snapshot, restore, bytes] = fields[..] else {
@@ -155,11 +162,7 @@ fn parse_snapshots(text: &str) -> Result<Vec<SnapshotRow>, String> {
                 bytes: bytes.parse().map_err(|e| bad(&e))?,
             })
         })
-        .collect::<Result<_, String>>()?;
-    if rows.is_empty() {
-        return Err("no rows".into());
-    }
-    Ok(rows)
+        .collect()
 }
 
 /// One row of [`EFFECTS_CSV`]: the effects switched from all six (`-sleeping,-drag`), and
@@ -171,11 +174,7 @@ struct EffectCost {
 
 /// Reads [`EFFECTS_CSV`]'s rows (the effects may hold commas: the count is the last field).
 fn parse_effects(text: &str) -> Result<Vec<EffectCost>, String> {
-    let mut lines = text.lines().filter(|line| !line.starts_with('#'));
-    if lines.next() != Some("effects,instructions_per_step") {
-        return Err("its header is not `effects,instructions_per_step`".into());
-    }
-    let rows: Vec<EffectCost> = lines
+    data_lines(text, "effects,instructions_per_step")?
         .map(|line| {
             let (effects, count) = line
                 .rsplit_once(',')
@@ -187,11 +186,7 @@ fn parse_effects(text: &str) -> Result<Vec<EffectCost>, String> {
                     .map_err(|e| format!("`{line}`: the count: {e}"))?,
             })
         })
-        .collect::<Result<_, String>>()?;
-    if rows.is_empty() {
-        return Err("no rows".into());
-    }
-    Ok(rows)
+        .collect()
 }
 
 /// One recipe of [`SPEED_CSV`]: ms per step of each engine, and on `--threads` threads.

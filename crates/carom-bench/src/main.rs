@@ -682,13 +682,7 @@ fn hard_cases(args: HardCaseArgs) -> Result<(), String> {
     print!("{}", table::markdown(&rows, &names, &Column::ALL));
     if args.filter.is_empty() && !args.quick {
         std::fs::create_dir_all(args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
-        let provenance = carom_bench::sweep::report::Provenance {
-            machine: carom_bench::sweep::report::Machine::here(),
-            command: typed_command(),
-            runs: 1,
-        };
-        std::fs::write(&path, provenance.header() + &table::csv(&rows))
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        write_measured(&path, 1, &table::csv(&rows))?;
         eprintln!(
             "{} figures in {seconds:.0} s -> {}",
             rows.len(),
@@ -699,6 +693,17 @@ fn hard_cases(args: HardCaseArgs) -> Result<(), String> {
 }
 
 /// This command as typed, the program named `carom-bench` wherever it was run from.
+/// Writes `csv` to `path` under the `# measured/machine/cores/command/runs` lines that say
+/// where, when and how it was measured (`runs` per point), as the docs' figures need.
+fn write_measured(path: &Path, runs: usize, csv: &str) -> Result<(), String> {
+    let provenance = carom_bench::sweep::report::Provenance {
+        machine: carom_bench::sweep::report::Machine::here(),
+        command: typed_command(),
+        runs,
+    };
+    std::fs::write(path, provenance.header() + csv).map_err(|e| format!("{}: {e}", path.display()))
+}
+
 fn typed_command() -> String {
     let command: Vec<String> = std::env::args()
         .enumerate()
@@ -913,13 +918,7 @@ fn snapshots_run(
         }
     }
     if let Some(path) = csv {
-        let provenance = carom_bench::sweep::report::Provenance {
-            machine: carom_bench::sweep::report::Machine::here(),
-            command: typed_command(),
-            runs: 1,
-        };
-        std::fs::write(path, provenance.header() + &rows)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        write_measured(path, 1, &rows)?;
     }
     Ok(())
 }
@@ -1126,22 +1125,10 @@ fn main() -> Result<(), String> {
         }
     }
     if let Some(path) = &args.csv {
-        let provenance = carom_bench::sweep::report::Provenance {
-            machine: carom_bench::sweep::report::Machine::here(),
-            command: typed_command(),
-            runs: args.runs as usize,
-        };
-        std::fs::write(path, provenance.header() + &csv(&rows))
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        write_measured(path, args.runs as usize, &csv(&rows))?;
     }
     if let Some(path) = &args.stages_csv {
-        let provenance = carom_bench::sweep::report::Provenance {
-            machine: carom_bench::sweep::report::Machine::here(),
-            command: typed_command(),
-            runs: args.runs as usize,
-        };
-        std::fs::write(path, provenance.header() + &stages_csv(&rows))
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+        write_measured(path, args.runs as usize, &stages_csv(&rows))?;
     }
     Ok(())
 }
