@@ -7,7 +7,11 @@
 //! (as in Box2D's benchmarks). The tumbler's drum is a kinematic body turning at 25°/s in all
 //! of them (Box2D's recipe drives it with a motor).
 //!
-//! `cargo run --release -p bevy_carom --example compare --features compare -- [--rounds 3] [--steps 200] [--scene pyramid|large_pyramid|tumbler] [--engine NAME]`
+//! `cargo run --release -p bevy_carom --example compare --features compare -- [--csv] [--rounds 3] [--steps 200] [--scene pyramid|large_pyramid|tumbler] [--engine NAME]`
+//!
+//! With `--csv`, standard output holds only the table, as CSV (a header, then a row per
+//! scene), for `carom-bench measure` to record and docs/bevy.md to draw; everything else
+//! goes to standard error.
 
 use std::time::Instant;
 
@@ -353,15 +357,51 @@ fn median(values: &mut [f64]) -> f64 {
     values[values.len() / 2]
 }
 
+/// The decimals that show `ms` to three significant figures, so a cell's range reads at the
+/// precision of its median.
+fn decimals(ms: f64) -> usize {
+    match ms {
+        ms if ms < 1.0 => 3,
+        ms if ms < 10.0 => 2,
+        ms if ms < 100.0 => 1,
+        _ => 0,
+    }
+}
+
+/// One engine's cell of the CSV table: the median and (fastest-slowest) round, ms per step,
+/// and for all but the first engine the median's ratio to the first's.
+fn cell(times: &mut [f64], first: Option<f64>) -> String {
+    let min = times.iter().copied().fold(f64::MAX, f64::min);
+    let max = times.iter().copied().fold(0.0, f64::max);
+    let m = median(times);
+    let d = decimals(m);
+    let text = format!("{m:.d$} ({min:.d$}-{max:.d$})");
+    match first {
+        // Quoted: the ratio follows a comma.
+        Some(first) => format!("\"{text}, {:.2}x\"", m / first),
+        None => text,
+    }
+}
+
+/// The table's name for an engine: carom without Bevy is "plain carom".
+fn column(engine: &str) -> &str {
+    match engine {
+        "carom" => "plain carom",
+        other => other,
+    }
+}
+
 fn main() {
     let mut rounds = 3;
     let mut steps = 200;
+    let mut csv = false;
     let mut scenes = vec!["pyramid", "large_pyramid", "tumbler"];
     let mut engines = ENGINES.to_vec();
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
         let mut value = || args.next().unwrap_or_else(|| panic!("{arg} needs a value"));
         match arg.as_str() {
+            "--csv" => csv = true,
             "--rounds" => rounds = value().parse().expect("--rounds N"),
             "--steps" => steps = value().parse().expect("--steps N"),
             "--scene" => scenes = vec![Box::leak(value().into_boxed_str())],
@@ -373,10 +413,21 @@ fn main() {
                     })];
             }
             _ => {
-                panic!("unknown argument {arg}: --rounds N, --steps N, --scene NAME, --engine NAME")
+                panic!(
+                    "unknown argument {arg}: --csv, --rounds N, --steps N, --scene NAME, \
+                     --engine NAME"
+                )
             }
         }
     }
+    // The human report goes where the table does not: standard error when the CSV is asked.
+    let say = |line: String| {
+        if csv {
+            eprintln!("{line}");
+        } else {
+            println!("{line}");
+        }
+    };
     // One thread for all: carom's rayon pool, and Bevy's task pools (its multi-threaded
     // executor is not built in here).
     rayon::ThreadPoolBuilder::new()
@@ -384,9 +435,17 @@ fn main() {
         .build_global()
         .expect("the first pool");
     let warmup = 60;
-    println!(
+    say(format!(
         "{rounds} rounds of {steps} steps after {warmup}, engines alternating; ms per fixed step, median (min-max)"
-    );
+    ));
+    let mut table = vec![format!(
+        "scene,bodies,{},top body's height (m)",
+        engines
+            .iter()
+            .map(|e| column(e))
+            .collect::<Vec<_>>()
+            .join(",")
+    )];
     for scene in scenes {
         let specs = match scene {
             "pyramid" => pyramid(20),
@@ -405,18 +464,35 @@ fn main() {
                 tops[e] = top;
             }
         }
-        println!("\n{scene} ({} bodies)", specs.len());
+        say(format!("\n{scene} ({} bodies)", specs.len()));
         // The first engine's median: plain carom's, unless one engine was asked for.
         let plain = median(&mut times[0].clone());
         for (e, engine) in engines.iter().enumerate() {
             let min = times[e].iter().copied().fold(f64::MAX, f64::min);
             let max = times[e].iter().copied().fold(0.0, f64::max);
-            let m = median(&mut times[e]);
-            println!(
+            let m = median(&mut times[e].clone());
+            say(format!(
                 "  {engine:14} {m:8.3} ({min:.3}-{max:.3})  {:5.2}x plain carom  top body at y = {:.2}",
                 m / plain,
                 tops[e]
-            );
+            ));
+        }
+        let cells: Vec<String> = times
+            .iter_mut()
+            .enumerate()
+            .map(|(e, times)| cell(times, (e > 0).then_some(plain)))
+            .collect();
+        let tops: Vec<String> = tops.iter().map(|top| format!("{top:.2}")).collect();
+        table.push(format!(
+            "`{scene}`,{},{},{}",
+            specs.len(),
+            cells.join(","),
+            tops.join(" / ")
+        ));
+    }
+    if csv {
+        for line in table {
+            println!("{line}");
         }
     }
 }

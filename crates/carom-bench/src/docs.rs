@@ -9,6 +9,9 @@
 //! <!-- end figures -->
 //! ```
 //!
+//! A part named `table FILE` draws FILE, a table that `carom-bench measure` wrote from another
+//! program's output (see [`crate::measured`]), as it stands.
+//!
 //! `carom-bench docs` draws every marked part of `README.md` and `docs/**/*.md` again from
 //! the measurements committed beside them ([`SOURCES`]), and the accuracy report
 //! (`docs/accuracy/README.md`) whole; `carom-bench docs --check` (and the `docs` test) fails
@@ -17,6 +20,7 @@
 //! `carom-bench hard-cases --check`, which measure again.
 
 use crate::hard_cases::table::{self, Column};
+use crate::measured;
 use crate::sweep::{self, Engine, Point, front, report};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -29,8 +33,8 @@ pub const ACCURACY_REPORT: &str = "docs/accuracy/README.md";
 pub const HARD_CASES_CSV: &str = "docs/hard-cases/hard-cases.csv";
 /// carom, Box2D and Rapier timed on Box2D's recipes, written by `carom-bench --csv`.
 pub const SPEED_CSV: &str = "docs/bench/peers.csv";
-/// Instructions per step of a resting pyramid with each set of effects, written by
-/// `scripts/effect_cost.sh`.
+/// Instructions per step of a resting pyramid with each set of effects, counted by
+/// `scripts/effect_cost.sh` and written by `carom-bench measure`.
 pub const EFFECTS_CSV: &str = "docs/effects/effect-cost.csv";
 /// What a snapshot and a restore cost beside a step, written by `carom-bench snapshots --csv`.
 pub const SNAPSHOTS_CSV: &str = "docs/bench/snapshots.csv";
@@ -52,6 +56,8 @@ const END: &str = "<!-- end figures -->";
 
 /// The committed measurements, read once.
 pub struct Sources {
+    /// The repository, which `table FILE` parts name their files from.
+    root: PathBuf,
     accuracy: Vec<Point>,
     accuracy_provenance: report::Provenance,
     hard_cases: Vec<table::Row>,
@@ -317,6 +323,7 @@ impl Sources {
         let snapshots_text = read(SNAPSHOTS_CSV)?;
         let stages_text = read(STAGES_CSV)?;
         Ok(Sources {
+            root: root.to_path_buf(),
             accuracy: report::parse_csv(&accuracy_text)
                 .map_err(|e| format!("{ACCURACY_CSV}: {e}"))?,
             accuracy_provenance: provenance(ACCURACY_CSV, &accuracy_text)?,
@@ -337,6 +344,9 @@ impl Sources {
 
     /// The part named `name`, drawn.
     pub fn draw(&self, name: &str) -> Result<String, String> {
+        if let Some(file) = name.strip_prefix("table ") {
+            return self.measured_table(file.trim());
+        }
         match name {
             "accuracy/fronts" => Ok(self.accuracy_fronts()),
             "accuracy/summary" => Ok(self.accuracy_summary()),
@@ -375,10 +385,19 @@ impl Sources {
             "speed/stages" => Ok(self.speed_stages()),
             "speed/work" => Ok(self.speed_work()),
             _ => Err(format!(
-                "no figures named `{name}`: the names are {}",
+                "no figures named `{name}`: the names are {} and `table FILE`",
                 NAMES.join(", ")
             )),
         }
+    }
+
+    /// The table `carom-bench measure` wrote to `file` (from the repository's root).
+    fn measured_table(&self, file: &str) -> Result<String, String> {
+        let path = self.root.join(file);
+        let text =
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let table = measured::parse(&text).map_err(|e| format!("{file}: {e}"))?;
+        Ok(table.markdown())
     }
 
     /// The accuracy report, as `carom-bench sweep` wrote it from the same points.

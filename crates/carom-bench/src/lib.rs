@@ -18,6 +18,10 @@
 //! [`sweep`] is the accuracy sweep behind the demo's `carom bench` and its accuracy panel:
 //! every solver setting's time against its error on scenes with an exact answer.
 //!
+//! [`measured`] keeps the tables that programs outside this crate measure (the page in a
+//! browser, the npm package under Node, the window, the Bevy plugins) under the same lines
+//! naming the machine, the date and the command, for the docs to draw (`carom-bench measure`).
+//!
 //! [`cases`] holds what the stability suite and the hard cases share: their worlds, the joint
 //! measures, a seeded random number generator. Box2D and Rapier sit behind the default feature
 //! `peers`, the command line and the PNG charts behind the default feature `native`, the sweep
@@ -156,6 +160,8 @@ pub mod compare;
 pub mod docs;
 #[cfg(feature = "peers")]
 pub mod hard_cases;
+#[cfg(feature = "sweep")]
+pub mod measured;
 #[cfg(feature = "peers")]
 pub mod rapier_world;
 #[cfg(feature = "native")]

@@ -157,12 +157,26 @@ enum Command {
     /// Draws the figures of README.md and docs/ again from the measurements committed in
     /// docs/ (docs/accuracy/accuracy.csv, docs/hard-cases/hard-cases.csv,
     /// docs/bench/peers.csv, docs/bench/stages.csv, docs/bench/snapshots.csv,
-    /// docs/effects/effect-cost.csv): every part marked `<!-- figures: NAME -->`, the accuracy
-    /// report and its chart.
+    /// docs/effects/effect-cost.csv, and the tables `carom-bench measure` wrote): every part
+    /// marked `<!-- figures: NAME -->`, the accuracy report and its chart.
     Docs {
         /// Write nothing; fail when a doc differs from what would be drawn.
         #[arg(long)]
         check: bool,
+    },
+    /// Runs a measuring program that prints a table as CSV on its standard output (a header
+    /// line, then the rows), and writes the table to FILE under lines naming the machine, the
+    /// date and this command, for a doc to draw with `<!-- figures: table FILE -->`. FILE is
+    /// left as it was when the program fails or prints no table.
+    Measure {
+        /// The CSV file to write.
+        file: PathBuf,
+        /// Runs behind each figure, as the program's own options set them (recorded).
+        #[arg(long, default_value_t = 1)]
+        runs: usize,
+        /// The program and its arguments, after `--`.
+        #[arg(last = true, required = true)]
+        command: Vec<String>,
     },
     /// Runs every hard case of tests/stability.rs in each of carom's solvers, in soft step with
     /// each of its options, and in Box2D v3 with the same geometry and settings, and prints the
@@ -704,10 +718,51 @@ fn write_measured(path: &Path, runs: usize, csv: &str) -> Result<(), String> {
     std::fs::write(path, provenance.header() + csv).map_err(|e| format!("{}: {e}", path.display()))
 }
 
+/// `carom-bench measure`: runs `command` (its standard error shown as it goes) and writes the
+/// table it printed to `file` under the provenance lines.
+fn measure(file: &Path, runs: usize, command: &[String]) -> Result<(), String> {
+    let (program, arguments) = command.split_first().ok_or("no command to run")?;
+    eprintln!("running: {}", command.join(" "));
+    let output = std::process::Command::new(program)
+        .args(arguments)
+        .stderr(std::process::Stdio::inherit())
+        .output()
+        .map_err(|e| format!("{program}: {e}"))?;
+    if !output.status.success() {
+        return Err(format!("`{}` failed: {}", command.join(" "), output.status));
+    }
+    let csv = String::from_utf8(output.stdout)
+        .map_err(|_| format!("`{}` printed what is not UTF-8", command.join(" ")))?;
+    let provenance = carom_bench::sweep::report::Provenance {
+        machine: carom_bench::sweep::report::Machine::here(),
+        command: typed_command(),
+        runs,
+    };
+    let text = carom_bench::measured::write(&provenance, &csv)
+        .map_err(|e| format!("`{}` printed no table: {e}", command.join(" ")))?;
+    if let Some(folder) = file.parent().filter(|f| !f.as_os_str().is_empty()) {
+        std::fs::create_dir_all(folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+    }
+    std::fs::write(file, &text).map_err(|e| format!("{}: {e}", file.display()))?;
+    print!("{text}");
+    Ok(())
+}
+
+/// This command as a shell would take it again: an argument holding anything but plain
+/// characters is single-quoted.
 fn typed_command() -> String {
+    let plain = |c: char| c.is_ascii_alphanumeric() || "_./=:,+-@%".contains(c);
     let command: Vec<String> = std::env::args()
         .enumerate()
-        .map(|(i, a)| if i == 0 { "carom-bench".into() } else { a })
+        .map(|(i, a)| {
+            if i == 0 {
+                "carom-bench".into()
+            } else if !a.is_empty() && a.chars().all(plain) {
+                a
+            } else {
+                format!("'{}'", a.replace('\'', r"'\''"))
+            }
+        })
         .collect();
     command.join(" ")
 }
@@ -994,6 +1049,14 @@ fn main() -> Result<(), String> {
             check: *check,
             jobs: *jobs,
         });
+    }
+    if let Some(Command::Measure {
+        file,
+        runs,
+        command,
+    }) = &args.command
+    {
+        return measure(file, *runs, command);
     }
     if let Some(Command::Docs { check }) = &args.command {
         // The repository: here, or where this program was built from.

@@ -36,11 +36,58 @@ fn a_marked_part_is_drawn_again_and_a_broken_one_is_refused() {
         error.contains("line 1") && error.contains("no/such"),
         "{error}"
     );
+    let missing = "<!-- figures: table docs/no-such.csv -->\n<!-- end figures -->\n";
+    let error = carom_bench::docs::redraw(missing, &sources).unwrap_err();
+    assert!(
+        error.contains("line 1") && error.contains("no-such.csv"),
+        "{error}"
+    );
     let unended = "x\n<!-- figures: accuracy/summary -->\nold\n";
     let error = carom_bench::docs::redraw(unended, &sources).unwrap_err();
     assert!(
         error.contains("line 2") && error.contains("end figures"),
         "{error}"
+    );
+}
+
+#[test]
+fn every_measured_table_in_docs_is_drawn_on_a_page() {
+    // A table `carom-bench measure` wrote that no page draws is a measurement nobody reads,
+    // or a part whose marker was lost.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut pages = String::new();
+    for page in carom_bench::docs::marked_files(&root).unwrap() {
+        pages.push_str(&std::fs::read_to_string(page).unwrap());
+    }
+    let mut folders = vec![root.join("docs")];
+    let mut tables = 0;
+    while let Some(folder) = folders.pop() {
+        for entry in std::fs::read_dir(&folder).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                folders.push(path);
+                continue;
+            }
+            let name = path
+                .strip_prefix(&root)
+                .unwrap()
+                .to_string_lossy()
+                .into_owned();
+            let text = std::fs::read_to_string(&path).unwrap_or_default();
+            if name.ends_with(".csv") && text.contains("# command: carom-bench measure ") {
+                let marker = format!("<!-- figures: table {name} -->");
+                let drawn = carom_bench::docs::SOURCES.contains(&name.as_str());
+                assert!(
+                    drawn || pages.contains(&marker),
+                    "{name}: no page has `{marker}`"
+                );
+                tables += 1;
+            }
+        }
+    }
+    assert!(
+        tables > 0,
+        "no table under docs/ was written by `carom-bench measure`"
     );
 }
 

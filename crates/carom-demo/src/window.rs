@@ -369,6 +369,9 @@ struct Running {
     frame_seconds: f64,
     /// Wall time of every frame after the first, ms, for the report `--frames` prints.
     frame_ms: Vec<f64>,
+    /// Wall time of every step, ms, for that report (the sidebar's metrics keep the last
+    /// seconds only).
+    step_ms: Vec<f64>,
     /// The adapter drawing, for that report.
     adapter: String,
 }
@@ -473,6 +476,7 @@ impl Running {
             frames: 0,
             frame_seconds: 1.0 / 60.0,
             frame_ms: Vec::new(),
+            step_ms: Vec::new(),
             adapter: format!("{} on {:?}", info.name, info.backend),
         })
     }
@@ -657,8 +661,18 @@ impl Running {
                 .map(|()| steps),
             _ => self.demo.frame(elapsed),
         };
-        if let Err(message) = stepped {
-            self.error = Some(message);
+        match stepped {
+            // The steps just taken are the newest samples.
+            Ok(steps) => self.step_ms.extend(
+                self.demo
+                    .metrics
+                    .samples()
+                    .iter()
+                    .rev()
+                    .take(steps as usize)
+                    .map(|s| s.step_ms),
+            ),
+            Err(message) => self.error = Some(message),
         }
 
         let raw_input = self.egui_input.take_egui_input(&self.window);
@@ -759,12 +773,16 @@ impl Running {
 }
 
 impl Running {
-    /// What the frames cost: the median frame time and rate, and the median physics step.
+    /// What the frames cost: the median frame time and rate, and the median physics step,
+    /// all over the whole run.
     #[cfg(not(target_arch = "wasm32"))]
     fn report(&self) -> String {
-        let mut frame_ms = self.frame_ms.clone();
-        frame_ms.sort_by(f64::total_cmp);
-        let median = frame_ms.get(frame_ms.len() / 2).copied().unwrap_or(0.0);
+        let median = |values: &[f64]| {
+            let mut values = values.to_vec();
+            values.sort_by(f64::total_cmp);
+            values.get(values.len() / 2).copied().unwrap_or(0.0)
+        };
+        let (frame, step) = (median(&self.frame_ms), median(&self.step_ms));
         let player = match &self.demo.scene.player {
             Some(player) => {
                 let at = player.character().position();
@@ -774,15 +792,14 @@ impl Running {
             None => String::new(),
         };
         format!(
-            "{}: {} frames at {}x{} on {}: median frame {median:.1} ms ({:.1} frames/s), \
-             median step {:.3} ms, {} bodies, {} steps{player}",
+            "{}: {} frames at {}x{} on {}: median frame {frame:.1} ms ({:.1} frames/s), \
+             median step {step:.3} ms, {} bodies, {} steps{player}",
             self.demo.scene_path.display(),
             self.frames,
             self.config.width,
             self.config.height,
             self.adapter,
-            1e3 / median.max(1e-6),
-            self.demo.metrics.median(|s| s.step_ms),
+            1e3 / frame.max(1e-6),
             self.demo.scene.world.body_count(),
             self.demo.scene.world.step_count(),
         )

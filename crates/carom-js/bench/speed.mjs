@@ -10,7 +10,10 @@
 //
 //   npm ci --prefix crates/carom-js/bench
 //   node crates/carom-js/bench/speed.mjs [--package target/carom-js/package]
-//       [--carom target/release/carom] [--steps 200] [--rounds 3]
+//       [--carom target/release/carom] [--steps 200] [--rounds 3] [--csv]
+//
+// With --csv the table the docs print goes to standard output as CSV, each figure the range
+// over the rounds, and the rounds to standard error (`carom-bench measure` keeps the table).
 import { execFileSync } from "node:child_process";
 import fs from "node:fs";
 import path from "node:path";
@@ -19,14 +22,22 @@ import RAPIER from "@dimforge/rapier2d-compat";
 import RAPIER_SIMD from "@dimforge/rapier2d-simd-compat";
 
 const options = { package: "target/carom-js/package", carom: "target/release/carom", steps: "200", rounds: "3" };
+let csv = false;
 for (let i = 2; i < process.argv.length; i += 2) {
+    if (process.argv[i] === "--csv") {
+        csv = true;
+        i--;
+        continue;
+    }
     const name = process.argv[i].replace(/^--/, "");
     if (!(name in options)) {
-        console.error(`unknown option ${process.argv[i]}; options: ${Object.keys(options).join(", ")}`);
+        console.error(`unknown option ${process.argv[i]}; options: ${Object.keys(options).join(", ")}, csv`);
         process.exit(2);
     }
     options[name] = process.argv[i + 1];
 }
+// With --csv, standard output holds the table alone.
+const log = csv ? console.error : console.log;
 const steps = Number(options.steps);
 const carom = await import(pathToFileURL(path.resolve(options.package, "index.js")).href);
 await RAPIER.init();
@@ -100,9 +111,44 @@ for (let round = 0; round < Number(options.rounds); round++) {
         }
         rows.push(row);
         const f = (ms) => (ms === undefined ? "-" : ms.toFixed(3));
-        console.log(`round ${round + 1} ${scene.padEnd(13)} carom-js ${f(row.carom_js)} ms, native ${f(row.native)} ms ` +
+        log(`round ${round + 1} ${scene.padEnd(13)} carom-js ${f(row.carom_js)} ms, native ${f(row.native)} ms ` +
             `(${(row.carom_js / row.native).toFixed(2)}x), Rapier JS ${f(row.rapier_js)} ms, ` +
             `Rapier JS SIMD ${f(row.rapier_js_simd)} ms`);
     }
 }
-console.log(JSON.stringify({ steps, rows }));
+if (csv) {
+    printTable(rows);
+} else {
+    console.log(JSON.stringify({ steps, rows }));
+}
+
+/** The installed version of an npm package of the bench. */
+function version(name) {
+    const manifest = path.join(import.meta.dirname, "node_modules", name, "package.json");
+    return JSON.parse(fs.readFileSync(manifest, "utf8")).version;
+}
+
+/** The docs' table: per scene, each engine's range of ms per step over the rounds and the
+ * range of the per-round ratios. */
+function printTable(rows) {
+    const figure = (x) => String(Number(x.toPrecision(3)));
+    const range = (values) => {
+        if (values.some((v) => v === undefined)) return "";
+        const low = figure(Math.min(...values)), high = figure(Math.max(...values));
+        return low === high ? low : `${low}–${high}`;
+    };
+    const rapier = `Rapier JS ${version("@dimforge/rapier2d-compat")}`;
+    const simd = `Rapier JS SIMD ${version("@dimforge/rapier2d-simd-compat")}`;
+    console.log(["scene", "carom-js (ms)", "native carom (ms)", "carom-js / native", `${rapier} (ms)`,
+        `${simd} (ms)`, `${rapier} / carom-js`, `${simd} / carom-js`].join(","));
+    for (const scene of ["pyramid", "mixed_1000", "large_pyramid"]) {
+        const of = rows.filter((row) => row.scene === scene);
+        const column = (key) => of.map((row) => row[key]);
+        const ratio = (top, bottom) => of.map((row) =>
+            row[top] === undefined ? undefined : row[top] / row[bottom]);
+        console.log([scene, range(column("carom_js")), range(column("native")),
+            range(ratio("carom_js", "native")), range(column("rapier_js")),
+            range(column("rapier_js_simd")), range(ratio("rapier_js", "carom_js")),
+            range(ratio("rapier_js_simd", "carom_js"))].join(","));
+    }
+}

@@ -4,8 +4,8 @@
 //
 //   node crates/carom-web/test/browser-test.mjs [--site target/web] [--out target/web-test]
 //       [--carom target/debug/carom] [--steps 200] [--hashes FILE] [--backends webgpu,gl]
-//       [--frame-rates]
-//       [--physics-speed --carom target/release/carom [--rounds 3]]
+//       [--frame-rates --carom target/release/carom [--csv]]
+//       [--physics-speed --carom target/release/carom [--rounds 3] [--csv]]
 //
 // It serves the site on 127.0.0.1, opens it once for each backend (`?backend=`), and checks that
 //   - the demo draws with that backend: frames arrive, the sidebar has text and the scene has
@@ -17,11 +17,15 @@
 //   - the page's run with those drags, recorded, replays natively (`carom replay`) to the same
 //     hash at every step, and a native recording (`carom record`) replays so in the page;
 //   - the page logs no error.
-// Screenshots and results.json go to the output folder. --frame-rates also measures the frame
-// rate of three scenes (frames 30 to 300). --physics-speed measures only the physics: three
-// scenes stepped in the page and by the native `carom run` on one thread, alternately, the mean
-// step time of each (give it a release build of carom). Exits 1 with the reason on the
-// first failure.
+// Screenshots and results.json go to the output folder. Exits 1 with the reason on the first
+// failure.
+//
+// Two measurements run instead of the checks (give them a release build of carom):
+// --frame-rates measures the frame rate of three scenes with each backend (frames 30 to 300)
+// and their step times in the page and natively; --physics-speed steps three scenes in the
+// page and by the native `carom run` on one thread, alternately for --rounds rounds, the mean
+// step time of each. With --csv, the table the docs print goes to standard output as CSV and
+// the rest to standard error (`carom-bench measure` keeps the table).
 
 import { chromium } from "playwright-core";
 import { execFileSync } from "node:child_process";
@@ -38,11 +42,18 @@ const options = parseArguments(process.argv.slice(2), {
     steps: "200",
     "frame-rates": false,
     "physics-speed": false,
+    csv: false,
     rounds: "3",
     backends: "webgpu,gl",
 });
+// With --csv, standard output holds the table alone.
+const table = options.csv ? (line) => process.stdout.write(`${line}\n`) : () => {};
+if (options.csv) console.log = console.error;
+
 /// What the page says it draws with, by the backend asked for.
 const BACKENDS = { webgpu: "BrowserWebGpu", gl: "Gl" };
+/// The backends as a table names them.
+const BACKENDS_SHOWN = { webgpu: "WebGPU", gl: "WebGL2" };
 const VIEW = { width: 1280, height: 720 };
 
 class Failure extends Error {}
@@ -89,6 +100,8 @@ try {
         const page = await open();
         await physicsSpeed(page);
         await page.close();
+    } else if (options["frame-rates"]) {
+        await frameRates();
     } else {
         const backends = options.backends.split(",");
         for (const [i, backend] of backends.entries()) {
@@ -104,7 +117,6 @@ try {
             // One page at a time: a second one drawing beside it would halve its frame rate.
             await page.close();
         }
-        if (options["frame-rates"]) await frameRates();
     }
     check(errors.length === 0, `the page logged errors:\n  ${errors.join("\n  ")}`);
     passed("the page logged no error");
@@ -332,28 +344,58 @@ async function physicsSpeed(page) {
         }
     }
     results.physics_speed = { steps, rows };
+    table("scene,page ms/step,native ms/step,page / native,median of page / native");
+    for (const scene of ["pyramid", "mixed_1000", "large_pyramid"]) {
+        const of = rows.filter((row) => row.scene === scene);
+        const ratios = of.map((row) => row.ratio).sort((a, b) => a - b);
+        const middle = ratios.length >> 1;
+        const median = ratios.length % 2 ? ratios[middle] : (ratios[middle - 1] + ratios[middle]) / 2;
+        table([`\`${scene}\``, range(of.map((row) => row.page_ms)),
+            range(of.map((row) => row.native_ms)), range(ratios), figure(median)].join(","));
+    }
 }
 
 async function frameRates() {
     results.frame_rates = [];
+    table("scene,bodies,backend,frames/s,simulated s / real s,page ms/step,native ms/step");
     for (const scene of ["grabbing", "pyramid", "mixed_1000"]) {
-        // Frames 30 to 300, as the native window's `--frames 300` report spans them.
-        const page = await open(`?scene=${scene}`);
-        const first = await probe(page);
-        const started = Date.now();
-        const last = await waitForFrames(page, 300 - first.frames, 180_000);
-        const seconds = (Date.now() - started) / 1000;
-        const fps = (last.frames - first.frames) / seconds;
-        const physics = JSON.parse(await page.evaluate(
-            (f) => window.carom.run_scene(f, 120), `demos/${scene}.ron`));
-        results.frame_rates.push({ scene, fps, simulated_seconds: last.time - first.time, seconds,
-            ms_per_step: physics.ms_per_step });
-        console.log(`     ${scene}: ${fps.toFixed(1)} frames/s over ${seconds.toFixed(1)} s, ` +
-            `${(last.time - first.time).toFixed(2)} s simulated, physics ` +
-            `${physics.ms_per_step.toFixed(3)} ms/step`);
-        await screenshot(page, `${scene}.png`);
-        await page.close();
+        const file = `demos/${scene}.ron`;
+        for (const backend of options.backends.split(",")) {
+            // Frames 30 to 300, as the native window's `--frames 300` report spans them.
+            const page = await open(`?scene=${scene}`, backend);
+            const first = await probe(page);
+            const started = Date.now();
+            const last = await waitForFrames(page, 300 - first.frames, 180_000);
+            const seconds = (Date.now() - started) / 1000;
+            const fps = (last.frames - first.frames) / seconds;
+            const simulated = last.time - first.time;
+            // The physics alone, after the frames: the mean of 120 steps from the scene's start.
+            const physics = JSON.parse(await page.evaluate((f) => window.carom.run_scene(f, 120), file));
+            await screenshot(page, `${scene}-${backend}.png`);
+            await page.close();
+            const native = JSON.parse(execFileSync(options.carom,
+                ["run", file, "--steps", "120", "--json", "--threads", "1"]).toString());
+            check(physics.hash === native.hash, `${scene}: the page ended in ${physics.hash}, ` +
+                `native in ${native.hash}`);
+            results.frame_rates.push({ scene, backend, fps, simulated_seconds: simulated, seconds,
+                ms_per_step: physics.ms_per_step, native_ms_per_step: native.ms_per_step });
+            console.log(`     ${scene} (${backend}): ${fps.toFixed(1)} frames/s over ` +
+                `${seconds.toFixed(1)} s, ${simulated.toFixed(2)} s simulated, physics ` +
+                `${physics.ms_per_step.toFixed(3)} ms/step, native ${native.ms_per_step.toFixed(3)}`);
+            table([`\`${scene}\``, native.bodies, BACKENDS_SHOWN[backend], fps.toFixed(1),
+                (simulated / seconds).toFixed(2), figure(physics.ms_per_step),
+                figure(native.ms_per_step)].join(","));
+        }
     }
+}
+
+/// A figure to three significant digits, and the range of a few as "low–high".
+function figure(x) {
+    return String(Number(x.toPrecision(3)));
+}
+function range(values) {
+    const low = figure(Math.min(...values)), high = figure(Math.max(...values));
+    return low === high ? low : `${low}–${high}`;
 }
 
 // ---------------------------------------------------------------------------------------------
