@@ -77,7 +77,7 @@ pub fn check(csv: &str) -> Result<(Vec<String>, Vec<Vec<String>>), String> {
     Ok((header, rows))
 }
 
-/// Reads a table written by [`write`].
+/// Reads a table written by [`write()`].
 pub fn parse(text: &str) -> Result<Table, String> {
     let provenance = Provenance::parse(text).ok_or("no `# measured: ...` lines at its top")?;
     let body: String = text
