@@ -100,7 +100,7 @@ pub(crate) const RECYCLE_DISTANCE: Real = 10.0 * LINEAR_SLOP;
 pub(crate) const RECYCLE_DISTANCE_CLASSIC: Real = 2.0 * LINEAR_SLOP;
 
 /// A body that moves farther in a step than its fat box's margin pairs only with what it can
-/// reach at its relative velocity (`collision::look_ahead`); it stops doing so once it moves
+/// reach at its relative velocity (`geometry::look_ahead`); it stops doing so once it moves
 /// less than this fraction of the margin, so a body near that speed does not make and drop its
 /// pairs every other step.
 pub(crate) const RUNNER_STOP_FRACTION: Real = 0.5;

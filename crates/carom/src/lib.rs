@@ -69,20 +69,18 @@ mod math;
 mod parallel;
 mod partition;
 mod prefetch;
-#[cfg(feature = "serde")]
-mod serde_impls;
 mod solver;
+mod solver_set;
+#[cfg(feature = "serde")]
+mod sorted_map;
 mod stats;
 mod world;
 
 pub use character::controller::{Character, CharacterDef, CharacterMove, CharacterState, Ground};
 pub use character::mover::MoverPlane;
 pub use character::planes::{CollisionPlane, PlaneSolution, clip_velocity, solve_planes};
-pub use collision::contact::{Contact, ContactEvent, ContactPair, MaterialMixer, PointImpulse};
-pub use collision::distance::{Separation, separation};
-pub use collision::filter::CollisionFilter;
+pub use collision::contact::{Contact, ContactEvent, ContactPair, PointImpulse};
 pub use collision::hits::HitEvent;
-pub use collision::manifold::{FeatureId, Manifold, ManifoldPoint, collide};
 pub use collision::pre_solve::PreSolveContact;
 pub use collision::query_filter::QueryFilter;
 pub use collision::sensor::{SensorEvent, SensorOverlap};
@@ -99,10 +97,14 @@ pub use dynamics::body_def::BodyDef;
 pub use dynamics::chain::ChainDef;
 pub use dynamics::collider::{Collider, ColliderDef, ColliderHandle};
 pub use dynamics::drag::DragModel;
-pub use dynamics::surface::Surface;
+pub use dynamics::filter::CollisionFilter;
+pub use dynamics::surface::{MaterialMixer, Surface};
 pub use error::CaromError;
 pub use geometry::aabb::Aabb;
 pub use geometry::mass::MassProperties;
+pub use geometry::query::collide::collide;
+pub use geometry::query::distance::{Separation, separation};
+pub use geometry::query::manifold::{FeatureId, Manifold, ManifoldPoint};
 pub use geometry::ray::{Ray, RayHit};
 pub use geometry::shape::{
     Capsule, ChainSegment, Circle, Points, Polygon, Segment, Shape, WorldShape,
@@ -129,12 +131,12 @@ pub use world::{CastHit, World};
 #[cfg(feature = "testing")]
 pub mod testing {
     pub use crate::collision::broadphase::{BroadPhase, brute_force_pairs};
-    pub use crate::collision::distance::polygon_circle;
-    pub use crate::collision::dynamic_tree::DynamicTree;
-    pub use crate::collision::manifold::PairSide;
     pub use crate::constants::{COINCIDENT_NORMAL, SPURIOUS_TOLERANCE};
+    pub use crate::geometry::dynamic_tree::DynamicTree;
     pub use crate::geometry::mass::{
         polygon_area, polygon_centroid, polygon_inertia_about_origin, polygon_mass,
     };
+    pub use crate::geometry::query::distance::polygon_circle;
+    pub use crate::geometry::query::manifold::PairSide;
     pub use crate::math::cross;
 }

@@ -1,6 +1,6 @@
 //! One dense array kept in consecutive parts, so each part is a slice: the solver sets of
 //! bodies, colliders and contacts, and the touching contacts' graph colours (see
-//! `world::solver_sets` and `graph::layout`).
+//! `solver_set` and `graph::layout`).
 //!
 //! An item changes part by trading places with the first or last item of each part it crosses,
 //! so a move costs one swap per non-empty part crossed, whatever the size of the array. New
@@ -120,6 +120,32 @@ pub(crate) fn shift_along<T: Clone>(items: &mut [T], from: usize, path: &[usize]
         hole = next;
     }
     items[hole] = moving;
+}
+
+/// A partition is written as its ends, and checked when read.
+#[cfg(feature = "serde")]
+mod written {
+    use super::Partition;
+    use serde::de::{self, Deserializer};
+    use serde::ser::Serializer;
+    use serde::{Deserialize, Serialize};
+
+    impl<const CUTS: usize> Serialize for Partition<CUTS> {
+        fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+            self.ends().serialize(serializer)
+        }
+    }
+
+    impl<'de, const CUTS: usize> Deserialize<'de> for Partition<CUTS> {
+        fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+            let ends = Vec::<usize>::deserialize(deserializer)?;
+            Partition::from_ends(&ends).ok_or_else(|| {
+                de::Error::custom(format!(
+                    "a partition needs {CUTS} ends in increasing order, got {ends:?}"
+                ))
+            })
+        }
+    }
 }
 
 #[cfg(test)]

@@ -13,13 +13,13 @@
 //! the obstacle's body frame). And a mover whose core has entered an obstacle's still gets its
 //! plane, from the exact separation, so that it is pushed out; Box2D drops such planes.
 
-use crate::collision::distance::{closest_points, separation, with_core};
-use crate::collision::manifold::collide;
 use crate::collision::query_filter::QueryFilter;
 use crate::constants::{LINEAR_SLOP, MAX_TIME_OF_IMPACT_ITERATIONS, SHAPE_CAST_TOLERANCE};
 use crate::dynamics::body::BodyHandle;
 use crate::dynamics::collider::ColliderHandle;
 use crate::geometry::capsule::Capsule;
+use crate::geometry::query::collide::collide;
+use crate::geometry::query::distance::{closest_points, separation, with_core};
 use crate::geometry::segment::closest_on_segment;
 use crate::geometry::shape::{Shape, WorldShape};
 use crate::math::{Real, Vec2, is_finite_vec};
@@ -155,7 +155,7 @@ fn is_behind(other: &WorldShape, mover: &Capsule) -> bool {
 
 /// The fraction of `translation` at which `mover` comes [`LINEAR_SLOP`] into `other`, if
 /// below `max_fraction`; see [`World::cast_mover`]. Conservative advancement on the exact
-/// separation, as [`crate::collision::shape_cast`] does.
+/// separation, as [`crate::geometry::query::shape_cast`] does.
 fn cast_against(
     mover: &WorldShape,
     translation: Vec2,
@@ -201,8 +201,9 @@ fn cast_against(
 fn touching_patch(mover: &WorldShape, other: &WorldShape, normal: Vec2) -> [Vec2; 2] {
     let manifold = collide(mover, other, LINEAR_SLOP);
     // Each point is midway between the surfaces: half its separation from `other`'s.
-    let on_other =
-        |p: &crate::collision::manifold::ManifoldPoint| p.point - normal * (0.5 * p.separation);
+    let on_other = |p: &crate::geometry::query::manifold::ManifoldPoint| {
+        p.point - normal * (0.5 * p.separation)
+    };
     match manifold.points() {
         [one] => return [on_other(one); 2],
         [first, second, ..] => return [on_other(first), on_other(second)],

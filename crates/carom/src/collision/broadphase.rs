@@ -10,14 +10,14 @@
 //! colliders, so static-static pairs are never even looked at; two colliders of one body never
 //! pair.
 
-use super::dynamic_tree::{DynamicTree, Walk};
-use super::filter::CollisionFilter;
-use super::look_ahead::Motion;
 use crate::clone_in_place::clone_in_place;
 use crate::constants::{MOVES_PER_TASK, WALK_MOVED_FRACTION, WALK_PIECES};
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
+use crate::dynamics::filter::CollisionFilter;
 use crate::geometry::aabb::Aabb;
+use crate::geometry::dynamic_tree::{DynamicTree, Walk};
+use crate::geometry::look_ahead::Motion;
 use crate::heap_bytes::{HeapBytes, array};
 use crate::math::{Real, Vec2};
 use crate::parallel::worth_sharing;
@@ -53,7 +53,7 @@ struct Proxy {
     /// Where it can go next step, if its body moves farther in a step than its fat box's
     /// margin (a runner): its box, swept along its path, overlaps colliders it cannot reach,
     /// so its pairs are made and kept only while the two can close within a step
-    /// ([`crate::collision::look_ahead`]), and it looks for new pairs every step.
+    /// ([`crate::geometry::look_ahead`]), and it looks for new pairs every step.
     #[cfg_attr(feature = "serde", serde(default))]
     runner: Option<Motion>,
 }
@@ -800,7 +800,7 @@ impl BroadPhase {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::collision::dynamic_tree::tests::{Lcg, random_box};
+    use crate::geometry::dynamic_tree::tests::{Lcg, random_box};
     use crate::math::vec2;
 
     /// Each collider of the tests has a body of its own, with the collider's index.

@@ -17,14 +17,14 @@
 //! reported as begin and end events, readable after the step.
 
 use crate::clone_in_place::clone_in_place;
-use crate::collision::manifold::Manifold;
 use crate::collision::recycle::ManifoldFrame;
 use crate::constants::CONTACTS_PER_TASK;
 #[cfg(feature = "serde")]
 use crate::dynamics::body::Body;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
-use crate::dynamics::surface::{Mixed, mix};
+use crate::dynamics::surface::{Mixed, Mixers, mix};
+use crate::geometry::query::manifold::Manifold;
 use crate::graph::colors::{ColorBody, ContactColors, NO_COLOR};
 use crate::graph::layout::{
     ASLEEP, ColorRanges, ContactPartition, NOT_TOUCHING, color_part, color_ranges,
@@ -34,7 +34,7 @@ use crate::heap_bytes::{HeapBytes, OwnsNothing, array, map_table, nothing};
 use crate::math::Real;
 use crate::parallel::for_each_with;
 use crate::partition::shift_along;
-use crate::world::solver_sets::SolverSet;
+use crate::solver_set::SolverSet;
 use std::collections::HashMap;
 use std::collections::hash_map::Entry;
 use std::hash::{BuildHasherDefault, Hasher};
@@ -265,19 +265,6 @@ impl ContactEvent {
             ContactEvent::Begin(pair) | ContactEvent::End(pair) => pair,
         }
     }
-}
-
-/// A world's rule for mixing two surfaces' friction or restitution where they touch: it is
-/// given each surface's value and material id (`a`'s value, `a`'s id, `b`'s value, `b`'s
-/// id) and answers the pair's. A plain function, so that it cannot reach into the world; an
-/// answer that is negative or not a number counts as 0.
-pub type MaterialMixer = fn(Real, u64, Real, u64) -> Real;
-
-/// The world's mixers; `None` mixes as [`crate::dynamics::surface`] says by default.
-#[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct Mixers {
-    pub friction: Option<MaterialMixer>,
-    pub restitution: Option<MaterialMixer>,
 }
 
 /// A cheap hasher for pair keys (two slot indices packed in a `u64`), which need no

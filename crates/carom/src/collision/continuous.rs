@@ -20,18 +20,18 @@
 //!
 //! The sweep is the second line. The first is in the contacts: with this effect on, a pair's
 //! face points are kept as far apart as the pair can close in a step (see
-//! [`crate::collision::manifold::Margins`]) and moving bodies' broadphase boxes cover where they are going,
+//! [`crate::geometry::query::manifold::Margins`]) and moving bodies' broadphase boxes cover where they are going,
 //! so a body meeting a face, static or moving, at any speed has its contact before it gets
 //! there and the solver stops it at the surface.
 
 use crate::collision::broadphase::BroadPhase;
-use crate::collision::distance::separation;
 use crate::constants::{
     LINK_SKIM_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS, SWEEPS_PER_TASK, TASKS_PER_THREAD,
 };
 use crate::dynamics::body::{Body, BodyHandle, BodyKind, Pose};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_colliders};
 use crate::geometry::aabb::Aabb;
+use crate::geometry::query::distance::separation;
 use crate::geometry::shape::WorldShape;
 use crate::handle_map::HandleMap;
 use crate::joint::store::JointStore;

@@ -7,7 +7,6 @@
 
 use crate::collision::broadphase::{FatBoxes, kinds_can_collide};
 use crate::collision::contact::{Contact, ContactEvent, ContactSet};
-use crate::collision::manifold::{self, Manifold, Margins};
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::recycle::ManifoldFrame;
 use crate::constants::{
@@ -15,6 +14,8 @@ use crate::constants::{
 };
 use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
+use crate::geometry::query::collide;
+use crate::geometry::query::manifold::{Manifold, Margins};
 use crate::handle_map::HandleMap;
 use crate::math::Real;
 use crate::parallel::for_each_chunk_mut_with;
@@ -310,7 +311,7 @@ fn refresh_manifold(
         any: margin,
         face: margin + closing_speed(a, b) * prediction,
     };
-    contact.manifold = manifold::update(
+    contact.manifold = collide::update(
         shape_a.world_shape(),
         shape_b.world_shape(),
         margins,

@@ -19,9 +19,9 @@
 //! do not opt in, asks nothing.
 
 use crate::collision::contact::ContactPair;
-use crate::collision::manifold::Manifold;
 use crate::dynamics::body::Body;
 use crate::dynamics::collider::Collider;
+use crate::geometry::query::manifold::Manifold;
 use std::sync::Arc;
 
 /// What the pre-solve hook is shown of a contact about to be solved: which colliders and

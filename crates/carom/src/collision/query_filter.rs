@@ -1,7 +1,7 @@
 //! Which colliders a query sees.
 
-use crate::collision::filter::CollisionFilter;
 use crate::dynamics::body::BodyHandle;
+use crate::dynamics::filter::CollisionFilter;
 
 /// Which colliders a query (a ray or shape cast, a box or shape overlap) sees. Every query
 /// takes one; [`QueryFilter::ALL`] (the default) sees every collider.

@@ -9,10 +9,10 @@
 //! back and forth and feed the rocking until the column falls. Resting piles also cost next
 //! to nothing in the narrowphase.
 
-use crate::collision::manifold::Manifold;
 use crate::constants::{RECYCLE_COS_ANGLE, RECYCLE_SIZE_FRACTION, SPECULATIVE_DISTANCE};
 use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::Collider;
+use crate::geometry::query::manifold::Manifold;
 use crate::math::{Real, Rot, Vec2};
 
 /// What a manifold was built against: the bodies' poses and each point's separation then.
@@ -111,9 +111,9 @@ impl ManifoldFrame {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::collision::manifold;
     use crate::constants::{RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC};
     use crate::dynamics::body_def::BodyDef;
+    use crate::geometry::query::collide;
     use crate::geometry::shape::Shape;
     use crate::math::vec2;
     use crate::world::World;
@@ -151,7 +151,7 @@ mod tests {
         b: crate::BodyHandle,
     ) -> (Manifold, ManifoldFrame) {
         let ((a, ca), (b, cb)) = (parts(world, a), parts(world, b));
-        let mut built = manifold::collide(ca.world_shape(), cb.world_shape(), SPECULATIVE_DISTANCE);
+        let mut built = collide::collide(ca.world_shape(), cb.world_shape(), SPECULATIVE_DISTANCE);
         built.set_anchors(a.center_of_mass(), b.center_of_mass());
         let frame = ManifoldFrame::of(&built, (a, ca), (b, cb));
         (built, frame)
@@ -171,7 +171,7 @@ mod tests {
         let mut carried = built;
         let recycled = frame.carry(&mut carried, a.0, b.0, RECYCLE_DISTANCE_CLASSIC);
         assert!(recycled, "small motion recycles");
-        let rebuilt = manifold::collide(a.1.world_shape(), b.1.world_shape(), SPECULATIVE_DISTANCE);
+        let rebuilt = collide::collide(a.1.world_shape(), b.1.world_shape(), SPECULATIVE_DISTANCE);
         assert_eq!(carried.points().len(), rebuilt.points().len());
         for (c, r) in carried.points().iter().zip(rebuilt.points()) {
             assert!((c.separation - r.separation).abs() < 1e-4, "{c:?} vs {r:?}");
@@ -270,7 +270,7 @@ mod tests {
         let (a, b) = (parts(&world, ground), parts(&world, ball));
         let mut carried = built;
         assert!(frame.carry(&mut carried, a.0, b.0, RECYCLE_DISTANCE));
-        let rebuilt = manifold::collide(a.1.world_shape(), b.1.world_shape(), SPECULATIVE_DISTANCE);
+        let rebuilt = collide::collide(a.1.world_shape(), b.1.world_shape(), SPECULATIVE_DISTANCE);
         assert_eq!(carried.points().len(), rebuilt.points().len());
         for (c, r) in carried.points().iter().zip(rebuilt.points()) {
             assert!((c.separation - r.separation).abs() < 1e-4, "{c:?} vs {r:?}");

@@ -18,10 +18,10 @@
 
 use crate::clone_in_place::clone_in_place;
 use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
-use crate::collision::distance::separation;
 use crate::constants::SENSORS_PER_TASK;
 use crate::dynamics::body::{Body, BodyHandle};
 use crate::dynamics::collider::{Collider, ColliderHandle};
+use crate::geometry::query::distance::separation;
 use crate::handle_map::HandleMap;
 use crate::heap_bytes::{HeapBytes, array, nothing};
 use crate::parallel::map_mut_into;

@@ -21,9 +21,9 @@ pub use color::{Color, palette};
 pub use options::{DrawFlags, DrawOptions};
 pub use sink::{DebugDraw, DrawCircle, DrawList, DrawPoint, DrawPolygon, DrawSegment};
 
-use crate::collision::manifold::PairSide;
 use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::Collider;
+use crate::geometry::query::manifold::PairSide;
 use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Vec2, vec2};
 use crate::world::World;

@@ -126,3 +126,90 @@ impl Default for DrawOptions {
         }
     }
 }
+
+/// Draw flags are written as the list of layers on, each a bare name.
+#[cfg(feature = "serde")]
+mod written {
+    use super::DrawFlags;
+    use serde::de::{self, Deserializer, SeqAccess, Visitor};
+    use serde::ser::{SerializeSeq, Serializer};
+    use serde::{Deserialize, Serialize};
+    use std::fmt;
+
+    impl Serialize for DrawFlags {
+        fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+            let on: Vec<&str> = DrawFlags::NAMED
+                .iter()
+                .filter(|(_, flag)| self.contains(*flag))
+                .map(|(name, _)| *name)
+                .collect();
+            let mut seq = serializer.serialize_seq(Some(on.len()))?;
+            for name in on {
+                seq.serialize_element(&DrawLayer(name))?;
+            }
+            seq.end()
+        }
+    }
+
+    /// One draw layer's name, written as a bare identifier (as an enum variant is).
+    struct DrawLayer(&'static str);
+
+    impl Serialize for DrawLayer {
+        fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+            let index = DrawFlags::NAMED
+                .iter()
+                .position(|(name, _)| *name == self.0)
+                .unwrap_or(0);
+            serializer.serialize_unit_variant("DrawFlags", index as u32, self.0)
+        }
+    }
+
+    impl<'de> Deserialize<'de> for DrawFlags {
+        fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+            struct Layers;
+            impl<'de> Visitor<'de> for Layers {
+                type Value = DrawFlags;
+                fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                    f.write_str("a list of draw layers")
+                }
+                fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<DrawFlags, A::Error> {
+                    let mut flags = DrawFlags::NONE;
+                    while let Some(LayerName(flag)) = seq.next_element()? {
+                        flags = flags | flag;
+                    }
+                    Ok(flags)
+                }
+            }
+            deserializer.deserialize_seq(Layers)
+        }
+    }
+
+    /// A draw layer read from its name.
+    struct LayerName(DrawFlags);
+
+    impl<'de> Deserialize<'de> for LayerName {
+        fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+            struct Name;
+            impl Visitor<'_> for Name {
+                type Value = LayerName;
+                fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                    f.write_str("a draw layer name")
+                }
+                fn visit_str<E: de::Error>(self, name: &str) -> Result<LayerName, E> {
+                    DrawFlags::NAMED
+                        .iter()
+                        .find(|(known, _)| *known == name)
+                        .map(|(_, flag)| LayerName(*flag))
+                        .ok_or_else(|| {
+                            let names: Vec<&str> =
+                                DrawFlags::NAMED.iter().map(|(n, _)| *n).collect();
+                            E::custom(format!(
+                                "unknown draw layer `{name}`, expected one of {names:?}"
+                            ))
+                        })
+                }
+            }
+            deserializer.deserialize_identifier(Name)
+        }
+    }
+}

@@ -3,13 +3,13 @@
 //! A chain is a list of points, open or closed into a loop. Each pair of neighbours becomes
 //! one collider, a [`ChainSegment`] that knows the points beyond its ends (its ghost
 //! vertices), so a body crossing from one link to the next meets one smooth surface (see
-//! `collision::chain_segment`). Links collide on their right side, seen walking along the
+//! `geometry::query::chain_segment`). Links collide on their right side, seen walking along the
 //! points: a counter-clockwise loop is solid outside, a clockwise one inside, and ground whose
 //! solid side is below runs from right to left. Chains have no area and so no mass: they are
 //! for static (or kinematic) bodies, and they do not collide with other chains.
 
-use crate::collision::filter::CollisionFilter;
 use crate::dynamics::collider::ColliderDef;
+use crate::dynamics::filter::CollisionFilter;
 use crate::dynamics::surface::Surface;
 use crate::error::CaromError;
 use crate::geometry::capsule::check_apart;

@@ -8,9 +8,9 @@
 //! mass, centre of mass and inertia are summed over its colliders.
 
 use crate::clone_in_place::clone_in_place;
-use crate::collision::filter::CollisionFilter;
 use crate::constants::{CONTACTS_PER_TASK, ITEMS_PER_TASK};
 use crate::dynamics::body::{Body, BodyHandle};
+use crate::dynamics::filter::CollisionFilter;
 use crate::dynamics::surface::Surface;
 use crate::error::{CaromError, check_finite, check_finite_vec};
 use crate::geometry::aabb::Aabb;
@@ -233,7 +233,10 @@ pub struct Collider {
     /// Where the body sits in the world's body storage, kept current by the world, so the hot
     /// loops reach the body without a handle lookup.
     body_index: u32,
-    #[cfg_attr(feature = "serde", serde(with = "crate::serde_impls::exact_shape"))]
+    #[cfg_attr(
+        feature = "serde",
+        serde(with = "crate::geometry::shape::saved::exact_shape")
+    )]
     shape: Shape,
     /// Placement in the body's frame; `None` at the origin, unturned (the common case, which
     /// then costs no transform product).

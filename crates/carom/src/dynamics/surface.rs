@@ -9,7 +9,6 @@
 //! its speed, clockwise around its shape (a belt's top, facing up, carries what lies on it
 //! toward +x), and friction drives what touches it to match.
 
-use crate::collision::contact::Mixers;
 use crate::dynamics::collider::{Collider, DEFAULT_FRICTION, check_non_negative};
 use crate::error::{CaromError, check_finite};
 use crate::math::Real;
@@ -70,6 +69,19 @@ pub(crate) struct Mixed {
     /// The larger rolling resistance times the larger rolling radius, m.
     pub rolling_resistance: Real,
     pub tangent_speed: Real,
+}
+
+/// A world's rule for mixing two surfaces' friction or restitution where they touch: it is
+/// given each surface's value and material id (`a`'s value, `a`'s id, `b`'s value, `b`'s
+/// id) and answers the pair's. A plain function, so that it cannot reach into the world; an
+/// answer that is negative or not a number counts as 0.
+pub type MaterialMixer = fn(Real, u64, Real, u64) -> Real;
+
+/// The world's mixers; `None` mixes as this module says by default.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Mixers {
+    pub friction: Option<MaterialMixer>,
+    pub restitution: Option<MaterialMixer>,
 }
 
 /// Two colliders' surfaces mixed for their contact.

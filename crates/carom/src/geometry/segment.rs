@@ -6,7 +6,7 @@
 //! its outside, like a polygon), and it knows its neighbours' far ends, its *ghost vertices*.
 //! They tell the narrowphase which way the chain turns at each end, so a body sliding across
 //! a join meets one smooth surface instead of catching on the corner of the next link (Box2D's
-//! smooth collision; see `collision::chain_segment`).
+//! smooth collision; see `geometry::query::chain_segment`).
 //!
 //! Both keep the points they are given, in the collider's frame: they are not recentred.
 

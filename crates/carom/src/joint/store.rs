@@ -1,12 +1,12 @@
 //! The world's joints: stored contiguously behind handles in solver sets (awake, static,
-//! asleep, see `world::solver_sets`), with each body's list of joints (for removing a body,
+//! asleep, see `solver_set`), with each body's list of joints (for removing a body,
 //! linking islands, moving a body's joints between sets and filtering pairs).
 
 use super::{Joint, JointEvent, JointHandle};
 use crate::dynamics::body::BodyHandle;
 use crate::handle_map::HandleMap;
 use crate::heap_bytes::{HeapBytes, array, map_table, nothing};
-use crate::world::solver_sets::{JointSetBounds, SolverSet};
+use crate::solver_set::{JointSetBounds, SolverSet};
 use std::collections::HashMap;
 use std::ops::Range;
 
@@ -19,11 +19,11 @@ pub(crate) struct JointStore {
     joints: HandleMap<JointHandle, Joint>,
     sets: JointSetBounds,
     /// Each body's joints, in the order they were added.
-    #[cfg_attr(feature = "serde", serde(with = "crate::serde_impls::sorted_map"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::sorted_map"))]
     by_body: HashMap<BodyHandle, Vec<JointHandle>>,
     /// Joints that keep their bodies from colliding: how many join each pair of bodies (the
     /// lower handle first).
-    #[cfg_attr(feature = "serde", serde(with = "crate::serde_impls::sorted_map"))]
+    #[cfg_attr(feature = "serde", serde(with = "crate::sorted_map"))]
     filters: HashMap<(BodyHandle, BodyHandle), u32>,
     /// What happened to joints in the last step.
     pub events: Vec<JointEvent>,

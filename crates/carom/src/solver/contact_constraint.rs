@@ -2,8 +2,8 @@
 
 use super::BodyState;
 use crate::collision::contact::{Contact, PointImpulse};
-use crate::collision::manifold::ManifoldPoint;
 use crate::dynamics::body::Body;
+use crate::geometry::query::manifold::ManifoldPoint;
 use crate::math::{Real, Vec2, cross, cross_sv, perp_cw};
 
 /// One point of a contact constraint.

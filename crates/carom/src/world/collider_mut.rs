@@ -1,8 +1,8 @@
 //! A collider lent out to be changed, so that what depends on it (its body's mass, its
 //! contacts, the broadphase) follows at once.
 
-use crate::collision::filter::CollisionFilter;
 use crate::dynamics::collider::{Collider, ColliderHandle, check_non_negative};
+use crate::dynamics::filter::CollisionFilter;
 use crate::dynamics::surface::Surface;
 use crate::error::CaromError;
 use crate::math::Real;

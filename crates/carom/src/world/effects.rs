@@ -116,6 +116,30 @@ impl Effects {
     }
 }
 
+/// Effects are written as the list of those on, by name.
+#[cfg(feature = "serde")]
+mod written {
+    use super::{Effect, Effects};
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    impl Serialize for Effects {
+        fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+            let on: Vec<Effect> = Effect::ALL
+                .into_iter()
+                .filter(|&e| self.contains(e))
+                .collect();
+            on.serialize(serializer)
+        }
+    }
+
+    impl<'de> Deserialize<'de> for Effects {
+        fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+            let list = Vec::<Effect>::deserialize(deserializer)?;
+            Ok(list.into_iter().fold(Effects::NONE, Effects::with))
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

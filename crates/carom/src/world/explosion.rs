@@ -8,11 +8,11 @@
 //! fading linearly to nothing over the falloff beyond it. A body of several colliders takes
 //! each one's push; sensors take none (Box2D pushes a sensor's shape too).
 
-use crate::collision::distance::{closest_points, with_core};
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::error::{CaromError, check_finite, check_finite_not_negative, check_finite_vec};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::polygon_centroid;
+use crate::geometry::query::distance::{closest_points, with_core};
 use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Vec2, perp_cw, vec2};
 use crate::world::World;

@@ -19,7 +19,7 @@ mod step;
 use step::StepScratch;
 
 use crate::collision::broadphase::BroadPhase;
-use crate::collision::contact::{Contact, ContactEvent, ContactSet, MaterialMixer, Mixers};
+use crate::collision::contact::{Contact, ContactEvent, ContactSet};
 use crate::collision::hits::HitEvent;
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::sensor::{SensorEvent, SensorOverlap, Sensors};
@@ -27,18 +27,19 @@ use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::body_def::BodyDef;
 use crate::dynamics::collider::{Collider, ColliderDef, ColliderHandle, place_colliders};
 use crate::dynamics::island::Islands;
+use crate::dynamics::surface::{MaterialMixer, Mixers};
 use crate::error::{CaromError, check_finite_not_negative, check_finite_vec};
 use crate::handle_map::HandleMap;
 use crate::joint::store::JointStore;
 use crate::math::{Real, Vec2};
 use crate::solver::{self, SolverParams};
+use crate::solver_set::SetBounds;
 use crate::stats::StepStats;
 use crate::world::body_mut::BodyMut;
 use crate::world::collider_mut::ColliderMut;
 use crate::world::effects::{Effect, Effects};
 use crate::world::islands::IslandScratch;
 use crate::world::settings::WorldSettings;
-use crate::world::solver_sets::SetBounds;
 
 /// Where a ray, or a shape cast along a translation, meets a collider.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -70,7 +71,7 @@ pub struct CastHit {
     serde(into = "saved::SavedWorld", try_from = "saved::SavedWorld")
 )]
 pub struct World {
-    /// Stored in solver sets: static, awake, asleep (see [`solver_sets`]).
+    /// Stored in solver sets: static, awake, asleep (see [`crate::solver_set`]).
     bodies: HandleMap<BodyHandle, Body>,
     /// Stored in the same sets as their bodies.
     colliders: HandleMap<ColliderHandle, Collider>,

@@ -6,12 +6,12 @@
 //! [`World::sensor_overlaps`]). Chains are one-sided here too: a ray or a cast shape starting
 //! behind a chain's link passes through it.
 
-use crate::collision::distance::separation;
 use crate::collision::query_filter::QueryFilter;
-use crate::collision::shape_cast::cast_shape;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
 use crate::geometry::aabb::Aabb;
+use crate::geometry::query::distance::separation;
+use crate::geometry::query::shape_cast::cast_shape;
 use crate::geometry::ray::Ray;
 use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Vec2, is_finite_vec};

@@ -17,8 +17,8 @@ use crate::dynamics::island::Islands;
 use crate::error::CaromError;
 use crate::handle_map::HandleMap;
 use crate::joint::store::JointStore;
+use crate::solver_set::{SetBounds, SolverSet};
 use crate::world::settings::WorldSettings;
-use crate::world::solver_sets::{SetBounds, SolverSet};
 use crate::world::{World, check_settings};
 use serde::{Deserialize, Serialize};
 

@@ -5,8 +5,8 @@
 use crate::constants::TIME_TO_SLEEP;
 use crate::dynamics::body::BodyKind;
 use crate::math::Real;
+use crate::solver_set::SolverSet;
 use crate::world::World;
-use crate::world::solver_sets::SolverSet;
 
 impl World {
     /// The sleep stage: advances the awake dynamic bodies' sleep timers, puts every island

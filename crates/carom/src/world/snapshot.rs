@@ -19,9 +19,9 @@ use crate::handle_map::HandleMap;
 use crate::heap_bytes::{HeapBytes, array, nothing};
 use crate::joint::store::JointStore;
 use crate::parallel::worth_sharing;
+use crate::solver_set::SetBounds;
 use crate::world::World;
 use crate::world::settings::WorldSettings;
-use crate::world::solver_sets::SetBounds;
 
 /// A world's whole state at one moment, in memory: bodies, colliders, joints, contacts with
 /// their warm-start impulses, islands, sleep, the broadphase and the settings.

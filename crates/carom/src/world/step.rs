@@ -4,7 +4,6 @@ use super::{World, margin_for};
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::continuous::{self, ContinuousScratch};
 use crate::collision::hits::find_hits;
-use crate::collision::look_ahead::Motion;
 use crate::collision::narrowphase::{ManifoldOptions, Narrowphase};
 use crate::constants::{
     CONTACTS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
@@ -14,12 +13,13 @@ use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_awake_colliders};
 use crate::error::CaromError;
 use crate::geometry::aabb::Aabb;
+use crate::geometry::look_ahead::Motion;
 use crate::math::{Real, Vec2};
 use crate::parallel::{map_zip_into, worth_sharing};
 use crate::solver::{self, Environment, SolverKind};
+use crate::solver_set::SolverSet;
 use crate::stats::{CollisionWork, Instant, StepStats};
 use crate::world::effects::Effect;
-use crate::world::solver_sets::SolverSet;
 
 /// What the stages of a step work in besides the solver, kept so a step in steady state
 /// allocates nothing.
@@ -443,7 +443,7 @@ pub(super) struct Refit {
     /// `aabb` left its fat box (or its body changed kind).
     leaves: bool,
     /// Where it can go next step, if its body outruns the fat box's margin (see
-    /// [`crate::collision::look_ahead`]).
+    /// [`crate::geometry::look_ahead`]).
     runner: Option<Motion>,
 }
 

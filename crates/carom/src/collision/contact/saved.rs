@@ -5,10 +5,11 @@
 //! exactly once in each of its bodies' lists.
 
 use super::{
-    BodyIndices, Contact, ContactEvent, ContactSet, EdgeList, Mixers, NO_EDGE, NO_ID, PairHasher,
-    Slot, edge, edge_id, pair_key,
+    BodyIndices, Contact, ContactEvent, ContactSet, EdgeList, NO_EDGE, NO_ID, PairHasher, Slot,
+    edge, edge_id, pair_key,
 };
 use crate::dynamics::body::BodyHandle;
+use crate::dynamics::surface::Mixers;
 use crate::graph::colors::ContactColors;
 use crate::graph::layout::ContactPartition;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};

@@ -1,6 +1,9 @@
 //! Collision shapes: circles, capsules, convex polygons (rounded or not), segments and chain
 //! segments, in their local frame and in the world.
 
+#[cfg(feature = "serde")]
+pub(crate) mod saved;
+
 use crate::error::CaromError;
 use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::{self, MassProperties};

@@ -17,7 +17,6 @@
 //! speculative point there would stop bodies that were only going to graze past (a ghost
 //! collision).
 
-use super::chain_segment::{self, ChainLink};
 use super::distance::{self, PolygonFeature};
 use crate::constants::LINEAR_SLOP;
 use crate::constants::{REFERENCE_TOLERANCE, SPURIOUS_TOLERANCE};
@@ -226,15 +225,6 @@ impl Manifold {
     }
 }
 
-/// The manifold of two placed shapes, with points for every feature closer than `margin`
-/// (use 0 for touching points only).
-///
-/// The reference face is the better of the two polygons' best faces, so swapping the
-/// arguments gives the same points with the normal flipped.
-pub fn collide(a: &WorldShape, b: &WorldShape, margin: Real) -> Manifold {
-    collide_after(a, b, Margins::plain(margin), None)
-}
-
 /// How far apart two shapes' points may be and still be kept.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Margins {
@@ -250,76 +240,6 @@ impl Margins {
         Margins {
             any: margin,
             face: margin,
-        }
-    }
-}
-
-/// [`collide`] for a pair that touched last step: the side that held the reference face keeps
-/// it unless the other side's face is better by [`REFERENCE_TOLERANCE`], and impulses carry
-/// over to points with the same feature ids. Face points are kept up to `margins.face` apart.
-pub fn update(a: &WorldShape, b: &WorldShape, margins: Margins, previous: &Manifold) -> Manifold {
-    let mut manifold = collide_after(a, b, margins, previous.reference_edge.map(|e| e.side));
-    manifold.carry_impulses_from(previous);
-    manifold
-}
-
-fn collide_after(
-    a: &WorldShape,
-    b: &WorldShape,
-    margins: Margins,
-    previous_reference: Option<PairSide>,
-) -> Manifold {
-    let margin = margins.any;
-    match (a, b) {
-        (
-            WorldShape::Circle {
-                center: ca,
-                radius: ra,
-            },
-            WorldShape::Circle {
-                center: cb,
-                radius: rb,
-            },
-        ) => collide_circles(*ca, *ra, *cb, *rb, margin),
-        (
-            WorldShape::Polygon {
-                vertices,
-                normals,
-                radius: rounding,
-            },
-            WorldShape::Circle { center, radius },
-        ) => collide_polygon_circle(vertices, normals, *rounding, *center, *radius, margins),
-        (
-            WorldShape::Circle { center, radius },
-            WorldShape::Polygon {
-                vertices,
-                normals,
-                radius: rounding,
-            },
-        ) => collide_polygon_circle(vertices, normals, *rounding, *center, *radius, margins)
-            .flipped(),
-        (
-            WorldShape::Polygon {
-                vertices: va,
-                normals: na,
-                radius: ra,
-            },
-            WorldShape::Polygon {
-                vertices: vb,
-                normals: nb,
-                radius: rb,
-            },
-        ) => collide_polygons(
-            Core::new(va, na, *ra),
-            Core::new(vb, nb, *rb),
-            margins,
-            previous_reference,
-        ),
-        (link @ WorldShape::ChainSegment { .. }, other) => {
-            chain_segment::collide(&ChainLink::of(link), other, margins)
-        }
-        (other, link @ WorldShape::ChainSegment { .. }) => {
-            chain_segment::collide(&ChainLink::of(link), other, margins).flipped()
         }
     }
 }
@@ -348,7 +268,7 @@ impl<'a> Core<'a> {
     }
 }
 
-fn collide_circles(ca: Vec2, ra: Real, cb: Vec2, rb: Real, margin: Real) -> Manifold {
+pub(super) fn collide_circles(ca: Vec2, ra: Real, cb: Vec2, rb: Real, margin: Real) -> Manifold {
     let s = distance::circle_circle(ca, ra, cb, rb);
     let mut manifold = Manifold::with_normal(s.normal);
     if s.separation <= margin {
@@ -389,7 +309,7 @@ fn middle(a: (Real, Real), b: (Real, Real)) -> Real {
     0.5 * (a.0.max(b.0) + a.1.min(b.1))
 }
 
-fn collide_polygon_circle(
+pub(super) fn collide_polygon_circle(
     vertices: &[Vec2],
     normals: &[Vec2],
     rounding: Real,
@@ -439,7 +359,7 @@ fn collide_polygon_circle(
 
 /// Two convex cores, each grown by its radius: SAT and clipping on the cores, every
 /// separation less both radii, every point midway between the grown surfaces.
-fn collide_polygons(
+pub(super) fn collide_polygons(
     a: Core,
     b: Core,
     margins: Margins,
@@ -779,6 +699,7 @@ fn clip_overlap<'a>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::query::collide::{collide, update};
     use crate::geometry::shape::Shape;
     use crate::math::vec2;
 

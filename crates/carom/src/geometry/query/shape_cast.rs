@@ -7,9 +7,9 @@
 //! advance). The cast stops when the gap is within [`SHAPE_CAST_TOLERANCE`], short of
 //! touching, so the shape moved by the reported fraction does not overlap.
 
-use crate::collision::distance::{closest_points, separation, with_core};
-use crate::collision::manifold::collide;
 use crate::constants::{MAX_TIME_OF_IMPACT_ITERATIONS, SHAPE_CAST_TOLERANCE};
+use crate::geometry::query::collide::collide;
+use crate::geometry::query::distance::{closest_points, separation, with_core};
 use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Vec2};
 
