@@ -12,7 +12,7 @@ use crate::dynamics::collider::ColliderDef;
 use crate::dynamics::filter::CollisionFilter;
 use crate::dynamics::surface::Surface;
 use crate::error::CaromError;
-use crate::geometry::capsule::check_apart;
+use crate::geometry::checks::check_apart;
 use crate::geometry::checks::check_point;
 use crate::geometry::shape::{ChainSegment, Shape};
 use crate::math::{Real, Vec2};

@@ -5,9 +5,9 @@
 //! `(0, 0)`–`(0, 2h)` stands on its first centre. Collision treats it as a two-vertex polygon
 //! rounded by its radius, which is what it is.
 
-use crate::constants::{CONTAINMENT_TOLERANCE, LINEAR_SLOP, WELD_TOLERANCE};
+use crate::constants::CONTAINMENT_TOLERANCE;
 use crate::error::{CaromError, check_finite};
-use crate::geometry::checks::{check_extent, check_point};
+use crate::geometry::checks::{check_apart, check_extent, check_point};
 use crate::geometry::segment::distance_to_segment;
 use crate::math::{Real, Vec2};
 
@@ -76,22 +76,6 @@ impl Capsule {
     pub fn contains_local(&self, point: Vec2) -> bool {
         distance_to_segment(point, self.center1, self.center2)
             <= self.radius + CONTAINMENT_TOLERANCE
-    }
-}
-
-/// Checks that two points are farther apart than rounding can blur.
-pub(crate) fn check_apart(what: &str, p: Vec2, q: Vec2) -> Result<(), CaromError> {
-    let extent = p.abs().max().max(q.abs().max()).max(1.0);
-    // Shorter than the linear slop, a segment is a point to the solver, and its direction
-    // (the normal of every contact with it) is rounding noise (Box2D refuses it too).
-    if (q - p).norm() > (WELD_TOLERANCE * extent).max(LINEAR_SLOP) {
-        Ok(())
-    } else {
-        Err(CaromError::CoincidentPoints {
-            what: what.to_owned(),
-            x: p.x,
-            y: p.y,
-        })
     }
 }
 

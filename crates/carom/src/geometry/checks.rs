@@ -1,6 +1,6 @@
 //! Checks every shape constructor shares: finite values within the size carom supports.
 
-use crate::constants::MAX_SHAPE_EXTENT;
+use crate::constants::{LINEAR_SLOP, MAX_SHAPE_EXTENT, WELD_TOLERANCE};
 use crate::error::{CaromError, check_finite_vec};
 use crate::math::{Real, Vec2};
 
@@ -22,4 +22,20 @@ pub(crate) fn check_point(what: &str, point: Vec2) -> Result<(), CaromError> {
     check_finite_vec(what, point)?;
     check_extent("polygon coordinate", point.x)?;
     check_extent("polygon coordinate", point.y)
+}
+
+/// Checks that two points are farther apart than rounding can blur.
+pub(crate) fn check_apart(what: &str, p: Vec2, q: Vec2) -> Result<(), CaromError> {
+    let extent = p.abs().max().max(q.abs().max()).max(1.0);
+    // Shorter than the linear slop, a segment is a point to the solver, and its direction
+    // (the normal of every contact with it) is rounding noise (Box2D refuses it too).
+    if (q - p).norm() > (WELD_TOLERANCE * extent).max(LINEAR_SLOP) {
+        Ok(())
+    } else {
+        Err(CaromError::CoincidentPoints {
+            what: what.to_owned(),
+            x: p.x,
+            y: p.y,
+        })
+    }
 }

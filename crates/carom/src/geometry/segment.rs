@@ -12,8 +12,7 @@
 
 use crate::constants::CONTAINMENT_TOLERANCE;
 use crate::error::CaromError;
-use crate::geometry::capsule::check_apart;
-use crate::geometry::checks::check_point;
+use crate::geometry::checks::{check_apart, check_point};
 use crate::math::{Real, Vec2, perp_cw};
 
 /// The nearest point to `p` on the segment `start`–`end`, and where along it (`0..=1`).

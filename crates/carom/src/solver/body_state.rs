@@ -2,7 +2,9 @@
 //! contiguously so the inner loops touch little memory. Every solver path (one contact at a
 //! time, or several in SIMD lanes) reads and writes this one array.
 
-use super::{Environment, SolverParams};
+use super::context::Environment;
+
+use super::params::SolverParams;
 use crate::constants::ITEMS_PER_TASK;
 use crate::dynamics::body::{Body, BodyKind};
 use crate::math::{Real, Rot, Vec2, clamp_magnitude, rotation};

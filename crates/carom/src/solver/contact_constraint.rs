@@ -1,6 +1,6 @@
 //! A touching contact as the solver sees it: fixed anchors, effective masses, impulses.
 
-use super::BodyState;
+use super::body_state::BodyState;
 use crate::collision::contact::{Contact, PointImpulse};
 use crate::dynamics::body::Body;
 use crate::geometry::query::manifold::ManifoldPoint;

@@ -3,14 +3,15 @@
 //! constraints), solve (the chosen solver), and store (impulses back into contacts and joints
 //! for the next warm start, states back into bodies through the speed caps).
 
+use super::body_state::BodyState;
 use super::body_state::SpeedCaps;
 use super::classic::{push_out, sequential_impulse, tutorial_impulse};
 use super::contact_constraint::BodyMass;
+use super::context::{AwakeJoint, AwakeSet, Environment, SolverContext, StepReport};
+use super::joints::{JointBody, JointConstraint};
+use super::params::{SolverKind, SolverParams};
 use super::soft_step::{self, Bias, BundleInputs};
-use super::{
-    AwakeJoint, AwakeSet, BodyState, Environment, JointBody, JointConstraint, SolverContext,
-    SolverKind, SolverParams, StepReport, Workspace,
-};
+use super::workspace::Workspace;
 use crate::constants::ITEMS_PER_TASK;
 use crate::dynamics::body::Body;
 use crate::graph::joints::JointStates;

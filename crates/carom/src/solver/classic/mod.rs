@@ -10,8 +10,9 @@ pub(crate) mod push_out;
 pub(crate) mod sequential_impulse;
 pub(crate) mod tutorial_impulse;
 
+use crate::solver::body_state::BodyState;
 use crate::solver::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
-use crate::solver::{BodyState, SolverContext};
+use crate::solver::context::SolverContext;
 use crate::stats::Work;
 
 /// The tutorial's order, which its two solvers keep: its bodies moved, then it found and

@@ -5,8 +5,10 @@
 
 use super::in_tutorial_order;
 use crate::math::Real;
+use crate::solver::body_state::BodyState;
+use crate::solver::contact_constraint::ContactConstraint;
 use crate::solver::contact_constraint::pair_mut;
-use crate::solver::{BodyState, ContactConstraint, SolverContext};
+use crate::solver::context::SolverContext;
 use crate::stats::Work;
 
 pub(crate) fn solve(

@@ -13,14 +13,17 @@
 
 use crate::constants::{LINEAR_SLOP, MAX_CONDITION, MAX_CORRECTION, POSITION_ITERATIONS};
 use crate::math::{Real, cross, rotation};
+use crate::solver::body_state::BodyState;
 use crate::solver::body_state::{SpeedCaps, integrate_positions, integrate_velocities};
 use crate::solver::contact_constraint::ConstraintPoint;
+use crate::solver::contact_constraint::ContactConstraint;
 use crate::solver::contact_constraint::pair_mut;
+use crate::solver::context::SolverContext;
 use crate::solver::joints::{JointConstraint, JointPass};
+use crate::solver::params::SolverParams;
 use crate::solver::soft_step::scalar::{
     apply_restitution, forget_impulses, solve_friction, warm_start,
 };
-use crate::solver::{BodyState, ContactConstraint, SolverContext, SolverParams};
 use crate::stats::Work;
 
 pub(crate) fn solve(

@@ -9,7 +9,8 @@ use super::{
 };
 use crate::joint::DistanceJoint;
 use crate::math::{Real, Vec2, cross};
-use crate::solver::{BodyState, Softness};
+use crate::solver::body_state::BodyState;
+use crate::solver::params::Softness;
 
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Prepared {

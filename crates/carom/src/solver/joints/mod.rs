@@ -20,7 +20,8 @@ mod revolute;
 mod weld;
 mod wheel;
 
-use super::{BodyState, Softness, SolverParams};
+use super::body_state::{BodyState, SpeedCaps};
+use super::params::{Softness, SolverParams};
 use crate::dynamics::body::Body;
 use crate::joint::{Joint, JointImpulses, JointKind, Limits};
 use crate::math::{Real, Rot, Vec2, angle_of, cross, rotation};
@@ -46,7 +47,7 @@ pub(crate) struct JointConstraint {
     pub impulses: JointImpulses,
     /// The kind's settings and what was prepared from them.
     data: JointData,
-    /// A hinge whose point (and limits) the joint trees solve ([`super::joint_trees`]): its
+    /// A hinge whose point (and limits) the joint trees solve ([`crate::solver::soft_step::joint_trees`]): its
     /// own solve leaves them alone, and so does its warm start.
     point_in_tree: bool,
 }
@@ -450,7 +451,7 @@ impl JointConstraint {
     /// The impulses for the next step's warm start: none if the speed caps cut either body's
     /// velocities since the last warm start, or would cut them now (`states` as the step left
     /// them), as [`JointConstraint::warm_start`] would forget them.
-    pub fn impulses_to_keep(&self, states: &[BodyState], caps: super::SpeedCaps) -> JointImpulses {
+    pub fn impulses_to_keep(&self, states: &[BodyState], caps: SpeedCaps) -> JointImpulses {
         let held = |moves: bool, state: usize| moves && states[state].is_held(caps);
         if held(self.moves_a, self.a) || held(self.moves_b, self.b) {
             JointImpulses {

@@ -6,7 +6,8 @@
 use super::{JointConstraint, JointPass, inverse_or_zero, solve22};
 use crate::joint::{JointImpulses, MotorJoint};
 use crate::math::{Real, Vec2, clamp_magnitude, unwind_angle};
-use crate::solver::{BodyState, Softness};
+use crate::solver::body_state::BodyState;
+use crate::solver::params::Softness;
 
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Prepared {

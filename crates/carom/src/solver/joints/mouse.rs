@@ -6,7 +6,8 @@ use super::{JointConstraint, JointPass, solve22};
 use crate::constants::{MOUSE_ANGULAR_DAMPING_RATIO, MOUSE_ANGULAR_HERTZ};
 use crate::joint::MouseJoint;
 use crate::math::{Real, Vec2, clamp_magnitude, cross};
-use crate::solver::{BodyState, Softness};
+use crate::solver::body_state::BodyState;
+use crate::solver::params::Softness;
 
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Prepared {

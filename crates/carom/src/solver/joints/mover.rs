@@ -6,7 +6,7 @@
 use super::{JointConstraint, JointPass, inverse_or_zero};
 use crate::joint::MoverJoint;
 use crate::math::{Real, Vec2};
-use crate::solver::BodyState;
+use crate::solver::body_state::BodyState;
 
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Prepared {

@@ -8,7 +8,7 @@
 use super::{JointConstraint, JointPass, inverse_or_zero};
 use crate::joint::PogoJoint;
 use crate::math::{Real, Vec2, cross};
-use crate::solver::BodyState;
+use crate::solver::body_state::BodyState;
 
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Prepared {

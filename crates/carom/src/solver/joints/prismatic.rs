@@ -9,7 +9,8 @@
 use super::{JointConstraint, JointPass, inverse_or_zero, solve_limits, solve22, spring_softness};
 use crate::joint::PrismaticJoint;
 use crate::math::{Real, Vec2, cross, cross_sv};
-use crate::solver::{BodyState, Softness};
+use crate::solver::body_state::BodyState;
+use crate::solver::params::Softness;
 
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Prepared {

@@ -8,7 +8,8 @@ use super::{
 };
 use crate::joint::{Limits, RevoluteJoint};
 use crate::math::{Real, unwind_angle};
-use crate::solver::{BodyState, Softness};
+use crate::solver::body_state::BodyState;
+use crate::solver::params::Softness;
 
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Prepared {

@@ -4,7 +4,8 @@
 use super::{JointConstraint, JointPass, inverse_or_zero, solve22};
 use crate::joint::{Spring, WeldJoint};
 use crate::math::{Real, Vec2};
-use crate::solver::{BodyState, Softness};
+use crate::solver::body_state::BodyState;
+use crate::solver::params::Softness;
 
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Prepared {

@@ -6,7 +6,8 @@ use super::prismatic::{Slide, axial_impulse, stop};
 use super::{JointConstraint, JointPass, inverse_or_zero, solve_limits, spring_softness};
 use crate::joint::WheelJoint;
 use crate::math::Real;
-use crate::solver::{BodyState, Softness};
+use crate::solver::body_state::BodyState;
+use crate::solver::params::Softness;
 
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Prepared {

@@ -6,22 +6,22 @@
 //! the order of constraints differs (colour by colour).
 
 use super::executor::{Stage, StageInputs, execute_stages};
+use super::inputs::BundleInputs;
+use super::joint_trees::JointTrees;
 use super::kernels::Bundle;
-use crate::collision::contact::{BodyIndices, Contact};
+use super::shock_propagation::ShockPropagation;
+use crate::collision::contact::Contact;
 use crate::constants::{COLOR_COUNT, ITEMS_PER_TASK};
 use crate::graph::joints::JointColors;
-use crate::graph::order::ContactGraph;
-use crate::math::Real;
 use crate::parallel::{for_each_chunk_with, worth_sharing};
-use crate::solver::contact_constraint::{BodyMass, ContactConstraint, SolverBody};
-use crate::solver::joint_trees::JointTrees;
+use crate::solver::body_state::BodyState;
+use crate::solver::contact_constraint::ContactConstraint;
 use crate::solver::joints::JointConstraint;
-use crate::solver::shock_propagation::ShockPropagation;
+use crate::solver::params::Softness;
 #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
 use crate::solver::soft_step::lanes::avx::{self, Avx8};
 use crate::solver::soft_step::lanes::{Four, Kernel, Lanes};
 use crate::solver::soft_step::shared_states::SharedStates;
-use crate::solver::{BodyState, Softness};
 use crate::stats::Work;
 use std::ops::Range;
 
@@ -90,79 +90,6 @@ pub(crate) struct WideContacts {
 impl Default for WideContacts {
     fn default() -> Self {
         WideContacts::new(Width::widest())
-    }
-}
-
-/// How a pass treats overlap: soft step's biased solve or its relaxation.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct PassBias {
-    pub use_bias: bool,
-    pub inv_h: Real,
-    pub max_push_speed: Real,
-    /// The substep's last pass: each point's accumulated normal impulse is then what the
-    /// substep applied, and the largest is kept for the user.
-    pub substep_end: bool,
-}
-
-/// What preparing the constraints reads.
-pub(crate) struct BundleInputs<'a> {
-    /// Where the awake set's bodies are among all bodies (dense indices).
-    pub awake: Range<usize>,
-    /// The awake bodies' states and masses, then the spare state's (a static body's).
-    pub states: &'a [BodyState],
-    pub masses: &'a [BodyMass],
-    /// The awake contacts, and where each one's bodies are among all bodies.
-    pub contacts: &'a [Contact],
-    pub body_indices: &'a [BodyIndices],
-    /// The solve order (contact indices) and its colours.
-    pub order: &'a [usize],
-    pub graph: &'a ContactGraph,
-    /// Softness against moving and static partners.
-    pub soft: Softness,
-    pub static_soft: Softness,
-    /// Start from last step's impulses (else from zero).
-    pub warm_starting: bool,
-}
-
-impl BundleInputs<'_> {
-    /// A contact's body at dense index `index`, as the solver takes it: its state, or the
-    /// spare state (past the awake ones) if it is not in the awake set.
-    pub(super) fn solver_body(&self, index: usize) -> SolverBody {
-        let awake = self.awake.contains(&index);
-        let index = self.state(index);
-        let state = &self.states[index];
-        SolverBody {
-            index,
-            mass: self.masses[index],
-            v: state.v,
-            w: state.w,
-            awake,
-        }
-    }
-
-    /// The state of the body at dense index `index`: its own, or the spare state (past the
-    /// awake ones) if it is not in the awake set.
-    pub(crate) fn state(&self, index: usize) -> usize {
-        if self.awake.contains(&index) {
-            index - self.awake.start
-        } else {
-            self.awake.len()
-        }
-    }
-
-    /// Contact `index` prepared as a constraint.
-    pub fn constraint(&self, index: usize) -> ContactConstraint {
-        let contact = &self.contacts[index];
-        let [a, b] = self.body_indices[index].map(|i| self.solver_body(i as usize));
-        let mut constraint = ContactConstraint::new(index, contact, a, b);
-        if !self.warm_starting {
-            for point in constraint.points_mut() {
-                point.normal_impulse = 0.0;
-                point.tangent_impulse = 0.0;
-            }
-            constraint.rolling_impulse = 0.0;
-        }
-        constraint
     }
 }
 
@@ -297,9 +224,17 @@ impl WideContacts {
 }
 
 #[cfg(test)]
+use super::inputs::PassBias;
+#[cfg(test)]
 use super::{Bias, executor::Pass};
 #[cfg(test)]
-use crate::solver::{Environment, SolverParams, body_state::SpeedCaps};
+use crate::math::Real;
+#[cfg(test)]
+use crate::solver::body_state::SpeedCaps;
+#[cfg(test)]
+use crate::solver::context::Environment;
+#[cfg(test)]
+use crate::solver::params::SolverParams;
 
 #[cfg(test)]
 impl WideContacts {

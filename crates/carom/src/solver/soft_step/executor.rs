@@ -4,12 +4,14 @@
 //! [`super::scheduler`] puts a barrier between stages.
 
 use super::Bias;
-use super::bundles::PassBias;
+use super::inputs::PassBias;
+use super::joint_trees::JointTrees;
 use super::kernels::Bundle;
 use super::lanes::{Kernel, Lanes};
 use super::scalar::{apply_restitution, solve_one, warm_start_one};
 use super::scheduler::{block_count, block_range, run_stages};
 use super::shared_states::SharedStates;
+use super::shock_propagation::ShockPropagation;
 use crate::constants::{
     COLOR_COUNT, JOINT_COLOR_COUNT, MAX_BLOCKS, MIN_BLOCK, MIN_BODY_BLOCK, MIN_JOINT_BLOCK,
     MIN_SHARED,
@@ -17,11 +19,12 @@ use crate::constants::{
 use crate::dynamics::body::Body;
 use crate::graph::joints::JointColors;
 use crate::math::Real;
+use crate::solver::body_state::BodyState;
 use crate::solver::body_state::{SpeedCaps, integrate_position, integrate_velocity};
-use crate::solver::joint_trees::JointTrees;
+use crate::solver::contact_constraint::ContactConstraint;
+use crate::solver::context::Environment;
 use crate::solver::joints::{JointConstraint, JointPass};
-use crate::solver::shock_propagation::ShockPropagation;
-use crate::solver::{BodyState, ContactConstraint, Environment, SolverParams};
+use crate::solver::params::SolverParams;
 use crate::stats::Work;
 use std::ops::Range;
 use std::sync::Mutex;

@@ -3,13 +3,13 @@
 //! lanes at a time. The arithmetic per lane is the scalar path's ([`super::scalar`]) operation
 //! for operation, summed in the same order, so a lane gives the scalar result bit for bit.
 
-use super::bundles::{BundleInputs, PassBias};
+use super::inputs::{BundleInputs, PassBias};
 use super::lanes::Lanes;
 use super::shared_states::SharedStates;
 use crate::collision::contact::{Contact, PointImpulse};
 use crate::math::Real;
-use crate::solver::Softness;
 use crate::solver::contact_constraint::{ConstraintPoint, rolling};
+use crate::solver::params::Softness;
 
 /// One contact point of a bundle's constraints.
 #[derive(Debug, Clone, Copy)]

@@ -5,49 +5,59 @@
 //! relax (solve again without bias, so the push-out leaves no energy behind). Anchors stay
 //! fixed for the step; each point's separation is updated from the bodies' motion. Joints are
 //! solved the same way, after the contacts in each pass ([`super::joints`]); with the
-//! options on, so are shock propagation's supports ([`super::shock_propagation`]) and the
-//! joint trees ([`super::joint_trees`]).
+//! options on, so are shock propagation's supports ([`shock_propagation`]) and the
+//! joint trees ([`joint_trees`]).
 //!
 //! This file plans a step's stages; the rest of the folder runs them:
+//! - `inputs`: what the contact passes read, and how a pass treats overlap;
 //! - `bundles`: the coloured contacts in SIMD bundles, prepared and stored;
 //! - `kernels`: one bundle's passes, four or eight lanes at a time;
 //! - `scalar`: the same passes one constraint at a time, for the overflow;
 //! - `executor`: the stages run over bundles, overflow, joints and bodies on all threads;
 //! - `scheduler`: blocks of a stage handed to threads, with a barrier between stages;
-//! - `shared_states`: the body states the threads write in place (with all of carom's
+//! - `shared_states`: the body states the threads write in place (with the solver's
 //!   `unsafe` code, here and in `lanes::avx`, saying why it is sound);
+//! - `joint_trees`: direct joints, each tree of hinges solved exactly;
+//! - `shock_propagation`: shock propagation's levels and supports, planned each step;
 //! - `shock_bundles`: shock propagation's supports, a level's round at a time in SIMD lanes;
 //! - `lanes`: the SIMD lanes, `wide`'s four or AVX's eight.
 
 mod bundles;
 mod executor;
+mod inputs;
+mod joint_trees;
 mod kernels;
 mod lanes;
 pub(crate) mod scalar;
 mod scheduler;
 mod shared_states;
 mod shock_bundles;
+mod shock_propagation;
 #[cfg(test)]
 mod tests;
 
-pub(crate) use bundles::{BundleInputs, WideContacts};
+pub(crate) use bundles::WideContacts;
 pub(crate) use executor::Stage;
+pub(crate) use inputs::BundleInputs;
+pub(crate) use joint_trees::JointTrees;
 pub(crate) use scheduler::block_range;
 pub(crate) use shared_states::SharedStates;
 pub(crate) use shock_bundles::{
     PassInputs as ShockPassInputs, ShockBundles, test_hooks as shock_test_hooks,
 };
+pub(crate) use shock_propagation::ShockPropagation;
 
+use super::body_state::BodyState;
 use super::body_state::SpeedCaps;
-use super::joint_trees::JointTrees;
+use super::contact_constraint::ContactConstraint;
+use super::context::{Environment, SolverContext};
 use super::joints::JointConstraint;
-use super::shock_propagation::ShockPropagation;
-use super::{BodyState, ContactConstraint, Environment, Softness, SolverContext, SolverParams};
+use super::params::{Softness, SolverParams};
 use crate::graph::joints::JointColors;
 use crate::math::Real;
 use crate::stats::Work;
-use bundles::PassBias;
 use executor::{Pass, StageInputs};
+use inputs::PassBias;
 
 /// One step in Box2D's stage order: per substep, integrate velocities, warm start, solve
 /// (biased), integrate positions, relax (unbiased); then restitution. Each contact pass runs

@@ -5,8 +5,10 @@
 
 use super::Bias;
 use crate::math::Real;
+use crate::solver::body_state::BodyState;
+use crate::solver::contact_constraint::ContactConstraint;
 use crate::solver::contact_constraint::pair_mut;
-use crate::solver::{BodyState, ContactConstraint, Softness, SolverParams};
+use crate::solver::params::{Softness, SolverParams};
 
 /// Starts from zero impulses (warm starting off).
 pub(crate) fn forget_impulses(constraints: &mut [ContactConstraint]) {

@@ -22,7 +22,7 @@
 #![allow(unsafe_code)]
 
 use crate::math::Real;
-use crate::solver::BodyState;
+use crate::solver::body_state::BodyState;
 use std::marker::PhantomData;
 
 /// A mutable borrow of the body states, readable and writable from several threads under the

@@ -1,4 +1,4 @@
-//! Shock propagation's supports in SIMD bundles ([`crate::solver::shock_propagation`]).
+//! Shock propagation's supports in SIMD bundles ([`super::shock_propagation`]).
 //!
 //! A support moves only its upper body and reads its lower one, which lies on a lower level
 //! and is never moved in the same level's pass. So within one level, supports of different
@@ -13,8 +13,8 @@ use super::bundles::Width;
 use super::lanes::avx::Avx8;
 use super::lanes::{Four, Kernel, Lanes};
 use super::shared_states::SharedStates;
+use super::shock_propagation::{Support, SupportPoint};
 use crate::math::Real;
-use crate::solver::shock_propagation::{Support, SupportPoint};
 use std::ops::Range;
 
 /// The supports of a step in bundles, level by level and round by round.

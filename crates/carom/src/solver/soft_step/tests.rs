@@ -8,7 +8,8 @@ use crate::graph::order::ContactGraph;
 use crate::graph::order::{ColorCheck, order_constraints};
 use crate::math::{rotation, vec2};
 use crate::solver::contact_constraint::BodyMass;
-use crate::solver::soft_step::bundles::{BundleInputs, Width};
+use crate::solver::soft_step::bundles::Width;
+use crate::solver::soft_step::inputs::BundleInputs;
 use crate::world::World;
 
 /// A pile in motion: a pyramid with a kinematic paddle pushing into it and circles

@@ -233,7 +233,7 @@ impl Lanes for f64x4 {
 pub(crate) mod tests {
     use super::*;
     use crate::math::{Rot, Vec2};
-    use crate::solver::BodyState;
+    use crate::solver::body_state::BodyState;
     use crate::solver::body_state::Held;
 
     /// Body `i`'s state holds `10 i + k` in float `k` (and `held` is `i % 2`).

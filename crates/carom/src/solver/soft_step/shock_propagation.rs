@@ -25,19 +25,19 @@
 //! The pass goes level by level. Within a level the supports of different upper bodies
 //! commute (each moves only its own upper body and reads a lower one that this level does not
 //! move), so a level's rounds (the first support of each upper body, then the second, ...)
-//! are solved in SIMD bundles ([`super::soft_step::ShockBundles`]) with the bits of the
+//! are solved in SIMD bundles ([`super::ShockBundles`]) with the bits of the
 //! one-at-a-time solve here, which a round of one takes.
 
-use super::BodyState;
-use super::contact_constraint::separation_now;
-use super::soft_step::scalar::point_bias;
-use super::soft_step::{
+use super::scalar::point_bias;
+use super::{
     Bias, BundleInputs, SharedStates, ShockBundles, ShockPassInputs, shock_test_hooks as test_hooks,
 };
 use crate::collision::contact::Contact;
 use crate::constants::MIN_WIDE_ROUND;
 use crate::constants::SUPPORT_COSINE;
 use crate::math::{Real, Vec2, cross, cross_sv, perp_cw};
+use crate::solver::body_state::BodyState;
+use crate::solver::contact_constraint::separation_now;
 use std::ops::Range;
 
 /// A level not (yet) reached from the ground.

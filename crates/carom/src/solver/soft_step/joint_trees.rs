@@ -28,13 +28,13 @@
 //! The tree owns its joints' point and limit impulses for the step: it warm starts them and hands them
 //! back for the next step and for the reactions.
 
-use super::BodyState;
-use super::joints::{HingeLimit, JointConstraint, JointFrame, JointPass};
-use super::soft_step::{SharedStates, block_range};
+use super::{SharedStates, block_range};
 use crate::constants::{
     LOCKED_HINGE_RANGE, MAX_BLOCKS, MAX_LOOPS_PER_JOINTS, TREE_LIMIT_ROUNDS, TREE_PROJECTION_GIVE,
 };
 use crate::math::{Real, Vec2, cross, rotation};
+use crate::solver::body_state::BodyState;
+use crate::solver::joints::{HingeLimit, JointConstraint, JointFrame, JointPass};
 use std::ops::Range;
 
 /// A symmetric 3x3 matrix over a body's `(vx, vy, w)`: `[xx, xy, xw, yy, yw, ww]`.
