@@ -185,6 +185,14 @@ impl CaromError {
             value: format!("({}, {})", value.x, value.y),
         }
     }
+
+    /// The error for a saved world that does not hold together, `reason` saying where.
+    #[cfg(feature = "serde")]
+    pub(crate) fn bad_save(reason: impl Into<String>) -> Self {
+        CaromError::BadSave {
+            reason: reason.into(),
+        }
+    }
 }
 
 /// Checks that a scalar is finite.

@@ -280,20 +280,20 @@ impl<T> ExactSizeIterator for ByHandle<'_, T> {}
 impl<H: Handle, T> HandleMap<H, T> {
     /// Checks a map read from a saved world: every handle's slot points back at it, and every
     /// free slot is free, once.
-    pub fn check_saved(&self) -> Result<(), String> {
+    pub fn check_saved(&self) -> Result<(), CaromError> {
         let what = H::WHAT;
         if self.handles.len() != self.items.len() {
-            return Err(format!(
+            return Err(CaromError::bad_save(format!(
                 "{what}: {} handles for {} items",
                 self.handles.len(),
                 self.items.len()
-            ));
+            )));
         }
         for (dense, handle) in self.handles.iter().enumerate() {
             if self.dense_index(*handle) != Some(dense) {
-                return Err(format!(
+                return Err(CaromError::bad_save(format!(
                     "{what}: the slot of item {dense} does not point at it"
-                ));
+                )));
             }
         }
         let occupied = self
@@ -302,10 +302,10 @@ impl<H: Handle, T> HandleMap<H, T> {
             .filter(|slot| slot.dense.is_some())
             .count();
         if occupied != self.items.len() {
-            return Err(format!(
+            return Err(CaromError::bad_save(format!(
                 "{what}: {occupied} slots in use for {} items",
                 self.items.len()
-            ));
+            )));
         }
         let mut listed = vec![false; self.slots.len()];
         for &free in &self.free_slots {
@@ -317,9 +317,9 @@ impl<H: Handle, T> HandleMap<H, T> {
                 .get_mut(free as usize)
                 .is_some_and(|listed| !std::mem::replace(listed, true));
             if !(free_slot && first) {
-                return Err(format!(
+                return Err(CaromError::bad_save(format!(
                     "{what}: free slot {free} is not free, or listed twice"
-                ));
+                )));
             }
         }
         Ok(())

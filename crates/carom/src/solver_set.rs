@@ -19,6 +19,8 @@
 //! array keeps its awake set first, before the static one, so that joints never solved do not
 //! shuffle it either.
 
+#[cfg(feature = "serde")]
+use crate::error::CaromError;
 use crate::partition::Partition;
 use std::ops::Range;
 
@@ -119,9 +121,11 @@ impl JointSetBounds {
 
     /// Checks bounds read from a saved world against the joints they divide.
     #[cfg(feature = "serde")]
-    pub fn check_saved(&self, len: usize) -> Result<(), String> {
+    pub fn check_saved(&self, len: usize) -> Result<(), CaromError> {
         if self.0.start(Self::part(SolverSet::Asleep)) > len {
-            return Err(format!("the joint sets reach past the {len} joints"));
+            return Err(CaromError::bad_save(format!(
+                "the joint sets reach past the {len} joints"
+            )));
         }
         Ok(())
     }
@@ -130,9 +134,11 @@ impl JointSetBounds {
 #[cfg(feature = "serde")]
 impl SetBounds {
     /// Checks bounds read from a saved world against the array they divide.
-    pub fn check_saved(&self, what: &str, len: usize) -> Result<(), String> {
+    pub fn check_saved(&self, what: &str, len: usize) -> Result<(), CaromError> {
         if self.asleep_start() > len {
-            return Err(format!("the {what} sets reach past the {len} {what}s"));
+            return Err(CaromError::bad_save(format!(
+                "the {what} sets reach past the {len} {what}s"
+            )));
         }
         Ok(())
     }

@@ -15,6 +15,8 @@ use crate::constants::{MOVES_PER_TASK, WALK_MOVED_FRACTION, WALK_PIECES};
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::ColliderHandle;
 use crate::dynamics::filter::CollisionFilter;
+#[cfg(feature = "serde")]
+use crate::error::CaromError;
 use crate::geometry::aabb::Aabb;
 use crate::geometry::dynamic_tree::{DynamicTree, Walk};
 use crate::geometry::look_ahead::Motion;
@@ -738,34 +740,43 @@ impl BroadPhase {
             crate::dynamics::collider::Collider,
         >,
         bodies: &crate::handle_map::HandleMap<BodyHandle, crate::dynamics::body::Body>,
-    ) -> Result<(), String> {
+    ) -> Result<(), CaromError> {
         let mut per_tree = [0; 2];
         for tree in &self.trees {
-            tree.validate().map_err(|e| format!("broadphase: {e}"))?;
+            tree.validate()
+                .map_err(|e| CaromError::bad_save(format!("broadphase: {e}")))?;
         }
         for (slot, proxy) in self.proxies.iter().enumerate() {
             let Some(proxy) = proxy else { continue };
             let collider = colliders
                 .get(proxy.handle)
                 .filter(|c| Self::slot(proxy.handle) == slot && !c.is_sensor())
-                .ok_or_else(|| format!("broadphase slot {slot} is not a live collider's"))?;
+                .ok_or_else(|| {
+                    CaromError::bad_save(format!("broadphase slot {slot} is not a live collider's"))
+                })?;
             let body = &bodies.as_slice()[collider.body_index()];
             if proxy.body != collider.body().index() || proxy.kind != body.kind() {
-                return Err(format!("broadphase slot {slot} has another body"));
+                return Err(CaromError::bad_save(format!(
+                    "broadphase slot {slot} has another body"
+                )));
             }
             if self.trees[proxy.tree()].leaf_payload(proxy.node) != Some(slot as u32) {
-                return Err(format!("broadphase slot {slot} is not on its leaf"));
+                return Err(CaromError::bad_save(format!(
+                    "broadphase slot {slot} is not on its leaf"
+                )));
             }
             if proxy.runner.is_some_and(|m| !m.is_finite()) {
-                return Err(format!(
+                return Err(CaromError::bad_save(format!(
                     "broadphase slot {slot} has a motion that is not finite"
-                ));
+                )));
             }
             per_tree[proxy.tree()] += 1;
         }
         for (tree, count) in self.trees.iter().zip(per_tree) {
             if tree.proxy_count() != count {
-                return Err("a broadphase tree has leaves without proxies".into());
+                return Err(CaromError::bad_save(
+                    "a broadphase tree has leaves without proxies",
+                ));
             }
         }
         let listed = colliders
@@ -779,7 +790,9 @@ impl BroadPhase {
             .filter(|c| !c.is_sensor())
             .count();
         if listed != wanted {
-            return Err("a collider is missing from the broadphase".into());
+            return Err(CaromError::bad_save(
+                "a collider is missing from the broadphase",
+            ));
         }
         let mut listed = vec![false; self.proxies.len()];
         for &slot in &self.move_buffer {
@@ -787,11 +800,15 @@ impl BroadPhase {
                 .get_mut(slot as usize)
                 .is_some_and(|seen| !std::mem::replace(seen, true));
             if !fresh {
-                return Err("the broadphase's moved list is broken".into());
+                return Err(CaromError::bad_save(
+                    "the broadphase's moved list is broken",
+                ));
             }
         }
         if listed != self.moved {
-            return Err("the broadphase's moved list is broken".into());
+            return Err(CaromError::bad_save(
+                "the broadphase's moved list is broken",
+            ));
         }
         Ok(())
     }

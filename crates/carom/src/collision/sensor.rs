@@ -21,6 +21,8 @@ use crate::collision::broadphase::{BroadPhase, kinds_can_collide};
 use crate::constants::SENSORS_PER_TASK;
 use crate::dynamics::body::{Body, BodyHandle};
 use crate::dynamics::collider::{Collider, ColliderHandle};
+#[cfg(feature = "serde")]
+use crate::error::CaromError;
 use crate::geometry::query::distance::separation;
 use crate::handle_map::HandleMap;
 use crate::heap_bytes::{HeapBytes, array, nothing};
@@ -246,7 +248,7 @@ impl Sensors {
     pub(crate) fn check_saved(
         &self,
         colliders: &HandleMap<ColliderHandle, Collider>,
-    ) -> Result<(), String> {
+    ) -> Result<(), CaromError> {
         let mut listed: Vec<ColliderHandle> = self.sensors.iter().map(|s| s.collider).collect();
         listed.sort_unstable();
         let mut sensors: Vec<ColliderHandle> = colliders
@@ -257,7 +259,9 @@ impl Sensors {
             .collect();
         sensors.sort_unstable();
         if listed != sensors {
-            return Err("the sensors listed are not the sensor colliders".into());
+            return Err(CaromError::bad_save(
+                "the sensors listed are not the sensor colliders",
+            ));
         }
         Ok(())
     }

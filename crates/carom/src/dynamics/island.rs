@@ -17,6 +17,8 @@ use crate::clone_in_place::clone_in_place;
 use crate::dynamics::body::Body;
 use crate::dynamics::body::BodyHandle;
 #[cfg(feature = "serde")]
+use crate::error::CaromError;
+#[cfg(feature = "serde")]
 use crate::handle_map::HandleMap;
 use crate::heap_bytes::{HeapBytes, array};
 use crate::math::Real;
@@ -106,10 +108,12 @@ impl Islands {
     /// Checks islands read from a saved world: each live island's list runs through dynamic
     /// bodies of that island, from its head to its tail, as long as it says; every dynamic
     /// body is in a live island; freed records are not live.
-    pub fn check_saved(&self, bodies: &HandleMap<BodyHandle, Body>) -> Result<(), String> {
+    pub fn check_saved(&self, bodies: &HandleMap<BodyHandle, Body>) -> Result<(), CaromError> {
         for &id in &self.free {
             if self.records.get(id as usize).is_none_or(|r| r.live) {
-                return Err(format!("island {id} is free but live, or does not exist"));
+                return Err(CaromError::bad_save(format!(
+                    "island {id} is free but live, or does not exist"
+                )));
             }
         }
         for (id, record) in self.records.iter().enumerate() {
@@ -121,16 +125,22 @@ impl Islands {
                 let body = bodies
                     .get(handle)
                     .filter(|b| b.is_dynamic() && b.island() == Some(id as u32))
-                    .ok_or_else(|| format!("island {id} lists a body not in it"))?;
+                    .ok_or_else(|| {
+                        CaromError::bad_save(format!("island {id} lists a body not in it"))
+                    })?;
                 let (prev, next) = body.island_neighbours();
                 count += 1;
                 if prev != previous || count > record.len {
-                    return Err(format!("island {id}'s list is broken"));
+                    return Err(CaromError::bad_save(format!(
+                        "island {id}'s list is broken"
+                    )));
                 }
                 (previous, at) = (Some(handle), next);
             }
             if count != record.len || previous != record.tail {
-                return Err(format!("island {id}'s list is broken"));
+                return Err(CaromError::bad_save(format!(
+                    "island {id}'s list is broken"
+                )));
             }
         }
         for body in bodies.as_slice() {
@@ -138,10 +148,10 @@ impl Islands {
                 .island()
                 .is_some_and(|id| self.records.get(id as usize).is_some_and(|r| r.live));
             if body.is_dynamic() != live {
-                return Err(format!(
+                return Err(CaromError::bad_save(format!(
                     "body {} is not in a live island, or is not dynamic",
                     body.handle().index()
-                ));
+                )));
             }
         }
         Ok(())

@@ -4,6 +4,8 @@
 
 use super::{Joint, JointEvent, JointHandle};
 use crate::dynamics::body::BodyHandle;
+#[cfg(feature = "serde")]
+use crate::error::CaromError;
 use crate::handle_map::HandleMap;
 use crate::heap_bytes::{HeapBytes, array, map_table, nothing};
 use crate::solver_set::{JointSetBounds, SolverSet};
@@ -236,16 +238,20 @@ impl JointStore {
     pub(crate) fn check_saved(
         &self,
         bodies: &HandleMap<BodyHandle, crate::dynamics::body::Body>,
-    ) -> Result<(), String> {
+    ) -> Result<(), CaromError> {
         self.joints.check_saved()?;
         self.sets.check_saved(self.joints.len())?;
         let mut expected = JointStore::default();
         for (joint, &handle) in self.joints.as_slice().iter().zip(self.joints.handles()) {
             let i = handle.index();
             if joint.handle() != handle || !joint.bodies().iter().all(|&b| bodies.contains(b)) {
-                return Err(format!("joint {i} does not join live bodies"));
+                return Err(CaromError::bad_save(format!(
+                    "joint {i} does not join live bodies"
+                )));
             }
-            joint.check_saved().map_err(|e| format!("joint {i}: {e}"))?;
+            joint
+                .check_saved()
+                .map_err(|e| CaromError::bad_save(format!("joint {i}: {e}")))?;
             let [a, b] = joint.bodies();
             let listed = |body| {
                 self.by_body
@@ -253,7 +259,9 @@ impl JointStore {
                     .is_some_and(|list| list.contains(&handle))
             };
             if !listed(a) || !listed(b) {
-                return Err(format!("joint {i} is missing from its bodies' lists"));
+                return Err(CaromError::bad_save(format!(
+                    "joint {i} is missing from its bodies' lists"
+                )));
             }
             if joint.collide_connected() || a == b {
                 continue;
@@ -261,7 +269,9 @@ impl JointStore {
             *expected.filters.entry(pair(a, b)).or_default() += 1;
         }
         if expected.filters != self.filters {
-            return Err("the joints' collision filters are not the joints'".into());
+            return Err(CaromError::bad_save(
+                "the joints' collision filters are not the joints'",
+            ));
         }
         for (body, joints) in &self.by_body {
             let joined = |j: &JointHandle| {
@@ -270,7 +280,9 @@ impl JointStore {
                     .is_some_and(|j| j.bodies().contains(body))
             };
             if !joints.iter().all(joined) {
-                return Err("a body lists a joint that does not join it".into());
+                return Err(CaromError::bad_save(
+                    "a body lists a joint that does not join it",
+                ));
             }
         }
         let listed: usize = self.by_body.values().map(Vec::len).sum();
@@ -281,7 +293,9 @@ impl JointStore {
             .map(|j| if j.bodies()[0] == j.bodies()[1] { 1 } else { 2 })
             .sum();
         if listed != ends {
-            return Err("the joints by body are not the joints".into());
+            return Err(CaromError::bad_save(
+                "the joints by body are not the joints",
+            ));
         }
         Ok(())
     }

@@ -31,16 +31,16 @@ impl<'w> BodyMut<'w> {
         reason = "the body is lent live, and waking it moves it but keeps it"
     )]
     fn edit<T>(&mut self, change: impl FnOnce(&mut Body) -> T) -> T {
-        let body = &mut self.world.bodies.as_mut_slice()[self.index];
+        let body = &mut self.world.state.bodies.as_mut_slice()[self.index];
         let result = change(body);
         for &collider in body.colliders() {
-            self.world.broadphase.forget_motion(collider);
+            self.world.state.broadphase.forget_motion(collider);
         }
         if !body.is_sleeping() {
             let handle = body.handle();
             self.world.wake_body(self.index);
             // Waking moved the island's bodies into the awake set.
-            self.index = self.world.bodies.dense_index(handle).expect("live");
+            self.index = self.world.state.bodies.dense_index(handle).expect("live");
         }
         result
     }
@@ -48,13 +48,14 @@ impl<'w> BodyMut<'w> {
     /// Places the colliders and their broadphase boxes where the body now is.
     fn follow(&mut self) {
         let world = &mut *self.world;
-        let body = &mut world.bodies.as_mut_slice()[self.index];
-        place_colliders(body, &mut world.colliders);
+        let body = &mut world.state.bodies.as_mut_slice()[self.index];
+        place_colliders(body, &mut world.state.colliders);
         let kind = body.kind();
-        let margin = margin_for(&world.settings, kind);
+        let margin = margin_for(&world.state.settings, kind);
         for &collider in body.colliders() {
-            if let Some(placed) = world.colliders.get(collider) {
+            if let Some(placed) = world.state.colliders.get(collider) {
                 world
+                    .state
                     .broadphase
                     .update(collider, kind, placed.aabb(), margin);
             }
@@ -192,7 +193,7 @@ impl<'w> BodyMut<'w> {
         let handle = self.handle();
         self.world.set_body_kind(handle, kind)?;
         // The body moved to its new kind's set.
-        self.index = self.world.bodies.dense_index(handle).expect("live");
+        self.index = self.world.state.bodies.dense_index(handle).expect("live");
         Ok(())
     }
 
@@ -206,6 +207,6 @@ impl Deref for BodyMut<'_> {
     type Target = Body;
 
     fn deref(&self) -> &Body {
-        &self.world.bodies.as_slice()[self.index]
+        &self.world.state.bodies.as_slice()[self.index]
     }
 }

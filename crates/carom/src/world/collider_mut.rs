@@ -29,6 +29,7 @@ impl<'w> ColliderMut<'w> {
     )]
     fn collider(&mut self) -> &mut Collider {
         self.world
+            .state
             .colliders
             .get_mut(self.handle)
             .expect("lent live")
@@ -89,7 +90,7 @@ impl<'w> ColliderMut<'w> {
     fn remix_contacts(&mut self) {
         let body = self.body();
         let world = &mut *self.world;
-        world.contacts.remix(body, &world.colliders);
+        world.state.contacts.remix(body, &world.state.colliders);
     }
 
     /// Sets the density; the body's mass, centre of mass and inertia follow, and it wakes.
@@ -110,7 +111,7 @@ impl<'w> ColliderMut<'w> {
             self.collider().set_density(previous);
             return Err(e);
         }
-        let index = self.world.bodies.checked_index(body).expect("live");
+        let index = self.world.state.bodies.checked_index(body).expect("live");
         self.world.wake_body(index);
         Ok(())
     }
@@ -125,19 +126,24 @@ impl<'w> ColliderMut<'w> {
     pub fn set_filter(&mut self, filter: CollisionFilter) {
         self.collider().set_filter(filter);
         let world = &mut *self.world;
-        let body = world.colliders.get(self.handle).expect("lent live").body();
-        let colliders = &world.colliders;
-        world.contacts.remove_where(body, |c| {
+        let body = world
+            .state
+            .colliders
+            .get(self.handle)
+            .expect("lent live")
+            .body();
+        let colliders = &world.state.colliders;
+        world.state.contacts.remove_where(body, |c| {
             let (Some(a), Some(b)) = (colliders.get(c.collider_a()), colliders.get(c.collider_b()))
             else {
                 return false;
             };
             !a.filter().collides_with(&b.filter())
         });
-        let index = world.bodies.checked_index(body).expect("live");
+        let index = world.state.bodies.checked_index(body).expect("live");
         world.wake_body(index);
         world.apply_touch_changes();
-        world.broadphase.set_filter(self.handle, filter);
+        world.state.broadphase.set_filter(self.handle, filter);
     }
 }
 
@@ -149,6 +155,10 @@ impl Deref for ColliderMut<'_> {
         reason = "the collider was checked live when it was lent, and the loan holds the world"
     )]
     fn deref(&self) -> &Collider {
-        self.world.colliders.get(self.handle).expect("lent live")
+        self.world
+            .state
+            .colliders
+            .get(self.handle)
+            .expect("lent live")
     }
 }

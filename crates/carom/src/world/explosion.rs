@@ -77,14 +77,17 @@ impl World {
         // The broadphase itself, not a filtered query: what a collider's own mask lets it
         // collide with does not shield it from a blast.
         let mut near = Vec::new();
-        self.broadphase.query(&around, |handle| near.push(handle));
+        self.state
+            .broadphase
+            .query(&around, |handle| near.push(handle));
         near.sort_unstable_by_key(|h| h.index());
         let mut pushes: Vec<(BodyHandle, Vec2, Vec2)> = Vec::new();
         for handle in near {
-            let Some(collider) = self.colliders.get(handle) else {
+            let Some(collider) = self.state.colliders.get(handle) else {
                 continue;
             };
             let dynamic = self
+                .state
                 .bodies
                 .get(collider.body())
                 .is_some_and(|b| b.kind() == BodyKind::Dynamic);

@@ -26,19 +26,22 @@ impl World {
         reason = "islands list only live bodies: removing a body takes it out of its island"
     )]
     pub(super) fn handle_index(&self, handle: BodyHandle) -> usize {
-        self.bodies.dense_index(handle).expect("island bodies live")
+        self.state
+            .bodies
+            .dense_index(handle)
+            .expect("island bodies live")
     }
 
     /// Appends the body at `index` to island `id`'s list.
     fn append_to_island(&mut self, index: usize, id: u32) {
-        let handle = self.bodies.handles()[index];
-        let tail = self.islands.get(id).tail;
-        self.bodies.as_mut_slice()[index].set_island(Some(id), tail, None);
+        let handle = self.state.bodies.handles()[index];
+        let tail = self.state.islands.get(id).tail;
+        self.state.bodies.as_mut_slice()[index].set_island(Some(id), tail, None);
         if let Some(tail) = tail {
             let tail = self.handle_index(tail);
-            self.bodies.as_mut_slice()[tail].set_island_next(Some(handle));
+            self.state.bodies.as_mut_slice()[tail].set_island_next(Some(handle));
         }
-        let island = self.islands.get_mut(id);
+        let island = self.state.islands.get_mut(id);
         island.head.get_or_insert(handle);
         island.tail = Some(handle);
         island.len += 1;
@@ -46,7 +49,7 @@ impl World {
 
     /// Gives the dynamic body at `index` an island of its own, and returns its id.
     pub(crate) fn create_island_for(&mut self, index: usize) -> u32 {
-        let id = self.islands.create();
+        let id = self.state.islands.create();
         self.append_to_island(index, id);
         id
     }
@@ -56,15 +59,15 @@ impl World {
     /// asleep as a whole.
     pub(crate) fn join_touching_islands(&mut self, index: usize) {
         self.create_island_for(index);
-        let handle = self.bodies.handles()[index];
+        let handle = self.state.bodies.handles()[index];
         let mut partners = std::mem::take(&mut self.island_scratch.partners);
         let mut joined = std::mem::take(&mut self.island_scratch.joined);
-        self.contacts.touching_partners(handle, &mut partners);
+        self.state.contacts.touching_partners(handle, &mut partners);
         self.joint_partners(handle, &mut joined);
         partners.extend_from_slice(&joined);
         self.island_scratch.joined = joined;
         for &partner in &partners {
-            let body = &self.bodies.as_slice()[self.handle_index(partner)];
+            let body = &self.state.bodies.as_slice()[self.handle_index(partner)];
             if let (true, Some(island)) = (body.is_sleeping(), body.island()) {
                 self.wake_island(island);
             }
@@ -76,37 +79,38 @@ impl World {
     /// Takes the body at `index` out of its island, if it has one (it is being removed, or is
     /// no longer dynamic). The island may have come apart; an empty one is freed.
     pub(crate) fn leave_island(&mut self, index: usize) {
-        let body = &self.bodies.as_slice()[index];
+        let body = &self.state.bodies.as_slice()[index];
         let Some(id) = body.island() else {
             return;
         };
         let (prev, next) = body.island_neighbours();
-        self.bodies.as_mut_slice()[index].set_island(None, None, None);
+        self.state.bodies.as_mut_slice()[index].set_island(None, None, None);
         match prev {
             Some(prev) => {
                 let prev = self.handle_index(prev);
-                self.bodies.as_mut_slice()[prev].set_island_next(next);
+                self.state.bodies.as_mut_slice()[prev].set_island_next(next);
             }
-            None => self.islands.get_mut(id).head = next,
+            None => self.state.islands.get_mut(id).head = next,
         }
         match next {
             Some(next) => {
                 let next = self.handle_index(next);
-                self.bodies.as_mut_slice()[next].set_island_prev(prev);
+                self.state.bodies.as_mut_slice()[next].set_island_prev(prev);
             }
-            None => self.islands.get_mut(id).tail = prev,
+            None => self.state.islands.get_mut(id).tail = prev,
         }
-        let island = self.islands.get_mut(id);
+        let island = self.state.islands.get_mut(id);
         island.len -= 1;
         island.removed += 1;
         if island.len == 0 {
-            self.islands.destroy(id);
+            self.state.islands.destroy(id);
         }
     }
 
     /// The island of a body, if it is dynamic and has one.
     fn island_of(&self, handle: BodyHandle) -> Option<u32> {
-        self.bodies
+        self.state
+            .bodies
             .get(handle)
             .filter(|body| body.kind() == BodyKind::Dynamic)
             .and_then(|body| body.island())
@@ -121,34 +125,34 @@ impl World {
         if ia == ib {
             return;
         }
-        let (big, small) = if self.islands.get(ia).len >= self.islands.get(ib).len {
+        let (big, small) = if self.state.islands.get(ia).len >= self.state.islands.get(ib).len {
             (ia, ib)
         } else {
             (ib, ia)
         };
-        let mut next = self.islands.get(small).head;
+        let mut next = self.state.islands.get(small).head;
         while let Some(handle) = next {
             let index = self.handle_index(handle);
-            let body = &mut self.bodies.as_mut_slice()[index];
+            let body = &mut self.state.bodies.as_mut_slice()[index];
             next = body.island_neighbours().1;
             body.set_island_id(Some(big));
         }
         let (small_head, small_tail, small_len, small_removed) = {
-            let s = self.islands.get(small);
+            let s = self.state.islands.get(small);
             (s.head, s.tail, s.len, s.removed)
         };
-        let big_tail = self.islands.get(big).tail;
+        let big_tail = self.state.islands.get(big).tail;
         if let (Some(tail), Some(head)) = (big_tail, small_head) {
             let tail_index = self.handle_index(tail);
-            self.bodies.as_mut_slice()[tail_index].set_island_next(Some(head));
+            self.state.bodies.as_mut_slice()[tail_index].set_island_next(Some(head));
             let head_index = self.handle_index(head);
-            self.bodies.as_mut_slice()[head_index].set_island_prev(Some(tail));
+            self.state.bodies.as_mut_slice()[head_index].set_island_prev(Some(tail));
         }
-        let island = self.islands.get_mut(big);
+        let island = self.state.islands.get_mut(big);
         island.tail = small_tail.or(island.tail);
         island.len += small_len;
         island.removed += small_removed;
-        self.islands.destroy(small);
+        self.state.islands.destroy(small);
     }
 
     /// Counts a contact between two bodies that stopped touching (or was destroyed while
@@ -157,14 +161,14 @@ impl World {
         if let (Some(ia), Some(ib)) = (self.island_of(a), self.island_of(b))
             && ia == ib
         {
-            self.islands.get_mut(ia).removed += 1;
+            self.state.islands.get_mut(ia).removed += 1;
         }
     }
 
     /// Links and unlinks islands for the contacts that started or stopped touching since the
     /// last call.
     pub(crate) fn apply_touch_changes(&mut self) {
-        let (mut began, mut ended) = self.contacts.take_touch_changes();
+        let (mut began, mut ended) = self.state.contacts.take_touch_changes();
         for &(a, b) in &ended {
             self.unlink_contact(a, b);
         }
@@ -173,7 +177,7 @@ impl World {
         }
         began.clear();
         ended.clear();
-        self.contacts.give_back_touch_changes(began, ended);
+        self.state.contacts.give_back_touch_changes(began, ended);
     }
 
     /// Splits island `id` into the groups of its bodies that touching contacts and joints
@@ -185,36 +189,38 @@ impl World {
         let mut partners = std::mem::take(&mut self.island_scratch.partners);
         let mut joined = std::mem::take(&mut self.island_scratch.joined);
         members.clear();
-        let mut next = self.islands.get(id).head;
+        let mut next = self.state.islands.get(id).head;
         while let Some(handle) = next {
             let index = self.handle_index(handle);
-            let body = &mut self.bodies.as_mut_slice()[index];
+            let body = &mut self.state.bodies.as_mut_slice()[index];
             next = body.island_neighbours().1;
             // No island: not yet reached by the search.
             body.set_island(None, None, None);
             members.push(handle);
         }
         {
-            let island = self.islands.get_mut(id);
+            let island = self.state.islands.get_mut(id);
             (island.head, island.tail, island.len, island.removed) = (None, None, 0, 0);
         }
         let mut current = Some(id);
         for &seed in &members {
             let seed_index = self.handle_index(seed);
-            if self.bodies.as_slice()[seed_index].island().is_some() {
+            if self.state.bodies.as_slice()[seed_index].island().is_some() {
                 continue;
             }
-            let group = current.take().unwrap_or_else(|| self.islands.create());
+            let group = current
+                .take()
+                .unwrap_or_else(|| self.state.islands.create());
             self.append_to_island(seed_index, group);
             stack.clear();
             stack.push(seed);
             while let Some(handle) = stack.pop() {
-                self.contacts.touching_partners(handle, &mut partners);
+                self.state.contacts.touching_partners(handle, &mut partners);
                 self.joint_partners(handle, &mut joined);
                 partners.extend_from_slice(&joined);
                 for &partner in &partners {
                     let index = self.handle_index(partner);
-                    let body = &self.bodies.as_slice()[index];
+                    let body = &self.state.bodies.as_slice()[index];
                     if body.kind() == BodyKind::Dynamic && body.island().is_none() {
                         self.append_to_island(index, group);
                         stack.push(partner);

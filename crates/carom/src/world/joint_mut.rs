@@ -30,7 +30,12 @@ impl<'w> JointMut<'w> {
         reason = "the joint was checked live when it was lent, and the loan holds the world"
     )]
     pub fn set_kind(&mut self, kind: JointKind) -> Result<(), CaromError> {
-        let joint = self.world.joints.get_mut(self.handle).expect("lent live");
+        let joint = self
+            .world
+            .state
+            .joints
+            .get_mut(self.handle)
+            .expect("lent live");
         joint.set_kind(kind)?;
         self.world.wake_joint_bodies(self.handle);
         Ok(())
@@ -60,6 +65,6 @@ impl Deref for JointMut<'_> {
         reason = "the joint was checked live when it was lent, and the loan holds the world"
     )]
     fn deref(&self) -> &Joint {
-        self.world.joints.get(self.handle).expect("lent live")
+        self.world.state.joints.get(self.handle).expect("lent live")
     }
 }

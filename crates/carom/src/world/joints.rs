@@ -27,24 +27,24 @@ impl World {
         reason = "both bodies were checked above, and a stale one refused with an error"
     )]
     pub fn add_joint(&mut self, def: JointDef) -> Result<JointHandle, CaromError> {
-        let handle = self.joints.next_handle();
+        let handle = self.state.joints.next_handle();
         let joint = def.build(
             handle,
-            self.bodies.get(def.body_a),
-            self.bodies.get(def.body_b),
+            self.state.bodies.get(def.body_a),
+            self.state.bodies.get(def.body_b),
         )?;
         let [a, b] = joint.bodies();
         let filters = !joint.collide_connected() && a != b;
         let set = self.joint_set_for(&joint);
         // Waking its bodies moves it on to the awake set if it has a dynamic body.
-        let handle = self.joints.insert(joint, set);
+        let handle = self.state.joints.insert(joint, set);
         for body in [a, b] {
-            let index = self.bodies.checked_index(body).expect("checked");
+            let index = self.state.bodies.checked_index(body).expect("checked");
             self.wake_body(index);
         }
         self.link_islands(a, b);
         if filters {
-            self.contacts.remove_between(a, b);
+            self.state.contacts.remove_between(a, b);
             self.apply_touch_changes();
         }
         Ok(handle)
@@ -53,7 +53,11 @@ impl World {
     /// Removes a joint and returns it. Its bodies wake; if it kept them from colliding, they
     /// may collide from the next step.
     pub fn remove_joint(&mut self, handle: JointHandle) -> Result<Joint, CaromError> {
-        let joint = self.joints.remove(handle).ok_or_else(|| stale(handle))?;
+        let joint = self
+            .state
+            .joints
+            .remove(handle)
+            .ok_or_else(|| stale(handle))?;
         self.detach_joint(&joint);
         Ok(joint)
     }
@@ -63,7 +67,7 @@ impl World {
     fn detach_joint(&mut self, joint: &Joint) {
         let [a, b] = joint.bodies();
         for body in [a, b] {
-            if let Some(index) = self.bodies.dense_index(body) {
+            if let Some(index) = self.state.bodies.dense_index(body) {
                 self.wake_body(index);
             }
         }
@@ -72,11 +76,11 @@ impl World {
         }
         if !joint.collide_connected() && a != b {
             for body in [a, b] {
-                let Some(body) = self.bodies.get(body) else {
+                let Some(body) = self.state.bodies.get(body) else {
                     continue;
                 };
                 for &collider in body.colliders() {
-                    self.broadphase.requeue(collider);
+                    self.state.broadphase.requeue(collider);
                 }
             }
         }
@@ -88,46 +92,50 @@ impl World {
         reason = "a body's joint list holds only live joints: removing a joint unlists it"
     )]
     pub(crate) fn remove_joints_of(&mut self, body: BodyHandle) {
-        while let Some(&handle) = self.joints.of_body(body).first() {
-            let joint = self.joints.remove(handle).expect("listed joints live");
+        while let Some(&handle) = self.state.joints.of_body(body).first() {
+            let joint = self
+                .state
+                .joints
+                .remove(handle)
+                .expect("listed joints live");
             self.detach_joint(&joint);
         }
     }
 
     /// The joint behind a handle, unless it was removed.
     pub fn joint(&self, handle: JointHandle) -> Option<&Joint> {
-        self.joints.get(handle)
+        self.state.joints.get(handle)
     }
 
     /// Every joint, in handle order.
     pub fn joints(&self) -> impl ExactSizeIterator<Item = &Joint> {
-        self.joints.iter_by_handle()
+        self.state.joints.iter_by_handle()
     }
 
     /// How many joints there are.
     pub fn joint_count(&self) -> usize {
-        self.joints.len()
+        self.state.joints.len()
     }
 
     /// The joints of a body.
     pub fn joints_of(&self, body: BodyHandle) -> &[JointHandle] {
-        self.joints.of_body(body)
+        self.state.joints.of_body(body)
     }
 
     /// The joint behind a handle, to change, unless it was removed.
     pub fn joint_mut(&mut self, handle: JointHandle) -> Option<JointMut<'_>> {
-        self.joints.get(handle)?;
+        self.state.joints.get(handle)?;
         Some(JointMut::new(self, handle))
     }
 
     /// Wakes a joint's bodies, so they feel a change to it.
     pub(crate) fn wake_joint_bodies(&mut self, handle: JointHandle) {
-        let Some(joint) = self.joints.get(handle) else {
+        let Some(joint) = self.state.joints.get(handle) else {
             return;
         };
         for body in joint.bodies() {
-            if let Some(index) = self.bodies.dense_index(body) {
-                self.bodies.as_mut_slice()[index].wake_up();
+            if let Some(index) = self.state.bodies.dense_index(body) {
+                self.state.bodies.as_mut_slice()[index].wake_up();
                 self.wake_body(index);
             }
         }
@@ -135,7 +143,7 @@ impl World {
 
     /// Joints broken in the last step.
     pub fn joint_events(&self) -> &[JointEvent] {
-        &self.joints.events
+        &self.state.joints.events
     }
 
     /// The joints a step solves, into `awake`: the awake set of joints (those with an awake
@@ -146,11 +154,12 @@ impl World {
     )]
     pub(crate) fn awake_joints(&self, awake: &mut Vec<AwakeJoint>) {
         awake.clear();
-        let range = self.joints.awake();
-        let joints = &self.joints.as_slice()[range.clone()];
+        let range = self.state.joints.awake();
+        let joints = &self.state.joints.as_slice()[range.clone()];
         for (index, joint) in range.zip(joints) {
             let bodies = joint.bodies().map(|body| {
-                self.bodies
+                self.state
+                    .bodies
                     .dense_index(body)
                     .expect("joints join live bodies") as u32
             });
@@ -168,17 +177,21 @@ impl World {
         reason = "the joints just solved are live: nothing removes a joint between the solve and here"
     )]
     pub(crate) fn break_joints(&mut self, solved: &[AwakeJoint]) -> bool {
-        self.joints.events.clear();
+        self.state.joints.events.clear();
         let broken: Vec<JointHandle> = solved
             .iter()
-            .map(|j| &self.joints.as_slice()[j.index as usize])
+            .map(|j| &self.state.joints.as_slice()[j.index as usize])
             .filter(|joint| joint.is_broken())
             .map(Joint::handle)
             .collect();
         for &handle in &broken {
-            let joint = self.joints.remove(handle).expect("solved joints live");
+            let joint = self
+                .state
+                .joints
+                .remove(handle)
+                .expect("solved joints live");
             self.detach_joint(&joint);
-            self.joints.events.push(JointEvent::Broken {
+            self.state.joints.events.push(JointEvent::Broken {
                 joint: handle,
                 bodies: joint.bodies(),
                 force: joint.reaction_force(),
@@ -190,7 +203,7 @@ impl World {
 
     /// The bodies joined to `body`, into `out` (for islands).
     pub(crate) fn joint_partners(&self, body: BodyHandle, out: &mut Vec<BodyHandle>) {
-        self.joints.partners(body, out);
+        self.state.joints.partners(body, out);
     }
 }
 
@@ -235,8 +248,8 @@ mod tests {
     /// How many joints are stored in each set: static, awake, asleep.
     fn joints_by_set(world: &World) -> [usize; 3] {
         let mut counts = [0; 3];
-        for i in 0..world.joints.len() {
-            counts[world.joints.set_of(i) as usize] += 1;
+        for i in 0..world.state.joints.len() {
+            counts[world.state.joints.set_of(i) as usize] += 1;
         }
         counts
     }
@@ -265,7 +278,7 @@ mod tests {
         let woken: Vec<JointHandle> = world.joints_of(firsts[17]).to_vec();
         let mut solved: Vec<JointHandle> = awake
             .iter()
-            .map(|j| world.joints.as_slice()[j.index as usize].handle())
+            .map(|j| world.state.joints.as_slice()[j.index as usize].handle())
             .collect();
         solved.sort();
         let mut expected = woken.clone();
@@ -313,7 +326,7 @@ mod tests {
             world.awake_joints(&mut awake);
             awake
                 .iter()
-                .map(|j| world.joints.as_slice()[j.index as usize].handle())
+                .map(|j| world.state.joints.as_slice()[j.index as usize].handle())
                 .collect()
         };
         assert_eq!(order(&world), added);
@@ -386,7 +399,7 @@ mod tests {
         world.remove_body(crane).unwrap();
         world.check_sets();
         assert!(world.joint(rope).is_none() && world.joint(anchor).is_none());
-        assert_eq!(world.joints.len(), 0);
+        assert_eq!(world.state.joints.len(), 0);
     }
 
     /// Joints added, removed, broken and carried along by every edit a user can make, among

@@ -14,26 +14,24 @@ pub(crate) mod settings;
 mod sleep;
 pub(crate) mod snapshot;
 pub(crate) mod solver_sets;
+mod state;
 mod step;
 
+use state::WorldState;
 use step::StepScratch;
 
 use crate::collision::broadphase::BroadPhase;
-use crate::collision::contact::{Contact, ContactEvent, ContactSet};
+use crate::collision::contact::{Contact, ContactEvent};
 use crate::collision::hits::HitEvent;
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
-use crate::collision::sensor::{SensorEvent, SensorOverlap, Sensors};
+use crate::collision::sensor::{SensorEvent, SensorOverlap};
 use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::body_def::BodyDef;
 use crate::dynamics::collider::{Collider, ColliderDef, ColliderHandle, place_colliders};
-use crate::dynamics::island::Islands;
 use crate::dynamics::surface::{MaterialMixer, Mixers};
 use crate::error::{CaromError, check_finite_not_negative, check_finite_vec};
-use crate::handle_map::HandleMap;
-use crate::joint::store::JointStore;
 use crate::math::{Real, Vec2};
 use crate::solver::{self, SolverParams};
-use crate::solver_set::SetBounds;
 use crate::stats::StepStats;
 use crate::world::body_mut::BodyMut;
 use crate::world::collider_mut::ColliderMut;
@@ -71,32 +69,14 @@ pub struct CastHit {
     serde(into = "saved::SavedWorld", try_from = "saved::SavedWorld")
 )]
 pub struct World {
-    /// Stored in solver sets: static, awake, asleep (see [`crate::solver_set`]).
-    bodies: HandleMap<BodyHandle, Body>,
-    /// Stored in the same sets as their bodies.
-    colliders: HandleMap<ColliderHandle, Collider>,
-    joints: JointStore,
-    /// The dynamic bodies' islands.
-    islands: Islands,
+    /// Everything that outlives a step: what a snapshot copies and a saved world holds.
+    state: WorldState,
     island_scratch: IslandScratch,
-    body_sets: SetBounds,
-    collider_sets: SetBounds,
-    broadphase: BroadPhase,
-    contacts: ContactSet,
-    settings: WorldSettings,
-    time: f64,
-    step_count: u64,
     stats: StepStats,
     /// The solver's memory, reused from step to step.
     solver_workspace: solver::Workspace,
     /// The other stages' memory, reused from step to step.
     scratch: StepScratch,
-    /// How many colliders ask for hit events: with none, a step looks for none.
-    hit_event_colliders: usize,
-    /// The hits of the last step.
-    hit_events: Vec<HitEvent>,
-    /// The sensor colliders, which the broadphase does not hold, and what overlaps them.
-    sensors: Sensors,
     /// The user's say over the contacts of colliders that opt in.
     pre_solve: Option<PreSolveHook>,
 }
@@ -130,14 +110,17 @@ impl World {
     pub fn with_settings(settings: WorldSettings) -> Result<Self, CaromError> {
         check_settings(&settings)?;
         Ok(World {
-            settings,
+            state: WorldState {
+                settings,
+                ..WorldState::default()
+            },
             ..World::default()
         })
     }
 
     /// The settings.
     pub fn settings(&self) -> &WorldSettings {
-        &self.settings
+        &self.state.settings
     }
 
     /// Changes the settings: `change` edits a copy, which is checked and then takes effect
@@ -151,10 +134,10 @@ impl World {
         &mut self,
         change: impl FnOnce(&mut WorldSettings),
     ) -> Result<(), CaromError> {
-        let mut settings = self.settings;
+        let mut settings = self.state.settings;
         change(&mut settings);
         check_settings(&settings)?;
-        self.settings = settings;
+        self.state.settings = settings;
         if !settings.effects.contains(Effect::Sleeping) {
             self.wake_all();
         }
@@ -163,7 +146,7 @@ impl World {
 
     /// The effects simulated.
     pub fn effects(&self) -> Effects {
-        self.settings.effects
+        self.state.settings.effects
     }
 
     /// Wakes every sleeping body.
@@ -178,7 +161,7 @@ impl World {
 
     /// Gravity, m/s².
     pub fn gravity(&self) -> Vec2 {
-        self.settings.gravity
+        self.state.settings.gravity
     }
 
     /// Adds a body with its colliders; the definition is checked first, and nothing is added
@@ -193,45 +176,49 @@ impl World {
         reason = "the body and its colliders were inserted just above"
     )]
     pub fn add_body(&mut self, def: BodyDef) -> Result<BodyHandle, CaromError> {
-        let handle = self.bodies.next_handle();
+        let handle = self.state.bodies.next_handle();
         let mut body = Body::new(handle, &def)?;
         let starts_awake = def.awake;
         let transform = body.transform();
-        let index = self.bodies.len();
+        let index = self.state.bodies.len();
         let parts: Vec<Collider> = def
             .colliders
             .into_iter()
             .map(|collider| Collider::new(handle, index, collider, &transform))
             .collect();
         body.rebuild_mass(parts.iter())?;
-        let handle = self.bodies.insert(body);
+        let handle = self.state.bodies.insert(body);
         for collider in parts {
-            let collider = self.colliders.insert(collider);
+            let collider = self.state.colliders.insert(collider);
             self.note_added(collider);
-            self.bodies
+            self.state
+                .bodies
                 .get_mut(handle)
                 .expect("just inserted")
                 .attach(collider);
         }
         // Stored last, in the sleeping set; then moved into its own.
         let index = self.settle_body(index);
-        if self.bodies.as_slice()[index].is_dynamic() {
+        if self.state.bodies.as_slice()[index].is_dynamic() {
             let island = self.create_island_for(index);
             if !starts_awake {
                 self.sleep_island(island);
             }
         }
         self.place_colliders_of(handle);
-        let body = self.bodies.get(handle).expect("just inserted");
-        let margin = margin_for(&self.settings, body.kind());
+        let body = self.state.bodies.get(handle).expect("just inserted");
+        let margin = margin_for(&self.state.settings, body.kind());
         for &collider in body.colliders() {
-            let attached = self.colliders.get(collider).expect("attached");
+            let attached = self.state.colliders.get(collider).expect("attached");
             if attached.is_sensor() {
                 continue;
             }
-            self.broadphase
+            self.state
+                .broadphase
                 .insert(collider, handle, body.kind(), attached.aabb(), margin);
-            self.broadphase.set_filter(collider, attached.filter());
+            self.state
+                .broadphase
+                .set_filter(collider, attached.filter());
         }
         Ok(handle)
     }
@@ -244,24 +231,24 @@ impl World {
         reason = "the handle was checked first, and a stale one refused with an error"
     )]
     pub fn remove_body(&mut self, handle: BodyHandle) -> Result<Body, CaromError> {
-        self.bodies.checked_index(handle)?;
+        self.state.bodies.checked_index(handle)?;
         self.remove_joints_of(handle);
         self.wake_touching(handle);
-        let index = self.bodies.checked_index(handle).expect("checked");
+        let index = self.state.bodies.checked_index(handle).expect("checked");
         let index = self.prepare_removal(index);
-        let body = self.bodies.remove(handle).expect("checked");
-        self.contacts.remove_body(handle);
+        let body = self.state.bodies.remove(handle).expect("checked");
+        self.state.contacts.remove_body(handle);
         self.apply_touch_changes();
         for &collider in body.colliders() {
-            if let Some(removed) = self.colliders.remove(collider) {
+            if let Some(removed) = self.state.colliders.remove(collider) {
                 self.note_removed(collider, &removed);
             }
-            self.broadphase.remove(collider);
+            self.state.broadphase.remove(collider);
         }
         // The last body moved into the hole: its colliders follow it.
-        if let Some(moved) = self.bodies.as_slice().get(index) {
+        if let Some(moved) = self.state.bodies.as_slice().get(index) {
             for &collider in moved.colliders() {
-                if let Some(c) = self.colliders.get_mut(collider) {
+                if let Some(c) = self.state.colliders.get_mut(collider) {
                     c.set_body_index(index);
                 }
             }
@@ -282,33 +269,38 @@ impl World {
         body: BodyHandle,
         def: ColliderDef,
     ) -> Result<ColliderHandle, CaromError> {
-        let index = self.bodies.checked_index(body)?;
+        let index = self.state.bodies.checked_index(body)?;
         def.validate()?;
-        let owner = &self.bodies.as_slice()[index];
+        let owner = &self.state.bodies.as_slice()[index];
         let collider = Collider::new(body, index, def, &owner.transform());
         let mut updated = owner.clone();
         let existing: Vec<&Collider> = owner
             .colliders()
             .iter()
-            .filter_map(|&c| self.colliders.get(c))
+            .filter_map(|&c| self.state.colliders.get(c))
             .collect();
         updated.rebuild_mass(existing.into_iter().chain(std::iter::once(&collider)))?;
-        let handle = self.colliders.insert(collider);
+        let handle = self.state.colliders.insert(collider);
         self.note_added(handle);
         updated.attach(handle);
         updated.wake_up();
         let kind = updated.kind();
-        self.bodies.as_mut_slice()[index] = updated;
+        self.state.bodies.as_mut_slice()[index] = updated;
         self.wake_body(index);
-        let index = self.bodies.checked_index(body).expect("live");
+        let index = self.state.bodies.checked_index(body).expect("live");
         self.settle_body(index);
         self.place_colliders_of(body);
-        let attached = self.colliders.get(handle).expect("just inserted");
+        let attached = self.state.colliders.get(handle).expect("just inserted");
         if !attached.is_sensor() {
             let (aabb, filter) = (attached.aabb(), attached.filter());
-            self.broadphase
-                .insert(handle, body, kind, aabb, margin_for(&self.settings, kind));
-            self.broadphase.set_filter(handle, filter);
+            self.state.broadphase.insert(
+                handle,
+                body,
+                kind,
+                aabb,
+                margin_for(&self.state.settings, kind),
+            );
+            self.state.broadphase.set_filter(handle, filter);
         }
         Ok(handle)
     }
@@ -324,13 +316,21 @@ impl World {
         reason = "the collider was checked first, and a live collider's body is live"
     )]
     pub fn remove_collider(&mut self, handle: ColliderHandle) -> Result<Collider, CaromError> {
-        let collider = self.colliders.get(handle).ok_or(CaromError::StaleHandle {
-            what: "collider",
-            index: handle.index(),
-            generation: handle.generation(),
-        })?;
+        let collider = self
+            .state
+            .colliders
+            .get(handle)
+            .ok_or(CaromError::StaleHandle {
+                what: "collider",
+                index: handle.index(),
+                generation: handle.generation(),
+            })?;
         let body = collider.body();
-        let owner = self.bodies.get(body).expect("a collider's body is live");
+        let owner = self
+            .state
+            .bodies
+            .get(body)
+            .expect("a collider's body is live");
         if owner.colliders().len() == 1 {
             return Err(CaromError::NoCollider);
         }
@@ -339,19 +339,19 @@ impl World {
         let remaining: Vec<&Collider> = updated
             .colliders()
             .iter()
-            .filter_map(|&c| self.colliders.get(c))
+            .filter_map(|&c| self.state.colliders.get(c))
             .collect();
         updated.rebuild_mass(remaining.into_iter())?;
         updated.wake_up();
-        *self.bodies.get_mut(body).expect("live") = updated;
-        let index = self.bodies.checked_index(body).expect("live");
+        *self.state.bodies.get_mut(body).expect("live") = updated;
+        let index = self.state.bodies.checked_index(body).expect("live");
         self.wake_body(index);
         self.wake_touching(body);
-        self.contacts.remove_collider(body, handle);
+        self.state.contacts.remove_collider(body, handle);
         self.apply_touch_changes();
-        self.broadphase.remove(handle);
+        self.state.broadphase.remove(handle);
         self.prepare_collider_removal(handle);
-        let removed = self.colliders.remove(handle).expect("checked");
+        let removed = self.state.colliders.remove(handle).expect("checked");
         self.note_removed(handle, &removed);
         self.place_colliders_of(body);
         Ok(removed)
@@ -367,16 +367,16 @@ impl World {
         handle: BodyHandle,
         kind: BodyKind,
     ) -> Result<(), CaromError> {
-        let index = self.bodies.checked_index(handle)?;
-        let previous = self.bodies.as_slice()[index].clone();
-        self.bodies.as_mut_slice()[index].set_kind_unchecked(kind);
+        let index = self.state.bodies.checked_index(handle)?;
+        let previous = self.state.bodies.as_slice()[index].clone();
+        self.state.bodies.as_mut_slice()[index].set_kind_unchecked(kind);
         if let Err(e) = self.rebuild_mass_of(handle) {
-            self.bodies.as_mut_slice()[index] = previous;
+            self.state.bodies.as_mut_slice()[index] = previous;
             return Err(e);
         }
         // Its island wakes, and the body goes to its new kind's set and island.
         self.wake_body(index);
-        let index = self.bodies.checked_index(handle).expect("live");
+        let index = self.state.bodies.checked_index(handle).expect("live");
         let (was, is) = (previous.is_dynamic(), kind == BodyKind::Dynamic);
         if was && !is {
             self.leave_island(index);
@@ -387,11 +387,11 @@ impl World {
             self.join_touching_islands(index);
         }
         self.place_colliders_of(handle);
-        let body = self.bodies.get(handle).expect("live");
-        let margin = margin_for(&self.settings, kind);
+        let body = self.state.bodies.get(handle).expect("live");
+        let margin = margin_for(&self.state.settings, kind);
         for &collider in body.colliders() {
-            let aabb = self.colliders.get(collider).expect("attached").aabb();
-            self.broadphase.update(collider, kind, aabb, margin);
+            let aabb = self.state.colliders.get(collider).expect("attached").aabb();
+            self.state.broadphase.update(collider, kind, aabb, margin);
         }
         Ok(())
     }
@@ -399,61 +399,62 @@ impl World {
     /// Notes a collider just added to the world among those asking for the optional events
     /// and the sensors, so a step does their work only when some ask.
     fn note_added(&mut self, handle: ColliderHandle) {
-        let Some(collider) = self.colliders.get(handle) else {
+        let Some(collider) = self.state.colliders.get(handle) else {
             return;
         };
-        self.hit_event_colliders += usize::from(collider.hit_events());
+        self.state.hit_event_colliders += usize::from(collider.hit_events());
         if collider.is_sensor() {
-            self.sensors.add(handle);
+            self.state.sensors.add(handle);
         }
     }
 
     /// Forgets a collider just removed from the world (as `removed`): a sensor's overlaps end.
     fn note_removed(&mut self, handle: ColliderHandle, removed: &Collider) {
-        self.hit_event_colliders -= usize::from(removed.hit_events());
+        self.state.hit_event_colliders -= usize::from(removed.hit_events());
         if removed.is_sensor() {
-            self.sensors.remove(handle);
+            self.state.sensors.remove(handle);
         }
     }
 
     /// Rebuilds a body's mass from its colliders.
     pub(crate) fn rebuild_mass_of(&mut self, handle: BodyHandle) -> Result<(), CaromError> {
-        let index = self.bodies.checked_index(handle)?;
-        let colliders = &self.colliders;
-        let body = &mut self.bodies.as_mut_slice()[index];
+        let index = self.state.bodies.checked_index(handle)?;
+        let colliders = &self.state.colliders;
+        let body = &mut self.state.bodies.as_mut_slice()[index];
         let attached: Vec<ColliderHandle> = body.colliders().to_vec();
         body.rebuild_mass(attached.iter().filter_map(|&c| colliders.get(c)))
     }
 
     /// Places a body's colliders where the body is, and its box around them.
     fn place_colliders_of(&mut self, handle: BodyHandle) {
-        let Some(body) = self.bodies.get_mut(handle) else {
+        let Some(body) = self.state.bodies.get_mut(handle) else {
             return;
         };
-        place_colliders(body, &mut self.colliders);
+        place_colliders(body, &mut self.state.colliders);
     }
 
     /// The body behind a handle, unless it was removed.
     pub fn body(&self, handle: BodyHandle) -> Option<&Body> {
-        self.bodies.get(handle)
+        self.state.bodies.get(handle)
     }
 
     /// The body behind a handle, to change, unless it was removed. Each change that moves it
     /// places its colliders at once, so the next step and queries see it there.
     pub fn body_mut(&mut self, handle: BodyHandle) -> Option<BodyMut<'_>> {
-        let index = self.bodies.dense_index(handle)?;
+        let index = self.state.bodies.dense_index(handle)?;
         Some(BodyMut::new(self, index))
     }
 
     /// The collider behind a handle, unless it was removed.
     pub fn collider(&self, handle: ColliderHandle) -> Option<&Collider> {
-        self.colliders.get(handle)
+        self.state.colliders.get(handle)
     }
 
     /// The collider behind a handle, to change, unless it was removed. Each change that other
     /// state depends on (the body's mass, its contacts) updates that state at once.
     pub fn collider_mut(&mut self, handle: ColliderHandle) -> Option<ColliderMut<'_>> {
-        self.colliders
+        self.state
+            .colliders
             .contains(handle)
             .then(|| ColliderMut::new(self, handle))
     }
@@ -461,41 +462,41 @@ impl World {
     /// Every collider, in handle order: the order they were added, a removed collider's
     /// place taken by a later one. The order does not change as bodies sleep and wake.
     pub fn colliders(&self) -> impl ExactSizeIterator<Item = &Collider> {
-        self.colliders.iter_by_handle()
+        self.state.colliders.iter_by_handle()
     }
 
     /// True when the handle refers to a body of this world.
     pub fn contains(&self, handle: BodyHandle) -> bool {
-        self.bodies.contains(handle)
+        self.state.bodies.contains(handle)
     }
 
     /// Every body, in handle order: the order they were added, a removed body's place taken
     /// by a later one. The order does not change as bodies sleep and wake (it is also draw
     /// order: later is on top).
     pub fn bodies(&self) -> impl ExactSizeIterator<Item = &Body> {
-        self.bodies.iter_by_handle()
+        self.state.bodies.iter_by_handle()
     }
 
     /// How many bodies there are.
     pub fn body_count(&self) -> usize {
-        self.bodies.len()
+        self.state.bodies.len()
     }
 
     /// Every contact: pairs of colliders whose enlarged boxes overlap, touching or not.
     pub fn contacts(&self) -> impl ExactSizeIterator<Item = &Contact> {
-        self.contacts.iter()
+        self.state.contacts.iter()
     }
 
     /// Contacts began and ended during the last step (and by removals before it).
     pub fn contact_events(&self) -> &[ContactEvent] {
-        self.contacts.events()
+        self.state.contacts.events()
     }
 
     /// What began and stopped overlapping each sensor during the last step (and the ends of
     /// sensors removed before it), sensor by sensor in the order they were added, each
     /// sensor's in visitor handle order.
     pub fn sensor_events(&self) -> &[SensorEvent] {
-        self.sensors.events()
+        self.state.sensors.events()
     }
 
     /// What overlaps a sensor as of the last step, in visitor handle order.
@@ -503,11 +504,14 @@ impl World {
     /// # Errors
     /// A stale handle, or a collider that is not a sensor.
     pub fn sensor_overlaps(&self, sensor: ColliderHandle) -> Result<&[SensorOverlap], CaromError> {
-        self.colliders.checked_index(sensor)?;
-        self.sensors.overlaps(sensor).ok_or(CaromError::NotASensor {
-            index: sensor.index(),
-            generation: sensor.generation(),
-        })
+        self.state.colliders.checked_index(sensor)?;
+        self.state
+            .sensors
+            .overlaps(sensor)
+            .ok_or(CaromError::NotASensor {
+                index: sensor.index(),
+                generation: sensor.generation(),
+            })
     }
 
     /// Sets the pre-solve hook, replacing any: each step, right after the narrowphase, it is
@@ -569,9 +573,11 @@ impl World {
     pub fn set_friction_mixer(&mut self, mixer: Option<MaterialMixer>) {
         let mixers = Mixers {
             friction: mixer,
-            ..self.contacts.mixers()
+            ..self.state.contacts.mixers()
         };
-        self.contacts.set_mixers(mixers, &self.colliders);
+        self.state
+            .contacts
+            .set_mixers(mixers, &self.state.colliders);
     }
 
     /// Mixes restitution where two surfaces touch with `mixer` (given each surface's
@@ -580,42 +586,44 @@ impl World {
     pub fn set_restitution_mixer(&mut self, mixer: Option<MaterialMixer>) {
         let mixers = Mixers {
             restitution: mixer,
-            ..self.contacts.mixers()
+            ..self.state.contacts.mixers()
         };
-        self.contacts.set_mixers(mixers, &self.colliders);
+        self.state
+            .contacts
+            .set_mixers(mixers, &self.state.colliders);
     }
 
     /// The hard hits of the last step on colliders that ask for them
     /// ([`ColliderDef::hit_events`]), in contact storage order (the same from run to run).
     pub fn hit_events(&self) -> &[HitEvent] {
-        &self.hit_events
+        &self.state.hit_events
     }
 
     /// The broadphase, for inspection (fat boxes, tree shape) by carom's own tests.
     #[cfg(any(test, feature = "testing"))]
     pub fn broadphase(&self) -> &BroadPhase {
-        &self.broadphase
+        &self.state.broadphase
     }
 
     /// The broadphase, for the queries outside this module (a character's).
     #[cfg(not(any(test, feature = "testing")))]
     pub(crate) fn broadphase(&self) -> &BroadPhase {
-        &self.broadphase
+        &self.state.broadphase
     }
 
     /// Simulated time so far, in seconds.
     pub fn time(&self) -> f64 {
-        self.time
+        self.state.time
     }
 
     /// How many steps were taken.
     pub fn step_count(&self) -> u64 {
-        self.step_count
+        self.state.step_count
     }
 
     /// The solver settings.
     pub fn solver(&self) -> &SolverParams {
-        &self.settings.solver
+        &self.state.settings.solver
     }
 
     /// A fingerprint of the simulation state: FNV-1a over every body's position, rotation and
@@ -653,13 +661,13 @@ pub(crate) type SolverInputs<'a> = (
 impl World {
     /// The body itself, to put it in states tests need (asleep, say).
     pub(crate) fn body_raw_mut(&mut self, handle: BodyHandle) -> Option<&mut Body> {
-        self.bodies.get_mut(handle)
+        self.state.bodies.get_mut(handle)
     }
 
     /// What the solver starts a step from.
     pub(crate) fn solver_inputs(&self) -> SolverInputs<'_> {
-        let contacts = self.contacts.awake();
-        let bodies = &self.bodies;
+        let contacts = self.state.contacts.awake();
+        let bodies = &self.state.bodies;
         let body_indices = contacts
             .iter()
             .map(|c| {
@@ -668,10 +676,10 @@ impl World {
                 })
             })
             .collect();
-        let awake = self.body_sets.awake();
-        let colors = self.contacts.color_ranges();
+        let awake = self.state.body_sets.awake();
+        let colors = self.state.contacts.color_ranges();
         (
-            self.bodies.as_slice(),
+            self.state.bodies.as_slice(),
             awake,
             contacts,
             body_indices,

@@ -22,8 +22,8 @@ impl World {
     /// ([`QueryFilter::ALL`] sees every collider), in handle order. Boxes are as of the last step or edit.
     pub fn query_aabb(&self, aabb: &Aabb, filter: QueryFilter) -> Vec<ColliderHandle> {
         let mut found = Vec::new();
-        self.broadphase.query(aabb, |handle| {
-            if let Some(collider) = self.colliders.get(handle)
+        self.state.broadphase.query(aabb, |handle| {
+            if let Some(collider) = self.state.colliders.get(handle)
                 && filter.sees(&collider.filter(), collider.body())
                 && collider.aabb().overlaps(aabb)
             {
@@ -46,7 +46,7 @@ impl World {
         }
         let mut found = self.query_aabb(&shape.aabb(), filter);
         found.retain(|&handle| {
-            let collider = self.colliders.get(handle).expect("just found");
+            let collider = self.state.colliders.get(handle).expect("just found");
             separation(shape, collider.world_shape()).separation <= 0.0
         });
         found
@@ -133,9 +133,10 @@ impl World {
         }
         let start = aabb.center();
         let mut scratch = shape.clone();
-        self.broadphase
+        self.state
+            .broadphase
             .box_cast(&aabb, translation, |handle, reach| {
-                let Some(collider) = self.colliders.get(handle) else {
+                let Some(collider) = self.state.colliders.get(handle) else {
                     return reach;
                 };
                 let other = collider.world_shape();
@@ -170,12 +171,13 @@ impl World {
         if !(is_finite_vec(ray.origin) && is_finite_vec(ray.translation)) {
             return;
         }
-        self.broadphase
+        self.state
+            .broadphase
             .ray_cast(ray.origin, ray.translation, |handle, reach| {
-                let Some(collider) = self.colliders.get(handle) else {
+                let Some(collider) = self.state.colliders.get(handle) else {
                     return reach;
                 };
-                let Some(body) = self.bodies.get(collider.body()) else {
+                let Some(body) = self.state.bodies.get(collider.body()) else {
                     return reach;
                 };
                 if !filter.sees(&collider.filter(), collider.body()) {
@@ -209,7 +211,7 @@ impl World {
         };
         self.bodies_at(point)
             .into_iter()
-            .filter_map(|h| Some((self.bodies.get(h)?.kind(), h)))
+            .filter_map(|h| Some((self.state.bodies.get(h)?.kind(), h)))
             .max_by_key(|&(kind, h)| (rank(kind), h.index()))
             .map(|(_, h)| h)
     }
@@ -218,11 +220,11 @@ impl World {
     pub fn bodies_at(&self, point: Vec2) -> Vec<BodyHandle> {
         let probe = Aabb::new(point, point);
         let mut found = Vec::new();
-        self.broadphase.query(&probe, |handle| {
-            let Some(collider) = self.colliders.get(handle) else {
+        self.state.broadphase.query(&probe, |handle| {
+            let Some(collider) = self.state.colliders.get(handle) else {
                 return;
             };
-            let Some(body) = self.bodies.get(collider.body()) else {
+            let Some(body) = self.state.bodies.get(collider.body()) else {
                 return;
             };
             if collider.contains(point, body.local_point(point)) {

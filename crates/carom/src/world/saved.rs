@@ -7,18 +7,11 @@
 //! restoring. A saved world is checked as it is read, since the file may have been edited:
 //! what does not hold together is a [`CaromError::BadSave`], not a panic in a later step.
 
-use crate::collision::broadphase::BroadPhase;
-use crate::collision::contact::ContactSet;
-use crate::collision::hits::HitEvent;
-use crate::collision::sensor::Sensors;
-use crate::dynamics::body::{Body, BodyHandle, BodyKind};
-use crate::dynamics::collider::{Collider, ColliderHandle};
-use crate::dynamics::island::Islands;
+use crate::dynamics::body::BodyKind;
+use crate::dynamics::collider::Collider;
 use crate::error::CaromError;
-use crate::handle_map::HandleMap;
-use crate::joint::store::JointStore;
-use crate::solver_set::{SetBounds, SolverSet};
-use crate::world::settings::WorldSettings;
+use crate::solver_set::SolverSet;
+use crate::world::state::WorldState;
 use crate::world::{World, check_settings};
 use serde::{Deserialize, Serialize};
 
@@ -29,10 +22,12 @@ use serde::{Deserialize, Serialize};
 /// (`graph::layout`). Format 6: colliders keep a whole surface (rolling resistance, tangent
 /// speed, material id) and contacts their rolling impulse. Format 7: Box2D 3.2's motor joint
 /// (a velocity part and a spring part), the mover and pogo joints and their impulses, and
-/// bodies that never turn.
-const SAVE_FORMAT: u32 = 7;
+/// bodies that never turn. Format 8: what outlives a step is written as one `state`, after
+/// the format.
+const SAVE_FORMAT: u32 = 8;
 
-/// What a saved world holds: every field of [`World`] that outlives a step.
+/// What a saved world holds: its save format, then every field of [`World`] that outlives a
+/// step.
 #[derive(Serialize, Deserialize)]
 #[serde(rename = "World", deny_unknown_fields)]
 pub(crate) struct SavedWorld {
@@ -41,38 +36,14 @@ pub(crate) struct SavedWorld {
     /// can fail to read.
     #[serde(deserialize_with = "this_format")]
     format: u32,
-    settings: WorldSettings,
-    time: f64,
-    step_count: u64,
-    bodies: HandleMap<BodyHandle, Body>,
-    colliders: HandleMap<ColliderHandle, Collider>,
-    joints: JointStore,
-    islands: Islands,
-    body_sets: SetBounds,
-    collider_sets: SetBounds,
-    broadphase: BroadPhase,
-    contacts: ContactSet,
-    sensors: Sensors,
-    hit_events: Vec<HitEvent>,
+    state: WorldState,
 }
 
 impl From<World> for SavedWorld {
     fn from(world: World) -> Self {
         SavedWorld {
             format: SAVE_FORMAT,
-            settings: world.settings,
-            time: world.time,
-            step_count: world.step_count,
-            bodies: world.bodies,
-            colliders: world.colliders,
-            joints: world.joints,
-            islands: world.islands,
-            body_sets: world.body_sets,
-            collider_sets: world.collider_sets,
-            broadphase: world.broadphase,
-            contacts: world.contacts,
-            sensors: world.sensors,
-            hit_events: world.hit_events,
+            state: world.state,
         }
     }
 }
@@ -82,31 +53,21 @@ impl TryFrom<SavedWorld> for World {
 
     fn try_from(saved: SavedWorld) -> Result<Self, CaromError> {
         // The format was checked as it was read (`this_format`).
-        check_settings(&saved.settings)?;
+        let mut state = saved.state;
+        check_settings(&state.settings)?;
+        state.hit_event_colliders = state
+            .colliders
+            .as_slice()
+            .iter()
+            .filter(|c| c.hit_events())
+            .count();
         let mut world = World {
-            hit_event_colliders: saved
-                .colliders
-                .as_slice()
-                .iter()
-                .filter(|c| c.hit_events())
-                .count(),
-            settings: saved.settings,
-            time: saved.time,
-            step_count: saved.step_count,
-            bodies: saved.bodies,
-            colliders: saved.colliders,
-            joints: saved.joints,
-            islands: saved.islands,
-            body_sets: saved.body_sets,
-            collider_sets: saved.collider_sets,
-            broadphase: saved.broadphase,
-            contacts: saved.contacts,
-            sensors: saved.sensors,
-            hit_events: saved.hit_events,
+            state,
             ..World::default()
         };
-        world.check_saved().map_err(bad)?;
-        world.contacts.mix_saved(&world.colliders);
+        world.check_saved()?;
+        let state = &mut world.state;
+        state.contacts.mix_saved(&state.colliders);
         Ok(world)
     }
 }
@@ -130,75 +91,89 @@ fn format_mismatch(format: u32) -> String {
     )
 }
 
-fn bad(reason: String) -> CaromError {
-    CaromError::BadSave { reason }
-}
-
 impl World {
     /// Checks that what was read holds together: every handle and index points at something
     /// that exists, the parts of each array fit in it, and every number is finite.
-    pub(crate) fn check_saved(&self) -> Result<(), String> {
-        self.bodies.check_saved()?;
-        self.colliders.check_saved()?;
-        if !self.time.is_finite() {
-            return Err("the time is not finite".into());
+    pub(crate) fn check_saved(&self) -> Result<(), CaromError> {
+        self.state.bodies.check_saved()?;
+        self.state.colliders.check_saved()?;
+        if !self.state.time.is_finite() {
+            return Err(CaromError::bad_save("the time is not finite"));
         }
-        for (index, body) in self.bodies.as_slice().iter().enumerate() {
-            body.check_saved(self.bodies.handles()[index])?;
+        for (index, body) in self.state.bodies.as_slice().iter().enumerate() {
+            body.check_saved(self.state.bodies.handles()[index])?;
             for &collider in body.colliders() {
-                let owner = self.colliders.get(collider).map(Collider::body);
+                let owner = self.state.colliders.get(collider).map(Collider::body);
                 if owner != Some(body.handle()) {
-                    return Err(format!("body {index} lists a collider that is not its own"));
+                    return Err(CaromError::bad_save(format!(
+                        "body {index} lists a collider that is not its own"
+                    )));
                 }
             }
         }
         let attached: usize = self
+            .state
             .bodies
             .as_slice()
             .iter()
             .map(|b| b.colliders().len())
             .sum();
-        if attached != self.colliders.len() {
-            return Err("a collider is not attached to its body".into());
+        if attached != self.state.colliders.len() {
+            return Err(CaromError::bad_save(
+                "a collider is not attached to its body",
+            ));
         }
-        for (index, collider) in self.colliders.as_slice().iter().enumerate() {
-            if self.bodies.dense_index(collider.body()) != Some(collider.body_index()) {
-                return Err(format!("collider {index} does not know where its body is"));
+        for (index, collider) in self.state.colliders.as_slice().iter().enumerate() {
+            if self.state.bodies.dense_index(collider.body()) != Some(collider.body_index()) {
+                return Err(CaromError::bad_save(format!(
+                    "collider {index} does not know where its body is"
+                )));
             }
-            let body = &self.bodies.as_slice()[collider.body_index()];
+            let body = &self.state.bodies.as_slice()[collider.body_index()];
             collider
                 .check_saved(&body.transform())
-                .map_err(|e| format!("collider {index}: {e}"))?;
+                .map_err(|e| CaromError::bad_save(format!("collider {index}: {e}")))?;
         }
-        for (index, body) in self.bodies.as_slice().iter().enumerate() {
+        for (index, body) in self.state.bodies.as_slice().iter().enumerate() {
             let colliders = body
                 .colliders()
                 .iter()
-                .filter_map(|&c| self.colliders.get(c));
+                .filter_map(|&c| self.state.colliders.get(c));
             if !body.mass_matches(colliders) {
-                return Err(format!("body {index}'s mass is not its colliders'"));
+                return Err(CaromError::bad_save(format!(
+                    "body {index}'s mass is not its colliders'"
+                )));
             }
         }
-        self.body_sets.check_saved("body", self.bodies.len())?;
-        self.collider_sets
-            .check_saved("collider", self.colliders.len())?;
+        self.state
+            .body_sets
+            .check_saved("body", self.state.bodies.len())?;
+        self.state
+            .collider_sets
+            .check_saved("collider", self.state.colliders.len())?;
         self.check_saved_sets()?;
-        self.islands.check_saved(&self.bodies)?;
-        self.joints.check_saved(&self.bodies)?;
-        for (index, joint) in self.joints.as_slice().iter().enumerate() {
-            if self.joints.set_of(index) != self.joint_set_for(joint) {
-                return Err(format!("joint {index} is stored in the wrong set"));
+        self.state.islands.check_saved(&self.state.bodies)?;
+        self.state.joints.check_saved(&self.state.bodies)?;
+        for (index, joint) in self.state.joints.as_slice().iter().enumerate() {
+            if self.state.joints.set_of(index) != self.joint_set_for(joint) {
+                return Err(CaromError::bad_save(format!(
+                    "joint {index} is stored in the wrong set"
+                )));
             }
         }
-        self.broadphase.check_saved(&self.colliders, &self.bodies)?;
-        self.contacts.check_saved(&self.colliders, &self.bodies)?;
-        self.sensors.check_saved(&self.colliders)?;
+        self.state
+            .broadphase
+            .check_saved(&self.state.colliders, &self.state.bodies)?;
+        self.state
+            .contacts
+            .check_saved(&self.state.colliders, &self.state.bodies)?;
+        self.state.sensors.check_saved(&self.state.colliders)?;
         Ok(())
     }
 
     /// Every body is in the set its kind and sleep say, and every collider in its body's.
-    fn check_saved_sets(&self) -> Result<(), String> {
-        for (index, body) in self.bodies.as_slice().iter().enumerate() {
+    fn check_saved_sets(&self) -> Result<(), CaromError> {
+        for (index, body) in self.state.bodies.as_slice().iter().enumerate() {
             let set = if body.kind() == BodyKind::Static {
                 SolverSet::Static
             } else if body.is_sleeping() {
@@ -206,13 +181,19 @@ impl World {
             } else {
                 SolverSet::Awake
             };
-            if self.body_sets.set_of(index) != set {
-                return Err(format!("body {index} is stored in the wrong set"));
+            if self.state.body_sets.set_of(index) != set {
+                return Err(CaromError::bad_save(format!(
+                    "body {index} is stored in the wrong set"
+                )));
             }
         }
-        for (index, collider) in self.colliders.as_slice().iter().enumerate() {
-            if self.collider_sets.set_of(index) != self.body_sets.set_of(collider.body_index()) {
-                return Err(format!("collider {index} is stored apart from its body"));
+        for (index, collider) in self.state.colliders.as_slice().iter().enumerate() {
+            if self.state.collider_sets.set_of(index)
+                != self.state.body_sets.set_of(collider.body_index())
+            {
+                return Err(CaromError::bad_save(format!(
+                    "collider {index} is stored apart from its body"
+                )));
             }
         }
         Ok(())

@@ -19,20 +19,20 @@ impl World {
         reason = "the sleep pass visits only awake dynamic bodies, and every dynamic body has an island"
     )]
     pub(crate) fn update_sleep(&mut self, dt: Real) -> (usize, usize) {
-        let step = self.step_count + 1;
-        let awake = self.body_sets.awake();
+        let step = self.state.step_count + 1;
+        let awake = self.state.body_sets.awake();
         let mut checked = 0;
         // The sleepiest body whose island may have come apart: (sleep time, island).
         let mut split: Option<(Real, u32)> = None;
         for index in awake.clone() {
-            let body = &mut self.bodies.as_mut_slice()[index];
+            let body = &mut self.state.bodies.as_mut_slice()[index];
             if body.kind() != BodyKind::Dynamic {
                 continue;
             }
             body.update_sleep_time(dt);
             checked += 1;
             let (time, id) = (body.sleep_time(), body.island().expect("dynamic bodies"));
-            let island = self.islands.get_mut(id);
+            let island = self.state.islands.get_mut(id);
             if island.rest_step != step {
                 (island.rest_step, island.rest) = (step, time);
             } else {
@@ -51,11 +51,11 @@ impl World {
         let mut sleepy = std::mem::take(&mut self.island_scratch.sleepy);
         sleepy.clear();
         for index in awake {
-            let body = &self.bodies.as_slice()[index];
+            let body = &self.state.bodies.as_slice()[index];
             let Some(id) = body.island().filter(|_| body.kind() == BodyKind::Dynamic) else {
                 continue;
             };
-            let island = self.islands.get_mut(id);
+            let island = self.state.islands.get_mut(id);
             let whole = island.removed == 0 || island.len == 1;
             if island.rest_step == step && island.rest >= TIME_TO_SLEEP && whole {
                 // Marked so it is listed once.
@@ -76,10 +76,10 @@ impl World {
     /// Puts every body of island `id` to sleep: they, their colliders, contacts and joints
     /// leave the awake set.
     pub(crate) fn sleep_island(&mut self, id: u32) {
-        let mut next = self.islands.get(id).head;
+        let mut next = self.state.islands.get(id).head;
         while let Some(handle) = next {
             let index = self.handle_index(handle);
-            let body = &mut self.bodies.as_mut_slice()[index];
+            let body = &mut self.state.bodies.as_mut_slice()[index];
             next = body.island_neighbours().1;
             body.fall_asleep();
             self.move_body(index, SolverSet::Asleep);
@@ -89,12 +89,12 @@ impl World {
     /// Wakes every body of island `id`: they, their colliders, contacts and joints go back to
     /// the awake set. An island already awake is left alone.
     pub(crate) fn wake_island(&mut self, id: u32) {
-        let mut next = self.islands.get(id).head;
+        let mut next = self.state.islands.get(id).head;
         while let Some(handle) = next {
             let index = self.handle_index(handle);
-            let body = &mut self.bodies.as_mut_slice()[index];
+            let body = &mut self.state.bodies.as_mut_slice()[index];
             next = body.island_neighbours().1;
-            if !body.is_sleeping() && self.body_sets.set_of(index) == SolverSet::Awake {
+            if !body.is_sleeping() && self.state.body_sets.set_of(index) == SolverSet::Awake {
                 continue;
             }
             body.wake_up();

@@ -10,7 +10,7 @@ use crate::world::World;
 impl World {
     /// The set a body belongs in, by its kind and state.
     pub(crate) fn set_for(&self, index: usize) -> SolverSet {
-        let body = &self.bodies.as_slice()[index];
+        let body = &self.state.bodies.as_slice()[index];
         if body.kind() == BodyKind::Static {
             SolverSet::Static
         } else if body.is_sleeping() {
@@ -31,13 +31,14 @@ impl World {
         let mut set = SolverSet::Static;
         for handle in joint.bodies() {
             let index = self
+                .state
                 .bodies
                 .dense_index(handle)
                 .expect("joints join live bodies");
-            if self.bodies.as_slice()[index].kind() != BodyKind::Dynamic {
+            if self.state.bodies.as_slice()[index].kind() != BodyKind::Dynamic {
                 continue;
             }
-            match self.body_sets.set_of(index) {
+            match self.state.body_sets.set_of(index) {
                 SolverSet::Awake => return SolverSet::Awake,
                 _ => set = SolverSet::Asleep,
             }
@@ -50,7 +51,7 @@ impl World {
     /// colliders of every body that changes place follow it.
     pub(crate) fn move_body(&mut self, index: usize, to: SolverSet) -> usize {
         let index = self.move_body_and_colliders(index, to);
-        let handle = self.bodies.handles()[index];
+        let handle = self.state.bodies.handles()[index];
         self.refile_contacts(handle);
         self.refile_joints(handle);
         index
@@ -63,11 +64,11 @@ impl World {
         reason = "a body's joint list holds only live joints: removing a joint unlists it"
     )]
     fn refile_joints(&mut self, body: BodyHandle) {
-        for k in 0..self.joints.of_body(body).len() {
-            let handle = self.joints.of_body(body)[k];
-            let joint = self.joints.get(handle).expect("listed joints live");
+        for k in 0..self.state.joints.of_body(body).len() {
+            let handle = self.state.joints.of_body(body)[k];
+            let joint = self.state.joints.get(handle).expect("listed joints live");
             let to = self.joint_set_for(joint);
-            self.joints.refile(handle, to);
+            self.state.joints.refile(handle, to);
         }
     }
 
@@ -80,18 +81,23 @@ impl World {
     fn move_body_and_colliders(&mut self, index: usize, to: SolverSet) -> usize {
         // The colliders first, each on its own: one just attached may not be in its body's
         // set yet.
-        for k in 0..self.bodies.as_slice()[index].colliders().len() {
-            let collider = self.bodies.as_slice()[index].colliders()[k];
-            let at = self.colliders.checked_index(collider).expect("attached");
-            let colliders = &mut self.colliders;
-            self.collider_sets
+        for k in 0..self.state.bodies.as_slice()[index].colliders().len() {
+            let collider = self.state.bodies.as_slice()[index].colliders()[k];
+            let at = self
+                .state
+                .colliders
+                .checked_index(collider)
+                .expect("attached");
+            let colliders = &mut self.state.colliders;
+            self.state
+                .collider_sets
                 .move_item(at, to, |i, j| colliders.swap(i, j));
         }
-        if self.body_sets.set_of(index) == to {
+        if self.state.body_sets.set_of(index) == to {
             return index;
         }
-        let (bodies, colliders) = (&mut self.bodies, &mut self.colliders);
-        self.body_sets.move_item(index, to, |i, j| {
+        let (bodies, colliders) = (&mut self.state.bodies, &mut self.state.colliders);
+        self.state.body_sets.move_item(index, to, |i, j| {
             bodies.swap(i, j);
             for k in [i, j] {
                 for &collider in bodies.as_slice()[k].colliders() {
@@ -110,8 +116,8 @@ impl World {
         reason = "a live contact's bodies are live: removing a body removes its contacts"
     )]
     fn refile_contacts(&mut self, body: BodyHandle) {
-        let (bodies, sets) = (&self.bodies, self.body_sets);
-        self.contacts.refile(body, |handle| {
+        let (bodies, sets) = (&self.state.bodies, self.state.body_sets);
+        self.state.contacts.refile(body, |handle| {
             let index = bodies
                 .dense_index(handle)
                 .expect("contacts join live bodies");
@@ -132,8 +138,8 @@ impl World {
         reason = "a live contact's bodies are live: removing a body removes its contacts"
     )]
     pub(crate) fn repaint_contacts(&mut self, body: BodyHandle) {
-        let bodies = &self.bodies;
-        self.contacts.repaint(body, |handle| {
+        let bodies = &self.state.bodies;
+        self.state.contacts.repaint(body, |handle| {
             bodies
                 .get(handle)
                 .expect("contacts join live bodies")
@@ -148,8 +154,8 @@ impl World {
         reason = "only a sleeping body is woken, and a sleeping body sleeps in an island"
     )]
     pub(crate) fn wake_body(&mut self, index: usize) {
-        if self.body_sets.set_of(index) == SolverSet::Asleep {
-            let island = self.bodies.as_slice()[index].island();
+        if self.state.body_sets.set_of(index) == SolverSet::Asleep {
+            let island = self.state.bodies.as_slice()[index].island();
             self.wake_island(island.expect("sleeping bodies have islands"));
         }
     }
@@ -158,9 +164,9 @@ impl World {
     /// lose a collider: what rested on it must be free to fall).
     pub(crate) fn wake_touching(&mut self, body: BodyHandle) {
         let mut partners = std::mem::take(&mut self.island_scratch.partners);
-        self.contacts.touching_partners(body, &mut partners);
+        self.state.contacts.touching_partners(body, &mut partners);
         for &partner in &partners {
-            if let Some(index) = self.bodies.dense_index(partner) {
+            if let Some(index) = self.state.bodies.dense_index(partner) {
                 self.wake_body(index);
             }
         }
@@ -169,8 +175,8 @@ impl World {
 
     /// Wakes every sleeping island.
     pub(crate) fn wake_all_islands(&mut self) {
-        while self.body_sets.asleep_start() < self.bodies.len() {
-            self.wake_body(self.body_sets.asleep_start());
+        while self.state.body_sets.asleep_start() < self.state.bodies.len() {
+            self.wake_body(self.state.body_sets.asleep_start());
         }
     }
 
@@ -190,9 +196,14 @@ impl World {
         reason = "the collider was checked live by the caller"
     )]
     pub(crate) fn prepare_collider_removal(&mut self, collider: ColliderHandle) {
-        let at = self.colliders.checked_index(collider).expect("attached");
-        let colliders = &mut self.colliders;
-        self.collider_sets
+        let at = self
+            .state
+            .colliders
+            .checked_index(collider)
+            .expect("attached");
+        let colliders = &mut self.state.colliders;
+        self.state
+            .collider_sets
             .move_item(at, SolverSet::Asleep, |i, j| colliders.swap(i, j));
     }
 }
@@ -224,48 +235,50 @@ impl World {
         reason = "checking is what this is for: it panics on a broken invariant, for tests and fuzzing"
     )]
     pub(crate) fn check_sets(&self) {
-        let bodies = self.bodies.as_slice();
+        let bodies = self.state.bodies.as_slice();
         for (index, body) in bodies.iter().enumerate() {
-            let set = self.body_sets.set_of(index);
+            let set = self.state.body_sets.set_of(index);
             assert_eq!(set, self.set_for(index), "body {index} ({:?})", body.kind());
             for &c in body.colliders() {
                 let at = self
+                    .state
                     .colliders
                     .dense_index(c)
                     .expect("attached colliders live");
                 assert_eq!(
-                    self.collider_sets.set_of(at),
+                    self.state.collider_sets.set_of(at),
                     set,
                     "collider of body {index}"
                 );
-                assert_eq!(self.colliders.as_slice()[at].body_index(), index);
+                assert_eq!(self.state.colliders.as_slice()[at].body_index(), index);
             }
             let dynamic = body.kind() == BodyKind::Dynamic;
             assert_eq!(body.island().is_some(), dynamic, "body {index} island");
         }
         assert_eq!(
-            self.colliders.len(),
+            self.state.colliders.len(),
             bodies.iter().map(|b| b.colliders().len()).sum::<usize>()
         );
         let awake_body = |h: BodyHandle| {
             let i = self
+                .state
                 .bodies
                 .dense_index(h)
                 .expect("contacts join live bodies");
-            self.body_sets.set_of(i) == SolverSet::Awake
+            self.state.body_sets.set_of(i) == SolverSet::Awake
         };
         let mut asleep_touching = 0;
-        for (i, contact) in self.contacts.iter().enumerate() {
+        for (i, contact) in self.state.contacts.iter().enumerate() {
             let awake = awake_body(contact.body_a()) || awake_body(contact.body_b());
-            assert_eq!(awake, i < self.contacts.awake_len(), "contact {i}");
+            assert_eq!(awake, i < self.state.contacts.awake_len(), "contact {i}");
             if !awake && contact.is_solved() {
                 asleep_touching += 1;
             }
         }
-        assert_eq!(asleep_touching, self.contacts.asleep_touching());
-        self.contacts.check_ids();
-        for (i, joint) in self.joints.as_slice().iter().enumerate() {
-            let set = self.joints.set_of(i);
+        assert_eq!(asleep_touching, self.state.contacts.asleep_touching());
+        self.state.contacts.check_ids();
+        for (i, joint) in self.state.joints.as_slice().iter().enumerate() {
+            let set = self.state.joints.set_of(i);
             assert_eq!(set, self.joint_set_for(joint), "joint {i}");
         }
         self.check_colors();
@@ -281,17 +294,20 @@ impl World {
         reason = "checking is what this is for: it panics on a broken invariant, for tests and fuzzing"
     )]
     fn check_islands(&self) {
-        for id in self.islands.live_ids() {
-            let island = self.islands.get(id);
+        for id in self.state.islands.live_ids() {
+            let island = self.state.islands.get(id);
             let mut walked = Vec::new();
             let mut prev = None;
             let mut next = island.head;
             while let Some(handle) = next {
-                let body = self.bodies.get(handle).expect("island members live");
+                let body = self.state.bodies.get(handle).expect("island members live");
                 assert_eq!(body.island(), Some(id));
                 assert_eq!(body.island_neighbours().0, prev, "island {id} back link");
                 walked.push(handle);
-                assert!(walked.len() <= self.bodies.len(), "island {id} list loops");
+                assert!(
+                    walked.len() <= self.state.bodies.len(),
+                    "island {id} list loops"
+                );
                 prev = Some(handle);
                 next = body.island_neighbours().1;
             }
@@ -301,21 +317,25 @@ impl World {
             assert_eq!(walked.len(), named, "island {id} members");
             let sets: std::collections::HashSet<SolverSet> = walked
                 .iter()
-                .map(|&h| self.body_sets.set_of(self.bodies.dense_index(h).unwrap()))
+                .map(|&h| {
+                    self.state
+                        .body_sets
+                        .set_of(self.state.bodies.dense_index(h).unwrap())
+                })
                 .collect();
             assert_eq!(sets.len(), 1, "island {id} in one set");
         }
-        for contact in self.contacts.iter().filter(|c| c.is_solved()) {
+        for contact in self.state.contacts.iter().filter(|c| c.is_solved()) {
             let (a, b) = (
-                self.bodies.get(contact.body_a()).unwrap(),
-                self.bodies.get(contact.body_b()).unwrap(),
+                self.state.bodies.get(contact.body_a()).unwrap(),
+                self.state.bodies.get(contact.body_b()).unwrap(),
             );
             if a.is_dynamic() && b.is_dynamic() {
                 assert_eq!(a.island(), b.island(), "touching bodies share an island");
             }
         }
-        for joint in self.joints.as_slice() {
-            let [a, b] = joint.bodies().map(|h| self.bodies.get(h).unwrap());
+        for joint in self.state.joints.as_slice() {
+            let [a, b] = joint.bodies().map(|h| self.state.bodies.get(h).unwrap());
             if a.is_dynamic() && b.is_dynamic() {
                 assert_eq!(a.island(), b.island(), "joined bodies share an island");
             }
@@ -339,9 +359,9 @@ impl World {
         use crate::graph::layout::{ASLEEP, NOT_TOUCHING, color_part};
         use std::collections::HashSet;
         let mut held: [HashSet<u32>; COLOR_COUNT] = std::array::from_fn(|_| HashSet::new());
-        for (i, contact) in self.contacts.iter().enumerate() {
+        for (i, contact) in self.state.contacts.iter().enumerate() {
             let (color, holds) = contact.color();
-            let awake = i < self.contacts.awake_len();
+            let awake = i < self.state.contacts.awake_len();
             assert_eq!(
                 color != NO_COLOR,
                 contact.is_solved() && awake,
@@ -352,12 +372,12 @@ impl World {
                 (true, NO_COLOR) => NOT_TOUCHING,
                 (true, color) => color_part(color),
             };
-            assert_eq!(self.contacts.part_of(i), part, "contact {i}'s part");
+            assert_eq!(self.state.contacts.part_of(i), part, "contact {i}'s part");
             if color == NO_COLOR || color == OVERFLOW {
                 continue;
             }
             for (body, holds) in [(contact.body_a(), holds[0]), (contact.body_b(), holds[1])] {
-                let dynamic = self.bodies.get(body).unwrap().is_dynamic();
+                let dynamic = self.state.bodies.get(body).unwrap().is_dynamic();
                 assert_eq!(holds, dynamic, "contact {i} holds its dynamic bodies");
                 if holds {
                     let fresh = held[color as usize].insert(body.index());
@@ -365,8 +385,14 @@ impl World {
                 }
             }
         }
-        let slots = self.bodies.handles().iter().map(|h| h.index() + 1).max();
-        let colors = self.contacts.colors();
+        let slots = self
+            .state
+            .bodies
+            .handles()
+            .iter()
+            .map(|h| h.index() + 1)
+            .max();
+        let colors = self.state.contacts.colors();
         for (color, held) in held.iter().enumerate() {
             for slot in 0..slots.unwrap_or(0) {
                 assert_eq!(colors.holds(color as u8, slot), held.contains(&slot));

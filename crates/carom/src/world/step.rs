@@ -67,9 +67,9 @@ impl World {
         let started = Instant::now();
         let mut stats = StepStats::default();
         let times = &mut stats.times;
-        self.contacts.begin_step();
-        self.sensors.begin_step();
-        self.hit_events.clear();
+        self.state.contacts.begin_step();
+        self.state.sensors.begin_step();
+        self.state.hit_events.clear();
 
         let mut scratch = std::mem::take(&mut self.scratch);
 
@@ -79,7 +79,7 @@ impl World {
         ) = timed(&mut times.broadphase, || {
             self.find_pairs(&mut scratch.pairs)
         });
-        let effects = self.settings.effects;
+        let effects = self.state.settings.effects;
         let continuous = effects.contains(Effect::Continuous);
         // With continuous collision, contacts look a step ahead: a face point's margin reaches
         // as far as the pair can close in a step, and moving bodies' boxes cover where they
@@ -101,16 +101,16 @@ impl World {
             report
         });
         (stats.contact_points, stats.work) = (solved.points, solved.work);
-        if self.hit_event_colliders > 0 {
-            let (contacts, body_indices) = self.contacts.awake_and_bodies();
-            let threshold = self.settings.hit_event_threshold;
-            let bodies = self.bodies.as_slice();
+        if self.state.hit_event_colliders > 0 {
+            let (contacts, body_indices) = self.state.contacts.awake_and_bodies();
+            let threshold = self.state.settings.hit_event_threshold;
+            let bodies = self.state.bodies.as_slice();
             find_hits(
                 contacts,
                 body_indices,
                 bodies,
                 threshold,
-                &mut self.hit_events,
+                &mut self.state.hit_events,
             );
         }
         stats.joints = solved.joints;
@@ -126,12 +126,12 @@ impl World {
             };
             (stats.continuous_impacts, stats.work.sweeps) = timed(&mut times.continuous, || {
                 continuous::solve_continuous(
-                    &mut self.bodies,
-                    self.body_sets.awake(),
-                    &mut self.colliders,
+                    &mut self.state.bodies,
+                    self.state.body_sets.awake(),
+                    &mut self.state.colliders,
                     &mut scratch.continuous,
-                    &self.broadphase,
-                    &self.joints,
+                    &self.state.broadphase,
+                    &self.state.joints,
                     LINEAR_SLOP,
                     self.pre_solve.is_some(),
                     groups,
@@ -153,13 +153,16 @@ impl World {
             (stats.work.sleep_checks, stats.collision.island_splits) =
                 timed(&mut times.sleep, || self.update_sleep(dt));
         }
-        self.sensors
-            .update(&self.bodies, &self.colliders, &self.broadphase);
+        self.state.sensors.update(
+            &self.state.bodies,
+            &self.state.colliders,
+            &self.state.broadphase,
+        );
 
         self.scratch = scratch;
         self.record(stats, started);
-        self.time += dt as f64;
-        self.step_count += 1;
+        self.state.time += dt as f64;
+        self.state.step_count += 1;
         Ok(())
     }
 
@@ -181,13 +184,17 @@ impl World {
         work: &mut CollisionWork,
     ) -> Real {
         wake.clear();
-        let (moving_tree, fat_boxes) = self.broadphase.moving_tree_and_fat_boxes();
-        let (contacts, bodies, colliders) = (&mut self.contacts, &self.bodies, &self.colliders);
+        let (moving_tree, fat_boxes) = self.state.broadphase.moving_tree_and_fat_boxes();
+        let (contacts, bodies, colliders) = (
+            &mut self.state.contacts,
+            &self.state.bodies,
+            &self.state.colliders,
+        );
         let options = ManifoldOptions {
-            margin: self.settings.speculative_distance,
+            margin: self.state.settings.speculative_distance,
             prediction,
-            recycling: self.settings.contact_recycling.then(|| {
-                if self.settings.solver.effective_kind() == SolverKind::SoftStep {
+            recycling: self.state.settings.contact_recycling.then(|| {
+                if self.state.settings.solver.effective_kind() == SolverKind::SoftStep {
                     RECYCLE_DISTANCE
                 } else {
                     RECYCLE_DISTANCE_CLASSIC
@@ -215,8 +222,8 @@ impl World {
         self.apply_touch_changes();
         // No body changes set again before the solver: where each awake contact's bodies
         // are can be found once.
-        let bodies = &self.bodies;
-        self.contacts.find_body_indices(|body| {
+        let bodies = &self.state.bodies;
+        self.state.contacts.find_body_indices(|body| {
             bodies
                 .dense_index(body)
                 .expect("contacts only join live bodies")
@@ -226,10 +233,10 @@ impl World {
 
     /// Completes a step's statistics with counts taken after it, and keeps them.
     fn record(&mut self, mut stats: StepStats, started: Instant) {
-        stats.bodies = self.bodies.len();
-        stats.contacts = self.contacts.len();
-        stats.touching_contacts = self.contacts.touching_count();
-        stats.sleeping_bodies = self.bodies.len() - self.body_sets.asleep_start();
+        stats.bodies = self.state.bodies.len();
+        stats.contacts = self.state.contacts.len();
+        stats.touching_contacts = self.state.contacts.touching_count();
+        stats.sleeping_bodies = self.state.bodies.len() - self.state.body_sets.asleep_start();
         stats.kinetic_energy = self.awake_bodies().iter().map(Body::kinetic_energy).sum();
         stats.times.total = started.elapsed();
         self.stats = stats;
@@ -237,33 +244,35 @@ impl World {
 
     /// The awake set of bodies: what a step moves.
     fn awake_bodies(&self) -> &[Body] {
-        &self.bodies.as_slice()[self.body_sets.awake()]
+        &self.state.bodies.as_slice()[self.state.body_sets.awake()]
     }
 
     /// Runs the configured solver over every moving body and touching contact; returns how
     /// many contact points it solved and the work its effects did.
     fn solve(&mut self, dt: Real, awake_joints: &[solver::AwakeJoint]) -> solver::StepReport {
-        let effects = self.settings.effects;
+        let effects = self.state.settings.effects;
         let environment = Environment {
             gravity: effects
                 .contains(Effect::Gravity)
-                .then_some(self.settings.gravity),
-            drag: effects.contains(Effect::Drag).then_some(self.settings.drag),
+                .then_some(self.state.settings.gravity),
+            drag: effects
+                .contains(Effect::Drag)
+                .then_some(self.state.settings.drag),
             friction: effects.contains(Effect::Friction),
             restitution: effects.contains(Effect::Restitution),
         };
-        let (contacts, body_indices, colors) = self.contacts.awake_mut_and_colors();
+        let (contacts, body_indices, colors) = self.state.contacts.awake_mut_and_colors();
         let set = solver::AwakeSet {
-            bodies: self.bodies.as_mut_slice(),
-            awake: self.body_sets.awake(),
+            bodies: self.state.bodies.as_mut_slice(),
+            awake: self.state.body_sets.awake(),
             contacts,
             body_indices,
             colors: &colors,
-            joints: self.joints.as_mut_slice(),
+            joints: self.state.joints.as_mut_slice(),
             awake_joints,
         };
         solver::step(
-            &self.settings.solver,
+            &self.state.settings.solver,
             environment,
             set,
             dt,
@@ -274,26 +283,33 @@ impl World {
     /// Creates contacts for pairs of colliders whose enlarged boxes began to overlap; returns
     /// how many candidate pairs the broadphase met and how many contacts it created.
     fn find_pairs(&mut self, pairs: &mut Vec<(ColliderHandle, ColliderHandle)>) -> (usize, usize) {
-        let contacts = &self.contacts;
+        let contacts = &self.state.contacts;
         let candidates = self
+            .state
             .broadphase
             .update_pairs_into(|a, b| contacts.contains(a, b), pairs);
         let mut created = 0;
         for &(a, b) in pairs.iter() {
             let (Some(collider_a), Some(collider_b)) =
-                (self.colliders.get(a), self.colliders.get(b))
+                (self.state.colliders.get(a), self.state.colliders.get(b))
             else {
                 continue;
             };
             // Collision filters were applied by the broadphase; joints are a world matter.
-            if self.joints.filters(collider_a.body(), collider_b.body()) {
+            if self
+                .state
+                .joints
+                .filters(collider_a.body(), collider_b.body())
+            {
                 continue;
             }
-            let sets = self.body_sets;
+            let sets = self.state.body_sets;
             let awake = [collider_a, collider_b]
                 .iter()
                 .any(|c| sets.set_of(c.body_index()) == SolverSet::Awake);
-            self.contacts.add((a, collider_a), (b, collider_b), awake);
+            self.state
+                .contacts
+                .add((a, collider_a), (b, collider_b), awake);
             created += 1;
         }
         (candidates, created)
@@ -303,13 +319,13 @@ impl World {
     /// and finds for each, while it is at hand, what the broadphase must learn of it
     /// (`refits`, see [`refit`]).
     fn place_moved_colliders(&mut self, prediction: Real, refits: &mut Vec<Option<Refit>>) {
-        let reach = margin_for(&self.settings, BodyKind::Dynamic);
-        let broadphase = &self.broadphase;
+        let reach = margin_for(&self.state.settings, BodyKind::Dynamic);
+        let broadphase = &self.state.broadphase;
         place_awake_colliders(
-            &mut self.bodies,
-            self.body_sets.awake(),
-            &mut self.colliders,
-            self.collider_sets.awake(),
+            &mut self.state.bodies,
+            self.state.body_sets.awake(),
+            &mut self.state.colliders,
+            self.state.collider_sets.awake(),
             refits,
             |handle, collider, body| refit(handle, collider, body, prediction, reach, broadphase),
         );
@@ -317,13 +333,13 @@ impl World {
 
     /// Finds again what the broadphase must learn of every awake collider ([`refit`]).
     fn find_refits(&self, prediction: Real, refits: &mut Vec<Option<Refit>>) {
-        let bodies = self.bodies.as_slice();
-        let awake = self.collider_sets.awake();
-        let broadphase = &self.broadphase;
-        let reach = margin_for(&self.settings, BodyKind::Dynamic);
+        let bodies = self.state.bodies.as_slice();
+        let awake = self.state.collider_sets.awake();
+        let broadphase = &self.state.broadphase;
+        let reach = margin_for(&self.state.settings, BodyKind::Dynamic);
         map_zip_into(
-            &self.colliders.handles()[awake.clone()],
-            &self.colliders.as_slice()[awake],
+            &self.state.colliders.handles()[awake.clone()],
+            &self.state.colliders.as_slice()[awake],
             refits,
             CONTACTS_PER_TASK,
             |&handle, collider| {
@@ -341,18 +357,24 @@ impl World {
         moved: impl Iterator<Item = usize>,
         refits: &mut [Option<Refit>],
     ) {
-        let bodies = self.bodies.as_slice();
-        let colliders = self.colliders.as_slice();
-        let first = self.collider_sets.awake().start;
-        let reach = margin_for(&self.settings, BodyKind::Dynamic);
+        let bodies = self.state.bodies.as_slice();
+        let colliders = self.state.colliders.as_slice();
+        let first = self.state.collider_sets.awake().start;
+        let reach = margin_for(&self.state.settings, BodyKind::Dynamic);
         for body in moved.map(|index| &bodies[index]) {
             for &handle in body.colliders() {
-                let Some(index) = self.colliders.dense_index(handle) else {
+                let Some(index) = self.state.colliders.dense_index(handle) else {
                     continue;
                 };
                 let collider = &colliders[index];
-                refits[index - first] =
-                    refit(handle, collider, body, prediction, reach, &self.broadphase);
+                refits[index - first] = refit(
+                    handle,
+                    collider,
+                    body,
+                    prediction,
+                    reach,
+                    &self.state.broadphase,
+                );
             }
         }
     }
@@ -362,8 +384,8 @@ impl World {
     /// enlarged in place, and each runner is marked, for the next step's rebuild and pair
     /// update. Returns how many were enlarged.
     fn refresh_broadphase(&mut self, refits: &[Option<Refit>]) -> usize {
-        let awake = self.collider_sets.awake();
-        let handles = &self.colliders.handles()[awake];
+        let awake = self.state.collider_sets.awake();
+        let handles = &self.state.colliders.handles()[awake];
         let mut moved = 0;
         for (&handle, refit) in handles.iter().zip(refits) {
             let Some(Refit {
@@ -380,13 +402,14 @@ impl World {
             let margin = if runner.is_some() {
                 0.0
             } else {
-                margin_for(&self.settings, kind)
+                margin_for(&self.state.settings, kind)
             };
             if leaves {
-                self.broadphase.enlarge(handle, kind, aabb, margin);
+                self.state.broadphase.enlarge(handle, kind, aabb, margin);
                 moved += 1;
             }
-            self.broadphase
+            self.state
+                .broadphase
                 .set_runner(handle, runner, aabb.fattened(margin));
         }
         moved

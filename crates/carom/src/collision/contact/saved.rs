@@ -4,14 +4,17 @@
 //! Reading refuses ids that are not each used once, and lists that do not hold each contact
 //! exactly once in each of its bodies' lists.
 
-use super::{
-    BodyIndices, Contact, ContactEvent, ContactSet, EdgeList, NO_EDGE, NO_ID, PairHasher, Slot,
-    edge, edge_id, pair_key,
-};
-use crate::dynamics::body::BodyHandle;
+use super::adjacency::{EdgeList, NO_EDGE, edge, edge_id};
+use super::set::{PairHasher, pair_key};
+use super::{BodyIndices, Contact, ContactEvent, ContactSet, NO_ID, Slot};
+use crate::dynamics::body::{Body, BodyHandle};
+use crate::dynamics::collider::{Collider, ColliderHandle};
 use crate::dynamics::surface::Mixers;
+use crate::error::CaromError;
 use crate::graph::colors::ContactColors;
+use crate::graph::colors::NO_COLOR;
 use crate::graph::layout::ContactPartition;
+use crate::handle_map::HandleMap;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use std::collections::HashMap;
 use std::hash::BuildHasherDefault;
@@ -186,5 +189,96 @@ impl ContactSet {
         }
         set.edges.resize(saved.edges.len(), EdgeList::EMPTY);
         Ok(set)
+    }
+}
+
+impl ContactSet {
+    /// Gives each contact of a saved world, once checked, what it keeps from its colliders
+    /// (its mixed surfaces), so it steps as the world it was saved from.
+    pub(crate) fn mix_saved(&mut self, colliders: &HandleMap<ColliderHandle, Collider>) {
+        let mixers = self.mixers;
+        for contact in &mut self.contacts {
+            contact.mix(colliders, &mixers);
+        }
+    }
+
+    /// Checks contacts read from a saved world: each is between live colliders of its bodies,
+    /// with at most two finite points and a colour that exists, and the lookups find them.
+    pub(crate) fn check_saved(
+        &self,
+        colliders: &HandleMap<ColliderHandle, Collider>,
+        bodies: &HandleMap<BodyHandle, Body>,
+    ) -> Result<(), CaromError> {
+        use crate::constants::COLOR_COUNT;
+        let count = self.contacts.len();
+        if self.body_indices.len() != count
+            || self.parts.ends().last().is_some_and(|&end| end > count)
+        {
+            return Err(CaromError::bad_save(
+                "the contact array's parts do not fit it",
+            ));
+        }
+        if self.asleep_touching > count {
+            return Err(CaromError::bad_save(
+                "more sleeping contacts touch than there are",
+            ));
+        }
+        for (i, contact) in self.contacts.iter().enumerate() {
+            let owner = |c: ColliderHandle| colliders.get(c).map(Collider::body);
+            if owner(contact.collider_a) != Some(contact.body_a)
+                || owner(contact.collider_b) != Some(contact.body_b)
+            {
+                return Err(CaromError::bad_save(format!(
+                    "contact {i} is not between live colliders of its bodies"
+                )));
+            }
+            let m = &contact.manifold;
+            let finite = m.is_sound()
+                && m.normal.iter().all(|x| x.is_finite())
+                && m.points().iter().all(|p| {
+                    [p.point, p.anchor_a, p.anchor_b]
+                        .iter()
+                        .flat_map(|v| v.iter())
+                        .all(|x| x.is_finite())
+                        && [
+                            p.separation,
+                            p.normal_impulse,
+                            p.tangent_impulse,
+                            p.shock_impulse,
+                        ]
+                        .iter()
+                        .all(|x| x.is_finite())
+                })
+                && contact.rolling_impulse.is_finite();
+            let colored = (contact.color as usize) < COLOR_COUNT
+                || contact.color == crate::graph::colors::OVERFLOW
+                || contact.color == NO_COLOR;
+            if !finite || !colored {
+                return Err(CaromError::bad_save(format!(
+                    "contact {i} has a bad manifold or colour"
+                )));
+            }
+            if self
+                .lookup
+                .get(&pair_key(contact.collider_a, contact.collider_b))
+                != Some(&self.ids[i])
+            {
+                return Err(CaromError::bad_save(format!(
+                    "contact {i} is not found by its pair"
+                )));
+            }
+        }
+        if self.lookup.len() != count {
+            return Err(CaromError::bad_save(
+                "the contact lookup holds pairs with no contact",
+            ));
+        }
+        let live = |(a, b): &(BodyHandle, BodyHandle)| bodies.contains(*a) && bodies.contains(*b);
+        if !self.began.iter().chain(&self.ended).all(live) {
+            return Err(CaromError::bad_save(
+                "a contact change names a body that does not exist",
+            ));
+        }
+        Ok(())
     }
 }

@@ -3,6 +3,7 @@
 
 use super::{Body, BodyHandle, BodyKind};
 use crate::dynamics::collider::Collider;
+use crate::error::CaromError;
 
 impl Body {
     /// True when the body's mass, centre of mass and reach are, bit for bit, what its
@@ -21,12 +22,12 @@ impl Body {
 
     /// Checks a body read from a saved world: its handle, finite values, a unit rotation, and
     /// a mass that fits its kind.
-    pub(crate) fn check_saved(&self, handle: BodyHandle) -> Result<(), String> {
+    pub(crate) fn check_saved(&self, handle: BodyHandle) -> Result<(), CaromError> {
         if self.handle != handle {
-            return Err("a body's handle is not its slot's".into());
+            return Err(CaromError::bad_save("a body's handle is not its slot's"));
         }
         if self.colliders.is_empty() {
-            return Err("a body has no collider".into());
+            return Err(CaromError::bad_save("a body has no collider"));
         }
         let vectors = [
             self.position,
@@ -59,22 +60,22 @@ impl Body {
             .chain(&scalars)
             .all(|x| x.is_finite());
         if !finite {
-            return Err(format!(
+            return Err(CaromError::bad_save(format!(
                 "body {} has a value that is not finite",
                 handle.index()
-            ));
+            )));
         }
         if super::check_sweep_threshold(self.sweep_threshold).is_err() {
-            return Err(format!(
+            return Err(CaromError::bad_save(format!(
                 "body {} has a sweep threshold that is negative or not a number",
                 handle.index()
-            ));
+            )));
         }
         if (self.rotation.norm() - 1.0).abs() > 1e-3 {
-            return Err(format!(
+            return Err(CaromError::bad_save(format!(
                 "body {} has a rotation that is not a unit",
                 handle.index()
-            ));
+            )));
         }
         let m = &self.mass;
         let fits = if self.kind == BodyKind::Dynamic {
@@ -83,10 +84,10 @@ impl Body {
             m.inv_mass == 0.0 && m.inv_inertia == 0.0
         };
         if !fits || m.mass < 0.0 || m.inertia < 0.0 {
-            return Err(format!(
+            return Err(CaromError::bad_save(format!(
                 "body {} has a mass that does not fit its kind",
                 handle.index()
-            ));
+            )));
         }
         Ok(())
     }
