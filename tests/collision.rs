@@ -1,8 +1,8 @@
 //! Collision detection against the tutorial's worked example, brute-force references, and
 //! degenerate input.
 
-use carom::collide;
-use carom::separation;
+use carom::query::collide;
+use carom::query::separation;
 use carom::testing::PairSide;
 use carom::{BodyDef, Polygon, Real, Shape, Vec2, World, WorldSettings, WorldShape, vec2};
 use carom_bench::cases::Rng;
@@ -423,7 +423,7 @@ fn overlapping_triangle_faces_keep_two_points() {
 
 // ---------------------------------------------------------------- degenerate but valid input
 
-fn assert_finite(a: &WorldShape, b: &WorldShape) -> carom::Separation {
+fn assert_finite(a: &WorldShape, b: &WorldShape) -> carom::query::Separation {
     let s = separation(a, b);
     assert!(
         s.separation.is_finite() && s.normal.iter().all(|x| x.is_finite()),
@@ -691,7 +691,10 @@ fn a_circle_a_hair_from_a_segment_end_gets_a_unit_normal() {
         WorldShape::at(&segment, at, 3.186_753_8e-23),
         WorldShape::at(&circle, at, 3.186_753_8e-23),
     );
-    for s in [carom::separation(&a, &b), carom::separation(&b, &a)] {
+    for s in [
+        carom::query::separation(&a, &b),
+        carom::query::separation(&b, &a),
+    ] {
         assert!(s.separation.is_finite(), "{s:?}");
         assert!((s.normal.norm() - 1.0).abs() < 1e-5, "{s:?}");
     }

@@ -354,7 +354,7 @@ fn deepest_overlap(world: &mut World, a: BodyHandle, b: BodyHandle, steps: usize
     for _ in 0..steps {
         world.step(DT).unwrap();
         let (a, b) = (world_shape(world, a), world_shape(world, b));
-        let gap = carom::separation(a, b).separation;
+        let gap = carom::query::separation(a, b).separation;
         deepest = deepest.max(-gap);
     }
     deepest

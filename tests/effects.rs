@@ -62,6 +62,7 @@ fn counter(work: &Work, effect: Effect) -> usize {
         Effect::Restitution => work.restitution_impulses,
         Effect::Continuous => work.sweeps,
         Effect::Sleeping => work.sleep_checks,
+        other => panic!("{} has no work counter in this test", other.name()),
     }
 }
 

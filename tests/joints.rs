@@ -620,7 +620,9 @@ fn a_joint_breaks_past_its_threshold() {
             broken.extend_from_slice(world.joint_events());
         }
         assert_eq!(broken.len(), 1, "{kind:?}: {broken:?}");
-        let JointEvent::Broken { joint, force, .. } = broken[0];
+        let JointEvent::Broken { joint, force, .. } = broken[0] else {
+            panic!("expected a broken joint, got {:?}", broken[0]);
+        };
         assert_eq!(joint, snaps);
         assert!(force.norm() > 100.0);
         assert!(world.joint(snaps).is_none() && world.joint(holds).is_some());

@@ -2,8 +2,8 @@
 #![allow(dead_code)] // each target uses part of it
 
 use arbitrary::Arbitrary;
-use carom::collide;
-use carom::separation;
+use carom::query::collide;
+use carom::query::separation;
 use carom::{Shape, WorldShape, vec2};
 
 /// A placement: any bits, kept to finite values within 1 km.

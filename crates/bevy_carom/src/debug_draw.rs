@@ -1,5 +1,5 @@
 //! Debug drawing through Bevy's gizmos (the `debug-draw` feature): carom's own
-//! [`carom::DebugDraw`] description of the world (shapes, contacts, joints, velocities, as
+//! [`carom::draw::DebugDraw`] description of the world (shapes, contacts, joints, velocities, as
 //! [`DebugDrawOptions`] selects) drawn as gizmo lines each frame.
 
 use crate::convert::to_bevy;
@@ -10,7 +10,8 @@ use bevy::ecs::resource::Resource;
 use bevy::ecs::system::Res;
 use bevy::gizmos::gizmos::Gizmos;
 use bevy::math::Isometry2d;
-use carom::{DebugDraw, DrawOptions, Real};
+use carom::Real;
+use carom::draw::{DebugDraw, DrawOptions};
 
 /// Draws the [`CaromWorld`] with gizmos every frame (with a renderer that draws gizmos, such
 /// as `DefaultPlugins`).
@@ -39,12 +40,17 @@ struct GizmoSink<'w, 's> {
     gizmos: Gizmos<'w, 's>,
 }
 
-fn color(c: carom::Color) -> Color {
+fn color(c: carom::draw::Color) -> Color {
     Color::srgba(c.r, c.g, c.b, c.a)
 }
 
 impl DebugDraw for GizmoSink<'_, '_> {
-    fn polygon(&mut self, vertices: &[carom::Vec2], _fill: carom::Color, outline: carom::Color) {
+    fn polygon(
+        &mut self,
+        vertices: &[carom::Vec2],
+        _fill: carom::draw::Color,
+        outline: carom::draw::Color,
+    ) {
         let points = vertices.iter().chain(vertices.first()).map(|&v| to_bevy(v));
         self.gizmos.linestrip_2d(points, color(outline));
     }
@@ -53,8 +59,8 @@ impl DebugDraw for GizmoSink<'_, '_> {
         &mut self,
         center: carom::Vec2,
         radius: Real,
-        _fill: carom::Color,
-        outline: carom::Color,
+        _fill: carom::draw::Color,
+        outline: carom::draw::Color,
     ) {
         self.gizmos.circle_2d(
             Isometry2d::from_translation(to_bevy(center)),
@@ -63,15 +69,21 @@ impl DebugDraw for GizmoSink<'_, '_> {
         );
     }
 
-    fn segment(&mut self, start: carom::Vec2, end: carom::Vec2, _width: f32, c: carom::Color) {
+    fn segment(
+        &mut self,
+        start: carom::Vec2,
+        end: carom::Vec2,
+        _width: f32,
+        c: carom::draw::Color,
+    ) {
         self.gizmos.line_2d(to_bevy(start), to_bevy(end), color(c));
     }
 
-    fn arrow(&mut self, start: carom::Vec2, end: carom::Vec2, c: carom::Color) {
+    fn arrow(&mut self, start: carom::Vec2, end: carom::Vec2, c: carom::draw::Color) {
         self.gizmos.arrow_2d(to_bevy(start), to_bevy(end), color(c));
     }
 
-    fn point(&mut self, at: carom::Vec2, size: f32, c: carom::Color) {
+    fn point(&mut self, at: carom::Vec2, size: f32, c: carom::draw::Color) {
         // `size` is in pixels, which gizmos do not know: a dot of 1 cm per pixel.
         self.gizmos.circle_2d(
             Isometry2d::from_translation(to_bevy(at)),

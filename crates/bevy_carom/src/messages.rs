@@ -182,12 +182,16 @@ pub(crate) fn write_messages(
         });
     }
     for event in world.world.joint_events() {
+        // Events carom adds later have no message here yet.
         let JointEvent::Broken {
             joint,
             force,
             torque,
             ..
-        } = *event;
+        } = *event
+        else {
+            continue;
+        };
         let Some(entity) = world.joint_entity(joint) else {
             continue;
         };

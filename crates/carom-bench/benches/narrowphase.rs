@@ -4,8 +4,8 @@
 //!
 //! Run with `cargo bench -p carom-bench --features criterion --bench narrowphase`.
 
-use carom::collide;
-use carom::separation;
+use carom::query::collide;
+use carom::query::separation;
 use carom::{Shape, WorldShape, vec2};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;

@@ -6,7 +6,8 @@ use crate::accuracy_panel::AccuracyPanel;
 use crate::files;
 use crate::metrics::Metrics;
 use crate::recording;
-use carom::{Color, DrawList, DrawOptions, Effect, Real, Vec2};
+use carom::draw::{Color, DrawList, DrawOptions};
+use carom::{Effect, Real, Vec2};
 use carom_render::Camera;
 use carom_scene::{Course, Input, PlayerInput, Recording, SceneWorld, Timeline};
 use std::path::{Path, PathBuf};
@@ -558,9 +559,9 @@ impl Demo {
         {
             let anchor = body.world_point(joint.local_anchors()[1]);
             let spring = Color::rgb(1.0, 1.0, 1.0);
-            carom::DebugDraw::segment(out, anchor, mouse.target, 1.5, spring);
-            carom::DebugDraw::point(out, anchor, 6.0, spring);
-            carom::DebugDraw::point(out, mouse.target, 4.0, spring);
+            carom::draw::DebugDraw::segment(out, anchor, mouse.target, 1.5, spring);
+            carom::draw::DebugDraw::point(out, anchor, 6.0, spring);
+            carom::draw::DebugDraw::point(out, mouse.target, 4.0, spring);
         }
     }
 }

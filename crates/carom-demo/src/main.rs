@@ -164,7 +164,7 @@ enum Command {
 
 /// Draw layers to switch on (`true`) and off.
 #[derive(Debug, Clone)]
-struct DrawChanges(Vec<(carom::DrawFlags, bool)>);
+struct DrawChanges(Vec<(carom::draw::DrawFlags, bool)>);
 
 fn parse_draw_changes(text: &str) -> Result<DrawChanges, String> {
     snapshot::parse_draw_changes(text).map(DrawChanges)

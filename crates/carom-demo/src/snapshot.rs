@@ -1,7 +1,7 @@
 //! `carom snapshot`: a scene after some steps, rendered offscreen to an image.
 
 use crate::demo::scene_camera;
-use carom::{Color, DrawFlags, DrawList, DrawOptions};
+use carom::draw::{Color, DrawFlags, DrawList, DrawOptions};
 use carom_render::Offscreen;
 use carom_scene::SceneWorld;
 use image::RgbaImage;

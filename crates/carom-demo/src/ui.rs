@@ -4,7 +4,8 @@
 use crate::accuracy_panel::{self, AccuracyPanel, Marker, Source};
 use crate::demo::{Demo, HINTS, Key};
 use crate::metrics::{Metrics, STAGES};
-use carom::{DrawFlags, Effect, SolverKind};
+use carom::draw::DrawFlags;
+use carom::{Effect, SolverKind};
 use carom_bench::sweep::{Engine, Point};
 use egui_plot::{GridMark, HoverPosition, Legend, Line, MarkerShape, Plot, PlotPoint, PlotPoints};
 use egui_plot::{Points, Text};

@@ -8,7 +8,8 @@
 use crate::capture::copy_to_buffer;
 use crate::demo::{Button, Control, Demo, Key};
 use crate::ui::{Ask, SIDEBAR_WIDTH, sidebar};
-use carom::{Color, DrawList, Real, vec2};
+use carom::draw::{Color, DrawList};
+use carom::{Real, vec2};
 use carom_render::{Gpu, Renderer, clear_color};
 use std::path::PathBuf;
 use std::sync::Arc;

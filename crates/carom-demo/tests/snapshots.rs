@@ -191,7 +191,7 @@ fn every_shipped_scene_renders_something() {
         .collect();
     scenes.sort();
     assert!(scenes.len() >= 10, "only {} scenes found", scenes.len());
-    let background = carom::Color::BACKGROUND
+    let background = carom::draw::Color::BACKGROUND
         .to_array()
         .map(|c| (c * 255.0).round() as u8);
     for scene in scenes {

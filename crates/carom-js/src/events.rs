@@ -96,20 +96,22 @@ impl World {
                 .world()
                 .joint_events()
                 .iter()
-                .map(|event| match *event {
+                // Events carom adds later are not reported here yet.
+                .filter_map(|event| match *event {
                     JointEvent::Broken {
                         joint,
                         bodies,
                         force,
                         torque,
-                    } => object(&[
+                    } => Some(object(&[
                         ("type", "broken".into()),
                         ("joint", Joint::new(key, joint).into()),
                         ("bodyA", Body::new(key, bodies[0]).into()),
                         ("bodyB", Body::new(key, bodies[1]).into()),
                         ("force", vec2_out(force)),
                         ("torque", (torque as f64).into()),
-                    ]),
+                    ])),
+                    _ => None,
                 })
                 .collect::<Array>()
                 .into())

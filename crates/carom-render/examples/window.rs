@@ -3,7 +3,9 @@
 //!
 //! `cargo run -p carom-render --example window` (`-- --frames 120` closes it after 120 frames).
 
-use carom::{BodyDef, Color, DrawList, DrawOptions, Real, Shape, World, vec2};
+use carom::{BodyDef, Real, Shape, World, vec2};
+
+use carom::draw::{Color, DrawList, DrawOptions};
 use carom_render::{Camera, Screen};
 use std::error::Error;
 use std::sync::Arc;

@@ -1,5 +1,5 @@
 //! `carom-render` draws the description a [`carom::World`] gives of itself
-//! ([`carom::DrawList`]) with wgpu: to a window through [`Screen`], into a render pass of your
+//! ([`carom::draw::DrawList`]) with wgpu: to a window through [`Screen`], into a render pass of your
 //! own through [`Renderer`], or to an offscreen texture read back as an image through
 //! [`Offscreen`], so tests and CI render real pixels with no window and no GPU (Mesa's
 //! lavapipe or llvmpipe do). WGSL lives in the workspace's top-level `shaders/` and is built

@@ -4,7 +4,7 @@ use crate::camera::Camera;
 use crate::error::RenderError;
 use crate::gpu::Gpu;
 use crate::renderer::{Renderer, clear_color};
-use carom::{Color, DrawList};
+use carom::draw::{Color, DrawList};
 use image::RgbaImage;
 
 /// The format offscreen images are drawn in: bytes come back in RGBA order, sRGB-encoded.

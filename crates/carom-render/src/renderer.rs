@@ -7,8 +7,9 @@ use crate::corners::{self, Corner, CornerTexture};
 use crate::error::RenderError;
 use crate::shaders;
 use bytemuck::{Pod, Zeroable};
-use carom::{ARROW_WIDTH, OUTLINE_WIDTH};
-use carom::{Color, DrawList, Real, Vec2};
+use carom::draw::{ARROW_WIDTH, OUTLINE_WIDTH};
+use carom::draw::{Color, DrawList};
+use carom::{Real, Vec2};
 use std::ops::Range;
 
 /// The uniform all shaders share.

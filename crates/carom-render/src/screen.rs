@@ -5,7 +5,7 @@ use crate::camera::Camera;
 use crate::error::RenderError;
 use crate::gpu::{Gpu, backends};
 use crate::renderer::{Renderer, clear_color};
-use carom::{Color, DrawList};
+use carom::draw::{Color, DrawList};
 use std::sync::Arc;
 
 /// A window's surface with a device that can draw into it and a [`Renderer`] for its format.

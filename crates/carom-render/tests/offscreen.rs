@@ -1,7 +1,9 @@
 //! Real pixels: draw lists rendered offscreen and read back. These need a wgpu adapter (Mesa's
 //! GL or Vulkan will do); without one they fail and say what to install.
 
-use carom::{Color, DebugDraw, DrawList, Real, vec2};
+use carom::{Real, vec2};
+
+use carom::draw::{Color, DebugDraw, DrawList};
 use carom_render::{Camera, Offscreen};
 use image::RgbaImage;
 

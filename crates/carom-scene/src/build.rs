@@ -9,11 +9,11 @@ use crate::scene::{
     RevoluteSpec, Scene, ShapeSpec,
 };
 use crate::spawn::SpawnSchedule;
+use carom::draw::{Color, DebugDraw, DrawFlags, DrawOptions};
 use carom::{
-    BodyDef, BodyHandle, BodyKind, CaromError, ChainDef, ColliderDef, Color, DebugDraw,
-    DistanceJoint, DrawFlags, DrawOptions, JointDef, JointKind, Limits, MotorJoint, MouseJoint,
-    MoverJoint, PogoJoint, PrismaticJoint, Real, RevoluteJoint, Shape, Surface, Vec2, WeldJoint,
-    WheelJoint, World, vec2,
+    BodyDef, BodyHandle, BodyKind, CaromError, ChainDef, ColliderDef, DistanceJoint, JointDef,
+    JointKind, Limits, MotorJoint, MouseJoint, MoverJoint, PogoJoint, PrismaticJoint, Real,
+    RevoluteJoint, Shape, Surface, Vec2, WeldJoint, WheelJoint, World, vec2,
 };
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;

@@ -4,10 +4,8 @@
 //! touched.
 
 use crate::scene::{KeyChange, PlayerKey, PlayerSpec};
-use carom::{
-    CaromError, Character, CharacterDef, CharacterState, Color, DebugDraw, Effect, Real, Vec2,
-    World, vec2,
-};
+use carom::draw::{Color, DebugDraw};
+use carom::{CaromError, Character, CharacterDef, CharacterState, Effect, Real, Vec2, World, vec2};
 use serde::{Deserialize, Serialize};
 
 /// The keys held this step.

@@ -1,6 +1,8 @@
 //! The scene format: what a RON file in `demos/` holds. Every field but `name` has a default.
 
-use carom::{BodyKind, CollisionFilter, DrawFlags, Motor, Real, Spring, World, WorldSettings};
+use carom::{BodyKind, CollisionFilter, Motor, Real, Spring, World, WorldSettings};
+
+use carom::draw::DrawFlags;
 use serde::{Deserialize, Serialize};
 
 /// The version of the scene format this crate reads and writes. It changes when a file

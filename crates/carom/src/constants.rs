@@ -16,7 +16,7 @@ pub const SPECULATIVE_DISTANCE: Real = 4.0 * LINEAR_SLOP;
 
 /// How much moving bodies' bounding boxes are enlarged in the broadphase, in metres, so a
 /// body can move a little without its tree entry changing.
-pub const AABB_MARGIN: Real = 0.05;
+pub(crate) const AABB_MARGIN: Real = 0.05;
 
 // Contact events.
 
@@ -37,7 +37,7 @@ pub(crate) const HIT_EVENT_THRESHOLD: Real = 1.0;
 
 /// The largest coordinate or radius a shape may have, m (Box2D's `B2_HUGE`): beyond it an f32
 /// keeps too few digits below a millimetre for contacts, and sums of sizes can overflow.
-pub const MAX_SHAPE_EXTENT: Real = 1.0e5;
+pub(crate) const MAX_SHAPE_EXTENT: Real = 1.0e5;
 
 /// The shortest and the longest time step a world takes, s. Outside them the step's
 /// reciprocals and products overflow f32 (a step of 1e-38 s, or of 1e38 s), so they are
@@ -47,13 +47,13 @@ pub const TIME_STEP_RANGE: std::ops::RangeInclusive<Real> = 1.0e-6..=10.0;
 /// The farthest from the origin a body may be placed, m, along either axis: ten times the
 /// largest shape. Beyond it an f32 position resolves to no better than 6 cm, and products of
 /// positions with forces and sizes can overflow.
-pub const MAX_POSITION: Real = 1.0e6;
+pub(crate) const MAX_POSITION: Real = 1.0e6;
 
 /// How far outside a shape's boundary a point may lie and still count as inside, in metres.
 ///
 /// Points exactly on an edge are inside; this absorbs the rounding of moving a point into the
 /// shape's local frame, so a point on the boundary does not flicker in and out.
-pub const CONTAINMENT_TOLERANCE: Real = 1.0e-5;
+pub(crate) const CONTAINMENT_TOLERANCE: Real = 1.0e-5;
 
 /// Points of a polygon closer than this (relative to the polygon's size) are the same point.
 pub(crate) const WELD_TOLERANCE: Real = 1.0e-5;

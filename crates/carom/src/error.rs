@@ -6,6 +6,7 @@ use crate::math::{Real, Vec2};
 ///
 /// Each message says what was wrong and what would be accepted, so a user can fix the input.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum CaromError {
     /// A polygon needs at least three distinct, non-collinear points.
     #[error("a polygon needs at least 3 vertices, got {count}")]

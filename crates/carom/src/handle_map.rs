@@ -122,7 +122,7 @@ impl<H, T> Default for HandleMap<H, T> {
 
 impl<H: Handle, T> HandleMap<H, T> {
     /// The handle the next insertion will get.
-    pub fn next_handle(&self) -> H {
+    pub(crate) fn next_handle(&self) -> H {
         match self.free_slots.last() {
             Some(&index) => H::from_parts(index, self.slots[index as usize].generation),
             None => H::from_parts(self.slots.len() as u32, 0),
@@ -130,7 +130,7 @@ impl<H: Handle, T> HandleMap<H, T> {
     }
 
     /// Stores an item made for the handle [`HandleMap::next_handle`] gave; returns the handle.
-    pub fn insert(&mut self, item: T) -> H {
+    pub(crate) fn insert(&mut self, item: T) -> H {
         let handle = self.next_handle();
         if handle.index() as usize == self.slots.len() {
             self.slots.push(Slot {
@@ -148,7 +148,7 @@ impl<H: Handle, T> HandleMap<H, T> {
 
     /// Removes an item and returns it; its handle never refers to anything again. The last
     /// item moves into its place (see [`HandleMap::dense_index`]).
-    pub fn remove(&mut self, handle: H) -> Option<T> {
+    pub(crate) fn remove(&mut self, handle: H) -> Option<T> {
         let dense = self.dense_index(handle)?;
         let slot = &mut self.slots[handle.index() as usize];
         slot.dense = None;
@@ -165,7 +165,7 @@ impl<H: Handle, T> HandleMap<H, T> {
     }
 
     /// Swaps the places of two items in the dense array; their handles follow them.
-    pub fn swap(&mut self, i: usize, j: usize) {
+    pub(crate) fn swap(&mut self, i: usize, j: usize) {
         if i == j {
             return;
         }
@@ -179,7 +179,7 @@ impl<H: Handle, T> HandleMap<H, T> {
 
     /// Where the handle's item sits in the dense array, if the handle is live.
     #[inline]
-    pub fn dense_index(&self, handle: H) -> Option<usize> {
+    pub(crate) fn dense_index(&self, handle: H) -> Option<usize> {
         self.slots
             .get(handle.index() as usize)
             .filter(|slot| slot.generation == handle.generation())
@@ -188,7 +188,7 @@ impl<H: Handle, T> HandleMap<H, T> {
     }
 
     /// The dense index, or the error that names a stale handle.
-    pub fn checked_index(&self, handle: H) -> Result<usize, CaromError> {
+    pub(crate) fn checked_index(&self, handle: H) -> Result<usize, CaromError> {
         self.dense_index(handle).ok_or(CaromError::StaleHandle {
             what: H::WHAT,
             index: handle.index(),
@@ -197,37 +197,37 @@ impl<H: Handle, T> HandleMap<H, T> {
     }
 
     /// True when the handle refers to a live item.
-    pub fn contains(&self, handle: H) -> bool {
+    pub(crate) fn contains(&self, handle: H) -> bool {
         self.dense_index(handle).is_some()
     }
 
     /// The item, if the handle is live.
     #[inline]
-    pub fn get(&self, handle: H) -> Option<&T> {
+    pub(crate) fn get(&self, handle: H) -> Option<&T> {
         self.dense_index(handle).map(|i| &self.items[i])
     }
 
     /// The item, mutably, if the handle is live.
     #[inline]
-    pub fn get_mut(&mut self, handle: H) -> Option<&mut T> {
+    pub(crate) fn get_mut(&mut self, handle: H) -> Option<&mut T> {
         self.dense_index(handle).map(|i| &mut self.items[i])
     }
 
     /// Every item, in storage order.
     #[inline]
-    pub fn as_slice(&self) -> &[T] {
+    pub(crate) fn as_slice(&self) -> &[T] {
         &self.items
     }
 
     /// Every item, mutably, in storage order.
     #[inline]
-    pub fn as_mut_slice(&mut self) -> &mut [T] {
+    pub(crate) fn as_mut_slice(&mut self) -> &mut [T] {
         &mut self.items
     }
 
     /// Every item in handle order (by slot index: creation order, except that a slot freed by
     /// a removal is reused), which, unlike storage order, does not change as items move.
-    pub fn iter_by_handle(&self) -> ByHandle<'_, T> {
+    pub(crate) fn iter_by_handle(&self) -> ByHandle<'_, T> {
         ByHandle {
             slots: self.slots.iter(),
             items: &self.items,
@@ -236,18 +236,18 @@ impl<H: Handle, T> HandleMap<H, T> {
     }
 
     /// Every item's handle, in storage order.
-    pub fn handles(&self) -> &[H] {
+    pub(crate) fn handles(&self) -> &[H] {
         &self.handles
     }
 
     /// Every item's handle and every item, which may be changed, in storage order.
-    pub fn handles_and_slice_mut(&mut self) -> (&[H], &mut [T]) {
+    pub(crate) fn handles_and_slice_mut(&mut self) -> (&[H], &mut [T]) {
         (&self.handles, &mut self.items)
     }
 
     /// How many items there are.
     #[inline]
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.items.len()
     }
 }
@@ -280,7 +280,7 @@ impl<T> ExactSizeIterator for ByHandle<'_, T> {}
 impl<H: Handle, T> HandleMap<H, T> {
     /// Checks a map read from a saved world: every handle's slot points back at it, and every
     /// free slot is free, once.
-    pub fn check_saved(&self) -> Result<(), CaromError> {
+    pub(crate) fn check_saved(&self) -> Result<(), CaromError> {
         let what = H::WHAT;
         if self.handles.len() != self.items.len() {
             return Err(CaromError::bad_save(format!(

@@ -13,10 +13,13 @@
 //! origin is the body's position. A body of one shape at its origin has its centre of mass
 //! there; with more, the centre of mass is found from them all ([`Body::center_of_mass`]).
 //!
+//! The everyday types are in [`prelude`]; two shapes against each other with no world around
+//! them in [`query`]; what a world draws in [`draw`].
+//!
 //! Drop a box under gravity:
 //!
 //! ```
-//! use carom::{BodyDef, Shape, World, vec2};
+//! use carom::prelude::*;
 //!
 //! let mut world = World::new(); // gravity (0, -10)
 //! let falling_box = world.add_body(
@@ -46,6 +49,10 @@
         clippy::unimplemented
     )
 )]
+// Every `pub` item is reachable from outside the crate; the rest say `pub(crate)`. The items
+// that `carom::testing` opens are public only with that feature, so the lint runs where it is
+// on (every workspace build).
+#![cfg_attr(feature = "testing", warn(unreachable_pub))]
 // Single precision widens to `f64` where sums need it; in the double-precision build those
 // casts are no-ops.
 #![cfg_attr(feature = "f64", allow(clippy::unnecessary_cast))]
@@ -88,10 +95,6 @@ pub use constants::{
     LINEAR_SLOP, SHAPE_CAST_TOLERANCE, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, SWEEP_THRESHOLD,
     TIME_STEP_RANGE, TIME_TO_SLEEP,
 };
-pub use debug_draw::{
-    ARROW_WIDTH, Color, DebugDraw, DrawCircle, DrawFlags, DrawList, DrawOptions, DrawPoint,
-    DrawPolygon, DrawSegment, OUTLINE_WIDTH,
-};
 pub use dynamics::body::{Body, BodyHandle, BodyKind};
 pub use dynamics::body_def::BodyDef;
 pub use dynamics::chain::ChainDef;
@@ -102,9 +105,6 @@ pub use dynamics::surface::{MaterialMixer, Surface};
 pub use error::CaromError;
 pub use geometry::aabb::Aabb;
 pub use geometry::mass::MassProperties;
-pub use geometry::query::collide::collide;
-pub use geometry::query::distance::{Separation, separation};
-pub use geometry::query::manifold::{FeatureId, Manifold, ManifoldPoint};
 pub use geometry::ray::{Ray, RayHit};
 pub use geometry::shape::{
     Capsule, ChainSegment, Circle, Points, Polygon, Segment, Shape, WorldShape,
@@ -125,6 +125,36 @@ pub use world::joint_mut::JointMut;
 pub use world::settings::WorldSettings;
 pub use world::snapshot::Snapshot;
 pub use world::{CastHit, World};
+
+/// The everyday types, for `use carom::prelude::*`: a world and its settings, bodies,
+/// colliders, shapes and joints, what a step reports, and the maths.
+pub mod prelude {
+    pub use crate::{
+        Body, BodyDef, BodyHandle, BodyKind, CaromError, ChainDef, Collider, ColliderDef,
+        ColliderHandle, CollisionFilter, Effect, Effects, Joint, JointDef, JointHandle,
+        QueryFilter, Real, Rot, Shape, SolverKind, SolverParams, Surface, Vec2, World,
+        WorldSettings, vec2,
+    };
+}
+
+/// Two placed shapes against each other, with no world around them: their signed distance
+/// ([`separation`](query::separation)) and where they touch ([`collide`](query::collide)),
+/// as the world's narrowphase finds them.
+pub mod query {
+    pub use crate::geometry::query::collide::collide;
+    pub use crate::geometry::query::distance::{Separation, separation};
+    pub use crate::geometry::query::manifold::{FeatureId, Manifold, ManifoldPoint};
+}
+
+/// How a world describes itself for drawing ([`World::debug_draw`]): a [`DebugDraw`](draw::DebugDraw)
+/// sink, or the [`DrawList`](draw::DrawList) it fills, of circles, polygons, segments and
+/// points in world coordinates with colours and widths in pixels.
+pub mod draw {
+    pub use crate::debug_draw::{
+        ARROW_WIDTH, Color, DebugDraw, DrawCircle, DrawFlags, DrawList, DrawOptions, DrawPoint,
+        DrawPolygon, DrawSegment, OUTLINE_WIDTH,
+    };
+}
 
 /// Internals for carom's own tests, benchmarks and fuzz targets: reference implementations
 /// and the narrowphase's parts. Not part of the supported interface.

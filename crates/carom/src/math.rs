@@ -44,25 +44,25 @@ pub fn cross(a: Vec2, b: Vec2) -> Real {
 ///
 /// Used for the velocity of a point on a spinning body: `v + ω × r`.
 #[inline]
-pub fn cross_sv(s: Real, v: Vec2) -> Vec2 {
+pub(crate) fn cross_sv(s: Real, v: Vec2) -> Vec2 {
     Vec2::new(-s * v.y, s * v.x)
 }
 
 /// The clockwise perpendicular `(v.y, -v.x)`: the outward normal of a counter-clockwise edge.
 #[inline]
-pub fn perp_cw(v: Vec2) -> Vec2 {
+pub(crate) fn perp_cw(v: Vec2) -> Vec2 {
     Vec2::new(v.y, -v.x)
 }
 
 /// True when both components are finite (neither NaN nor infinite).
 #[inline]
-pub fn is_finite_vec(v: Vec2) -> bool {
+pub(crate) fn is_finite_vec(v: Vec2) -> bool {
     v.x.is_finite() && v.y.is_finite()
 }
 
 /// Shortens `v` to at most `max_len`, keeping its direction.
 #[inline]
-pub fn clamp_magnitude(v: Vec2, max_len: Real) -> Vec2 {
+pub(crate) fn clamp_magnitude(v: Vec2, max_len: Real) -> Vec2 {
     let len_sq = v.norm_squared();
     if len_sq > max_len * max_len {
         v * (max_len / len_sq.sqrt())
@@ -73,7 +73,7 @@ pub fn clamp_magnitude(v: Vec2, max_len: Real) -> Vec2 {
 
 /// `angle` brought into `[-π, π]` by whole turns.
 #[inline]
-pub fn unwind_angle(angle: Real) -> Real {
+pub(crate) fn unwind_angle(angle: Real) -> Real {
     use consts::{PI, TAU};
     if (-PI..=PI).contains(&angle) {
         angle
@@ -104,7 +104,7 @@ pub fn angle_of(rotation: &Rot) -> Real {
 /// argument reduction serves both: `libm::sincosf` gives, bit for bit, what `sinf` and `cosf`
 /// give apart, on every `f32` (all 2^32 checked).
 #[inline]
-pub fn sin_cos(x: Real) -> (Real, Real) {
+pub(crate) fn sin_cos(x: Real) -> (Real, Real) {
     #[cfg(not(feature = "f64"))]
     return libm::sincosf(x);
     #[cfg(feature = "f64")]
@@ -122,13 +122,13 @@ pub fn atan2(y: Real, x: Real) -> Real {
 
 /// Sine and cosine of `x` in double precision, computed the same on every platform.
 #[inline]
-pub fn sin_cos_f64(x: f64) -> (f64, f64) {
+pub(crate) fn sin_cos_f64(x: f64) -> (f64, f64) {
     (libm::sin(x), libm::cos(x))
 }
 
 /// `atan2(y, x)` in double precision, computed the same on every platform.
 #[inline]
-pub fn atan2_f64(y: f64, x: f64) -> f64 {
+pub(crate) fn atan2_f64(y: f64, x: f64) -> f64 {
     libm::atan2(y, x)
 }
 

@@ -24,39 +24,39 @@ impl<const CUTS: usize> Default for Partition<CUTS> {
 impl<const CUTS: usize> Partition<CUTS> {
     /// Where each part but the last ends.
     #[cfg(feature = "serde")]
-    pub fn ends(&self) -> &[usize] {
+    pub(crate) fn ends(&self) -> &[usize] {
         &self.ends
     }
 
     /// The partition whose parts end at `ends`: `CUTS` of them, in order.
     #[cfg(feature = "serde")]
-    pub fn from_ends(ends: &[usize]) -> Option<Self> {
+    pub(crate) fn from_ends(ends: &[usize]) -> Option<Self> {
         let ends: [usize; CUTS] = ends.try_into().ok()?;
         ends.is_sorted().then_some(Partition { ends })
     }
 
     /// The part of the item at `index`.
     #[inline]
-    pub fn part_of(&self, index: usize) -> usize {
+    pub(crate) fn part_of(&self, index: usize) -> usize {
         self.ends.partition_point(|&end| end <= index)
     }
 
     /// Where part `part` begins.
     #[inline]
-    pub fn start(&self, part: usize) -> usize {
+    pub(crate) fn start(&self, part: usize) -> usize {
         if part == 0 { 0 } else { self.ends[part - 1] }
     }
 
     /// The indices of part `part`, which must not be the last (whose end is the array's).
     #[inline]
-    pub fn range(&self, part: usize) -> Range<usize> {
+    pub(crate) fn range(&self, part: usize) -> Range<usize> {
         self.start(part)..self.ends[part]
     }
 
     /// Moves the item at `index` into part `to` by swapping it across each boundary on the way
     /// (`swap(i, j)` swaps two items of the array); returns its new index. Only the items at
     /// the boundaries it crosses move.
-    pub fn move_item(
+    pub(crate) fn move_item(
         &mut self,
         mut index: usize,
         to: usize,
@@ -91,7 +91,7 @@ impl<const CUTS: usize> Partition<CUTS> {
     /// position of the path at the one before it (the first at `from`), which is where the
     /// swaps would leave them. Each item moves once, instead of twice in each swap; returns the
     /// item's new index.
-    pub fn move_item_along(
+    pub(crate) fn move_item_along(
         &mut self,
         index: usize,
         to: usize,

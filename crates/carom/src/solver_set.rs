@@ -43,7 +43,7 @@ pub(crate) struct SetBounds(Partition<2>);
 impl SetBounds {
     /// The set of the item at `index`.
     #[inline]
-    pub fn set_of(&self, index: usize) -> SolverSet {
+    pub(crate) fn set_of(&self, index: usize) -> SolverSet {
         match self.0.part_of(index) {
             0 => SolverSet::Static,
             1 => SolverSet::Awake,
@@ -53,19 +53,19 @@ impl SetBounds {
 
     /// The dense indices of the awake set.
     #[inline]
-    pub fn awake(&self) -> Range<usize> {
+    pub(crate) fn awake(&self) -> Range<usize> {
         self.0.range(SolverSet::Awake as usize)
     }
 
     /// Where the sleeping set begins (everything past it sleeps).
     #[inline]
-    pub fn asleep_start(&self) -> usize {
+    pub(crate) fn asleep_start(&self) -> usize {
         self.0.start(SolverSet::Asleep as usize)
     }
 
     /// Moves the item at `index` into set `to` by swapping it across each boundary on the way
     /// (`swap(i, j)` swaps two items of the array); returns its new index.
-    pub fn move_item(
+    pub(crate) fn move_item(
         &mut self,
         index: usize,
         to: SolverSet,
@@ -94,7 +94,7 @@ impl JointSetBounds {
 
     /// The set of the joint at `index`.
     #[cfg(any(test, feature = "serde"))]
-    pub fn set_of(&self, index: usize) -> SolverSet {
+    pub(crate) fn set_of(&self, index: usize) -> SolverSet {
         match self.0.part_of(index) {
             0 => SolverSet::Awake,
             1 => SolverSet::Static,
@@ -104,13 +104,13 @@ impl JointSetBounds {
 
     /// The dense indices of the awake set.
     #[inline]
-    pub fn awake(&self) -> Range<usize> {
+    pub(crate) fn awake(&self) -> Range<usize> {
         self.0.range(Self::part(SolverSet::Awake))
     }
 
     /// Moves the joint at `index` into set `to` by swapping it across each boundary on the
     /// way (`swap(i, j)` swaps two joints of the array); returns its new index.
-    pub fn move_item(
+    pub(crate) fn move_item(
         &mut self,
         index: usize,
         to: SolverSet,
@@ -121,7 +121,7 @@ impl JointSetBounds {
 
     /// Checks bounds read from a saved world against the joints they divide.
     #[cfg(feature = "serde")]
-    pub fn check_saved(&self, len: usize) -> Result<(), CaromError> {
+    pub(crate) fn check_saved(&self, len: usize) -> Result<(), CaromError> {
         if self.0.start(Self::part(SolverSet::Asleep)) > len {
             return Err(CaromError::bad_save(format!(
                 "the joint sets reach past the {len} joints"
@@ -134,7 +134,7 @@ impl JointSetBounds {
 #[cfg(feature = "serde")]
 impl SetBounds {
     /// Checks bounds read from a saved world against the array they divide.
-    pub fn check_saved(&self, what: &str, len: usize) -> Result<(), CaromError> {
+    pub(crate) fn check_saved(&self, what: &str, len: usize) -> Result<(), CaromError> {
         if self.asleep_start() > len {
             return Err(CaromError::bad_save(format!(
                 "the {what} sets reach past the {len} {what}s"

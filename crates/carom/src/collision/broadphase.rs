@@ -29,7 +29,7 @@ use rayon::prelude::*;
 /// True when a pair of bodies of these kinds can ever produce a contact response: at least
 /// one of them must be dynamic.
 #[inline]
-pub fn kinds_can_collide(a: BodyKind, b: BodyKind) -> bool {
+pub(crate) fn kinds_can_collide(a: BodyKind, b: BodyKind) -> bool {
     a == BodyKind::Dynamic || b == BodyKind::Dynamic
 }
 

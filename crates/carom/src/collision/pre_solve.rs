@@ -49,13 +49,13 @@ pub(crate) struct PreSolveHook(Arc<Hook>);
 
 impl PreSolveHook {
     /// Wraps a hook.
-    pub fn new(hook: impl Fn(&PreSolveContact) -> bool + Send + Sync + 'static) -> Self {
+    pub(crate) fn new(hook: impl Fn(&PreSolveContact) -> bool + Send + Sync + 'static) -> Self {
         PreSolveHook(Arc::new(hook))
     }
 
     /// Whether the contact is solved this step.
     #[inline]
-    pub fn allows(&self, contact: &PreSolveContact) -> bool {
+    pub(crate) fn allows(&self, contact: &PreSolveContact) -> bool {
         (self.0)(contact)
     }
 }

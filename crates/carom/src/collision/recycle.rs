@@ -38,7 +38,7 @@ pub(crate) struct ManifoldFrame {
 
 impl ManifoldFrame {
     /// Remembers `manifold`, just built (anchors set) for bodies `a` and `b` and their colliders.
-    pub fn of(
+    pub(crate) fn of(
         manifold: &Manifold,
         (a, collider_a): (&Body, &Collider),
         (b, collider_b): (&Body, &Collider),
@@ -64,7 +64,13 @@ impl ManifoldFrame {
     /// speculative distance for a pair apart); false (leaving it as it was) if it must be
     /// built again.
     #[inline]
-    pub fn carry(&self, manifold: &mut Manifold, a: &Body, b: &Body, distance: Real) -> bool {
+    pub(crate) fn carry(
+        &self,
+        manifold: &mut Manifold,
+        a: &Body,
+        b: &Body,
+        distance: Real,
+    ) -> bool {
         if !self.valid {
             return false;
         }

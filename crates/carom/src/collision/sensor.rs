@@ -115,7 +115,7 @@ impl HeapBytes for Sensors {
 
 impl Sensors {
     /// Starts watching a sensor collider; it sees nothing until the next step.
-    pub fn add(&mut self, collider: ColliderHandle) {
+    pub(crate) fn add(&mut self, collider: ColliderHandle) {
         self.sensors.push(Sensor {
             collider,
             overlaps: Vec::new(),
@@ -125,7 +125,7 @@ impl Sensors {
 
     /// Stops watching a sensor collider that is being removed: each of its overlaps ends,
     /// reported after the next step.
-    pub fn remove(&mut self, collider: ColliderHandle) {
+    pub(crate) fn remove(&mut self, collider: ColliderHandle) {
         if let Some(at) = self.sensors.iter().position(|s| s.collider == collider) {
             let sensor = self.sensors.remove(at);
             let ends = sensor.overlaps.into_iter().map(SensorEvent::End);
@@ -134,25 +134,25 @@ impl Sensors {
     }
 
     /// What overlaps the sensor `collider` as of the last step, or `None` if it is not one.
-    pub fn overlaps(&self, collider: ColliderHandle) -> Option<&[SensorOverlap]> {
+    pub(crate) fn overlaps(&self, collider: ColliderHandle) -> Option<&[SensorOverlap]> {
         let sensor = self.sensors.iter().find(|s| s.collider == collider)?;
         Some(&sensor.overlaps)
     }
 
     /// Forgets last step's events; those raised since (by removals) become this step's.
-    pub fn begin_step(&mut self) {
+    pub(crate) fn begin_step(&mut self) {
         self.events.clear();
         self.events.append(&mut self.pending);
     }
 
     /// The begin and end events of the last step, sensor by sensor.
-    pub fn events(&self) -> &[SensorEvent] {
+    pub(crate) fn events(&self) -> &[SensorEvent] {
         &self.events
     }
 
     /// Finds what overlaps each sensor now (on all threads when there are many) and raises
     /// the events of what changed.
-    pub fn update(
+    pub(crate) fn update(
         &mut self,
         bodies: &HandleMap<BodyHandle, Body>,
         colliders: &HandleMap<ColliderHandle, Collider>,

@@ -46,15 +46,15 @@ impl Color {
 }
 
 /// The house colours: kinds, contacts and overlays.
-pub mod palette {
+pub(crate) mod palette {
     use super::Color;
 
     /// Static bodies.
-    pub const STATIC: Color = Color::rgb(0.42, 0.52, 0.45);
+    pub(crate) const STATIC: Color = Color::rgb(0.42, 0.52, 0.45);
     /// Kinematic bodies.
-    pub const KINEMATIC: Color = Color::rgb(0.45, 0.55, 0.85);
+    pub(crate) const KINEMATIC: Color = Color::rgb(0.45, 0.55, 0.85);
     /// Dynamic bodies take one of these, by handle, so neighbours differ.
-    pub const DYNAMIC: [Color; 6] = [
+    pub(crate) const DYNAMIC: [Color; 6] = [
         Color::rgb(0.90, 0.62, 0.35),
         Color::rgb(0.55, 0.78, 0.45),
         Color::rgb(0.40, 0.70, 0.85),
@@ -63,33 +63,33 @@ pub mod palette {
         Color::rgb(0.65, 0.55, 0.85),
     ];
     /// What sleeping bodies fade toward.
-    pub const ASLEEP: Color = Color::rgb(0.35, 0.35, 0.38);
+    pub(crate) const ASLEEP: Color = Color::rgb(0.35, 0.35, 0.38);
     /// Contact points.
-    pub const CONTACT_POINT: Color = Color::rgb(1.0, 0.85, 0.2);
+    pub(crate) const CONTACT_POINT: Color = Color::rgb(1.0, 0.85, 0.2);
     /// Contact normals.
-    pub const CONTACT_NORMAL: Color = Color::rgb(0.95, 0.95, 0.95);
+    pub(crate) const CONTACT_NORMAL: Color = Color::rgb(0.95, 0.95, 0.95);
     /// Reference edges.
-    pub const REFERENCE_EDGE: Color = Color::rgb(0.95, 0.25, 0.2);
+    pub(crate) const REFERENCE_EDGE: Color = Color::rgb(0.95, 0.25, 0.2);
     /// Incident edges.
-    pub const INCIDENT_EDGE: Color = Color::rgb(0.25, 0.55, 1.0);
+    pub(crate) const INCIDENT_EDGE: Color = Color::rgb(0.25, 0.55, 1.0);
     /// Edge normals.
-    pub const EDGE_NORMAL: Color = Color::rgb(0.3, 0.9, 0.9);
+    pub(crate) const EDGE_NORMAL: Color = Color::rgb(0.3, 0.9, 0.9);
     /// Bounding boxes.
-    pub const AABB: Color = Color::rgb(0.85, 0.4, 0.85);
+    pub(crate) const AABB: Color = Color::rgb(0.85, 0.4, 0.85);
     /// Velocities.
-    pub const VELOCITY: Color = Color::rgb(0.4, 1.0, 0.4);
+    pub(crate) const VELOCITY: Color = Color::rgb(0.4, 1.0, 0.4);
     /// Centres of mass.
-    pub const CENTER_OF_MASS: Color = Color::rgb(0.95, 0.95, 0.95);
+    pub(crate) const CENTER_OF_MASS: Color = Color::rgb(0.95, 0.95, 0.95);
     /// Joints' links: from each body's centre of mass to its anchor, and between anchors.
-    pub const JOINT: Color = Color::rgb(0.55, 0.85, 0.80);
+    pub(crate) const JOINT: Color = Color::rgb(0.55, 0.85, 0.80);
     /// Joints' anchors.
-    pub const JOINT_ANCHOR: Color = Color::rgb(1.0, 1.0, 1.0);
+    pub(crate) const JOINT_ANCHOR: Color = Color::rgb(1.0, 1.0, 1.0);
     /// Prismatic and wheel joints' axes.
-    pub const JOINT_AXIS: Color = Color::rgb(0.6, 0.6, 0.65);
+    pub(crate) const JOINT_AXIS: Color = Color::rgb(0.6, 0.6, 0.65);
     /// Lower limits: a revolute joint's least angle, the least length or translation.
-    pub const JOINT_LOWER_LIMIT: Color = Color::rgb(0.45, 0.9, 0.45);
+    pub(crate) const JOINT_LOWER_LIMIT: Color = Color::rgb(0.45, 0.9, 0.45);
     /// Upper limits: a revolute joint's greatest angle, the greatest length or translation.
-    pub const JOINT_UPPER_LIMIT: Color = Color::rgb(0.95, 0.35, 0.3);
+    pub(crate) const JOINT_UPPER_LIMIT: Color = Color::rgb(0.95, 0.35, 0.3);
     /// Joints' reaction forces.
-    pub const JOINT_FORCE: Color = Color::rgb(1.0, 0.55, 0.15);
+    pub(crate) const JOINT_FORCE: Color = Color::rgb(1.0, 0.55, 0.15);
 }

@@ -17,7 +17,8 @@ mod joints;
 mod options;
 mod sink;
 
-pub use color::{Color, palette};
+pub use color::Color;
+pub(crate) use color::palette;
 pub use options::{DrawFlags, DrawOptions};
 pub use sink::{DebugDraw, DrawCircle, DrawList, DrawPoint, DrawPolygon, DrawSegment};
 

@@ -6,6 +6,7 @@ use crate::math::{Real, Vec2, clamp_magnitude};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[non_exhaustive]
 pub enum DragModel {
     /// Exponential damping, `v *= 1 / (1 + dt c)`: unconditionally stable for any step and
     /// coefficient, and the same law Box2D uses. The default.

@@ -61,7 +61,7 @@ impl HeapBytes for Islands {
 
 impl Islands {
     /// A new empty island; returns its id.
-    pub fn create(&mut self) -> u32 {
+    pub(crate) fn create(&mut self) -> u32 {
         let record = Island {
             live: true,
             ..Island::default()
@@ -79,26 +79,26 @@ impl Islands {
     }
 
     /// Frees an island's record for reuse.
-    pub fn destroy(&mut self, id: u32) {
+    pub(crate) fn destroy(&mut self, id: u32) {
         self.records[id as usize].live = false;
         self.free.push(id);
     }
 
     /// An island's record.
     #[inline]
-    pub fn get(&self, id: u32) -> &Island {
+    pub(crate) fn get(&self, id: u32) -> &Island {
         &self.records[id as usize]
     }
 
     /// An island's record, mutably.
     #[inline]
-    pub fn get_mut(&mut self, id: u32) -> &mut Island {
+    pub(crate) fn get_mut(&mut self, id: u32) -> &mut Island {
         &mut self.records[id as usize]
     }
 
     /// The ids of the live islands, for tests.
     #[cfg(any(test, all(feature = "testing", feature = "serde")))]
-    pub fn live_ids(&self) -> impl Iterator<Item = u32> + '_ {
+    pub(crate) fn live_ids(&self) -> impl Iterator<Item = u32> + '_ {
         (0..self.records.len() as u32).filter(|&id| self.records[id as usize].live)
     }
 }
@@ -108,7 +108,10 @@ impl Islands {
     /// Checks islands read from a saved world: each live island's list runs through dynamic
     /// bodies of that island, from its head to its tail, as long as it says; every dynamic
     /// body is in a live island; freed records are not live.
-    pub fn check_saved(&self, bodies: &HandleMap<BodyHandle, Body>) -> Result<(), CaromError> {
+    pub(crate) fn check_saved(
+        &self,
+        bodies: &HandleMap<BodyHandle, Body>,
+    ) -> Result<(), CaromError> {
         for &id in &self.free {
             if self.records.get(id as usize).is_none_or(|r| r.live) {
                 return Err(CaromError::bad_save(format!(

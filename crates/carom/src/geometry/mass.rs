@@ -127,7 +127,7 @@ pub fn polygon_inertia_about_origin(points: &[Vec2], density: Real) -> Real {
 }
 
 /// Checks that a density is usable for a body with mass.
-pub fn check_density(density: Real) -> Result<Real, CaromError> {
+pub(crate) fn check_density(density: Real) -> Result<Real, CaromError> {
     if !density.is_finite() {
         return Err(CaromError::non_finite("density", density));
     }
@@ -138,7 +138,7 @@ pub fn check_density(density: Real) -> Result<Real, CaromError> {
 }
 
 /// Mass properties of a circle centred on its local origin: `m = ρπr²`, `I = m r² / 2`.
-pub fn circle_mass(radius: Real, density: Real) -> MassProperties {
+pub(crate) fn circle_mass(radius: Real, density: Real) -> MassProperties {
     let r = radius as f64;
     let mass = density as f64 * PI * r * r;
     MassProperties {
@@ -172,7 +172,7 @@ pub fn polygon_mass(points: &[Vec2], density: Real) -> Option<MassProperties> {
 /// Exact: the shape is the core, a rectangle `radius` deep on the outside of each edge, and a
 /// circular sector at each vertex between its edges' normals (the sectors make one whole
 /// circle). The inertia is about the centroid, which [`MassProperties::center`] gives.
-pub fn rounded_mass(core: &[Vec2], radius: Real, density: Real) -> MassProperties {
+pub(crate) fn rounded_mass(core: &[Vec2], radius: Real, density: Real) -> MassProperties {
     let r = radius as f64;
     let n = core.len();
     let point = |v: Vec2| [v.x as f64, v.y as f64];

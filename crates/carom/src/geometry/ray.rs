@@ -51,7 +51,7 @@ pub struct RayHit {
 }
 
 /// Casts a ray against a circle. A circle without a positive, finite radius is never hit.
-pub fn ray_cast_circle(center: Vec2, radius: Real, ray: &Ray) -> Option<RayHit> {
+pub(crate) fn ray_cast_circle(center: Vec2, radius: Real, ray: &Ray) -> Option<RayHit> {
     let length = ray.translation.norm();
     if length == 0.0 || !length.is_finite() || !(radius > 0.0 && radius.is_finite()) {
         return None;
@@ -84,7 +84,7 @@ pub fn ray_cast_circle(center: Vec2, radius: Real, ray: &Ray) -> Option<RayHit> 
 /// The ray is clipped against each edge's half-plane: entering the last one is the hit. A ray
 /// running along an edge's line counts as inside that half-plane, so it enters at the edge's
 /// first corner, as geometry says; so does a ray that only touches a corner.
-pub fn ray_cast_polygon(vertices: &[Vec2], normals: &[Vec2], ray: &Ray) -> Option<RayHit> {
+pub(crate) fn ray_cast_polygon(vertices: &[Vec2], normals: &[Vec2], ray: &Ray) -> Option<RayHit> {
     let length = ray.translation.norm();
     if length == 0.0 || !length.is_finite() {
         return None;
@@ -128,7 +128,12 @@ pub fn ray_cast_polygon(vertices: &[Vec2], normals: &[Vec2], ray: &Ray) -> Optio
 
 /// Casts a ray against a segment, from either side or, `one_sided`, only from the right of
 /// `point1` → `point2` (a chain's colliding side). A ray along the segment's line misses it.
-pub fn ray_cast_segment(point1: Vec2, point2: Vec2, one_sided: bool, ray: &Ray) -> Option<RayHit> {
+pub(crate) fn ray_cast_segment(
+    point1: Vec2,
+    point2: Vec2,
+    one_sided: bool,
+    ray: &Ray,
+) -> Option<RayHit> {
     let edge = point2 - point1;
     let length = edge.norm();
     if length == 0.0 || !length.is_finite() {
@@ -159,7 +164,12 @@ pub fn ray_cast_segment(point1: Vec2, point2: Vec2, one_sided: bool, ray: &Ray) 
 }
 
 /// Casts a ray against a capsule: the segment `center1`–`center2` grown by `radius`.
-pub fn ray_cast_capsule(center1: Vec2, center2: Vec2, radius: Real, ray: &Ray) -> Option<RayHit> {
+pub(crate) fn ray_cast_capsule(
+    center1: Vec2,
+    center2: Vec2,
+    radius: Real,
+    ray: &Ray,
+) -> Option<RayHit> {
     let normal = perp_cw(center2 - center1).normalize();
     ray_cast_rounded(&[center1, center2], &[normal, -normal], radius, ray)
 }
@@ -167,7 +177,7 @@ pub fn ray_cast_capsule(center1: Vec2, center2: Vec2, radius: Real, ray: &Ray) -
 /// Casts a ray against a convex core (counter-clockwise vertices and outward unit normals, or
 /// a capsule's two) grown by `radius`: the first of its faces, each `radius` out from an edge,
 /// and its corners' circles that the ray meets. A ray starting inside never enters.
-pub fn ray_cast_rounded(
+pub(crate) fn ray_cast_rounded(
     vertices: &[Vec2],
     normals: &[Vec2],
     radius: Real,

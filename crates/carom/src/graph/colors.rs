@@ -93,7 +93,7 @@ impl HeapBytes for ContactColors {
 impl ContactColors {
     /// Gives a contact between `a` and `b` a colour, which then holds their dynamic bodies
     /// ([`OVERFLOW`] if none is free).
-    pub fn add(&mut self, a: ColorBody, b: ColorBody) -> u8 {
+    pub(crate) fn add(&mut self, a: ColorBody, b: ColorBody) -> u8 {
         let color = self.pick(a, b);
         if color != OVERFLOW {
             for body in [a, b].iter().filter(|body| body.dynamic) {
@@ -116,7 +116,7 @@ impl ContactColors {
     }
 
     /// Takes a contact between `a` and `b` out of `color`, freeing its bodies there.
-    pub fn remove(&mut self, color: u8, a: ColorBody, b: ColorBody) {
+    pub(crate) fn remove(&mut self, color: u8, a: ColorBody, b: ColorBody) {
         if color != OVERFLOW {
             for body in [a, b].iter().filter(|body| body.dynamic) {
                 self.bodies[color as usize].clear(body.slot);
@@ -126,7 +126,7 @@ impl ContactColors {
 
     /// True when `slot`'s bit is set in `color`, for tests of the colouring.
     #[cfg(any(test, all(feature = "testing", feature = "serde")))]
-    pub fn holds(&self, color: u8, slot: u32) -> bool {
+    pub(crate) fn holds(&self, color: u8, slot: u32) -> bool {
         self.bodies[color as usize].get(slot)
     }
 }

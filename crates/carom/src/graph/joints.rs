@@ -31,7 +31,7 @@ impl JointColors {
     /// all into the overflow unless `colored`; `states(i)` says which states joint `i`
     /// touches (`None`: nothing to solve, left out). `state_count` is how many states there
     /// are. Within a colour the joints keep their order.
-    pub fn order(
+    pub(crate) fn order(
         &mut self,
         count: usize,
         states: impl Fn(usize) -> Option<JointStates>,

@@ -20,7 +20,7 @@ pub(crate) struct ContactGraph {
 impl ContactGraph {
     /// The constraints are the colours' contacts in colour order, `counts[c]` of colour `c`,
     /// then `overflow` more for the overflow.
-    pub fn lay_out(&mut self, counts: [usize; COLOR_COUNT], overflow: usize) {
+    pub(crate) fn lay_out(&mut self, counts: [usize; COLOR_COUNT], overflow: usize) {
         let mut end = 0;
         for (color, count) in counts.into_iter().enumerate() {
             end += count;
@@ -31,19 +31,19 @@ impl ContactGraph {
     }
 
     /// No colours: every constraint is solved one by one, in order.
-    pub fn leave_uncolored(&mut self, constraint_count: usize) {
+    pub(crate) fn leave_uncolored(&mut self, constraint_count: usize) {
         self.ends = [0; COLOR_COUNT];
         self.overflow.clear();
         self.overflow.extend(0..constraint_count);
     }
 
     /// Each colour's constraints, in colour order (some may be empty).
-    pub fn colors(&self) -> impl Iterator<Item = Range<usize>> + '_ {
+    pub(crate) fn colors(&self) -> impl Iterator<Item = Range<usize>> + '_ {
         (0..COLOR_COUNT).map(|color| self.color(color))
     }
 
     /// One colour's constraints.
-    pub fn color(&self, color: usize) -> Range<usize> {
+    pub(crate) fn color(&self, color: usize) -> Range<usize> {
         let start = if color == 0 { 0 } else { self.ends[color - 1] };
         start..self.ends[color]
     }

@@ -596,6 +596,7 @@ impl Joint {
 /// Something that happened to a joint during a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub enum JointEvent {
     /// The joint applied more than its break force or torque and was removed.
     Broken {

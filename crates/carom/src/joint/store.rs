@@ -96,12 +96,12 @@ impl HeapBytes for JointStore {
 
 impl JointStore {
     /// The handle the next joint will get.
-    pub fn next_handle(&self) -> JointHandle {
+    pub(crate) fn next_handle(&self) -> JointHandle {
         self.joints.next_handle()
     }
 
     /// Stores a joint (made for [`JointStore::next_handle`]) in set `set`.
-    pub fn insert(&mut self, joint: Joint, set: SolverSet) -> JointHandle {
+    pub(crate) fn insert(&mut self, joint: Joint, set: SolverSet) -> JointHandle {
         let [a, b] = joint.bodies();
         let filters = !joint.collide_connected() && a != b;
         let handle = self.joints.insert(joint);
@@ -118,7 +118,7 @@ impl JointStore {
     }
 
     /// Removes a joint.
-    pub fn remove(&mut self, handle: JointHandle) -> Option<Joint> {
+    pub(crate) fn remove(&mut self, handle: JointHandle) -> Option<Joint> {
         // To the end of the sleeping set, the last of the array: the removal then moves only
         // another sleeper into its place, and every set stays contiguous.
         let index = self.joints.dense_index(handle)?;
@@ -145,11 +145,11 @@ impl JointStore {
         Some(joint)
     }
 
-    pub fn get(&self, handle: JointHandle) -> Option<&Joint> {
+    pub(crate) fn get(&self, handle: JointHandle) -> Option<&Joint> {
         self.joints.get(handle)
     }
 
-    pub fn get_mut(&mut self, handle: JointHandle) -> Option<&mut Joint> {
+    pub(crate) fn get_mut(&mut self, handle: JointHandle) -> Option<&mut Joint> {
         self.joints.get_mut(handle)
     }
 
@@ -165,47 +165,47 @@ impl JointStore {
         clippy::expect_used,
         reason = "only joints the store lists are refiled, and a listed joint is live"
     )]
-    pub fn refile(&mut self, handle: JointHandle, to: SolverSet) {
+    pub(crate) fn refile(&mut self, handle: JointHandle, to: SolverSet) {
         let index = self.joints.dense_index(handle).expect("listed joints live");
         self.move_to(index, to);
     }
 
     /// The dense indices of the joints a step solves.
-    pub fn awake(&self) -> Range<usize> {
+    pub(crate) fn awake(&self) -> Range<usize> {
         self.sets.awake()
     }
 
     /// The set of the joint at dense `index`.
     #[cfg(any(test, feature = "serde"))]
-    pub fn set_of(&self, index: usize) -> SolverSet {
+    pub(crate) fn set_of(&self, index: usize) -> SolverSet {
         self.sets.set_of(index)
     }
 
     /// Every joint, in storage order: set by set.
-    pub fn as_slice(&self) -> &[Joint] {
+    pub(crate) fn as_slice(&self) -> &[Joint] {
         self.joints.as_slice()
     }
 
-    pub fn as_mut_slice(&mut self) -> &mut [Joint] {
+    pub(crate) fn as_mut_slice(&mut self) -> &mut [Joint] {
         self.joints.as_mut_slice()
     }
 
     /// Every joint in handle order.
-    pub fn iter_by_handle(&self) -> impl ExactSizeIterator<Item = &Joint> {
+    pub(crate) fn iter_by_handle(&self) -> impl ExactSizeIterator<Item = &Joint> {
         self.joints.iter_by_handle()
     }
 
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.joints.len()
     }
 
     /// A body's joints.
-    pub fn of_body(&self, body: BodyHandle) -> &[JointHandle] {
+    pub(crate) fn of_body(&self, body: BodyHandle) -> &[JointHandle] {
         self.by_body.get(&body).map_or(&[], Vec::as_slice)
     }
 
     /// True when a joint keeps `a` and `b` from colliding.
-    pub fn filters(&self, a: BodyHandle, b: BodyHandle) -> bool {
+    pub(crate) fn filters(&self, a: BodyHandle, b: BodyHandle) -> bool {
         !self.filters.is_empty() && self.filters.contains_key(&pair(a, b))
     }
 
@@ -215,7 +215,7 @@ impl JointStore {
         clippy::expect_used,
         reason = "a body's joint list holds only live joints: removing a joint unlists it"
     )]
-    pub fn partners(&self, body: BodyHandle, out: &mut Vec<BodyHandle>) {
+    pub(crate) fn partners(&self, body: BodyHandle, out: &mut Vec<BodyHandle>) {
         out.clear();
         for &handle in self.of_body(body) {
             let [a, b] = self

@@ -54,7 +54,7 @@ const _: () = {
 };
 
 impl BodyState {
-    pub fn from_body(body: &Body) -> Self {
+    pub(crate) fn from_body(body: &Body) -> Self {
         BodyState {
             v: body.linear_velocity(),
             w: body.angular_velocity(),
@@ -65,7 +65,7 @@ impl BodyState {
     }
 
     /// A state at rest that belongs to no body.
-    pub fn spare() -> Self {
+    pub(crate) fn spare() -> Self {
         BodyState {
             v: Vec2::zeros(),
             w: 0.0,
@@ -78,7 +78,7 @@ impl BodyState {
     /// Commits the step: the body moves by `dp` and `dq` and takes the new velocities, a
     /// dynamic body's held to `caps` (the passes after the last position integration may
     /// have pushed them past).
-    pub fn write_back(&self, body: &mut Body, caps: SpeedCaps) {
+    pub(crate) fn write_back(&self, body: &mut Body, caps: SpeedCaps) {
         if !body.moves() {
             return;
         }
@@ -93,7 +93,7 @@ impl BodyState {
 
     /// Whether the caps cut this body's velocities since its joints last warm started, or
     /// would cut them now.
-    pub fn is_held(&self, caps: SpeedCaps) -> bool {
+    pub(crate) fn is_held(&self, caps: SpeedCaps) -> bool {
         self.held != 0 || caps.hold(self.v, self.w).2
     }
 }
@@ -112,7 +112,7 @@ pub(crate) struct SpeedCaps {
 
 impl SpeedCaps {
     /// The caps for a step of `dt`.
-    pub fn new(params: &SolverParams, dt: Real) -> Self {
+    pub(crate) fn new(params: &SolverParams, dt: Real) -> Self {
         SpeedCaps {
             linear: params.max_linear_speed,
             angular: params.max_rotation / dt,
@@ -127,7 +127,7 @@ impl SpeedCaps {
     /// through a lever that had turned since, gave more velocity than the cut took, and the
     /// impulse grew tenfold a substep to NaN (Box2D 3.2 does the same).
     #[inline]
-    pub fn hold(&self, v: Vec2, w: Real) -> (Vec2, Real, bool) {
+    pub(crate) fn hold(&self, v: Vec2, w: Real) -> (Vec2, Real, bool) {
         let held_v = clamp_magnitude(v, self.linear);
         let held_w = w.clamp(-self.angular, self.angular);
         (held_v, held_w, held_v != v || held_w != w)

@@ -40,7 +40,7 @@ pub(crate) struct ConstraintPoint {
 impl ConstraintPoint {
     /// A manifold point of a contact of normal `normal` between bodies `a` and `b`.
     #[inline(always)]
-    pub fn new(mp: &ManifoldPoint, normal: Vec2, a: &SolverBody, b: &SolverBody) -> Self {
+    pub(crate) fn new(mp: &ManifoldPoint, normal: Vec2, a: &SolverBody, b: &SolverBody) -> Self {
         let tangent = perp_cw(normal);
         let (ma, ia) = (a.mass.inv_mass, a.mass.inv_inertia);
         let (mb, ib) = (b.mass.inv_mass, b.mass.inv_inertia);
@@ -126,7 +126,7 @@ pub(crate) struct BodyMass {
 }
 
 impl BodyMass {
-    pub fn of(body: &Body) -> Self {
+    pub(crate) fn of(body: &Body) -> Self {
         BodyMass {
             inv_mass: body.inv_mass(),
             inv_inertia: body.inv_inertia(),
@@ -139,7 +139,12 @@ impl ContactConstraint {
     /// Prepares a contact (at `contact_index` among the awake contacts) from its manifold and
     /// its mixed material.
     #[inline]
-    pub fn new(contact_index: usize, contact: &Contact, a: SolverBody, b: SolverBody) -> Self {
+    pub(crate) fn new(
+        contact_index: usize,
+        contact: &Contact,
+        a: SolverBody,
+        b: SolverBody,
+    ) -> Self {
         let manifold = contact.manifold();
         let normal = manifold.normal;
         let mut points = [ConstraintPoint::default(); 2];
@@ -173,25 +178,25 @@ impl ContactConstraint {
 
     /// The points.
     #[inline]
-    pub fn points(&self) -> &[ConstraintPoint] {
+    pub(crate) fn points(&self) -> &[ConstraintPoint] {
         &self.points[..self.point_count]
     }
 
     /// The points, mutably.
     #[inline]
-    pub fn points_mut(&mut self) -> &mut [ConstraintPoint] {
+    pub(crate) fn points_mut(&mut self) -> &mut [ConstraintPoint] {
         &mut self.points[..self.point_count]
     }
 
     /// The tangent direction used for friction.
     #[inline]
-    pub fn tangent(&self) -> Vec2 {
+    pub(crate) fn tangent(&self) -> Vec2 {
         perp_cw(self.normal)
     }
 
     /// The separation of a point now, from the bodies' motion since the step began.
     #[inline]
-    pub fn current_separation(
+    pub(crate) fn current_separation(
         &self,
         point: &ConstraintPoint,
         a: &BodyState,
@@ -209,7 +214,13 @@ impl ContactConstraint {
 
     /// Applies an impulse `p` at a point: `-p` to A, `+p` to B.
     #[inline]
-    pub fn apply(&self, point: &ConstraintPoint, p: Vec2, a: &mut BodyState, b: &mut BodyState) {
+    pub(crate) fn apply(
+        &self,
+        point: &ConstraintPoint,
+        p: Vec2,
+        a: &mut BodyState,
+        b: &mut BodyState,
+    ) {
         a.v -= p * self.inv_mass_a;
         a.w -= self.inv_inertia_a * cross(point.anchor_a, p);
         b.v += p * self.inv_mass_b;
@@ -219,7 +230,7 @@ impl ContactConstraint {
     /// Adds `impulse` to point `index`'s accumulated normal impulse, keeping the total from
     /// pulling (≥ 0), and applies what was actually added to the bodies.
     #[inline]
-    pub fn add_normal_impulse(
+    pub(crate) fn add_normal_impulse(
         &mut self,
         index: usize,
         impulse: Real,
@@ -238,13 +249,13 @@ impl ContactConstraint {
     /// Velocity of B relative to A at a point (each body's point velocity first, summed as the
     /// wide solver sums its lanes, so both give the same bits).
     #[inline]
-    pub fn relative_velocity(point: &ConstraintPoint, a: &BodyState, b: &BodyState) -> Vec2 {
+    pub(crate) fn relative_velocity(point: &ConstraintPoint, a: &BodyState, b: &BodyState) -> Vec2 {
         (b.v + cross_sv(b.w, point.anchor_b)) - (a.v + cross_sv(a.w, point.anchor_a))
     }
 
     /// Copies accumulated impulses back into the contact's manifold for warm starting, and
     /// what the step applied and the approach it started from beside it, for the user.
-    pub fn store_impulses(&self, contact: &mut Contact) {
+    pub(crate) fn store_impulses(&self, contact: &mut Contact) {
         contact.rolling_impulse = self.rolling_impulse;
         let (manifold, reports) = contact.manifold_and_impulses_mut();
         for ((mp, report), point) in manifold
@@ -266,7 +277,7 @@ impl ContactConstraint {
     /// Notes, at the end of a substep, each point's accumulated normal impulse (what the
     /// substep applied, warm start included) as the largest yet if it is.
     #[inline]
-    pub fn note_substep_impulses(&mut self) {
+    pub(crate) fn note_substep_impulses(&mut self) {
         for point in self.points_mut() {
             point.max_normal_impulse = point.max_normal_impulse.max(point.normal_impulse);
         }

@@ -9,6 +9,7 @@ use crate::math::Real;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
+#[non_exhaustive]
 pub enum SolverKind {
     /// Moves overlapping bodies apart along the contact normal in proportion to their inverse
     /// masses and removes their approaching velocity. No impulses: stacks sink and jitter,
@@ -257,7 +258,7 @@ pub(crate) struct Softness {
 
 impl Softness {
     /// A spring of `hertz` with `damping_ratio`, stepped at `h` seconds.
-    pub fn new(hertz: Real, damping_ratio: Real, h: Real) -> Self {
+    pub(crate) fn new(hertz: Real, damping_ratio: Real, h: Real) -> Self {
         if hertz == 0.0 {
             return Softness {
                 bias_rate: 0.0,

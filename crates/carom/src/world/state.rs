@@ -50,7 +50,7 @@ pub(crate) struct WorldState {
 impl WorldState {
     /// Copies every part of `from` into this state, each into its old memory, so a state as
     /// large as `from` allocates nothing.
-    pub fn copy_from(&mut self, from: &WorldState) {
+    pub(crate) fn copy_from(&mut self, from: &WorldState) {
         let WorldState {
             settings,
             time,

@@ -277,7 +277,7 @@ impl ContactEvent {
 /// id), which the lookup and the bodies' lists hold: moving a contact between parts only
 /// tells its id where it went, and walking a body's contacts hashes nothing.
 #[derive(Debug, Default)]
-pub struct ContactSet {
+pub(crate) struct ContactSet {
     pub(super) contacts: Vec<Contact>,
     /// Where each part of `contacts` begins and ends.
     parts: ContactPartition,

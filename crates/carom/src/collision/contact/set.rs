@@ -52,7 +52,7 @@ pub(super) fn pair_key(a: ColliderHandle, b: ColliderHandle) -> u64 {
 
 impl ContactSet {
     /// True when the pair of colliders in slots `low < high` already has a contact.
-    pub fn contains(&self, low: u32, high: u32) -> bool {
+    pub(crate) fn contains(&self, low: u32, high: u32) -> bool {
         self.lookup
             .contains_key(&((low as u64) << 32 | high as u64))
     }
@@ -238,7 +238,7 @@ impl ContactSet {
     }
 
     /// Every contact.
-    pub fn iter(&self) -> impl ExactSizeIterator<Item = &Contact> {
+    pub(crate) fn iter(&self) -> impl ExactSizeIterator<Item = &Contact> {
         self.contacts.iter()
     }
 
@@ -280,12 +280,12 @@ impl ContactSet {
     }
 
     /// How many contacts there are.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.contacts.len()
     }
 
     /// The begin and end events of the last step, in the order they happened.
-    pub fn events(&self) -> &[ContactEvent] {
+    pub(crate) fn events(&self) -> &[ContactEvent] {
         &self.events
     }
 

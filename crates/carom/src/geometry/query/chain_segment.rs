@@ -39,7 +39,7 @@ impl ChainLink {
         clippy::unreachable,
         reason = "links are made only of chain segments: the caller matched the shape first"
     )]
-    pub fn of(shape: &WorldShape) -> Self {
+    pub(crate) fn of(shape: &WorldShape) -> Self {
         match *shape {
             WorldShape::ChainSegment {
                 ghost1,

@@ -22,7 +22,12 @@ pub fn collide(a: &WorldShape, b: &WorldShape, margin: Real) -> Manifold {
 /// it unless the other side's face is better by
 /// [`REFERENCE_TOLERANCE`](crate::constants::REFERENCE_TOLERANCE), and impulses carry
 /// over to points with the same feature ids. Face points are kept up to `margins.face` apart.
-pub fn update(a: &WorldShape, b: &WorldShape, margins: Margins, previous: &Manifold) -> Manifold {
+pub(crate) fn update(
+    a: &WorldShape,
+    b: &WorldShape,
+    margins: Margins,
+    previous: &Manifold,
+) -> Manifold {
     let mut manifold = collide_after(a, b, margins, previous.reference_edge.map(|e| e.side));
     manifold.carry_impulses_from(previous);
     manifold

@@ -99,7 +99,12 @@ pub(crate) fn with_core<R>(shape: &WorldShape, f: impl FnOnce(&[Vec2], &[Vec2], 
 }
 
 /// Two circles. Coincident centres separate along [`COINCIDENT_NORMAL`] by the sum of radii.
-pub fn circle_circle(center_a: Vec2, radius_a: Real, center_b: Vec2, radius_b: Real) -> Separation {
+pub(crate) fn circle_circle(
+    center_a: Vec2,
+    radius_a: Real,
+    center_b: Vec2,
+    radius_b: Real,
+) -> Separation {
     let offset = center_b - center_a;
     let distance = offset.norm();
     if distance > Real::EPSILON * (1.0 + center_a.norm()) {
@@ -218,7 +223,7 @@ pub fn polygon_circle(
 
 /// The edge of polygon A that B's vertices are farthest in front of, and by how much: the
 /// separating-axis test over A's edge normals.
-pub fn max_separation(
+pub(crate) fn max_separation(
     a_vertices: &[Vec2],
     a_normals: &[Vec2],
     b_vertices: &[Vec2],
@@ -238,7 +243,7 @@ pub fn max_separation(
 
 /// Closest points of two disjoint convex polygons.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ClosestPoints {
+pub(crate) struct ClosestPoints {
     /// On A.
     pub point_a: Vec2,
     /// On B.
@@ -253,7 +258,7 @@ pub struct ClosestPoints {
 
 /// Closest points of two convex polygons that do not overlap: the nearest pair among every
 /// vertex of one against every edge of the other.
-pub fn closest_points(a: &[Vec2], b: &[Vec2]) -> ClosestPoints {
+pub(crate) fn closest_points(a: &[Vec2], b: &[Vec2]) -> ClosestPoints {
     let mut best = ClosestPoints {
         point_a: a[0],
         point_b: b[0],
@@ -304,7 +309,7 @@ pub fn closest_points(a: &[Vec2], b: &[Vec2]) -> ClosestPoints {
 
 /// Polygon A against polygon B.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PolygonPolygon {
+pub(crate) struct PolygonPolygon {
     /// Normal from A to B and signed separation.
     pub separation: Separation,
     /// SAT's best edge on A and its separation.
@@ -316,7 +321,7 @@ pub struct PolygonPolygon {
 }
 
 /// Polygon A against polygon B (world vertices and normals).
-pub fn polygon_polygon(
+pub(crate) fn polygon_polygon(
     a_vertices: &[Vec2],
     a_normals: &[Vec2],
     b_vertices: &[Vec2],
@@ -327,7 +332,7 @@ pub fn polygon_polygon(
 
 /// Polygon A against polygon B by the separating-axis test alone: SAT's axis and distance,
 /// which for polygons apart corner to corner is less than the true distance.
-pub fn polygon_sat(
+pub(crate) fn polygon_sat(
     a_vertices: &[Vec2],
     a_normals: &[Vec2],
     b_vertices: &[Vec2],
@@ -349,7 +354,7 @@ pub fn polygon_sat(
 /// a contact can tell, and resting contacts are nearly all like that. Nor are polygons that
 /// SAT already puts `too_far` apart searched: the exact distance is never less than SAT's, so
 /// they are too far either way, and most pairs a moving scene watches are.
-pub fn polygon_polygon_within(
+pub(crate) fn polygon_polygon_within(
     a_vertices: &[Vec2],
     a_normals: &[Vec2],
     b_vertices: &[Vec2],

@@ -73,7 +73,7 @@ pub struct ManifoldPoint {
     /// World position, midway between the two surfaces.
     pub point: Vec2,
     /// From A's centre of mass to the point, in world axes: the solver's lever arm on A. Set by
-    /// the world's contact update (zero from [`collide`] alone); a recycled manifold keeps it
+    /// the world's contact update (zero from [`collide`](crate::query::collide) alone); a recycled manifold keeps it
     /// as it was when built, as Box2D does, so resting contacts do not shift from step to step.
     pub anchor_a: Vec2,
     /// From B's centre of mass to the point, in world axes: the lever arm on B (see
@@ -227,7 +227,7 @@ impl Manifold {
 
 /// How far apart two shapes' points may be and still be kept.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Margins {
+pub(crate) struct Margins {
     /// For every point, m.
     pub any: Real,
     /// For points where a face meets a face or a circle, m: at least `any`.
@@ -236,7 +236,7 @@ pub struct Margins {
 
 impl Margins {
     /// The same margin for every point.
-    pub fn plain(margin: Real) -> Self {
+    pub(crate) fn plain(margin: Real) -> Self {
         Margins {
             any: margin,
             face: margin,
@@ -254,7 +254,7 @@ pub(crate) struct Core<'a> {
 }
 
 impl<'a> Core<'a> {
-    pub fn new(vertices: &'a [Vec2], normals: &'a [Vec2], radius: Real) -> Self {
+    pub(crate) fn new(vertices: &'a [Vec2], normals: &'a [Vec2], radius: Real) -> Self {
         Core {
             vertices,
             normals,

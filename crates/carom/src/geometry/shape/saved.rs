@@ -123,7 +123,10 @@ pub(crate) mod exact_shape {
     use super::{Shape, ShapeData};
     use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-    pub fn serialize<S: Serializer>(shape: &Shape, serializer: S) -> Result<S::Ok, S::Error> {
+    pub(crate) fn serialize<S: Serializer>(
+        shape: &Shape,
+        serializer: S,
+    ) -> Result<S::Ok, S::Error> {
         match shape {
             Shape::Polygon(p) => ShapeData::Polygon {
                 points: p.vertices().to_vec(),
@@ -135,7 +138,9 @@ pub(crate) mod exact_shape {
         }
     }
 
-    pub fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Shape, D::Error> {
+    pub(crate) fn deserialize<'de, D: Deserializer<'de>>(
+        deserializer: D,
+    ) -> Result<Shape, D::Error> {
         Shape::deserialize(deserializer)
     }
 }

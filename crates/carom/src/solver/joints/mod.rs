@@ -70,25 +70,25 @@ pub(crate) struct JointFrame {
 impl JointFrame {
     /// The anchors' offsets from the centres of mass now.
     #[inline]
-    pub fn anchors(&self, a: &BodyState, b: &BodyState) -> (Vec2, Vec2) {
+    pub(crate) fn anchors(&self, a: &BodyState, b: &BodyState) -> (Vec2, Vec2) {
         (a.dq * self.frame_a, b.dq * self.frame_b)
     }
 
     /// B's anchor less A's now.
     #[inline]
-    pub fn separation(&self, a: &BodyState, b: &BodyState, ra: Vec2, rb: Vec2) -> Vec2 {
+    pub(crate) fn separation(&self, a: &BodyState, b: &BodyState, ra: Vec2, rb: Vec2) -> Vec2 {
         (b.dp - a.dp) + (rb - ra) + self.delta_center
     }
 
     /// The velocity of B's anchor relative to A's.
     #[inline]
-    pub fn velocity(a: &BodyState, b: &BodyState, ra: Vec2, rb: Vec2) -> Vec2 {
+    pub(crate) fn velocity(a: &BodyState, b: &BodyState, ra: Vec2, rb: Vec2) -> Vec2 {
         JointConstraint::relative_velocity(a, b, ra, rb)
     }
 
     /// `(1/mA, 1/IA, 1/mB, 1/IB)`, zero for a body that does not move.
     #[inline]
-    pub fn inverse_masses(&self) -> (Real, Real, Real, Real) {
+    pub(crate) fn inverse_masses(&self) -> (Real, Real, Real, Real) {
         (
             self.inv_mass_a,
             self.inv_inertia_a,
@@ -99,7 +99,7 @@ impl JointFrame {
 
     /// Applies impulse `p` at the anchors (to B, and its opposite to A).
     #[inline]
-    pub fn push(&self, a: &mut BodyState, b: &mut BodyState, ra: Vec2, rb: Vec2, p: Vec2) {
+    pub(crate) fn push(&self, a: &mut BodyState, b: &mut BodyState, ra: Vec2, rb: Vec2, p: Vec2) {
         a.v -= p * self.inv_mass_a;
         a.w -= self.inv_inertia_a * cross(ra, p);
         b.v += p * self.inv_mass_b;
@@ -120,7 +120,7 @@ pub(crate) struct HingeLimit {
 impl HingeLimit {
     /// The hinge's angle now.
     #[inline]
-    pub fn angle(&self, a: &BodyState, b: &BodyState) -> Real {
+    pub(crate) fn angle(&self, a: &BodyState, b: &BodyState) -> Real {
         relative_angle(a, b, self.rot_a, self.rot_b)
     }
 }
@@ -160,7 +160,7 @@ pub(crate) struct JointPass {
 impl JointPass {
     /// Soft step's pass over substeps of `h`: the joint softness of `params` (its stiffness
     /// at most a quarter of the substep rate, as Box2D caps it).
-    pub fn soft(params: &SolverParams, h: Real, use_bias: bool) -> Self {
+    pub(crate) fn soft(params: &SolverParams, h: Real, use_bias: bool) -> Self {
         let inv_h = 1.0 / h;
         let hertz = params.joint_hertz.min(0.25 * inv_h);
         JointPass {
@@ -175,7 +175,7 @@ impl JointPass {
 
     /// Sequential impulse's velocity pass over a step of `dt`: rigid, drift left to the
     /// position passes.
-    pub fn velocities(dt: Real) -> Self {
+    pub(crate) fn velocities(dt: Real) -> Self {
         JointPass {
             h: dt,
             inv_h: 1.0 / dt,
@@ -188,7 +188,7 @@ impl JointPass {
 
     /// Sequential impulse's position pass ([`JointConstraint::correct_positions`]): the
     /// whole drift closed, nothing driven.
-    pub fn positions(dt: Real) -> Self {
+    pub(crate) fn positions(dt: Real) -> Self {
         JointPass {
             h: dt,
             inv_h: 1.0 / dt,
@@ -269,7 +269,7 @@ pub(crate) struct JointBody<'a> {
 
 impl JointConstraint {
     /// Prepares `joint` (at `index` in the store) for a step whose substeps last `h`.
-    pub fn prepare(
+    pub(crate) fn prepare(
         index: usize,
         joint: &Joint,
         a: JointBody,
@@ -361,7 +361,7 @@ impl JointConstraint {
     /// or, if the speed caps cut either body's velocities since the last warm start, forgets
     /// them and starts cold ([`super::SpeedCaps::hold`]). Called once per (sub)step whether
     /// warm starting is on or not (off, the impulses were forgotten when prepared).
-    pub fn warm_start(&mut self, a: &mut BodyState, b: &mut BodyState) {
+    pub(crate) fn warm_start(&mut self, a: &mut BodyState, b: &mut BodyState) {
         if let JointData::Pogo(p) = self.data {
             pogo::advance_spring(self, &p, a, b);
         }
@@ -388,7 +388,7 @@ impl JointConstraint {
     }
 
     /// One pass.
-    pub fn solve(&mut self, a: &mut BodyState, b: &mut BodyState, pass: &JointPass) {
+    pub(crate) fn solve(&mut self, a: &mut BodyState, b: &mut BodyState, pass: &JointPass) {
         match self.data {
             JointData::Distance(p) => distance::solve(self, &p, a, b, pass),
             JointData::Revolute(p) => revolute::solve(self, &p, a, b, pass),
@@ -407,7 +407,7 @@ impl JointConstraint {
     /// iterations: the velocity solve run on bodies at rest with a bias of the whole drift
     /// gives the velocities that would close it in `dt`; the bodies are moved by them, and
     /// keep their real velocities and the joint its impulses.
-    pub fn correct_positions(&self, a: &mut BodyState, b: &mut BodyState, dt: Real) {
+    pub(crate) fn correct_positions(&self, a: &mut BodyState, b: &mut BodyState, dt: Real) {
         let pass = JointPass::positions(dt);
         let mut scratch = self.clone();
         scratch.impulses = JointImpulses::default();
@@ -426,12 +426,12 @@ impl JointConstraint {
 
     /// Its point constraint, if it is a hinge (a revolute joint), which the joint trees may
     /// solve.
-    pub fn hinge_point(&self) -> Option<JointFrame> {
+    pub(crate) fn hinge_point(&self) -> Option<JointFrame> {
         matches!(self.data, JointData::Revolute(_)).then_some(self.frame)
     }
 
     /// A hinge's limits, which the joint trees solve with its point.
-    pub fn hinge_limit(&self) -> Option<HingeLimit> {
+    pub(crate) fn hinge_limit(&self) -> Option<HingeLimit> {
         match self.data {
             JointData::Revolute(p) => p.limits().map(|limits| HingeLimit {
                 limits,
@@ -444,14 +444,14 @@ impl JointConstraint {
 
     /// Hands its point and limits to the joint trees for the step: its own solve leaves them
     /// alone.
-    pub fn leave_point_to_tree(&mut self) {
+    pub(crate) fn leave_point_to_tree(&mut self) {
         self.point_in_tree = true;
     }
 
     /// The impulses for the next step's warm start: none if the speed caps cut either body's
     /// velocities since the last warm start, or would cut them now (`states` as the step left
     /// them), as [`JointConstraint::warm_start`] would forget them.
-    pub fn impulses_to_keep(&self, states: &[BodyState], caps: SpeedCaps) -> JointImpulses {
+    pub(crate) fn impulses_to_keep(&self, states: &[BodyState], caps: SpeedCaps) -> JointImpulses {
         let held = |moves: bool, state: usize| moves && states[state].is_held(caps);
         if held(self.moves_a, self.a) || held(self.moves_b, self.b) {
             JointImpulses {
@@ -465,7 +465,7 @@ impl JointConstraint {
 
     /// The force and torque the accumulated impulses of the last (sub)step of `h` applied
     /// to B.
-    pub fn reaction(&self, inv_h: Real) -> (Vec2, Real) {
+    pub(crate) fn reaction(&self, inv_h: Real) -> (Vec2, Real) {
         let i = &self.impulses;
         let (linear, angular) = match self.data {
             JointData::Distance(p) => (p.axis * (i.axial + i.lower - i.upper + i.motor), 0.0),

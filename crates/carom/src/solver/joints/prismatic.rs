@@ -33,7 +33,7 @@ pub(super) struct Slide {
 }
 
 impl Slide {
-    pub fn now(c: &JointConstraint, a: &BodyState, b: &BodyState, local_axis: Vec2) -> Self {
+    pub(crate) fn now(c: &JointConstraint, a: &BodyState, b: &BodyState, local_axis: Vec2) -> Self {
         let (ra, rb) = c.anchors(a, b);
         let d = c.separation(a, b, ra, rb);
         let axis = a.dq * (c.rot_a * local_axis);
@@ -48,7 +48,7 @@ impl Slide {
 
     /// The lever arms of a force along `direction`: A's (from its centre of mass to B's
     /// anchor) and B's.
-    pub fn arms(&self, direction: Vec2) -> (Real, Real) {
+    pub(crate) fn arms(&self, direction: Vec2) -> (Real, Real) {
         (
             cross(self.ra + self.d, direction),
             cross(self.rb, direction),
@@ -56,7 +56,12 @@ impl Slide {
     }
 
     /// The velocity along `direction` with lever arms `(a1, a2)`.
-    pub fn speed(a: &BodyState, b: &BodyState, direction: Vec2, (a1, a2): (Real, Real)) -> Real {
+    pub(crate) fn speed(
+        a: &BodyState,
+        b: &BodyState,
+        direction: Vec2,
+        (a1, a2): (Real, Real),
+    ) -> Real {
         direction.dot(&(b.v - a.v)) + a2 * b.w - a1 * a.w
     }
 }

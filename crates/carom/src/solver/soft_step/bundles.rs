@@ -39,7 +39,7 @@ impl Width {
     /// The widest this CPU runs, unless the environment variable `CAROM_LANES` is `4`: then
     /// four lanes everywhere, so that a check of the same bits at both widths can run whole
     /// scenes (read once a process).
-    pub fn widest() -> Width {
+    pub(crate) fn widest() -> Width {
         static FOUR_ASKED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
         let four_asked =
             *FOUR_ASKED.get_or_init(|| std::env::var("CAROM_LANES").is_ok_and(|v| v.trim() == "4"));
@@ -95,7 +95,7 @@ impl Default for WideContacts {
 
 impl WideContacts {
     /// No bundles yet, of `width` (four lanes if the CPU lacks AVX for eight).
-    pub fn new(width: Width) -> Self {
+    pub(crate) fn new(width: Width) -> Self {
         let bundles = match width {
             Width::Four => Bundles::Four(Vec::new()),
             // An `Avx8` may only exist on a CPU with AVX.
@@ -114,12 +114,12 @@ impl WideContacts {
     }
 
     /// How many constraints a bundle holds.
-    pub fn width(&self) -> usize {
+    pub(crate) fn width(&self) -> usize {
         with_bundles!(&self.bundles, |bundles| lanes_of(bundles))
     }
 
     /// Forgets the bundles (a step that solves no colour).
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         with_bundles!(&mut self.bundles, |bundles| bundles.clear());
         self.colors.clear();
         self.slots.clear();
@@ -129,7 +129,7 @@ impl WideContacts {
 
     /// Prepares the coloured contacts into bundles (on all threads), reusing last step's
     /// memory, and lists the overflow's contacts.
-    pub fn prepare(&mut self, inputs: &BundleInputs) {
+    pub(crate) fn prepare(&mut self, inputs: &BundleInputs) {
         let width = self.width();
         self.slots.clear();
         self.colors.clear();
@@ -161,7 +161,7 @@ impl WideContacts {
     }
 
     /// Manifold points in the bundles.
-    pub fn point_count(&self) -> usize {
+    pub(crate) fn point_count(&self) -> usize {
         with_bundles!(&self.bundles, |bundles| bundles
             .iter()
             .map(|b| b.point_count as usize)
@@ -169,12 +169,12 @@ impl WideContacts {
     }
 
     /// True when some bundle's contact has restitution.
-    pub fn bouncy(&self) -> bool {
+    pub(crate) fn bouncy(&self) -> bool {
         self.bouncy
     }
 
     /// How many colours have bundles ([`Stage::Color`] takes an index below it).
-    pub fn color_count(&self) -> usize {
+    pub(crate) fn color_count(&self) -> usize {
         self.colors.len()
     }
 
@@ -184,7 +184,7 @@ impl WideContacts {
     /// states come first in `states`). Returns the work integration did and how many
     /// restitution impulses were computed.
     #[allow(unsafe_code)]
-    pub fn execute(
+    pub(crate) fn execute(
         &mut self,
         plan: &[Stage],
         states: &mut [BodyState],
@@ -210,7 +210,7 @@ impl WideContacts {
 
     /// Copies the impulses back into the contacts' manifolds, for the next step's warm start
     /// (on all threads when there are enough).
-    pub fn store(&self, contacts: &mut [Contact]) {
+    pub(crate) fn store(&self, contacts: &mut [Contact]) {
         self.store_in_tasks_of(contacts, ITEMS_PER_TASK / self.width());
     }
 
@@ -266,22 +266,22 @@ impl WideContacts {
     }
 
     /// Applies the accumulated impulses (warm start).
-    pub fn warm_start(&mut self, states: &mut [BodyState]) {
+    pub(crate) fn warm_start(&mut self, states: &mut [BodyState]) {
         self.run_pass(states, Pass::WarmStart);
     }
 
     /// One pass: non-penetration (soft-biased or relaxed), then friction if asked.
-    pub fn solve(&mut self, states: &mut [BodyState], pass: PassBias, friction: bool) {
+    pub(crate) fn solve(&mut self, states: &mut [BodyState], pass: PassBias, friction: bool) {
         self.run_pass(states, Pass::Solve(pass, friction));
     }
 
     /// Bounces; returns how many impulses were computed.
-    pub fn restitution(&mut self, states: &mut [BodyState], threshold: Real) -> usize {
+    pub(crate) fn restitution(&mut self, states: &mut [BodyState], threshold: Real) -> usize {
         self.run_pass(states, Pass::Restitution(threshold))
     }
 
     /// Each contact's points' normal, tangent and total normal impulses.
-    pub fn impulses(&self) -> std::collections::HashMap<usize, [(Real, Real, Real); 2]> {
+    pub(crate) fn impulses(&self) -> std::collections::HashMap<usize, [(Real, Real, Real); 2]> {
         let mut out = std::collections::HashMap::new();
         with_bundles!(&self.bundles, |bundles| {
             for bundle in bundles {
@@ -301,7 +301,7 @@ impl WideContacts {
     }
 
     /// Sets a point's accumulated normal impulse in contact `contact`'s lane.
-    pub fn set_normal_impulse(&mut self, contact: usize, point: usize, value: Real) {
+    pub(crate) fn set_normal_impulse(&mut self, contact: usize, point: usize, value: Real) {
         with_bundles!(&mut self.bundles, |bundles| {
             if let Some((bundle, lane)) = lane_of(bundles, contact) {
                 let field = &mut bundle.points[point].normal_impulse;
@@ -311,7 +311,7 @@ impl WideContacts {
     }
 
     /// Sets contact `contact`'s restitution.
-    pub fn set_restitution(&mut self, contact: usize, value: Real) {
+    pub(crate) fn set_restitution(&mut self, contact: usize, value: Real) {
         with_bundles!(&mut self.bundles, |bundles| {
             if let Some((bundle, lane)) = lane_of(bundles, contact) {
                 bundle.restitution = with_lane(bundle.restitution, lane, value);
@@ -320,7 +320,7 @@ impl WideContacts {
     }
 
     /// Sets a point's approach speed at the start of the step in contact `contact`'s lane.
-    pub fn set_relative_velocity(&mut self, contact: usize, point: usize, value: Real) {
+    pub(crate) fn set_relative_velocity(&mut self, contact: usize, point: usize, value: Real) {
         with_bundles!(&mut self.bundles, |bundles| {
             if let Some((bundle, lane)) = lane_of(bundles, contact) {
                 let field = &mut bundle.points[point].relative_velocity;

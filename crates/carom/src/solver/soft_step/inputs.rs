@@ -68,7 +68,7 @@ impl BundleInputs<'_> {
     }
 
     /// Contact `index` prepared as a constraint.
-    pub fn constraint(&self, index: usize) -> ContactConstraint {
+    pub(crate) fn constraint(&self, index: usize) -> ContactConstraint {
         let contact = &self.contacts[index];
         let [a, b] = self.body_indices[index].map(|i| self.solver_body(i as usize));
         let mut constraint = ContactConstraint::new(index, contact, a, b);

@@ -210,7 +210,7 @@ pub(crate) struct TreeBlock<'a> {
 impl TreeBlock<'_> {
     /// Applies the accumulated impulses (the warm start), or forgets them where the speed
     /// caps cut a body's velocities, as the other joints do.
-    pub fn warm_start(&mut self, states: &SharedStates) {
+    pub(crate) fn warm_start(&mut self, states: &SharedStates) {
         for tree in self.joints.iter_mut() {
             let (mut a, mut b) = (states.get(tree.a), states.get(tree.b));
             if a.held != 0 || b.held != 0 {
@@ -225,7 +225,7 @@ impl TreeBlock<'_> {
 
     /// One pass: the velocity error of every joint of the block's trees (with the pass's
     /// bias) solved away at once, with the stops that hold.
-    pub fn solve(&mut self, states: &SharedStates, pass: &JointPass) {
+    pub(crate) fn solve(&mut self, states: &SharedStates, pass: &JointPass) {
         self.each_tree(|tree| tree.solve(states, pass));
     }
 
@@ -234,7 +234,7 @@ impl TreeBlock<'_> {
     /// time), leaving their velocities alone: the end of a substep, where the soft bias would
     /// otherwise leave what nonlinear motion opened for the next one. Called right after the
     /// relaxation's [`TreeBlock::solve`], whose stops it takes as they were aimed.
-    pub fn project(&mut self, states: &SharedStates) {
+    pub(crate) fn project(&mut self, states: &SharedStates) {
         self.each_tree(|tree| tree.project(states));
     }
 
@@ -267,7 +267,7 @@ struct TreeWork<'a> {
 
 impl JointTrees {
     /// No trees this step.
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         self.joints.clear();
         self.trees.clear();
         self.bodies.clear();
@@ -276,19 +276,19 @@ impl JointTrees {
 
     /// Each state's group of bodies joined by hinges (its representative), if there are
     /// trees this step.
-    pub fn groups(&self) -> Option<&[u32]> {
+    pub(crate) fn groups(&self) -> Option<&[u32]> {
         (!self.joints.is_empty()).then_some(&self.parent[..])
     }
 
     /// Whether there is anything to solve.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.joints.is_empty()
     }
 
     /// Orders the revolute joints among `constraints` leaf first over `states` states, marks
     /// them as the tree's (their own solve then leaves the point to it), and leaves the
     /// joints that close loops to the iterative solve. Allocates only as the world grows.
-    pub fn plan(&mut self, constraints: &mut [JointConstraint], states: usize) {
+    pub(crate) fn plan(&mut self, constraints: &mut [JointConstraint], states: usize) {
         self.joints.clear();
         self.trees.clear();
         self.bodies.clear();
@@ -551,14 +551,14 @@ impl JointTrees {
     }
 
     /// How many joints the trees have.
-    pub fn joint_count(&self) -> usize {
+    pub(crate) fn joint_count(&self) -> usize {
         self.joints.len()
     }
 
     /// The trees cut into at most `count` runs of whole trees, of about as many joints
     /// each, for threads to solve apart: the trees share no moving body, so each run's
     /// results are the same whoever solves it, and whichever run goes first.
-    pub fn blocks(&mut self, count: usize) -> [Option<TreeBlock<'_>>; MAX_BLOCKS] {
+    pub(crate) fn blocks(&mut self, count: usize) -> [Option<TreeBlock<'_>>; MAX_BLOCKS] {
         let mut blocks = std::array::from_fn(|_| None);
         let count = count.clamp(1, MAX_BLOCKS);
         let total = self.joints.len();
@@ -606,7 +606,7 @@ impl JointTrees {
     }
 
     /// Hands the accumulated point and stop impulses back to their joints.
-    pub fn finish(&self, constraints: &mut [JointConstraint]) {
+    pub(crate) fn finish(&self, constraints: &mut [JointConstraint]) {
         for tree in &self.joints {
             let c = &mut constraints[tree.constraint];
             c.impulses.linear = Vec2::new(tree.impulse[0], tree.impulse[1]);

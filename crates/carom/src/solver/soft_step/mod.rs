@@ -218,7 +218,7 @@ pub(super) struct Bias {
 
 impl Bias {
     /// The biases of `params` for substeps of `h`.
-    pub fn new(params: &SolverParams, h: Real) -> Self {
+    pub(crate) fn new(params: &SolverParams, h: Real) -> Self {
         let inv_h = 1.0 / h;
         // Stiffer than a quarter of the substep rate would ring.
         let hertz = params.contact_hertz.min(0.25 * inv_h);
@@ -231,7 +231,7 @@ impl Bias {
     }
 
     /// What the wide solver needs of it for one pass, biased or relaxing.
-    pub fn pass(&self, use_bias: bool) -> PassBias {
+    pub(crate) fn pass(&self, use_bias: bool) -> PassBias {
         PassBias {
             use_bias,
             inv_h: self.inv_h,

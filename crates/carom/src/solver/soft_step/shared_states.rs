@@ -45,7 +45,7 @@ impl<'a> SharedStates<'a> {
     /// # Safety
     /// While the borrow lasts, no state is written by one thread while another reads or
     /// writes it.
-    pub unsafe fn new(states: &'a mut [BodyState]) -> Self {
+    pub(crate) unsafe fn new(states: &'a mut [BodyState]) -> Self {
         SharedStates {
             states: states.as_mut_ptr(),
             len: states.len(),
@@ -56,7 +56,7 @@ impl<'a> SharedStates<'a> {
     /// State `index` as eight floats: `[v.x, v.y, w, held, dp.x, dp.y, dq.cos, dq.sin]`
     /// (`held`'s bits, which the solver ignores).
     #[inline(always)]
-    pub fn read(&self, index: u32) -> [Real; 8] {
+    pub(crate) fn read(&self, index: u32) -> [Real; 8] {
         let index = index as usize;
         assert!(index < self.len, "state {index} of {}", self.len);
         // SAFETY: in bounds (checked), aligned, and `BodyState` is eight `Real`s in this order
@@ -66,7 +66,7 @@ impl<'a> SharedStates<'a> {
 
     /// State `index`, copied (for a joint, which works on its own copies of two states).
     #[inline(always)]
-    pub fn get(&self, index: usize) -> BodyState {
+    pub(crate) fn get(&self, index: usize) -> BodyState {
         assert!(index < self.len, "state {index} of {}", self.len);
         // SAFETY: in bounds (checked) and aligned; no other thread writes it (promised in
         // `new`).
@@ -75,7 +75,7 @@ impl<'a> SharedStates<'a> {
 
     /// Sets state `index`'s velocities from `state` (a joint's copy, solved).
     #[inline(always)]
-    pub fn set_velocity(&self, index: usize, state: &BodyState) {
+    pub(crate) fn set_velocity(&self, index: usize, state: &BodyState) {
         let velocity = [state.v.x, state.v.y, state.w, 0.0];
         self.write_velocity(index as u32, velocity);
     }
@@ -83,7 +83,7 @@ impl<'a> SharedStates<'a> {
     /// Sets state `index`'s motion since the step began (`dp`, `dq`) from `state` (a joint
     /// tree's copy, its drift projected away); its velocities stay as they were.
     #[inline(always)]
-    pub fn set_motion(&self, index: usize, state: &BodyState) {
+    pub(crate) fn set_motion(&self, index: usize, state: &BodyState) {
         assert!(index < self.len, "state {index} of {}", self.len);
         // SAFETY: in bounds (checked).
         let target = unsafe { self.states.add(index) };
@@ -101,7 +101,7 @@ impl<'a> SharedStates<'a> {
     /// No other thread reads or writes these states while the borrow lasts.
     #[inline]
     #[allow(clippy::mut_from_ref)]
-    pub unsafe fn range_mut(&self, range: std::ops::Range<usize>) -> &mut [BodyState] {
+    pub(crate) unsafe fn range_mut(&self, range: std::ops::Range<usize>) -> &mut [BodyState] {
         assert!(
             range.start <= range.end && range.end <= self.len,
             "states {range:?}"
@@ -113,7 +113,7 @@ impl<'a> SharedStates<'a> {
     /// Sets state `index`'s velocities from `[v.x, v.y, w, _]`; its `held` stays as it was
     /// (the joints' warm start reads it after the contacts have solved).
     #[inline(always)]
-    pub fn write_velocity(&self, index: u32, velocity: [Real; 4]) {
+    pub(crate) fn write_velocity(&self, index: u32, velocity: [Real; 4]) {
         let index = index as usize;
         assert!(index < self.len, "state {index} of {}", self.len);
         let [v_x, v_y, w, _] = velocity;

@@ -52,18 +52,18 @@ pub(crate) mod test_hooks {
 #[cfg(not(test))]
 pub(crate) mod test_hooks {
     /// A hook that is never set.
-    pub struct Off;
+    pub(crate) struct Off;
 
     impl Off {
         #[inline(always)]
-        pub fn get(&self) -> bool {
+        pub(crate) fn get(&self) -> bool {
             false
         }
     }
 
     #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
-    pub const FOUR_LANES: Off = Off;
-    pub const ONE_AT_A_TIME: Off = Off;
+    pub(crate) const FOUR_LANES: Off = Off;
+    pub(crate) const ONE_AT_A_TIME: Off = Off;
 }
 
 /// Evaluates `$body` with `$bundles` bound to the bundles of whichever width they are.
@@ -79,13 +79,18 @@ macro_rules! with_shock_bundles {
 
 impl ShockBundles {
     /// No bundles.
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         with_shock_bundles!(self, |bundles| bundles.clear())
     }
 
     /// Adds bundles of the supports `members` (of one level's round: different upper
     /// bodies); `spare` is the state of empty lanes. Returns the bundles' range.
-    pub fn push(&mut self, supports: &[Support], members: &[u32], spare: u32) -> Range<usize> {
+    pub(crate) fn push(
+        &mut self,
+        supports: &[Support],
+        members: &[u32],
+        spare: u32,
+    ) -> Range<usize> {
         with_shock_bundles!(self, |bundles| {
             let start = bundles.len();
             for lanes in members.chunks(lanes_of(bundles)) {
@@ -98,19 +103,19 @@ impl ShockBundles {
     }
 
     /// Applies the accumulated pushes of bundles `range`.
-    pub fn warm_start(&mut self, states: &SharedStates, range: Range<usize>) {
+    pub(crate) fn warm_start(&mut self, states: &SharedStates, range: Range<usize>) {
         with_shock_bundles!(self, |bundles| run_pass(&mut bundles[range], states, None))
     }
 
     /// One pass over bundles `range`, biased or relaxing, with friction or not.
-    pub fn solve(&mut self, states: &SharedStates, range: Range<usize>, bias: PassInputs) {
+    pub(crate) fn solve(&mut self, states: &SharedStates, range: Range<usize>, bias: PassInputs) {
         with_shock_bundles!(self, |bundles| {
             run_pass(&mut bundles[range], states, Some(bias))
         })
     }
 
     /// Copies the lanes' impulses back into `supports`.
-    pub fn unpack(&self, supports: &mut [Support]) {
+    pub(crate) fn unpack(&self, supports: &mut [Support]) {
         with_shock_bundles!(self, |bundles| {
             for bundle in bundles {
                 bundle.unpack(supports);

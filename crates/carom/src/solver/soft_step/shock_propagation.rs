@@ -124,11 +124,11 @@ pub(crate) struct SupportPoint {
 }
 
 impl Support {
-    pub fn points(&self) -> &[SupportPoint] {
+    pub(crate) fn points(&self) -> &[SupportPoint] {
         &self.points[..self.point_count]
     }
 
-    pub fn points_mut(&mut self) -> &mut [SupportPoint] {
+    pub(crate) fn points_mut(&mut self) -> &mut [SupportPoint] {
         &mut self.points[..self.point_count]
     }
 
@@ -241,12 +241,12 @@ impl Support {
 
 impl ShockPropagation {
     /// Nothing to solve.
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         self.supports.clear();
     }
 
     /// Whether there is anything to solve.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.supports.is_empty()
     }
 
@@ -254,7 +254,7 @@ impl ShockPropagation {
     /// contacts whose normals are within 60° of `up`) and prepares the supports between
     /// levels, lowest first (ties in contact order, so the same on every thread count).
     /// Nothing without `up` (no gravity). Allocates only as the world grows.
-    pub fn plan(&mut self, inputs: &BundleInputs, up: Option<Vec2>) {
+    pub(crate) fn plan(&mut self, inputs: &BundleInputs, up: Option<Vec2>) {
         self.supports.clear();
         let Some(up) = up else {
             return;
@@ -428,7 +428,7 @@ impl ShockPropagation {
 
     /// Applies the accumulated impulses to the upper bodies (and counts the pushes as pushed
     /// this step).
-    pub fn warm_start(&mut self, states: &SharedStates) {
+    pub(crate) fn warm_start(&mut self, states: &SharedStates) {
         for run in &self.runs {
             match run {
                 Run::Wide(range) => self.wide.warm_start(states, range.clone()),
@@ -444,7 +444,13 @@ impl ShockPropagation {
     /// One pass from the ground up, biased or relaxing: each support stops its upper body on
     /// the lower, as a soft contact with the ground would, then (if `friction`) holds it by
     /// friction within `μ ×` that push, beside the ordinary passes' friction within theirs.
-    pub fn solve(&mut self, states: &SharedStates, bias: &Bias, use_bias: bool, friction: bool) {
+    pub(crate) fn solve(
+        &mut self,
+        states: &SharedStates,
+        bias: &Bias,
+        use_bias: bool,
+        friction: bool,
+    ) {
         let inputs = ShockPassInputs {
             use_bias,
             friction,
@@ -469,7 +475,7 @@ impl ShockPropagation {
     /// Keeps the accumulated pushes in the contacts' manifolds for the next step's warm start
     /// (and forgets those of the touching contacts `order` names that are not supports between
     /// levels now), and adds what each pushed this step to its contact's reported impulse.
-    pub fn store(&mut self, contacts: &mut [Contact], order: &[usize]) {
+    pub(crate) fn store(&mut self, contacts: &mut [Contact], order: &[usize]) {
         self.wide.unpack(&mut self.supports);
         for &i in order {
             let (manifold, _) = contacts[i].manifold_and_impulses_mut();
