@@ -5,7 +5,7 @@
 
 use super::Bias;
 use super::inputs::PassBias;
-use super::joint_trees::JointTrees;
+use super::joint_trees::{JointTrees, TreeBlock};
 use super::kernels::Bundle;
 use super::lanes::{Kernel, Lanes};
 use super::scalar::{apply_restitution, solve_one, warm_start_one};
@@ -125,8 +125,6 @@ pub(super) fn execute_stages<L: Lanes>(
     } else {
         1
     };
-    let overflow = Mutex::new(overflow);
-    let shock = Mutex::new(shock);
     // Whole trees per block: the trees share no moving body, so a block writes only its own
     // trees' states, and reads besides only bodies that no joint moves.
     let tree_count = if shared {
@@ -136,8 +134,20 @@ pub(super) fn execute_stages<L: Lanes>(
     };
     let tree_blocks = trees.blocks(tree_count).map(|block| block.map(Mutex::new));
     let tree_block_count = tree_blocks.iter().filter(|b| b.is_some()).count();
-    let work = Mutex::new(Work::default());
-    let bounces = AtomicUsize::new(0);
+    let lent = LentStages {
+        states,
+        all_states,
+        inputs,
+        body_blocks,
+        color_blocks: blocks,
+        overflow: Mutex::new(overflow),
+        shock: Mutex::new(shock),
+        joint_blocks,
+        joint_passes,
+        tree_blocks,
+        work: Mutex::new(Work::default()),
+        bounces: AtomicUsize::new(0),
+    };
     let stage_blocks = |stage: usize| match plan[stage] {
         Stage::IntegrateVelocities | Stage::IntegratePositions => body_blocks,
         Stage::Color(color, _) => color_blocks[color],
@@ -145,74 +155,124 @@ pub(super) fn execute_stages<L: Lanes>(
         Stage::JointTrees(_) => tree_block_count,
         Stage::Joints(color, _) => joint_block_counts[color],
     };
-    run_stages(
-        plan.len(),
-        stage_blocks,
-        shared,
-        |stage, block| match plan[stage] {
+    run_stages(plan.len(), stage_blocks, shared, |stage, block| {
+        lent.run(plan[stage], block)
+    });
+    (*lock(&lent.work), lent.bounces.into_inner())
+}
+
+/// One step's stages with their blocks lent out: each block behind a lock that is never
+/// contended (a block is claimed once a stage), which is how it is lent mutably to whichever
+/// thread claims it, and what the stages add up.
+struct LentStages<'a, L: Lanes> {
+    states: &'a SharedStates<'a>,
+    /// Every state, the spare one included (the overflow's and the shock stage's reach).
+    all_states: Range<usize>,
+    inputs: &'a StageInputs<'a>,
+    /// How many blocks the awake bodies are cut into.
+    body_blocks: usize,
+    /// Each colour's bundles, cut into blocks.
+    color_blocks: [[LentBlock<'a, L>; MAX_BLOCKS]; COLOR_COUNT],
+    overflow: Mutex<&'a mut [ContactConstraint]>,
+    shock: Mutex<&'a mut ShockPropagation>,
+    /// Each joint colour's joints, cut into blocks (the overflow's in one).
+    joint_blocks: [[LentJoints<'a>; MAX_BLOCKS]; JOINT_COLOR_COUNT + 1],
+    /// The joints' biased and relaxing passes.
+    joint_passes: [JointPass; 2],
+    /// Blocks of whole joint trees.
+    tree_blocks: [Option<Mutex<TreeBlock<'a>>>; MAX_BLOCKS],
+    /// The work the effects did, and how many constraints bounced.
+    work: Mutex<Work>,
+    bounces: AtomicUsize,
+}
+
+impl<L: Lanes> LentStages<'_, L> {
+    /// Runs block `block` of `stage`.
+    fn run(&self, stage: Stage, block: usize) {
+        match stage {
             Stage::IntegrateVelocities | Stage::IntegratePositions => {
-                let range = block_range(bodies.len(), body_blocks, block);
-                // SAFETY: integration's blocks are disjoint runs, and no other stage runs.
-                #[allow(unsafe_code)]
-                let block_states = unsafe { states.range_mut(range.clone()) };
-                let done = integrate(plan[stage], &bodies[range], block_states, inputs);
-                if let Some(done) = done {
-                    *lock(&work) += done;
-                }
+                self.integrate(stage, block);
             }
-            Stage::Color(color, pass) => {
-                if let Some(block) = &blocks[color][block] {
-                    let mut block = lock(block);
-                    let count = L::run(PassBlock {
-                        block: &mut block,
-                        states,
-                        pass,
-                    });
-                    bounces.fetch_add(count, Ordering::Relaxed);
-                }
+            Stage::Color(color, pass) => self.color(color, pass, block),
+            Stage::Overflow(pass) => self.overflow(pass),
+            Stage::Shock(pass) => self.shock(pass),
+            Stage::Joints(color, pass) => self.joints(color, pass, block),
+            Stage::JointTrees(pass) => self.joint_trees(pass, block),
+        }
+    }
+
+    /// An integration stage over one block of the awake bodies.
+    fn integrate(&self, stage: Stage, block: usize) {
+        let bodies = self.inputs.bodies;
+        let range = block_range(bodies.len(), self.body_blocks, block);
+        // SAFETY: integration's blocks are disjoint runs, and no other stage runs.
+        #[allow(unsafe_code)]
+        let block_states = unsafe { self.states.range_mut(range.clone()) };
+        let done = integrate(stage, &bodies[range], block_states, self.inputs);
+        if let Some(done) = done {
+            *lock(&self.work) += done;
+        }
+    }
+
+    /// A pass over one block of a colour's bundles.
+    fn color(&self, color: usize, pass: Pass, block: usize) {
+        if let Some(block) = &self.color_blocks[color][block] {
+            let mut block = lock(block);
+            let count = L::run(PassBlock {
+                block: &mut block,
+                states: self.states,
+                pass,
+            });
+            self.bounces.fetch_add(count, Ordering::Relaxed);
+        }
+    }
+
+    /// A pass over the overflow's constraints, one by one.
+    fn overflow(&self, pass: Pass) {
+        let mut constraints = lock(&self.overflow);
+        // SAFETY: the overflow's stage is one block, and no other stage runs.
+        #[allow(unsafe_code)]
+        let all = unsafe { self.states.range_mut(self.all_states.clone()) };
+        let count = overflow_pass(pass, &mut constraints, all, self.inputs);
+        self.bounces.fetch_add(count, Ordering::Relaxed);
+    }
+
+    /// A pass over shock propagation's supports (one block, and no other stage runs).
+    fn shock(&self, pass: Pass) {
+        let mut shock = lock(&self.shock);
+        match pass {
+            Pass::WarmStart => shock.warm_start(self.states),
+            Pass::Solve(bias, friction) => {
+                shock.solve(self.states, self.inputs.bias, bias.use_bias, friction)
             }
-            Stage::Overflow(pass) => {
-                let mut constraints = lock(&overflow);
-                // SAFETY: the overflow's stage is one block, and no other stage runs.
-                #[allow(unsafe_code)]
-                let all = unsafe { states.range_mut(all_states.clone()) };
-                let count = overflow_pass(pass, &mut constraints, all, inputs);
-                bounces.fetch_add(count, Ordering::Relaxed);
-            }
-            Stage::Shock(pass) => {
-                // Shock propagation's stage is one block, and no other stage runs.
-                let mut shock = lock(&shock);
-                match pass {
-                    Pass::WarmStart => shock.warm_start(states),
-                    Pass::Solve(bias, friction) => {
-                        shock.solve(states, inputs.bias, bias.use_bias, friction)
+            Pass::Restitution(_) => {}
+        }
+    }
+
+    /// A pass over one block of a joint colour's joints.
+    fn joints(&self, color: usize, pass: Pass, block: usize) {
+        if let Some(block) = &self.joint_blocks[color][block] {
+            joint_pass(pass, &mut lock(block), self.states, &self.joint_passes);
+        }
+    }
+
+    /// The joint trees' pass over one block of whole trees, with the projection at the end of
+    /// each substep.
+    fn joint_trees(&self, pass: Pass, block: usize) {
+        if let Some(block) = &self.tree_blocks[block] {
+            let mut trees = lock(block);
+            match pass {
+                Pass::WarmStart => trees.warm_start(self.states),
+                Pass::Solve(bias, _) => {
+                    trees.solve(self.states, &self.joint_passes[usize::from(!bias.use_bias)]);
+                    if bias.substep_end {
+                        trees.project(self.states);
                     }
-                    Pass::Restitution(_) => {}
                 }
+                Pass::Restitution(_) => {}
             }
-            Stage::Joints(color, pass) => {
-                if let Some(block) = &joint_blocks[color][block] {
-                    joint_pass(pass, &mut lock(block), states, &joint_passes);
-                }
-            }
-            Stage::JointTrees(pass) => {
-                if let Some(block) = &tree_blocks[block] {
-                    let mut trees = lock(block);
-                    match pass {
-                        Pass::WarmStart => trees.warm_start(states),
-                        Pass::Solve(bias, _) => {
-                            trees.solve(states, &joint_passes[usize::from(!bias.use_bias)]);
-                            if bias.substep_end {
-                                trees.project(states);
-                            }
-                        }
-                        Pass::Restitution(_) => {}
-                    }
-                }
-            }
-        },
-    );
-    (*lock(&work), bounces.into_inner())
+        }
+    }
 }
 
 /// Integration stage `stage` over a block of the awake bodies and their states: velocities
