@@ -126,6 +126,61 @@ struct TreeJoint {
 }
 
 impl TreeJoint {
+    /// Hinge `c`, constraint `index`, as the tree takes it, its impulses carried over; `None`
+    /// if it has no hinge point. `pivot_b`: its second body is the pivot its first is
+    /// eliminated into.
+    fn of(index: usize, c: &JointConstraint, pivot_b: bool) -> Option<TreeJoint> {
+        let point = c.hinge_point()?;
+        let limit = c.hinge_limit().map(|limit| {
+            let l = limit.limits;
+            let mut tree = TreeLimit {
+                limit,
+                stop: 1.0,
+                locked: l.upper - l.lower < LOCKED_HINGE_RANGE,
+                active: false,
+                slack: 0.0,
+                scales: (0.0, 1.0, 0.0),
+            };
+            tree.aim(limit.angle(&BodyState::spare(), &BodyState::spare()));
+            tree
+        });
+        let i = &c.impulses;
+        let held = match limit {
+            Some(l) if l.locked => i.lower - i.upper,
+            Some(l) if l.stop > 0.0 => i.lower,
+            Some(_) => i.upper,
+            None => 0.0,
+        };
+        let (ma, ia, mb, ib) = point.inverse_masses();
+        // The anchors' lengths do not change as the bodies turn.
+        let (ra, rb) = point.anchors(&BodyState::spare(), &BodyState::spare());
+        let own = [
+            ma + mb + 0.5 * (ia * ra.norm_squared() + ib * rb.norm_squared()),
+            ia + ib,
+        ];
+        Some(TreeJoint {
+            constraint: index,
+            point,
+            limit,
+            tree: 0,
+            slot_a: 0,
+            slot_b: 0,
+            own,
+            a: c.a,
+            b: c.b,
+            moves_a: c.moves_a,
+            moves_b: c.moves_b,
+            pivot_b,
+            impulse: [i.linear.x, i.linear.y, held],
+            ra: Vec2::zeros(),
+            rb: Vec2::zeros(),
+            inverse: [0.0; 6],
+            spread: [[0.0; 3]; 3],
+            z: [0.0; 3],
+            change: [0.0; 3],
+        })
+    }
+
     /// Applies impulse `p` (the point's and the stop's) to the bodies' velocities.
     fn push(&self, a: &mut BodyState, b: &mut BodyState, p: Vec3) {
         self.point
@@ -292,6 +347,22 @@ impl JointTrees {
         self.joints.clear();
         self.trees.clear();
         self.bodies.clear();
+        let count = self.accept(constraints, states);
+        if count == 0 {
+            return;
+        }
+        self.list_at_bodies(constraints, states);
+        self.order_leaf_first(constraints, count);
+        for tree in &self.joints {
+            constraints[tree.constraint].leave_point_to_tree();
+        }
+        self.group_by_tree();
+    }
+
+    /// Finds which moving bodies the hinges connect and marks, in `accepted`, the hinges the
+    /// trees may take: those of components with few loops. Counts each moving state's accepted
+    /// joints in `left` and returns how many there are.
+    fn accept(&mut self, constraints: &[JointConstraint], states: usize) -> usize {
         let hinge = |c: &JointConstraint| c.hinge_point().is_some() && (c.moves_a || c.moves_b);
         // Which moving bodies the hinges connect, and which hinges close a loop among them.
         self.parent.clear();
@@ -346,10 +417,12 @@ impl JointTrees {
                 }
             }
         }
-        if count == 0 {
-            return;
-        }
-        // The joints at each moving state, in constraint order.
+        count
+    }
+
+    /// Lists the accepted joints at each moving state, in constraint order (`starts` and
+    /// `at_body`).
+    fn list_at_bodies(&mut self, constraints: &[JointConstraint], states: usize) {
         self.starts.clear();
         self.starts.push(0);
         for state in 0..states {
@@ -371,9 +444,15 @@ impl JointTrees {
                 }
             }
         }
+    }
+
+    /// Takes the `count` accepted joints leaf first into `joints`: a joint is ready when one
+    /// of its bodies has no other joint left, and that side is eliminated into the other.
+    /// When only loops are left, the first joint left closes one and goes to the iterative
+    /// solve.
+    fn order_leaf_first(&mut self, constraints: &[JointConstraint], count: usize) {
         self.removed.clear();
         self.removed.resize(constraints.len(), false);
-        // A joint is ready when one of its bodies has no other joint left.
         let leaf = |left: &[u32], moves: bool, state: usize| !moves || left[state] <= 1;
         self.queue.clear();
         for (index, c) in constraints.iter().enumerate() {
@@ -390,8 +469,6 @@ impl JointTrees {
                 head += 1;
                 self.queue[head - 1] as usize
             } else {
-                // Only loops are left: the first joint left closes one, and goes to the
-                // iterative solve.
                 while self.removed[next_loop] || !self.accepted[next_loop] {
                     next_loop += 1;
                 }
@@ -410,65 +487,13 @@ impl JointTrees {
                 continue;
             }
             // The leaf side is eliminated into the pivot.
-            let pivot_b = ready_a;
-            let Some(point) = c.hinge_point() else {
+            let Some(joint) = TreeJoint::of(index, c, ready_a) else {
                 continue;
             };
-            let limit = c.hinge_limit().map(|limit| {
-                let l = limit.limits;
-                let mut tree = TreeLimit {
-                    limit,
-                    stop: 1.0,
-                    locked: l.upper - l.lower < LOCKED_HINGE_RANGE,
-                    active: false,
-                    slack: 0.0,
-                    scales: (0.0, 1.0, 0.0),
-                };
-                tree.aim(limit.angle(&BodyState::spare(), &BodyState::spare()));
-                tree
-            });
-            let i = &c.impulses;
-            let held = match limit {
-                Some(l) if l.locked => i.lower - i.upper,
-                Some(l) if l.stop > 0.0 => i.lower,
-                Some(_) => i.upper,
-                None => 0.0,
-            };
-            let (ma, ia, mb, ib) = point.inverse_masses();
-            // The anchors' lengths do not change as the bodies turn.
-            let (ra, rb) = point.anchors(&BodyState::spare(), &BodyState::spare());
-            let own = [
-                ma + mb + 0.5 * (ia * ra.norm_squared() + ib * rb.norm_squared()),
-                ia + ib,
-            ];
-            self.joints.push(TreeJoint {
-                constraint: index,
-                point,
-                limit,
-                tree: 0,
-                slot_a: 0,
-                slot_b: 0,
-                own,
-                a: c.a,
-                b: c.b,
-                moves_a: c.moves_a,
-                moves_b: c.moves_b,
-                pivot_b,
-                impulse: [i.linear.x, i.linear.y, held],
-                ra: Vec2::zeros(),
-                rb: Vec2::zeros(),
-                inverse: [0.0; 6],
-                spread: [[0.0; 3]; 3],
-                z: [0.0; 3],
-                change: [0.0; 3],
-            });
+            self.joints.push(joint);
             self.remove(constraints, index);
             placed += 1;
         }
-        for tree in &self.joints {
-            constraints[tree.constraint].leave_point_to_tree();
-        }
-        self.group_by_tree();
     }
 
     /// Puts the planned joints tree after tree, each tree's in its order (which eliminates
