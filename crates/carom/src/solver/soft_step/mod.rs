@@ -17,7 +17,7 @@
 //! - `scheduler`: blocks of a stage handed to threads, with a barrier between stages;
 //! - `shared_states`: the body states the threads write in place (with the solver's
 //!   `unsafe` code, here and in `lanes::avx`, saying why it is sound);
-//! - `joint_trees`: direct joints, each tree of hinges solved exactly;
+//! - `joint_trees`: direct joints, each tree of hinges planned and solved exactly;
 //! - `shock_propagation`: shock propagation's levels and supports, planned each step;
 //! - `shock_bundles`: shock propagation's supports, a level's round at a time in SIMD lanes;
 //! - `lanes`: the SIMD lanes, `wide`'s four or AVX's eight.
