@@ -127,7 +127,7 @@ pub use world::snapshot::Snapshot;
 pub use world::{CastHit, World};
 
 /// The everyday types, for `use carom::prelude::*`: a world and its settings, bodies,
-/// colliders, shapes and joints, what a step reports, and the maths.
+/// colliders, shapes and joints, the solver's settings, the error type and the maths.
 pub mod prelude {
     pub use crate::{
         Body, BodyDef, BodyHandle, BodyKind, CaromError, ChainDef, Collider, ColliderDef,
@@ -146,9 +146,10 @@ pub mod query {
     pub use crate::geometry::query::manifold::{FeatureId, Manifold, ManifoldPoint};
 }
 
-/// How a world describes itself for drawing ([`World::debug_draw`]): a [`DebugDraw`](draw::DebugDraw)
-/// sink, or the [`DrawList`](draw::DrawList) it fills, of circles, polygons, segments and
-/// points in world coordinates with colours and widths in pixels.
+/// How a world describes itself for drawing ([`World::debug_draw`]): a
+/// [`DebugDraw`](draw::DebugDraw) sink, or the [`DrawList`](draw::DrawList) it fills, of
+/// circles, polygons, segments and points in world coordinates with colours and widths in
+/// pixels.
 pub mod draw {
     pub use crate::debug_draw::{
         ARROW_WIDTH, Color, DebugDraw, DrawCircle, DrawFlags, DrawList, DrawOptions, DrawPoint,
