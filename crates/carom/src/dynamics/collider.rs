@@ -580,9 +580,7 @@ impl Collider {
         let mut placed = WorldShape::new(&self.shape, &Isometry::identity());
         self.place_shape(&mut placed, body_transform);
         if placed != self.world_shape || placed.aabb() != self.aabb {
-            return Err(CaromError::BadSave {
-                reason: "a collider is not where its body is".into(),
-            });
+            return Err(CaromError::bad_save("a collider is not where its body is"));
         }
         Ok(())
     }
