@@ -170,7 +170,7 @@ impl Events {
                     spacing,
                     of,
                 } => {
-                    let template = crate::build::generate(of).map_err(|e| (index, e))?;
+                    let template = crate::generate::generate(of).map_err(|e| (index, e))?;
                     let groups = Spawn::groups(&template, *columns, *rows);
                     let spawn = Spawn::new(
                         (*at, *every),

@@ -37,25 +37,30 @@
 #![cfg_attr(feature = "f64", allow(clippy::unnecessary_cast))]
 
 mod build;
+mod defs;
 mod error;
 mod events;
+mod generate;
 mod load;
 mod one_way;
+mod pending_joint;
 mod player;
 mod recording;
 mod saved;
 pub mod scene;
+mod scene_world;
 mod snapshot;
 mod spawn;
 mod timeline;
 
-pub use build::{SceneWorld, build};
+pub use build::build;
 pub use error::SceneError;
 pub use load::{parse, read};
 pub use player::{Player, PlayerInput};
 pub use recording::{GRAB_ACCELERATION, Hand, Input, Parting, RECORDING_FORMAT, Recording, Timed};
 pub use saved::{SavedState, to_text, write};
 pub use scene::{Accuracy, Camera, KeyChange, PlayerKey, SCENE_FORMAT, Scene};
+pub use scene_world::SceneWorld;
 pub use snapshot::SceneSnapshot;
 pub use spawn::{Made, SpawnChange, SpawnSchedule};
 pub use timeline::{Course, KEYFRAME_BUDGET, KEYFRAME_EVERY, Timeline, TimelineError};

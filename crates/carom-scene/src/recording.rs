@@ -6,10 +6,11 @@
 //! in the hash recorded, natively or in a browser, whichever of them recorded it. A replay that
 //! does not names the first step whose hash differs: the step where the two runs parted.
 
-use crate::build::{SceneWorld, build};
+use crate::build::build;
 use crate::error::SceneError;
 use crate::load::parse;
 use crate::player::PlayerInput;
+use crate::scene_world::SceneWorld;
 use carom::{BodyHandle, Effect, JointDef, JointHandle, Real, SolverParams, World, vec2};
 use serde::{Deserialize, Serialize};
 

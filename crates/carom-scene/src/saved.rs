@@ -2,11 +2,11 @@
 //! impulse and island (carom's saved world), the names and colours of its bodies, and how far
 //! its timed events have got.
 
-use crate::build::SceneWorld;
 use crate::error::SceneError;
 use crate::events::Events;
 use crate::player::{Player, SavedPlayer};
 use crate::scene::Scene;
+use crate::scene_world::SceneWorld;
 use carom::{BodyHandle, World};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, HashMap};

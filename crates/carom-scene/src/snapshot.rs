@@ -2,9 +2,9 @@
 //! [`Snapshot`](carom::Snapshot) and what the scene adds to it (its timed events, its player,
 //! the colours of the bodies it made).
 
-use crate::build::SceneWorld;
 use crate::events::Events;
 use crate::player::Player;
+use crate::scene_world::SceneWorld;
 use carom::{BodyHandle, Snapshot};
 use std::collections::HashMap;
 

@@ -2,7 +2,8 @@
 //! places of a grid, and the same turns written out ahead ([`SpawnSchedule`]) so that another
 //! engine can make and remove the same bodies before the same steps.
 
-use crate::build::{Batch, Target, add_bodies};
+use crate::generate::{Batch, add_bodies};
+use crate::pending_joint::Target;
 use carom::{BodyHandle, JointHandle, Real, Vec2, World, vec2};
 use serde::{Deserialize, Serialize};
 use std::collections::HashMap;

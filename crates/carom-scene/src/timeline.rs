@@ -11,8 +11,8 @@
 //! asleep replays almost for free; its collapse does not), so the recent past stays a few
 //! steps away and the whole run stays reachable.
 
-use crate::build::SceneWorld;
 use crate::recording::{Hand, Input, Recording};
+use crate::scene_world::SceneWorld;
 use crate::snapshot::SceneSnapshot;
 use carom::CaromError;
 use std::mem::size_of;
