@@ -124,6 +124,52 @@ pub(crate) struct SupportPoint {
 }
 
 impl Support {
+    /// The support at contact `i` of `inputs`, its upper body the one of higher `level`,
+    /// its points' masses and warm-start impulses prepared.
+    fn of(inputs: &BundleInputs, i: usize, level: &[u32]) -> Self {
+        let [a, b] = inputs.body_indices[i].map(|index| inputs.state(index as usize));
+        let upper_b = level[b] > level[a];
+        let mass = inputs.masses[if upper_b { b } else { a }];
+        let contact = &inputs.contacts[i];
+        let manifold = contact.manifold();
+        let normal = manifold.normal;
+        let tangent = perp_cw(normal);
+        let mut support = Support {
+            contact_index: i,
+            a,
+            b,
+            upper_b,
+            inv_mass: mass.inv_mass,
+            inv_inertia: mass.inv_inertia,
+            normal,
+            friction: contact.friction(),
+            tangent_speed: contact.tangent_speed(),
+            points: [SupportPoint::default(); 2],
+            point_count: manifold.points().len(),
+        };
+        for (point, mp) in support.points.iter_mut().zip(manifold.points()) {
+            let (ra, rb) = (mp.anchor_a, mp.anchor_b);
+            let r = if upper_b { rb } else { ra };
+            let k = |d: Vec2| mass.inv_mass + mass.inv_inertia * cross(r, d).powi(2);
+            let inverse = |k: Real| if k > 0.0 { 1.0 / k } else { 0.0 };
+            *point = SupportPoint {
+                anchor_a: ra,
+                anchor_b: rb,
+                base_separation: mp.separation - normal.dot(&(rb - ra)),
+                normal_mass: inverse(k(normal)),
+                tangent_mass: inverse(k(tangent)),
+                normal_impulse: if inputs.warm_starting {
+                    mp.shock_impulse
+                } else {
+                    0.0
+                },
+                tangent_impulse: 0.0,
+                total_normal_impulse: 0.0,
+            };
+        }
+        support
+    }
+
     pub(crate) fn points(&self) -> &[SupportPoint] {
         &self.points[..self.point_count]
     }
@@ -259,10 +305,19 @@ impl ShockPropagation {
         let Some(up) = up else {
             return;
         };
-        let count = inputs.masses.len();
-        let moves = |state: usize| inputs.masses[state].dynamic;
-        // Each support of a moving body as (lower, upper): its normal, from A to B, points up
-        // or down.
+        self.find_supports(inputs, up);
+        self.level_bodies(inputs);
+        self.order_supports(inputs);
+        for &(_, i) in &self.order {
+            let support = Support::of(inputs, i as usize, &self.level);
+            self.supports.push(support);
+        }
+        self.pack(inputs.masses.len());
+    }
+
+    /// Each support of a moving body as (lower, upper, contact): its normal, from A to B,
+    /// points up or down.
+    fn find_supports(&mut self, inputs: &BundleInputs, up: Vec2) {
         self.found.clear();
         for &i in inputs.order {
             let [a, b] = inputs.body_indices[i].map(|index| inputs.state(index as usize));
@@ -274,13 +329,21 @@ impl ShockPropagation {
             } else {
                 continue;
             };
-            if moves(support.1) {
+            if inputs.masses[support.1].dynamic {
                 self.found
                     .push([support.0 as u32, support.1 as u32, i as u32]);
             }
         }
-        // Moving bodies resting on ones that do not move start the search at level 1; the
-        // graph leads from each moving body to the moving bodies it supports.
+    }
+
+    /// Each body's level, breadth first over the supports: moving bodies resting on ones
+    /// that do not move are level 1; bodies that do not move are level 0, and moving bodies
+    /// that nothing still holds up stay unreached.
+    fn level_bodies(&mut self, inputs: &BundleInputs) {
+        let count = inputs.masses.len();
+        let moves = |state: usize| inputs.masses[state].dynamic;
+        // The search starts at level 1; the graph leads from each moving body to the moving
+        // bodies it supports.
         self.level.clear();
         self.level.extend(
             inputs
@@ -326,60 +389,18 @@ impl ShockPropagation {
                 }
             }
         }
-        // Every support from a lower level to a higher one, lowest first.
+    }
+
+    /// Every support from a lower level to a higher one, lowest first.
+    fn order_supports(&mut self, inputs: &BundleInputs) {
         self.order.clear();
         for &[lower, upper, i] in &self.found {
             let (below, above) = (self.level[lower as usize], self.level[upper as usize]);
-            if moves(lower as usize) && above != UNREACHED && below < above {
+            if inputs.masses[lower as usize].dynamic && above != UNREACHED && below < above {
                 self.order.push((below, i));
             }
         }
         self.order.sort_unstable();
-        for &(_, i) in &self.order {
-            let i = i as usize;
-            let [a, b] = inputs.body_indices[i].map(|index| inputs.state(index as usize));
-            let upper_b = self.level[b] > self.level[a];
-            let mass = inputs.masses[if upper_b { b } else { a }];
-            let contact = &inputs.contacts[i];
-            let manifold = contact.manifold();
-            let normal = manifold.normal;
-            let tangent = perp_cw(normal);
-            let mut support = Support {
-                contact_index: i,
-                a,
-                b,
-                upper_b,
-                inv_mass: mass.inv_mass,
-                inv_inertia: mass.inv_inertia,
-                normal,
-                friction: contact.friction(),
-                tangent_speed: contact.tangent_speed(),
-                points: [SupportPoint::default(); 2],
-                point_count: manifold.points().len(),
-            };
-            for (point, mp) in support.points.iter_mut().zip(manifold.points()) {
-                let (ra, rb) = (mp.anchor_a, mp.anchor_b);
-                let r = if upper_b { rb } else { ra };
-                let k = |d: Vec2| mass.inv_mass + mass.inv_inertia * cross(r, d).powi(2);
-                let inverse = |k: Real| if k > 0.0 { 1.0 / k } else { 0.0 };
-                *point = SupportPoint {
-                    anchor_a: ra,
-                    anchor_b: rb,
-                    base_separation: mp.separation - normal.dot(&(rb - ra)),
-                    normal_mass: inverse(k(normal)),
-                    tangent_mass: inverse(k(tangent)),
-                    normal_impulse: if inputs.warm_starting {
-                        mp.shock_impulse
-                    } else {
-                        0.0
-                    },
-                    tangent_impulse: 0.0,
-                    total_normal_impulse: 0.0,
-                };
-            }
-            self.supports.push(support);
-        }
-        self.pack(count);
     }
 
     /// Puts the supports into bundles, level by level and round by round (`count` states,
