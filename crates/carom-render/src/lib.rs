@@ -22,5 +22,5 @@ pub use camera::Camera;
 pub use error::RenderError;
 pub use gpu::Gpu;
 pub use offscreen::Offscreen;
-pub use renderer::{Renderer, clear_color};
+pub use renderer::{ARROW_WIDTH, OUTLINE_WIDTH, Renderer, clear_color};
 pub use screen::Screen;

@@ -7,7 +7,6 @@ use crate::corners::{self, Corner, CornerTexture};
 use crate::error::RenderError;
 use crate::shaders;
 use bytemuck::{Pod, Zeroable};
-use carom::draw::{ARROW_WIDTH, OUTLINE_WIDTH};
 use carom::draw::{Color, DrawList};
 use carom::{Real, Vec2};
 use std::ops::Range;
@@ -60,6 +59,11 @@ struct SegmentInstance {
 
 /// Arrow heads are this long on screen, pixels.
 const ARROW_HEAD: f32 = 10.0;
+/// An arrow's shaft and head, pixels thick.
+pub const ARROW_WIDTH: f32 = 2.0;
+/// Every polygon's and disc's outline, pixels thick (carom's debug draw draws a circle's
+/// radius line as thick).
+pub const OUTLINE_WIDTH: f32 = 1.5;
 
 /// A buffer that grows by doubling and is otherwise reused.
 struct GrowingBuffer {
@@ -310,7 +314,7 @@ impl Renderer {
         for arrow in &list.arrows {
             let (start, end) = (arrow.start - origin, arrow.end - origin);
             self.segment_instances
-                .push(segment(start, end, arrow.width, arrow.color));
+                .push(segment(start, end, ARROW_WIDTH, arrow.color));
             let shaft = end - start;
             if shaft.norm() > 1e-9 {
                 let back = -shaft.normalize() * head.min(shaft.norm() * 0.5);

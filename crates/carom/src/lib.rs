@@ -148,12 +148,13 @@ pub mod query {
 
 /// How a world describes itself for drawing ([`World::debug_draw`]): a
 /// [`DebugDraw`](draw::DebugDraw) sink, or the [`DrawList`](draw::DrawList) it fills, of
-/// circles, polygons, segments and points in world coordinates with colours and widths in
-/// pixels.
+/// circles, polygons, segments, arrows and points in world coordinates with colours, and
+/// the widths of lines and dots in pixels (how thick outlines and arrows are is the
+/// renderer's choice).
 pub mod draw {
     pub use crate::debug_draw::{
-        ARROW_WIDTH, Color, DebugDraw, DrawCircle, DrawFlags, DrawList, DrawOptions, DrawPoint,
-        DrawPolygon, DrawSegment, OUTLINE_WIDTH,
+        Color, DebugDraw, DrawArrow, DrawCircle, DrawFlags, DrawList, DrawOptions, DrawPoint,
+        DrawPolygon, DrawSegment,
     };
 }
 

@@ -20,7 +20,7 @@ mod sink;
 pub use color::Color;
 pub(crate) use color::palette;
 pub use options::{DrawFlags, DrawOptions};
-pub use sink::{DebugDraw, DrawCircle, DrawList, DrawPoint, DrawPolygon, DrawSegment};
+pub use sink::{DebugDraw, DrawArrow, DrawCircle, DrawList, DrawPoint, DrawPolygon, DrawSegment};
 
 use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::Collider;
@@ -29,11 +29,11 @@ use crate::geometry::shape::WorldShape;
 use crate::math::{Real, Vec2, vec2};
 use crate::world::World;
 
-/// Arrow shaft thickness, pixels.
-pub const ARROW_WIDTH: f32 = 2.0;
-/// Shape outline thickness, pixels: renderers draw polygon and circle outlines this thick,
-/// and circles' radius lines.
-pub const OUTLINE_WIDTH: f32 = 1.5;
+/// A circle's radius line, pixels (as thick as carom-render's outlines).
+const RADIUS_LINE_WIDTH: f32 = 1.5;
+/// A segment or chain link drawn as a shape, pixels: twice the radius line, so that a shape
+/// with no inside still reads as one.
+const SHAPE_LINE_WIDTH: f32 = 2.0 * RADIUS_LINE_WIDTH;
 /// Reference and incident edge thickness, pixels.
 const CONTACT_EDGE_WIDTH: f32 = 4.0;
 /// Contact point diameter, pixels.
@@ -169,16 +169,16 @@ fn draw_shape(body: &Body, collider: &Collider, color: Color, out: &mut impl Deb
             out.polygon(&rounded_outline(vertices, normals, *radius), fill, outline);
         }
         WorldShape::Polygon { vertices, .. } => {
-            out.segment(vertices[0], vertices[1], 2.0 * OUTLINE_WIDTH, outline);
+            out.segment(vertices[0], vertices[1], SHAPE_LINE_WIDTH, outline);
         }
         WorldShape::ChainSegment { point1, point2, .. } => {
-            out.segment(*point1, *point2, 2.0 * OUTLINE_WIDTH, outline);
+            out.segment(*point1, *point2, SHAPE_LINE_WIDTH, outline);
         }
         WorldShape::Circle { center, radius } => {
             out.circle(*center, *radius, fill, outline);
             let turn = body.rotation() * collider.local_transform().rotation;
             let rim = center + turn * vec2(*radius, 0.0);
-            out.segment(*center, rim, OUTLINE_WIDTH, outline);
+            out.segment(*center, rim, RADIUS_LINE_WIDTH, outline);
         }
     }
 }

@@ -1,18 +1,18 @@
 //! Where drawing goes: the [`DebugDraw`] sink and [`DrawList`], a sink that records.
 
-use super::{ARROW_WIDTH, Color};
+use super::Color;
 use crate::math::{Real, Vec2};
 
 /// A sink for drawing primitives. Widths and sizes are screen pixels; everything else is metres.
 pub trait DebugDraw {
-    /// A convex polygon, vertices counter-clockwise, filled and outlined
-    /// [`super::OUTLINE_WIDTH`] pixels thick.
+    /// A convex polygon, vertices counter-clockwise, filled and outlined (the outline as
+    /// thick as the renderer draws every outline).
     fn polygon(&mut self, vertices: &[Vec2], fill: Color, outline: Color);
     /// A disc, filled and outlined.
     fn circle(&mut self, center: Vec2, radius: Real, fill: Color, outline: Color);
     /// A straight line `width` pixels thick.
     fn segment(&mut self, start: Vec2, end: Vec2, width: f32, color: Color);
-    /// An arrow from `start` to the head at `end`.
+    /// An arrow from `start` to the head at `end`, as thick as the renderer draws arrows.
     fn arrow(&mut self, start: Vec2, end: Vec2, color: Color);
     /// A dot `size` pixels across.
     fn point(&mut self, at: Vec2, size: f32, color: Color);
@@ -44,7 +44,7 @@ pub struct DrawCircle {
     pub outline: Color,
 }
 
-/// A thick line (or an arrow) of a [`DrawList`].
+/// A thick line of a [`DrawList`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DrawSegment {
     /// Start, m.
@@ -53,6 +53,17 @@ pub struct DrawSegment {
     pub end: Vec2,
     /// Thickness, pixels.
     pub width: f32,
+    /// Colour.
+    pub color: Color,
+}
+
+/// An arrow of a [`DrawList`], its head at `end`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawArrow {
+    /// Tail, m.
+    pub start: Vec2,
+    /// Head, m.
+    pub end: Vec2,
     /// Colour.
     pub color: Color,
 }
@@ -78,10 +89,10 @@ pub struct DrawList {
     pub polygons: Vec<DrawPolygon>,
     /// Filled discs.
     pub circles: Vec<DrawCircle>,
-    /// Lines, polygon outlines included.
+    /// Lines.
     pub segments: Vec<DrawSegment>,
-    /// Arrows, drawn as segments with a head.
-    pub arrows: Vec<DrawSegment>,
+    /// Arrows.
+    pub arrows: Vec<DrawArrow>,
     /// Dots.
     pub points: Vec<DrawPoint>,
 }
@@ -148,12 +159,7 @@ impl DebugDraw for DrawList {
     }
 
     fn arrow(&mut self, start: Vec2, end: Vec2, color: Color) {
-        self.arrows.push(DrawSegment {
-            start,
-            end,
-            width: ARROW_WIDTH,
-            color,
-        });
+        self.arrows.push(DrawArrow { start, end, color });
     }
 
     fn point(&mut self, at: Vec2, size: f32, color: Color) {
