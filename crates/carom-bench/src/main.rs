@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 use carom_bench::hard_cases;
 use carom_bench::scaling;
+use carom_bench::sweep::cli::resolve;
 use carom_bench::{Box2dWorld, RapierWorld, RunResult, run_box2d, run_carom, run_rapier};
 use clap::{Parser, Subcommand};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
@@ -131,29 +132,9 @@ enum Command {
     },
     /// Measures what accuracy costs in time: every solver setting of carom, Box2D and Rapier
     /// on the scenes whose exact answer is known, each point's ms per step and error. Writes
-    /// accuracy.csv, README.md (the tables) and accuracy.png (each engine's front) to --out.
-    Sweep {
-        /// Scene files (default: the accuracy scenes in demos/).
-        scenes: Vec<PathBuf>,
-        /// Folder for the CSV, the report and the chart (with --check: where the committed
-        /// sweep is read from).
-        #[arg(long, default_value = "docs/accuracy")]
-        out: PathBuf,
-        /// A part of the settings, one run each: a minute or two instead of ten.
-        #[arg(long)]
-        quick: bool,
-        /// Write nothing; measure the points and compare their errors and overlaps (not their
-        /// times) with --out's accuracy.csv, failing where they differ.
-        #[arg(long)]
-        check: bool,
-        /// Runs per point; its time is the median of the runs' medians (default 1).
-        #[arg(long)]
-        runs: Option<usize>,
-        /// Points measured at once (default: one, so that no point slows another; every core
-        /// with --check, which compares no times).
-        #[arg(long)]
-        jobs: Option<usize>,
-    },
+    /// accuracy.csv, README.md (the tables) and accuracy.png (each engine's front) to --out
+    /// (default docs/accuracy).
+    Sweep(carom_bench::sweep::cli::SweepArgs),
     /// Draws the figures of README.md and docs/ again from the measurements committed in
     /// docs/ (docs/accuracy/accuracy.csv, docs/hard-cases/hard-cases.csv,
     /// docs/bench/peers.csv, docs/bench/stages.csv, docs/bench/snapshots.csv,
@@ -274,17 +255,6 @@ fn keep_min(best: Option<RunResult>, run: RunResult) -> RunResult {
             ..b
         },
         None => run,
-    }
-}
-
-/// The scene file: as given, or for a relative path not found, under the workspace root (so
-/// the default scenes load from any directory).
-fn resolve(path: &Path) -> PathBuf {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    if path.exists() || path.is_absolute() || !root.join(path).exists() {
-        path.to_path_buf()
-    } else {
-        root.join(path)
     }
 }
 
@@ -767,77 +737,6 @@ fn typed_command() -> String {
     command.join(" ")
 }
 
-/// What `carom-bench sweep` was asked.
-struct SweepArgs<'a> {
-    scenes: &'a [PathBuf],
-    out: &'a Path,
-    quick: bool,
-    check: bool,
-    runs: Option<usize>,
-    jobs: Option<usize>,
-}
-
-/// `carom-bench sweep`: measures and writes the report, or with `check` compares what the
-/// code gives now with the committed CSV.
-fn sweep_run(args: SweepArgs) -> Result<(), String> {
-    use carom_bench::sweep::{self, SweepOptions, report};
-    let mut options = if args.quick {
-        SweepOptions::quick()
-    } else {
-        SweepOptions::full()
-    };
-    if !args.scenes.is_empty() {
-        options.scenes = args.scenes.to_vec();
-    }
-    options.scenes = options.scenes.iter().map(|p| resolve(p)).collect();
-    options.runs = args.runs.unwrap_or(1);
-    if options.runs == 0 || args.jobs == Some(0) {
-        return Err("--runs and --jobs must be at least 1".into());
-    }
-    options.jobs = args.jobs.unwrap_or(if args.check {
-        std::thread::available_parallelism().map_or(1, |n| n.get())
-    } else {
-        1
-    });
-    let started = std::time::Instant::now();
-    if !args.check {
-        let points = sweep::sweep_to_folder(&options, args.out, &typed_command())?;
-        eprintln!(
-            "{} points in {:.0} s -> {}",
-            points.len(),
-            started.elapsed().as_secs_f64(),
-            args.out.display()
-        );
-        return Ok(());
-    }
-    let committed_path = args.out.join("accuracy.csv");
-    let committed = std::fs::read_to_string(&committed_path)
-        .map_err(|e| format!("{}: {e}", committed_path.display()))
-        .and_then(|text| {
-            report::parse_csv(&text).map_err(|e| format!("{}: {e}", committed_path.display()))
-        })?;
-    let measured = sweep::sweep(&options, |_, _, _| {})?;
-    let differences = report::differences(&measured, &committed);
-    if differences.is_empty() {
-        eprintln!(
-            "{} points in {:.0} s: every error and overlap as in {}",
-            measured.len(),
-            started.elapsed().as_secs_f64(),
-            committed_path.display()
-        );
-        return Ok(());
-    }
-    for line in &differences {
-        eprintln!("{line}");
-    }
-    Err(format!(
-        "{} of {} points differ from {}: run `carom-bench sweep` and commit what it writes",
-        differences.len(),
-        measured.len(),
-        committed_path.display()
-    ))
-}
-
 /// Times the pyramid rows of [`scaling::SIZES`] in every engine and writes the CSV, table and
 /// chart to `out`.
 /// `carom-bench timeline`: the timeline's memory over a long run of `scene`, and the time to go
@@ -1089,23 +988,9 @@ fn main() -> Result<(), String> {
         }
         return Ok(());
     }
-    if let Some(Command::Sweep {
-        scenes,
-        out,
-        quick,
-        check,
-        runs,
-        jobs,
-    }) = &args.command
-    {
-        return sweep_run(SweepArgs {
-            scenes,
-            out,
-            quick: *quick,
-            check: *check,
-            runs: *runs,
-            jobs: *jobs,
-        });
+    if let Some(Command::Sweep(sweep)) = &args.command {
+        let base = carom_bench::sweep::SweepOptions::full();
+        return sweep.run(base, Path::new("docs/accuracy"), &typed_command());
     }
     if args.runs == 0 {
         return Err("--runs must be at least 1".into());

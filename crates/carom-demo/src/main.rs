@@ -5,14 +5,15 @@
 //! scene headless and reports what it measured; `carom snapshot` renders one to a PNG;
 //! `carom bench` sweeps solver settings and shows what accuracy costs in time.
 
-use carom::{Effect, Real, SolverKind};
-use carom_bench::sweep::{Engine, SweepOptions, sweep_to_folder};
+use carom::{Effect, SolverKind};
+use carom_bench::sweep::SweepOptions;
+use carom_bench::sweep::cli::{SweepArgs, solver_kind};
 use carom_demo::recording;
 use carom_demo::run::{RunOptions, run};
 use carom_demo::snapshot::{self, SnapshotOptions, parse_size};
 use carom_demo::window::{self, WindowOptions};
 use clap::{Parser, Subcommand};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 /// The carom physics demo.
@@ -77,47 +78,9 @@ enum Command {
     },
     /// Sweep solvers, iterations and substeps (and joint stiffness and direct joints on scenes
     /// with joints, shock propagation on piles at rest) over scenes: ms/step against error,
-    /// written as a CSV, a markdown report and a chart.
-    Bench {
-        /// Scene files (default: the seven accuracy scenes in demos/).
-        scenes: Vec<PathBuf>,
-        /// The folder the CSV, report and chart go to.
-        #[arg(long, default_value = "target/bench")]
-        out: PathBuf,
-        /// Runs per point (the time is their median).
-        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=100))]
-        runs: u32,
-        /// Solvers, comma separated (default: all).
-        #[arg(long, value_delimiter = ',', value_parser = solver_kind)]
-        solvers: Option<Vec<SolverKind>>,
-        /// Iteration counts, comma separated (default: 1,2,4,8,16,32,64).
-        #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=64))]
-        iterations: Option<Vec<u32>>,
-        /// Substep counts for soft step, comma separated (default: 1,2,4,8).
-        #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u32).range(1..=16))]
-        substeps: Option<Vec<u32>>,
-        /// Joint stiffnesses for soft step on scenes with joints, Hz, comma separated (default:
-        /// 60,240). Each is capped at a quarter of the substep rate; those the cap makes equal
-        /// run once.
-        #[arg(long, value_delimiter = ',', value_parser = joint_hertz)]
-        joint_hertz: Option<Vec<Real>>,
-        /// Direct joints for soft step on scenes with joints, comma separated: off, on or
-        /// both (default: off,on).
-        #[arg(long, value_delimiter = ',', value_parser = on_or_off)]
-        direct_joints: Option<Vec<bool>>,
-        /// Shock propagation for soft step on scenes of bodies at rest under gravity, comma
-        /// separated: off, on or both (default: off,on).
-        #[arg(long, value_delimiter = ',', value_parser = on_or_off)]
-        shock_propagation: Option<Vec<bool>>,
-        /// How long scenes without an accuracy measure run, s.
-        #[arg(long, default_value_t = 10.0)]
-        seconds: Real,
-        /// Engines, comma separated: carom, box2d, rapier (default: carom). Box2D is swept
-        /// over its substeps (1 to 16) and contact stiffness (30 and 60 Hz), Rapier over its
-        /// solver and stabilization iterations (1 to 16), on the same scenes.
-        #[arg(long, value_delimiter = ',', value_parser = engine)]
-        engines: Option<Vec<Engine>>,
-    },
+    /// written as a CSV, a markdown report and a chart to --out (default target/bench). The
+    /// same sweep as `carom-bench sweep`, carom alone unless --engines names the peers.
+    Bench(SweepArgs),
     /// Run a scene headless and write the run as a recording: the scene and the state hash
     /// after every step, for `carom replay` (natively or in the web build) to check.
     Record {
@@ -170,40 +133,6 @@ fn parse_draw_changes(text: &str) -> Result<DrawChanges, String> {
     snapshot::parse_draw_changes(text).map(DrawChanges)
 }
 
-/// A solver from its name on the command line (`soft-step` or `soft_step`).
-fn solver_kind(text: &str) -> Result<SolverKind, String> {
-    SolverKind::from_id(&text.replace('-', "_")).ok_or_else(|| {
-        let names: Vec<String> = SolverKind::ALL
-            .iter()
-            .map(|kind| kind.id().replace('_', "-"))
-            .collect();
-        format!("unknown solver {text:?}; one of {}", names.join(", "))
-    })
-}
-
-/// An engine from the command line.
-fn engine(text: &str) -> Result<Engine, String> {
-    Engine::from_name(text)
-        .ok_or_else(|| format!("unknown engine {text:?}; one of carom, box2d, rapier"))
-}
-
-/// A joint stiffness from the command line: finite and positive, as the solver requires.
-fn joint_hertz(text: &str) -> Result<Real, String> {
-    match text.parse::<Real>() {
-        Ok(hertz) if hertz.is_finite() && hertz > 0.0 => Ok(hertz),
-        _ => Err(format!("{text:?} is not a positive number of hertz")),
-    }
-}
-
-/// `on` or `off` from the command line.
-fn on_or_off(text: &str) -> Result<bool, String> {
-    match text {
-        "on" => Ok(true),
-        "off" => Ok(false),
-        _ => Err(format!("{text:?} is neither on nor off")),
-    }
-}
-
 /// Effects to switch on (`true`) and off, in order.
 #[derive(Debug, Clone)]
 struct EffectChanges(Vec<(Effect, bool)>);
@@ -216,24 +145,20 @@ fn parse_effects(text: &str) -> Result<EffectChanges, String> {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
-    match cli.command.clone() {
-        None => {
-            let options = match window_options(&cli) {
-                Ok(options) => options,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return ExitCode::FAILURE;
-                }
-            };
-            match window::run(options) {
-                Ok(()) => ExitCode::SUCCESS,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::FAILURE
-                }
-            }
+    match run_command(Cli::parse()) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
         }
+    }
+}
+
+/// Does what the command line asks. A replay that parts from its recording is a failure
+/// without an error: its summary already says where.
+fn run_command(cli: Cli) -> Result<ExitCode, String> {
+    match cli.command.clone() {
+        None => window::run(window_options(&cli)?).map_err(|e| e.to_string())?,
         Some(Command::Run {
             scene,
             steps,
@@ -252,105 +177,35 @@ fn main() -> ExitCode {
                 effects: effects.map(|changes| changes.0).unwrap_or_default(),
                 threads: threads.map(|n| n as usize),
             };
-            match run(&scene, &options) {
-                Ok(report) => {
-                    if json {
-                        println!("{}", report.to_json());
-                    } else {
-                        println!("{}", report.summary(&scene.display().to_string()));
-                    }
-                    ExitCode::SUCCESS
-                }
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::FAILURE
-                }
+            let report = run(&scene, &options)?;
+            if json {
+                println!("{}", report.to_json());
+            } else {
+                println!("{}", report.summary(&scene.display().to_string()));
             }
         }
-        Some(Command::Bench {
-            scenes,
-            out,
-            runs,
-            solvers,
-            iterations,
-            substeps,
-            joint_hertz,
-            direct_joints,
-            shock_propagation,
-            seconds,
-            engines,
-        }) => {
-            let defaults = SweepOptions::default();
-            let options = SweepOptions {
-                scenes: if scenes.is_empty() {
-                    defaults.scenes
-                } else {
-                    scenes
-                },
-                runs: runs as usize,
-                solvers: solvers.unwrap_or(defaults.solvers),
-                iterations: iterations.unwrap_or(defaults.iterations),
-                substeps: substeps.unwrap_or(defaults.substeps),
-                joint_hertz: joint_hertz.unwrap_or(defaults.joint_hertz),
-                direct_joints: direct_joints.unwrap_or(defaults.direct_joints),
-                shock_propagation: shock_propagation.unwrap_or(defaults.shock_propagation),
-                seconds,
-                engines: engines.unwrap_or(defaults.engines),
-                ..defaults
-            };
+        Some(Command::Bench(sweep)) => {
             let command: Vec<String> = std::env::args().collect();
-            match sweep_to_folder(&options, &out, &command.join(" ")) {
-                Ok(points) => {
-                    println!(
-                        "{} points -> {}",
-                        points.len(),
-                        out.join("README.md").display()
-                    );
-                    ExitCode::SUCCESS
-                }
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::FAILURE
-                }
-            }
+            let out = Path::new("target/bench");
+            sweep.run(SweepOptions::default(), out, &command.join(" "))?;
         }
         Some(Command::Record { scene, steps, out }) => {
-            let written = recording::record(&scene, steps).and_then(|recording| {
-                std::fs::write(&out, recording.to_text())
-                    .map_err(|e| format!("cannot write {}: {e}", out.display()))
-            });
-            match written {
-                Ok(()) => {
-                    println!("{}: {steps} steps -> {}", scene.display(), out.display());
-                    ExitCode::SUCCESS
-                }
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::FAILURE
-                }
-            }
+            let recording = recording::record(&scene, steps)?;
+            std::fs::write(&out, recording.to_text())
+                .map_err(|e| format!("cannot write {}: {e}", out.display()))?;
+            println!("{}: {steps} steps -> {}", scene.display(), out.display());
         }
         Some(Command::Replay { run, json }) => {
-            let replayed = std::fs::read_to_string(&run)
-                .map_err(|e| format!("cannot read {}: {e}", run.display()))
-                .and_then(|text| recording::replay(&text, &run.display().to_string()));
-            match replayed {
-                Ok(replayed) => {
-                    if json {
-                        println!("{}", replayed.to_json());
-                    } else {
-                        println!("{}", replayed.summary());
-                    }
-                    if replayed.parting.is_none() {
-                        ExitCode::SUCCESS
-                    } else {
-                        ExitCode::FAILURE
-                    }
-                }
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::FAILURE
-                }
+            let text = std::fs::read_to_string(&run)
+                .map_err(|e| format!("cannot read {}: {e}", run.display()))?;
+            let replayed = recording::replay(&text, &run.display().to_string())?;
+            if json {
+                println!("{}", replayed.to_json());
+            } else {
+                println!("{}", replayed.summary());
+            }
+            if replayed.parting.is_some() {
+                return Ok(ExitCode::FAILURE);
             }
         }
         Some(Command::Snapshot {
@@ -367,15 +222,10 @@ fn main() -> ExitCode {
                 height: size.1,
                 draw: draw.map(|changes| changes.0).unwrap_or_default(),
             };
-            match snapshot_command(&scene, &options, &out, time_frames) {
-                Ok(()) => ExitCode::SUCCESS,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::FAILURE
-                }
-            }
+            snapshot_command(&scene, &options, &out, time_frames)?;
         }
     }
+    Ok(ExitCode::SUCCESS)
 }
 
 /// `carom snapshot`: steps, renders, writes the PNG, and optionally times more frames.

@@ -1,5 +1,5 @@
-//! The accuracy sweep behind `carom bench` (the demo's command line is its front, and the
-//! demo's accuracy panel runs it on the scene open): what accuracy costs in time. Every solver
+//! The accuracy sweep behind `carom-bench sweep` and the demo's `carom bench` (both read their
+//! command line with [`cli::SweepArgs`]; the demo's accuracy panel runs it on the scene open): what accuracy costs in time. Every solver
 //! setting (solver × iterations × substeps, and joint stiffness on scenes with joints) runs
 //! each scene a few times, sleeping off; each point of the sweep is its median ms/step and its
 //! error against the scene's exact answer ([`carom_scene::Accuracy`]). With peers, Box2D v3
@@ -10,6 +10,8 @@
 // The PNG chart is the command line's; plotters' text has no fonts on wasm32.
 #[cfg(feature = "native")]
 pub mod chart;
+#[cfg(feature = "native")]
+pub mod cli;
 pub mod engine;
 pub mod front;
 pub mod measure;
@@ -129,6 +131,12 @@ impl SweepOptions {
     /// every option. Every point of it is a point of the whole sweep, measured the same way,
     /// so its errors must equal those the whole sweep wrote (CI checks that they do).
     pub fn quick() -> Self {
+        SweepOptions::full().quickened()
+    }
+
+    /// The part of these options that [`SweepOptions::quick`] takes of the whole sweep: the
+    /// same scenes, engines and options, at fewer iterations and substeps, one run each.
+    pub fn quickened(self) -> Self {
         SweepOptions {
             runs: 1,
             iterations: vec![1, 8],
@@ -136,7 +144,7 @@ impl SweepOptions {
             box2d_substeps: vec![1, 4],
             rapier_substeps: vec![1, 4],
             rapier_stabilization: vec![1],
-            ..SweepOptions::full()
+            ..self
         }
     }
 
