@@ -504,9 +504,13 @@ fn definitions_and_settings_survive_a_round_trip_through_ron() {
             .offset(vec2(-0.75, 1.0))
             .friction(0.2),
         )
-        .collider(ColliderDef::new(Shape::circle(0.3)).density(4.0));
+        .collider(ColliderDef::new(Shape::circle(0.3)).density(4.0))
+        .restitution(0.25);
     let text = ron::to_string(&body).unwrap();
     let back: BodyDef = ron::from_str(&text).unwrap();
+    // The material set on the body comes back, for colliders added later.
+    assert_eq!(back.every_collider, body.every_collider);
+    assert_eq!(back.every_collider.restitution, Some(0.25));
     // Everything comes back; a polygon is centred on its centroid again, to rounding.
     assert_eq!(ron::to_string(&back).unwrap(), text);
     assert_eq!(back.colliders.len(), 3);

@@ -96,7 +96,7 @@ pub use constants::{
     TIME_STEP_RANGE, TIME_TO_SLEEP,
 };
 pub use dynamics::body::{Body, BodyHandle, BodyKind};
-pub use dynamics::body_def::BodyDef;
+pub use dynamics::body_def::{BodyDef, ColliderSettings};
 pub use dynamics::chain::ChainDef;
 pub use dynamics::collider::{Collider, ColliderDef, ColliderHandle};
 pub use dynamics::drag::DragModel;

@@ -1,15 +1,23 @@
 //! What a body is created from: [`BodyDef`], its kind, placement, velocity, colliders and
-//! the material they share, checked when the body is added to a world.
+//! the material they share ([`ColliderSettings`]), checked when the body is added to a world.
 
 use crate::dynamics::body::BodyKind;
 use crate::dynamics::chain::ChainDef;
 use crate::dynamics::collider::ColliderDef;
+use crate::dynamics::filter::CollisionFilter;
+use crate::dynamics::surface::Surface;
 use crate::error::CaromError;
 use crate::geometry::shape::Shape;
 use crate::math::{Real, Vec2};
 
 /// Everything needed to create a body; build one with [`BodyDef::dynamic`],
 /// [`BodyDef::static_body`] or [`BodyDef::kinematic`] and the chained setters.
+///
+/// The setters give the same body in any order. Those of the material ([`BodyDef::density`],
+/// [`BodyDef::friction`], [`BodyDef::surface`], [`BodyDef::filter`], ...) set it for every
+/// collider of the body, those added with [`BodyDef::collider`] before and after alike
+/// ([`BodyDef::every_collider`] keeps them); to give colliders different materials, set them
+/// on each [`ColliderDef`] and not on the body.
 ///
 /// Values are checked when the body is added to a world.
 #[derive(Debug, Clone, PartialEq)]
@@ -20,6 +28,12 @@ pub struct BodyDef {
     pub kind: BodyKind,
     /// What it is made of: one collider or more, each a shape with its placement and material.
     pub colliders: Vec<ColliderDef>,
+    /// The material set on the body, which every collider takes, whenever it was added.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "ColliderSettings::is_empty")
+    )]
+    pub every_collider: ColliderSettings,
     /// World position of the body's origin.
     #[cfg_attr(feature = "serde", serde(default))]
     pub position: Vec2,
@@ -76,6 +90,60 @@ pub struct BodyDef {
     pub fixed_rotation: bool,
 }
 
+/// What a body sets for every one of its colliders: each setting given replaces the colliders'
+/// own; those left `None` leave them as they are.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
+pub struct ColliderSettings {
+    /// [`ColliderDef::density`].
+    pub density: Option<Real>,
+    /// [`ColliderDef::friction`].
+    pub friction: Option<Real>,
+    /// [`ColliderDef::restitution`].
+    pub restitution: Option<Real>,
+    /// [`ColliderDef::rolling_resistance`].
+    pub rolling_resistance: Option<Real>,
+    /// [`ColliderDef::tangent_speed`].
+    pub tangent_speed: Option<Real>,
+    /// [`ColliderDef::material`].
+    pub material: Option<u64>,
+    /// [`ColliderDef::filter`].
+    pub filter: Option<CollisionFilter>,
+    /// [`ColliderDef::hit_events`].
+    pub hit_events: Option<bool>,
+    /// [`ColliderDef::sensor`].
+    pub sensor: Option<bool>,
+    /// [`ColliderDef::pre_solve`].
+    pub pre_solve: Option<bool>,
+}
+
+impl ColliderSettings {
+    /// Whether it sets nothing.
+    pub fn is_empty(&self) -> bool {
+        *self == ColliderSettings::default()
+    }
+
+    /// Gives `collider` every setting this has.
+    pub fn apply(&self, collider: &mut ColliderDef) {
+        fn set<T: Copy>(given: Option<T>, field: &mut T) {
+            if let Some(value) = given {
+                *field = value;
+            }
+        }
+        set(self.density, &mut collider.density);
+        set(self.friction, &mut collider.friction);
+        set(self.restitution, &mut collider.restitution);
+        set(self.rolling_resistance, &mut collider.rolling_resistance);
+        set(self.tangent_speed, &mut collider.tangent_speed);
+        set(self.material, &mut collider.material);
+        set(self.filter, &mut collider.filter);
+        set(self.hit_events, &mut collider.hit_events);
+        set(self.sensor, &mut collider.sensor);
+        set(self.pre_solve, &mut collider.pre_solve);
+    }
+}
+
 /// [`crate::SLEEP_THRESHOLD`], the default of [`BodyDef::sleep_threshold`] in saved
 /// definitions.
 #[cfg(feature = "serde")]
@@ -103,6 +171,7 @@ impl BodyDef {
         BodyDef {
             kind,
             colliders: vec![ColliderDef::new(shape)],
+            every_collider: ColliderSettings::default(),
             position: Vec2::zeros(),
             angle: 0.0,
             linear_velocity: Vec2::zeros(),
@@ -144,8 +213,10 @@ impl BodyDef {
         Ok(def)
     }
 
-    /// Adds another collider.
-    pub fn collider(mut self, collider: ColliderDef) -> Self {
+    /// Adds another collider; it takes the material set on the body (see
+    /// [`BodyDef::every_collider`]).
+    pub fn collider(mut self, mut collider: ColliderDef) -> Self {
+        self.every_collider.apply(&mut collider);
         self.colliders.push(collider);
         self
     }
@@ -174,71 +245,60 @@ impl BodyDef {
         self
     }
 
-    /// Sets the density of every collider so far.
-    pub fn density(mut self, density: Real) -> Self {
+    /// Sets `settings` for every collider, those added before and after.
+    fn for_every_collider(mut self, settings: impl FnOnce(&mut ColliderSettings)) -> Self {
+        settings(&mut self.every_collider);
         for collider in &mut self.colliders {
-            collider.density = density;
+            self.every_collider.apply(collider);
         }
         self
     }
 
-    /// Sets the friction coefficient of every collider so far.
-    pub fn friction(mut self, friction: Real) -> Self {
-        for collider in &mut self.colliders {
-            collider.friction = friction;
-        }
-        self
+    /// Sets the density of every collider.
+    pub fn density(self, density: Real) -> Self {
+        self.for_every_collider(|every| every.density = Some(density))
     }
 
-    /// Sets the restitution of every collider so far.
-    pub fn restitution(mut self, restitution: Real) -> Self {
-        for collider in &mut self.colliders {
-            collider.restitution = restitution;
-        }
-        self
+    /// Sets the friction coefficient of every collider.
+    pub fn friction(self, friction: Real) -> Self {
+        self.for_every_collider(|every| every.friction = Some(friction))
     }
 
-    /// Sets the whole surface of every collider so far (see [`crate::Surface`]).
-    pub fn surface(mut self, surface: crate::Surface) -> Self {
-        self.colliders = self
-            .colliders
-            .into_iter()
-            .map(|collider| collider.surface(surface))
-            .collect();
-        self
+    /// Sets the restitution of every collider.
+    pub fn restitution(self, restitution: Real) -> Self {
+        self.for_every_collider(|every| every.restitution = Some(restitution))
+    }
+
+    /// Sets the whole surface of every collider (see [`Surface`]).
+    pub fn surface(self, surface: Surface) -> Self {
+        self.for_every_collider(|every| {
+            every.friction = Some(surface.friction);
+            every.restitution = Some(surface.restitution);
+            every.rolling_resistance = Some(surface.rolling_resistance);
+            every.tangent_speed = Some(surface.tangent_speed);
+            every.material = Some(surface.material);
+        })
     }
 
     /// Sets what every collider collides with.
-    pub fn filter(mut self, filter: crate::CollisionFilter) -> Self {
-        for collider in &mut self.colliders {
-            collider.filter = filter;
-        }
-        self
+    pub fn filter(self, filter: CollisionFilter) -> Self {
+        self.for_every_collider(|every| every.filter = Some(filter))
     }
 
-    /// Asks for hit events on every collider so far (see [`ColliderDef::hit_events`]).
-    pub fn hit_events(mut self, on: bool) -> Self {
-        for collider in &mut self.colliders {
-            collider.hit_events = on;
-        }
-        self
+    /// Asks for hit events on every collider, or not (see [`ColliderDef::hit_events`]).
+    pub fn hit_events(self, on: bool) -> Self {
+        self.for_every_collider(|every| every.hit_events = Some(on))
     }
 
-    /// Makes every collider so far a sensor, or not (see [`ColliderDef::sensor`]).
-    pub fn sensor(mut self, on: bool) -> Self {
-        for collider in &mut self.colliders {
-            collider.sensor = on;
-        }
-        self
+    /// Makes every collider a sensor, or not (see [`ColliderDef::sensor`]).
+    pub fn sensor(self, on: bool) -> Self {
+        self.for_every_collider(|every| every.sensor = Some(on))
     }
 
-    /// Shows the contacts of every collider so far to the pre-solve hook, or not (see
+    /// Shows the contacts of every collider to the pre-solve hook, or not (see
     /// [`ColliderDef::pre_solve`]).
-    pub fn pre_solve(mut self, on: bool) -> Self {
-        for collider in &mut self.colliders {
-            collider.pre_solve = on;
-        }
-        self
+    pub fn pre_solve(self, on: bool) -> Self {
+        self.for_every_collider(|every| every.pre_solve = Some(on))
     }
 
     /// Sets the gravity scale.
@@ -290,5 +350,77 @@ impl BodyDef {
     pub fn fixed_rotation(mut self, fixed: bool) -> Self {
         self.fixed_rotation = fixed;
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::vec2;
+
+    fn wheel() -> ColliderDef {
+        ColliderDef::new(Shape::circle(0.3))
+            .offset(vec2(1.0, 0.0))
+            .density(9.0)
+            .restitution(0.7)
+    }
+
+    #[test]
+    fn the_setters_give_the_same_body_in_any_order() {
+        let surface = Surface {
+            friction: 0.1,
+            rolling_resistance: 0.05,
+            ..Surface::default()
+        };
+        let filter = CollisionFilter {
+            group: -3,
+            ..CollisionFilter::default()
+        };
+        let first = BodyDef::dynamic(Shape::rect(1.0, 0.5))
+            .density(2.0)
+            .surface(surface)
+            .filter(filter)
+            .sensor(true)
+            .collider(wheel())
+            .position(vec2(1.0, 2.0));
+        let last = BodyDef::dynamic(Shape::rect(1.0, 0.5))
+            .position(vec2(1.0, 2.0))
+            .collider(wheel())
+            .sensor(true)
+            .filter(filter)
+            .surface(surface)
+            .density(2.0);
+        assert_eq!(first, last);
+        for collider in &first.colliders {
+            assert_eq!(collider.density, 2.0);
+            assert_eq!(collider.friction, 0.1);
+            assert_eq!(collider.rolling_resistance, 0.05);
+            assert_eq!(collider.filter.group, -3);
+            assert!(collider.sensor);
+        }
+        // What the body leaves unset stays each collider's own.
+        assert_eq!(first.colliders[1].offset, vec2(1.0, 0.0));
+        assert_eq!(first.colliders[0].restitution, 0.0);
+        assert_eq!(
+            first.colliders[1].restitution, 0.0,
+            "the surface sets restitution"
+        );
+        let alone = BodyDef::dynamic(Shape::rect(1.0, 0.5)).collider(wheel());
+        assert_eq!(alone.colliders[1].density, 9.0);
+        assert_eq!(alone.colliders[1].restitution, 0.7);
+        assert!(alone.every_collider.is_empty());
+    }
+
+    #[test]
+    fn a_collider_pushed_directly_takes_the_body_s_material_when_added() {
+        let mut def = BodyDef::dynamic(Shape::rect(0.5, 0.5)).density(4.0);
+        def.colliders.push(wheel());
+        let mut world = crate::World::new();
+        let handle = world.add_body(def).expect("a valid body");
+        let body = world.body(handle).expect("added");
+        for &collider in body.colliders() {
+            let collider = world.collider(collider).expect("attached");
+            assert_eq!(collider.density(), 4.0);
+        }
     }
 }

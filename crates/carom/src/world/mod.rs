@@ -175,7 +175,12 @@ impl World {
         clippy::expect_used,
         reason = "the body and its colliders were inserted just above"
     )]
-    pub fn add_body(&mut self, def: BodyDef) -> Result<BodyHandle, CaromError> {
+    pub fn add_body(&mut self, mut def: BodyDef) -> Result<BodyHandle, CaromError> {
+        // Colliders pushed onto `def.colliders` directly take the body's material too.
+        let every = def.every_collider;
+        for collider in &mut def.colliders {
+            every.apply(collider);
+        }
         let handle = self.state.bodies.next_handle();
         let mut body = Body::new(handle, &def)?;
         let starts_awake = def.awake;
