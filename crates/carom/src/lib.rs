@@ -110,9 +110,10 @@ pub use geometry::shape::{
     Capsule, ChainSegment, Circle, Points, Polygon, Segment, Shape, WorldShape,
 };
 pub use joint::{
-    Anchors, DistanceJoint, Joint, JointDef, JointEvent, JointHandle, JointKind, Limits, Motor,
-    MotorJoint, MouseJoint, MoverJoint, PogoJoint, PrismaticJoint, RevoluteJoint, Spring,
-    WeldJoint, WheelJoint,
+    Anchors, DistanceJoint, DistanceJointDef, Joint, JointDef, JointEvent, JointHandle, JointKind,
+    Limits, Motor, MotorJoint, MotorJointDef, MouseJoint, MouseJointDef, MoverJoint, MoverJointDef,
+    PogoJoint, PogoJointDef, PrismaticJoint, PrismaticJointDef, RevoluteJoint, RevoluteJointDef,
+    Spring, WeldJoint, WeldJointDef, WheelJoint, WheelJointDef,
 };
 pub use math::{Isometry, Mat3, Real, Rot, Vec2, angle_of, atan2, consts, rotation, vec2};
 pub use solver::{SolverKind, SolverParams};

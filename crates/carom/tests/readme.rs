@@ -4,15 +4,17 @@
 
 #[rustfmt::skip]
 fn joint_example() -> Result<(), carom::CaromError> {
-    use carom::{BodyDef, JointDef, Shape, World, vec2};
+    use carom::{BodyDef, JointDef, RevoluteJointDef, Shape, World, vec2};
 
     let mut world = World::new();
     let hook = world.add_body(BodyDef::static_body(Shape::rect(0.2, 0.2)))?;
     let door = world.add_body(BodyDef::dynamic(Shape::rect(1.0, 0.1)).position(vec2(1.0, 0.0)))?;
     // A hinge at the hook, swinging at most 45° either way, with a little friction.
-    let hinge = world.add_joint(
-        JointDef::revolute(hook, door, vec2(0.0, 0.0)).limits(-0.785, 0.785).motor_drive(0.0, 0.5),
-    )?;
+    let def = JointDef::revolute(hook, door, vec2(0.0, 0.0)).limits(-0.785, 0.785).motor_drive(0.0, 0.5);
+    // The same hinge from its own definition, whose setters are a hinge's alone.
+    let hinge_def = RevoluteJointDef::new(hook, door, vec2(0.0, 0.0)).limits(-0.785, 0.785).motor(0.0, 0.5);
+    assert_eq!(JointDef::from(hinge_def), def);
+    let hinge = world.add_joint(hinge_def)?;
     world.step(1.0 / 60.0)?;
     println!("{:?}", world.joint(hinge).unwrap().reaction_force());
     Ok(())

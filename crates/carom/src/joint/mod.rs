@@ -2,7 +2,9 @@
 //!
 //! A joint holds a point fixed in each body (its anchors) in some relation: together, at a
 //! distance, along an axis. Define one with [`JointDef`]'s constructors, from points in the
-//! world where the bodies are now, and add it with [`crate::World::add_joint`]. Each step the
+//! world where the bodies are now, or with its kind's own definition ([`RevoluteJointDef`],
+//! [`DistanceJointDef`], ...: only the settings of that kind), and add it with
+//! [`crate::World::add_joint`]. Each step the
 //! solver holds the joint together with the contacts, in the same substeps (softly in the
 //! biased pass, rigidly in the relaxation, as Box2D v3 does); two bodies joined share an
 //! island, so they sleep and wake together. A joint reports the force and torque it applied in
@@ -30,8 +32,14 @@
 //! # Ok::<(), carom::CaromError>(())
 //! ```
 
+pub(crate) mod defs;
 pub(crate) mod kinds;
 pub(crate) mod store;
+
+pub use defs::{
+    DistanceJointDef, MotorJointDef, MouseJointDef, MoverJointDef, PogoJointDef, PrismaticJointDef,
+    RevoluteJointDef, WeldJointDef, WheelJointDef,
+};
 
 pub use kinds::{
     DistanceJoint, JointKind, Limits, Motor, MotorJoint, MouseJoint, MoverJoint, PogoJoint,
@@ -80,7 +88,9 @@ pub enum Anchors {
 }
 
 /// Everything needed to create a joint: build one with a constructor ([`JointDef::revolute`],
-/// [`JointDef::distance`], ...) and the chained setters; checked when added to a world.
+/// [`JointDef::distance`], ...) and the chained setters, or from a kind's own definition
+/// ([`RevoluteJointDef`], ...), whose setters are only its kind's; checked when added to a
+/// world.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct JointDef {

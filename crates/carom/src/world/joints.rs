@@ -18,7 +18,8 @@ fn stale(handle: JointHandle) -> CaromError {
 }
 
 impl World {
-    /// Adds a joint; the definition is checked first (both bodies live and different except
+    /// Adds a joint, from a [`JointDef`] or a kind's own definition ([`crate::RevoluteJointDef`],
+    /// ...); the definition is checked first (both bodies live and different except
     /// for a mouse joint, every setting finite and in range, only settings its kind has), and
     /// nothing is added if any of it is wrong. Both bodies wake. Unless the joint lets them
     /// collide, contacts between the two bodies end.
@@ -26,7 +27,8 @@ impl World {
         clippy::expect_used,
         reason = "both bodies were checked above, and a stale one refused with an error"
     )]
-    pub fn add_joint(&mut self, def: JointDef) -> Result<JointHandle, CaromError> {
+    pub fn add_joint(&mut self, def: impl Into<JointDef>) -> Result<JointHandle, CaromError> {
+        let def: JointDef = def.into();
         let handle = self.state.joints.next_handle();
         let joint = def.build(
             handle,
