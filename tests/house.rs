@@ -402,10 +402,16 @@ fn unmapped(map: &str, prefix: &str, files: &[&str]) -> Vec<String> {
     let mut missing = Vec::new();
     for file in files {
         let full = format!("{prefix}{file}");
+        // A folder's row (`crates/carom/src/geometry/`), or a package's (`crates/carom-scene`),
+        // which stands for its `src/`: how deep the folder is and the file's path below it.
         let folder_of = |path: &str| {
-            full.strip_prefix(path)
-                .filter(|_| path.ends_with('/'))
-                .map(str::to_string)
+            let folder = match path {
+                _ if path.ends_with('/') => path.to_string(),
+                _ if path.ends_with(".rs") => return None,
+                _ => format!("{path}/src/"),
+            };
+            let rest = full.strip_prefix(folder.as_str())?;
+            Some((folder.len(), rest.to_string()))
         };
         if rows.iter().any(|(paths, _)| paths.contains(&full)) {
             continue;
@@ -416,7 +422,7 @@ fn unmapped(map: &str, prefix: &str, files: &[&str]) -> Vec<String> {
             .flat_map(|(paths, text)| {
                 paths
                     .iter()
-                    .filter_map(move |p| folder_of(p).map(|rest| (p.len(), rest, *text)))
+                    .filter_map(move |p| folder_of(p).map(|(depth, rest)| (depth, rest, *text)))
             })
             .max_by_key(|&(depth, _, _)| depth);
         let named = best.is_some_and(|(_, rest, text)| {
@@ -518,7 +524,7 @@ fn the_layer_check_finds_an_import_that_points_up() {
 }
 
 #[test]
-fn the_architecture_map_names_every_core_file() {
+fn the_architecture_map_names_every_file_of_the_core_and_the_scene_crate() {
     let map = std::fs::read_to_string(workspace().join("docs/architecture.md"))
         .expect("docs/architecture.md");
     let files = sources(&workspace().join("crates/carom/src"));
@@ -527,6 +533,13 @@ fn the_architecture_map_names_every_core_file() {
     assert!(
         missing.is_empty(),
         "docs/architecture.md does not name these files of crates/carom/src: {missing:?}"
+    );
+    let files = sources(&workspace().join("crates/carom-scene/src"));
+    let paths: Vec<&str> = files.iter().map(|f| f.path.as_str()).collect();
+    let missing = unmapped(&map, "crates/carom-scene/src/", &paths);
+    assert!(
+        missing.is_empty(),
+        "docs/architecture.md does not name these files of crates/carom-scene/src: {missing:?}"
     );
 }
 
@@ -581,6 +594,7 @@ fn the_length_checks_count_code_not_tests_strings_or_comments() {
 #[test]
 fn the_map_check_reads_rows_folders_and_lists() {
     let map = "| `crates/k/src/lib.rs` | the surface |\n\
+               | `crates/s` | scenes: `build.rs` |\n\
                | `crates/k/src/math.rs`, `error.rs` | sums; errors |\n\
                | `crates/k/src/geo/` | `shape/` (`saved.rs`), `aabb.rs`, `tree/mod.rs` |\n";
     let files = [
@@ -599,5 +613,10 @@ fn the_map_check_reads_rows_folders_and_lists() {
     assert_eq!(
         unmapped(map, "crates/k/src/", &files),
         vec!["geo/ray.rs", "geo/hull/saved.rs", "stats.rs"]
+    );
+    // A package's row stands for its src/.
+    assert_eq!(
+        unmapped(map, "crates/s/src/", &["build.rs", "load.rs"]),
+        vec!["load.rs"]
     );
 }

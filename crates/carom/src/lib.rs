@@ -49,6 +49,8 @@
         clippy::unimplemented
     )
 )]
+// Every public item says what it is, in every build (the workspace only warns).
+#![deny(missing_docs)]
 // Every `pub` item is reachable from outside the crate; the rest say `pub(crate)`. The items
 // that `carom::testing` opens are public only with that feature, so the lint runs where it is
 // on (every workspace build).

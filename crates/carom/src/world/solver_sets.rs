@@ -74,24 +74,12 @@ impl World {
 
     /// [`World::move_body`] without refiling the contacts (for a body whose contacts are about
     /// to be destroyed).
-    #[allow(
-        clippy::expect_used,
-        reason = "a live body's colliders are live: removing a collider detaches it"
-    )]
     fn move_body_and_colliders(&mut self, index: usize, to: SolverSet) -> usize {
         // The colliders first, each on its own: one just attached may not be in its body's
         // set yet.
         for k in 0..self.state.bodies.as_slice()[index].colliders().len() {
             let collider = self.state.bodies.as_slice()[index].colliders()[k];
-            let at = self
-                .state
-                .colliders
-                .checked_index(collider)
-                .expect("attached");
-            let colliders = &mut self.state.colliders;
-            self.state
-                .collider_sets
-                .move_item(at, to, |i, j| colliders.swap(i, j));
+            self.move_collider(collider, to);
         }
         if self.state.body_sets.set_of(index) == to {
             return index;
@@ -191,11 +179,16 @@ impl World {
 
     /// Moves a collider into the sleeping set, the last of the array, so removing it keeps
     /// every set contiguous.
+    pub(crate) fn prepare_collider_removal(&mut self, collider: ColliderHandle) {
+        self.move_collider(collider, SolverSet::Asleep);
+    }
+
+    /// Moves a live collider into set `to`, swapping it with the sets' ends.
     #[allow(
         clippy::expect_used,
-        reason = "the collider was checked live by the caller"
+        reason = "callers pass attached colliders: removing a collider detaches it"
     )]
-    pub(crate) fn prepare_collider_removal(&mut self, collider: ColliderHandle) {
+    fn move_collider(&mut self, collider: ColliderHandle, to: SolverSet) {
         let at = self
             .state
             .colliders
@@ -204,7 +197,7 @@ impl World {
         let colliders = &mut self.state.colliders;
         self.state
             .collider_sets
-            .move_item(at, SolverSet::Asleep, |i, j| colliders.swap(i, j));
+            .move_item(at, to, |i, j| colliders.swap(i, j));
     }
 }
 
