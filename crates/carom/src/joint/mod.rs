@@ -145,15 +145,7 @@ impl JointDef {
     /// they are apart now. Add [`JointDef::spring`] to make it soft, [`JointDef::limits`] to
     /// bound it.
     pub fn distance(a: BodyHandle, b: BodyHandle, anchor_a: Vec2, anchor_b: Vec2) -> Self {
-        let length = (anchor_b - anchor_a).norm();
-        let kind = JointKind::Distance(DistanceJoint {
-            length,
-            spring: None,
-            spring_force: None,
-            motor: None,
-            limits: None,
-        });
-        JointDef::new(a, b, anchor_a, anchor_b, kind)
+        DistanceJointDef::new(a, b, anchor_a, anchor_b).into()
     }
 
     /// A rope between world points `anchor_a` on `a` and `anchor_b` on `b`: slack up to
@@ -165,48 +157,33 @@ impl JointDef {
         anchor_b: Vec2,
         length: Real,
     ) -> Self {
-        let kind = JointKind::Distance(DistanceJoint {
-            length,
-            spring: Some(Spring::new(0.0, 0.0)),
-            spring_force: None,
-            motor: None,
-            limits: Some(Limits {
-                lower: 0.0,
-                upper: length,
-            }),
-        });
-        JointDef::new(a, b, anchor_a, anchor_b, kind)
+        DistanceJointDef::new(a, b, anchor_a, anchor_b)
+            .length(length)
+            .spring(0.0, 0.0)
+            .limits(0.0, length)
+            .into()
     }
 
     /// A hinge between `a` and `b` at world point `anchor`.
     pub fn revolute(a: BodyHandle, b: BodyHandle, anchor: Vec2) -> Self {
-        let kind = JointKind::Revolute(RevoluteJoint::default());
-        JointDef::new(a, b, anchor, anchor, kind)
+        RevoluteJointDef::new(a, b, anchor).into()
     }
 
     /// A slider: `b` moves along world direction `axis` through world point `anchor`.
     pub fn prismatic(a: BodyHandle, b: BodyHandle, anchor: Vec2, axis: Vec2) -> Self {
-        let kind = JointKind::Prismatic(PrismaticJoint {
-            axis,
-            ..PrismaticJoint::default()
-        });
-        JointDef::new(a, b, anchor, anchor, kind)
+        PrismaticJointDef::new(a, b, anchor, axis).into()
     }
 
     /// Glues `a` and `b` together as they are, at world point `anchor` (where a soft weld
     /// bends).
     pub fn weld(a: BodyHandle, b: BodyHandle, anchor: Vec2) -> Self {
-        JointDef::new(a, b, anchor, anchor, JointKind::Weld(WeldJoint::default()))
+        WeldJointDef::new(a, b, anchor).into()
     }
 
     /// Wheel `b` on chassis `a`: `b`'s centre at world point `anchor` rides a suspension
     /// along world direction `axis` (4 Hz, damping ratio 0.7 until set).
     pub fn wheel(a: BodyHandle, b: BodyHandle, anchor: Vec2, axis: Vec2) -> Self {
-        let kind = JointKind::Wheel(WheelJoint {
-            axis,
-            ..WheelJoint::default()
-        });
-        JointDef::new(a, b, anchor, anchor, kind)
+        WheelJointDef::new(a, b, anchor, axis).into()
     }
 
     /// Holds `b` at its present pose relative to `a` through critically damped 4 Hz
@@ -220,23 +197,14 @@ impl JointDef {
         max_force: Real,
         max_torque: Real,
     ) -> Self {
-        let kind = JointKind::Motor(MotorJoint {
-            max_spring_force: max_force,
-            max_spring_torque: max_torque,
-            ..MotorJoint::default()
-        });
-        JointDef::new(a, b, anchor, anchor, kind)
+        MotorJointDef::new(a, b, anchor, max_force, max_torque).into()
     }
 
     /// Drives `body`'s velocity relative to `reference` (a static body for a velocity in
     /// the world) toward `velocity` with at most `max_force` on each world axis (x, y): a
     /// dynamic character's legs. It does not turn the body; the two still collide.
     pub fn mover(reference: BodyHandle, body: BodyHandle, velocity: Vec2, max_force: Vec2) -> Self {
-        let kind = JointKind::Mover(MoverJoint {
-            velocity,
-            max_force,
-        });
-        JointDef::new(reference, body, Vec2::zeros(), Vec2::zeros(), kind).collide_connected(true)
+        MoverJointDef::new(reference, body, velocity, max_force).into()
     }
 
     /// A leg from world point `foot` on `body` down to world point `ground_point` on
@@ -255,16 +223,16 @@ impl JointDef {
         foot: Vec2,
         normal: Vec2,
         rest_length: Real,
-        (max_compression, max_tension): (Real, Real),
+        forces: (Real, Real),
     ) -> Self {
-        let kind = JointKind::Pogo(PogoJoint {
+        PogoJointDef::new(
+            (ground, ground_point),
+            (body, foot),
             normal,
             rest_length,
-            max_compression,
-            max_tension,
-            ..PogoJoint::default()
-        });
-        JointDef::new(ground, body, ground_point, foot, kind).collide_connected(true)
+            forces,
+        )
+        .into()
     }
 
     /// Starts the joint where `previous` (of the same kind) left off: its impulses, and a
@@ -281,12 +249,7 @@ impl JointDef {
     /// Grabs `body` at world point `point` and pulls that point toward `point` (move it with
     /// [`crate::JointMut::set_mouse_target`]) with at most `max_force`.
     pub fn mouse(body: BodyHandle, point: Vec2, max_force: Real) -> Self {
-        let kind = JointKind::Mouse(MouseJoint {
-            target: point,
-            max_force,
-            ..MouseJoint::default()
-        });
-        JointDef::new(body, body, point, point, kind)
+        MouseJointDef::new(body, point, max_force).into()
     }
 
     /// Only keeps `a` and `b` from colliding.
