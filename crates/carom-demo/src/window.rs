@@ -10,7 +10,7 @@ use crate::demo::{Button, Control, Demo, Key};
 use crate::ui::{Ask, SIDEBAR_WIDTH, sidebar};
 use carom::draw::{Color, DrawList};
 use carom::{Real, vec2};
-use carom_render::{Gpu, Renderer, clear_color};
+use carom_render::{Screen, ScreenOptions, clear_color};
 use std::path::PathBuf;
 use std::sync::Arc;
 use web_time::Instant;
@@ -348,11 +348,8 @@ impl ApplicationHandler<Started> for App {
 /// Everything that exists while the window is open.
 struct Running {
     window: Arc<Window>,
-    surface: wgpu::Surface<'static>,
-    device: wgpu::Device,
-    queue: wgpu::Queue,
-    config: wgpu::SurfaceConfiguration,
-    renderer: Renderer,
+    /// The window's surface, the device drawing into it and the scene's renderer.
+    screen: Screen,
     egui: egui::Context,
     egui_input: egui_winit::State,
     egui_renderer: egui_wgpu::Renderer,
@@ -385,59 +382,28 @@ impl Running {
         display: winit::event_loop::OwnedDisplayHandle,
         options: WindowOptions,
     ) -> Result<Running, String> {
-        let mut descriptor = wgpu::InstanceDescriptor::new_with_display_handle(Box::new(display));
-        descriptor.backends = options
-            .backends
-            .or_else(wgpu::Backends::from_env)
-            .unwrap_or(wgpu::Backends::all());
-        // WebGPU where the browser has it, WebGL2 otherwise.
-        let instance = wgpu::util::new_instance_with_webgpu_detection(descriptor).await;
-        let surface = instance
-            .create_surface(window.clone())
-            .map_err(|e| format!("cannot draw into the window: {e}"))?;
-        let gpu = Gpu::request(&instance, Some(&surface), "carom")
-            .await
-            .map_err(|e| e.to_string())?;
-        let Gpu {
-            adapter,
-            device,
-            queue,
-        } = gpu;
         let size = window.inner_size();
-        let capabilities = surface.get_capabilities(&adapter);
-        if capabilities.formats.is_empty() {
-            return Err(format!(
-                "the graphics adapter {} cannot draw into this window",
-                adapter.get_info().name
-            ));
-        }
-        // A non-sRGB format when there is one: egui blends in gamma space and expects it.
-        let format = capabilities
-            .formats
-            .iter()
-            .copied()
-            .find(|f| !f.is_srgb())
-            .unwrap_or(capabilities.formats[0]);
-        let copy_src = capabilities.usages.contains(wgpu::TextureUsages::COPY_SRC);
-        let largest = device.limits().max_texture_dimension_2d;
-        let config = wgpu::SurfaceConfiguration {
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                | if copy_src {
-                    wgpu::TextureUsages::COPY_SRC
-                } else {
-                    wgpu::TextureUsages::empty()
-                },
-            format,
-            width: size.width.clamp(1, largest),
-            height: size.height.clamp(1, largest),
-            present_mode: wgpu::PresentMode::AutoVsync,
-            desired_maximum_frame_latency: 2,
-            alpha_mode: capabilities.alpha_modes[0],
-            view_formats: Vec::new(),
-            color_space: wgpu::SurfaceColorSpace::Auto,
+        let screen_options = ScreenOptions {
+            backends: options.backends,
+            // egui blends in gamma space and expects a format that is not sRGB.
+            gamma_format: true,
+            // For --screenshot; a surface that cannot be read is drawn again into a texture.
+            readable: true,
         };
-        surface.configure(&device, &config);
-        let renderer = Renderer::new(&device, format);
+        let mut screen = Screen::request(
+            window.clone(),
+            display,
+            [size.width, size.height],
+            &screen_options,
+        )
+        .await
+        .map_err(|e| e.to_string())?;
+        // The window may have been laid out while the device was on its way (a canvas sized by
+        // its page), its resize reaching no one: follow the size it has now.
+        let size = window.inner_size();
+        screen.resize(size.width, size.height);
+        let (device, format) = (&screen.gpu().device, screen.format());
+        let largest = device.limits().max_texture_dimension_2d;
         let egui = egui::Context::default();
         let egui_input = egui_winit::State::new(
             egui.clone(),
@@ -448,22 +414,19 @@ impl Running {
             Some(largest as usize),
         );
         let egui_renderer =
-            egui_wgpu::Renderer::new(&device, format, egui_wgpu::RendererOptions::default());
+            egui_wgpu::Renderer::new(device, format, egui_wgpu::RendererOptions::default());
         let scale = window.scale_factor() as f32;
-        let viewport = scene_viewport(config.width, config.height, scale);
+        let [width, height] = screen.size();
+        let viewport = scene_viewport(width, height, scale);
         let mut demo = Demo::open(&options.scenes_folder, &options.scene, viewport)?;
         if options.replay && demo.has_player() {
             demo.input(carom_scene::Input::PlayRecordedKeys)?;
         }
         window.set_title(&format!("carom: {}", demo.scene_path.display()));
-        let info = adapter.get_info();
+        let info = screen.gpu().adapter.get_info();
         Ok(Running {
             window,
-            surface,
-            device,
-            queue,
-            config,
-            renderer,
+            screen,
             egui,
             egui_input,
             egui_renderer,
@@ -494,13 +457,10 @@ impl Running {
     }
 
     fn resize(&mut self, width: u32, height: u32) {
-        let largest = self.device.limits().max_texture_dimension_2d;
-        self.config.width = width.clamp(1, largest);
-        self.config.height = height.clamp(1, largest);
-        self.surface.configure(&self.device, &self.config);
+        self.screen.resize(width, height);
         let scale = self.window.scale_factor() as f32;
-        self.demo
-            .resize(scene_viewport(self.config.width, self.config.height, scale));
+        let [width, height] = self.screen.size();
+        self.demo.resize(scene_viewport(width, height, scale));
     }
 
     /// Where the scene's view starts, in physical pixels: right of the sidebar.
@@ -693,78 +653,62 @@ impl Running {
         let pixels_per_point = output.pixels_per_point;
         let paint_jobs = self.egui.tessellate(output.shapes, pixels_per_point);
         let screen = egui_wgpu::ScreenDescriptor {
-            size_in_pixels: [self.config.width, self.config.height],
+            size_in_pixels: self.screen.size(),
             pixels_per_point,
         };
         // Drain the texture changes: egui checks in debug builds that none is dropped unseen.
         let mut textures = output.textures_delta;
+        let (device, queue) = (&self.screen.gpu().device, &self.screen.gpu().queue);
         for (id, deltas) in textures.set.drain() {
             for delta in &deltas {
-                self.egui_renderer
-                    .update_texture(&self.device, &self.queue, id, delta);
+                (self.egui_renderer).update_texture(device, queue, id, delta);
             }
         }
 
-        let frame = match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(frame)
-            | wgpu::CurrentSurfaceTexture::Suboptimal(frame) => frame,
-            wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
-                self.surface.configure(&self.device, &self.config);
-                return Ok(true);
-            }
-            _ => return Ok(true),
+        let Some(frame) = self.screen.next_frame() else {
+            return Ok(true);
         };
-        let mut encoder = self
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         self.demo.describe(&mut self.list);
-        self.renderer.prepare(
-            &self.device,
-            &self.queue,
-            &self.list,
-            &self.demo.camera,
-            self.demo.viewport,
-        );
-        let mut command_buffers = self.egui_renderer.update_buffers(
-            &self.device,
-            &self.queue,
-            &mut encoder,
-            &paint_jobs,
-            &screen,
-        );
-        self.encode(&mut encoder, &frame.texture, &paint_jobs, &screen);
+        let viewport = self.demo.viewport;
+        (self.screen).prepare(&self.list, &self.demo.camera, viewport);
+        let (device, queue) = (&self.screen.gpu().device, &self.screen.gpu().queue);
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let mut command_buffers =
+            (self.egui_renderer).update_buffers(device, queue, &mut encoder, &paint_jobs, &screen);
+        self.encode(&mut encoder, frame.texture(), &paint_jobs, &screen);
         let last = options.frames.is_some_and(|n| self.frames + 1 >= n);
+        let format = self.screen.format();
         let capture = match (&options.screenshot, last) {
-            (Some(_), true) if self.config.usage.contains(wgpu::TextureUsages::COPY_SRC) => {
-                Some(copy_to_buffer(&self.device, &mut encoder, &frame.texture))
+            (Some(_), true) if self.screen.readable() => {
+                Some(copy_to_buffer(device, &mut encoder, frame.texture()))
             }
             (Some(_), true) => {
                 // The surface cannot be read: draw the same frame into a texture that can.
-                let texture = self.device.create_texture(&wgpu::TextureDescriptor {
+                let texture = device.create_texture(&wgpu::TextureDescriptor {
                     label: Some("screenshot"),
-                    size: frame.texture.size(),
+                    size: frame.texture().size(),
                     mip_level_count: 1,
                     sample_count: 1,
                     dimension: wgpu::TextureDimension::D2,
-                    format: self.config.format,
+                    format,
                     usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
                     view_formats: &[],
                 });
                 self.encode(&mut encoder, &texture, &paint_jobs, &screen);
-                Some(copy_to_buffer(&self.device, &mut encoder, &texture))
+                Some(copy_to_buffer(device, &mut encoder, &texture))
             }
             _ => None,
         };
         command_buffers.push(encoder.finish());
-        self.queue.submit(command_buffers);
+        queue.submit(command_buffers);
         if let (Some(capture), Some(path)) = (capture, &options.screenshot) {
-            let image = capture.read(&self.device, self.config.format)?;
+            let image = capture.read(device, format)?;
             image
                 .save(path)
                 .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         }
         self.window.pre_present_notify();
-        self.queue.present(frame);
+        self.screen.present(frame);
         for id in textures.free.drain() {
             self.egui_renderer.free_texture(&id);
         }
@@ -797,8 +741,8 @@ impl Running {
              median step {step:.3} ms, {} bodies, {} steps{player}",
             self.demo.scene_path.display(),
             self.frames,
-            self.config.width,
-            self.config.height,
+            self.screen.size()[0],
+            self.screen.size()[1],
             self.adapter,
             1e3 / frame.max(1e-6),
             self.demo.scene.world.body_count(),
@@ -825,7 +769,7 @@ impl Running {
                     ops: wgpu::Operations {
                         load: wgpu::LoadOp::Clear(clear_color(
                             Color::BACKGROUND,
-                            self.config.format,
+                            self.screen.format(),
                         )),
                         store: wgpu::StoreOp::Store,
                     },
@@ -833,7 +777,7 @@ impl Running {
                 ..Default::default()
             })
             .forget_lifetime();
-        let (width, height) = (self.config.width as f32, self.config.height as f32);
+        let [width, height] = self.screen.size().map(|side| side as f32);
         let left = self.scene_left().min(width - 1.0);
         let [scene_width, scene_height] = self.demo.viewport;
         pass.set_viewport(
@@ -844,7 +788,7 @@ impl Running {
             0.0,
             1.0,
         );
-        self.renderer.render(&mut pass);
+        self.screen.renderer().render(&mut pass);
         pass.set_viewport(0.0, 0.0, width, height, 0.0, 1.0);
         self.egui_renderer.render(&mut pass, paint_jobs, screen);
     }

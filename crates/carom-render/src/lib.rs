@@ -23,4 +23,4 @@ pub use error::RenderError;
 pub use gpu::Gpu;
 pub use offscreen::Offscreen;
 pub use renderer::{ARROW_WIDTH, OUTLINE_WIDTH, Renderer, clear_color};
-pub use screen::Screen;
+pub use screen::{Screen, ScreenFrame, ScreenOptions};
