@@ -109,6 +109,31 @@ impl StageProfile {
         }
     }
 
+    /// Two lines for a terminal: each stage's ms per step, then the work behind them.
+    pub fn describe(&self) -> String {
+        format!(
+            "step {:.3} ms: broadphase {:.3}, narrowphase {:.3}, solve {:.3}, continuous {:.3}, \
+             sleep {:.3}\ncontacts {:.0} (awake {:.0}, recycled {:.0}, touching {:.0}), \
+             created {:.1}, destroyed {:.1}, proxies moved {:.0}, pair candidates {:.0}, \
+             island splits {:.2}",
+            self.step_ms,
+            self.broadphase_ms,
+            self.narrowphase_ms,
+            self.solve_ms,
+            self.continuous_ms,
+            self.sleep_ms,
+            self.contacts,
+            self.awake_contacts,
+            self.recycled,
+            self.touching,
+            self.created,
+            self.destroyed,
+            self.proxies_moved,
+            self.candidates,
+            self.island_splits,
+        )
+    }
+
     /// Adds carom's statistics of one step.
     fn add_carom(&mut self, stats: &carom::StepStats) {
         let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;

@@ -113,6 +113,23 @@ enum Command {
         #[arg(long, default_value_t = 36_000)]
         steps: u64,
     },
+    /// Steps one engine's copy of a scene alone and prints its ms per step and stage profile:
+    /// the run to hand a profiler (`perf record`, `valgrind --tool=callgrind`), with nothing
+    /// of the other engines in it. carom fires the scene's events; the peers follow its spawn
+    /// schedule, as in the timing runs.
+    Profile {
+        /// The scene file.
+        scene: PathBuf,
+        /// The engine to step: carom, box2d or rapier.
+        #[arg(long, default_value = "carom", value_parser = ["carom", "box2d", "rapier"])]
+        engine: String,
+        /// Steps, the first untimed (default: the scene's own count in the timing runs).
+        #[arg(long)]
+        steps: Option<u32>,
+        /// Threads (carom) or workers (Box2D); Rapier always steps on one.
+        #[arg(long, default_value_t = 1)]
+        threads: usize,
+    },
     /// Times rows of Box2D's base-10 pyramids at about 1k, 5k, 20k and 100k boxes in every
     /// engine (one thread and `--threads`), and writes scaling.csv, scaling.md and a log-log
     /// chart of ms per step against bodies, scaling.png, to `--out`.
@@ -931,6 +948,48 @@ fn scaling_run(
     Ok(())
 }
 
+/// `carom-bench profile`: one engine's copy of `scene` stepped `steps` times on `threads`.
+fn profile_run(
+    scene: &Path,
+    engine: &str,
+    steps: u32,
+    threads: rayon::ThreadPool,
+) -> Result<(), String> {
+    if steps < 2 {
+        return Err("profile needs --steps of at least 2 (the first is untimed)".into());
+    }
+    let path = resolve(scene);
+    let load = || -> Result<carom_scene::SceneWorld, String> {
+        let mut scene = carom_scene::load(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        scene.time_step = DT;
+        Ok(scene)
+    };
+    let schedule = load()?.spawn_schedule(u64::from(steps))?;
+    let replayed = (!schedule.changes.is_empty()).then_some(&schedule);
+    let workers = threads.current_num_threads();
+    let result = match engine {
+        "carom" => threads.install(|| run_carom(&mut load()?, steps))?,
+        "box2d" => {
+            let mut box2d = Box2dWorld::with_workers(&load()?.world, workers as u32)?;
+            run_box2d(&mut box2d, DT, steps, replayed)?
+        }
+        _ => {
+            let mut rapier = RapierWorld::from_carom(&load()?.world, DT)?;
+            run_rapier(&mut rapier, steps, replayed)?
+        }
+    };
+    let on = if engine == "rapier" { 1 } else { workers };
+    println!(
+        "{}: {engine} on {on} thread(s), {steps} steps (the first untimed): {:.3} ms/step",
+        path.display(),
+        result.ms_per_step()
+    );
+    if let Some(stages) = &result.stages {
+        println!("{}", stages.describe());
+    }
+    Ok(())
+}
+
 fn main() -> Result<(), String> {
     let args = Args::parse();
     if let Some(Command::HardCases {
@@ -1036,6 +1095,16 @@ fn main() -> Result<(), String> {
     }
     if let Some(Command::Timeline { scene, steps }) = &args.command {
         return many.install(|| timeline_run(scene, *steps));
+    }
+    if let Some(Command::Profile {
+        scene,
+        engine,
+        steps,
+        threads,
+    }) = &args.command
+    {
+        let steps = steps.unwrap_or_else(|| default_steps(scene));
+        return profile_run(scene, engine, steps, pool(*threads)?);
     }
     let mut rows = Vec::new();
     for (path, steps) in &scenes {
