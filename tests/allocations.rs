@@ -1,11 +1,13 @@
 //! A world in steady state steps without touching the heap: every stage keeps its memory from
-//! step to step; and a snapshot's count of the heap it holds is what taking it allocated.
+//! step to step, on Box2D's eight benchmark recipes too; and a snapshot's count of the heap it
+//! holds is what taking it allocated. A growing buffer's reallocation counts as one.
 //! Counted by an instrumented global allocator, so this file holds one test (the count is
 //! process-wide).
 
 use carom::{BodyDef, Effect, Effects, Shape, Snapshot, World, WorldSettings, vec2};
+use carom_scene::SceneWorld;
 use rayon::{ThreadPool, ThreadPoolBuilder};
-use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
+use stats_alloc::{INSTRUMENTED_SYSTEM, Region, Stats, StatsAlloc};
 use std::alloc::System;
 
 #[global_allocator]
@@ -112,8 +114,55 @@ fn allocations(mut world: World, pool: &ThreadPool, warm_up: usize, steps: usize
         for _ in 0..steps {
             world.step(1.0 / 60.0).unwrap();
         }
-        region.change().allocations
+        heap_calls(region.change())
     })
+}
+
+/// Calls that took memory from the heap: new blocks, and blocks grown or moved.
+fn heap_calls(change: Stats) -> usize {
+    change.allocations + change.reallocations
+}
+
+/// Box2D's benchmark recipes, as the speed comparison runs them.
+const RECIPES: [&str; 8] = [
+    "joint_grid",
+    "large_pyramid",
+    "many_pyramids",
+    "tumbler",
+    "smash",
+    "compounds",
+    "ragdoll_rain",
+    "spinner",
+];
+
+/// One of [`RECIPES`], as its scene file makes it.
+fn recipe(name: &str) -> SceneWorld {
+    let path = carom_bench::cases::worlds::workspace().join(format!("demos/{name}.ron"));
+    let mut scene = carom_scene::load(&path).unwrap();
+    scene.time_step = 1.0 / 60.0;
+    scene
+}
+
+/// The heap calls of `scene`'s world steps `from..to`, its events having fired up to `from`
+/// (so the second pass is the first again): the first pass, then a second from a snapshot
+/// taken at `from`, every buffer already grown to what the first pass needed.
+fn recipe_heap_calls(scene: &mut SceneWorld, from: usize, to: usize) -> [usize; 2] {
+    for _ in 0..from {
+        scene.step().unwrap();
+    }
+    let at_start = scene.world.snapshot();
+    let pass = |scene: &mut SceneWorld| {
+        let mut calls = 0;
+        for _ in from..to {
+            let region = Region::new(&INSTRUMENTED_SYSTEM);
+            scene.world.step(scene.time_step).unwrap();
+            calls += heap_calls(region.change());
+        }
+        calls
+    };
+    let first = pass(scene);
+    scene.world.restore(&at_start);
+    [first, pass(scene)]
 }
 
 /// The mixed scene: a thousand circles, boxes, pentagons and triangles raining into a room.
@@ -160,7 +209,7 @@ fn rollback_allocations(mut world: World, warm_up: usize, rounds: usize) -> usiz
     for index in 8..8 + rounds {
         round(&mut world, index);
     }
-    region.change().allocations
+    heap_calls(region.change())
 }
 
 #[test]
@@ -230,6 +279,19 @@ fn a_world_in_steady_state_allocates_nothing_per_step() {
         let count = allocations(world, &pools[threads - 1], warm_up, 60);
         if count > 0 {
             failures.push(format!("{name}: {count} allocations in 60 steps"));
+        }
+    }
+    // Box2D's recipes on two threads (the parallel paths), after 100 steps: a step may take
+    // memory only to grow a buffer past the largest it has held (their piles still gain
+    // contacts), so stepped again from a snapshot, every buffer grown, none does.
+    for name in RECIPES {
+        let mut scene = recipe(name);
+        let [first, again] = pools[1].install(|| recipe_heap_calls(&mut scene, 100, 250));
+        println!("{name}: {first} heap calls in steps 100 to 250, {again} stepped again");
+        if again > 0 {
+            failures.push(format!(
+                "{name}: {again} heap calls in steps 100 to 250 stepped again from a snapshot"
+            ));
         }
     }
     // Rolling back: taking snapshots into old ones and restoring them reuse their memory.

@@ -32,8 +32,6 @@ use crate::graph::layout::ContactPartition;
 use crate::handle_map::HandleMap;
 use crate::heap_bytes::{HeapBytes, OwnsNothing, array, map_table, nothing};
 use crate::math::Real;
-use std::collections::HashMap;
-use std::hash::BuildHasherDefault;
 
 mod adjacency;
 mod parts;
@@ -42,7 +40,7 @@ mod saved;
 mod set;
 
 use adjacency::{Edge, EdgeList, NO_EDGE};
-use set::PairHasher;
+use set::PairLookup;
 
 /// A pair of colliders the narrowphase watches.
 #[derive(Debug, Clone)]
@@ -290,7 +288,7 @@ pub(crate) struct ContactSet {
     pub(super) began: Vec<(BodyHandle, BodyHandle)>,
     pub(super) ended: Vec<(BodyHandle, BodyHandle)>,
     /// Each pair's contact id: written only as contacts are made and destroyed.
-    lookup: HashMap<u64, u32, BuildHasherDefault<PairHasher>>,
+    lookup: PairLookup,
     /// Each contact's id, by index (moved with the contacts).
     ids: Vec<u32>,
     /// Where each id's contact is, in the array and in its bodies' lists.
@@ -402,7 +400,7 @@ impl HeapBytes for ContactSet {
             + colors.heap_bytes()
             + array(began)
             + array(ended)
-            + map_table(lookup)
+            + map_table(&lookup.0)
             + array(ids)
             + array(slots)
             + nothing(free)

@@ -5,7 +5,7 @@
 //! exactly once in each of its bodies' lists.
 
 use super::adjacency::{EdgeList, NO_EDGE, edge, edge_id};
-use super::set::{PairHasher, pair_key};
+use super::set::{PairLookup, pair_key};
 use super::{BodyIndices, Contact, ContactEvent, ContactSet, NO_ID, Slot};
 use crate::dynamics::body::{Body, BodyHandle};
 use crate::dynamics::collider::{Collider, ColliderHandle};
@@ -16,8 +16,6 @@ use crate::graph::colors::NO_COLOR;
 use crate::graph::layout::ContactPartition;
 use crate::handle_map::HandleMap;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
-use std::collections::HashMap;
-use std::hash::BuildHasherDefault;
 
 /// The saved form, borrowed from a set to write it.
 #[derive(Serialize)]
@@ -136,8 +134,7 @@ impl ContactSet {
         for (i, &id) in saved.free.iter().enumerate() {
             slots[id as usize] = Slot::unused(saved.free.get(i + 1).copied().unwrap_or(NO_ID));
         }
-        let mut lookup: HashMap<u64, u32, BuildHasherDefault<PairHasher>> =
-            HashMap::with_capacity_and_hasher(saved.lookup.len(), Default::default());
+        let mut lookup = PairLookup::with_capacity(saved.lookup.len());
         for &(key, index) in &saved.lookup {
             let Some(&id) = saved.ids.get(index) else {
                 return Err("the contact lookup names a contact that does not exist".into());

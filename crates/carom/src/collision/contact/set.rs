@@ -14,8 +14,10 @@ use crate::geometry::query::manifold::Manifold;
 use crate::graph::colors::NO_COLOR;
 use crate::handle_map::HandleMap;
 use crate::solver_set::SolverSet;
+use std::collections::HashMap;
 use std::collections::hash_map::Entry;
-use std::hash::Hasher;
+use std::hash::{BuildHasherDefault, Hasher};
+use std::ops::{Deref, DerefMut};
 #[cfg(any(test, all(feature = "testing", feature = "serde")))]
 use {
     super::{FREE, adjacency::edge_side},
@@ -38,6 +40,52 @@ impl Hasher for PairHasher {
     }
     fn write_u64(&mut self, key: u64) {
         self.0 = (key ^ (key >> 29)).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    }
+}
+
+/// Each pair's contact id, by pair key. Its `clone_from` (a world restored from a snapshot)
+/// keeps a larger table than the source's, filling it again, rather than shrinking it to the
+/// source's size: a rollback loop that restores a world taken with fewer contacts then steps
+/// without growing the table again. Nothing walks the map in a step, so the order its entries
+/// land in changes no result.
+#[derive(Debug, Default)]
+pub(super) struct PairLookup(pub(super) HashMap<u64, u32, BuildHasherDefault<PairHasher>>);
+
+impl PairLookup {
+    /// An empty map with room for `capacity` pairs.
+    pub(super) fn with_capacity(capacity: usize) -> Self {
+        PairLookup(HashMap::with_capacity_and_hasher(
+            capacity,
+            Default::default(),
+        ))
+    }
+}
+
+impl Clone for PairLookup {
+    fn clone(&self) -> Self {
+        PairLookup(self.0.clone())
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        if self.0.capacity() > source.0.capacity() {
+            self.0.clear();
+            self.0.extend(source.0.iter().map(|(&key, &id)| (key, id)));
+        } else {
+            self.0.clone_from(&source.0);
+        }
+    }
+}
+
+impl Deref for PairLookup {
+    type Target = HashMap<u64, u32, BuildHasherDefault<PairHasher>>;
+    fn deref(&self) -> &Self::Target {
+        &self.0
+    }
+}
+
+impl DerefMut for PairLookup {
+    fn deref_mut(&mut self) -> &mut Self::Target {
+        &mut self.0
     }
 }
 
