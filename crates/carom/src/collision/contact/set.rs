@@ -52,7 +52,8 @@ impl Hasher for PairHasher {
 pub(super) struct PairLookup(pub(super) HashMap<u64, u32, BuildHasherDefault<PairHasher>>);
 
 impl PairLookup {
-    /// An empty map with room for `capacity` pairs.
+    /// An empty map with room for `capacity` pairs (for a saved world's contacts).
+    #[cfg(feature = "serde")]
     pub(super) fn with_capacity(capacity: usize) -> Self {
         PairLookup(HashMap::with_capacity_and_hasher(
             capacity,
