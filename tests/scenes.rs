@@ -603,6 +603,7 @@ fn a_scene_file_sets_every_world_setting() {
             max_rotation: 0.5,
         },
         effects: Effects::of(&[Effect::Gravity, Effect::Drag]),
+        look_ahead: false,
         contact_recycling: false,
         hit_event_threshold: 2.0,
     };

@@ -56,6 +56,7 @@
 //! | `warm_starting` | `warmstart_coefficient` 1 or 0 | yes |
 //! | `direct_joints`, `shock_propagation` (off by default) | none: Rapier's impulse joints and contacts are solved as always | no |
 //! | `friction_in_bias_pass` (default on, as Box2D v3.1) | `friction_in_bias_pass` left at Rapier's default, off | no: Rapier's 5050-box pyramid collapses with it on (top box 34 m down in 500 steps), so Rapier keeps its own setting |
+//! | `look_ahead` (default on: with `Continuous`, contacts are made as far as the pair can close in a step) | none: Rapier's contacts keep points within its prediction distance only | no; off, carom's contacts keep points within `speculative_distance` only, as Rapier's do |
 //! | `speculative_distance` (0.02 m = 4 × slop) | `normalized_prediction_distance` (default 0.02, `length_unit` 1) | yes; collider `contact_skin` stays at its default 0 |
 //! | `LINEAR_SLOP` (0.005 m) | `normalized_allowed_linear_error` (default 0.005) | yes |
 //! | `max_push_speed` (3 m/s) | `normalized_max_corrective_velocity` (default 3) | yes |

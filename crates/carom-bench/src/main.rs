@@ -72,13 +72,19 @@ struct Args {
     /// they always do.
     #[arg(long)]
     direct_joints: bool,
+    /// Step carom without contacts that look a step ahead (`WorldSettings::look_ahead` off):
+    /// continuous collision as Box2D's, fast bodies swept against static ones only; the peers
+    /// step as they always do.
+    #[arg(long)]
+    no_look_ahead: bool,
 }
 
-/// carom's solver options that the timing runs can turn on (the scene's own are kept).
+/// carom's options that the timing runs can turn on (the scene's own are kept).
 #[derive(Debug, Clone, Copy)]
 struct SolverOptions {
     shock_propagation: bool,
     direct_joints: bool,
+    no_look_ahead: bool,
 }
 
 /// Other jobs than timing.
@@ -290,6 +296,7 @@ fn bench_scene(
             .update_settings(|s| {
                 s.solver.shock_propagation |= options.shock_propagation;
                 s.solver.direct_joints |= options.direct_joints;
+                s.look_ahead &= !options.no_look_ahead;
             })
             .map_err(|e| e.to_string())?;
         Ok(scene)
@@ -301,6 +308,7 @@ fn bench_scene(
     let named = [
         (options.shock_propagation, "shock propagation"),
         (options.direct_joints, "direct joints"),
+        (options.no_look_ahead, "no look-ahead"),
     ];
     let on: Vec<&str> = named
         .iter()
@@ -1111,6 +1119,7 @@ fn main() -> Result<(), String> {
         let options = SolverOptions {
             shock_propagation: args.shock_propagation,
             direct_joints: args.direct_joints,
+            no_look_ahead: args.no_look_ahead,
         };
         rows.push(bench_scene(
             path,

@@ -199,6 +199,7 @@ pub(crate) fn body(value: &JsValue) -> Result<BodyDef, JsError> {
         "linearDamping",
         "angularDamping",
         "bullet",
+        "lookAhead",
         "awake",
         "fixedRotation",
         "sleepThreshold",
@@ -248,6 +249,7 @@ pub(crate) fn body(value: &JsValue) -> Result<BodyDef, JsError> {
     def.linear_damping = f.real("linearDamping")?.unwrap_or(def.linear_damping);
     def.angular_damping = f.real("angularDamping")?.unwrap_or(def.angular_damping);
     def.bullet = f.bool("bullet")?.unwrap_or(def.bullet);
+    def.look_ahead = f.bool("lookAhead")?.unwrap_or(def.look_ahead);
     def.awake = f.bool("awake")?.unwrap_or(def.awake);
     def.fixed_rotation = f.bool("fixedRotation")?.unwrap_or(def.fixed_rotation);
     def.sleep_threshold = f.real("sleepThreshold")?.unwrap_or(def.sleep_threshold);

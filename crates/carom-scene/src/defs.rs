@@ -186,6 +186,7 @@ fn body_def_of(spec: &BodySpec) -> Result<BodyDef, String> {
         .angular_velocity(spec.angular_velocity)
         .damping(material.damping.0, material.damping.1)
         .bullet(spec.bullet)
+        .look_ahead(spec.look_ahead)
         .fixed_rotation(spec.fixed_rotation)
         .awake(spec.awake)
         .sleep_threshold(spec.sleep_threshold);

@@ -446,6 +446,9 @@ pub struct BodySpec {
     /// Swept against moving bodies too.
     #[serde(default)]
     pub bullet: bool,
+    /// Its contacts look a step ahead even in a world that does not (`BodyDef::look_ahead`).
+    #[serde(default)]
+    pub look_ahead: bool,
     /// A dynamic body that never turns (a character standing upright).
     #[serde(default)]
     pub fixed_rotation: bool,

@@ -27,14 +27,51 @@ use crate::stats::CollisionWork;
 pub(crate) struct ManifoldOptions<'a> {
     /// Points are kept up to this far apart, m (the speculative distance).
     pub margin: Real,
-    /// How far ahead, s, a face point may look: it is kept while the pair could close its gap
-    /// within that time at their present speeds (0 keeps points within `margin` only).
-    pub prediction: Real,
+    /// How far ahead a face point may look: it is kept while the pair could close its gap
+    /// within that time at their present speeds.
+    pub prediction: LookAhead,
     /// Carry a manifold along while its pair has moved less than this relative to each other
     /// since it was built, m, instead of building it again (`None`: build every manifold).
     pub recycling: Option<Real>,
     /// The world's pre-solve hook, asked about the contacts of colliders that opted in.
     pub pre_solve: Option<&'a PreSolveHook>,
+}
+
+/// How far ahead, s, contacts look this step: as far as a pair can close in that time, a face
+/// point is kept, and a moving body's broadphase box covers where it can go (0 keeps points
+/// within the margin only, and boxes where their bodies are).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LookAhead {
+    /// For every body: the step, when the world looks ahead.
+    every: Real,
+    /// For a body that asks to ([`crate::BodyDef::look_ahead`]): the step, with continuous
+    /// collision on.
+    asked: Real,
+}
+
+impl LookAhead {
+    /// A step of `dt` in a world with continuous collision on or off, that looks ahead or not.
+    pub(crate) fn new(continuous: bool, world_looks_ahead: bool, dt: Real) -> Self {
+        let asked = if continuous { dt } else { 0.0 };
+        LookAhead {
+            every: if world_looks_ahead { asked } else { 0.0 },
+            asked,
+        }
+    }
+
+    /// How far ahead `body`'s broadphase box reaches.
+    pub(crate) fn for_body(&self, body: &Body) -> Real {
+        if body.looks_ahead() {
+            self.asked
+        } else {
+            self.every
+        }
+    }
+
+    /// How far ahead the contact of `a` and `b` looks: as the one that looks farther.
+    fn for_pair(&self, a: &Body, b: &Body) -> Real {
+        self.for_body(a).max(self.for_body(b))
+    }
 }
 
 /// What updating one contact's manifold found.
@@ -309,7 +346,7 @@ fn refresh_manifold(
     };
     let margins = Margins {
         any: margin,
-        face: margin + closing_speed(a, b) * prediction,
+        face: margin + closing_speed(a, b) * prediction.for_pair(a, b),
     };
     contact.manifold = collide::update(
         shape_a.world_shape(),

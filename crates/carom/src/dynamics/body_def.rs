@@ -84,6 +84,12 @@ pub struct BodyDef {
         serde(default = "crate::dynamics::body_def::sweep_threshold")
     )]
     pub sweep_threshold: Real,
+    /// Its contacts look a step ahead even in a world that does not
+    /// ([`crate::WorldSettings::look_ahead`]): an impact of it at any speed is stopped at the
+    /// surface, where a world without look-ahead lets a fast body sink in for a step. With
+    /// continuous collision only. Default false: as the world does.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub look_ahead: bool,
     /// A dynamic body that never turns, whatever pushes it (Box2D's angular motion lock): a
     /// character standing upright. Default false.
     #[cfg_attr(feature = "serde", serde(default))]
@@ -184,6 +190,7 @@ impl BodyDef {
             awake: true,
             sleep_threshold: crate::constants::SLEEP_THRESHOLD,
             sweep_threshold: crate::constants::SWEEP_THRESHOLD,
+            look_ahead: false,
             fixed_rotation: false,
         }
     }
@@ -343,6 +350,13 @@ impl BodyDef {
     /// [`BodyDef::sweep_threshold`]).
     pub fn sweep_threshold(mut self, fraction: Real) -> Self {
         self.sweep_threshold = fraction;
+        self
+    }
+
+    /// Makes its contacts look a step ahead even in a world that does not (see
+    /// [`BodyDef::look_ahead`]).
+    pub fn look_ahead(mut self, look_ahead: bool) -> Self {
+        self.look_ahead = look_ahead;
         self
     }
 

@@ -142,6 +142,12 @@ impl<'w> BodyMut<'w> {
         self.edit(|body| body.set_bullet(bullet))
     }
 
+    /// Makes its contacts look a step ahead even in a world that does not, or not (see
+    /// [`crate::BodyDef::look_ahead`]).
+    pub fn set_look_ahead(&mut self, look_ahead: bool) {
+        self.edit(|body| body.set_look_ahead(look_ahead))
+    }
+
     /// Sets the user tag.
     pub fn set_user_tag(&mut self, tag: u64) {
         self.edit(|body| body.set_user_tag(tag))

@@ -14,9 +14,10 @@ pub enum Effect {
     Friction,
     /// Bounces (no restitution pass without it).
     Restitution,
-    /// Impacts at any speed: contacts between faces are made a step ahead (as far as the pair
-    /// can close in a step) so the solver stops the approach at the surface, and fast bodies
-    /// are swept against static ones (bullets against every body) so they cannot tunnel.
+    /// Impacts at any speed: fast bodies are swept against static ones (bullets against every
+    /// body) so they cannot tunnel, and, with [`crate::WorldSettings::look_ahead`] (the
+    /// default), contacts between faces are made a step ahead (as far as the pair can close in
+    /// a step) so the solver stops the approach at the surface.
     Continuous,
     /// Islands of resting bodies sleep.
     Sleeping,

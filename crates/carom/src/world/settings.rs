@@ -26,6 +26,15 @@ pub struct WorldSettings {
     pub solver: SolverParams,
     /// The effects simulated; what is not named costs nothing. Default: all of them.
     pub effects: Effects,
+    /// With continuous collision on, contacts look a step ahead: a pair's contact is made, and
+    /// its face points kept, as soon as the two can close within a step at their present
+    /// speeds, so an impact at any speed is stopped at the surface. Off, a contact is made
+    /// when the bodies' fat boxes meet and keeps points within the speculative distance
+    /// only, as Box2D's do: a body that closes faster than that in a step sinks into what it
+    /// hits for a step before it is pushed back out, and the step costs less where many
+    /// bodies move fast. Continuous collision's sweeps keep fast bodies from passing through
+    /// static ones (bullets through any body) either way. Default on.
+    pub look_ahead: bool,
     /// Keep a pair's manifold while its bodies barely move relative to each other, updating
     /// only each point's separation, instead of rebuilding it every step (as Box2D does):
     /// under soft step while they move less than Box2D's 10 × slop (5 cm), under the classic
@@ -47,6 +56,7 @@ impl Default for WorldSettings {
             aabb_margin: AABB_MARGIN,
             solver: SolverParams::default(),
             effects: Effects::ALL,
+            look_ahead: true,
             contact_recycling: true,
             hit_event_threshold: HIT_EVENT_THRESHOLD,
         }

@@ -4,7 +4,7 @@ use super::{World, margin_for};
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::continuous::{self, ContinuousScratch};
 use crate::collision::hits::find_hits;
-use crate::collision::narrowphase::{ManifoldOptions, Narrowphase};
+use crate::collision::narrowphase::{LookAhead, ManifoldOptions, Narrowphase};
 use crate::constants::{
     CONTACTS_PER_TASK, LINEAR_SLOP, RECYCLE_DISTANCE, RECYCLE_DISTANCE_CLASSIC,
     RUNNER_STOP_FRACTION, TIME_STEP_RANGE,
@@ -81,10 +81,10 @@ impl World {
         });
         let effects = self.state.settings.effects;
         let continuous = effects.contains(Effect::Continuous);
-        // With continuous collision, contacts look a step ahead: a face point's margin reaches
-        // as far as the pair can close in a step, and moving bodies' boxes cover where they
-        // are going, so an impact at any speed has its contact before it happens.
-        let prediction = if continuous { dt } else { 0.0 };
+        // Looking ahead, a face point's margin reaches as far as the pair can close in a
+        // step, and moving bodies' boxes cover where they are going, so an impact at any
+        // speed has its contact before it happens.
+        let prediction = LookAhead::new(continuous, self.state.settings.look_ahead, dt);
         let collision = &mut stats.collision;
         stats.max_penetration = timed(&mut times.narrowphase, || {
             self.build_manifolds(
@@ -178,7 +178,7 @@ impl World {
     )]
     fn build_manifolds(
         &mut self,
-        prediction: Real,
+        prediction: LookAhead,
         narrowphase: &mut Narrowphase,
         wake: &mut Vec<u32>,
         work: &mut CollisionWork,
@@ -318,7 +318,7 @@ impl World {
     /// Places the colliders of the awake set, which moved this step, and their bodies' boxes,
     /// and finds for each, while it is at hand, what the broadphase must learn of it
     /// (`refits`, see [`refit`]).
-    fn place_moved_colliders(&mut self, prediction: Real, refits: &mut Vec<Option<Refit>>) {
+    fn place_moved_colliders(&mut self, prediction: LookAhead, refits: &mut Vec<Option<Refit>>) {
         let reach = margin_for(&self.state.settings, BodyKind::Dynamic);
         let broadphase = &self.state.broadphase;
         place_awake_colliders(
@@ -332,7 +332,7 @@ impl World {
     }
 
     /// Finds again what the broadphase must learn of every awake collider ([`refit`]).
-    fn find_refits(&self, prediction: Real, refits: &mut Vec<Option<Refit>>) {
+    fn find_refits(&self, prediction: LookAhead, refits: &mut Vec<Option<Refit>>) {
         let bodies = self.state.bodies.as_slice();
         let awake = self.state.collider_sets.awake();
         let broadphase = &self.state.broadphase;
@@ -353,7 +353,7 @@ impl World {
     /// indices `moved`, all awake.
     fn refind_refits(
         &self,
-        prediction: Real,
+        prediction: LookAhead,
         moved: impl Iterator<Item = usize>,
         refits: &mut [Option<Refit>],
     ) {
@@ -417,7 +417,7 @@ impl World {
 }
 
 /// What the broadphase must learn of a collider (`handle`) of `body` that moved this step,
-/// if anything: its box, grown to cover where it can get to in `prediction` seconds at its
+/// if anything: its box, grown to cover where it can get to in the time it looks ahead at its
 /// body's present velocity, if that left its fat box, and whether it outruns its margin
 /// (`reach`: a runner, whose pairs the look-ahead test judges). Reads only, so it may run on
 /// all threads.
@@ -425,14 +425,14 @@ fn refit(
     handle: ColliderHandle,
     collider: &Collider,
     body: &Body,
-    prediction: Real,
+    prediction: LookAhead,
     reach: Real,
     broadphase: &BroadPhase,
 ) -> Option<Refit> {
     if body.kind() == BodyKind::Static {
         return None;
     }
-    let stride = Stride::of(body, prediction);
+    let stride = Stride::of(body, prediction.for_body(body));
     let aabb = stride.map_or(collider.aabb(), |s| s.sweep(collider.aabb()));
     let leaves = broadphase.needs_update(handle, body.kind(), &aabb);
     // A runner runs on until it is well below the speed that made it one, so that a body

@@ -103,6 +103,9 @@ pub struct Body {
         serde(default = "crate::dynamics::body_def::sweep_threshold")
     )]
     sweep_threshold: Real,
+    /// Its contacts look a step ahead whatever the world does ([`crate::BodyDef::look_ahead`]).
+    #[cfg_attr(feature = "serde", serde(default))]
+    look_ahead: bool,
     /// Never turns: no inverse inertia, no spin ([`crate::BodyDef::fixed_rotation`]).
     #[cfg_attr(feature = "serde", serde(default))]
     fixed_rotation: bool,
@@ -182,6 +185,7 @@ impl HeapBytes for Body {
             sleep_time: _,
             sleep_threshold: _,
             sweep_threshold: _,
+            look_ahead: _,
             fixed_rotation: _,
             sleeping: _,
             island: _,
@@ -240,6 +244,7 @@ impl Body {
             sleep_time: 0.0,
             sleep_threshold: check_non_negative("sleep threshold", def.sleep_threshold)?,
             sweep_threshold: check_sweep_threshold(def.sweep_threshold)?,
+            look_ahead: def.look_ahead,
             fixed_rotation: def.fixed_rotation,
             sleeping: false,
             island: None,
@@ -464,6 +469,13 @@ impl Body {
     #[inline]
     pub fn is_bullet(&self) -> bool {
         self.bullet
+    }
+
+    /// Whether its contacts look a step ahead whatever the world does
+    /// ([`crate::BodyDef::look_ahead`]).
+    #[inline]
+    pub fn looks_ahead(&self) -> bool {
+        self.look_ahead
     }
 
     /// The user tag.
@@ -698,6 +710,11 @@ impl Body {
     /// Marks or unmarks the body as a bullet.
     pub(crate) fn set_bullet(&mut self, bullet: bool) {
         self.bullet = bullet;
+    }
+
+    /// Makes its contacts look a step ahead whatever the world does, or not.
+    pub(crate) fn set_look_ahead(&mut self, look_ahead: bool) {
+        self.look_ahead = look_ahead;
     }
 
     /// Sets the user tag.
