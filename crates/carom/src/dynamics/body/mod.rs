@@ -6,7 +6,7 @@
 //! (the common case) has its centre of mass at its origin, as shapes are centred on their
 //! centroid. The solver moves centres of mass; the origin follows.
 
-use crate::constants::{MAX_POSITION, TIME_STEP_RANGE};
+use crate::constants::TIME_STEP_RANGE;
 use crate::dynamics::body_def::BodyDef;
 use crate::dynamics::collider::{Collider, ColliderHandle, check_non_negative};
 use crate::error::{CaromError, check_finite, check_finite_vec};
@@ -875,38 +875,12 @@ impl Body {
     }
 }
 
+mod checks;
 #[cfg(feature = "serde")]
 mod saved;
 
-/// Checks a position a body is given: finite and within [`MAX_POSITION`] of the origin on
-/// each axis.
-fn check_position(what: &'static str, position: Vec2) -> Result<Vec2, CaromError> {
-    check_finite_vec(what, position)?;
-    for value in [position.x, position.y] {
-        if value.abs() > MAX_POSITION {
-            return Err(CaromError::OutOfRange {
-                name: what,
-                expected: "within 1000 km (1e6 m) of the origin",
-                value,
-            });
-        }
-    }
-    Ok(position)
-}
-
-/// A sweep threshold: not negative, and not a number's absence (infinity, never swept, is
-/// allowed).
-pub(crate) fn check_sweep_threshold(fraction: Real) -> Result<Real, CaromError> {
-    if fraction >= 0.0 {
-        Ok(fraction)
-    } else {
-        Err(CaromError::OutOfRange {
-            name: "sweep threshold",
-            expected: "zero or more (infinity never sweeps)",
-            value: fraction,
-        })
-    }
-}
+use checks::check_position;
+pub(crate) use checks::check_sweep_threshold;
 
 #[cfg(test)]
 mod tests {
