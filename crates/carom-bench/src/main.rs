@@ -81,7 +81,7 @@ struct Args {
 
 /// carom's options that the timing runs can turn on (the scene's own are kept).
 #[derive(Debug, Clone, Copy)]
-struct SolverOptions {
+struct CaromOptions {
     shock_propagation: bool,
     direct_joints: bool,
     no_look_ahead: bool,
@@ -284,7 +284,7 @@ fn keep_min(best: Option<RunResult>, run: RunResult) -> RunResult {
 fn bench_scene(
     path: &Path,
     (steps, runs): (u32, u32),
-    options: SolverOptions,
+    options: CaromOptions,
     one: &rayon::ThreadPool,
     many: &rayon::ThreadPool,
 ) -> Result<Row, String> {
@@ -1116,7 +1116,7 @@ fn main() -> Result<(), String> {
     }
     let mut rows = Vec::new();
     for (path, steps) in &scenes {
-        let options = SolverOptions {
+        let options = CaromOptions {
             shock_propagation: args.shock_propagation,
             direct_joints: args.direct_joints,
             no_look_ahead: args.no_look_ahead,
