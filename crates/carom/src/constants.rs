@@ -157,6 +157,11 @@ pub const SLEEP_THRESHOLD: Real = 0.05;
 /// How long a whole island must rest before it sleeps, s (Box2D's 0.5 s).
 pub const TIME_TO_SLEEP: Real = 0.5;
 
+/// An island holding at least this share of the awake bodies (one in so many) is split by
+/// reading every awake touching contact in memory order; a smaller one by walking its bodies'
+/// contact lists, which costs more per contact but reads only its own.
+pub(crate) const SPLIT_SCAN_SHARE: usize = 8;
+
 // Solvers.
 
 /// Graph colours a touching contact may take before it goes to the overflow (Box2D's 24,

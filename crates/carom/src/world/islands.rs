@@ -1,6 +1,6 @@
 //! The world's side of persistent islands (see [`crate::dynamics::island`]): linking them as
-//! contacts start touching, counting what may have split them, splitting one lazily when its
-//! bodies want to sleep. Putting resting islands to sleep is [`super::sleep`].
+//! contacts start touching, counting what may have split them. Splitting one is
+//! [`super::island_split`]; putting resting islands to sleep is [`super::sleep`].
 
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::world::World;
@@ -8,14 +8,19 @@ use crate::world::World;
 /// The memory islands work in, kept so a step allocates nothing.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct IslandScratch {
-    /// The bodies of an island being split.
-    members: Vec<BodyHandle>,
-    /// The search's bodies still to visit.
-    stack: Vec<BodyHandle>,
+    /// The bodies of an island being split, in its list's order.
+    pub(super) members: Vec<BodyHandle>,
+    /// Where each body is among `members`, by its slot index (stale entries are told apart
+    /// by `members` not holding the body there).
+    pub(super) local: Vec<u32>,
+    /// Each member's parent in the union-find, by place among `members`.
+    pub(super) parents: Vec<u32>,
+    /// The island each group's root goes to, by place among `members`.
+    pub(super) groups: Vec<u32>,
     /// One body's touching partners.
     pub partners: Vec<BodyHandle>,
     /// One body's joined partners.
-    joined: Vec<BodyHandle>,
+    pub(super) joined: Vec<BodyHandle>,
     /// The islands falling asleep this step.
     pub(super) sleepy: Vec<u32>,
 }
@@ -33,7 +38,7 @@ impl World {
     }
 
     /// Appends the body at `index` to island `id`'s list.
-    fn append_to_island(&mut self, index: usize, id: u32) {
+    pub(super) fn append_to_island(&mut self, index: usize, id: u32) {
         let handle = self.state.bodies.handles()[index];
         let tail = self.state.islands.get(id).tail;
         self.state.bodies.as_mut_slice()[index].set_island(Some(id), tail, None);
@@ -178,59 +183,5 @@ impl World {
         began.clear();
         ended.clear();
         self.state.contacts.give_back_touch_changes(began, ended);
-    }
-
-    /// Splits island `id` into the groups of its bodies that touching contacts and joints
-    /// still join, by a search through each body's contacts and joints; the first group keeps
-    /// the id.
-    pub(super) fn split_island(&mut self, id: u32) {
-        let mut members = std::mem::take(&mut self.island_scratch.members);
-        let mut stack = std::mem::take(&mut self.island_scratch.stack);
-        let mut partners = std::mem::take(&mut self.island_scratch.partners);
-        let mut joined = std::mem::take(&mut self.island_scratch.joined);
-        members.clear();
-        let mut next = self.state.islands.get(id).head;
-        while let Some(handle) = next {
-            let index = self.handle_index(handle);
-            let body = &mut self.state.bodies.as_mut_slice()[index];
-            next = body.island_neighbours().1;
-            // No island: not yet reached by the search.
-            body.set_island(None, None, None);
-            members.push(handle);
-        }
-        {
-            let island = self.state.islands.get_mut(id);
-            (island.head, island.tail, island.len, island.removed) = (None, None, 0, 0);
-        }
-        let mut current = Some(id);
-        for &seed in &members {
-            let seed_index = self.handle_index(seed);
-            if self.state.bodies.as_slice()[seed_index].island().is_some() {
-                continue;
-            }
-            let group = current
-                .take()
-                .unwrap_or_else(|| self.state.islands.create());
-            self.append_to_island(seed_index, group);
-            stack.clear();
-            stack.push(seed);
-            while let Some(handle) = stack.pop() {
-                self.state.contacts.touching_partners(handle, &mut partners);
-                self.joint_partners(handle, &mut joined);
-                partners.extend_from_slice(&joined);
-                for &partner in &partners {
-                    let index = self.handle_index(partner);
-                    let body = &self.state.bodies.as_slice()[index];
-                    if body.kind() == BodyKind::Dynamic && body.island().is_none() {
-                        self.append_to_island(index, group);
-                        stack.push(partner);
-                    }
-                }
-            }
-        }
-        self.island_scratch.members = members;
-        self.island_scratch.stack = stack;
-        self.island_scratch.partners = partners;
-        self.island_scratch.joined = joined;
     }
 }

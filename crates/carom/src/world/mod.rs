@@ -4,6 +4,7 @@ pub(crate) mod body_mut;
 pub(crate) mod collider_mut;
 pub(crate) mod effects;
 pub(crate) mod explosion;
+mod island_split;
 pub(crate) mod islands;
 pub(crate) mod joint_mut;
 pub(crate) mod joints;

@@ -173,6 +173,14 @@ impl ContactSet {
         });
     }
 
+    /// The bodies of every awake contact that touches (the overflow's and the colours'), in
+    /// memory order: what splitting a large island reads.
+    pub(crate) fn awake_touching_bodies(&self) -> impl Iterator<Item = [BodyHandle; 2]> + '_ {
+        self.contacts[..self.parts.start(NOT_TOUCHING)]
+            .iter()
+            .map(|contact| [contact.body_a, contact.body_b])
+    }
+
     /// Where each colour's contacts (then the overflow's) are among the awake contacts.
     pub(crate) fn color_ranges(&self) -> ColorRanges {
         color_ranges(&self.parts)
