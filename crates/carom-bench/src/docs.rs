@@ -21,6 +21,7 @@
 
 use crate::hard_cases::table::{self, Column};
 use crate::measured;
+use crate::projection;
 use crate::sweep::{self, Engine, Point, front, report};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -72,11 +73,13 @@ pub struct Sources {
     stages_provenance: report::Provenance,
 }
 
-/// One row of [`STAGES_CSV`]: a recipe in one engine, its stages' ms per step and the work
-/// behind them (NaN where the engine does not count it), in the file's column order.
+/// One row of [`STAGES_CSV`]: a recipe in one engine on a number of threads, its stages' ms per
+/// step and the work behind them (NaN where the engine does not count it), in the file's column
+/// order.
 struct StageRow {
     scene: String,
     engine: String,
+    threads: usize,
     /// step, broadphase, narrowphase, solve, continuous, sleep.
     ms: [f64; 6],
     /// contacts, awake contacts, recycled, touching, created, destroyed, proxies moved, pair
@@ -86,22 +89,26 @@ struct StageRow {
 
 /// Reads [`STAGES_CSV`]'s rows.
 fn parse_stages(text: &str) -> Result<Vec<StageRow>, String> {
-    const HEADER: &str = "scene,engine,step_ms,broadphase_ms,narrowphase_ms,solve_ms,\
+    const HEADER: &str = "scene,engine,threads,step_ms,broadphase_ms,narrowphase_ms,solve_ms,\
                           continuous_ms,sleep_ms,contacts,awake_contacts,recycled,touching,\
                           created,destroyed,proxies_moved,pair_candidates,island_splits";
     data_lines(text, HEADER)?
         .map(|line| {
             let fields: Vec<&str> = line.split(',').collect();
-            if fields.len() != 17 {
-                return Err(format!("`{line}` has not 17 fields"));
+            if fields.len() != 18 {
+                return Err(format!("`{line}` has not 18 fields"));
             }
-            let numbers = fields[2..]
+            let threads = fields[2]
+                .parse::<usize>()
+                .map_err(|e| format!("`{line}`: {e}"))?;
+            let numbers = fields[3..]
                 .iter()
                 .map(|f| f.parse::<f64>().map_err(|e| format!("`{line}`: {e}")))
                 .collect::<Result<Vec<f64>, String>>()?;
             Ok(StageRow {
                 scene: fields[0].to_string(),
                 engine: fields[1].to_string(),
+                threads,
                 ms: std::array::from_fn(|k| numbers[k]),
                 work: std::array::from_fn(|k| numbers[6 + k]),
             })
@@ -384,6 +391,7 @@ impl Sources {
             "speed/memory" => Ok(self.speed_memory()),
             "speed/stages" => Ok(self.speed_stages()),
             "speed/work" => Ok(self.speed_work()),
+            "speed/projection" => Ok(self.speed_projection()),
             _ => Err(format!(
                 "no figures named `{name}`: the names are {} and `table FILE`",
                 NAMES.join(", ")
@@ -717,7 +725,7 @@ impl Sources {
              other |\n|---|---|---|---|---|---|---|---|---|\n",
             Self::measured(&self.stages_provenance)
         );
-        for row in &self.stages {
+        for row in self.stages.iter().filter(|r| r.threads == 1) {
             let [step, broad, narrow, solve, continuous, sleep] = row.ms;
             let other = step - broad - narrow - solve - continuous - sleep;
             let _ = writeln!(
@@ -730,6 +738,33 @@ impl Sources {
         out
     }
 
+    /// Each stage's serial share, from its time on one thread and on several, and the step's
+    /// time projected from them on more threads than were measured.
+    fn speed_projection(&self) -> String {
+        let rows: Vec<projection::Measured> = self
+            .stages
+            .iter()
+            .filter(|one| one.threads == 1)
+            .filter_map(|one| {
+                let many = self.stages.iter().find(|r| {
+                    r.threads > 1 && (&r.scene, &r.engine) == (&one.scene, &one.engine)
+                })?;
+                Some(projection::Measured {
+                    scene: format!("`{}`", one.scene),
+                    engine: one.engine.clone(),
+                    threads: many.threads,
+                    one: one.ms,
+                    many: many.ms,
+                })
+            })
+            .collect();
+        format!(
+            "{} A projection, not a measurement.\n\n{}",
+            Self::measured(&self.stages_provenance),
+            projection::markdown(&rows)
+        )
+    }
+
     /// The work behind the stages: contacts, recycling, pairs, island splits.
     fn speed_work(&self) -> String {
         let mut out = format!(
@@ -739,7 +774,7 @@ impl Sources {
              |---|---|---|---|---|---|---|---|---|---|---|\n",
             Self::measured(&self.stages_provenance)
         );
-        for row in &self.stages {
+        for row in self.stages.iter().filter(|r| r.threads == 1) {
             let _ = write!(out, "| `{}` | {} |", row.scene, row.engine);
             for (k, value) in row.work.iter().enumerate() {
                 if value.is_nan() {
@@ -825,12 +860,13 @@ impl Sources {
 }
 
 /// Every part [`Sources::draw`] draws.
-pub const NAMES: [&str; 15] = [
+pub const NAMES: [&str; 16] = [
     "bench/snapshots",
     "speed/drops",
     "speed/memory",
     "speed/stages",
     "speed/work",
+    "speed/projection",
     "effects/cost",
     "accuracy/fronts",
     "accuracy/options",

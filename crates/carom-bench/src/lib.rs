@@ -163,6 +163,7 @@ pub mod docs;
 pub mod hard_cases;
 #[cfg(feature = "sweep")]
 pub mod measured;
+pub mod projection;
 #[cfg(feature = "peers")]
 pub mod rapier_world;
 #[cfg(feature = "native")]

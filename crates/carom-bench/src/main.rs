@@ -510,7 +510,33 @@ fn markdown(rows: &[Row], threads: usize) -> String {
         );
     }
     s.push_str(&stage_tables(rows));
+    s.push('\n');
+    s.push_str(&carom_bench::projection::markdown(&projection_rows(
+        rows, threads,
+    )));
     s
+}
+
+/// carom's and Box2D's stages on one thread and on several, for the projection.
+fn projection_rows(rows: &[Row], threads: usize) -> Vec<carom_bench::projection::Measured> {
+    let mut out = Vec::new();
+    for r in rows {
+        for (engine, one, many) in [
+            ("carom", &r.carom, &r.carom_threads),
+            ("Box2D", &r.box2d, &r.box2d_threads),
+        ] {
+            if let (Some(one), Some(many)) = (one.stages, many.stages) {
+                out.push(carom_bench::projection::Measured {
+                    scene: r.scene.clone(),
+                    engine: engine.into(),
+                    threads,
+                    one: one.ms(),
+                    many: many.ms(),
+                });
+            }
+        }
+    }
+    out
 }
 
 /// Where each engine's step goes (one thread, the fastest run's means per step, ms; Box2D's
@@ -519,7 +545,8 @@ fn stage_tables(rows: &[Row]) -> String {
     let engines = |r: &Row| [("carom", r.carom.stages), ("Box2D", r.box2d.stages)];
     let mut s = String::from(
         "\nms per step by stage, one thread (Box2D: broadphase = pairs + refit, narrowphase = \
-         collide, continuous = bullets, sleep = sleep islands, solve = the rest of its solve):\n\n\
+         collide, continuous = bullets, sleep = sleep islands + split islands, solve = the rest \
+         of its solve):\n\n\
          | scene | engine | step | broadphase | narrowphase | solve | continuous | sleep | other |\n\
          |---|---|---|---|---|---|---|---|---|\n",
     );
@@ -1154,25 +1181,35 @@ fn main() -> Result<(), String> {
         write_measured(path, args.runs as usize, &csv(&rows))?;
     }
     if let Some(path) = &args.stages_csv {
-        write_measured(path, args.runs as usize, &stages_csv(&rows))?;
+        write_measured(
+            path,
+            args.runs as usize,
+            &stages_csv(&rows, args.threads.max(1)),
+        )?;
     }
     Ok(())
 }
 
-/// [`stage_tables`] as CSV: a row per scene and engine (carom's, Box2D's), the stages' ms per
-/// step and the work behind them; `NaN` where the engine does not count it.
-fn stages_csv(rows: &[Row]) -> String {
+/// [`stage_tables`] as CSV: a row per scene, engine (carom's, Box2D's) and thread count (one
+/// and `threads`), the stages' ms per step and the work behind them; `NaN` where the engine
+/// does not count it.
+fn stages_csv(rows: &[Row], threads: usize) -> String {
     let mut s = String::from(
-        "scene,engine,step_ms,broadphase_ms,narrowphase_ms,solve_ms,continuous_ms,sleep_ms,\
+        "scene,engine,threads,step_ms,broadphase_ms,narrowphase_ms,solve_ms,continuous_ms,sleep_ms,\
          contacts,awake_contacts,recycled,touching,created,destroyed,proxies_moved,\
          pair_candidates,island_splits\n",
     );
     for r in rows {
-        for (engine, stages) in [("carom", r.carom.stages), ("Box2D", r.box2d.stages)] {
+        for (engine, threads, stages) in [
+            ("carom", 1, r.carom.stages),
+            ("carom", threads, r.carom_threads.stages),
+            ("Box2D", 1, r.box2d.stages),
+            ("Box2D", threads, r.box2d_threads.stages),
+        ] {
             let Some(p) = stages else { continue };
             let _ = writeln!(
                 s,
-                "{},{engine},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.1},{:.1},{:.1},{:.1},{:.2},\
+                "{},{engine},{threads},{:.4},{:.4},{:.4},{:.4},{:.4},{:.4},{:.1},{:.1},{:.1},{:.1},{:.2},\
                  {:.2},{:.1},{:.1},{:.3}",
                 r.scene,
                 p.step_ms,
