@@ -2,7 +2,8 @@
 //! step to step, on Box2D's eight benchmark recipes too; and a snapshot's count of the heap it
 //! holds is what taking it allocated. A growing buffer's reallocation counts as one.
 //! Counted by an instrumented global allocator, so this file holds one test (the count is
-//! process-wide).
+//! process-wide) and runs it from its own `main`, without libtest, whose timing thread
+//! allocates to warn of a test that runs past a minute.
 
 use carom::{BodyDef, Effect, Effects, Shape, Snapshot, World, WorldSettings, vec2};
 use carom_scene::SceneWorld;
@@ -212,7 +213,36 @@ fn rollback_allocations(mut world: World, warm_up: usize, rounds: usize) -> usiz
     heap_calls(region.change())
 }
 
-#[test]
+/// Runs the one check, taking libtest's arguments: `--list` lists it; it is skipped by
+/// `--ignored` (it is not ignored), by a name filter it does not match, or by `--skip`.
+fn main() {
+    const NAME: &str = "a_world_in_steady_state_allocates_nothing_per_step";
+    let (mut filters, mut skips, mut ignored) = (Vec::new(), Vec::new(), false);
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "--list" => {
+                println!("{NAME}: test");
+                return;
+            }
+            "--ignored" => ignored = true,
+            "--skip" => skips.extend(args.next()),
+            "--test-threads" | "--format" | "--color" | "--logfile" | "--shuffle-seed" | "-Z" => {
+                args.next();
+            }
+            _ if arg.starts_with('-') => {}
+            _ => filters.push(arg),
+        }
+    }
+    let chosen = filters.is_empty() || filters.iter().any(|f| NAME.contains(f.as_str()));
+    if ignored || !chosen || skips.iter().any(|s| NAME.contains(s.as_str())) {
+        println!("{NAME}: skipped");
+        return;
+    }
+    a_world_in_steady_state_allocates_nothing_per_step();
+    println!("{NAME}: ok");
+}
+
 fn a_world_in_steady_state_allocates_nothing_per_step() {
     let awake = Effects::ALL.without(Effect::Sleeping);
     // Small (everything on the calling thread) and large (the parallel paths), one thread and
