@@ -270,7 +270,7 @@ impl BroadPhase {
     /// Builds again the part of the moving tree that [`BroadPhase::enlarge`] loosened (see
     /// [`DynamicTree::rebuild`]), so queries stay as fast as in a tree built by insertion.
     /// Nothing to do when nothing was enlarged; the static tree never is. A step does this
-    /// through `BroadPhase::moving_tree_and_fat_boxes`.
+    /// through `BroadPhase::take_moving_tree`.
     #[cfg(any(test, feature = "testing"))]
     pub fn rebuild_moving_tree(&mut self) {
         self.trees[MOVING_TREE].rebuild(false);
@@ -341,15 +341,28 @@ impl BroadPhase {
         FatBoxes { proxies }.may_keep(a, b)
     }
 
-    /// The moving tree, to rebuild ([`DynamicTree::rebuild`]), and the fat boxes, to read
-    /// meanwhile: borrowed apart, so that the narrowphase runs beside the rebuild.
-    pub(crate) fn moving_tree_and_fat_boxes(&mut self) -> (&mut DynamicTree, FatBoxes<'_>) {
-        (
-            &mut self.trees[MOVING_TREE],
-            FatBoxes {
-                proxies: &self.proxies,
-            },
-        )
+    /// The fat boxes, which the narrowphase reads.
+    pub(crate) fn fat_boxes(&self) -> FatBoxes<'_> {
+        FatBoxes {
+            proxies: &self.proxies,
+        }
+    }
+
+    /// Takes the moving tree out, to rebuild ([`DynamicTree::rebuild`]) beside the stages
+    /// that do not read it, leaving an empty one until [`BroadPhase::restore_moving_tree`]
+    /// puts it back.
+    pub(crate) fn take_moving_tree(&mut self) -> DynamicTree {
+        std::mem::take(&mut self.trees[MOVING_TREE])
+    }
+
+    /// Puts back the tree [`BroadPhase::take_moving_tree`] took out.
+    pub(crate) fn restore_moving_tree(&mut self, tree: DynamicTree) {
+        debug_assert_eq!(
+            self.trees[MOVING_TREE].proxy_count(),
+            0,
+            "nothing joins the moving tree while it is out"
+        );
+        self.trees[MOVING_TREE] = tree;
     }
 
     /// [`BroadPhase::update_pairs_into`] into a new vector, for tests.

@@ -18,7 +18,7 @@ use crate::math::{Real, Vec2};
 use crate::parallel::{map_zip_into, worth_sharing};
 use crate::solver::{self, Environment, SolverKind};
 use crate::solver_set::SolverSet;
-use crate::stats::{CollisionWork, Instant, StepStats};
+use crate::stats::{CollisionWork, Instant, StageTimes, StepStats};
 use crate::world::effects::Effect;
 
 /// What the stages of a step work in besides the solver, kept so a step in steady state
@@ -85,20 +85,11 @@ impl World {
         // step, and moving bodies' boxes cover where they are going, so an impact at any
         // speed has its contact before it happens.
         let prediction = LookAhead::new(continuous, self.state.settings.look_ahead, dt);
-        let collision = &mut stats.collision;
-        stats.max_penetration = timed(&mut times.narrowphase, || {
-            self.build_manifolds(
-                prediction,
-                &mut scratch.narrowphase,
-                &mut scratch.wake,
-                collision,
-            )
-        });
-        self.awake_joints(&mut scratch.awake_joints);
-        let solved = timed(&mut times.solve, || {
-            let report = self.solve(dt, &scratch.awake_joints);
-            self.place_moved_colliders(prediction, &mut scratch.refits);
-            report
+        let (deepest, solved) =
+            self.collide_and_solve(prediction, dt, &mut scratch, &mut stats.collision, times);
+        stats.max_penetration = deepest;
+        timed(&mut times.solve, || {
+            self.place_moved_colliders(prediction, &mut scratch.refits)
         });
         (stats.contact_points, stats.work) = (solved.points, solved.work);
         if self.state.hit_event_colliders > 0 {
@@ -166,12 +157,50 @@ impl World {
         Ok(())
     }
 
+    /// The narrowphase and the solve; returns the deepest overlap and the solve's report.
+    /// Beside them, on another thread if one is free, the part of the broadphase's moving tree that the last step's motion loosened is built again
+    /// (Box2D's tree task): neither reads the tree (the narrowphase reads only the fat
+    /// boxes), and the pair queries that need it come next step. A small world does it on
+    /// the calling thread: a fork from outside rayon's pool (a game's main thread) wakes a
+    /// worker and waits for it, which costs more than the rebuild.
+    fn collide_and_solve(
+        &mut self,
+        prediction: LookAhead,
+        dt: Real,
+        scratch: &mut StepScratch,
+        collision: &mut CollisionWork,
+        times: &mut StageTimes,
+    ) -> (Real, solver::StepReport) {
+        let mut moving_tree = self.state.broadphase.take_moving_tree();
+        let shared = worth_sharing(self.state.body_sets.awake().len(), CONTACTS_PER_TASK);
+        let mut collide_and_solve = || {
+            let deepest = timed(&mut times.narrowphase, || {
+                self.build_manifolds(
+                    prediction,
+                    &mut scratch.narrowphase,
+                    &mut scratch.wake,
+                    collision,
+                )
+            });
+            self.awake_joints(&mut scratch.awake_joints);
+            let solved = timed(&mut times.solve, || self.solve(dt, &scratch.awake_joints));
+            (deepest, solved)
+        };
+        let ((deepest, solved), ()) = if shared {
+            rayon::join(collide_and_solve, || moving_tree.rebuild(false))
+        } else {
+            // In sequence, the rebuild is broadphase work and timed as such.
+            let solved = collide_and_solve();
+            timed(&mut times.broadphase, || moving_tree.rebuild(false));
+            (solved, ())
+        };
+        self.state.broadphase.restore_moving_tree(moving_tree);
+        (deepest, solved)
+    }
+
     /// Rebuilds the manifolds of every pair where something moves, and wakes the sleeping
     /// islands a moving body touched so they join this step; returns the deepest overlap and
-    /// counts what it did into `work`. Beside it, on another thread if one is free, the part
-    /// of the broadphase's moving tree that the last step's motion loosened is built again
-    /// (Box2D's tree task): the pair queries are done with it, and the narrowphase reads only
-    /// the fat boxes.
+    /// counts what it did into `work`.
     #[allow(
         clippy::expect_used,
         reason = "a live contact's bodies are live: removing a body removes its contacts"
@@ -184,7 +213,6 @@ impl World {
         work: &mut CollisionWork,
     ) -> Real {
         wake.clear();
-        let (moving_tree, fat_boxes) = self.state.broadphase.moving_tree_and_fat_boxes();
         let (contacts, bodies, colliders) = (
             &mut self.state.contacts,
             &self.state.bodies,
@@ -202,16 +230,9 @@ impl World {
             }),
             pre_solve: self.pre_solve.as_ref(),
         };
-        // A small world does both on the calling thread: a fork from outside rayon's pool
-        // (a game's main thread) wakes a worker and waits for it, which costs more than either.
-        let shared = worth_sharing(contacts.awake_len(), CONTACTS_PER_TASK);
-        let mut collide =
-            || narrowphase.update(contacts, bodies, colliders, fat_boxes, options, wake, work);
-        let (deepest, ()) = if shared {
-            rayon::join(collide, || moving_tree.rebuild(false))
-        } else {
-            (collide(), moving_tree.rebuild(false))
-        };
+        let fat_boxes = self.state.broadphase.fat_boxes();
+        let deepest =
+            narrowphase.update(contacts, bodies, colliders, fat_boxes, options, wake, work);
         wake.sort_unstable();
         wake.dedup();
         for &island in wake.iter() {

@@ -146,6 +146,7 @@ impl ContactSet {
     }
 
     /// How many contacts are in the awake set.
+    #[cfg(any(test, all(feature = "testing", feature = "serde")))]
     pub(crate) fn awake_len(&self) -> usize {
         self.awake_range().end
     }
