@@ -158,10 +158,11 @@ impl World {
     }
 
     /// The narrowphase and the solve; returns the deepest overlap and the solve's report.
-    /// Beside them, on another thread if one is free, the part of the broadphase's moving tree that the last step's motion loosened is built again
-    /// (Box2D's tree task): neither reads the tree (the narrowphase reads only the fat
-    /// boxes), and the pair queries that need it come next step. A small world does it on
-    /// the calling thread: a fork from outside rayon's pool (a game's main thread) wakes a
+    /// Beside them, on another thread if one is free, the part of the broadphase's moving
+    /// tree that the last step's motion loosened is built again (Box2D's tree task): neither
+    /// reads the tree (the narrowphase reads only the fat boxes), and the pair queries that
+    /// need it come next step. A small world (few awake bodies, so little to rebuild) does it
+    /// on the calling thread: a fork from outside rayon's pool (a game's main thread) wakes a
     /// worker and waits for it, which costs more than the rebuild.
     fn collide_and_solve(
         &mut self,
@@ -173,7 +174,7 @@ impl World {
     ) -> (Real, solver::StepReport) {
         let mut moving_tree = self.state.broadphase.take_moving_tree();
         let shared = worth_sharing(self.state.body_sets.awake().len(), CONTACTS_PER_TASK);
-        let mut collide_and_solve = || {
+        let mut stages = || {
             let deepest = timed(&mut times.narrowphase, || {
                 self.build_manifolds(
                     prediction,
@@ -187,10 +188,10 @@ impl World {
             (deepest, solved)
         };
         let ((deepest, solved), ()) = if shared {
-            rayon::join(collide_and_solve, || moving_tree.rebuild(false))
+            rayon::join(stages, || moving_tree.rebuild(false))
         } else {
             // In sequence, the rebuild is broadphase work and timed as such.
-            let solved = collide_and_solve();
+            let solved = stages();
             timed(&mut times.broadphase, || moving_tree.rebuild(false));
             (solved, ())
         };
