@@ -883,6 +883,39 @@ impl Box2dWorld {
         Ok(deepest)
     }
 
+    /// [`Box2dWorld::max_penetration`] over the contacts boxdd hands back, and how many awake
+    /// bodies' contacts it refused to (it checks each manifold, and turns down a body's
+    /// contacts when one has a normal it finds not unit): with any refused, the figure is only
+    /// a lower bound.
+    ///
+    /// # Errors
+    /// A body Box2D no longer holds.
+    pub fn max_penetration_read(&mut self) -> Result<(f32, usize), String> {
+        let (mut deepest, mut refused): (f32, usize) = (0.0, 0);
+        // The bodies copied at the start that are dynamic, and every spawned one (a static
+        // body is never awake, so it is passed over below).
+        let copied = self.ids.iter().zip(&self.kinds);
+        let dynamic = copied.filter(|(_, kind)| **kind == BodyKind::Dynamic);
+        let spawned = self.spawned.values().flat_map(|(bodies, _)| bodies);
+        let ids: Vec<BodyId> = dynamic.map(|(id, _)| *id).chain(spawned.copied()).collect();
+        for id in ids {
+            let body = self.world.body(id).map_err(err)?;
+            if !body.is_awake().map_err(err)? {
+                continue;
+            }
+            let Ok(contacts) = body.contact_data() else {
+                refused += 1;
+                continue;
+            };
+            for contact in contacts {
+                for point in contact.manifold.points() {
+                    deepest = deepest.max(-point.separation);
+                }
+            }
+        }
+        Ok((deepest, refused))
+    }
+
     /// The Box2D world, for inspection.
     pub fn native(&mut self) -> &mut boxdd::World {
         &mut self.world

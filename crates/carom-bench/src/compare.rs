@@ -27,6 +27,37 @@ pub struct RunResult {
     pub allocations: usize,
     /// What the stages took and did, per timed step (carom's and Box2D's; none for Rapier).
     pub stages: Option<StageProfile>,
+    /// The deepest overlap the narrowphase found at the start of a timed step, m, over the
+    /// run and on average over the steps (carom's, which reports it at no cost; NaN for the
+    /// peers: see [`box2d_deepest_overlap`]).
+    pub deepest_overlap: Overlap,
+}
+
+/// The deepest overlap found at the start of each step: the most over the steps, and their
+/// mean, m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Overlap {
+    /// The deepest of all the steps'.
+    pub most: f32,
+    /// The mean over the steps of each step's deepest.
+    pub mean: f32,
+}
+
+impl Overlap {
+    /// Not measured.
+    pub const NAN: Overlap = Overlap {
+        most: f32::NAN,
+        mean: f32::NAN,
+    };
+
+    /// Of the steps' deepest overlaps `deepest`.
+    fn of(deepest: &[f32]) -> Overlap {
+        let sum: f64 = deepest.iter().map(|&d| f64::from(d)).sum();
+        Overlap {
+            most: deepest.iter().copied().fold(0.0, f32::max),
+            mean: (sum / deepest.len().max(1) as f64) as f32,
+        }
+    }
 }
 
 /// The mean per timed step of each stage's time and of the work behind it, in carom's
@@ -267,6 +298,7 @@ pub fn run_carom(scene: &mut SceneWorld, steps: u32) -> Result<RunResult, String
         .map(|b| (b.handle(), b.position().y));
     let (mut total_ms, mut allocations) = (0.0, 0);
     let mut stages = StageProfile::zero();
+    let mut deepest = Vec::with_capacity(steps as usize);
     if steps > 0 {
         scene.step().map_err(|e| e.to_string())?;
         let t0 = Instant::now();
@@ -280,6 +312,7 @@ pub fn run_carom(scene: &mut SceneWorld, steps: u32) -> Result<RunResult, String
                 .map_err(|e| e.to_string())?;
             allocations += heap_calls(region.change());
             stages.add_carom(scene.world.stats());
+            deepest.push(scene.world.stats().max_penetration);
         }
         total_ms = t0.elapsed().as_secs_f64() * 1e3;
     }
@@ -297,6 +330,7 @@ pub fn run_carom(scene: &mut SceneWorld, steps: u32) -> Result<RunResult, String
         nan: any_nan(&carom_positions(&scene.world)),
         allocations,
         stages: Some(stages.mean(steps.saturating_sub(1))),
+        deepest_overlap: Overlap::of(&deepest),
     })
 }
 
@@ -411,7 +445,36 @@ pub fn run_box2d(
         nan: any_nan(&end) || any_nan(&spawned),
         allocations: 0,
         stages: Some(stages.mean(steps.saturating_sub(1))),
+        deepest_overlap: Overlap::NAN,
     })
+}
+
+/// The deepest overlap Box2D's narrowphase finds at the start of a step, m, over steps
+/// `1..steps` of `world` (the steps [`run_box2d`] times), a scene's spawn `schedule`
+/// followed as there, and whether any body's contacts could not be read back (the figure is
+/// then a lower bound: see [`Box2dWorld::max_penetration_read`]). Untimed: reading every
+/// contact back after each step costs more than the step.
+///
+/// # Errors
+/// A spawned body Box2D cannot build, or one it no longer holds.
+pub fn box2d_deepest_overlap(
+    world: &mut Box2dWorld,
+    dt: f32,
+    steps: u32,
+    schedule: Option<&SpawnSchedule>,
+) -> Result<(Overlap, bool), String> {
+    let mut replay = Replay::new(schedule);
+    let (mut deepest, mut unread) = (Vec::with_capacity(steps as usize), false);
+    for i in 0..steps {
+        replay.before(u64::from(i), world)?;
+        world.step(dt)?;
+        if i > 0 {
+            let (step_deepest, refused) = world.max_penetration_read()?;
+            deepest.push(step_deepest);
+            unread |= refused > 0;
+        }
+    }
+    Ok((Overlap::of(&deepest), unread))
 }
 
 /// Steps a Rapier world `steps` times (by the dt it was built with), timing all but the first;
@@ -452,5 +515,6 @@ pub fn run_rapier(
         nan: any_nan(&end) || any_nan(&spawned),
         allocations,
         stages: None,
+        deepest_overlap: Overlap::NAN,
     })
 }

@@ -161,6 +161,8 @@ pub mod compare;
 pub mod docs;
 #[cfg(feature = "peers")]
 pub mod hard_cases;
+#[cfg(all(feature = "peers", feature = "native", feature = "sweep"))]
+pub mod look_ahead;
 #[cfg(feature = "sweep")]
 pub mod measured;
 pub mod projection;

@@ -66,25 +66,47 @@ struct Args {
     threads: usize,
     /// Step carom with shock propagation (heavy bodies held by the light ones under them);
     /// the peers step as they always do.
-    #[arg(long)]
+    #[arg(long, global = true)]
     shock_propagation: bool,
     /// Step carom with direct joints (each tree of hinges solved at once); the peers step as
     /// they always do.
-    #[arg(long)]
+    #[arg(long, global = true)]
     direct_joints: bool,
     /// Step carom without contacts that look a step ahead (`WorldSettings::look_ahead` off):
     /// continuous collision as Box2D's, fast bodies swept against static ones only; the peers
     /// step as they always do.
-    #[arg(long)]
+    #[arg(long, global = true)]
     no_look_ahead: bool,
 }
 
-/// carom's options that the timing runs can turn on (the scene's own are kept).
+/// carom's options that the timing runs and profiles can turn on (the scene's own are kept).
 #[derive(Debug, Clone, Copy)]
 struct CaromOptions {
     shock_propagation: bool,
     direct_joints: bool,
     no_look_ahead: bool,
+}
+
+impl CaromOptions {
+    /// The options as `args` gives them.
+    fn of(args: &Args) -> Self {
+        CaromOptions {
+            shock_propagation: args.shock_propagation,
+            direct_joints: args.direct_joints,
+            no_look_ahead: args.no_look_ahead,
+        }
+    }
+
+    /// `world`'s settings with these options turned on.
+    fn apply(self, world: &mut carom::World) -> Result<(), String> {
+        world
+            .update_settings(|s| {
+                s.solver.shock_propagation |= self.shock_propagation;
+                s.solver.direct_joints |= self.direct_joints;
+                s.look_ahead &= !self.no_look_ahead;
+            })
+            .map_err(|e| e.to_string())
+    }
 }
 
 /// Other jobs than timing.
@@ -167,6 +189,20 @@ enum Command {
         /// Write nothing; fail when a doc differs from what would be drawn.
         #[arg(long)]
         check: bool,
+    },
+    /// Times carom with contacts that look a step ahead (its default) and without (Box2D's
+    /// promise), beside Box2D, on one thread, with the deepest overlap each lets a step start
+    /// from; writes the table to FILE for docs/bench to draw (by default Box2D's eight
+    /// recipes, each for its step count).
+    LookAhead {
+        /// The CSV file to write.
+        #[arg(long, default_value = "docs/bench/look-ahead.csv")]
+        out: PathBuf,
+        /// Scene files (default: the eight recipes).
+        scenes: Vec<PathBuf>,
+        /// Runs of each; the fastest is kept.
+        #[arg(long, default_value_t = 3)]
+        runs: u32,
     },
     /// Runs a measuring program that prints a table as CSV on its standard output (a header
     /// line, then the rows), and writes the table to FILE under lines naming the machine, the
@@ -291,14 +327,7 @@ fn bench_scene(
     let path = &resolve(path);
     let load = || {
         let mut scene = carom_scene::load(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        scene
-            .world
-            .update_settings(|s| {
-                s.solver.shock_propagation |= options.shock_propagation;
-                s.solver.direct_joints |= options.direct_joints;
-                s.look_ahead &= !options.no_look_ahead;
-            })
-            .map_err(|e| e.to_string())?;
+        options.apply(&mut scene.world)?;
         Ok(scene)
     };
     let mut name = path.file_stem().map_or_else(
@@ -770,6 +799,47 @@ fn measure(file: &Path, runs: usize, command: &[String]) -> Result<(), String> {
     Ok(())
 }
 
+/// `carom-bench look-ahead`: each scene (the recipes when none is named) timed with and
+/// without look-ahead and in Box2D, on one thread; the table is written to `out`.
+fn look_ahead(
+    out: &Path,
+    scenes: &[PathBuf],
+    runs: u32,
+    one: &rayon::ThreadPool,
+) -> Result<(), String> {
+    let scenes: Vec<PathBuf> = if scenes.is_empty() {
+        DEFAULT_SCENES
+            .iter()
+            .map(|(p, _)| PathBuf::from(p))
+            .collect()
+    } else {
+        scenes.to_vec()
+    };
+    let mut rows = Vec::new();
+    for scene in &scenes {
+        let path = resolve(scene);
+        let name = path.file_stem().map_or_else(
+            || path.display().to_string(),
+            |s| s.to_string_lossy().into(),
+        );
+        let load = || carom_scene::load(&path).map_err(|e| format!("{}: {e}", path.display()));
+        let steps = default_steps(scene);
+        rows.push(one.install(|| carom_bench::look_ahead::measure(&name, load, steps, runs, DT))?);
+    }
+    let provenance = carom_bench::sweep::report::Provenance {
+        machine: carom_bench::sweep::report::Machine::here(),
+        command: typed_command(),
+        runs: runs as usize,
+    };
+    let text = carom_bench::measured::write(&provenance, &carom_bench::look_ahead::csv(&rows))?;
+    if let Some(folder) = out.parent().filter(|f| !f.as_os_str().is_empty()) {
+        std::fs::create_dir_all(folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+    }
+    std::fs::write(out, &text).map_err(|e| format!("{}: {e}", out.display()))?;
+    print!("{text}");
+    Ok(())
+}
+
 /// This command as a shell would take it again: an argument holding anything but plain
 /// characters is single-quoted.
 fn typed_command() -> String {
@@ -988,6 +1058,7 @@ fn profile_run(
     scene: &Path,
     engine: &str,
     steps: u32,
+    options: CaromOptions,
     threads: rayon::ThreadPool,
 ) -> Result<(), String> {
     if steps < 2 {
@@ -997,6 +1068,9 @@ fn profile_run(
     let load = || -> Result<carom_scene::SceneWorld, String> {
         let mut scene = carom_scene::load(&path).map_err(|e| format!("{}: {e}", path.display()))?;
         scene.time_step = DT;
+        if engine == "carom" {
+            options.apply(&mut scene.world)?;
+        }
         Ok(scene)
     };
     let schedule = load()?.spawn_schedule(u64::from(steps))?;
@@ -1107,6 +1181,9 @@ fn main() -> Result<(), String> {
             .map_err(|e| e.to_string())
     };
     let (one, many) = (pool(1)?, pool(args.threads.max(1))?);
+    if let Some(Command::LookAhead { out, scenes, runs }) = &args.command {
+        return look_ahead(out, scenes, *runs, &one);
+    }
     if let Some(Command::Scaling {
         out,
         steps,
@@ -1139,15 +1216,12 @@ fn main() -> Result<(), String> {
     }) = &args.command
     {
         let steps = steps.unwrap_or_else(|| default_steps(scene));
-        return profile_run(scene, engine, steps, pool(*threads)?);
+        let options = CaromOptions::of(&args);
+        return profile_run(scene, engine, steps, options, pool(*threads)?);
     }
     let mut rows = Vec::new();
     for (path, steps) in &scenes {
-        let options = CaromOptions {
-            shock_propagation: args.shock_propagation,
-            direct_joints: args.direct_joints,
-            no_look_ahead: args.no_look_ahead,
-        };
+        let options = CaromOptions::of(&args);
         rows.push(bench_scene(
             path,
             (*steps, args.runs),
