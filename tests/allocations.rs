@@ -136,6 +136,13 @@ const RECIPES: [&str; 8] = [
     "spinner",
 ];
 
+/// The recipes whose every buffer has grown to its high by step 100: nothing they hold grows
+/// after (the pyramids settled, the tumbler and the spinner stirring a set of bodies that
+/// neither grows nor comes to rest, which makes new pairs every step), so even their first
+/// pass from step 100 takes nothing from the heap. The others still gain contacts, woken
+/// bodies or fast bodies then, and grow a buffer to a new high now and again.
+const STEADY_BY_STEP_100: [&str; 4] = ["large_pyramid", "many_pyramids", "tumbler", "spinner"];
+
 /// One of [`RECIPES`], as its scene file makes it.
 fn recipe(name: &str) -> SceneWorld {
     let path = carom_bench::cases::worlds::workspace().join(format!("demos/{name}.ron"));
@@ -321,6 +328,11 @@ fn a_world_in_steady_state_allocates_nothing_per_step() {
         if again > 0 {
             failures.push(format!(
                 "{name}: {again} heap calls in steps 100 to 250 stepped again from a snapshot"
+            ));
+        }
+        if first > 0 && STEADY_BY_STEP_100.contains(&name) {
+            failures.push(format!(
+                "{name}: {first} heap calls in steps 100 to 250, where nothing grows"
             ));
         }
     }

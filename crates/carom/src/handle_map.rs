@@ -250,6 +250,12 @@ impl<H: Handle, T> HandleMap<H, T> {
     pub(crate) fn len(&self) -> usize {
         self.items.len()
     }
+
+    /// How many slots there are, free or not: every handle's index is below it.
+    #[inline]
+    pub(crate) fn slot_count(&self) -> usize {
+        self.slots.len()
+    }
 }
 
 /// The items of a [`HandleMap`] in handle order.

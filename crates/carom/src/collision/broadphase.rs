@@ -25,6 +25,7 @@ use crate::math::{Real, Vec2};
 use crate::parallel::worth_sharing;
 use crate::prefetch::prefetch;
 use rayon::prelude::*;
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 /// True when a pair of bodies of these kinds can ever produce a contact response: at least
 /// one of them must be dynamic.
@@ -36,7 +37,7 @@ pub(crate) fn kinds_can_collide(a: BodyKind, b: BodyKind) -> bool {
 const STATIC_TREE: usize = 0;
 const MOVING_TREE: usize = 1;
 
-/// New pairs each list of the pair update has room for from the start.
+/// New pairs each thread's list of the pair update has room for from the start.
 const PAIRS_PER_LIST: usize = 64;
 
 #[derive(Debug, Clone, Copy)]
@@ -86,6 +87,50 @@ fn tree_for(kind: BodyKind) -> usize {
     }
 }
 
+/// The new pairs a pair update finds, one list per thread that finds them (gathered and
+/// sorted after, so which thread found a pair changes nothing). Each list keeps room for the
+/// most pairs a step has found, so a step allocates only when it finds more than any before
+/// (a list per piece of the walk would grow whenever a piece met more than it had).
+#[derive(Debug, Default)]
+struct FoundPairs(Vec<Mutex<Vec<(u32, u32)>>>);
+
+impl FoundPairs {
+    /// Empties the lists, one for each of `threads`, each with room for a few pairs.
+    fn start(&mut self, threads: usize) {
+        if self.0.len() < threads {
+            self.0.resize_with(threads, Mutex::default);
+        }
+        for list in &mut self.0 {
+            let list = list.get_mut().unwrap_or_else(PoisonError::into_inner);
+            list.clear();
+            list.reserve(PAIRS_PER_LIST);
+        }
+    }
+
+    /// The calling thread's list, held while a task of the update runs on it: no other thread
+    /// takes it, so the lock is never waited on.
+    fn mine(&self) -> MutexGuard<'_, Vec<(u32, u32)>> {
+        let thread = rayon::current_thread_index().unwrap_or(0) % self.0.len().max(1);
+        self.0[thread]
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// Every list's pairs into `pairs` (cleared first), unsorted; each list then keeps room
+    /// for all of them, as many as next step's threads could find between them.
+    fn gather(&mut self, pairs: &mut Vec<(u32, u32)>) {
+        pairs.clear();
+        for list in &mut self.0 {
+            pairs.extend_from_slice(list.get_mut().unwrap_or_else(PoisonError::into_inner));
+        }
+        for list in &mut self.0 {
+            let list = list.get_mut().unwrap_or_else(PoisonError::into_inner);
+            list.clear();
+            list.reserve(pairs.len());
+        }
+    }
+}
+
 /// The broadphase of a world: one proxy per collider, keyed by the collider's handle.
 #[derive(Debug, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -98,10 +143,9 @@ pub struct BroadPhase {
     /// Per slot, whether it is in `move_buffer`: the pair queries ask it of every candidate,
     /// so it lives apart from the proxies, one byte a slot.
     moved: Vec<bool>,
-    /// New pairs of slots found by the last pair update, one list per task of queries (kept
-    /// to reuse the memory).
+    /// New pairs of slots found by the last pair update (kept to reuse the memory).
     #[cfg_attr(feature = "serde", serde(skip))]
-    found: Vec<Vec<(u32, u32)>>,
+    found: FoundPairs,
     /// All of them, sorted (kept to reuse the memory).
     #[cfg_attr(feature = "serde", serde(skip))]
     candidates: Vec<(u32, u32)>,
@@ -419,17 +463,13 @@ impl BroadPhase {
             1
         };
         let per_task = moved.div_ceil(query_tasks).max(1);
-        let lists = pieces.len() + query_tasks;
         let mut found = std::mem::take(&mut self.found);
-        if found.len() < lists {
-            found.resize_with(lists, Vec::new);
-        }
-        // Each list gets room for a few pairs once: which piece meets a new pair changes from
-        // step to step, so lists that start empty would each allocate a step at some point.
-        for list in &mut found {
-            list.clear();
-            list.reserve(PAIRS_PER_LIST);
-        }
+        found.start(if shared {
+            rayon::current_num_threads()
+        } else {
+            1
+        });
+        let list = || found.mine();
         let walk = |piece: &Walk, found: &mut Vec<(u32, u32)>| {
             let other_tree = match piece {
                 Walk::Against(..) => static_tree,
@@ -453,26 +493,21 @@ impl BroadPhase {
                 .map(|&slot| self.query_pairs(slot, walked, &exists, found))
                 .sum::<usize>()
         };
-        let (walk_found, query_found) = found[..lists].split_at_mut(pieces.len());
         let met: usize = if shared {
-            let walk_met: usize = walk_found
-                .par_iter_mut()
-                .zip(pieces.par_iter())
-                .map(|(found, piece)| walk(piece, found))
+            let walk_met: usize = pieces
+                .par_iter()
+                .map(|piece| walk(piece, &mut list()))
                 .sum();
-            let query_met: usize = query_found
-                .par_iter_mut()
-                .zip(self.move_buffer.par_chunks(per_task))
-                .map(|(found, slots)| query(slots, found))
+            let query_met: usize = self
+                .move_buffer
+                .par_chunks(per_task)
+                .map(|slots| query(slots, &mut list()))
                 .sum();
             walk_met + query_met
         } else {
-            let walk_met: usize = walk_found
-                .iter_mut()
-                .zip(&pieces)
-                .map(|(found, piece)| walk(piece, found))
-                .sum();
-            walk_met + query(&self.move_buffer, &mut query_found[0])
+            let mut found = list();
+            let walk_met: usize = pieces.iter().map(|piece| walk(piece, &mut found)).sum();
+            walk_met + query(&self.move_buffer, &mut found)
         };
         for &slot in &self.move_buffer {
             if walked
@@ -485,10 +520,7 @@ impl BroadPhase {
         }
         self.move_buffer.clear();
         let pairs = &mut self.candidates;
-        pairs.clear();
-        for found in &found[..lists] {
-            pairs.extend_from_slice(found);
-        }
+        found.gather(pairs);
         self.found = found;
         self.pieces = pieces;
         pairs.sort_unstable();

@@ -58,6 +58,14 @@ impl BodyBits {
         self.0[word] |= 1 << (slot % 64);
     }
 
+    /// Room for every slot below `slots`, so that setting one allocates nothing.
+    fn cover(&mut self, slots: usize) {
+        let words = slots.div_ceil(64);
+        if self.0.len() < words {
+            self.0.resize(words, 0);
+        }
+    }
+
     fn clear(&mut self, slot: u32) {
         if let Some(word) = self.0.get_mut(slot as usize / 64) {
             *word &= !(1 << (slot % 64));
@@ -101,6 +109,15 @@ impl ContactColors {
             }
         }
         color
+    }
+
+    /// Makes room in every colour for the body slots below `slots`: a world's slots grow only
+    /// as bodies are added, so with room made as a step begins, colouring the contacts that
+    /// start touching in it allocates nothing.
+    pub(crate) fn cover(&mut self, slots: usize) {
+        for bits in &mut self.bodies {
+            bits.cover(slots);
+        }
     }
 
     /// The colour a contact between `a` and `b` takes.

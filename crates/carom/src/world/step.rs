@@ -232,6 +232,7 @@ impl World {
             pre_solve: self.pre_solve.as_ref(),
         };
         let fat_boxes = self.state.broadphase.fat_boxes();
+        contacts.cover_bodies(bodies.slot_count());
         let deepest =
             narrowphase.update(contacts, bodies, colliders, fat_boxes, options, wake, work);
         wake.sort_unstable();

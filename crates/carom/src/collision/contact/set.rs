@@ -322,6 +322,12 @@ impl ContactSet {
         std::iter::successors(self.free, |&id| self.slots[id as usize].next_unused())
     }
 
+    /// Makes room in the graph colours for the body slots below `slots`
+    /// ([`crate::graph::colors::ContactColors::cover`]).
+    pub(crate) fn cover_bodies(&mut self, slots: usize) {
+        self.colors.cover(slots);
+    }
+
     /// The graph colours of the awake touching contacts.
     #[cfg(any(test, all(feature = "testing", feature = "serde")))]
     pub(crate) fn colors(&self) -> &ContactColors {
