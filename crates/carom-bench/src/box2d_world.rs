@@ -862,28 +862,19 @@ impl Box2dWorld {
     /// manifolds the last step built: what carom's `StepStats::max_penetration` reports.
     ///
     /// # Errors
-    /// A body Box2D no longer holds.
+    /// A body Box2D no longer holds, or one whose contacts boxdd refuses to hand back
+    /// ([`Box2dWorld::max_penetration_read`] reads past them).
     pub fn max_penetration(&mut self) -> Result<f32, String> {
-        let mut deepest: f32 = 0.0;
-        for i in 0..self.ids.len() {
-            // Every contact has a dynamic body, and contacts of sleeping bodies are not rebuilt.
-            if self.kinds[i] != BodyKind::Dynamic {
-                continue;
-            }
-            let body = self.body(i)?;
-            if !body.is_awake().map_err(err)? {
-                continue;
-            }
-            for contact in body.contact_data().map_err(err)? {
-                for point in contact.manifold.points() {
-                    deepest = deepest.max(-point.separation);
-                }
-            }
+        match self.max_penetration_read()? {
+            (deepest, 0) => Ok(deepest),
+            (_, refused) => Err(format!(
+                "boxdd refused the contacts of {refused} awake bodies (a manifold it found \
+                 malformed)"
+            )),
         }
-        Ok(deepest)
     }
 
-    /// [`Box2dWorld::max_penetration`] over the contacts boxdd hands back, and how many awake
+    /// The deepest overlap among the contacts boxdd hands back, and how many awake
     /// bodies' contacts it refused to (it checks each manifold, and turns down a body's
     /// contacts when one has a normal it finds not unit): with any refused, the figure is only
     /// a lower bound.
