@@ -96,6 +96,14 @@ pub struct LockedRotation;
 #[derive(Component, Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Bullet;
 
+/// Its contacts look a step ahead even in a world that does not
+/// ([`carom::WorldSettings::look_ahead`], off to save time where many bodies move fast): an
+/// impact of this body at any speed is stopped at the surface, where without look-ahead a
+/// fast body sinks into what it hits for a step before it is pushed back out. For the few
+/// fast bodies whose impacts must look right (a ball, a thrown crate).
+#[derive(Component, Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct LookAhead;
+
 /// A force and torque applied at the body's centre of mass on every step until changed.
 #[derive(Component, Debug, Clone, Copy, PartialEq, Default)]
 pub struct ExternalForce {
@@ -145,6 +153,8 @@ pub(crate) struct BodyMirror {
     pub locked: bool,
     /// Whether it is a [`Bullet`], as the world has it.
     pub bullet: bool,
+    /// Whether it has [`LookAhead`], as the world has it.
+    pub look_ahead: bool,
     /// A kinematic body given a `Transform` to move to over the last step: it stops there
     /// unless given another.
     pub targeted: bool,

@@ -19,7 +19,7 @@
 //! ```
 //!
 //! - Bodies: [`RigidBody`], [`Velocity`], [`Damping`], [`GravityScale`], [`Sleeping`],
-//!   [`LockedRotation`], [`Bullet`], [`ExternalForce`], [`ExternalImpulse`], and
+//!   [`LockedRotation`], [`Bullet`], [`LookAhead`], [`ExternalForce`], [`ExternalImpulse`], and
 //!   [`Interpolated`] for smooth drawing between fixed steps.
 //! - Colliders: [`Collider`] (every carom shape and chains), [`ColliderMaterial`],
 //!   [`CollisionFilter`], [`Sensor`], [`HitEvents`]; on the body's entity or its children.
@@ -54,7 +54,7 @@ mod world;
 
 pub use body::{
     Bullet, CaromBody, Damping, ExternalForce, ExternalImpulse, GravityScale, Interpolated,
-    LockedRotation, RigidBody, Sleeping, Velocity,
+    LockedRotation, LookAhead, RigidBody, Sleeping, Velocity,
 };
 pub use collider::{CaromCollider, Collider, ColliderMaterial, CollisionFilter, HitEvents, Sensor};
 #[cfg(feature = "debug-draw")]
@@ -77,8 +77,8 @@ pub mod prelude {
         Bullet, CaromPlugin, CaromQuery, CaromSystems, CaromWorld, Collider, ColliderMaterial,
         CollisionFilter, ContactEnded, ContactStarted, Damping, ExternalForce, ExternalImpulse,
         GravityScale, Hit, HitEvents, Interpolated, Joint, JointBroken, LoadScene, LockedRotation,
-        PhysicsError, QueryFilter, RigidBody, Sensor, SensorEntered, SensorExited, Sleeping,
-        Velocity,
+        LookAhead, PhysicsError, QueryFilter, RigidBody, Sensor, SensorEntered, SensorExited,
+        Sleeping, Velocity,
     };
     #[cfg(feature = "debug-draw")]
     pub use crate::{CaromDebugDrawPlugin, DebugDrawOptions};

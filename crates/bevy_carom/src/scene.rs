@@ -1,8 +1,8 @@
 //! Scenes in carom's RON format (the demo's `demos/*.ron`) as entities: [`LoadScene`].
 
 use crate::body::{
-    BodyMirror, Bullet, CaromBody, Damping, GravityScale, LockedRotation, RigidBody, Sleeping,
-    Velocity,
+    BodyMirror, Bullet, CaromBody, Damping, GravityScale, LockedRotation, LookAhead, RigidBody,
+    Sleeping, Velocity,
 };
 use crate::collider::{
     CaromCollider, Collider, ColliderMaterial, CollisionFilter, HitEvents, Sensor,
@@ -134,6 +134,7 @@ fn load(world: &mut World, text: &str, file: &str) -> Result<SceneEntities, Stri
                 sleeping: body.is_sleeping(),
                 locked: body.fixed_rotation(),
                 bullet: body.is_bullet(),
+                look_ahead: body.looks_ahead(),
                 targeted: false,
                 previous: pose,
                 current: pose,
@@ -144,6 +145,9 @@ fn load(world: &mut World, text: &str, file: &str) -> Result<SceneEntities, Stri
         }
         if body.is_bullet() {
             entity.insert(Bullet);
+        }
+        if body.looks_ahead() {
+            entity.insert(LookAhead);
         }
         if let Some(name) = names.get(&body.handle()) {
             entity.insert(Name::new(name.clone()));

@@ -187,6 +187,75 @@ fn changed_components_reach_the_body() {
     assert_eq!(app.world().get::<Transform>(body).unwrap().translation.y, y);
 }
 
+/// How deep a ball thrown at 60 m/s sinks into a free block in a world without look-ahead:
+/// the deepest overlap over the steps around the impact, m.
+fn sinks_into_a_block(look_ahead: bool) -> f32 {
+    let mut app = app();
+    app.world_mut()
+        .resource_mut::<CaromWorld>()
+        .update_settings(|s| {
+            s.look_ahead = false;
+            s.gravity = carom::Vec2::zeros();
+        })
+        .unwrap();
+    let block = app
+        .world_mut()
+        .spawn((RigidBody::Dynamic, Collider::rectangle(1.0, 1.0)))
+        .id();
+    let ball = app
+        .world_mut()
+        .spawn((
+            RigidBody::Dynamic,
+            Collider::circle(0.25),
+            Transform::from_xyz(-3.1, 0.0, 0.0),
+            Velocity {
+                linear: Vec2::new(60.0, 0.0),
+                angular: 0.0,
+            },
+        ))
+        .id();
+    if look_ahead {
+        app.world_mut().entity_mut(ball).insert(LookAhead);
+    }
+    let mut deepest = 0.0f32;
+    for _ in 0..5 {
+        steps(&mut app, 1);
+        let x = |e| app.world().get::<Transform>(e).unwrap().translation.x;
+        deepest = deepest.max(0.75 - (x(block) - x(ball)));
+    }
+    let world = app.world().resource::<CaromWorld>();
+    let handle = world.entity_body(ball).unwrap();
+    assert_eq!(
+        world.world().body(handle).unwrap().looks_ahead(),
+        look_ahead
+    );
+    deepest
+}
+
+#[test]
+fn a_look_ahead_body_stops_at_the_surface_in_a_world_without_look_ahead() {
+    let (with, without) = (sinks_into_a_block(true), sinks_into_a_block(false));
+    assert!(
+        with < 0.01,
+        "with look-ahead it stops at the face: {with} m in"
+    );
+    assert!(
+        without > 0.3,
+        "without, it sinks in for a step: {without} m in"
+    );
+
+    // Taken off, the body no longer looks ahead.
+    let mut app = app();
+    let ball = ball(&mut app, 0.0, 2.0);
+    app.world_mut().entity_mut(ball).insert(LookAhead);
+    steps(&mut app, 1);
+    app.world_mut().entity_mut(ball).remove::<LookAhead>();
+    steps(&mut app, 1);
+    let world = app.world().resource::<CaromWorld>();
+    let handle = world.entity_body(ball).unwrap();
+    assert!(!world.world().body(handle).unwrap().looks_ahead());
+}
+
 #[test]
 fn impulses_forces_and_child_colliders() {
     let mut app = app();

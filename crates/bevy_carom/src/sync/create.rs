@@ -3,8 +3,8 @@
 //! spawns them in), so that the same spawns make the same world.
 
 use crate::body::{
-    BodyMirror, Bullet, CaromBody, Damping, GravityScale, LockedRotation, RigidBody, Sleeping,
-    Velocity,
+    BodyMirror, Bullet, CaromBody, Damping, GravityScale, LockedRotation, LookAhead, RigidBody,
+    Sleeping, Velocity,
 };
 use crate::collider::{
     CaromCollider, Collider, ColliderMaterial, ColliderParts, CollisionFilter, HitEvents, Sensor,
@@ -38,6 +38,7 @@ type NewBody<'a> = (
     &'a Sleeping,
     Has<LockedRotation>,
     Has<Bullet>,
+    Has<LookAhead>,
 );
 
 /// What a collider's definition is made from; a query's data.
@@ -128,7 +129,19 @@ pub(crate) fn create_bodies(
 ) {
     let mut new: Vec<_> = new_bodies.iter().collect();
     new.sort_unstable_by_key(|b| b.0.index());
-    for (entity, kind, transform, velocity, damping, gravity, sleeping, locked, bullet) in new {
+    for (
+        entity,
+        kind,
+        transform,
+        velocity,
+        damping,
+        gravity,
+        sleeping,
+        locked,
+        bullet,
+        look_ahead,
+    ) in new
+    {
         let pose = Pose::of_transform(transform);
         let mut def = BodyDef::new((*kind).into(), Shape::circle(1.0));
         def.colliders.clear();
@@ -162,6 +175,7 @@ pub(crate) fn create_bodies(
         def.awake = !sleeping.0;
         def.fixed_rotation = locked;
         def.bullet = bullet;
+        def.look_ahead = look_ahead;
         let handle = match world.world.add_body(def) {
             Ok(handle) => handle,
             Err(error) => {
@@ -178,6 +192,7 @@ pub(crate) fn create_bodies(
                 sleeping: sleeping.0,
                 locked,
                 bullet,
+                look_ahead,
                 targeted: false,
                 previous: pose,
                 current: pose,

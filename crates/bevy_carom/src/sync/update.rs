@@ -5,7 +5,7 @@
 
 use crate::body::{
     BodyMirror, Bullet, CaromBody, Damping, ExternalForce, ExternalImpulse, GravityScale,
-    LockedRotation, RigidBody, Sleeping, Velocity,
+    LockedRotation, LookAhead, RigidBody, Sleeping, Velocity,
 };
 use crate::collider::{
     CaromCollider, Collider, ColliderMaterial, CollisionFilter, HitEvents, Sensor,
@@ -46,11 +46,12 @@ type BodyEdits<'a> = (
     &'a Sleeping,
     Has<LockedRotation>,
     Has<Bullet>,
+    Has<LookAhead>,
 );
 
 /// Bodies: a new kind, a `Transform` set by the game (a teleport; a kinematic body is moved
 /// there over the step instead, pushing what it meets), a new velocity, a wake-up, damping,
-/// gravity scale, locked rotation and bullet.
+/// gravity scale, locked rotation, bullet and look-ahead.
 pub(crate) fn update_bodies(
     mut world: ResMut<CaromWorld>,
     mut bodies: Query<BodyEdits>,
@@ -70,13 +71,15 @@ pub(crate) fn update_bodies(
         sleeping,
         locked,
         bullet,
+        look_ahead,
     ) in &mut bodies
     {
         // Most bodies, most steps, have nothing new: tell so without visiting the world.
         let moved = *transform != mirror.transform;
         let pushed = *velocity != mirror.velocity;
         let woken = sleeping.0 != mirror.sleeping;
-        let flags = locked != mirror.locked || bullet != mirror.bullet;
+        let flags =
+            locked != mirror.locked || bullet != mirror.bullet || look_ahead != mirror.look_ahead;
         if !(moved
             || pushed
             || woken
@@ -143,6 +146,10 @@ pub(crate) fn update_bodies(
         if bullet != mirror.bullet {
             b.set_bullet(bullet);
             mirror.bullet = bullet;
+        }
+        if look_ahead != mirror.look_ahead {
+            b.set_look_ahead(look_ahead);
+            mirror.look_ahead = look_ahead;
         }
         if let Err(error) = result {
             errors.write(PhysicsError {
