@@ -134,17 +134,51 @@ impl SpeedCaps {
     }
 }
 
+/// What integration reads of an awake body, copied from it once a step: each substep's two
+/// integration passes then stream through these few words instead of the bodies, whose
+/// fields they need lie on several cache lines.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Drive {
+    pub force: Vec2,
+    pub torque: Real,
+    pub inv_mass: Real,
+    pub inv_inertia: Real,
+    pub gravity_scale: Real,
+    pub linear_damping: Real,
+    pub angular_damping: Real,
+    /// A dynamic body, awake: gravity, forces, drag and the speed caps act on it.
+    pub dynamic: bool,
+    /// A body that is not static, awake: its velocities move it.
+    pub moves: bool,
+}
+
+impl Drive {
+    pub(crate) fn of(body: &Body) -> Self {
+        Drive {
+            force: body.force(),
+            torque: body.torque(),
+            inv_mass: body.inv_mass(),
+            inv_inertia: body.inv_inertia(),
+            gravity_scale: body.gravity_scale(),
+            linear_damping: body.linear_damping(),
+            angular_damping: body.angular_damping(),
+            dynamic: body.kind() == BodyKind::Dynamic && !body.is_sleeping(),
+            moves: body.moves(),
+        }
+    }
+}
+
 /// Velocities from gravity, applied forces and drag over `h`. Gravity and drag are skipped
 /// entirely when off.
 pub(crate) fn integrate_velocities(
     environment: Environment,
-    bodies: &[Body],
+    drives: &[Drive],
     states: &mut [BodyState],
     h: Real,
     caps: SpeedCaps,
 ) -> Work {
-    sum_with(bodies, states, ITEMS_PER_TASK, |body, state| {
-        integrate_velocity(environment, body, state, h, caps)
+    sum_with(drives, states, ITEMS_PER_TASK, |drive, state| {
+        integrate_velocity(environment, drive, state, h, caps)
     })
 }
 
@@ -153,26 +187,26 @@ pub(crate) fn integrate_velocities(
 #[inline(always)]
 pub(crate) fn integrate_velocity(
     environment: Environment,
-    body: &Body,
+    drive: &Drive,
     state: &mut BodyState,
     h: Real,
     caps: SpeedCaps,
 ) -> Work {
     let mut work = Work::default();
-    if body.kind() != BodyKind::Dynamic || body.is_sleeping() {
+    if !drive.dynamic {
         return work;
     }
-    let mut v = state.v + body.force() * (body.inv_mass() * h);
-    let mut w = state.w + body.torque() * body.inv_inertia() * h;
+    let mut v = state.v + drive.force * (drive.inv_mass * h);
+    let mut w = state.w + drive.torque * drive.inv_inertia * h;
     if let Some(gravity) = environment.gravity {
-        v += gravity * (body.gravity_scale() * h);
+        v += gravity * (drive.gravity_scale * h);
         work.gravity_terms += 1;
     }
     if let Some(model) = environment.drag
-        && (body.linear_damping() > 0.0 || body.angular_damping() > 0.0)
+        && (drive.linear_damping > 0.0 || drive.angular_damping > 0.0)
     {
-        v = model.apply_linear(v, body.linear_damping(), h);
-        w = model.apply_angular(w, body.angular_damping(), h);
+        v = model.apply_linear(v, drive.linear_damping, h);
+        w = model.apply_angular(w, drive.angular_damping, h);
         work.drag_terms += 1;
     }
     let (v, w, cut) = caps.hold(v, w);
@@ -187,23 +221,23 @@ pub(crate) fn integrate_velocity(
 /// first held to the speed caps (after the contacts and joints had their say, as Box2D 3.2
 /// does, so the cap bounds the motion itself). Kinematic bodies move as they are told.
 pub(crate) fn integrate_positions(
-    bodies: &[Body],
+    drives: &[Drive],
     states: &mut [BodyState],
     h: Real,
     caps: SpeedCaps,
 ) {
-    for_each_with(bodies, states, ITEMS_PER_TASK, |body, state| {
-        integrate_position(body, state, h, caps)
+    for_each_with(drives, states, ITEMS_PER_TASK, |drive, state| {
+        integrate_position(drive, state, h, caps)
     });
 }
 
 /// [`integrate_positions`] of one body.
 #[inline]
-pub(crate) fn integrate_position(body: &Body, state: &mut BodyState, h: Real, caps: SpeedCaps) {
-    if !body.moves() {
+pub(crate) fn integrate_position(drive: &Drive, state: &mut BodyState, h: Real, caps: SpeedCaps) {
+    if !drive.moves {
         return;
     }
-    if body.kind() == BodyKind::Dynamic {
+    if drive.dynamic {
         let (v, w, cut) = caps.hold(state.v, state.w);
         (state.v, state.w) = (v, w);
         // The warm start since the last position integration has seen the cuts before it.

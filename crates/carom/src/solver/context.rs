@@ -2,6 +2,7 @@
 //! settings and bodies it reads ([`SolverContext`]), the awake set it changes ([`AwakeSet`],
 //! [`AwakeJoint`]), and what it reports back ([`StepReport`]).
 
+use super::body_state::Drive;
 use super::params::SolverParams;
 use crate::collision::contact::{BodyIndices, Contact};
 use crate::dynamics::body::Body;
@@ -23,12 +24,12 @@ pub(crate) struct Environment {
     pub restitution: bool,
 }
 
-/// What every solver reads and does not change: its settings, the world's forces, the bodies
-/// (for mass, forces and kind), and the step.
+/// What every solver reads and does not change: its settings, the world's forces, what
+/// integration reads of the awake bodies, and the step.
 pub(crate) struct SolverContext<'a> {
     pub params: &'a SolverParams,
     pub environment: Environment,
-    pub bodies: &'a [Body],
+    pub drives: &'a [Drive],
     pub dt: Real,
 }
 

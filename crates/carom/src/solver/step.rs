@@ -3,8 +3,7 @@
 //! constraints), solve (the chosen solver), and store (impulses back into contacts and joints
 //! for the next warm start, states back into bodies through the speed caps).
 
-use super::body_state::BodyState;
-use super::body_state::SpeedCaps;
+use super::body_state::{BodyState, Drive, SpeedCaps};
 use super::classic::{push_out, sequential_impulse, tutorial_impulse};
 use super::contact_constraint::BodyMass;
 use super::context::{AwakeJoint, AwakeSet, Environment, SolverContext, StepReport};
@@ -46,7 +45,7 @@ pub(crate) fn step(
     let started = Instant::now();
     let plan = prepare(params, environment, &set, dt, workspace);
     let prepare = started.elapsed();
-    let work = solve(params, environment, &set, dt, &plan, workspace);
+    let work = solve(params, environment, dt, &plan, workspace);
     let storing = Instant::now();
     let (points, joints) = store(params, &mut set, dt, &plan, workspace);
     StepReport {
@@ -88,6 +87,7 @@ fn prepare(
     let Workspace {
         states,
         masses,
+        drives,
         constraints,
         graph,
         wide,
@@ -111,6 +111,7 @@ fn prepare(
     states.push(BodyState::spare());
     map_into(awake_bodies, masses, ITEMS_PER_TASK, BodyMass::of);
     masses.push(BodyMass::default());
+    map_into(awake_bodies, drives, ITEMS_PER_TASK, Drive::of);
     let check = ColorCheck {
         moves: |i: usize| masses[i].dynamic,
         awake: awake.clone(),
@@ -190,13 +191,13 @@ fn prepare(
 fn solve(
     params: &SolverParams,
     environment: Environment,
-    set: &AwakeSet,
     dt: Real,
     plan: &Plan,
     workspace: &mut Workspace,
 ) -> Work {
     let Workspace {
         states,
+        drives,
         constraints,
         wide,
         plan: stages,
@@ -209,7 +210,7 @@ fn solve(
     let context = SolverContext {
         params,
         environment,
-        bodies: &set.bodies[set.awake.clone()],
+        drives,
         dt,
     };
     // Push-out and the tutorial's impulses predate joints: they leave them out.

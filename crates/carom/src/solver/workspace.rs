@@ -1,6 +1,6 @@
 //! The solver's memory, kept from step to step.
 
-use super::body_state::BodyState;
+use super::body_state::{BodyState, Drive};
 use super::contact_constraint::{BodyMass, ContactConstraint};
 use super::joints::JointConstraint;
 use super::soft_step::{JointTrees, ShockPropagation, Stage, WideContacts};
@@ -10,9 +10,11 @@ use crate::graph::order::ContactGraph;
 /// The solver's memory, kept from step to step so a step in steady state allocates nothing.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Workspace {
-    /// The awake bodies' states and masses, then the spare state's.
+    /// The awake bodies' states and masses, then the spare state's, and what integration
+    /// reads of each awake body.
     pub(super) states: Vec<BodyState>,
     pub(super) masses: Vec<BodyMass>,
+    pub(super) drives: Vec<Drive>,
     /// The constraints solved one at a time: every touching contact for the classic solvers
     /// and for soft step without colours, the overflow's with them.
     pub(super) constraints: Vec<ContactConstraint>,

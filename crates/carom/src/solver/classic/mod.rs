@@ -27,14 +27,14 @@ fn in_tutorial_order(
     let SolverContext {
         params,
         environment,
-        bodies,
+        drives,
         dt,
     } = *context;
     for _ in 0..params.effective_iterations() {
         resolve(states);
     }
     let caps = SpeedCaps::new(params, dt);
-    let work = integrate_velocities(environment, bodies, states, dt, caps);
-    integrate_positions(bodies, states, dt, caps);
+    let work = integrate_velocities(environment, drives, states, dt, caps);
+    integrate_positions(drives, states, dt, caps);
     work
 }

@@ -35,12 +35,12 @@ pub(crate) fn solve(
     let SolverContext {
         params,
         environment,
-        bodies,
+        drives,
         dt,
     } = *context;
     let inv_dt = 1.0 / dt;
     let mut work =
-        integrate_velocities(environment, bodies, states, dt, SpeedCaps::new(params, dt));
+        integrate_velocities(environment, drives, states, dt, SpeedCaps::new(params, dt));
     let joint_pass = JointPass::velocities(dt);
     // Joints begin the step either way: without warm starting their impulses were forgotten
     // when prepared, and a leg's spring still advances.
@@ -80,7 +80,7 @@ pub(crate) fn solve(
     for c in constraints.iter_mut() {
         c.note_substep_impulses();
     }
-    integrate_positions(bodies, states, dt, SpeedCaps::new(params, dt));
+    integrate_positions(drives, states, dt, SpeedCaps::new(params, dt));
     // Joints take as many position passes as velocity iterations (at least the contacts'):
     // a chain of light links holding a heavy load needs them to close its drift each step.
     let joint_passes = (params.effective_iterations() as usize).max(POSITION_ITERATIONS);

@@ -246,7 +246,7 @@ impl WideContacts {
         let params = SolverParams::default();
         let bias = Bias::new(&params, 1.0 / 240.0);
         let inputs = StageInputs {
-            bodies: &[],
+            drives: &[],
             environment: Environment {
                 gravity: None,
                 drag: None,

@@ -16,11 +16,10 @@ use crate::constants::{
     COLOR_COUNT, JOINT_COLOR_COUNT, MAX_BLOCKS, MIN_BLOCK, MIN_BODY_BLOCK, MIN_JOINT_BLOCK,
     MIN_SHARED,
 };
-use crate::dynamics::body::Body;
 use crate::graph::joints::JointColors;
 use crate::math::Real;
 use crate::solver::body_state::BodyState;
-use crate::solver::body_state::{SpeedCaps, integrate_position, integrate_velocity};
+use crate::solver::body_state::{Drive, SpeedCaps, integrate_position, integrate_velocity};
 use crate::solver::contact_constraint::ContactConstraint;
 use crate::solver::context::Environment;
 use crate::solver::joints::{JointConstraint, JointPass};
@@ -61,8 +60,8 @@ pub(crate) enum Stage {
 
 /// What the stages read besides the states and constraints.
 pub(crate) struct StageInputs<'a> {
-    /// The awake bodies (their states come first).
-    pub bodies: &'a [Body],
+    /// What integration reads of the awake bodies (their states come first).
+    pub drives: &'a [Drive],
     pub environment: Environment,
     /// The substep, and the speed caps.
     pub h: Real,
@@ -119,9 +118,9 @@ pub(super) fn execute_stages<L: Lanes>(
         }
         color_blocks[color] = count;
     }
-    let bodies = inputs.bodies;
+    let bodies = inputs.drives.len();
     let body_blocks = if shared {
-        block_count(bodies.len(), MIN_BODY_BLOCK, threads)
+        block_count(bodies, MIN_BODY_BLOCK, threads)
     } else {
         1
     };
@@ -203,12 +202,12 @@ impl<L: Lanes> LentStages<'_, L> {
 
     /// An integration stage over one block of the awake bodies.
     fn integrate(&self, stage: Stage, block: usize) {
-        let bodies = self.inputs.bodies;
-        let range = block_range(bodies.len(), self.body_blocks, block);
+        let drives = self.inputs.drives;
+        let range = block_range(drives.len(), self.body_blocks, block);
         // SAFETY: integration's blocks are disjoint runs, and no other stage runs.
         #[allow(unsafe_code)]
         let block_states = unsafe { self.states.range_mut(range.clone()) };
-        let done = integrate(stage, &bodies[range], block_states, self.inputs);
+        let done = integrate(stage, &drives[range], block_states, self.inputs);
         if let Some(done) = done {
             *lock(&self.work) += done;
         }
@@ -279,20 +278,20 @@ impl<L: Lanes> LentStages<'_, L> {
 /// (returning the work the effects did) or positions.
 fn integrate(
     stage: Stage,
-    bodies: &[Body],
+    drives: &[Drive],
     states: &mut [BodyState],
     inputs: &StageInputs,
 ) -> Option<Work> {
     let (h, caps) = (inputs.h, inputs.caps);
     if let Stage::IntegratePositions = stage {
-        for (body, state) in bodies.iter().zip(states) {
-            integrate_position(body, state, h, caps);
+        for (drive, state) in drives.iter().zip(states) {
+            integrate_position(drive, state, h, caps);
         }
         return None;
     }
     let mut done = Work::default();
-    for (body, state) in bodies.iter().zip(states) {
-        done += integrate_velocity(inputs.environment, body, state, h, caps);
+    for (drive, state) in drives.iter().zip(states) {
+        done += integrate_velocity(inputs.environment, drive, state, h, caps);
     }
     Some(done)
 }

@@ -77,7 +77,7 @@ pub(super) fn solve(
     let SolverContext {
         params,
         environment,
-        bodies,
+        drives,
         dt,
     } = *context;
     let substeps = params.substeps.max(1);
@@ -99,7 +99,7 @@ pub(super) fn solve(
         shape,
     );
     let inputs = StageInputs {
-        bodies,
+        drives,
         environment,
         h,
         caps: SpeedCaps::new(params, dt),

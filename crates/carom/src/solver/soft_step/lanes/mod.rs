@@ -214,8 +214,26 @@ impl Lanes for f64x4 {
 
     #[inline(always)]
     fn gather(states: &SharedStates, indices: &[u32; 4]) -> [Self; 8] {
-        let rows = indices.map(|index| states.read(index));
-        std::array::from_fn(|field| Self::from_slice(&rows.map(|row| row[field])))
+        // Read one by one and build each field's lanes in place: array `map`s here stay calls
+        // that copy every row twice.
+        let [i0, i1, i2, i3] = *indices;
+        let (r0, r1, r2, r3) = (
+            states.read(i0),
+            states.read(i1),
+            states.read(i2),
+            states.read(i3),
+        );
+        let field = |f: usize| Self::from_slice(&[r0[f], r1[f], r2[f], r3[f]]);
+        [
+            field(0),
+            field(1),
+            field(2),
+            field(3),
+            field(4),
+            field(5),
+            field(6),
+            field(7),
+        ]
     }
 
     #[inline(always)]
