@@ -192,7 +192,7 @@ enum Command {
     },
     /// Times carom with contacts that look a step ahead (its default) and without (Box2D's
     /// promise), beside Box2D, on one thread, with the deepest overlap each lets a step start
-    /// from; writes the table to FILE for docs/bench to draw (by default Box2D's eight
+    /// from; writes the table to `--out` for docs/bench to draw (by default Box2D's eight
     /// recipes, each for its step count).
     LookAhead {
         /// The CSV file to write.
