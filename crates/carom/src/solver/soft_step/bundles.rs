@@ -180,7 +180,7 @@ impl WideContacts {
 
     /// Runs `plan`, stage after stage, on as many threads as rayon gives (in one parallel
     /// region) when there is enough to share: the stages over the bundles, the overflow's
-    /// constraints one by one, and the integration of the awake bodies (`inputs.bodies`, whose
+    /// constraints one by one, and the integration of the awake bodies (`inputs.drives`, whose
     /// states come first in `states`). Returns the work integration did and how many
     /// restitution impulses were computed.
     #[allow(unsafe_code)]
