@@ -162,7 +162,7 @@ impl Drive {
             gravity_scale: body.gravity_scale(),
             linear_damping: body.linear_damping(),
             angular_damping: body.angular_damping(),
-            dynamic: body.kind() == BodyKind::Dynamic && !body.is_sleeping(),
+            dynamic: body.is_dynamic() && !body.is_sleeping(),
             moves: body.moves(),
         }
     }
