@@ -5,7 +5,7 @@
 //! process-wide) and runs it from its own `main`, without libtest, whose timing thread
 //! allocates to warn of a test that runs past a minute.
 
-use carom::{BodyDef, Effect, Effects, Shape, Snapshot, World, WorldSettings, vec2};
+use carom::{BodyDef, Capacity, Effect, Effects, Shape, Snapshot, World, WorldSettings, vec2};
 use carom_scene::SceneWorld;
 use rayon::{ThreadPool, ThreadPoolBuilder};
 use stats_alloc::{INSTRUMENTED_SYSTEM, Region, Stats, StatsAlloc};
@@ -173,6 +173,26 @@ fn recipe_heap_calls(scene: &mut SceneWorld, from: usize, to: usize) -> [usize; 
     [first, pass(scene)]
 }
 
+/// The heap calls of steps 1 to `to` of a new copy of recipe `name` with `capacity` reserved
+/// (its events firing before each of its first `from` steps, uncounted; the first step, which
+/// makes the memory of the threads it runs on, uncounted too): the run [`recipe_heap_calls`]
+/// makes, so `capacity` can be the high water of that one.
+fn reserved_heap_calls(name: &str, capacity: Capacity, from: usize, to: usize) -> usize {
+    let mut scene = recipe(name);
+    scene.world.reserve(capacity).unwrap();
+    scene.step().unwrap();
+    let mut calls = 0;
+    for step in 1..to {
+        if step < from {
+            scene.fire_events();
+        }
+        let region = Region::new(&INSTRUMENTED_SYSTEM);
+        scene.world.step(scene.time_step).unwrap();
+        calls += heap_calls(region.change());
+    }
+    calls
+}
+
 /// The mixed scene: a thousand circles, boxes, pentagons and triangles raining into a room.
 fn mixed_1000() -> World {
     let path = carom_bench::cases::worlds::workspace().join("demos/mixed_1000.ron");
@@ -320,11 +340,23 @@ fn a_world_in_steady_state_allocates_nothing_per_step() {
     }
     // Box2D's recipes on two threads (the parallel paths), after 100 steps: a step may take
     // memory only to grow a buffer past the largest it has held (their piles still gain
-    // contacts), so stepped again from a snapshot, every buffer grown, none does.
+    // contacts), so stepped again from a snapshot, every buffer grown, none does; nor does
+    // any step after the first of a new copy with room reserved for what the first held at
+    // most.
     for name in RECIPES {
         let mut scene = recipe(name);
         let [first, again] = pools[1].install(|| recipe_heap_calls(&mut scene, 100, 250));
-        println!("{name}: {first} heap calls in steps 100 to 250, {again} stepped again");
+        let most = scene.world.high_water();
+        let reserved = pools[1].install(|| reserved_heap_calls(name, most, 100, 250));
+        println!(
+            "{name}: {first} heap calls in steps 100 to 250, {again} stepped again, \
+             {reserved} in steps 1 to 250 with room reserved for {most:?}"
+        );
+        if reserved > 0 {
+            failures.push(format!(
+                "{name}: {reserved} heap calls in steps 1 to 250 with room reserved for {most:?}"
+            ));
+        }
         if again > 0 {
             failures.push(format!(
                 "{name}: {again} heap calls in steps 100 to 250 stepped again from a snapshot"

@@ -11,9 +11,9 @@
 //! bits as the original.
 
 use carom::{
-    BodyDef, BodyHandle, BodyKind, ColliderDef, ColliderHandle, CollisionFilter, Effects,
-    ExplosionDef, JointDef, JointHandle, QueryFilter, Ray, Real, Shape, SolverKind, Vec2, World,
-    WorldShape, vec2,
+    BodyDef, BodyHandle, BodyKind, Capacity, CaromError, ColliderDef, ColliderHandle,
+    CollisionFilter, Effects, ExplosionDef, JointDef, JointHandle, QueryFilter, Ray, Real, Shape,
+    SolverKind, Vec2, World, WorldShape, vec2,
 };
 
 /// The most bodies a sequence keeps (more are not added), so each case stays quick.
@@ -363,6 +363,26 @@ pub fn run(bytes: &[u8]) -> Tally {
                 world.wake_all();
                 false
             }
+            23 => {
+                // Room for a few hundred of each, or more than any heap holds.
+                let mut count = || match input.byte() {
+                    0..8 => usize::MAX,
+                    8..16 => usize::MAX / 64,
+                    _ => input.below(400),
+                };
+                let capacity = Capacity {
+                    bodies: count(),
+                    colliders: count(),
+                    contacts: count(),
+                    joints: count(),
+                };
+                let reserved = world.reserve(capacity);
+                assert!(
+                    matches!(reserved, Ok(()) | Err(CaromError::OutOfMemory { .. })),
+                    "reserve({capacity:?}) gave {reserved:?}"
+                );
+                reserved.is_err()
+            }
             _ => {
                 let dt = if input.byte() < 12 {
                     input.real(1.0)
@@ -406,10 +426,15 @@ fn refused_or_kept<H>(made: Result<H, carom::CaromError>, into: &mut Vec<H>) -> 
     }
 }
 
-/// Every body's figures are finite and the world holds together.
+/// Every body's figures are finite, the world holds together, and the most it has held is
+/// at least what it holds.
 fn check(world: &World) {
     crate::assert_bodies_finite(world);
     world.check_invariants();
+    let most = world.high_water();
+    assert!(most.bodies >= world.body_count(), "{most:?}");
+    assert!(most.joints >= world.joint_count(), "{most:?}");
+    assert!(most.contacts >= world.stats().contacts, "{most:?}");
 }
 
 /// Every query, checked for finite answers.

@@ -168,6 +168,12 @@ pub enum CaromError {
         /// How many it got.
         count: usize,
     },
+    /// The heap could not give the room a world was asked to reserve ([`crate::Capacity`]).
+    #[error("the heap could not give room for {what}")]
+    OutOfMemory {
+        /// What the room was for: "bodies", "contacts", ...
+        what: &'static str,
+    },
 }
 
 impl CaromError {

@@ -5,9 +5,11 @@
 //! handle never answers again: its slot comes back with a new generation, and a slot whose
 //! generation would wrap is retired.
 
+use crate::capacity::room;
 use crate::clone_in_place::clone_in_place;
 use crate::error::CaromError;
 use crate::heap_bytes::{HeapBytes, OwnsNothing, array};
+use std::collections::TryReserveError;
 
 /// A generational handle: a slot index and the generation the slot had when it was issued.
 pub(crate) trait Handle: Copy + Eq {
@@ -121,6 +123,14 @@ impl<H, T> Default for HandleMap<H, T> {
 }
 
 impl<H: Handle, T> HandleMap<H, T> {
+    /// Makes room for `count` items in all (and as many slots, and freed slots).
+    pub(crate) fn reserve(&mut self, count: usize) -> Result<(), TryReserveError> {
+        room(&mut self.items, count)?;
+        room(&mut self.handles, count)?;
+        room(&mut self.slots, count)?;
+        room(&mut self.free_slots, count)
+    }
+
     /// The handle the next insertion will get.
     pub(crate) fn next_handle(&self) -> H {
         match self.free_slots.last() {

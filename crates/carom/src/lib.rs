@@ -62,6 +62,7 @@
 // size bound, and boxing it would cost the single-precision build a pointer chase.
 #![cfg_attr(feature = "f64", allow(clippy::large_enum_variant))]
 
+mod capacity;
 mod character;
 mod clone_in_place;
 mod collision;
@@ -85,6 +86,7 @@ mod sorted_map;
 mod stats;
 mod world;
 
+pub use capacity::Capacity;
 pub use character::controller::{Character, CharacterDef, CharacterMove, CharacterState, Ground};
 pub use character::mover::MoverPlane;
 pub use character::planes::{CollisionPlane, PlaneSolution, clip_velocity, solve_planes};

@@ -79,6 +79,36 @@ fn snapshot_example() -> Result<(), carom::CaromError> {
 }
 
 #[rustfmt::skip]
+fn capacity_example() -> Result<(), carom::CaromError> {
+    use carom::{BodyDef, Real, Shape, World, vec2};
+
+    // The level: a floor and a pile of crates.
+    let level = || -> Result<World, carom::CaromError> {
+        let mut world = World::new();
+        world.add_body(BodyDef::static_body(Shape::rect(20.0, 0.5)))?;
+        for i in 0..200 {
+            let at = vec2((i % 20) as Real - 10.0, 1.0 + (i / 20) as Real);
+            world.add_body(BodyDef::dynamic(Shape::rect(0.4, 0.4)).position(at))?;
+        }
+        Ok(world)
+    };
+    // Once, offline or in a test: play the level and note the most it held.
+    let mut rehearsal = level()?;
+    for _ in 0..300 {
+        rehearsal.step(1.0 / 60.0)?;
+    }
+    let most = rehearsal.high_water(); // bodies, colliders, contacts, joints
+
+    // When the level loads: room for that much, so its steps take nothing from the heap.
+    let mut world = level()?;
+    world.reserve(most)?;
+    for _ in 0..300 {
+        world.step(1.0 / 60.0)?;
+    }
+    Ok(())
+}
+
+#[rustfmt::skip]
 fn character_example() -> Result<(), carom::CaromError> {
     use carom::{BodyDef, Character, CharacterDef, Shape, World, vec2};
 
@@ -172,6 +202,7 @@ fn the_readme_examples_run() {
     character_example().unwrap();
     dynamic_character_example().unwrap();
     snapshot_example().unwrap();
+    capacity_example().unwrap();
 }
 
 /// Lines without their leading spaces, blank ones dropped.
@@ -213,7 +244,7 @@ fn every_rust_example_in_the_features_guide_is_one_of_these() {
     let guide = include_str!("../../../docs/features.md");
     assert_eq!(
         examples_in("docs/features.md", guide),
-        6,
+        7,
         "a new example in docs/features.md: add it here"
     );
 }

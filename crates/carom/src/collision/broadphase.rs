@@ -10,6 +10,7 @@
 //! colliders, so static-static pairs are never even looked at; two colliders of one body never
 //! pair.
 
+use crate::capacity::room;
 use crate::clone_in_place::clone_in_place;
 use crate::constants::{MOVES_PER_TASK, WALK_MOVED_FRACTION, WALK_PIECES};
 use crate::dynamics::body::{BodyHandle, BodyKind};
@@ -25,6 +26,7 @@ use crate::math::{Real, Vec2};
 use crate::parallel::worth_sharing;
 use crate::prefetch::prefetch;
 use rayon::prelude::*;
+use std::collections::TryReserveError;
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 /// True when a pair of bodies of these kinds can ever produce a contact response: at least
@@ -90,28 +92,46 @@ fn tree_for(kind: BodyKind) -> usize {
 /// The new pairs a pair update finds, one list per thread that finds them (gathered and
 /// sorted after, so which thread found a pair changes nothing). Each list keeps room for the
 /// most pairs a step has found, so a step allocates only when it finds more than any before
-/// (a list per piece of the walk would grow whenever a piece met more than it had).
+/// (a list per piece of the walk would grow whenever a piece met more than it had), or for as
+/// many as were reserved.
 #[derive(Debug, Default)]
-struct FoundPairs(Vec<Mutex<Vec<(u32, u32)>>>);
+struct FoundPairs {
+    lists: Vec<Mutex<Vec<(u32, u32)>>>,
+    /// The pairs each list has room for at least (a few, or as many as were reserved).
+    room: usize,
+}
 
 impl FoundPairs {
-    /// Empties the lists, one for each of `threads`, each with room for a few pairs.
+    /// Empties the lists, one for each of `threads`, each with room for a few pairs or for
+    /// as many as were reserved.
     fn start(&mut self, threads: usize) {
-        if self.0.len() < threads {
-            self.0.resize_with(threads, Mutex::default);
+        if self.lists.len() < threads {
+            self.lists.resize_with(threads, Mutex::default);
         }
-        for list in &mut self.0 {
+        for list in &mut self.lists {
             let list = list.get_mut().unwrap_or_else(PoisonError::into_inner);
             list.clear();
-            list.reserve(PAIRS_PER_LIST);
+            list.reserve(self.room.max(PAIRS_PER_LIST));
         }
+    }
+
+    /// Makes room in every list, and in those made later, for `pairs` pairs.
+    fn reserve(&mut self, pairs: usize) -> Result<(), TryReserveError> {
+        self.room = self.room.max(pairs);
+        for list in &mut self.lists {
+            room(
+                list.get_mut().unwrap_or_else(PoisonError::into_inner),
+                pairs,
+            )?;
+        }
+        Ok(())
     }
 
     /// The calling thread's list, held while a task of the update runs on it: no other thread
     /// takes it, so the lock is never waited on.
     fn mine(&self) -> MutexGuard<'_, Vec<(u32, u32)>> {
-        let thread = rayon::current_thread_index().unwrap_or(0) % self.0.len().max(1);
-        self.0[thread]
+        let thread = rayon::current_thread_index().unwrap_or(0) % self.lists.len().max(1);
+        self.lists[thread]
             .lock()
             .unwrap_or_else(PoisonError::into_inner)
     }
@@ -120,10 +140,10 @@ impl FoundPairs {
     /// for all of them, as many as next step's threads could find between them.
     fn gather(&mut self, pairs: &mut Vec<(u32, u32)>) {
         pairs.clear();
-        for list in &mut self.0 {
+        for list in &mut self.lists {
             pairs.extend_from_slice(list.get_mut().unwrap_or_else(PoisonError::into_inner));
         }
-        for list in &mut self.0 {
+        for list in &mut self.lists {
             let list = list.get_mut().unwrap_or_else(PoisonError::into_inner);
             list.clear();
             list.reserve(pairs.len());
@@ -172,6 +192,24 @@ impl HeapBytes for BroadPhase {
 }
 
 impl BroadPhase {
+    /// Makes room for `colliders` colliders' proxies and moves, and for `contacts` pairs
+    /// found in a step.
+    pub(crate) fn reserve(
+        &mut self,
+        colliders: usize,
+        contacts: usize,
+    ) -> Result<(), TryReserveError> {
+        room(&mut self.proxies, colliders)?;
+        room(&mut self.move_buffer, colliders)?;
+        room(&mut self.moved, colliders)?;
+        room(&mut self.candidates, contacts)?;
+        self.found.reserve(contacts)?;
+        for tree in &mut self.trees {
+            tree.reserve(colliders)?;
+        }
+        Ok(())
+    }
+
     /// An empty broadphase.
     #[cfg(any(test, feature = "testing"))]
     pub fn new() -> Self {

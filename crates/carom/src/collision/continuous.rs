@@ -24,6 +24,7 @@
 //! so a body meeting a face, static or moving, at any speed has its contact before it gets
 //! there and the solver stops it at the surface.
 
+use crate::capacity::room;
 use crate::collision::broadphase::BroadPhase;
 use crate::constants::{
     LINK_SKIM_FRACTION, MAX_TIME_OF_IMPACT_ITERATIONS, SWEEPS_PER_TASK, TASKS_PER_THREAD,
@@ -38,6 +39,7 @@ use crate::joint::store::JointStore;
 use crate::math::{Isometry, Real, Rot, Vec2, angle_of, rotation};
 use crate::parallel::worth_sharing;
 use rayon::prelude::*;
+use std::collections::TryReserveError;
 use std::ops::Range;
 
 /// How far any point of `body` can have moved since `from`: at least the sweep's reach
@@ -582,6 +584,16 @@ pub(crate) struct ContinuousScratch {
 }
 
 impl ContinuousScratch {
+    /// Makes room for `bodies` fast bodies swept in a step.
+    pub(crate) fn reserve(&mut self, bodies: usize) -> Result<(), TryReserveError> {
+        room(&mut self.fast, bodies)?;
+        room(&mut self.impacts, bodies)?;
+        room(&mut self.swept, bodies)?;
+        room(&mut self.paths, bodies)?;
+        room(&mut self.earliest, bodies)?;
+        room(&mut self.rewound, bodies)
+    }
+
     /// The storage indices of the bodies the last [`solve_continuous`] put back.
     pub(crate) fn moved(&self) -> impl Iterator<Item = usize> + '_ {
         self.fast

@@ -5,6 +5,7 @@
 //! reported as events, with the sleeping islands a moving body stirred listed to wake.
 //! Box2D's `b2Collide` and `b2UpdateContact`.
 
+use crate::capacity::room;
 use crate::collision::broadphase::{FatBoxes, kinds_can_collide};
 use crate::collision::contact::{Contact, ContactEvent, ContactSet};
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
@@ -21,6 +22,7 @@ use crate::math::Real;
 use crate::parallel::for_each_chunk_mut_with;
 use crate::prefetch::prefetch;
 use crate::stats::CollisionWork;
+use std::collections::TryReserveError;
 
 /// How the narrowphase builds manifolds this step.
 #[derive(Debug, Clone, Copy)]
@@ -107,6 +109,12 @@ pub(crate) struct Narrowphase {
 }
 
 impl Narrowphase {
+    /// Makes room for `contacts` awake contacts.
+    pub(crate) fn reserve(&mut self, contacts: usize) -> Result<(), TryReserveError> {
+        room(&mut self.refresh, contacts)?;
+        room(&mut self.changed, contacts)
+    }
+
     /// The narrowphase stage, over the awake set: rebuilds every manifold from the bodies'
     /// world shapes, carries impulses over by feature id, reports touching changes, and drops
     /// contacts whose fat boxes no longer overlap (or whose bodies can no longer collide).

@@ -12,6 +12,7 @@
 //! island wakes when an awake dynamic body or a moving kinematic one touches it; a still
 //! kinematic platform lets what rests on it sleep.
 
+use crate::capacity::room;
 use crate::clone_in_place::clone_in_place;
 #[cfg(feature = "serde")]
 use crate::dynamics::body::Body;
@@ -22,6 +23,7 @@ use crate::error::CaromError;
 use crate::handle_map::HandleMap;
 use crate::heap_bytes::{HeapBytes, array};
 use crate::math::Real;
+use std::collections::TryReserveError;
 
 /// One island's record.
 #[derive(Debug, Clone, Copy, Default)]
@@ -60,6 +62,12 @@ impl HeapBytes for Islands {
 }
 
 impl Islands {
+    /// Makes room for `count` islands in all (one per dynamic body at most).
+    pub(crate) fn reserve(&mut self, count: usize) -> Result<(), TryReserveError> {
+        room(&mut self.records, count)?;
+        room(&mut self.free, count)
+    }
+
     /// A new empty island; returns its id.
     pub(crate) fn create(&mut self) -> u32 {
         let record = Island {

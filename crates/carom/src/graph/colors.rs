@@ -11,9 +11,11 @@
 //! hold bodies up against the ground are solved last in each pass and have the last word.
 //! A contact that finds no colour free goes to the overflow, solved one by one after the colours.
 
+use crate::capacity::room;
 use crate::clone_in_place::clone_in_place;
 use crate::constants::{COLOR_COUNT, DYNAMIC_COLOR_COUNT};
 use crate::heap_bytes::{HeapBytes, array};
+use std::collections::TryReserveError;
 
 /// The colour of a contact that has none (not touching, or asleep).
 pub(crate) const NO_COLOR: u8 = u8::MAX;
@@ -118,6 +120,15 @@ impl ContactColors {
         for bits in &mut self.bodies {
             bits.cover(slots);
         }
+    }
+
+    /// Makes room in every colour for `slots` body slots, so that bodies added later do not
+    /// make a step grow a colour.
+    pub(crate) fn reserve(&mut self, slots: usize) -> Result<(), TryReserveError> {
+        for BodyBits(words) in &mut self.bodies {
+            room(words, slots.div_ceil(64))?;
+        }
+        Ok(())
     }
 
     /// The colour a contact between `a` and `b` takes.

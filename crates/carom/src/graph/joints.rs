@@ -5,7 +5,9 @@
 //! over the awake joints, while a persistent colouring would have to be kept in step with
 //! every joint's and body's move between solver sets.
 
+use crate::capacity::room;
 use crate::constants::JOINT_COLOR_COUNT;
+use std::collections::TryReserveError;
 
 /// The joint colouring of a step: the order the joints are prepared and solved in, colour by
 /// colour, no two of a colour sharing a body that moves (the last range, the overflow's, is
@@ -26,6 +28,14 @@ pub(crate) struct JointColors {
 pub(crate) type JointStates = [(usize, bool); 2];
 
 impl JointColors {
+    /// Makes room to colour `joints` joints among `states` states.
+    pub(crate) fn reserve(&mut self, joints: usize, states: usize) -> Result<(), TryReserveError> {
+        room(&mut self.ranges, JOINT_COLOR_COUNT + 1)?;
+        room(&mut self.order, joints)?;
+        room(&mut self.claims, states)?;
+        room(&mut self.colors, joints)
+    }
+
     /// Colours `count` joints greedily in order, each into the first colour that holds
     /// neither of the states it moves (up to [`JOINT_COLOR_COUNT`], then the overflow), or
     /// all into the overflow unless `colored`; `states(i)` says which states joint `i`

@@ -3,13 +3,14 @@
 //! linking islands, moving a body's joints between sets and filtering pairs).
 
 use super::{Joint, JointEvent, JointHandle};
+use crate::capacity::room;
 use crate::dynamics::body::BodyHandle;
 #[cfg(feature = "serde")]
 use crate::error::CaromError;
 use crate::handle_map::HandleMap;
 use crate::heap_bytes::{HeapBytes, array, map_table, nothing};
 use crate::solver_set::{JointSetBounds, SolverSet};
-use std::collections::HashMap;
+use std::collections::{HashMap, TryReserveError};
 use std::ops::Range;
 
 /// Every joint of a world.
@@ -197,6 +198,17 @@ impl JointStore {
 
     pub(crate) fn len(&self) -> usize {
         self.joints.len()
+    }
+
+    /// Makes room for `count` joints in all, the bodies they join and the pairs they keep
+    /// apart, and for as many break events in a step.
+    pub(crate) fn reserve(&mut self, count: usize) -> Result<(), TryReserveError> {
+        self.joints.reserve(count)?;
+        let bodies = (2 * count).saturating_sub(self.by_body.len());
+        self.by_body.try_reserve(bodies)?;
+        let pairs = count.saturating_sub(self.filters.len());
+        self.filters.try_reserve(pairs)?;
+        room(&mut self.events, count)
     }
 
     /// A body's joints.

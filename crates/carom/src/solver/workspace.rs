@@ -4,8 +4,10 @@ use super::body_state::{BodyState, Drive};
 use super::contact_constraint::{BodyMass, ContactConstraint};
 use super::joints::JointConstraint;
 use super::soft_step::{JointTrees, ShockPropagation, Stage, WideContacts};
+use crate::capacity::room;
 use crate::graph::joints::JointColors;
 use crate::graph::order::ContactGraph;
+use std::collections::TryReserveError;
 
 /// The solver's memory, kept from step to step so a step in steady state allocates nothing.
 #[derive(Debug, Clone, Default)]
@@ -38,6 +40,28 @@ pub(crate) struct Workspace {
 }
 
 impl Workspace {
+    /// Makes room for a step of `bodies` awake bodies, `contacts` touching contacts and
+    /// `joints` awake joints.
+    pub(crate) fn reserve(
+        &mut self,
+        bodies: usize,
+        contacts: usize,
+        joints: usize,
+    ) -> Result<(), TryReserveError> {
+        // The states end with the spare one, shared by static bodies and empty lanes.
+        room(&mut self.states, bodies + 1)?;
+        room(&mut self.masses, bodies + 1)?;
+        room(&mut self.drives, bodies)?;
+        room(&mut self.constraints, contacts)?;
+        room(&mut self.graph.overflow, contacts)?;
+        self.wide.reserve(contacts)?;
+        room(&mut self.order, contacts)?;
+        room(&mut self.claims, bodies)?;
+        room(&mut self.demoted, contacts)?;
+        room(&mut self.joints, joints)?;
+        self.joint_colors.reserve(joints, bodies + 1)
+    }
+
     /// With direct joints, after a step: each awake body's group of bodies joined by hinges
     /// (a representative state index, by state index), for continuous collision to put a
     /// group back together.

@@ -2,8 +2,10 @@
 //! contacts start touching, counting what may have split them. Splitting one is
 //! [`super::island_split`]; putting resting islands to sleep is [`super::sleep`].
 
+use crate::capacity::room;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::world::World;
+use std::collections::TryReserveError;
 
 /// The memory islands work in, kept so a step allocates nothing.
 #[derive(Debug, Clone, Default)]
@@ -23,6 +25,19 @@ pub(crate) struct IslandScratch {
     pub(super) joined: Vec<BodyHandle>,
     /// The islands falling asleep this step.
     pub(super) sleepy: Vec<u32>,
+}
+
+impl IslandScratch {
+    /// Makes room for an island of `bodies` bodies to split, and as many to fall asleep.
+    pub(crate) fn reserve(&mut self, bodies: usize) -> Result<(), TryReserveError> {
+        room(&mut self.members, bodies)?;
+        room(&mut self.local, bodies)?;
+        room(&mut self.parents, bodies)?;
+        room(&mut self.groups, bodies)?;
+        room(&mut self.partners, bodies)?;
+        room(&mut self.joined, bodies)?;
+        room(&mut self.sleepy, bodies)
+    }
 }
 
 impl World {

@@ -1,6 +1,7 @@
 //! The world: bodies and their colliders, global settings, the step, and queries.
 
 pub(crate) mod body_mut;
+mod capacity;
 pub(crate) mod collider_mut;
 pub(crate) mod effects;
 pub(crate) mod explosion;
@@ -80,6 +81,8 @@ pub struct World {
     scratch: StepScratch,
     /// The user's say over the contacts of colliders that opt in.
     pre_solve: Option<PreSolveHook>,
+    /// The most the world has held at once, or made room for ([`World::high_water`]).
+    high_water: crate::Capacity,
 }
 
 fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {

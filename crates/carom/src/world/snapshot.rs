@@ -103,6 +103,8 @@ const _: fn(&World) = |world| {
         stats: _,
         solver_workspace: _,
         scratch: _,
+        // What the world's memory has held: restoring a smaller world keeps the memory.
+        high_water: _,
         // Code: the world keeps its own.
         pre_solve: _,
     } = world;

@@ -1,6 +1,7 @@
 //! One step of the world, stage by stage.
 
 use super::{World, margin_for};
+use crate::capacity::{Capacity, room};
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::continuous::{self, ContinuousScratch};
 use crate::collision::hits::find_hits;
@@ -20,6 +21,7 @@ use crate::solver::{self, Environment, SolverKind};
 use crate::solver_set::SolverSet;
 use crate::stats::{CollisionWork, Instant, StageTimes, StepStats};
 use crate::world::effects::Effect;
+use std::collections::TryReserveError;
 
 /// What the stages of a step work in besides the solver, kept so a step in steady state
 /// allocates nothing.
@@ -37,6 +39,18 @@ pub(super) struct StepScratch {
     awake_joints: Vec<solver::AwakeJoint>,
     /// Per awake collider, what the broadphase must learn of it, if anything.
     refits: Vec<Option<Refit>>,
+}
+
+impl StepScratch {
+    /// Makes room for a step of a world holding `capacity`.
+    pub(super) fn reserve(&mut self, capacity: Capacity) -> Result<(), TryReserveError> {
+        room(&mut self.pairs, capacity.contacts)?;
+        self.continuous.reserve(capacity.bodies)?;
+        self.narrowphase.reserve(capacity.contacts)?;
+        room(&mut self.wake, capacity.bodies)?;
+        room(&mut self.awake_joints, capacity.joints)?;
+        room(&mut self.refits, capacity.colliders)
+    }
 }
 
 impl World {
@@ -79,6 +93,8 @@ impl World {
         ) = timed(&mut times.broadphase, || {
             self.find_pairs(&mut scratch.pairs)
         });
+        // The contacts peak here, the new ones made and the old not yet ended.
+        self.high_water = self.high_water.max(self.holds());
         let effects = self.state.settings.effects;
         let continuous = effects.contains(Effect::Continuous);
         // Looking ahead, a face point's margin reaches as far as the pair can close in a

@@ -6,6 +6,7 @@ use super::adjacency::{NO_EDGE, edge, edge_id};
 use super::{
     Contact, ContactEvent, ContactSet, NO_BODIES, NO_ID, PointImpulse, Slot, TouchChanges,
 };
+use crate::capacity::room;
 use crate::collision::recycle::ManifoldFrame;
 use crate::dynamics::body::{BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
@@ -14,8 +15,8 @@ use crate::geometry::query::manifold::Manifold;
 use crate::graph::colors::NO_COLOR;
 use crate::handle_map::HandleMap;
 use crate::solver_set::SolverSet;
-use std::collections::HashMap;
 use std::collections::hash_map::Entry;
+use std::collections::{HashMap, TryReserveError};
 use std::hash::{BuildHasherDefault, Hasher};
 use std::ops::{Deref, DerefMut};
 #[cfg(any(test, all(feature = "testing", feature = "serde")))]
@@ -332,6 +333,28 @@ impl ContactSet {
     #[cfg(any(test, all(feature = "testing", feature = "serde")))]
     pub(crate) fn colors(&self) -> &ContactColors {
         &self.colors
+    }
+
+    /// Makes room for `contacts` contacts in all, among as many bodies as `bodies` (slots):
+    /// the contacts, their ids and lookup, their bodies' lists, and the lists of a step's
+    /// touch changes and events (a step changes each contact's touching once at most).
+    pub(crate) fn reserve(
+        &mut self,
+        contacts: usize,
+        bodies: usize,
+    ) -> Result<(), TryReserveError> {
+        room(&mut self.contacts, contacts)?;
+        room(&mut self.ids, contacts)?;
+        room(&mut self.slots, contacts)?;
+        room(&mut self.body_indices, contacts)?;
+        let more = contacts.saturating_sub(self.lookup.len());
+        self.lookup.try_reserve(more)?;
+        room(&mut self.edges, bodies)?;
+        self.colors.reserve(bodies)?;
+        room(&mut self.began, contacts)?;
+        room(&mut self.ended, contacts)?;
+        room(&mut self.events, contacts)?;
+        room(&mut self.doomed, contacts)
     }
 
     /// How many contacts there are.

@@ -2,7 +2,9 @@
 //! place is built again, top down, by median splits.
 
 use super::{DynamicTree, NULL};
+use crate::capacity::room;
 use crate::math::Vec2;
+use std::collections::TryReserveError;
 
 /// What [`DynamicTree::rebuild`] works in; its contents mean nothing between rebuilds.
 #[derive(Debug, Clone, Default)]
@@ -18,6 +20,13 @@ pub(super) struct RebuildScratch {
 }
 
 impl DynamicTree {
+    /// Makes room to hold and rebuild a tree of `proxies` leaves.
+    pub(crate) fn reserve(&mut self, proxies: usize) -> Result<(), TryReserveError> {
+        // A leaf for each proxy and an inner node for each but one.
+        room(&mut self.nodes, 2 * proxies)?;
+        self.scratch.reserve(proxies)
+    }
+
     /// Builds the marked part of the tree again (Box2D's `b2DynamicTree_Rebuild`): its inner
     /// nodes are freed, and the leaves and unmarked subtrees under them are joined again by a
     /// top-down median split, which leaves no node marked. `full` rebuilds the whole tree.
@@ -100,6 +109,14 @@ impl DynamicTree {
 }
 
 impl RebuildScratch {
+    /// Makes room to rebuild over `proxies` leaves.
+    fn reserve(&mut self, proxies: usize) -> Result<(), TryReserveError> {
+        room(&mut self.items, proxies)?;
+        room(&mut self.centers, proxies)?;
+        room(&mut self.nodes, proxies)?;
+        room(&mut self.splits, proxies)
+    }
+
     /// Empties the buffers, sized for a tree of `proxies` leaves: a rebuild gathers at most
     /// one item per leaf and makes fewer inner nodes, so only new leaves, not motion, make
     /// them grow (room for half as many again, as Box2D keeps, so a few new ones do not).

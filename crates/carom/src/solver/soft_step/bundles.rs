@@ -10,6 +10,7 @@ use super::inputs::BundleInputs;
 use super::joint_trees::JointTrees;
 use super::kernels::Bundle;
 use super::shock_propagation::ShockPropagation;
+use crate::capacity::room;
 use crate::collision::contact::Contact;
 use crate::constants::{COLOR_COUNT, ITEMS_PER_TASK};
 use crate::graph::joints::JointColors;
@@ -23,6 +24,7 @@ use crate::solver::soft_step::lanes::avx::{self, Avx8};
 use crate::solver::soft_step::lanes::{Four, Kernel, Lanes};
 use crate::solver::soft_step::shared_states::SharedStates;
 use crate::stats::Work;
+use std::collections::TryReserveError;
 use std::ops::Range;
 
 /// How many constraints the solver takes at a time.
@@ -111,6 +113,16 @@ impl WideContacts {
             overflow: Vec::new(),
             bouncy: false,
         }
+    }
+
+    /// Makes room for `contacts` coloured contacts: their bundles (each colour's last one
+    /// part full), their slots and the overflow's list.
+    pub(crate) fn reserve(&mut self, contacts: usize) -> Result<(), TryReserveError> {
+        let bundles = contacts.div_ceil(self.width()) + COLOR_COUNT;
+        with_bundles!(&mut self.bundles, |list| room(list, bundles))?;
+        room(&mut self.colors, COLOR_COUNT)?;
+        room(&mut self.slots, bundles)?;
+        room(&mut self.overflow, contacts)
     }
 
     /// How many constraints a bundle holds.

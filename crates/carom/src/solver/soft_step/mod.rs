@@ -53,6 +53,7 @@ use super::contact_constraint::ContactConstraint;
 use super::context::{Environment, SolverContext};
 use super::joints::JointConstraint;
 use super::params::{Softness, SolverParams};
+use crate::constants::{COLOR_COUNT, JOINT_COLOR_COUNT};
 use crate::graph::joints::JointColors;
 use crate::math::Real;
 use crate::stats::Work;
@@ -152,6 +153,15 @@ fn plan_stages(
     contacts: ContactStages,
 ) {
     plan.clear();
+    // Room for as many stages as these settings can plan, whatever colours the contacts and
+    // joints use, so that a step that uses one more colour than any before takes nothing
+    // from the heap: in each pass every joint colour and the joints' overflow, the joint
+    // trees, every contact colour, the overflow and shock propagation; the passes of each
+    // substep and its two integrations; the restitution pass.
+    let per_pass = JOINT_COLOR_COUNT + 2 + COLOR_COUNT + 2;
+    let substeps = params.substeps.max(1) as usize;
+    let passes = substeps * (1 + 2 * params.effective_iterations() as usize) + 1;
+    plan.reserve(passes * per_pass + 2 * substeps);
     let pass = |plan: &mut Vec<Stage>, pass: Pass| {
         // With joint trees, the relaxation solves the joints first and leaves the contacts
         // the last word: the exact trees would otherwise end each substep on velocities that
