@@ -215,10 +215,10 @@ struct SpeedRow {
     drops: [f64; 3],
     /// Whether a body went non-finite: carom, Box2D, Rapier.
     nan: [bool; 3],
-    /// Heap allocations per step: carom's, Rapier's.
-    allocations: [f64; 2],
-    /// Heap bytes per body: carom's, Rapier's.
-    bytes_per_body: [f64; 2],
+    /// Heap allocations per step: carom's, Box2D's, Rapier's.
+    allocations: [f64; 3],
+    /// Heap bytes per body: carom's, Box2D's, Rapier's.
+    bytes_per_body: [f64; 3],
 }
 
 /// Reads [`SPEED_CSV`]'s rows by their column names.
@@ -258,20 +258,26 @@ fn parse_speed(text: &str) -> Result<Vec<SpeedRow>, String> {
     let nans = [carom_nan?, box2d_nan?, rapier_nan?];
     let [
         carom_allocations,
+        box2d_allocations,
         rapier_allocations,
         carom_bytes,
+        box2d_bytes,
         rapier_bytes,
     ] = [
         "carom_allocations_per_step",
+        "box2d_allocations_per_step",
         "rapier_allocations_per_step",
         "carom_bytes_per_body",
+        "box2d_bytes_per_body",
         "rapier_bytes_per_body",
     ]
     .map(column);
     let memory = [
         carom_allocations?,
+        box2d_allocations?,
         rapier_allocations?,
         carom_bytes?,
+        box2d_bytes?,
         rapier_bytes?,
     ];
     lines
@@ -305,8 +311,8 @@ fn parse_speed(text: &str) -> Result<Vec<SpeedRow>, String> {
                     field(nans[1])? == "true",
                     field(nans[2])? == "true",
                 ],
-                allocations: [number(memory[0])?, number(memory[1])?],
-                bytes_per_body: [number(memory[2])?, number(memory[3])?],
+                allocations: [number(memory[0])?, number(memory[1])?, number(memory[2])?],
+                bytes_per_body: [number(memory[3])?, number(memory[4])?, number(memory[5])?],
             })
         })
         .collect()
@@ -694,24 +700,28 @@ impl Sources {
         out
     }
 
-    /// Heap allocations per step and bytes per body, carom's beside Rapier's.
+    /// Heap allocations per step and bytes per body, carom's beside Box2D's and Rapier's.
     fn speed_memory(&self) -> String {
         let mut out = format!(
-            "{} Heap allocations per timed step and heap bytes per body after the run, counted \
-             by the bench's allocator (Box2D allocates through C's, which it does not see).\n\n\
-             | scene | carom allocations/step | Rapier allocations/step | carom bytes/body | \
-             Rapier bytes/body |\n|---|---|---|---|---|\n",
+            "{} Heap allocations per timed step, one thread, counted by the bench's allocator \
+             (Box2D's routed through it), and heap bytes per body after the run (Box2D's as it \
+             counts them itself). None of the engines had room reserved ahead of time.\n\n\
+             | scene | carom allocations/step | Box2D allocations/step | \
+             Rapier allocations/step | carom bytes/body | Box2D bytes/body | \
+             Rapier bytes/body |\n|---|---|---|---|---|---|---|\n",
             Self::measured(&self.speed_provenance)
         );
         for row in &self.speed {
             let _ = writeln!(
                 out,
-                "| `{}` | {:.2} | {:.1} | {:.0} | {:.0} |",
+                "| `{}` | {:.2} | {:.2} | {:.1} | {:.0} | {:.0} | {:.0} |",
                 row.scene,
                 row.allocations[0],
                 row.allocations[1],
+                row.allocations[2],
                 row.bytes_per_body[0],
-                row.bytes_per_body[1]
+                row.bytes_per_body[1],
+                row.bytes_per_body[2]
             );
         }
         out

@@ -154,6 +154,8 @@ pub mod notes;
 pub mod sweep;
 
 #[cfg(feature = "peers")]
+pub mod box2d_heap;
+#[cfg(feature = "peers")]
 pub mod box2d_world;
 #[cfg(all(feature = "peers", feature = "native"))]
 pub mod compare;

@@ -1,6 +1,6 @@
 //! `carom-bench`: times carom, Box2D v3 and Rapier on the same scenes, in turn, in one process:
 //! carom and Box2D on one thread and on two, Rapier on one; counts heap allocations per step and
-//! memory per body (carom's and Rapier's: Box2D allocates through C's allocator, not counted).
+//! memory per body in all three (Box2D's routed through Rust's allocator to be counted).
 //! `carom-bench hard-cases` runs the hard cases of `tests/stability.rs` in carom and in Box2D.
 
 use std::fmt::Write as _;
@@ -257,9 +257,10 @@ struct Row {
     box2d: RunResult,
     /// Box2D v3 on `--threads` workers (its own scheduler).
     box2d_threads: RunResult,
-    /// Heap bytes live after a run, per body.
+    /// Heap bytes live after a run, per body (Box2D's own count of its bytes).
     carom_bytes_per_body: f64,
     rapier_bytes_per_body: f64,
+    box2d_bytes_per_body: f64,
     /// What the peers' copies leave out or approximate, each line naming its engine.
     notes: Vec<String>,
 }
@@ -372,7 +373,7 @@ fn bench_world(
     let path = Path::new(name);
     let (mut carom_best, mut threads_best, mut rapier_best) = (None, None, None);
     let (mut box2d_best, mut box2d_threads_best) = (None, None);
-    let (mut bodies, mut carom_bytes, mut rapier_bytes) = (0, 0.0, 0.0);
+    let (mut bodies, mut carom_bytes, mut rapier_bytes, mut box2d_bytes) = (0, 0.0, 0.0, 0.0);
     let mut notes = Vec::new();
     for event in &schedule.other_events {
         for peer in ["Box2D", "Rapier"] {
@@ -445,6 +446,10 @@ fn bench_world(
             let mut box2d = Box2dWorld::with_workers(&scene.world, workers as u32)?;
             drop(scene);
             let b = run_box2d(&mut box2d, DT, steps, replayed)?;
+            if workers == 1 {
+                let bytes = box2d.counters()?.byte_count as f64;
+                box2d_bytes = bytes / box2d.native_body_count()?.max(1) as f64;
+            }
             // After the run: the spawned copies' joints are noted as they are made.
             if run == 1 && workers == 1 {
                 notes.extend(
@@ -480,6 +485,7 @@ fn bench_world(
         box2d_threads: box2d_threads_best.ok_or("no runs")?,
         carom_bytes_per_body: carom_bytes,
         rapier_bytes_per_body: rapier_bytes,
+        box2d_bytes_per_body: box2d_bytes,
         notes,
     })
 }
@@ -523,18 +529,21 @@ fn markdown(rows: &[Row], threads: usize) -> String {
     }
     let _ = write!(
         s,
-        "\n| scene | carom allocations/step | on {threads} threads | Rapier allocations/step | \
-         carom bytes/body | Rapier bytes/body |\n|---|---|---|---|---|---|\n",
+        "\n| scene | carom allocations/step | on {threads} threads | Box2D allocations/step | \
+         Rapier allocations/step | carom bytes/body | Box2D bytes/body | Rapier bytes/body |\n\
+         |---|---|---|---|---|---|---|---|\n",
     );
     for r in rows {
         let _ = writeln!(
             s,
-            "| {} | {:.1} | {:.1} | {:.1} | {:.0} | {:.0} |",
+            "| {} | {:.2} | {:.2} | {:.2} | {:.1} | {:.0} | {:.0} | {:.0} |",
             r.scene,
             r.carom.allocations_per_step(),
             r.carom_threads.allocations_per_step(),
+            r.box2d.allocations_per_step(),
             r.rapier.allocations_per_step(),
             r.carom_bytes_per_body,
+            r.box2d_bytes_per_body,
             r.rapier_bytes_per_body
         );
     }
@@ -646,14 +655,15 @@ fn csv(rows: &[Row]) -> String {
          carom_threads_ms_per_step,thread_speedup,carom_top_drop_m,rapier_top_drop_m,carom_nan,\
          rapier_nan,carom_allocations_per_step,rapier_allocations_per_step,\
          carom_bytes_per_body,rapier_bytes_per_body,box2d_ms_per_step,carom_box2d_ratio,\
-         box2d_top_drop_m,box2d_nan,box2d_threads_ms_per_step,box2d_thread_speedup\n",
+         box2d_top_drop_m,box2d_nan,box2d_threads_ms_per_step,box2d_thread_speedup,\
+         box2d_allocations_per_step,box2d_bytes_per_body\n",
     );
     for r in rows {
         let (c, t, p, b) = r.ms_per_step();
         let _ = writeln!(
             s,
             "{},{},{c:.4},{p:.4},{:.4},{t:.4},{:.4},{:.4},{:.4},{},{},{:.2},{:.2},{:.0},{:.0},\
-             {b:.4},{:.4},{:.4},{},{:.4},{:.4}",
+             {b:.4},{:.4},{:.4},{},{:.4},{:.4},{:.2},{:.0}",
             r.scene,
             r.bodies,
             c / p,
@@ -670,7 +680,9 @@ fn csv(rows: &[Row]) -> String {
             r.box2d.top_drop,
             r.box2d.nan,
             r.box2d_threads.ms_per_step(),
-            r.box2d_speedup()
+            r.box2d_speedup(),
+            r.box2d.allocations_per_step(),
+            r.box2d_bytes_per_body
         );
     }
     s
@@ -1100,6 +1112,8 @@ fn profile_run(
 }
 
 fn main() -> Result<(), String> {
+    // Before any Box2D world: its blocks are then counted as carom's and Rapier's are.
+    carom_bench::box2d_heap::route_through_global_allocator();
     let args = Args::parse();
     if let Some(Command::HardCases {
         case,
