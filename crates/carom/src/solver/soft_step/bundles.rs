@@ -424,14 +424,66 @@ fn store_bundles<L: Lanes>(
     contacts: &mut [Contact],
     per_task: usize,
 ) {
+    // Each colour's contacts lie side by side in the contact array, but the colours are not
+    // in colour order there: sorted by where they begin, any run of them covers contacts
+    // below the next one's, so runs of colours can be stored on different threads.
+    let mut runs: [(usize, Range<usize>); COLOR_COUNT] = std::array::from_fn(|_| (0, 0..0));
+    let mut count = 0;
     for range in colors {
-        let bundles = &bundles[range.clone()];
-        let Some(first) = bundles.first() else {
-            continue;
-        };
-        let start = first.first_contact();
-        store_halves(bundles, &mut contacts[start..], start, per_task);
+        if let Some(first) = bundles[range.clone()].first() {
+            runs[count] = (first.first_contact(), range.clone());
+            count += 1;
+        }
     }
+    let runs = &mut runs[..count];
+    runs.sort_unstable_by_key(|run| run.0);
+    let Some(&(start, _)) = runs.first() else {
+        return;
+    };
+    store_colors(bundles, runs, &mut contacts[start..], start, per_task);
+}
+
+/// Stores the bundles of colours `runs` (each its first contact and its bundles, sorted by
+/// the first) into `contacts`, which begin at contact `offset`: the colours in two halves on
+/// two threads while both have work enough, and the halves of one colour likewise.
+fn store_colors<L: Lanes>(
+    bundles: &[Bundle<L>],
+    runs: &[(usize, Range<usize>)],
+    contacts: &mut [Contact],
+    offset: usize,
+    per_task: usize,
+) {
+    if let [(start, range)] = runs {
+        let contacts = &mut contacts[start - offset..];
+        return store_halves(&bundles[range.clone()], contacts, *start, per_task);
+    }
+    let total: usize = runs.iter().map(|(_, range)| range.len()).sum();
+    if !worth_sharing(total, per_task) {
+        for (start, range) in runs {
+            L::run(Store {
+                bundles: &bundles[range.clone()],
+                contacts: &mut contacts[start - offset..],
+                offset: *start,
+            });
+        }
+        return;
+    }
+    // Split where the bundles before are nearest half of them.
+    let mut before = 0;
+    let middle = runs
+        .iter()
+        .position(|(_, range)| {
+            before += range.len();
+            2 * before >= total
+        })
+        .map_or(1, |last| (last + 1).clamp(1, runs.len() - 1));
+    let (low, high) = runs.split_at(middle);
+    let at = high[0].0;
+    let (low_contacts, high_contacts) = contacts.split_at_mut(at - offset);
+    rayon::join(
+        || store_colors(bundles, low, low_contacts, offset, per_task),
+        || store_colors(bundles, high, high_contacts, at, per_task),
+    );
 }
 
 /// Stores `bundles` into `contacts`, which begin at contact `offset`: in halves on two threads

@@ -177,8 +177,9 @@ fn the_wide_solver_gives_the_scalar_solvers_bits() {
     }
 }
 
-/// Impulses stored on several threads, a colour's bundles split in halves down to one
-/// bundle, land in the same contacts as stored on one thread, each lane's in its own.
+/// Impulses stored on several threads, the colours shared among them and a colour's bundles
+/// split in halves down to one bundle, land in the same contacts as stored on one thread,
+/// each lane's in its own.
 #[test]
 fn impulses_stored_in_halves_land_in_their_own_contacts() {
     let world = pile();
