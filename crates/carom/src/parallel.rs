@@ -31,6 +31,39 @@ pub(crate) fn map_into<T: Sync, U: Send>(
     }
 }
 
+/// `out` becomes `f` of every item and its index, in order (its memory reused).
+pub(crate) fn map_indexed_into<T: Sync, U: Send>(
+    items: &[T],
+    out: &mut Vec<U>,
+    per_task: usize,
+    f: impl Fn(usize, &T) -> U + Sync + Send,
+) {
+    if worth_sharing(items.len(), per_task) {
+        items
+            .par_iter()
+            .enumerate()
+            .with_min_len(per_task)
+            .map(|(i, item)| f(i, item))
+            .collect_into_vec(out);
+    } else {
+        out.clear();
+        out.extend(items.iter().enumerate().map(|(i, item)| f(i, item)));
+    }
+}
+
+/// True when `test` holds for some item (on all threads when there are enough).
+pub(crate) fn any<T: Sync>(
+    items: &[T],
+    per_task: usize,
+    test: impl Fn(&T) -> bool + Sync + Send,
+) -> bool {
+    if worth_sharing(items.len(), per_task) {
+        items.par_iter().with_min_len(per_task).any(test)
+    } else {
+        items.iter().any(test)
+    }
+}
+
 /// `out` becomes `f` of every pair of `a[i]` and `b[i]`, in order (its memory reused).
 pub(crate) fn map_zip_into<A: Sync, B: Sync, U: Send>(
     a: &[A],

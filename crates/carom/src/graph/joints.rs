@@ -18,11 +18,17 @@ pub(crate) struct JointColors {
     pub ranges: Vec<std::ops::Range<usize>>,
     /// The joints to solve (indices into the step's awake joints), colour by colour.
     pub order: Vec<usize>,
+    /// Each awake joint's place in `order` ([`LEFT_OUT`] for one with nothing to solve): where
+    /// its constraint is, so its results can be stored joint by joint.
+    pub places: Vec<usize>,
     /// Per state, the colours that already hold it (a bit each).
     claims: Vec<u32>,
     /// Each joint's colour, or `u8::MAX` for one with nothing to solve.
     colors: Vec<u8>,
 }
+
+/// The place of an awake joint left out of the order (nothing to solve).
+pub(crate) const LEFT_OUT: usize = usize::MAX;
 
 /// Which states a joint touches, and whether it moves each (dynamic and awake).
 pub(crate) type JointStates = [(usize, bool); 2];
@@ -32,6 +38,7 @@ impl JointColors {
     pub(crate) fn reserve(&mut self, joints: usize, states: usize) -> Result<(), TryReserveError> {
         room(&mut self.ranges, JOINT_COLOR_COUNT + 1)?;
         room(&mut self.order, joints)?;
+        room(&mut self.places, joints)?;
         room(&mut self.claims, states)?;
         room(&mut self.colors, joints)
     }
@@ -90,12 +97,16 @@ impl JointColors {
         }
         self.order.clear();
         self.order.resize(start, 0);
+        self.places.clear();
         for (i, &color) in self.colors.iter().enumerate() {
-            if color != u8::MAX {
-                let slot = &mut next[color as usize];
-                self.order[*slot] = i;
-                *slot += 1;
+            if color == u8::MAX {
+                self.places.push(LEFT_OUT);
+                continue;
             }
+            let slot = &mut next[color as usize];
+            self.order[*slot] = i;
+            self.places.push(*slot);
+            *slot += 1;
         }
     }
 }

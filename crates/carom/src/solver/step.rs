@@ -247,6 +247,7 @@ fn store(
         constraints,
         wide,
         joints: joint_constraints,
+        joint_colors,
         shock,
         order,
         ..
@@ -256,13 +257,26 @@ fn store(
         SolverKind::SequentialImpulse | SolverKind::SoftStep
     );
     let caps = SpeedCaps::new(params, dt);
-    for c in joint_constraints.iter() {
-        let joint = &mut set.joints[c.joint];
-        if solved_joints {
+    if solved_joints {
+        // Joint by joint through the awake joints, which sit side by side in the store, each
+        // finding its constraint by its place in the order: on all threads.
+        let first = set.awake_joints.first().map_or(0, |j| j.index as usize);
+        debug_assert!(
+            (set.awake_joints.iter().enumerate()).all(|(i, j)| j.index as usize == first + i),
+            "the awake joints sit side by side"
+        );
+        let awake = &mut set.joints[first..first + set.awake_joints.len()];
+        let places = &joint_colors.places;
+        let constraints = &joint_constraints[..];
+        let inv_h = 1.0 / plan.h;
+        for_each_with(places, awake, ITEMS_PER_TASK, |&place, joint| {
+            let Some(c) = constraints.get(place) else {
+                return;
+            };
             joint.impulses = c.impulses_to_keep(states, caps);
-            let (force, torque) = c.reaction(1.0 / plan.h);
+            let (force, torque) = c.reaction(inv_h);
             joint.set_reaction(force, torque);
-        }
+        });
     }
     wide.store(set.contacts);
     for constraint in constraints.iter() {
@@ -331,6 +345,6 @@ impl JointInputs<'_> {
         let AwakeJoint { index, bodies } = self.awake_joints[i];
         let joint = &self.joints[index as usize];
         let [a, b] = bodies.map(|body| self.side(body));
-        JointConstraint::prepare(index as usize, joint, a, b, h, warm_starting)
+        JointConstraint::prepare(joint, a, b, h, warm_starting)
     }
 }

@@ -2,9 +2,11 @@
 //! sleep and collisions between the joined bodies), finding the ones a step solves, and
 //! breaking the ones pulled too hard.
 
+use crate::constants::ITEMS_PER_TASK;
 use crate::dynamics::body::BodyHandle;
 use crate::error::CaromError;
 use crate::joint::{Joint, JointDef, JointEvent, JointHandle};
+use crate::parallel::{any, map_indexed_into};
 use crate::solver::AwakeJoint;
 use crate::world::World;
 use crate::world::joint_mut::JointMut;
@@ -155,21 +157,15 @@ impl World {
         reason = "a live joint's bodies are live: removing a body removes its joints"
     )]
     pub(crate) fn awake_joints(&self, awake: &mut Vec<AwakeJoint>) {
-        awake.clear();
         let range = self.state.joints.awake();
         let joints = &self.state.joints.as_slice()[range.clone()];
-        for (index, joint) in range.zip(joints) {
-            let bodies = joint.bodies().map(|body| {
-                self.state
-                    .bodies
-                    .dense_index(body)
-                    .expect("joints join live bodies") as u32
-            });
-            awake.push(AwakeJoint {
-                index: index as u32,
-                bodies,
-            });
-        }
+        let bodies = &self.state.bodies;
+        map_indexed_into(joints, awake, ITEMS_PER_TASK, |i, joint| AwakeJoint {
+            index: (range.start + i) as u32,
+            bodies: joint
+                .bodies()
+                .map(|body| bodies.dense_index(body).expect("joints join live bodies") as u32),
+        });
     }
 
     /// Removes the joints the last step pulled past their break force or torque, reporting
@@ -180,6 +176,13 @@ impl World {
     )]
     pub(crate) fn break_joints(&mut self, solved: &[AwakeJoint]) -> bool {
         self.state.joints.events.clear();
+        let joints = self.state.joints.as_slice();
+        // Looked for on all threads; the few broken are then listed in order.
+        if !any(solved, ITEMS_PER_TASK, |j| {
+            joints[j.index as usize].is_broken()
+        }) {
+            return false;
+        }
         let broken: Vec<JointHandle> = solved
             .iter()
             .map(|j| &self.state.joints.as_slice()[j.index as usize])

@@ -29,8 +29,6 @@ use crate::math::{Real, Rot, Vec2, angle_of, cross, rotation};
 /// A joint prepared for one step.
 #[derive(Debug, Clone)]
 pub(crate) struct JointConstraint {
-    /// Where the joint lives in the world's joint store.
-    pub joint: usize,
     /// Body A's and B's indices among the solver's states (the spare state when not awake).
     pub a: usize,
     pub b: usize,
@@ -268,9 +266,8 @@ pub(crate) struct JointBody<'a> {
 }
 
 impl JointConstraint {
-    /// Prepares `joint` (at `index` in the store) for a step whose substeps last `h`.
+    /// Prepares `joint` for a step whose substeps last `h`.
     pub(crate) fn prepare(
-        index: usize,
         joint: &Joint,
         a: JointBody,
         b: JointBody,
@@ -311,7 +308,6 @@ impl JointConstraint {
         };
         let (ma, ia) = if mouse { (0.0, 0.0) } else { (ma, ia) };
         let mut c = JointConstraint {
-            joint: index,
             a: if mouse { b.state } else { a_state },
             b: b.state,
             moves_a,
