@@ -3,14 +3,17 @@
 
 use std::collections::TryReserveError;
 
-/// How many of each part a world makes room for ([`World::reserve`]), or the most it has held
-/// at once ([`World::high_water`]).
+/// How many of each part a world makes room for ([`World::reserve`]), or the most it has
+/// held at once ([`World::high_water`]).
 ///
 /// A step takes memory from the heap only to grow a buffer past the largest it has held;
 /// room reserved for as many bodies, colliders, contacts and joints as a world will hold lets
 /// every step of it run without. A game that must not allocate while it plays (a console
-/// title, a server with a frame budget) runs its level once, reads [`World::high_water`], and
-/// reserves that when it loads the level.
+/// title, a server with a frame budget) runs its level once, reads [`World::high_water`],
+/// and reserves that when it loads the level.
+///
+/// [`World::reserve`]: crate::World::reserve
+/// [`World::high_water`]: crate::World::high_water
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Capacity {
