@@ -204,7 +204,7 @@ impl JointStore {
     /// apart, and for as many break events in a step.
     pub(crate) fn reserve(&mut self, count: usize) -> Result<(), TryReserveError> {
         self.joints.reserve(count)?;
-        let bodies = (2 * count).saturating_sub(self.by_body.len());
+        let bodies = count.saturating_mul(2).saturating_sub(self.by_body.len());
         self.by_body.try_reserve(bodies)?;
         let pairs = count.saturating_sub(self.filters.len());
         self.filters.try_reserve(pairs)?;

@@ -49,8 +49,8 @@ impl Workspace {
         joints: usize,
     ) -> Result<(), TryReserveError> {
         // The states end with the spare one, shared by static bodies and empty lanes.
-        room(&mut self.states, bodies + 1)?;
-        room(&mut self.masses, bodies + 1)?;
+        room(&mut self.states, bodies.saturating_add(1))?;
+        room(&mut self.masses, bodies.saturating_add(1))?;
         room(&mut self.drives, bodies)?;
         room(&mut self.constraints, contacts)?;
         room(&mut self.graph.overflow, contacts)?;
@@ -59,7 +59,7 @@ impl Workspace {
         room(&mut self.claims, bodies)?;
         room(&mut self.demoted, contacts)?;
         room(&mut self.joints, joints)?;
-        self.joint_colors.reserve(joints, bodies + 1)
+        self.joint_colors.reserve(joints, bodies.saturating_add(1))
     }
 
     /// With direct joints, after a step: each awake body's group of bodies joined by hinges

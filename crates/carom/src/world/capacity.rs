@@ -8,9 +8,10 @@ use crate::world::World;
 
 impl World {
     /// Makes room for `capacity` in every store and every buffer a step works in, so that
-    /// the world's steps take nothing from the heap while it holds no more than that (its
-    /// sensors' lists of what overlaps them and the events a caller has not taken aside).
-    /// Room already made is kept; the world is otherwise unchanged (the same bits follow).
+    /// after its first step (which makes the working memory of the threads it runs on) the
+    /// world steps without taking anything from the heap while it holds no more than that.
+    /// Not covered: the sensors' lists of what overlaps them. Room already made is kept; the
+    /// world is otherwise unchanged (the same bits follow).
     ///
     /// # Errors
     /// [`CaromError::OutOfMemory`] when the heap cannot give the room asked for (what was made

@@ -23,7 +23,7 @@ impl DynamicTree {
     /// Makes room to hold and rebuild a tree of `proxies` leaves.
     pub(crate) fn reserve(&mut self, proxies: usize) -> Result<(), TryReserveError> {
         // A leaf for each proxy and an inner node for each but one.
-        room(&mut self.nodes, 2 * proxies)?;
+        room(&mut self.nodes, proxies.saturating_mul(2))?;
         self.scratch.reserve(proxies)
     }
 

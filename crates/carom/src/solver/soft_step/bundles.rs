@@ -118,7 +118,7 @@ impl WideContacts {
     /// Makes room for `contacts` coloured contacts: their bundles (each colour's last one
     /// part full), their slots and the overflow's list.
     pub(crate) fn reserve(&mut self, contacts: usize) -> Result<(), TryReserveError> {
-        let bundles = contacts.div_ceil(self.width()) + COLOR_COUNT;
+        let bundles = contacts.div_ceil(self.width()).saturating_add(COLOR_COUNT);
         with_bundles!(&mut self.bundles, |list| room(list, bundles))?;
         room(&mut self.colors, COLOR_COUNT)?;
         room(&mut self.slots, bundles)?;
