@@ -185,7 +185,7 @@ impl World {
         }
         let broken: Vec<JointHandle> = solved
             .iter()
-            .map(|j| &self.state.joints.as_slice()[j.index as usize])
+            .map(|j| &joints[j.index as usize])
             .filter(|joint| joint.is_broken())
             .map(Joint::handle)
             .collect();

@@ -453,18 +453,12 @@ fn store_colors<L: Lanes>(
     offset: usize,
     per_task: usize,
 ) {
-    if let [(start, range)] = runs {
-        let contacts = &mut contacts[start - offset..];
-        return store_halves(&bundles[range.clone()], contacts, *start, per_task);
-    }
     let total: usize = runs.iter().map(|(_, range)| range.len()).sum();
-    if !worth_sharing(total, per_task) {
+    if runs.len() == 1 || !worth_sharing(total, per_task) {
+        // One colour (which store_halves may still split), or too little to share.
         for (start, range) in runs {
-            L::run(Store {
-                bundles: &bundles[range.clone()],
-                contacts: &mut contacts[start - offset..],
-                offset: *start,
-            });
+            let contacts = &mut contacts[start - offset..];
+            store_halves(&bundles[range.clone()], contacts, *start, per_task);
         }
         return;
     }
