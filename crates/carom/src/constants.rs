@@ -212,6 +212,10 @@ pub(crate) const CONTACTS_PER_TASK: usize = 256;
 /// they arrive before they are read, near enough that they are still cached then.
 pub(crate) const PREFETCH_AHEAD: usize = 8;
 
+/// How many times [`PREFETCH_AHEAD`] ahead the narrowphase asks for the contacts themselves:
+/// a contact must have arrived before its bodies can be asked for from it.
+pub(crate) const CONTACTS_AHEAD: usize = 2;
+
 /// Awake contacts below which the narrowphase asks for nothing ahead: a set this small (its
 /// contacts, their bodies and fat boxes, about 0.4 MB) stays in a core's L2 cache from step
 /// to step, so the hints would only add instructions.

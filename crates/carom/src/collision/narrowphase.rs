@@ -11,7 +11,8 @@ use crate::collision::contact::{Contact, ContactEvent, ContactSet};
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::recycle::ManifoldFrame;
 use crate::constants::{
-    CONTACTS_PER_TASK, PREFETCH_AHEAD, PREFETCH_MIN_CONTACTS, TOUCH_BEGIN, TOUCH_END,
+    CONTACTS_AHEAD, CONTACTS_PER_TASK, PREFETCH_AHEAD, PREFETCH_MIN_CONTACTS, TOUCH_BEGIN,
+    TOUCH_END,
 };
 use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
@@ -151,11 +152,15 @@ impl Narrowphase {
                 for (index, refresh) in out.iter_mut().enumerate() {
                     // What a contact a few ahead reads is asked for now, so that those reads
                     // overlap this contact's work instead of each stalling in turn (in a set
-                    // too large to stay cached).
-                    if ahead > 0
-                        && let Some(ahead) = contacts.get(index + ahead)
-                    {
-                        fetch_ahead(ahead, bodies, fat_boxes);
+                    // too large to stay cached); the contacts themselves farther ahead still,
+                    // as their bodies are asked for from them.
+                    if ahead > 0 {
+                        if let Some(far) = contacts.get(index + CONTACTS_AHEAD * ahead) {
+                            prefetch(far);
+                        }
+                        if let Some(ahead) = contacts.get(index + ahead) {
+                            fetch_ahead(ahead, bodies, fat_boxes);
+                        }
                     }
                     *refresh = refresh_manifold(
                         &mut contacts[index],
@@ -352,15 +357,20 @@ fn refresh_manifold(
     ) else {
         return Refresh::Gone;
     };
+    let ahead = prediction.for_pair(a, b);
     let margins = Margins {
         any: margin,
-        face: margin + closing_speed(a, b) * prediction.for_pair(a, b),
+        face: if ahead > 0.0 {
+            margin + closing_speed(a, b) * ahead
+        } else {
+            margin
+        },
     };
-    contact.manifold = collide::update(
+    collide::update(
         shape_a.world_shape(),
         shape_b.world_shape(),
         margins,
-        &contact.manifold,
+        &mut contact.manifold,
     );
     contact
         .manifold
@@ -369,7 +379,12 @@ fn refresh_manifold(
         // Apart: a rolling resistance met again starts over, as the points' impulses do.
         contact.rolling_impulse = 0.0;
     }
-    contact.frame = ManifoldFrame::of(&contact.manifold, (a, shape_a), (b, shape_b));
+    contact.frame = ManifoldFrame::of(
+        &contact.manifold,
+        (a, shape_a),
+        (b, shape_b),
+        &contact.frame,
+    );
     settled(contact, colliders, [a, b], pre_solve, false)
 }
 

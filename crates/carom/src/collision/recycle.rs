@@ -37,11 +37,15 @@ pub(crate) struct ManifoldFrame {
 }
 
 impl ManifoldFrame {
-    /// Remembers `manifold`, just built (anchors set) for bodies `a` and `b` and their colliders.
+    /// Remembers `manifold`, just built (anchors set) for bodies `a` and `b` and their colliders,
+    /// in place of the contact's `previous` frame. A collider's shape never changes, so its
+    /// extent is taken from `previous` when that holds it: a manifold built again then reads
+    /// nothing of its colliders but their placed shapes.
     pub(crate) fn of(
         manifold: &Manifold,
         (a, collider_a): (&Body, &Collider),
         (b, collider_b): (&Body, &Collider),
+        previous: &ManifoldFrame,
     ) -> Self {
         let relative = a.transform().inv_mul(&b.transform());
         let mut base_separations = [0.0; 2];
@@ -55,7 +59,11 @@ impl ManifoldFrame {
             relative_translation: relative.translation.vector,
             relative_rotation: relative.rotation,
             base_separations,
-            min_extents: [collider_a, collider_b].map(|c| c.shape().min_extent()),
+            min_extents: if previous.valid {
+                previous.min_extents
+            } else {
+                [collider_a, collider_b].map(|c| c.shape().min_extent())
+            },
         }
     }
 
@@ -159,8 +167,19 @@ mod tests {
         let ((a, ca), (b, cb)) = (parts(world, a), parts(world, b));
         let mut built = collide::collide(ca.world_shape(), cb.world_shape(), SPECULATIVE_DISTANCE);
         built.set_anchors(a.center_of_mass(), b.center_of_mass());
-        let frame = ManifoldFrame::of(&built, (a, ca), (b, cb));
+        let frame = ManifoldFrame::of(&built, (a, ca), (b, cb), &ManifoldFrame::default());
         (built, frame)
+    }
+
+    #[test]
+    fn a_rebuilt_frame_keeps_the_extents_it_would_compute() {
+        let (world, ground, block) = resting_pair(0.0);
+        let (built, first) = built(&world, ground, block);
+        let ((a, ca), (b, cb)) = (parts(&world, ground), parts(&world, block));
+        let again = ManifoldFrame::of(&built, (a, ca), (b, cb), &first);
+        assert_eq!(again, first);
+        assert_eq!(first.min_extents, [ca, cb].map(|c| c.shape().min_extent()));
+        assert!(first.min_extents.iter().all(|&extent| extent > 0.0));
     }
 
     #[test]

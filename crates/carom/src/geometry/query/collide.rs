@@ -22,15 +22,11 @@ pub fn collide(a: &WorldShape, b: &WorldShape, margin: Real) -> Manifold {
 /// it unless the other side's face is better by
 /// [`REFERENCE_TOLERANCE`](crate::constants::REFERENCE_TOLERANCE), and impulses carry
 /// over to points with the same feature ids. Face points are kept up to `margins.face` apart.
-pub(crate) fn update(
-    a: &WorldShape,
-    b: &WorldShape,
-    margins: Margins,
-    previous: &Manifold,
-) -> Manifold {
-    let mut manifold = collide_after(a, b, margins, previous.reference_edge.map(|e| e.side));
-    manifold.carry_impulses_from(previous);
-    manifold
+/// Built in place of last step's `manifold`, which keeps only what it hands on.
+pub(crate) fn update(a: &WorldShape, b: &WorldShape, margins: Margins, manifold: &mut Manifold) {
+    let kept = manifold.warm_start();
+    *manifold = collide_after(a, b, margins, manifold.reference_edge.map(|e| e.side));
+    manifold.warm_start_from(&kept);
 }
 
 /// [`collide`]'s and [`update`]'s work; `previous_reference` is the side that held the

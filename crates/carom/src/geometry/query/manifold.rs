@@ -215,14 +215,50 @@ impl Manifold {
 
     /// Copies accumulated impulses from last step's points with the same feature ids.
     pub fn carry_impulses_from(&mut self, previous: &Manifold) {
+        self.warm_start_from(&previous.warm_start());
+    }
+
+    /// What its points hand on to the next step's points of the same features.
+    #[inline]
+    pub(crate) fn warm_start(&self) -> WarmStart {
+        let mut kept = WarmStart {
+            points: [(FeatureId::SINGLE, [0.0; 3]); 2],
+            count: self.point_count,
+        };
+        for (slot, point) in kept.points.iter_mut().zip(self.points()) {
+            *slot = (
+                point.id,
+                [
+                    point.normal_impulse,
+                    point.tangent_impulse,
+                    point.shock_impulse,
+                ],
+            );
+        }
+        kept
+    }
+
+    /// Takes the accumulated impulses `kept` from last step's points with the same feature
+    /// ids.
+    #[inline]
+    pub(crate) fn warm_start_from(&mut self, kept: &WarmStart) {
+        let old = &kept.points[..kept.count];
         for point in self.points_mut() {
-            if let Some(old) = previous.points().iter().find(|old| old.id == point.id) {
-                point.normal_impulse = old.normal_impulse;
-                point.tangent_impulse = old.tangent_impulse;
-                point.shock_impulse = old.shock_impulse;
+            if let Some((_, [normal, tangent, shock])) = old.iter().find(|old| old.0 == point.id) {
+                point.normal_impulse = *normal;
+                point.tangent_impulse = *tangent;
+                point.shock_impulse = *shock;
             }
         }
     }
+}
+
+/// A manifold's points' feature ids and accumulated impulses (normal, tangent, shock): all a
+/// manifold built again in its place takes from it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct WarmStart {
+    points: [(FeatureId, [Real; 3]); 2],
+    count: usize,
 }
 
 /// How far apart two shapes' points may be and still be kept.
@@ -699,7 +735,14 @@ fn clip_overlap<'a>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::query::collide::{collide, update};
+    use crate::geometry::query::collide::{self, collide};
+
+    /// The manifold [`collide::update`] builds in place of `previous`.
+    fn update(a: &WorldShape, b: &WorldShape, margins: Margins, previous: &Manifold) -> Manifold {
+        let mut manifold = *previous;
+        collide::update(a, b, margins, &mut manifold);
+        manifold
+    }
     use crate::geometry::shape::Shape;
     use crate::math::vec2;
 
