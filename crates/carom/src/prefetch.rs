@@ -6,6 +6,12 @@
 /// Asks for the cache lines `item` spans.
 #[inline(always)]
 pub(crate) fn prefetch<T>(item: &T) {
+    prefetch_head(item, size_of::<T>());
+}
+
+/// Asks for the cache lines that the first `bytes` of `item` span (wherever a line begins).
+#[inline(always)]
+pub(crate) fn prefetch_head<T>(item: &T, bytes: usize) {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
@@ -14,11 +20,15 @@ pub(crate) fn prefetch<T>(item: &T) {
         // a prefetch reads nothing and cannot fault, whatever the address.
         #[allow(unsafe_code)]
         unsafe {
-            for offset in (0..size_of::<T>()).step_by(64) {
+            for offset in (0..bytes).step_by(64) {
                 _mm_prefetch::<_MM_HINT_T0>(at.wrapping_add(offset));
+            }
+            // The last byte's line, when the head does not start a line.
+            if bytes > 0 {
+                _mm_prefetch::<_MM_HINT_T0>(at.wrapping_add(bytes - 1));
             }
         }
     }
     #[cfg(not(target_arch = "x86_64"))]
-    let _ = item;
+    let _ = (item, bytes);
 }

@@ -14,14 +14,14 @@ use crate::constants::{
     CONTACTS_AHEAD, CONTACTS_PER_TASK, PREFETCH_AHEAD, PREFETCH_MIN_CONTACTS, TOUCH_BEGIN,
     TOUCH_END,
 };
-use crate::dynamics::body::{Body, BodyHandle, BodyKind};
+use crate::dynamics::body::{self, Body, BodyHandle, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle};
 use crate::geometry::query::collide;
 use crate::geometry::query::manifold::{Manifold, Margins};
 use crate::handle_map::HandleMap;
 use crate::math::Real;
 use crate::parallel::for_each_chunk_mut_with;
-use crate::prefetch::prefetch;
+use crate::prefetch::{prefetch, prefetch_head};
 use crate::stats::CollisionWork;
 use std::collections::TryReserveError;
 
@@ -281,12 +281,12 @@ fn file(
     }
 }
 
-/// Asks for the memory that refreshing `contact` reads first: its bodies and its colliders'
-/// broadphase proxies.
+/// Asks for the memory that refreshing `contact` reads first: its bodies' heads and its
+/// colliders' broadphase proxies.
 fn fetch_ahead(contact: &Contact, bodies: &HandleMap<BodyHandle, Body>, fat_boxes: FatBoxes<'_>) {
     for body in [contact.body_a(), contact.body_b()] {
         if let Some(body) = bodies.get(body) {
-            prefetch(body);
+            prefetch_head(body, body::HEAD_BYTES);
         }
     }
     fat_boxes.prefetch(contact.collider_a, contact.collider_b);

@@ -50,19 +50,27 @@ struct MassData {
 }
 
 /// A rigid body: where it is, how it moves, its mass; its shapes are its colliders.
+// Laid out as written, what the narrowphase reads of each of a contact's bodies first (its
+// kind, whether it sleeps, where it is and how fast it goes), so that those reads share one or
+// two cache lines instead of spanning the record.
 #[derive(Debug)]
+#[repr(C)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Body {
     handle: BodyHandle,
     kind: BodyKind,
-    colliders: Vec<ColliderHandle>,
+    /// Asleep: skipped by every stage until something wakes it.
+    sleeping: bool,
+    /// Continuous collision cut this step's motion short.
+    had_time_of_impact: bool,
+    /// Its contacts look a step ahead whatever the world does ([`crate::BodyDef::look_ahead`]).
+    #[cfg_attr(feature = "serde", serde(default))]
+    look_ahead: bool,
     /// The origin of the body's frame, in the world.
     position: Vec2,
     rotation: Rot,
     /// The centre of mass in the world: `position + rotation * local_center`.
     center: Vec2,
-    /// The centre of mass in the body's frame (zero for static and kinematic bodies).
-    local_center: Vec2,
     /// The farthest any collider point lies from the centre of mass, m.
     reach: Real,
     /// The smallest collider's smallest extent, m: below it a body could pass through a thin
@@ -70,6 +78,9 @@ pub struct Body {
     min_extent: Real,
     linear_velocity: Vec2,
     angular_velocity: Real,
+    colliders: Vec<ColliderHandle>,
+    /// The centre of mass in the body's frame (zero for static and kinematic bodies).
+    local_center: Vec2,
     force: Vec2,
     torque: Real,
     mass: MassData,
@@ -80,8 +91,6 @@ pub struct Body {
     user_tag: u64,
     /// The union of the colliders' boxes, as of the last step or edit.
     aabb: Aabb,
-    /// Continuous collision cut this step's motion short.
-    had_time_of_impact: bool,
     /// Where the centre of mass was at the start of the last solved step, and how the body
     /// was turned (for continuous collision), as Box2D keeps `center0` in its bodies.
     #[cfg_attr(feature = "serde", serde(skip))]
@@ -103,20 +112,23 @@ pub struct Body {
         serde(default = "crate::dynamics::body_def::sweep_threshold")
     )]
     sweep_threshold: Real,
-    /// Its contacts look a step ahead whatever the world does ([`crate::BodyDef::look_ahead`]).
-    #[cfg_attr(feature = "serde", serde(default))]
-    look_ahead: bool,
     /// Never turns: no inverse inertia, no spin ([`crate::BodyDef::fixed_rotation`]).
     #[cfg_attr(feature = "serde", serde(default))]
     fixed_rotation: bool,
-    /// Asleep: skipped by every stage until something wakes it.
-    sleeping: bool,
     /// A dynamic body's island (see [`crate::dynamics::island`]), and its neighbours in the
     /// island's list.
     island: Option<u32>,
     island_prev: Option<BodyHandle>,
     island_next: Option<BodyHandle>,
 }
+
+/// The bytes at the head of a [`Body`] that the narrowphase reads of it: the fields before its
+/// list of colliders.
+pub(crate) const HEAD_BYTES: usize = std::mem::offset_of!(Body, colliders);
+
+// In the default build the head is no more than a cache line's worth of bytes.
+#[cfg(not(feature = "f64"))]
+const _: () = assert!(HEAD_BYTES <= 64, "a body's head outgrew a cache line");
 
 /// Where a body's centre of mass was at the start of the step, and how it was turned.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -887,6 +899,30 @@ mod tests {
     use super::*;
     use crate::geometry::shape::Shape;
     use crate::math::vec2;
+    use std::mem::offset_of;
+
+    /// What the narrowphase reads of a body lies in its head.
+    #[test]
+    fn what_a_contact_reads_lies_in_the_head() {
+        let ends = [
+            offset_of!(Body, handle) + size_of::<BodyHandle>(),
+            offset_of!(Body, kind) + size_of::<BodyKind>(),
+            offset_of!(Body, sleeping) + 1,
+            offset_of!(Body, had_time_of_impact) + 1,
+            offset_of!(Body, look_ahead) + 1,
+            offset_of!(Body, position) + size_of::<Vec2>(),
+            offset_of!(Body, rotation) + size_of::<Rot>(),
+            offset_of!(Body, center) + size_of::<Vec2>(),
+            offset_of!(Body, reach) + size_of::<Real>(),
+            offset_of!(Body, min_extent) + size_of::<Real>(),
+            offset_of!(Body, linear_velocity) + size_of::<Vec2>(),
+            offset_of!(Body, angular_velocity) + size_of::<Real>(),
+        ];
+        assert!(
+            ends.iter().all(|&end| end <= HEAD_BYTES),
+            "{ends:?} > {HEAD_BYTES}"
+        );
+    }
 
     /// A unit box of density 1 on its own, its collider attached as a world would.
     fn unit_box(kind: BodyKind) -> Body {
