@@ -23,7 +23,8 @@ pub(crate) fn prefetch_head<T>(item: &T, bytes: usize) {
             for offset in (0..bytes).step_by(64) {
                 _mm_prefetch::<_MM_HINT_T0>(at.wrapping_add(offset));
             }
-            // The last byte's line, when the head does not start a line.
+            // The last byte's line, which the steps above miss when the head does not
+            // begin a line.
             if bytes > 0 {
                 _mm_prefetch::<_MM_HINT_T0>(at.wrapping_add(bytes - 1));
             }

@@ -736,6 +736,8 @@ fn clip_overlap<'a>(
 mod tests {
     use super::*;
     use crate::geometry::query::collide::{self, collide};
+    use crate::geometry::shape::Shape;
+    use crate::math::vec2;
 
     /// The manifold [`collide::update`] builds in place of `previous`.
     fn update(a: &WorldShape, b: &WorldShape, margins: Margins, previous: &Manifold) -> Manifold {
@@ -743,8 +745,6 @@ mod tests {
         collide::update(a, b, margins, &mut manifold);
         manifold
     }
-    use crate::geometry::shape::Shape;
-    use crate::math::vec2;
 
     fn placed(shape: Shape, x: Real, y: Real, angle: Real) -> WorldShape {
         WorldShape::at(&shape, vec2(x, y), angle)
