@@ -52,7 +52,8 @@ struct MassData {
 /// A rigid body: where it is, how it moves, its mass; its shapes are its colliders.
 // Laid out as written, what the narrowphase reads of each of a contact's bodies first (its
 // kind, whether it sleeps, where it is and how fast it goes), so that those reads share one or
-// two cache lines instead of spanning the record.
+// two cache lines instead of spanning the record; its flags side by side, so that the order
+// costs no padding.
 #[derive(Debug)]
 #[repr(C)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -66,6 +67,10 @@ pub struct Body {
     /// Its contacts look a step ahead whatever the world does ([`crate::BodyDef::look_ahead`]).
     #[cfg_attr(feature = "serde", serde(default))]
     look_ahead: bool,
+    bullet: bool,
+    /// Never turns: no inverse inertia, no spin ([`crate::BodyDef::fixed_rotation`]).
+    #[cfg_attr(feature = "serde", serde(default))]
+    fixed_rotation: bool,
     /// The origin of the body's frame, in the world.
     position: Vec2,
     rotation: Rot,
@@ -87,7 +92,6 @@ pub struct Body {
     gravity_scale: Real,
     linear_damping: Real,
     angular_damping: Real,
-    bullet: bool,
     user_tag: u64,
     /// The union of the colliders' boxes, as of the last step or edit.
     aabb: Aabb,
@@ -112,9 +116,6 @@ pub struct Body {
         serde(default = "crate::dynamics::body_def::sweep_threshold")
     )]
     sweep_threshold: Real,
-    /// Never turns: no inverse inertia, no spin ([`crate::BodyDef::fixed_rotation`]).
-    #[cfg_attr(feature = "serde", serde(default))]
-    fixed_rotation: bool,
     /// A dynamic body's island (see [`crate::dynamics::island`]), and its neighbours in the
     /// island's list.
     island: Option<u32>,
