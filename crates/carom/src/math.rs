@@ -1,11 +1,13 @@
 //! Scalar and vector types, and the few 2D products nalgebra does not name.
 
-/// The floating-point type of the whole engine: `f32`, or `f64` with the `f64` feature
-/// (bodies far from the origin keep their precision; every step costs more).
+/// The floating-point type of the engine: `f32`, or `f64` with the `f64` feature
+/// (bodies far from the origin keep their precision; every step costs more). The contact
+/// solver's SIMD lanes are `f32` in both: what they solve is relative to the bodies.
 #[cfg(not(feature = "f64"))]
 pub type Real = f32;
-/// The floating-point type of the whole engine: `f32`, or `f64` with the `f64` feature
-/// (bodies far from the origin keep their precision; every step costs more).
+/// The floating-point type of the engine: `f32`, or `f64` with the `f64` feature
+/// (bodies far from the origin keep their precision; every step costs more). The contact
+/// solver's SIMD lanes are `f32` in both: what they solve is relative to the bodies.
 #[cfg(feature = "f64")]
 pub type Real = f64;
 

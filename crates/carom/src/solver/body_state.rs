@@ -22,9 +22,11 @@ pub(crate) type Held = u64;
 
 /// One body as the solver sees it: eight floats in one 32-byte line (Box2D's `b2BodyState`),
 /// so the SIMD solver loads a body with one or two vector loads and transposes bodies into
-/// lanes: `[v.x, v.y, w, held, dp.x, dp.y, dq.cos, dq.sin]`.
+/// lanes: `[v.x, v.y, w, held, dp.x, dp.y, dq.cos, dq.sin]`. Aligned to its size, so no
+/// state straddles two cache lines.
 #[derive(Debug, Clone, Copy)]
-#[repr(C, align(32))]
+#[cfg_attr(not(feature = "f64"), repr(C, align(32)))]
+#[cfg_attr(feature = "f64", repr(C, align(64)))]
 pub(crate) struct BodyState {
     /// Linear velocity.
     pub v: Vec2,
@@ -41,12 +43,12 @@ pub(crate) struct BodyState {
     pub dq: Rot,
 }
 
-// The SIMD solver reads a state as eight floats in this order (see `shared_states`): one
-// 32-byte line in single precision, two in double.
+// The SIMD solver reads a state as eight floats in this order (see `shared_states`): 32
+// bytes in single precision, 64 in double, aligned to that.
 const _: () = {
     use std::mem::{align_of, offset_of, size_of};
     const R: usize = size_of::<Real>();
-    assert!(size_of::<BodyState>() == 8 * R && align_of::<BodyState>() == 32);
+    assert!(size_of::<BodyState>() == 8 * R && align_of::<BodyState>() == 8 * R);
     assert!(offset_of!(BodyState, v) == 0 && offset_of!(BodyState, w) == 2 * R);
     assert!(offset_of!(BodyState, held) == 3 * R && size_of::<Held>() == R);
     assert!(offset_of!(BodyState, dp) == 4 * R);

@@ -2,8 +2,9 @@
 //! body) are prepared straight into bundles of [`Lanes::WIDTH`] constraints ([`super::kernels`]),
 //! stored back into their contacts after the step, and solved by the stage executor
 //! ([`WideContacts::execute`], [`super::executor`]). Eight lanes where the CPU has AVX, four
-//! elsewhere; a lane gives the scalar path's result bit for bit at either width (tested), only
-//! the order of constraints differs (colour by colour).
+//! elsewhere; a lane gives the scalar path's result bit for bit at either width (tested; in
+//! the double-precision build, whose lanes are single, to single precision), only the order
+//! of constraints differs (colour by colour).
 
 use super::executor::{Stage, StageInputs, execute_stages};
 use super::inputs::BundleInputs;
@@ -19,7 +20,9 @@ use crate::solver::body_state::BodyState;
 use crate::solver::contact_constraint::ContactConstraint;
 use crate::solver::joints::JointConstraint;
 use crate::solver::params::Softness;
-#[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+#[cfg(test)]
+use crate::solver::soft_step::lanes::Lane;
+#[cfg(target_arch = "x86_64")]
 use crate::solver::soft_step::lanes::avx::{self, Avx8};
 use crate::solver::soft_step::lanes::{Four, Kernel, Lanes};
 use crate::solver::soft_step::shared_states::SharedStates;
@@ -33,7 +36,7 @@ pub(crate) enum Width {
     /// `wide`'s four lanes, on every CPU.
     Four,
     /// AVX's eight lanes (x86-64 CPUs with AVX).
-    #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+    #[cfg(target_arch = "x86_64")]
     Eight,
 }
 
@@ -45,7 +48,7 @@ impl Width {
         static FOUR_ASKED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
         let four_asked =
             *FOUR_ASKED.get_or_init(|| std::env::var("CAROM_LANES").is_ok_and(|v| v.trim() == "4"));
-        #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+        #[cfg(target_arch = "x86_64")]
         if !four_asked && avx::detected() {
             return Width::Eight;
         }
@@ -58,7 +61,7 @@ impl Width {
 #[derive(Debug, Clone)]
 enum Bundles {
     Four(Vec<Bundle<Four>>),
-    #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+    #[cfg(target_arch = "x86_64")]
     Eight(Vec<Bundle<Avx8>>),
 }
 
@@ -67,7 +70,7 @@ macro_rules! with_bundles {
     ($bundles:expr, |$b:ident| $body:expr) => {
         match $bundles {
             Bundles::Four($b) => $body,
-            #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+            #[cfg(target_arch = "x86_64")]
             Bundles::Eight($b) => $body,
         }
     };
@@ -101,9 +104,9 @@ impl WideContacts {
         let bundles = match width {
             Width::Four => Bundles::Four(Vec::new()),
             // An `Avx8` may only exist on a CPU with AVX.
-            #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+            #[cfg(target_arch = "x86_64")]
             Width::Eight if avx::detected() => Bundles::Eight(Vec::new()),
-            #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+            #[cfg(target_arch = "x86_64")]
             Width::Eight => Bundles::Four(Vec::new()),
         };
         WideContacts {
@@ -300,9 +303,9 @@ impl WideContacts {
                 for (lane, &contact) in bundle.contacts.as_ref().iter().enumerate() {
                     let points = bundle.points.map(|p| {
                         (
-                            p.normal_impulse.lane(lane),
-                            p.tangent_impulse.lane(lane),
-                            p.total_normal_impulse.lane(lane),
+                            p.normal_impulse.lane(lane) as Real,
+                            p.tangent_impulse.lane(lane) as Real,
+                            p.total_normal_impulse.lane(lane) as Real,
                         )
                     });
                     out.insert(contact as usize, points);
@@ -360,7 +363,7 @@ fn lane_of<L: Lanes>(bundles: &mut [Bundle<L>], contact: usize) -> Option<(&mut 
 fn with_lane<L: Lanes>(lanes: L, lane: usize, value: Real) -> L {
     let mut values = [0.0; 8];
     lanes.write_to(&mut values);
-    values[lane] = value;
+    values[lane] = value as Lane;
     L::from_slice(&values)
 }
 

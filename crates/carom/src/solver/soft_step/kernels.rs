@@ -1,10 +1,11 @@
 //! The SIMD kernels: one bundle of [`Lanes::WIDTH`] contact constraints, laid out as
 //! structures of arrays, prepared, warm started, solved, bounced and stored four or eight
 //! lanes at a time. The arithmetic per lane is the scalar path's ([`super::scalar`]) operation
-//! for operation, summed in the same order, so a lane gives the scalar result bit for bit.
+//! for operation, summed in the same order, so a lane gives the scalar result bit for bit
+//! (where a lane is as wide as [`Real`]: not in the double-precision build).
 
 use super::inputs::{BundleInputs, PassBias};
-use super::lanes::Lanes;
+use super::lanes::{Lane, Lanes};
 use super::shared_states::SharedStates;
 use crate::collision::contact::{Contact, PointImpulse};
 use crate::math::Real;
@@ -61,7 +62,7 @@ impl<L: Lanes> WidePoint<L> {
             &mut self.relative_velocity,
         ];
         for (field, value) in fields.into_iter().zip(values) {
-            field.lanes_mut()[lane] = value;
+            field.lanes_mut()[lane] = value as Lane;
         }
     }
 }
@@ -252,7 +253,7 @@ impl<L: Lanes> Bundle<L> {
                 soft.impulse_scale,
             ];
             for (field, value) in self.fields_mut().into_iter().zip(values) {
-                field.lanes_mut()[lane] = value;
+                field.lanes_mut()[lane] = value as Lane;
             }
             let points = manifold.points();
             self.point_count += points.len() as u32;
@@ -346,8 +347,8 @@ impl<L: Lanes> Bundle<L> {
     pub(super) fn solve(&mut self, states: &SharedStates, pass: PassBias, friction: bool) {
         let zero = L::splat(0.0);
         let one = L::splat(1.0);
-        let inv_h = L::splat(pass.inv_h);
-        let max_push = L::splat(-pass.max_push_speed);
+        let inv_h = L::splat(pass.inv_h as Lane);
+        let max_push = L::splat(-pass.max_push_speed as Lane);
         let (mut a, mut b) = self.bodies(states);
         let (normal_x, normal_y) = (self.normal_x, self.normal_y);
         for j in 0..2 {
@@ -442,7 +443,7 @@ impl<L: Lanes> Bundle<L> {
         let mut bounced = 0;
         for j in 0..2 {
             let point = self.points[j];
-            let slow = point.relative_velocity.gt(L::splat(-threshold));
+            let slow = point.relative_velocity.gt(L::splat(-threshold as Lane));
             let pushed = point.total_normal_impulse.ne(zero).and(bouncy);
             let bounce = slow.select(zero, pushed);
             let lanes = bounce.bits();
@@ -531,16 +532,17 @@ impl<L: Lanes> Bundle<L> {
             else {
                 continue;
             };
-            contact.rolling_impulse = rolling[lane];
+            contact.rolling_impulse = rolling[lane] as Real;
             let (manifold, reports) = contact.manifold_and_impulses_mut();
             let points = manifold.points_mut().iter_mut().zip(reports);
             for (j, (point, report)) in points.enumerate() {
-                point.normal_impulse = impulses[j][0][lane];
-                point.tangent_impulse = impulses[j][1][lane];
+                let impulse = |k: usize| impulses[j][k][lane] as Real;
+                point.normal_impulse = impulse(0);
+                point.tangent_impulse = impulse(1);
                 *report = PointImpulse {
-                    total_normal_impulse: impulses[j][2][lane],
-                    max_normal_impulse: impulses[j][3][lane],
-                    normal_velocity: impulses[j][4][lane],
+                    total_normal_impulse: impulse(2),
+                    max_normal_impulse: impulse(3),
+                    normal_velocity: impulse(4),
                 };
             }
         }

@@ -23,6 +23,7 @@
 
 use crate::math::Real;
 use crate::solver::body_state::BodyState;
+use crate::solver::soft_step::lanes::Lane;
 use std::marker::PhantomData;
 
 /// A mutable borrow of the body states, readable and writable from several threads under the
@@ -62,6 +63,15 @@ impl<'a> SharedStates<'a> {
         // SAFETY: in bounds (checked), aligned, and `BodyState` is eight `Real`s in this order
         // (asserted beside its definition); no other thread writes it (promised in `new`).
         unsafe { std::ptr::read(self.states.add(index).cast::<[Real; 8]>()) }
+    }
+
+    /// State `index` as eight lanes' floats, in [`read`](Self::read)'s order: the same floats
+    /// where a lane is as wide as [`Real`], else each rounded to the nearest (the solver's
+    /// values are relative to the body, so this loses nothing a contact needs).
+    #[inline(always)]
+    pub(crate) fn read_lanes(&self, index: u32) -> [Lane; 8] {
+        let [v_x, v_y, w, held, dp_x, dp_y, cos, sin] = self.read(index);
+        [v_x, v_y, w, held, dp_x, dp_y, cos, sin].map(|x| x as Lane)
     }
 
     /// State `index`, copied (for a joint, which works on its own copies of two states).
@@ -108,6 +118,13 @@ impl<'a> SharedStates<'a> {
         );
         // SAFETY: in bounds (checked); nobody else touches them meanwhile (the caller's promise).
         unsafe { std::slice::from_raw_parts_mut(self.states.add(range.start), range.len()) }
+    }
+
+    /// Sets state `index`'s velocities from lanes' floats `[v.x, v.y, w, _]`, as
+    /// [`write_velocity`](Self::write_velocity).
+    #[inline(always)]
+    pub(crate) fn write_lane_velocity(&self, index: u32, velocity: [Lane; 4]) {
+        self.write_velocity(index, velocity.map(|x| x as Real));
     }
 
     /// Sets state `index`'s velocities from `[v.x, v.y, w, _]`; its `held` stays as it was

@@ -5,13 +5,14 @@
 //! upper bodies commute exactly, and each level's supports are solved [`Lanes::WIDTH`] at a
 //! time: the `k`-th support of each upper body goes in the level's `k`-th round, so an upper
 //! body appears once in a round and its own supports keep their order. A lane gives the scalar
-//! support's result bit for bit (tested), so the bundles change the cost, not the answer.
+//! support's result bit for bit (tested; in the double-precision build, whose lanes are
+//! single, to single precision), so the bundles change the cost, not the answer.
 
-#[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+#[cfg(target_arch = "x86_64")]
 use super::bundles::Width;
-#[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+#[cfg(target_arch = "x86_64")]
 use super::lanes::avx::Avx8;
-use super::lanes::{Four, Kernel, Lanes};
+use super::lanes::{Four, Kernel, Lane, Lanes};
 use super::shared_states::SharedStates;
 use super::shock_propagation::{Support, SupportPoint};
 use crate::math::Real;
@@ -21,13 +22,13 @@ use std::ops::Range;
 #[derive(Debug, Clone)]
 pub(crate) enum ShockBundles {
     Four(Vec<ShockBundle<Four>>),
-    #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+    #[cfg(target_arch = "x86_64")]
     Eight(Vec<ShockBundle<Avx8>>),
 }
 
 impl Default for ShockBundles {
     fn default() -> Self {
-        #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+        #[cfg(target_arch = "x86_64")]
         if Width::widest() == Width::Eight && !test_hooks::FOUR_LANES.get() {
             return ShockBundles::Eight(Vec::new());
         }
@@ -61,7 +62,7 @@ pub(crate) mod test_hooks {
         }
     }
 
-    #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+    #[cfg(target_arch = "x86_64")]
     pub(crate) const FOUR_LANES: Off = Off;
     pub(crate) const ONE_AT_A_TIME: Off = Off;
 }
@@ -71,7 +72,7 @@ macro_rules! with_shock_bundles {
     ($bundles:expr, |$b:ident| $body:expr) => {
         match $bundles {
             ShockBundles::Four($b) => $body,
-            #[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+            #[cfg(target_arch = "x86_64")]
             ShockBundles::Eight($b) => $body,
         }
     };
@@ -299,7 +300,7 @@ impl<L: Lanes> ShockBundle<L> {
             two_points: false,
             points: [point; 2],
         };
-        let set = Real::from_bits(!0);
+        let set = Lane::from_bits(!0);
         for lane in 0..L::WIDTH {
             let Some(&index) = members.get(lane) else {
                 bundle.supports.as_mut()[lane] = u32::MAX;
@@ -317,12 +318,12 @@ impl<L: Lanes> ShockBundle<L> {
             let values = [
                 if s.upper_b { set } else { 0.0 },
                 if s.upper_b { 0.0 } else { set },
-                s.inv_mass,
-                s.inv_inertia,
-                s.normal.x,
-                s.normal.y,
-                s.friction,
-                s.tangent_speed,
+                s.inv_mass as Lane,
+                s.inv_inertia as Lane,
+                s.normal.x as Lane,
+                s.normal.y as Lane,
+                s.friction as Lane,
+                s.tangent_speed as Lane,
             ];
             let fields = [
                 &mut bundle.upper_b,
@@ -343,16 +344,16 @@ impl<L: Lanes> ShockBundle<L> {
                     continue;
                 };
                 let values = [
-                    p.anchor_a.x,
-                    p.anchor_a.y,
-                    p.anchor_b.x,
-                    p.anchor_b.y,
-                    p.base_separation,
-                    p.normal_mass,
-                    p.tangent_mass,
-                    p.normal_impulse,
-                    p.tangent_impulse,
-                    p.total_normal_impulse,
+                    p.anchor_a.x as Lane,
+                    p.anchor_a.y as Lane,
+                    p.anchor_b.x as Lane,
+                    p.anchor_b.y as Lane,
+                    p.base_separation as Lane,
+                    p.normal_mass as Lane,
+                    p.tangent_mass as Lane,
+                    p.normal_impulse as Lane,
+                    p.tangent_impulse as Lane,
+                    p.total_normal_impulse as Lane,
                     set,
                 ];
                 let fields = [
@@ -395,9 +396,9 @@ impl<L: Lanes> ShockBundle<L> {
                     total_normal_impulse,
                     ..
                 } = point;
-                *normal_impulse = values[j][0][lane];
-                *tangent_impulse = values[j][1][lane];
-                *total_normal_impulse = values[j][2][lane];
+                *normal_impulse = values[j][0][lane] as Real;
+                *tangent_impulse = values[j][1][lane] as Real;
+                *total_normal_impulse = values[j][2][lane] as Real;
             }
         }
     }
@@ -478,17 +479,17 @@ impl<L: Lanes> ShockBundle<L> {
             let s = point.base_separation + (normal_x * d_x + normal_y * d_y);
             let speculative = s.gt(zero);
             let (velocity_bias, mass_scale, impulse_scale) = if bias.use_bias {
-                let mass_scale = L::splat(bias.mass_scale);
-                let rate = mass_scale * L::splat(bias.bias_rate);
+                let mass_scale = L::splat(bias.mass_scale as Lane);
+                let rate = mass_scale * L::splat(bias.bias_rate as Lane);
                 (
-                    (rate * s).max(L::splat(-bias.max_push_speed)),
+                    (rate * s).max(L::splat(-bias.max_push_speed as Lane)),
                     mass_scale,
-                    L::splat(bias.impulse_scale),
+                    L::splat(bias.impulse_scale as Lane),
                 )
             } else {
                 (zero, one, zero)
             };
-            let velocity_bias = speculative.select(s * L::splat(bias.inv_h), velocity_bias);
+            let velocity_bias = speculative.select(s * L::splat(bias.inv_h as Lane), velocity_bias);
             let mass_scale = speculative.select(one, mass_scale);
             let impulse_scale = speculative.select(zero, impulse_scale);
             // The lower body's motion counts only where it moves away from the upper one.

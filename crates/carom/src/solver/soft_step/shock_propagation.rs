@@ -521,6 +521,7 @@ mod tests {
     use crate::dynamics::body_def::BodyDef;
     use crate::geometry::shape::Shape;
     use crate::math::{Real, vec2};
+    use crate::solver::soft_step::lanes::Lane;
     use crate::world::World;
 
     /// The bits of every body after two seconds of three pyramids of boxes under heavy tops,
@@ -589,10 +590,20 @@ mod tests {
         let made = BUNDLES_MADE.get();
         let single = pyramids_with_shock(false, true);
         assert_eq!(BUNDLES_MADE.get(), made, "no bundles one at a time");
-        assert!(same_bits(&wide, &single), "bundles against one at a time");
+        assert!(same_bits(&wide, &four), "eight lanes against four");
+        // One at a time is the same bits; in the double-precision build, whose lanes are
+        // single, two seconds of stacking stay within millimetres (and mm/s) of it.
+        let worst = (wide.iter().zip(&single))
+            .map(|(&w, &s)| (w - s).abs())
+            .fold(0.0, Real::max);
+        let agree = if size_of::<Lane>() == size_of::<Real>() {
+            same_bits(&wide, &single)
+        } else {
+            worst < 5e-3
+        };
         assert!(
-            same_bits(&four, &single),
-            "four lanes against one at a time"
+            wide.len() == single.len() && agree,
+            "bundles against one at a time: {worst}"
         );
     }
 }

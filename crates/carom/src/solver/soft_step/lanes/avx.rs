@@ -182,7 +182,7 @@ impl Lanes for Avx8 {
     fn gather(states: &SharedStates, indices: &[u32; 8]) -> [Self; 8] {
         // SAFETY: AVX (see above), and each row is eight floats.
         unsafe {
-            let row = |lane: usize| _mm256_loadu_ps(states.read(indices[lane]).as_ptr());
+            let row = |lane: usize| _mm256_loadu_ps(states.read_lanes(indices[lane]).as_ptr());
             let [c0, c1, c2, c3, c4, c5, c6, c7] = transpose([
                 row(0),
                 row(1),
@@ -231,7 +231,7 @@ impl Lanes for Avx8 {
         };
         for (lane, (&index, row)) in indices.iter().zip(rows).enumerate() {
             if lanes & (1 << lane) != 0 {
-                states.write_velocity(index, row);
+                states.write_lane_velocity(index, row);
             }
         }
     }

@@ -4,27 +4,29 @@
 //! Two widths: four lanes everywhere, through `wide`'s `f32x4` (SSE2 on x86-64, Neon, WASM's
 //! SIMD, or plain arrays), and eight where the CPU has AVX (`avx`, chosen at run time,
 //! as Box2D's AVX2 build solves eight contacts at a time). Every operation is the same IEEE
-//! operation in every lane at either width (no fused multiply-add), so both widths, and the
-//! scalar solver, give the same bits.
+//! operation in every lane at either width (no fused multiply-add), so both widths give the
+//! same bits, and the scalar solver too where [`Lane`] is as wide as `Real`.
+//!
+//! A lane is single precision in every build ([`Lane`]): what the contact solve works on is
+//! relative to its two bodies (their velocities, their motion since the step began, the
+//! anchors from their centres, the separation at the step's start), which single precision
+//! holds as well 100 km from the origin as beside it. The double-precision build keeps
+//! positions, geometry and everything solved one at a time in double, and solves its
+//! contacts eight at a time where AVX does, as Box2D keeps its solver in `float`.
 
 use crate::solver::soft_step::shared_states::SharedStates;
 
-#[cfg(all(target_arch = "x86_64", not(feature = "f64")))]
+#[cfg(target_arch = "x86_64")]
 pub(crate) mod avx;
-use crate::math::Real;
 use std::fmt::Debug;
 use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
-#[cfg(not(feature = "f64"))]
 use wide::f32x4;
-#[cfg(feature = "f64")]
-use wide::f64x4;
 
-/// Four lanes of [`Real`], on every CPU.
-#[cfg(not(feature = "f64"))]
+/// What one lane holds: `f32` in every build (see above).
+pub(crate) type Lane = f32;
+
+/// Four lanes, on every CPU.
 pub(crate) type Four = f32x4;
-/// Four lanes of [`Real`], on every CPU.
-#[cfg(feature = "f64")]
-pub(crate) type Four = f64x4;
 
 /// A vector of [`Lanes::WIDTH`] floats.
 pub(crate) trait Lanes:
@@ -50,16 +52,16 @@ pub(crate) trait Lanes:
     /// inside one.
     fn run<K: Kernel>(kernel: K) -> K::Output;
     /// Every lane `x`.
-    fn splat(x: Real) -> Self;
+    fn splat(x: Lane) -> Self;
     /// The lanes into `out`.
-    fn write_to(self, out: &mut [Real]);
+    fn write_to(self, out: &mut [Lane]);
     /// The lanes as floats in memory, to set one at a time.
-    fn lanes_mut(&mut self) -> &mut [Real];
+    fn lanes_mut(&mut self) -> &mut [Lane];
     /// The lanes from the first [`Lanes::WIDTH`] values.
-    fn from_slice(values: &[Real]) -> Self;
+    fn from_slice(values: &[Lane]) -> Self;
     /// Lane `lane`.
     #[cfg(test)]
-    fn lane(self, lane: usize) -> Real {
+    fn lane(self, lane: usize) -> Lane {
         let mut values = [0.0; 8];
         self.write_to(&mut values);
         values[lane]
@@ -114,22 +116,22 @@ macro_rules! four_wide_lanes {
         }
 
         #[inline(always)]
-        fn splat(x: Real) -> Self {
+        fn splat(x: Lane) -> Self {
             $lanes::splat(x)
         }
 
         #[inline(always)]
-        fn write_to(self, out: &mut [Real]) {
+        fn write_to(self, out: &mut [Lane]) {
             out[..4].copy_from_slice(self.as_array());
         }
 
         #[inline(always)]
-        fn lanes_mut(&mut self) -> &mut [Real] {
+        fn lanes_mut(&mut self) -> &mut [Lane] {
             self.as_mut_array()
         }
 
         #[inline(always)]
-        fn from_slice(values: &[Real]) -> Self {
+        fn from_slice(values: &[Lane]) -> Self {
             $lanes::new([values[0], values[1], values[2], values[3]])
         }
 
@@ -173,7 +175,6 @@ macro_rules! four_wide_lanes {
     };
 }
 
-#[cfg(not(feature = "f64"))]
 impl Lanes for f32x4 {
     four_wide_lanes!(f32x4);
 
@@ -182,10 +183,10 @@ impl Lanes for f32x4 {
         // Read one by one: an array `map` here stays a call in WebAssembly builds.
         let [i0, i1, i2, i3] = *indices;
         let (r0, r1, r2, r3) = (
-            states.read(i0),
-            states.read(i1),
-            states.read(i2),
-            states.read(i3),
+            states.read_lanes(i0),
+            states.read_lanes(i1),
+            states.read_lanes(i2),
+            states.read_lanes(i3),
         );
         let half = |row: &[f32; 8], from: usize| Self::from_slice(&row[from..]);
         let [v_x, v_y, w, held] =
@@ -201,47 +202,7 @@ impl Lanes for f32x4 {
         let rows = f32x4::transpose([v_x, v_y, w, f32x4::ZERO]);
         for (lane, (&index, row)) in indices.iter().zip(rows).enumerate() {
             if lanes & (1 << lane) != 0 {
-                states.write_velocity(index, row.to_array());
-            }
-        }
-    }
-}
-
-/// Double precision's four lanes: the same operations, gathered and scattered field by field.
-#[cfg(feature = "f64")]
-impl Lanes for f64x4 {
-    four_wide_lanes!(f64x4);
-
-    #[inline(always)]
-    fn gather(states: &SharedStates, indices: &[u32; 4]) -> [Self; 8] {
-        // Read one by one and build each field's lanes in place: array `map`s here stay calls
-        // that copy every row twice.
-        let [i0, i1, i2, i3] = *indices;
-        let (r0, r1, r2, r3) = (
-            states.read(i0),
-            states.read(i1),
-            states.read(i2),
-            states.read(i3),
-        );
-        let field = |f: usize| Self::from_slice(&[r0[f], r1[f], r2[f], r3[f]]);
-        [
-            field(0),
-            field(1),
-            field(2),
-            field(3),
-            field(4),
-            field(5),
-            field(6),
-            field(7),
-        ]
-    }
-
-    #[inline(always)]
-    fn scatter(states: &SharedStates, indices: &[u32; 4], lanes: u32, velocity: [Self; 3]) {
-        let [v_x, v_y, w] = velocity.map(|v| v.to_array());
-        for (lane, &index) in indices.iter().enumerate() {
-            if lanes & (1 << lane) != 0 {
-                states.write_velocity(index, [v_x[lane], v_y[lane], w[lane], 0.0]);
+                states.write_lane_velocity(index, row.to_array());
             }
         }
     }
@@ -250,9 +211,21 @@ impl Lanes for f64x4 {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::math::{Rot, Vec2};
+    use crate::math::{Real, Rot, Vec2};
     use crate::solver::body_state::BodyState;
     use crate::solver::body_state::Held;
+
+    /// Whether a result solved in lanes agrees with the one solved one constraint at a time in
+    /// [`Real`]: equal where a lane is as wide as `Real` (a zero's sign aside); where it is
+    /// narrower (the double-precision build), the same to within single precision's rounding,
+    /// accumulated over a few passes (a relative 1e-4, or 1e-4 absolute near zero).
+    pub(crate) fn agrees(lanes: Real, one_at_a_time: Real) -> bool {
+        if size_of::<Lane>() == size_of::<Real>() {
+            lanes == one_at_a_time
+        } else {
+            (lanes - one_at_a_time).abs() <= 1e-4 * one_at_a_time.abs().max(1.0)
+        }
+    }
 
     /// Body `i`'s state holds `10 i + k` in float `k` (and `held` is `i % 2`).
     pub(crate) fn numbered_states(count: usize) -> Vec<BodyState> {
@@ -285,9 +258,10 @@ pub(crate) mod tests {
         for (k, vector) in gathered.iter().enumerate() {
             for (lane, &index) in indices.as_ref().iter().enumerate() {
                 let expected = if k == 3 {
-                    Real::from_bits((index % 2) as Held)
+                    // `held`'s bits, read as a lane (what it reads as does not matter).
+                    Real::from_bits((index % 2) as Held) as Lane
                 } else {
-                    (10 * index) as Real + k as Real
+                    ((10 * index) as Real + k as Real) as Lane
                 };
                 assert_eq!(vector.lane(lane), expected, "float {k} of lane {lane}");
             }
@@ -315,8 +289,8 @@ pub(crate) mod tests {
 
     /// The operations behave as the scalar ones, NaN included.
     pub(crate) fn check_operations<L: Lanes>() {
-        let values: Vec<Real> = (0..L::WIDTH)
-            .map(|i| [1.0, -2.0, Real::NAN, 0.5][i % 4])
+        let values: Vec<Lane> = (0..L::WIDTH)
+            .map(|i| [1.0, -2.0, Lane::NAN, 0.5][i % 4])
             .collect();
         let x = L::from_slice(&values);
         let one = L::splat(1.0);
@@ -325,7 +299,7 @@ pub(crate) mod tests {
             assert_eq!(x.min(one).lane(lane), v.min(1.0), "min, lane {lane}");
             assert_eq!(
                 one.max(x).lane(lane).to_bits(),
-                (1.0 as Real).max(v).to_bits()
+                (1.0 as Lane).max(v).to_bits()
             );
             let gt = x.gt(L::splat(0.0));
             assert_eq!(gt.bits() & (1 << lane) != 0, v > 0.0);
@@ -340,12 +314,12 @@ pub(crate) mod tests {
         // A tie of zeros gives `other`, as x86's maxps and minps, on every CPU.
         let (zero, negative_zero) = (L::splat(0.0), L::splat(-0.0));
         let bits = |lanes: L| lanes.lane(0).to_bits();
-        assert_eq!(bits(zero.max(negative_zero)), (-0.0 as Real).to_bits());
-        assert_eq!(bits(negative_zero.max(zero)), (0.0 as Real).to_bits());
-        assert_eq!(bits(zero.min(negative_zero)), (-0.0 as Real).to_bits());
-        assert_eq!(bits(negative_zero.min(zero)), (0.0 as Real).to_bits());
+        assert_eq!(bits(zero.max(negative_zero)), (-0.0 as Lane).to_bits());
+        assert_eq!(bits(negative_zero.max(zero)), (0.0 as Lane).to_bits());
+        assert_eq!(bits(zero.min(negative_zero)), (-0.0 as Lane).to_bits());
+        assert_eq!(bits(negative_zero.min(zero)), (0.0 as Lane).to_bits());
         assert_eq!((x + one - one * one).lane(1), -2.0);
-        assert_eq!((-L::splat(0.0)).lane(0).to_bits(), (-0.0 as Real).to_bits());
+        assert_eq!((-L::splat(0.0)).lane(0).to_bits(), (-0.0 as Lane).to_bits());
         let mut y = x;
         y.lanes_mut()[L::WIDTH - 1] = 7.0;
         assert_eq!((y.lane(L::WIDTH - 1), y.lane(0)), (7.0, 1.0));
