@@ -288,7 +288,11 @@ impl JointConstraint {
             side.body.rotation() * (local - side.body.local_center())
         };
         let frame_b = offset(&b, local_b);
-        let rot_b = b.body.rotation() * rotation(-joint.reference_angle());
+        // Most joints are made at their zero angle: no sine and cosine to work out each step.
+        let rot_b = match joint.reference_angle() {
+            0.0 => b.body.rotation(),
+            reference => b.body.rotation() * rotation(-reference),
+        };
         let (frame_a, rot_a, delta_center, a_state, moves_a) = match joint.kind() {
             // A mouse joint holds B to a point of the world: A is the world, at rest.
             JointKind::Mouse(settings) => (
