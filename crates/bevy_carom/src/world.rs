@@ -5,7 +5,8 @@ use bevy::ecs::entity::Entity;
 use bevy::ecs::resource::Resource;
 use bevy::math::Vec2;
 use carom::{
-    BodyHandle, CaromError, ColliderHandle, ExplosionDef, JointHandle, World, WorldSettings,
+    BodyHandle, Capacity, CaromError, ColliderHandle, ExplosionDef, JointHandle, World,
+    WorldSettings,
 };
 use std::collections::HashMap;
 
@@ -107,6 +108,48 @@ impl CaromWorld {
     /// A definition out of range.
     pub fn explode(&mut self, explosion: &ExplosionDef) -> Result<usize, CaromError> {
         self.world.explode(explosion)
+    }
+
+    /// Makes room ahead of time for `capacity` in the world ([`World::reserve`]) and in the
+    /// plugin's maps between handles and entities, so that a world no larger than that steps
+    /// without asking for memory after its first step. [`World::high_water`] (through
+    /// [`CaromWorld::world`]) tells what a run like the ones made so far needs.
+    ///
+    /// # Errors
+    /// [`CaromError::OutOfMemory`] when the heap cannot give the room.
+    pub fn reserve(&mut self, capacity: Capacity) -> Result<(), CaromError> {
+        self.world.reserve(capacity)?;
+        let Links {
+            bodies,
+            colliders,
+            joints,
+            entity_bodies,
+            entity_colliders,
+            entity_joints,
+            removed: _,
+        } = &mut self.links;
+        let room = |map_len: usize, wanted: usize| wanted.saturating_sub(map_len);
+        let out_of_memory = |_| CaromError::OutOfMemory {
+            what: "the plugin's maps of entities",
+        };
+        bodies
+            .try_reserve(room(bodies.len(), capacity.bodies))
+            .map_err(out_of_memory)?;
+        entity_bodies
+            .try_reserve(room(entity_bodies.len(), capacity.bodies))
+            .map_err(out_of_memory)?;
+        colliders
+            .try_reserve(room(colliders.len(), capacity.colliders))
+            .map_err(out_of_memory)?;
+        entity_colliders
+            .try_reserve(room(entity_colliders.len(), capacity.colliders))
+            .map_err(out_of_memory)?;
+        joints
+            .try_reserve(room(joints.len(), capacity.joints))
+            .map_err(out_of_memory)?;
+        entity_joints
+            .try_reserve(room(entity_joints.len(), capacity.joints))
+            .map_err(out_of_memory)
     }
 
     /// Wakes every body.

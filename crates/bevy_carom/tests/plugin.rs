@@ -706,3 +706,38 @@ fn a_teleported_interpolated_body_is_drawn_where_it_was_sent() {
     let x = app.world().get::<Transform>(body).unwrap().translation.x;
     assert!((x - 5.0).abs() < 1e-5, "{x}");
 }
+
+/// Room made ahead of time is what the world then reports as its high water, and changes no
+/// bit of the run.
+#[test]
+fn room_made_ahead_of_time_changes_nothing() {
+    let run = |reserve: bool| {
+        let mut app = app();
+        if reserve {
+            let capacity = carom::Capacity {
+                bodies: 64,
+                colliders: 64,
+                contacts: 256,
+                joints: 0,
+            };
+            let mut world = app.world_mut().resource_mut::<CaromWorld>();
+            world.reserve(capacity).unwrap();
+        }
+        ground(&mut app);
+        for i in 0..8 {
+            ball(&mut app, 0.1 * i as f32, 1.0 + 1.1 * i as f32);
+        }
+        steps(&mut app, 60);
+        let world = app.world().resource::<CaromWorld>();
+        (world.state_hash(), world.world().high_water())
+    };
+    let (plain, plain_high) = run(false);
+    let (reserved, reserved_high) = run(true);
+    assert_eq!(reserved, plain, "the same bits with room made");
+    assert!(
+        plain_high.bodies >= 8 && plain_high.contacts >= 8,
+        "{plain_high:?}"
+    );
+    let counts = |c: carom::Capacity| (c.bodies, c.colliders, c.contacts, c.joints);
+    assert_eq!(counts(reserved_high), (64, 64, 256, 0));
+}

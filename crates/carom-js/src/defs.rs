@@ -4,8 +4,8 @@
 
 use crate::convert::{Fields, array, error, string_field, vec2};
 use carom::{
-    BodyDef, BodyHandle, BodyKind, ChainDef, ColliderDef, CollisionFilter, ExplosionDef, JointDef,
-    JointKind, QueryFilter, Real, Shape, Surface, Vec2, WorldSettings,
+    BodyDef, BodyHandle, BodyKind, Capacity, ChainDef, ColliderDef, CollisionFilter, ExplosionDef,
+    JointDef, JointKind, QueryFilter, Real, Shape, Surface, Vec2, WorldSettings,
 };
 use wasm_bindgen::prelude::*;
 
@@ -527,4 +527,29 @@ pub(crate) fn explosion(value: &JsValue) -> Result<ExplosionDef, JsError> {
         def = def.mask(mask);
     }
     Ok(def)
+}
+
+/// Room to make: `{ bodies?, colliders?, contacts?, joints? }`, each a count (0 when left out).
+pub(crate) fn capacity(value: &JsValue) -> Result<Capacity, JsError> {
+    let f = Fields::new(
+        value,
+        "capacity",
+        &["bodies", "colliders", "contacts", "joints"],
+        false,
+    )?;
+    let count = |key: &str| match f.int(key)? {
+        None => Ok(0),
+        Some(n) => usize::try_from(n).map_err(|_| {
+            error(
+                &f.path(key),
+                format!("expected a count of 0 or more, got {n}"),
+            )
+        }),
+    };
+    Ok(Capacity {
+        bodies: count("bodies")?,
+        colliders: count("colliders")?,
+        contacts: count("contacts")?,
+        joints: count("joints")?,
+    })
 }

@@ -160,6 +160,18 @@ export interface CastHit {
 }
 
 /** An explosion's centre, reach and strength. */
+/** Counts of what a world holds: what `World.reserve` makes room for, `World.highWater` reports. */
+export interface Capacity {
+    /** Bodies of every kind. Default 0. */
+    bodies?: number;
+    /** Colliders, sensors included. Default 0. */
+    colliders?: number;
+    /** Contacts: pairs of colliders whose enlarged boxes overlap, touching or not. Default 0. */
+    contacts?: number;
+    /** Joints. Default 0. */
+    joints?: number;
+}
+
 export interface ExplosionDef {
     center: Vec2;
     radius: number;

@@ -1,12 +1,12 @@
 //! The `World` class: creating and removing bodies, colliders and joints, stepping, saving and
 //! snapshots. Queries and events are in `queries.rs` and `events.rs`.
 
-use crate::convert::{error, finite, vec2, vec2_out};
+use crate::convert::{error, finite, object, vec2, vec2_out};
 use crate::defs;
 use crate::handles::{Body, Collider, Joint, carom_error};
 use crate::registry::{self, WorldKey};
 use crate::sim::Sim;
-use carom::{JointDef, World as CaromWorld};
+use carom::{Capacity, JointDef, World as CaromWorld};
 use carom_scene::SceneSnapshot;
 use wasm_bindgen::prelude::*;
 
@@ -326,6 +326,38 @@ impl World {
                 .explode(&def)
                 .map(|n| n as u32)
                 .map_err(carom_error)
+        })
+    }
+
+    /// Makes room ahead of time for as many bodies, colliders, contacts and joints as
+    /// `capacity` names, so that a world no larger than that steps without asking for memory
+    /// after its first step. Room already made is kept; nothing else changes.
+    pub fn reserve(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "Capacity")] capacity: JsValue,
+    ) -> Result<(), JsError> {
+        let capacity = defs::capacity(&capacity)?;
+        self.with(|sim| sim.world_mut().reserve(capacity).map_err(carom_error))
+    }
+
+    /// The most bodies, colliders, contacts and joints the world has held at once, or made
+    /// room for: what to `reserve` for a run like the ones it has made.
+    #[wasm_bindgen(js_name = highWater, unchecked_return_type = "Capacity")]
+    pub fn high_water(&self) -> Result<JsValue, JsError> {
+        self.with(|sim| {
+            let Capacity {
+                bodies,
+                colliders,
+                contacts,
+                joints,
+            } = sim.world().high_water();
+            let count = |n: usize| JsValue::from_f64(n as f64);
+            Ok(object(&[
+                ("bodies", count(bodies)),
+                ("colliders", count(colliders)),
+                ("contacts", count(contacts)),
+                ("joints", count(joints)),
+            ]))
         })
     }
 

@@ -182,6 +182,31 @@ test("queries find what is there", () => {
     world.free();
 });
 
+test("room made ahead of time is reported and changes nothing", () => {
+    const run = (reserve) => {
+        const { world } = withGround();
+        if (reserve) world.reserve({ bodies: 50, colliders: 50, contacts: 200 });
+        for (let i = 0; i < 10; i++) {
+            world.createBody({ shape: box(), position: { x: 0.1 * i, y: 1 + 1.1 * i } });
+        }
+        for (let i = 0; i < 60; i++) world.step(1 / 60);
+        const result = { hash: world.stateHash(), highWater: world.highWater() };
+        world.free();
+        return result;
+    };
+    const plain = run(false);
+    const reserved = run(true);
+    assert.equal(reserved.hash, plain.hash, "the same bits with room made");
+    assert.equal(plain.highWater.bodies, 11, "the ground and ten boxes");
+    assert.ok(plain.highWater.contacts >= 10, `a stack's contacts: ${plain.highWater.contacts}`);
+    assert.deepEqual(reserved.highWater, { bodies: 50, colliders: 50, contacts: 200, joints: 0 });
+    const world = new World();
+    assert.throws(() => world.reserve({ bodies: -1 }), /capacity\.bodies/);
+    assert.throws(() => world.reserve({ bodys: 1 }), /unknown field `bodys`/);
+    assert.throws(() => world.reserve({ joints: 1.5 }), /capacity\.joints/);
+    world.free();
+});
+
 test("a snapshot restored and a saved world loaded go on bit for bit", () => {
     const { world } = withGround();
     for (let i = 0; i < 5; i++) {
