@@ -71,7 +71,10 @@ impl<'a> SharedStates<'a> {
     #[inline(always)]
     pub(crate) fn read_lanes(&self, index: u32) -> [Lane; 8] {
         let [v_x, v_y, w, held, dp_x, dp_y, cos, sin] = self.read(index);
-        [v_x, v_y, w, held, dp_x, dp_y, cos, sin].map(|x| x as Lane)
+        // Float by float: an array `map` here stays a call in WebAssembly builds.
+        let (v_x, v_y, w, held) = (v_x as Lane, v_y as Lane, w as Lane, held as Lane);
+        let (dp_x, dp_y, cos, sin) = (dp_x as Lane, dp_y as Lane, cos as Lane, sin as Lane);
+        [v_x, v_y, w, held, dp_x, dp_y, cos, sin]
     }
 
     /// State `index`, copied (for a joint, which works on its own copies of two states).
@@ -124,7 +127,8 @@ impl<'a> SharedStates<'a> {
     /// [`write_velocity`](Self::write_velocity).
     #[inline(always)]
     pub(crate) fn write_lane_velocity(&self, index: u32, velocity: [Lane; 4]) {
-        self.write_velocity(index, velocity.map(|x| x as Real));
+        let [v_x, v_y, w, spare] = velocity;
+        self.write_velocity(index, [v_x as Real, v_y as Real, w as Real, spare as Real]);
     }
 
     /// Sets state `index`'s velocities from `[v.x, v.y, w, _]`; its `held` stays as it was
