@@ -241,6 +241,57 @@ fn fast_bodies_meet_moving_bodies_face_on_and_bullets_too() {
     }
 }
 
+/// A small bullet stopped at a free wall's face, above its centre, pushes the wall and turns
+/// it; the face then moves at the bullet's speed where it was hit and turns away. Seen from
+/// the wall (its own frame: the wall turns, so world positions alone mislead), the bullet
+/// stays at the face and never sinks in, as in Box2D on the same case.
+#[test]
+fn a_bullet_that_hits_a_free_wall_off_centre_stays_at_its_face() {
+    let mut world = world(true, Vec2::zeros());
+    let wall = |x: Real| {
+        BodyDef::dynamic(Shape::rect(0.1, 2.0))
+            .position(vec2(x, 0.0))
+            .density(5.0)
+    };
+    world.add_body(wall(-3.0)).unwrap();
+    let target = world.add_body(wall(3.0)).unwrap();
+    let shot = BodyDef::dynamic(Shape::circle(0.05))
+        .position(vec2(0.0, 1.0))
+        .linear_velocity(vec2(500.0, 0.0))
+        .bullet(true);
+    let bullet = world.add_body(shot).unwrap();
+    // How far the bullet's surface is past the wall's near face (local x = -0.1), m.
+    let mut deepest = Real::NEG_INFINITY;
+    for _ in 0..60 {
+        world.step(DT).unwrap();
+        let (b, w) = (world.body(bullet).unwrap(), world.body(target).unwrap());
+        let d = b.position() - w.position();
+        let (sin, cos) = (-w.angle()).sin_cos();
+        let local = vec2(cos * d.x - sin * d.y, sin * d.x + cos * d.y);
+        assert!(
+            local.y.abs() < 2.0,
+            "the bullet stays beside the face: {local:?}"
+        );
+        deepest = deepest.max(local.x + 0.05 + 0.1);
+    }
+    assert!(deepest < 0.005, "the bullet sank {deepest} m into the wall");
+    let w = world.body(target).unwrap();
+    assert!(
+        w.linear_velocity().x > 0.5,
+        "the wall took the bullet's push"
+    );
+    assert!(
+        w.angular_velocity() < -0.3,
+        "and turned: {}",
+        w.angular_velocity()
+    );
+    assert!(
+        w.angle() < -0.3,
+        "by over 0.3 rad in a second: {}",
+        w.angle()
+    );
+}
+
 #[test]
 fn a_fast_body_sliding_on_the_ground_is_not_held_back() {
     // A box resting on a floor and sliding fast enough to be swept touches the floor at the
