@@ -1,7 +1,9 @@
 //! Degenerate and random input: constructors answer with a value or an error, never a panic,
 //! and what they accept is a well-formed shape.
 
-use carom::{BodyDef, CaromError, ColliderDef, Polygon, Real, Shape, Vec2, World, vec2};
+use carom::{
+    BodyDef, CaromError, ColliderDef, Polygon, Real, Shape, Vec2, World, WorldShape, vec2,
+};
 use carom_bench::cases::Rng;
 
 /// A polygon carom accepted must be convex, counter-clockwise, centred, with unit outward
@@ -212,6 +214,112 @@ fn bodies_with_bad_values_are_refused_at_the_door() {
     assert_eq!(world.gravity(), vec2(0.0, -10.0));
 }
 
+/// A density so small that a dynamic body's mass or rotational inertia is beyond what the
+/// solver can invert and multiply (mass under 1e-20 kg, inertia under 1e-28 kg·m²) is refused
+/// with an error that names it, when the body is made and when a collider's density is
+/// changed (which then keeps its old density); the smallest accepted steps finite.
+#[test]
+fn a_density_too_small_for_the_solver_is_refused() {
+    let mut world = World::new();
+    // A unit square's mass is its density; a 0.2 mm one's inertia is its mass times 6.7e-9,
+    // under the least inertia while its mass is just above the least mass.
+    let refused = [
+        (Shape::rect(0.5, 0.5), 0.5e-20, "mass"),
+        (Shape::rect(0.5, 0.5), 0.5 / Real::MAX, "mass"),
+        (Shape::rect(1.0e-4, 1.0e-4), 3.0e-13, "inertia"),
+    ];
+    for (shape, density, what) in refused {
+        let error = world
+            .add_body(BodyDef::dynamic(shape).density(density))
+            .unwrap_err();
+        assert!(matches!(
+            error,
+            CaromError::OutOfRange {
+                name: "density",
+                ..
+            }
+        ));
+        assert!(error.to_string().contains(what), "{error}");
+    }
+    assert_eq!(world.body_count(), 0);
+    let body = world
+        .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 2.0)))
+        .unwrap();
+    world
+        .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)))
+        .unwrap();
+    let collider = world.body(body).unwrap().colliders()[0];
+    assert!(
+        world
+            .collider_mut(collider)
+            .unwrap()
+            .set_density(0.5e-20)
+            .is_err()
+    );
+    assert_eq!(world.collider(collider).unwrap().density(), 1.0);
+    assert_eq!(world.body(body).unwrap().mass(), 1.0);
+    // The least mass is taken, and the body falls onto the ground and rests there, finite.
+    world
+        .collider_mut(collider)
+        .unwrap()
+        .set_density(1.0e-20)
+        .unwrap();
+    for _ in 0..120 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    let b = world.body(body).unwrap();
+    assert!(
+        b.position().iter().all(|x| x.is_finite()),
+        "{:?}",
+        b.position()
+    );
+    assert!((b.position().y - 1.0).abs() < 0.05, "{:?}", b.position());
+    assert!(b.linear_velocity().iter().all(|x| x.is_finite()));
+}
+
+/// A kinematic capsule told to move at an absurd speed is carried so far out that rounding
+/// joins its two ends: it stays a finite shape (its normals its own, turned) and the world
+/// holds together as it steps on.
+#[test]
+fn a_capsule_flung_past_where_rounding_keeps_its_length_stays_finite() {
+    let mut world = World::new();
+    let capsule = world
+        .add_body(BodyDef::kinematic(Shape::capsule(
+            vec2(-0.1, 0.0),
+            vec2(0.1, 0.0),
+            0.05,
+        )))
+        .unwrap();
+    world
+        .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)))
+        .unwrap();
+    world
+        .body_mut(capsule)
+        .unwrap()
+        .set_linear_velocity(vec2(-1.0e17, 1.0e14))
+        .unwrap();
+    for _ in 0..3 {
+        world.step(1.0 / 60.0).unwrap();
+        world.check_invariants();
+    }
+    let body = world.body(capsule).unwrap();
+    assert!(body.position().x < -1.0e15, "{:?}", body.position());
+    let collider = world.collider(body.colliders()[0]).unwrap();
+    let WorldShape::Polygon {
+        vertices, normals, ..
+    } = collider.world_shape()
+    else {
+        panic!("a capsule is placed as a rounded two-point polygon");
+    };
+    assert_eq!(vertices[0], vertices[1], "rounding joined the ends");
+    assert!(
+        normals
+            .iter()
+            .all(|n| n.x.is_finite() && n.y.is_finite() && (n.norm() - 1.0).abs() < 1e-5),
+        "{normals:?}"
+    );
+}
+
 /// Finite values too large (or too small) for f32 arithmetic to stay finite are refused like
 /// non-numbers: time steps outside 1 µs to 10 s, positions beyond 1000 km, collider offsets
 /// beyond 100 km. And a shape a world would refuse meets nothing in a query.
@@ -340,7 +448,7 @@ fn random_sequences_of_public_calls_keep_the_world_whole() {
     let cases: usize = std::env::var("CAROM_OPS_CASES")
         .ok()
         .and_then(|n| n.parse().ok())
-        .unwrap_or(60);
+        .unwrap_or(1000);
     let mut total = carom_tests::world_ops::Tally::default();
     for case in std::env::var("CAROM_OPS_CASE")
         .ok()

@@ -49,6 +49,16 @@ pub const TIME_STEP_RANGE: std::ops::RangeInclusive<Real> = 1.0e-6..=10.0;
 /// positions with forces and sizes can overflow.
 pub(crate) const MAX_POSITION: Real = 1.0e6;
 
+/// The least mass a dynamic body may have, kg: a grain of dust a micrometre across weighs
+/// about 1e-15. Below it the inverse mass, times the impulses and lever arms the solver
+/// multiplies it by, can overflow f32.
+pub(crate) const MIN_BODY_MASS: Real = 1.0e-20;
+
+/// The least rotational inertia a dynamic body may have, kg·m², unless its rotation is fixed
+/// or it has none: the inverse inertia times a lever arm of [`MAX_SHAPE_EXTENT`] squared must
+/// stay well inside f32 (1e28 × 1e10 = 1e38).
+pub(crate) const MIN_BODY_INERTIA: Real = 1.0e-28;
+
 /// How far outside a shape's boundary a point may lie and still count as inside, in metres.
 ///
 /// Points exactly on an edge are inside; this absorbs the rounding of moving a point into the

@@ -132,10 +132,9 @@ pub enum CaromError {
         generation: u32,
     },
     /// A polygon written around its centroid (as a saved world writes it) must list its
-    /// vertices counter-clockwise with none collinear, or it would not be kept as written.
-    #[error(
-        "a polygon given around its centroid must be counter-clockwise with no collinear vertex"
-    )]
+    /// vertices counter-clockwise, convex to within rounding, or it would not be kept as
+    /// written.
+    #[error("a polygon given around its centroid must be counter-clockwise and convex")]
     SavedPolygon,
     /// A saved world does not hold together: it was written by another version of carom, or
     /// changed by hand.

@@ -66,10 +66,21 @@ pub(crate) fn is_finite_vec(v: Vec2) -> bool {
 #[inline]
 pub(crate) fn clamp_magnitude(v: Vec2, max_len: Real) -> Vec2 {
     let len_sq = v.norm_squared();
-    if len_sq > max_len * max_len {
+    if len_sq <= max_len * max_len {
+        v
+    } else if len_sq.is_finite() {
         v * (max_len / len_sq.sqrt())
     } else {
-        v
+        // Too long to square (a force too large for a tiny mass), or infinite: its direction
+        // from the components scaled by the largest, an infinite one alone if any.
+        let infinite = |x: Real| if x.is_infinite() { x.signum() } else { 0.0 };
+        let big = v.x.abs().max(v.y.abs());
+        let direction = if big.is_finite() {
+            v / big
+        } else {
+            Vec2::new(infinite(v.x), infinite(v.y))
+        };
+        direction * (max_len / direction.norm())
     }
 }
 
@@ -178,6 +189,22 @@ mod tests {
         // The clockwise perpendicular of a CCW edge points to its right, i.e. outward.
         assert_eq!(perp_cw(vec2(1.0, 0.0)), vec2(0.0, -1.0));
         assert_eq!(cross_sv(2.0, vec2(1.0, 0.0)), vec2(0.0, 2.0));
+    }
+
+    #[test]
+    fn clamp_magnitude_holds_vectors_too_long_to_square() {
+        let held = clamp_magnitude(vec2(Real::MAX, -Real::MAX), 4.0);
+        assert!(
+            (held - vec2(2.0, -2.0) * consts::SQRT_2).norm() < 1e-5,
+            "{held:?}"
+        );
+        let held = clamp_magnitude(vec2(Real::INFINITY, 3.0), 4.0);
+        assert_eq!(held, vec2(4.0, 0.0));
+        let held = clamp_magnitude(vec2(Real::NEG_INFINITY, Real::INFINITY), 4.0);
+        assert!(
+            (held - vec2(-2.0, 2.0) * consts::SQRT_2).norm() < 1e-5,
+            "{held:?}"
+        );
     }
 
     #[test]

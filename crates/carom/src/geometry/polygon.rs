@@ -264,8 +264,22 @@ impl Polygon {
         source_centroid: Vec2,
     ) -> Result<Self, CaromError> {
         check_point("polygon centroid", source_centroid)?;
-        let checked = Polygon::new(&vertices)?;
-        if checked.vertices.len() != vertices.len() || mass::polygon_area(&vertices) <= 0.0 {
+        // Checked as Polygon::new checks points, but kept as they are: recentring may have
+        // left a vertex a rounding's width inside the line of its neighbours, which
+        // Polygon::new would drop.
+        Polygon::new(&vertices)?;
+        let n = vertices.len();
+        let convex = (0..n).all(|i| {
+            let (prev, here, next) = (
+                vertices[(i + n - 1) % n],
+                vertices[i],
+                vertices[(i + 1) % n],
+            );
+            let (e, f) = (here - prev, next - here);
+            let sine = turn_sine(e, f);
+            sine >= -COLLINEAR_SINE && (sine > COLLINEAR_SINE || e.dot(&f) > 0.0)
+        });
+        if !convex || mass::polygon_area(&vertices) <= 0.0 || winding_turns(&vertices) != 1 {
             return Err(CaromError::SavedPolygon);
         }
         Self::around_centroid(vertices, source_centroid)
@@ -461,7 +475,7 @@ fn drop_collinear(outline: &mut Vec<(usize, Vec2)>) -> Result<(), CaromError> {
         let (index, here) = outline[i % n];
         let next = outline[(i + 1) % n].1;
         let (e, f) = (here - prev, next - here);
-        let sine = cross(e, f) as f64 / (e.norm() as f64 * f.norm() as f64);
+        let sine = turn_sine(e, f);
         if sine < -COLLINEAR_SINE || (sine <= COLLINEAR_SINE && e.dot(&f) < 0.0) {
             // A right turn, or a spike that doubles back on itself.
             return Err(CaromError::ReflexVertex {
@@ -479,6 +493,11 @@ fn drop_collinear(outline: &mut Vec<(usize, Vec2)>) -> Result<(), CaromError> {
         }
     }
     Ok(())
+}
+
+/// The sine of the turn from edge `e` to edge `f`: positive to the left.
+fn turn_sine(e: Vec2, f: Vec2) -> f64 {
+    cross(e, f) as f64 / (e.norm() as f64 * f.norm() as f64)
 }
 
 /// How many times a counter-clockwise outline of left turns goes around (1 for a simple one).
@@ -502,6 +521,31 @@ mod tests {
 
     fn pts(coords: &[(Real, Real)]) -> Vec<Vec2> {
         coords.iter().map(|&(x, y)| vec2(x, y)).collect()
+    }
+
+    /// A saved polygon is read back as written, with a vertex that recentring left a
+    /// rounding's width inside its neighbours' line (which `Polygon::new` drops); a vertex
+    /// clearly inside, or a clockwise outline, is refused.
+    #[cfg(feature = "serde")]
+    #[test]
+    fn a_saved_polygon_keeps_a_vertex_rounding_put_inside_the_line() {
+        let written = pts(&[
+            (-1.191082, 0.73032445),
+            (0.5692599, -1.3215868),
+            (0.602494, -0.52909416),
+            (0.602494, -0.5127365),
+            (0.6024939, 0.60483426),
+        ]);
+        let centroid = vec2(-0.602494, -0.44849032);
+        assert_eq!(Polygon::new(&written).unwrap().len(), 4);
+        let read = Polygon::from_centred(written.clone(), centroid).unwrap();
+        assert_eq!(read.vertices(), &written[..]);
+        let mut dented = written.clone();
+        dented[3].x -= 0.01;
+        assert!(Polygon::from_centred(dented, centroid).is_err());
+        let mut clockwise = written;
+        clockwise.reverse();
+        assert!(Polygon::from_centred(clockwise, centroid).is_err());
     }
 
     #[test]

@@ -6,7 +6,7 @@
 //! (the common case) has its centre of mass at its origin, as shapes are centred on their
 //! centroid. The solver moves centres of mass; the origin follows.
 
-use crate::constants::TIME_STEP_RANGE;
+use crate::constants::{MIN_BODY_INERTIA, MIN_BODY_MASS, TIME_STEP_RANGE};
 use crate::dynamics::body_def::BodyDef;
 use crate::dynamics::collider::{Collider, ColliderHandle, check_non_negative};
 use crate::error::{CaromError, check_finite, check_finite_vec};
@@ -14,7 +14,7 @@ use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::MassProperties;
 use crate::handle_map::generational_handle;
 use crate::heap_bytes::{HeapBytes, array};
-use crate::math::{Isometry, Mat3, Real, Rot, Vec2, angle_of, cross, cross_sv, rotation};
+use crate::math::{Isometry, Mat3, Real, Rot, Vec2, angle_of, cross_sv, rotation};
 
 /// How a body moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -303,6 +303,25 @@ impl Body {
                         name: "density",
                         expected: "positive for some collider of a dynamic body",
                         value: 0.0,
+                    });
+                }
+                // A mass or inertia so small that its inverse, times what the solver
+                // multiplies it by, overflows (a tiny density, or a sliver). Checked whether
+                // the rotation is fixed or not, so that freeing it cannot fail later.
+                if mass < MIN_BODY_MASS {
+                    return Err(CaromError::OutOfRange {
+                        name: "density",
+                        expected: "enough for a dynamic body's mass (the value given) to be at \
+                                   least 1e-20 kg",
+                        value: mass,
+                    });
+                }
+                if inertia > 0.0 && inertia < MIN_BODY_INERTIA {
+                    return Err(CaromError::OutOfRange {
+                        name: "density",
+                        expected: "enough for a dynamic body's rotational inertia (the value \
+                                   given) to be at least 1e-28 kg·m²",
+                        value: inertia,
                     });
                 }
                 let data = MassData {
@@ -735,77 +754,6 @@ impl Body {
         self.user_tag = tag;
     }
 
-    /// Adds a force at a world point: it also adds the torque `r × F`, with `r` from the
-    /// centre of mass. Forces last until the end of the next step. Only dynamic bodies feel it.
-    pub(crate) fn apply_force(&mut self, force: Vec2, world_point: Vec2) -> Result<(), CaromError> {
-        check_finite_vec("force", force)?;
-        check_finite_vec("force application point", world_point)?;
-        if self.is_dynamic() {
-            self.force += force;
-            self.torque += cross(world_point - self.center, force);
-            self.wake_up();
-        }
-        Ok(())
-    }
-
-    /// Adds a force through the centre of mass (no torque).
-    pub(crate) fn apply_force_at_center(&mut self, force: Vec2) -> Result<(), CaromError> {
-        check_finite_vec("force", force)?;
-        if self.is_dynamic() {
-            self.force += force;
-            self.wake_up();
-        }
-        Ok(())
-    }
-
-    /// Adds a torque, N·m, counter-clockwise.
-    pub(crate) fn apply_torque(&mut self, torque: Real) -> Result<(), CaromError> {
-        check_finite("torque", torque)?;
-        if self.is_dynamic() {
-            self.torque += torque;
-            self.wake_up();
-        }
-        Ok(())
-    }
-
-    /// Applies an impulse at a world point: it changes the velocities at once,
-    /// `Δv = J / m`, `Δω = (r × J) / I`.
-    pub(crate) fn apply_impulse(
-        &mut self,
-        impulse: Vec2,
-        world_point: Vec2,
-    ) -> Result<(), CaromError> {
-        check_finite_vec("impulse", impulse)?;
-        check_finite_vec("impulse application point", world_point)?;
-        self.wake_up();
-        self.linear_velocity += impulse * self.mass.inv_mass;
-        self.angular_velocity += self.mass.inv_inertia * cross(world_point - self.center, impulse);
-        Ok(())
-    }
-
-    /// Applies an impulse through the centre of mass.
-    pub(crate) fn apply_impulse_at_center(&mut self, impulse: Vec2) -> Result<(), CaromError> {
-        check_finite_vec("impulse", impulse)?;
-        self.wake_up();
-        self.linear_velocity += impulse * self.mass.inv_mass;
-        Ok(())
-    }
-
-    /// Applies an angular impulse, N·m·s.
-    pub(crate) fn apply_angular_impulse(&mut self, impulse: Real) -> Result<(), CaromError> {
-        check_finite("angular impulse", impulse)?;
-        self.wake_up();
-        self.angular_velocity += self.mass.inv_inertia * impulse;
-        Ok(())
-    }
-
-    /// Forgets the accumulated force and torque.
-    #[inline]
-    pub(crate) fn clear_forces(&mut self) {
-        self.force = Vec2::zeros();
-        self.torque = 0.0;
-    }
-
     /// Puts the body back along its path to where continuous collision found the impact
     /// (`center` is the centre of mass there); it keeps its velocity.
     pub(crate) fn move_to_time_of_impact(&mut self, center: Vec2, rotation: Rot) {
@@ -888,6 +836,7 @@ impl Body {
     }
 }
 
+mod applied;
 mod checks;
 #[cfg(feature = "serde")]
 mod saved;

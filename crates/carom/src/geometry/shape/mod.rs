@@ -383,7 +383,14 @@ impl WorldShape {
                     _ => unreachable!("matched above"),
                 };
                 let [p1, p2] = ends.map(place);
-                let normal = perp_cw(p2 - p1).normalize();
+                let along = p2 - p1;
+                // Placed so far out that rounding joins its ends (a body flung billions of
+                // metres): the normal is then its own, turned, never a division by zero.
+                let normal = if along.x != 0.0 || along.y != 0.0 {
+                    perp_cw(along).normalize()
+                } else {
+                    rotation * perp_cw(ends[1] - ends[0]).normalize()
+                };
                 vertices.set([p1, p2]);
                 normals.set([normal, -normal]);
                 *radius = rounding;
