@@ -64,39 +64,32 @@ struct Args {
     /// Threads for the multi-threaded runs of carom and Box2D.
     #[arg(long, default_value_t = 2)]
     threads: usize,
+    #[command(flatten)]
+    carom: CaromOptions,
+}
+
+/// carom's options that the timing runs and profiles can turn on (the scene's own are kept).
+/// The timing run and `profile` take them each, not as flags global to every command: the
+/// accuracy sweep has options of these names with values of its own (`--direct-joints
+/// off,on`), which a global flag's default would take the place of.
+#[derive(Debug, Clone, Copy, clap::Args)]
+struct CaromOptions {
     /// Step carom with shock propagation (heavy bodies held by the light ones under them);
     /// the peers step as they always do.
-    #[arg(long, global = true)]
+    #[arg(long)]
     shock_propagation: bool,
     /// Step carom with direct joints (each tree of hinges solved at once); the peers step as
     /// they always do.
-    #[arg(long, global = true)]
+    #[arg(long)]
     direct_joints: bool,
     /// Step carom without contacts that look a step ahead (`WorldSettings::look_ahead` off):
     /// continuous collision as Box2D's, fast bodies swept against static ones only; the peers
     /// step as they always do.
-    #[arg(long, global = true)]
-    no_look_ahead: bool,
-}
-
-/// carom's options that the timing runs and profiles can turn on (the scene's own are kept).
-#[derive(Debug, Clone, Copy)]
-struct CaromOptions {
-    shock_propagation: bool,
-    direct_joints: bool,
+    #[arg(long)]
     no_look_ahead: bool,
 }
 
 impl CaromOptions {
-    /// The options as `args` gives them.
-    fn of(args: &Args) -> Self {
-        CaromOptions {
-            shock_propagation: args.shock_propagation,
-            direct_joints: args.direct_joints,
-            no_look_ahead: args.no_look_ahead,
-        }
-    }
-
     /// `world`'s settings with these options turned on.
     fn apply(self, world: &mut carom::World) -> Result<(), String> {
         world
@@ -157,6 +150,8 @@ enum Command {
         /// Threads (carom) or workers (Box2D); Rapier always steps on one.
         #[arg(long, default_value_t = 1)]
         threads: usize,
+        #[command(flatten)]
+        carom: CaromOptions,
     },
     /// Times rows of Box2D's base-10 pyramids at about 1k, 5k, 20k and 100k boxes in every
     /// engine (one thread and `--threads`), and writes scaling.csv, scaling.md and a log-log
@@ -1227,15 +1222,15 @@ fn main() -> Result<(), String> {
         engine,
         steps,
         threads,
+        carom,
     }) = &args.command
     {
         let steps = steps.unwrap_or_else(|| default_steps(scene));
-        let options = CaromOptions::of(&args);
-        return profile_run(scene, engine, steps, options, pool(*threads)?);
+        return profile_run(scene, engine, steps, *carom, pool(*threads)?);
     }
     let mut rows = Vec::new();
     for (path, steps) in &scenes {
-        let options = CaromOptions::of(&args);
+        let options = args.carom;
         rows.push(bench_scene(
             path,
             (*steps, args.runs),
@@ -1319,4 +1314,44 @@ fn stages_csv(rows: &[Row], threads: usize) -> String {
         }
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sweep's own options are its own: no other command's flag of the same name takes
+    /// their place (a global one once did, with its default, so the whole sweep ran no
+    /// direct joints and no shock propagation).
+    #[test]
+    fn the_sweep_keeps_its_options_and_the_timing_flags_stay_with_their_commands() {
+        let args = Args::try_parse_from(["carom-bench", "sweep"]).expect("valid arguments");
+        let Some(Command::Sweep(sweep)) = &args.command else {
+            panic!("a sweep");
+        };
+        let options = sweep.options(carom_bench::sweep::SweepOptions::full());
+        assert_eq!(options.direct_joints, vec![false, true]);
+        assert_eq!(options.shock_propagation, vec![false, true]);
+        let args = Args::try_parse_from(["carom-bench", "sweep", "--direct-joints", "on"])
+            .expect("valid arguments");
+        let Some(Command::Sweep(sweep)) = &args.command else {
+            panic!("a sweep");
+        };
+        let options = sweep.options(carom_bench::sweep::SweepOptions::full());
+        assert_eq!(options.direct_joints, vec![true]);
+        let args = Args::try_parse_from([
+            "carom-bench",
+            "profile",
+            "demos/tumbler.ron",
+            "--no-look-ahead",
+        ])
+        .expect("valid arguments");
+        let Some(Command::Profile { carom, .. }) = &args.command else {
+            panic!("a profile");
+        };
+        assert!(carom.no_look_ahead && !carom.shock_propagation);
+        let args =
+            Args::try_parse_from(["carom-bench", "--shock-propagation"]).expect("valid arguments");
+        assert!(args.carom.shock_propagation);
+    }
 }
