@@ -54,9 +54,9 @@ pub(crate) const MAX_POSITION: Real = 1.0e6;
 /// multiplies it by, can overflow f32.
 pub(crate) const MIN_BODY_MASS: Real = 1.0e-20;
 
-/// The least rotational inertia a dynamic body may have, kg·m², unless its rotation is fixed
-/// or it has none: the inverse inertia times a lever arm of [`MAX_SHAPE_EXTENT`] squared must
-/// stay well inside f32 (1e28 × 1e10 = 1e38).
+/// The least rotational inertia a dynamic body may have, kg·m², if it has any, whether its
+/// rotation is fixed or not (so that freeing it cannot fail): the inverse inertia times a
+/// lever arm of [`MAX_SHAPE_EXTENT`] squared must stay well inside f32 (1e28 × 1e10 = 1e38).
 pub(crate) const MIN_BODY_INERTIA: Real = 1.0e-28;
 
 /// How far outside a shape's boundary a point may lie and still count as inside, in metres.
