@@ -256,8 +256,9 @@ impl Polygon {
 
     /// A polygon from vertices already around their centroid, kept exactly as they are (as a
     /// saved world holds them), with where that centroid was. They are checked as
-    /// [`Polygon::new`] checks its points, and must already be counter-clockwise with no
-    /// collinear vertex (which [`Polygon::new`] would change).
+    /// [`Polygon::new`] checks its points, and must already be counter-clockwise and convex to
+    /// within rounding (a vertex a rounding's width inside its neighbours' line, which
+    /// [`Polygon::new`] would drop, is kept).
     #[cfg(feature = "serde")]
     pub(crate) fn from_centred(
         vertices: Vec<Vec2>,
@@ -275,9 +276,7 @@ impl Polygon {
                 vertices[i],
                 vertices[(i + 1) % n],
             );
-            let (e, f) = (here - prev, next - here);
-            let sine = turn_sine(e, f);
-            sine >= -COLLINEAR_SINE && (sine > COLLINEAR_SINE || e.dot(&f) > 0.0)
+            !turns_back(here - prev, next - here)
         });
         if !convex || mass::polygon_area(&vertices) <= 0.0 || winding_turns(&vertices) != 1 {
             return Err(CaromError::SavedPolygon);
@@ -476,8 +475,7 @@ fn drop_collinear(outline: &mut Vec<(usize, Vec2)>) -> Result<(), CaromError> {
         let next = outline[(i + 1) % n].1;
         let (e, f) = (here - prev, next - here);
         let sine = turn_sine(e, f);
-        if sine < -COLLINEAR_SINE || (sine <= COLLINEAR_SINE && e.dot(&f) < 0.0) {
-            // A right turn, or a spike that doubles back on itself.
+        if turns_back(e, f) {
             return Err(CaromError::ReflexVertex {
                 index,
                 x: here.x,
@@ -493,6 +491,13 @@ fn drop_collinear(outline: &mut Vec<(usize, Vec2)>) -> Result<(), CaromError> {
         }
     }
     Ok(())
+}
+
+/// True when the turn from edge `e` to edge `f` is a right turn, or a spike that doubles back
+/// on itself, beyond rounding: a vertex no convex counter-clockwise outline may have.
+fn turns_back(e: Vec2, f: Vec2) -> bool {
+    let sine = turn_sine(e, f);
+    sine < -COLLINEAR_SINE || (sine <= COLLINEAR_SINE && e.dot(&f) < 0.0)
 }
 
 /// The sine of the turn from edge `e` to edge `f`: positive to the left.

@@ -4,7 +4,7 @@
 
 use super::Body;
 use crate::error::{CaromError, check_finite, check_finite_vec};
-use crate::math::{Real, Vec2, cross};
+use crate::math::{Real, Vec2, cross, is_finite_vec};
 
 impl Body {
     /// Adds a force at a world point: it also adds the torque `r × F`, with `r` from the
@@ -12,40 +12,25 @@ impl Body {
     pub(crate) fn apply_force(&mut self, force: Vec2, world_point: Vec2) -> Result<(), CaromError> {
         check_finite_vec("force", force)?;
         check_finite_vec("force application point", world_point)?;
-        if self.is_dynamic() {
-            let (sum, torque) = (
-                self.force + force,
-                self.torque + cross(world_point - self.center, force),
-            );
-            check_sums("force", force.norm(), sum, torque)?;
-            (self.force, self.torque) = (sum, torque);
-            self.wake_up();
-        }
-        Ok(())
+        let torque = cross(world_point - self.center, force);
+        self.accumulate(
+            "force",
+            force.norm(),
+            self.force + force,
+            self.torque + torque,
+        )
     }
 
     /// Adds a force through the centre of mass (no torque).
     pub(crate) fn apply_force_at_center(&mut self, force: Vec2) -> Result<(), CaromError> {
         check_finite_vec("force", force)?;
-        if self.is_dynamic() {
-            let sum = self.force + force;
-            check_sums("force", force.norm(), sum, self.torque)?;
-            self.force = sum;
-            self.wake_up();
-        }
-        Ok(())
+        self.accumulate("force", force.norm(), self.force + force, self.torque)
     }
 
     /// Adds a torque, N·m, counter-clockwise.
     pub(crate) fn apply_torque(&mut self, torque: Real) -> Result<(), CaromError> {
         check_finite("torque", torque)?;
-        if self.is_dynamic() {
-            let sum = self.torque + torque;
-            check_sums("torque", torque, self.force, sum)?;
-            self.torque = sum;
-            self.wake_up();
-        }
-        Ok(())
+        self.accumulate("torque", torque, self.force, self.torque + torque)
     }
 
     /// Applies an impulse at a world point: it changes the velocities at once,
@@ -60,29 +45,52 @@ impl Body {
         let v = self.linear_velocity + impulse * self.mass.inv_mass;
         let w = self.angular_velocity
             + self.mass.inv_inertia * cross(world_point - self.center, impulse);
-        check_sums("impulse", impulse.norm(), v, w)?;
-        self.wake_up();
-        (self.linear_velocity, self.angular_velocity) = (v, w);
-        Ok(())
+        self.kick("impulse", impulse.norm(), v, w)
     }
 
     /// Applies an impulse through the centre of mass.
     pub(crate) fn apply_impulse_at_center(&mut self, impulse: Vec2) -> Result<(), CaromError> {
         check_finite_vec("impulse", impulse)?;
         let v = self.linear_velocity + impulse * self.mass.inv_mass;
-        check_sums("impulse", impulse.norm(), v, self.angular_velocity)?;
-        self.wake_up();
-        self.linear_velocity = v;
-        Ok(())
+        self.kick("impulse", impulse.norm(), v, self.angular_velocity)
     }
 
     /// Applies an angular impulse, N·m·s.
     pub(crate) fn apply_angular_impulse(&mut self, impulse: Real) -> Result<(), CaromError> {
         check_finite("angular impulse", impulse)?;
         let w = self.angular_velocity + self.mass.inv_inertia * impulse;
-        check_sums("angular impulse", impulse, self.linear_velocity, w)?;
+        self.kick("angular impulse", impulse, self.linear_velocity, w)
+    }
+
+    /// A dynamic body's accumulated `force` and `torque` become these totals, which a force or
+    /// torque `name` of size `value` made, and it wakes; other kinds feel no force.
+    fn accumulate(
+        &mut self,
+        name: &'static str,
+        value: Real,
+        force: Vec2,
+        torque: Real,
+    ) -> Result<(), CaromError> {
+        if self.is_dynamic() {
+            check_sums(name, value, force, torque)?;
+            (self.force, self.torque) = (force, torque);
+            self.wake_up();
+        }
+        Ok(())
+    }
+
+    /// The body's velocities become `v` and `w`, which an impulse `name` of size `value` gave
+    /// it, and it wakes.
+    fn kick(
+        &mut self,
+        name: &'static str,
+        value: Real,
+        v: Vec2,
+        w: Real,
+    ) -> Result<(), CaromError> {
+        check_sums(name, value, v, w)?;
         self.wake_up();
-        self.angular_velocity = w;
+        (self.linear_velocity, self.angular_velocity) = (v, w);
         Ok(())
     }
 
@@ -98,7 +106,7 @@ impl Body {
 /// to (the body's accumulated force and torque, or its velocities) not finite: a value too
 /// large for the body's mass, or for what was applied before it.
 fn check_sums(name: &'static str, value: Real, v: Vec2, w: Real) -> Result<(), CaromError> {
-    if v.x.is_finite() && v.y.is_finite() && w.is_finite() {
+    if is_finite_vec(v) && w.is_finite() {
         return Ok(());
     }
     Err(CaromError::OutOfRange {
