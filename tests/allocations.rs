@@ -372,6 +372,12 @@ fn a_world_in_steady_state_allocates_nothing_per_step() {
     for (name, world, warm_up) in [
         ("pyramid of 20, rolled back", pyramid(20, awake), 60),
         ("ragdolls, rolled back", ragdolls_with_direct_joints(), 300),
+        (
+            "ragdolls after 600 steps, rolled back",
+            ragdolls_with_direct_joints(),
+            600,
+        ),
+        ("tumbler, rolled back", recipe("tumbler").world, 150),
     ] {
         let count = pools[0].install(|| rollback_allocations(world, warm_up, 40));
         if count > 0 {

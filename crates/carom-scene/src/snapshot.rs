@@ -42,9 +42,12 @@ impl SceneSnapshot {
 impl SceneWorld {
     /// The scene's state now, to [`restore`](SceneWorld::restore) later.
     pub fn snapshot(&self) -> SceneSnapshot {
-        let mut snapshot = SceneSnapshot::default();
-        self.snapshot_into(&mut snapshot);
-        snapshot
+        SceneSnapshot {
+            world: self.world.snapshot(),
+            events: self.events.clone(),
+            player: self.player.clone(),
+            colors: self.colors.clone(),
+        }
     }
 
     /// Takes the scene's state now into `snapshot`, reusing its memory.

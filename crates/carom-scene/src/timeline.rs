@@ -298,8 +298,13 @@ impl Timeline {
 
     /// Keeps the scene's state now as a keyframe, then thins older ones past the budget.
     fn keep_keyframe(&mut self, scene: &SceneWorld) {
-        let mut snapshot = self.spare.take().unwrap_or_default();
-        scene.snapshot_into(&mut snapshot);
+        let snapshot = match self.spare.take() {
+            Some(mut spare) => {
+                scene.snapshot_into(&mut spare);
+                spare
+            }
+            None => scene.snapshot(),
+        };
         let bytes = snapshot.heap_bytes() + size_of::<Keyframe>();
         self.keyframes.push(Keyframe {
             step: self.at,

@@ -174,7 +174,7 @@ pub struct BroadPhase {
     pieces: Vec<Walk>,
 }
 
-clone_in_place!(BroadPhase { trees, proxies, move_buffer, moved } keep { found, candidates, pieces });
+clone_in_place!(BroadPhase { trees, proxies, moved } roomy { move_buffer } keep { found, candidates, pieces });
 
 impl HeapBytes for BroadPhase {
     fn heap_bytes(&self) -> usize {

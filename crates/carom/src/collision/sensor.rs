@@ -88,7 +88,7 @@ pub(crate) struct Sensors {
 }
 
 clone_in_place!(Sensor { collider, overlaps } keep { previous });
-clone_in_place!(Sensors { sensors, events, pending } keep { changed });
+clone_in_place!(Sensors { sensors } roomy { events, pending } keep { changed });
 
 impl HeapBytes for Sensor {
     fn heap_bytes(&self) -> usize {

@@ -4,6 +4,7 @@
 
 use super::{Joint, JointEvent, JointHandle};
 use crate::capacity::room;
+use crate::clone_in_place::copy_with_room;
 use crate::dynamics::body::BodyHandle;
 #[cfg(feature = "serde")]
 use crate::error::CaromError;
@@ -72,7 +73,8 @@ impl Clone for JointStore {
             by_body.entry(*body).or_default().clone_from(list);
         }
         filters.clone_from(&source.filters);
-        events.clone_from(&source.events);
+        // A list a step refills: copied with its room (see `clone_in_place`).
+        copy_with_room(events, &source.events);
     }
 }
 

@@ -4,8 +4,9 @@
 //! A snapshot holds what a saved world holds (every field of [`World`] that outlives a step),
 //! copied rather than serialised, so taking one and restoring it cost about as much as copying
 //! the world's arrays. Restoring copies into the world's own arrays and taking a snapshot into
-//! an old one reuses its arrays, so a rollback loop that keeps a ring of snapshots allocates
-//! only while the world grows.
+//! an old one reuses its arrays (with the world's room for the lists whose length changes
+//! from step to step), so a rollback loop that keeps a ring of snapshots allocates only while
+//! the world grows.
 
 use crate::heap_bytes::HeapBytes;
 use crate::world::World;
@@ -68,15 +69,19 @@ impl Snapshot {
 }
 
 impl World {
-    /// The world's state now, to [`restore`](World::restore) later.
+    /// The world's state now, to [`restore`](World::restore) later. A new snapshot holds
+    /// only what the world holds, its arrays no longer than the world's lists.
     pub fn snapshot(&self) -> Snapshot {
-        let mut snapshot = Snapshot::default();
-        self.snapshot_into(&mut snapshot);
-        snapshot
+        Snapshot {
+            state: self.state.clone(),
+        }
     }
 
     /// Takes the world's state now into `snapshot`, replacing what it held and reusing its
-    /// memory: a snapshot taken again of a world of the same size allocates nothing.
+    /// memory: a snapshot taken again of a world of the same size allocates nothing. The
+    /// lists whose length changes from step to step (contacts, events) are copied with the
+    /// room the world has for them, so a ring of snapshots taken into again and again, as a
+    /// rollback loop keeps, allocates only when the world's own lists grow.
     pub fn snapshot_into(&self, snapshot: &mut Snapshot) {
         snapshot.state.copy_from(&self.state);
     }

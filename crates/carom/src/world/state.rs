@@ -3,6 +3,7 @@
 //! place. What a step only works in (scratch memory, the solver's workspace, the last step's
 //! figures) and the pre-solve hook, which is code, stay in [`World`](crate::World).
 
+use crate::clone_in_place::copy_with_room;
 use crate::collision::broadphase::BroadPhase;
 use crate::collision::contact::ContactSet;
 use crate::collision::hits::HitEvent;
@@ -71,7 +72,7 @@ impl WorldState {
         *time = from.time;
         *step_count = from.step_count;
         *hit_event_colliders = from.hit_event_colliders;
-        hit_events.clone_from(&from.hit_events);
+        copy_with_room(hit_events, &from.hit_events);
         joints.clone_from(&from.joints);
         islands.clone_from(&from.islands);
         body_sets.clone_from(&from.body_sets);

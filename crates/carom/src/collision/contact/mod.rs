@@ -369,9 +369,8 @@ const NO_ID: u32 = u32::MAX;
 pub(crate) type TouchChanges = (Vec<(BodyHandle, BodyHandle)>, Vec<(BodyHandle, BodyHandle)>);
 
 clone_in_place!(ContactSet {
-    contacts, parts, asleep_touching, colors, began, ended, lookup, ids, slots, free, edges,
-    events, pending, body_indices, made, mixers,
-} keep { doomed });
+    parts, asleep_touching, colors, lookup, slots, free, edges, made, mixers,
+} roomy { contacts, ids, body_indices, began, ended, events, pending } keep { doomed });
 
 impl HeapBytes for ContactSet {
     fn heap_bytes(&self) -> usize {
