@@ -705,7 +705,11 @@ fn bad_joints_are_refused() {
         ),
         (
             JointDef::revolute(a, b, Vec2::zeros()).spring(-1.0, 0.5),
-            "not negative",
+            "spring hertz must be from 0 to 1e6",
+        ),
+        (
+            JointDef::revolute(a, b, Vec2::zeros()).spring(5.0, 2e6),
+            "spring damping ratio must be from 0 to 1e6",
         ),
         (
             JointDef::revolute(a, b, Vec2::zeros()).break_force(-1.0),

@@ -503,3 +503,289 @@ fn the_fuzz_seeds_keep_their_promises() {
         );
     }
 }
+
+/// Whether every body of `world` has finite numbers.
+fn all_finite(world: &World) -> bool {
+    world.bodies().all(|b| {
+        b.position().iter().all(|x| x.is_finite())
+            && b.linear_velocity().iter().all(|x| x.is_finite())
+            && b.angle().is_finite()
+            && b.angular_velocity().is_finite()
+    })
+}
+
+/// Values at the far ends of what each call takes: each is refused with an error, or taken
+/// with the world stepping on finite; none panics.
+#[test]
+fn values_at_the_ends_of_each_range_are_refused_or_kept_finite() {
+    use carom::{
+        CollisionPlane, DistanceJointDef, MoverJointDef, RevoluteJointDef, SolverKind, Surface,
+        solve_planes,
+    };
+    // A plane's push limit that is negative or not a number pushes nothing.
+    for limit in [-1.0, Real::NAN] {
+        let mut planes = [CollisionPlane::soft(vec2(0.0, 1.0), 0.5, limit)];
+        let solved = solve_planes(vec2(1.0, -1.0), &mut planes);
+        assert_eq!(solved.delta, vec2(1.0, -1.0), "push limit {limit}");
+    }
+    // A plane with no direction, or numbers that are not finite, pushes nothing.
+    for (normal, offset) in [(Vec2::zeros(), 0.5), (vec2(0.0, 1.0), Real::NAN)] {
+        let mut planes = [CollisionPlane::rigid(normal, offset)];
+        let solved = solve_planes(vec2(1.0, -1.0), &mut planes);
+        assert_eq!(
+            solved.delta,
+            vec2(1.0, -1.0),
+            "normal {normal:?}, offset {offset}"
+        );
+    }
+    // A regular polygon of more sides than any number a shape needs.
+    assert!(Shape::regular(usize::MAX, 1.0).is_err());
+    assert!(Shape::regular(1 << 40, 1.0).is_err());
+    // Surfaces whose coefficients overflow what the solver multiplies them by.
+    for solver in [SolverKind::SoftStep, SolverKind::SequentialImpulse] {
+        let mut world = World::new();
+        world.update_settings(|s| s.solver.kind = solver).unwrap();
+        let huge = Surface {
+            friction: 3e38,
+            rolling_resistance: 3e38,
+            restitution: 3e38,
+            tangent_speed: 3e38,
+            ..Surface::default()
+        };
+        let floor = BodyDef::static_body(Shape::rect(20.0, 0.5)).position(vec2(0.0, -0.5));
+        let ball = BodyDef::dynamic(Shape::circle(0.5)).position(vec2(0.0, 0.6));
+        // The greatest of each is taken, and the world steps on finite.
+        for def in [floor, ball] {
+            let refused = world.add_body(def.clone().surface(huge)).unwrap_err();
+            assert!(refused.to_string().contains("from 0 to 1000"), "{refused}");
+            let body = world.add_body(def).unwrap();
+            let collider = world.body(body).unwrap().colliders()[0];
+            let mut collider = world.collider_mut(collider).unwrap();
+            assert!(collider.set_tangent_speed(1.5e4).is_err());
+            collider.set_tangent_speed(1e4).unwrap();
+            collider.set_friction(1000.0).unwrap();
+            collider.set_restitution(1000.0).unwrap();
+            collider.set_rolling_resistance(1000.0).unwrap();
+        }
+        for _ in 0..30 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        assert!(all_finite(&world), "{solver:?}");
+    }
+    // The greatest friction holds a box on a slope, and so does a mixer's answer past it
+    // (held to the greatest, not lost to 0).
+    for mixer in [None, Some((|_, _, _, _| 1e30) as carom::MaterialMixer)] {
+        let mut world = World::new();
+        if let Some(mixer) = mixer {
+            world.set_friction_mixer(Some(mixer));
+        }
+        let grip = Surface {
+            friction: 1000.0,
+            ..Surface::default()
+        };
+        assert!(
+            Surface {
+                friction: 1000.1,
+                ..grip
+            }
+            .validate()
+            .is_err()
+        );
+        let slope = BodyDef::static_body(Shape::rect(20.0, 0.5)).angle(0.5);
+        world.add_body(slope.surface(grip)).unwrap();
+        let top = carom::rotation(0.5) * vec2(0.0, 1.0);
+        let sliding = BodyDef::dynamic(Shape::rect(0.5, 0.5))
+            .position(top)
+            .angle(0.5)
+            .surface(grip);
+        let block = world.add_body(sliding).unwrap();
+        for _ in 0..60 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        let moved = (world.body(block).unwrap().position() - top).norm();
+        assert!(moved < 0.05, "the box slid {moved} m");
+    }
+    // A density whose mass overflows.
+    let mut world = World::new();
+    let heavy = BodyDef::dynamic(Shape::rect(10.0, 10.0)).density(3e37);
+    let refused = world.add_body(heavy).unwrap_err().to_string();
+    assert!(refused.contains("at most 1e30 kg"), "{refused}");
+    let wide = BodyDef::dynamic(Shape::rect(1e4, 1.0)).density(1e25);
+    let refused = world.add_body(wide).unwrap_err().to_string();
+    assert!(refused.contains("at most 1e36 kg·m²"), "{refused}");
+    world
+        .add_body(BodyDef::dynamic(Shape::rect(10.0, 10.0)).density(2e27))
+        .unwrap();
+    world.step(1.0 / 60.0).unwrap();
+    assert!(all_finite(&world));
+    // Springs stiffer than anything a step resolves, and solver settings past all use.
+    let mut world = World::new();
+    let ground = world
+        .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)))
+        .unwrap();
+    let bob = world
+        .add_body(BodyDef::dynamic(Shape::circle(0.25)).position(vec2(0.0, 3.0)))
+        .unwrap();
+    let stiff = [
+        DistanceJointDef::new(ground, bob, vec2(0.0, 0.5), vec2(0.0, 3.0))
+            .spring(1e30, 1.0)
+            .into(),
+        RevoluteJointDef::new(ground, bob, vec2(0.0, 3.0))
+            .spring(3e38, 3e38)
+            .into(),
+    ];
+    for def in stiff {
+        let def: carom::JointDef = def;
+        let refused = world.add_joint(def).unwrap_err().to_string();
+        assert!(refused.contains("from 0 to 1e6"), "{refused}");
+    }
+    let stiffest = RevoluteJointDef::new(ground, bob, vec2(0.0, 3.0)).spring(1e6, 1e6);
+    world.add_joint(stiffest).unwrap();
+    for _ in 0..10 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    assert!(all_finite(&world));
+    for (name, change) in [
+        (
+            "damping ratio",
+            (|s: &mut carom::WorldSettings| s.solver.damping_ratio = 3e38) as fn(&mut _),
+        ),
+        ("static stiffness", |s| s.solver.static_stiffness = 3e38),
+        ("joint damping ratio", |s| {
+            s.solver.joint_damping_ratio = 3e38
+        }),
+    ] {
+        let mut world = World::new();
+        world
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)))
+            .unwrap();
+        world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 0.99)))
+            .unwrap();
+        let refused = world.update_settings(change).unwrap_err().to_string();
+        assert!(
+            refused.contains(name) && refused.contains("at most 1e6"),
+            "{refused}"
+        );
+        for _ in 0..10 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        assert!(all_finite(&world), "{name}");
+    }
+    // Gravity as strong as f32 holds, with forces pulling against it.
+    for gravity in [vec2(0.0, -3e38), vec2(3e38, 3e38)] {
+        let mut world = World::new();
+        world.update_settings(|s| s.gravity = gravity).unwrap();
+        world
+            .add_body(BodyDef::static_body(Shape::rect(5.0, 0.5)))
+            .unwrap();
+        let body = world
+            .add_body(BodyDef::dynamic(Shape::rect(0.5, 0.5)).position(vec2(0.0, 2.0)))
+            .unwrap();
+        let mut pulled = world.body_mut(body).unwrap();
+        let _ = pulled.apply_force_at_center(-gravity * 0.9);
+        for _ in 0..10 {
+            world.step(1.0 / 60.0).unwrap();
+        }
+        assert!(all_finite(&world), "gravity {gravity:?}");
+    }
+    // Two placed shapes that no constructor would make, against each other.
+    let odd = [
+        WorldShape::Circle {
+            center: vec2(0.0, 0.0),
+            radius: -1.0,
+        },
+        WorldShape::Circle {
+            center: vec2(0.5, 0.0),
+            radius: Real::NAN,
+        },
+        WorldShape::at(&Shape::rect(0.5, 0.5), vec2(0.2, 0.1), 0.3),
+        WorldShape::at(
+            &Shape::capsule(vec2(-1.0, 0.0), vec2(1.0, 0.0), 0.2),
+            vec2(0.0, 0.1),
+            0.0,
+        ),
+    ];
+    for a in &odd {
+        for b in &odd {
+            let _ = carom::query::collide(a, b, 0.1);
+            let _ = carom::query::separation(a, b);
+        }
+    }
+    // A mover far from the origin (it has no anchors to be far from).
+    let mut world = World::new();
+    let far = vec2(5e5, 0.0);
+    let reference = world
+        .add_body(BodyDef::static_body(Shape::rect(1.0, 0.5)).position(far))
+        .unwrap();
+    let moved = world
+        .add_body(BodyDef::dynamic(Shape::circle(0.5)).position(far + vec2(0.0, 2.0)))
+        .unwrap();
+    let mover = MoverJointDef::new(reference, moved, vec2(1.0, 0.0), vec2(100.0, 0.0));
+    world.add_joint(mover).unwrap();
+    world
+        .add_joint(carom::JointDef::filter(reference, moved))
+        .unwrap();
+    for _ in 0..30 {
+        world.step(1.0 / 60.0).unwrap();
+    }
+    let speed = world.body(moved).unwrap().linear_velocity().x;
+    assert!(
+        (speed - 1.0).abs() < 0.01,
+        "the mover drove it at {speed} m/s"
+    );
+}
+
+/// docs/ranges.md gives every bound a value as the code has it, and no bound the code lacks.
+#[test]
+fn the_ranges_page_gives_every_bound_as_the_code_has_it() {
+    use carom::{
+        MAX_BODY_INERTIA, MAX_BODY_MASS, MAX_POSITION, MAX_REGULAR_SIDES, MAX_SHAPE_EXTENT,
+        MAX_SPRING, MAX_SURFACE_COEFFICIENT, MAX_TANGENT_SPEED, MIN_BODY_INERTIA, MIN_BODY_MASS,
+    };
+    let bounds: [(&str, String); 11] = [
+        (
+            "TIME_STEP_RANGE",
+            format!(
+                "{:e} to {:e} s",
+                carom::TIME_STEP_RANGE.start(),
+                carom::TIME_STEP_RANGE.end()
+            ),
+        ),
+        ("MAX_POSITION", format!("{MAX_POSITION:e} m")),
+        ("MAX_SHAPE_EXTENT", format!("{MAX_SHAPE_EXTENT:e} m")),
+        ("MIN_BODY_MASS", format!("{MIN_BODY_MASS:e} kg")),
+        ("MAX_BODY_MASS", format!("{MAX_BODY_MASS:e} kg")),
+        ("MIN_BODY_INERTIA", format!("{MIN_BODY_INERTIA:e} kg·m²")),
+        ("MAX_BODY_INERTIA", format!("{MAX_BODY_INERTIA:e} kg·m²")),
+        (
+            "MAX_SURFACE_COEFFICIENT",
+            format!("{MAX_SURFACE_COEFFICIENT:e}"),
+        ),
+        ("MAX_TANGENT_SPEED", format!("{MAX_TANGENT_SPEED:e} m/s")),
+        ("MAX_SPRING", format!("{MAX_SPRING:e}")),
+        ("MAX_REGULAR_SIDES", MAX_REGULAR_SIDES.to_string()),
+    ];
+    let path = carom_bench::cases::worlds::workspace().join("docs/ranges.md");
+    let page = std::fs::read_to_string(&path).expect("docs/ranges.md");
+    let table: Vec<(String, String)> = page
+        .split("## The bounds")
+        .nth(1)
+        .expect("a section of bounds")
+        .split("\n## ")
+        .next()
+        .unwrap_or_default()
+        .lines()
+        .filter_map(|line| {
+            let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+            let name = cells.get(1)?.strip_prefix('`')?.strip_suffix('`')?;
+            Some((name.to_owned(), cells.get(2)?.to_string()))
+        })
+        .collect();
+    let names: Vec<&str> = table.iter().map(|(name, _)| name.as_str()).collect();
+    let known: Vec<&str> = bounds.iter().map(|(name, _)| *name).collect();
+    assert_eq!(names, known, "the page's bounds, in order");
+    for ((name, written), (_, value)) in table.iter().zip(&bounds) {
+        assert_eq!(written, value, "{name}");
+    }
+}

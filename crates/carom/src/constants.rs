@@ -37,7 +37,7 @@ pub(crate) const HIT_EVENT_THRESHOLD: Real = 1.0;
 
 /// The largest coordinate or radius a shape may have, m (Box2D's `B2_HUGE`): beyond it an f32
 /// keeps too few digits below a millimetre for contacts, and sums of sizes can overflow.
-pub(crate) const MAX_SHAPE_EXTENT: Real = 1.0e5;
+pub const MAX_SHAPE_EXTENT: Real = 1.0e5;
 
 /// The shortest and the longest time step a world takes, s. Outside them the step's
 /// reciprocals and products overflow f32 (a step of 1e-38 s, or of 1e38 s), so they are
@@ -47,17 +47,46 @@ pub const TIME_STEP_RANGE: std::ops::RangeInclusive<Real> = 1.0e-6..=10.0;
 /// The farthest from the origin a body may be placed, m, along either axis: ten times the
 /// largest shape. Beyond it an f32 position resolves to no better than 6 cm, and products of
 /// positions with forces and sizes can overflow.
-pub(crate) const MAX_POSITION: Real = 1.0e6;
+pub const MAX_POSITION: Real = 1.0e6;
 
 /// The least mass a dynamic body may have, kg: a grain of dust a micrometre across weighs
 /// about 1e-15. Below it the inverse mass, times the impulses and lever arms the solver
 /// multiplies it by, can overflow f32.
-pub(crate) const MIN_BODY_MASS: Real = 1.0e-20;
+pub const MIN_BODY_MASS: Real = 1.0e-20;
 
 /// The least rotational inertia a dynamic body may have, kg·m², if it has any, whether its
 /// rotation is fixed or not (so that freeing it cannot fail): the inverse inertia times a
 /// lever arm of [`MAX_SHAPE_EXTENT`] squared must stay well inside f32 (1e28 × 1e10 = 1e38).
-pub(crate) const MIN_BODY_INERTIA: Real = 1.0e-28;
+pub const MIN_BODY_INERTIA: Real = 1.0e-28;
+
+/// The greatest mass a dynamic body may have, kg: a planet is about 1e25. Above it the mass
+/// times the speeds, gravity and lever arms the solver multiplies it by nears f32's overflow.
+pub const MAX_BODY_MASS: Real = 1.0e30;
+
+/// The greatest rotational inertia a dynamic body may have, kg·m²: [`MAX_BODY_MASS`] at a
+/// lever arm of a kilometre. Above it the inertia times the spins the solver multiplies it by
+/// nears f32's overflow.
+pub const MAX_BODY_INERTIA: Real = 1.0e36;
+
+/// The most sides [`crate::Polygon::regular`] makes: each contact with a polygon walks its
+/// sides, so past this a circle is the shape to use, and a number read from a file cannot
+/// ask for gigabytes.
+pub const MAX_REGULAR_SIDES: usize = 1 << 16;
+
+/// The greatest friction, restitution or rolling resistance a surface may have (a mixer's
+/// answer is held to it too): rubber's friction is about 1, and a thousand times the solver's
+/// largest impulses still stays well inside f32.
+pub const MAX_SURFACE_COEFFICIENT: Real = 1000.0;
+
+/// The fastest a surface may move along itself, m/s, either way: past any conveyor, and the
+/// two surfaces' sum times a body's mass stays well inside f32.
+pub const MAX_TANGENT_SPEED: Real = 1.0e4;
+
+/// The stiffest spring (Hz) and the heaviest damping (ratio) a joint or the solver takes: a
+/// step resolves nothing stiffer than a quarter of its substep rate, so a megahertz is rigid
+/// already, while above it a spring's softness terms, `(2π f h)²` at the longest step,
+/// overflow f32.
+pub const MAX_SPRING: Real = 1.0e6;
 
 /// How far outside a shape's boundary a point may lie and still count as inside, in metres.
 ///

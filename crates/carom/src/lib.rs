@@ -96,7 +96,9 @@ pub use collision::pre_solve::PreSolveContact;
 pub use collision::query_filter::QueryFilter;
 pub use collision::sensor::{SensorEvent, SensorOverlap};
 pub use constants::{
-    LINEAR_SLOP, SHAPE_CAST_TOLERANCE, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, SWEEP_THRESHOLD,
+    LINEAR_SLOP, MAX_BODY_INERTIA, MAX_BODY_MASS, MAX_POSITION, MAX_REGULAR_SIDES,
+    MAX_SHAPE_EXTENT, MAX_SPRING, MAX_SURFACE_COEFFICIENT, MAX_TANGENT_SPEED, MIN_BODY_INERTIA,
+    MIN_BODY_MASS, SHAPE_CAST_TOLERANCE, SLEEP_THRESHOLD, SPECULATIVE_DISTANCE, SWEEP_THRESHOLD,
     TIME_STEP_RANGE, TIME_TO_SLEEP,
 };
 pub use dynamics::body::{Body, BodyHandle, BodyKind};

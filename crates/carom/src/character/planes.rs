@@ -19,8 +19,8 @@ pub struct CollisionPlane {
     /// How far the mover overlaps the obstacle where it was collided, in metres: the
     /// displacement must carry it at least this far along `normal`. Negative when apart.
     pub offset: Real,
-    /// The most this plane may push in one solve, in metres; [`Real::INFINITY`] for a rigid
-    /// obstacle.
+    /// The most this plane may push in one solve, in metres, not negative; [`Real::INFINITY`]
+    /// for a rigid obstacle.
     pub push_limit: Real,
     /// Whether [`clip_velocity`] removes velocity into this plane. Off for soft obstacles, whose
     /// push should not stop the mover.
@@ -66,7 +66,9 @@ pub struct PlaneSolution {
 
 /// The displacement nearest `target` that satisfies every plane, each plane's `push` set to
 /// how far it pushed. A mover rests [`crate::LINEAR_SLOP`] into what it touches, as contacts
-/// do, so that touching surfaces stay in its planes from one move to the next.
+/// do, so that touching surfaces stay in its planes from one move to the next. A plane that
+/// cannot push (a zero or non-finite normal or offset, a push limit below zero or NaN) is
+/// passed over, its `push` left at 0.
 pub fn solve_planes(target: Vec2, planes: &mut [CollisionPlane]) -> PlaneSolution {
     solve_planes_along(target, planes, |plane| plane.normal)
 }
@@ -93,6 +95,11 @@ pub(crate) fn solve_planes_along(
             // positive (at least the cosine of the steepest slope a character climbs).
             let rate = plane.normal.dot(&direction);
             let separation = plane.normal.dot(&delta) - plane.offset + LINEAR_SLOP;
+            // A plane that cannot push (no direction, numbers that are not finite, a limit
+            // below zero or not a number) pushes nothing, rather than panic or spread NaN.
+            if !(rate > 0.0 && separation.is_finite() && plane.push_limit >= 0.0) {
+                continue;
+            }
             let accumulated = plane.push;
             plane.push = (accumulated - separation / rate).clamp(0.0, plane.push_limit);
             let push = plane.push - accumulated;

@@ -9,7 +9,8 @@
 //! its speed, clockwise around its shape (a belt's top, facing up, carries what lies on it
 //! toward +x), and friction drives what touches it to match.
 
-use crate::dynamics::collider::{Collider, DEFAULT_FRICTION, check_non_negative};
+use crate::constants::{MAX_SURFACE_COEFFICIENT, MAX_TANGENT_SPEED};
+use crate::dynamics::collider::{Collider, DEFAULT_FRICTION};
 use crate::error::{CaromError, check_finite};
 use crate::math::Real;
 
@@ -47,16 +48,23 @@ impl Default for Surface {
 }
 
 impl Surface {
-    /// Checks every value: friction, restitution and rolling resistance finite and not
-    /// negative, the tangent speed finite.
+    /// Checks every value: friction, restitution and rolling resistance from 0 to 1000, the
+    /// tangent speed within 10 km/s either way.
     ///
     /// # Errors
     /// The first value that is not so.
     pub fn validate(&self) -> Result<(), CaromError> {
-        check_non_negative("friction", self.friction)?;
-        check_non_negative("restitution", self.restitution)?;
-        check_non_negative("rolling resistance", self.rolling_resistance)?;
+        check_coefficient("friction", self.friction)?;
+        check_coefficient("restitution", self.restitution)?;
+        check_coefficient("rolling resistance", self.rolling_resistance)?;
         check_finite("tangent speed", self.tangent_speed)?;
+        if self.tangent_speed.abs() > MAX_TANGENT_SPEED {
+            return Err(CaromError::OutOfRange {
+                name: "tangent speed",
+                expected: "within 10 km/s (1e4 m/s) either way",
+                value: self.tangent_speed,
+            });
+        }
         Ok(())
     }
 }
@@ -74,7 +82,7 @@ pub(crate) struct Mixed {
 /// A world's rule for mixing two surfaces' friction or restitution where they touch: it is
 /// given each surface's value and material id (`a`'s value, `a`'s id, `b`'s value, `b`'s
 /// id) and answers the pair's. A plain function, so that it cannot reach into the world; an
-/// answer that is negative or not a number counts as 0.
+/// answer that is negative or not a number counts as 0, and one above 1000 as 1000.
 pub type MaterialMixer = fn(Real, u64, Real, u64) -> Real;
 
 /// The world's mixers; `None` mixes as this module says by default.
@@ -97,7 +105,7 @@ pub(crate) fn mix(a: &Collider, b: &Collider, mixers: &Mixers) -> Mixed {
     };
     let rolling = sa.rolling_resistance.max(sb.rolling_resistance);
     Mixed {
-        // A mixer's answer is the game's: one that is not finite or is negative counts as 0.
+        // A mixer's answer is the game's: held to what a surface may have.
         friction: sanitized(friction),
         restitution: sanitized(restitution),
         // The rolling radius is how far the shape reaches beyond its core: a circle's or a
@@ -111,11 +119,26 @@ pub(crate) fn mix(a: &Collider, b: &Collider, mixers: &Mixers) -> Mixed {
     }
 }
 
-/// A mixer's answer made safe for the solver.
+/// A mixer's answer made safe for the solver: held to what a surface may have.
 fn sanitized(value: Real) -> Real {
     if value.is_finite() && value > 0.0 {
-        value
+        value.min(MAX_SURFACE_COEFFICIENT)
     } else {
         0.0
+    }
+}
+
+/// Checks a friction, restitution or rolling resistance: from 0 to
+/// [`MAX_SURFACE_COEFFICIENT`].
+fn check_coefficient(name: &'static str, value: Real) -> Result<(), CaromError> {
+    check_finite(name, value)?;
+    if (0.0..=MAX_SURFACE_COEFFICIENT).contains(&value) {
+        Ok(())
+    } else {
+        Err(CaromError::OutOfRange {
+            name,
+            expected: "from 0 to 1000",
+            value,
+        })
     }
 }

@@ -1,7 +1,7 @@
 //! Convex polygons: counter-clockwise, recentred on their centroid, optionally rounded.
 
 use crate::clone_in_place::clone_in_place;
-use crate::constants::{COLLINEAR_SINE, CONTAINMENT_TOLERANCE, WELD_TOLERANCE};
+use crate::constants::{COLLINEAR_SINE, CONTAINMENT_TOLERANCE, MAX_REGULAR_SIDES, WELD_TOLERANCE};
 use crate::error::{CaromError, check_finite};
 use crate::geometry::checks::{check_extent, check_point};
 use crate::geometry::mass;
@@ -217,13 +217,20 @@ impl Polygon {
         }
     }
 
-    /// A regular polygon with `sides` vertices on a circle of `radius`.
+    /// A regular polygon with `sides` vertices (3 to 65536) on a circle of `radius`.
     ///
     /// It is turned so its bottom edge is horizontal: boxes (4 sides) come out axis-aligned
     /// and every regular polygon can rest flat on a floor.
     pub fn regular(sides: usize, radius: Real) -> Result<Self, CaromError> {
         if sides < 3 {
             return Err(CaromError::TooFewVertices { count: sides });
+        }
+        if sides > MAX_REGULAR_SIDES {
+            return Err(CaromError::OutOfRange {
+                name: "regular polygon sides",
+                expected: "at most 65536 (a circle is the shape beyond that)",
+                value: sides as Real,
+            });
         }
         check_finite("regular polygon radius", radius)?;
         check_extent("regular polygon radius", radius)?;

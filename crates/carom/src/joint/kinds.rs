@@ -1,6 +1,7 @@
 //! What each kind of joint holds, and the settings the kinds share: springs, motors, limits.
 
-use crate::error::{CaromError, check_finite_not_negative, check_finite_vec};
+use crate::constants::MAX_SPRING;
+use crate::error::{CaromError, check_finite, check_finite_not_negative, check_finite_vec};
 use crate::math::{Real, Vec2, vec2};
 
 /// A soft spring: its natural frequency and damping ratio. Frequency 0 is no spring at all
@@ -9,9 +10,9 @@ use crate::math::{Real, Vec2, vec2};
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(deny_unknown_fields))]
 pub struct Spring {
-    /// Hz, not negative.
+    /// Hz, from 0 to 1e6.
     pub hertz: Real,
-    /// 1 is critically damped; below it the spring overshoots. Not negative.
+    /// 1 is critically damped; below it the spring overshoots. From 0 to 1e6.
     pub damping_ratio: Real,
 }
 
@@ -410,6 +411,12 @@ impl JointKind {
         }
     }
 
+    /// Whether the kind acts at its anchors: a mover drives one body's velocity and a filter
+    /// only keeps two bodies apart, so theirs (the world's origin) mean nothing.
+    pub(crate) fn has_anchors(&self) -> bool {
+        !matches!(self, JointKind::Mover(_) | JointKind::Filter)
+    }
+
     /// The axis (a pogo joint's normal), for the kinds that have one.
     pub(crate) fn axis_mut(&mut self) -> Option<&mut Vec2> {
         match self {
@@ -462,9 +469,20 @@ fn check_spring(spring: Option<&Spring>) -> Result<(), CaromError> {
     let Some(spring) = spring else {
         return Ok(());
     };
-    check_finite_not_negative("spring hertz", spring.hertz)?;
-    check_finite_not_negative("spring damping ratio", spring.damping_ratio)?;
-    Ok(())
+    let check = |name, value: Real| {
+        check_finite(name, value)?;
+        if (0.0..=MAX_SPRING).contains(&value) {
+            Ok(())
+        } else {
+            Err(CaromError::OutOfRange {
+                name,
+                expected: "from 0 to 1e6",
+                value,
+            })
+        }
+    };
+    check("spring hertz", spring.hertz)?;
+    check("spring damping ratio", spring.damping_ratio)
 }
 
 fn check_motor(motor: Option<&Motor>) -> Result<(), CaromError> {

@@ -413,8 +413,12 @@ impl JointDef {
         if let Some(axis) = kind.axis_mut() {
             *axis = axis.normalize();
         }
-        check_anchor(local_a)?;
-        check_anchor(local_b)?;
+        // Far from the origin, a mover's or filter's anchors (the origin) are far from
+        // their bodies; they are not used, so not checked.
+        if kind.has_anchors() {
+            check_anchor(local_a)?;
+            check_anchor(local_b)?;
+        }
         Ok(Joint {
             handle,
             body_a: self.body_a,
@@ -597,8 +601,10 @@ impl Joint {
     /// finite anchors, impulses and reactions.
     pub(crate) fn check_saved(&self) -> Result<(), CaromError> {
         self.kind.validate()?;
-        check_anchor(self.local_anchor_a)?;
-        check_anchor(self.local_anchor_b)?;
+        if self.kind.has_anchors() {
+            check_anchor(self.local_anchor_a)?;
+            check_anchor(self.local_anchor_b)?;
+        }
         let i = &self.impulses;
         for (name, value) in [
             ("joint anchor", self.local_anchor_a),

@@ -1,6 +1,7 @@
 //! The solvers' settings: which solver runs ([`SolverKind`]), its parameters
 //! ([`SolverParams`], Box2D v3's defaults) and a soft constraint's coefficients ([`Softness`]).
 
+use crate::constants::MAX_SPRING;
 use crate::error::CaromError;
 use crate::math::Real;
 
@@ -228,11 +229,23 @@ impl SolverParams {
                 });
             }
         }
-        positive("contact hertz", self.contact_hertz)?;
-        positive("damping ratio", self.damping_ratio)?;
-        positive("static stiffness", self.static_stiffness)?;
-        positive("joint hertz", self.joint_hertz)?;
-        positive("joint damping ratio", self.joint_damping_ratio)?;
+        // Springs: positive, and no stiffer or more damped than a step can carry.
+        let spring = |name: &'static str, value: Real| {
+            if value > 0.0 && value <= MAX_SPRING {
+                Ok(())
+            } else {
+                Err(CaromError::OutOfRange {
+                    name,
+                    expected: "positive, at most 1e6",
+                    value,
+                })
+            }
+        };
+        spring("contact hertz", self.contact_hertz)?;
+        spring("damping ratio", self.damping_ratio)?;
+        spring("static stiffness", self.static_stiffness)?;
+        spring("joint hertz", self.joint_hertz)?;
+        spring("joint damping ratio", self.joint_damping_ratio)?;
         positive("max push speed", self.max_push_speed)?;
         if !(self.baumgarte.is_finite() && (0.0..=1.0).contains(&self.baumgarte)) {
             return Err(CaromError::OutOfRange {

@@ -35,7 +35,7 @@ impl<'w> ColliderMut<'w> {
             .expect("lent live")
     }
 
-    /// Sets the friction coefficient (finite, not negative); its contacts use it from the
+    /// Sets the friction coefficient (from 0 to 1000); its contacts use it from the
     /// next step.
     ///
     /// # Errors
@@ -44,7 +44,7 @@ impl<'w> ColliderMut<'w> {
         self.change_surface(|surface| surface.friction = friction)
     }
 
-    /// Sets the restitution (finite, not negative); its contacts use it from the next step.
+    /// Sets the restitution (from 0 to 1000); its contacts use it from the next step.
     ///
     /// # Errors
     /// A negative or non-finite restitution; it is then left as it was.
@@ -52,7 +52,7 @@ impl<'w> ColliderMut<'w> {
         self.change_surface(|surface| surface.restitution = restitution)
     }
 
-    /// Sets the rolling resistance (finite, not negative; see
+    /// Sets the rolling resistance (from 0 to 1000; see
     /// [`crate::Surface::rolling_resistance`]); its contacts use it from the next step.
     ///
     /// # Errors
@@ -61,11 +61,11 @@ impl<'w> ColliderMut<'w> {
         self.change_surface(|surface| surface.rolling_resistance = resistance)
     }
 
-    /// Sets the tangent speed (finite; see [`crate::Surface::tangent_speed`]): a conveyor
+    /// Sets the tangent speed (within 1e4 m/s either way; see [`crate::Surface::tangent_speed`]): a conveyor
     /// belt's; its contacts use it from the next step.
     ///
     /// # Errors
-    /// A speed that is not finite; it is then left as it was.
+    /// A speed outside that range or not finite; it is then left as it was.
     pub fn set_tangent_speed(&mut self, speed: Real) -> Result<(), CaromError> {
         self.change_surface(|surface| surface.tangent_speed = speed)
     }

@@ -6,7 +6,9 @@
 //! (the common case) has its centre of mass at its origin, as shapes are centred on their
 //! centroid. The solver moves centres of mass; the origin follows.
 
-use crate::constants::{MIN_BODY_INERTIA, MIN_BODY_MASS, TIME_STEP_RANGE};
+use crate::constants::{
+    MAX_BODY_INERTIA, MAX_BODY_MASS, MIN_BODY_INERTIA, MIN_BODY_MASS, TIME_STEP_RANGE,
+};
 use crate::dynamics::body_def::BodyDef;
 use crate::dynamics::collider::{Collider, ColliderHandle, check_non_negative};
 use crate::error::{CaromError, check_finite, check_finite_vec};
@@ -321,6 +323,24 @@ impl Body {
                         name: "density",
                         expected: "enough for a dynamic body's rotational inertia (the value \
                                    given) to be at least 1e-28 kg·m²",
+                        value: inertia,
+                    });
+                }
+                // A mass or inertia so large that it, times what the solver multiplies it
+                // by, overflows (a huge density), or is past f32 already.
+                if mass > MAX_BODY_MASS {
+                    return Err(CaromError::OutOfRange {
+                        name: "density",
+                        expected: "small enough for a dynamic body's mass (the value given) to \
+                                   be at most 1e30 kg",
+                        value: mass,
+                    });
+                }
+                if inertia > MAX_BODY_INERTIA {
+                    return Err(CaromError::OutOfRange {
+                        name: "density",
+                        expected: "small enough for a dynamic body's rotational inertia (the \
+                                   value given) to be at most 1e36 kg·m²",
                         value: inertia,
                     });
                 }
