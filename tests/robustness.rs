@@ -492,6 +492,21 @@ fn the_fuzz_seeds_keep_their_promises() {
         std::panic::catch_unwind(|| carom_tests::world_ops::run(&bytes))
             .unwrap_or_else(|_| panic!("{} broke a promise (above)", file.display()));
     }
+    // Scene files asking for more than a machine holds: refused, quickly, not built.
+    let scenes = files("scene_file");
+    assert!(scenes.len() >= 6, "{} scenes", scenes.len());
+    for file in &scenes {
+        let text = std::fs::read_to_string(file).expect("a readable seed");
+        assert!(
+            carom_scene::parse(&text, "seed.ron").is_ok(),
+            "{} parses",
+            file.display()
+        );
+        let built = std::panic::catch_unwind(|| carom_tests::untrusted_files::scene_file(&text))
+            .unwrap_or_else(|_| panic!("{} broke a promise (above)", file.display()));
+        let empty = file.ends_with("repeat_of_nothing.ron");
+        assert_eq!(built, empty, "{} built", file.display());
+    }
     let saved = files("saved_world");
     assert!(!saved.is_empty());
     for file in &saved {

@@ -955,3 +955,110 @@ fn a_spawn_event_refuses_what_it_cannot_make() {
         );
     }
 }
+
+/// A scene whose generators ask for more than any machine holds is refused before anything is
+/// made, naming the generator; the limits can be raised.
+#[test]
+fn scenes_asking_for_more_than_their_limits_are_refused_before_building() {
+    use carom_scene::{Limits, build, build_with_limits, parse};
+    let scene = |generators: &str, events: &str| {
+        let text =
+            format!("(format: 2, name: \"big\", generators: [{generators}], events: [{events}])");
+        parse(&text, "big.ron").unwrap()
+    };
+    let huge = [
+        "Pyramid(base: (0.0, 0.0), count: 4000000000)",
+        "Stack(base: (0.0, 0.0), count: 4000000000)",
+        "Rain(low: (0.0, 0.0), high: (1.0, 1.0), count: 600000, shape: Circle(radius: 0.1))",
+        "Grid(origin: (0.0, 0.0), columns: 70000, rows: 70000, spacing: (1.0, 1.0), \
+         shape: Circle(radius: 0.1))",
+        "JointGrid(origin: (0.0, 0.0), columns: 1000, rows: 1000, spacing: (1.0, 1.0), \
+         shape: Circle(radius: 0.1))",
+        "Chain(from: (0.0, 0.0), to: (1.0, 0.0), count: 4000000000)",
+        "Repeat(columns: 100000, rows: 100000, spacing: (1.0, 1.0), \
+         of: Stack(base: (0.0, 0.0), count: 1000))",
+        "Repeat(columns: 65535, rows: 65535, spacing: (1.0, 1.0), of: Repeat(columns: 65535, \
+         rows: 65535, spacing: (1.0, 1.0), of: Repeat(columns: 65535, rows: 65535, \
+         spacing: (1.0, 1.0), of: Stack(base: (0.0, 0.0), count: 65535))))",
+    ];
+    for generator in huge {
+        let Err(error) = build(&scene(generator, ""), "big.ron") else {
+            panic!("{generator} built");
+        };
+        let message = error.to_string();
+        assert!(
+            message.contains("generator 0") && message.contains("more than the limit of"),
+            "{message}"
+        );
+    }
+    // Together past the limit, each within it: the generator that crosses it is named.
+    let two = "Stack(base: (0.0, 0.0), count: 300000), Stack(base: (5.0, 0.0), count: 300000)";
+    let message = build(&scene(two, ""), "big.ron").err().unwrap().to_string();
+    assert!(message.contains("generator 1 (stack)"), "{message}");
+    // One spawn of more copies than the limit allows.
+    let spawn = "Spawn(every: 1.0, origin: (0.0, 10.0), columns: 100000, rows: 100000, \
+                 spacing: (1.0, 1.0), of: Stack(base: (0.0, 0.0), count: 2))";
+    let message = build(&scene("", spawn), "big.ron")
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        message.contains("event 0") && message.contains("one spawn would add"),
+        "{message}"
+    );
+    // Copies of nothing are nothing, however many.
+    let empty = "Repeat(columns: 4000000000, rows: 4000000000, spacing: (1.0, 1.0), \
+                 of: Group(bodies: []))";
+    assert_eq!(
+        build(&scene(empty, ""), "big.ron")
+            .unwrap()
+            .world
+            .body_count(),
+        0
+    );
+    // The limits are the caller's to set.
+    let eleven = scene("Stack(base: (0.0, 0.0), count: 11)", "");
+    let ten = Limits {
+        bodies: 10,
+        ..Limits::default()
+    };
+    assert!(build_with_limits(&eleven, "big.ron", ten).is_err());
+    let built = build_with_limits(&eleven, "big.ron", Limits { bodies: 11, ..ten }).unwrap();
+    assert_eq!(built.world.body_count(), 11);
+    let chain = scene("Chain(from: (0.0, 0.0), to: (10.0, 0.0), count: 10)", "");
+    let few_joints = Limits {
+        joints: 10,
+        ..Limits::default()
+    };
+    assert!(build_with_limits(&chain, "big.ron", few_joints).is_err());
+    assert!(
+        build_with_limits(
+            &chain,
+            "big.ron",
+            Limits {
+                joints: 11,
+                ..few_joints
+            }
+        )
+        .is_ok()
+    );
+}
+
+/// Generators nested deeper than a scene needs are refused as the file is read, not by
+/// running out of stack.
+#[test]
+fn generators_nested_without_end_are_refused_as_the_file_is_read() {
+    let depth = 10_000;
+    let mut generator = "Stack(base: (0.0, 0.0), count: 1)".to_owned();
+    for _ in 0..depth {
+        generator = format!("Repeat(columns: 1, rows: 1, spacing: (1.0, 1.0), of: {generator})");
+    }
+    let text = format!("(format: 2, name: \"deep\", generators: [{generator}])");
+    let error = carom_scene::parse(&text, "deep.ron")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.starts_with("deep.ron:1:") && error.contains("recursion limit"),
+        "{error}"
+    );
+}

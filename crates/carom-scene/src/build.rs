@@ -5,6 +5,7 @@ use crate::defs::body_def;
 use crate::error::SceneError;
 use crate::events::Events;
 use crate::generate::{Batch, add_bodies, generate, generator_name};
+use crate::limits::{Counts, Limits, counts};
 use crate::one_way;
 use crate::pending_joint::PendingJoint;
 use crate::player::Player;
@@ -14,8 +15,18 @@ use carom::{BodyHandle, Real, Vec2, World};
 use std::collections::HashMap;
 use std::rc::Rc;
 
-/// Builds a scene; `file` names it in error messages.
+/// Builds a scene within the default [`Limits`]; `file` names it in error messages.
 pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
+    build_with_limits(scene, file, Limits::default())
+}
+
+/// Builds a scene; one that asks for more bodies or joints than `limits` allow is refused
+/// before anything is made. `file` names it in error messages.
+pub fn build_with_limits(
+    scene: &Scene,
+    file: &str,
+    limits: Limits,
+) -> Result<SceneWorld, SceneError> {
     let invalid = |what: String, reason: String| SceneError::Invalid {
         file: file.to_string(),
         what,
@@ -43,6 +54,24 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
                 .map_err(|reason| invalid("state".into(), reason))?;
         }
         return Ok(built);
+    }
+    // Counted before anything is made: a few bytes of generator can ask for billions.
+    let mut asked = Counts {
+        bodies: scene.bodies.len() as u64,
+        joints: scene.joints.len() as u64,
+    };
+    if let Some(over) = limits.exceeded(asked) {
+        return Err(invalid(
+            "scene".into(),
+            format!("the scene would have {over}"),
+        ));
+    }
+    for (index, generator) in scene.generators.iter().enumerate() {
+        asked = asked.plus(counts(generator));
+        if let Some(over) = limits.exceeded(asked) {
+            let what = format!("generator {index} ({})", generator_name(generator));
+            return Err(invalid(what, format!("the scene would have {over}")));
+        }
     }
     let mut world =
         World::with_settings(scene.world).map_err(|e| invalid("world".into(), e.to_string()))?;
@@ -112,8 +141,14 @@ pub fn build(scene: &Scene, file: &str) -> Result<SceneWorld, SceneError> {
     if world.colliders().any(|c| c.pre_solve()) {
         world.set_pre_solve(one_way::solid_from_above);
     }
-    let events = Events::new(&scene.events, &names, initial, &world, groups_used)
-        .map_err(|(index, reason)| invalid(format!("event {index}"), reason))?;
+    let events = Events::new(
+        &scene.events,
+        &names,
+        initial,
+        &world,
+        (groups_used, &limits),
+    )
+    .map_err(|(index, reason)| invalid(format!("event {index}"), reason))?;
     finish(scene, world, names, colors, events, time_step, &invalid)
 }
 

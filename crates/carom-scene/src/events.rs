@@ -2,6 +2,7 @@
 //! kinematic frame, shuttling kinematic bodies back and forth, making and remaking copies of
 //! bodies and joints in turn.
 
+use crate::limits::{Limits, counts};
 use crate::scene::EventSpec;
 use crate::spawn::Spawn;
 use carom::{BodyDef, BodyHandle, BodyKind, Real, World, vec2};
@@ -59,7 +60,7 @@ impl Events {
         names: &HashMap<String, BodyHandle>,
         mut initial: HashMap<BodyHandle, BodyDef>,
         world: &World,
-        mut groups_used: i32,
+        (mut groups_used, limits): (i32, &Limits),
     ) -> Result<Self, (usize, String)> {
         let find = |index: usize, name: &str| {
             names
@@ -170,6 +171,11 @@ impl Events {
                     spacing,
                     of,
                 } => {
+                    // Each spawn adds its copies at once: held to the limits as a build is.
+                    let copies = u64::from(*columns).saturating_mul(u64::from(*rows));
+                    if let Some(over) = limits.exceeded(counts(of).times(copies)) {
+                        return Err((index, format!("one spawn would add {over}")));
+                    }
                     let template = crate::generate::generate(of).map_err(|e| (index, e))?;
                     let groups = Spawn::groups(&template, *columns, *rows);
                     let spawn = Spawn::new(

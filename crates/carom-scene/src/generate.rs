@@ -247,6 +247,10 @@ pub(crate) fn generate(generator: &Generator) -> Result<Batch, String> {
             of,
         } => {
             let one = generate(of)?;
+            if one.defs.is_empty() {
+                // Copies of nothing: no need to walk the cells (which may be billions).
+                return Ok(one);
+            }
             let copies_apart = one.copies_apart();
             let mut all = Batch::default();
             for row in 0..*rows {

@@ -2,6 +2,11 @@
 //! bodies, generators) and what happens in it over time. Loading lives here so the physics core
 //! stays free of file formats.
 //!
+//! A scene file is read as untrusted: any text gives a scene or an error, never a panic, and
+//! building refuses a scene that asks its generators for more bodies or joints than its
+//! [`Limits`] (half a million each unless raised with [`build_with_limits`]) before it makes
+//! anything.
+//!
 //! ```
 //! let scene = carom_scene::parse(r#"(
 //!     name: "drop",
@@ -41,6 +46,7 @@ mod defs;
 mod error;
 mod events;
 mod generate;
+mod limits;
 mod load;
 mod one_way;
 mod pending_joint;
@@ -53,8 +59,9 @@ mod snapshot;
 mod spawn;
 mod timeline;
 
-pub use build::build;
+pub use build::{build, build_with_limits};
 pub use error::SceneError;
+pub use limits::Limits;
 pub use load::{parse, read};
 pub use player::{Player, PlayerInput};
 pub use recording::{GRAB_ACCELERATION, Hand, Input, Parting, RECORDING_FORMAT, Recording, Timed};
@@ -65,7 +72,7 @@ pub use snapshot::SceneSnapshot;
 pub use spawn::{Made, SpawnChange, SpawnSchedule};
 pub use timeline::{Course, KEYFRAME_BUDGET, KEYFRAME_EVERY, Timeline, TimelineError};
 
-/// Reads, parses and builds a scene file.
+/// Reads, parses and builds a scene file, within the default [`Limits`].
 pub fn load(path: &std::path::Path) -> Result<SceneWorld, SceneError> {
     let scene = read(path)?;
     build(&scene, &path.display().to_string())
