@@ -727,6 +727,28 @@ fn values_at_the_ends_of_each_range_are_refused_or_kept_finite() {
             let _ = carom::query::separation(a, b);
         }
     }
+    // An explosion whose push is refused at one body (too light for it) pushes none: the
+    // heavy body pushed before it keeps its speed of before.
+    let mut world = World::new();
+    let heavy = BodyDef::dynamic(Shape::rect(0.05, 0.05))
+        .density(1e6)
+        .position(vec2(1.0, 0.0));
+    let light = BodyDef::dynamic(Shape::circle(0.05))
+        .density(1e-3)
+        .position(vec2(-1.0, 0.0));
+    let bodies = [
+        world.add_body(heavy).unwrap(),
+        world.add_body(light).unwrap(),
+    ];
+    let blast = carom::ExplosionDef::new(Vec2::zeros(), 5.0, 3e38);
+    assert!(world.explode(&blast).is_err());
+    for body in bodies {
+        let body = world.body(body).unwrap();
+        assert_eq!(body.linear_velocity(), Vec2::zeros());
+        assert_eq!(body.angular_velocity(), 0.0);
+    }
+    let gentle = carom::ExplosionDef::new(Vec2::zeros(), 5.0, 1e-3);
+    assert_eq!(world.explode(&gentle).unwrap(), 2);
     // A mover far from the origin (it has no anchors to be far from).
     let mut world = World::new();
     let far = vec2(5e5, 0.0);

@@ -69,6 +69,10 @@ impl ExplosionDef {
 impl World {
     /// Pushes the dynamic bodies near `explosion`'s centre away from it (see the module
     /// documentation), waking the ones asleep. Returns how many colliders it pushed.
+    ///
+    /// # Errors
+    /// A value of `explosion` out of its range, or a push that would carry a body's speed
+    /// past what a float holds; the bodies then keep the speeds they had.
     pub fn explode(&mut self, explosion: &ExplosionDef) -> Result<usize, CaromError> {
         explosion.validate()?;
         let reach = explosion.radius + explosion.falloff;
@@ -114,9 +118,28 @@ impl World {
             let impulse = direction * (explosion.impulse_per_length * width * scale);
             pushes.push((collider.body(), impulse, point));
         }
+        // A push refused part way (one that would carry a light body's speed past f32) puts
+        // back the speeds the earlier ones gave, so a refused explosion pushes nothing.
+        let before: Vec<(BodyHandle, Vec2, Real)> = pushes
+            .iter()
+            .filter_map(|&(handle, ..)| {
+                let body = self.state.bodies.get(handle)?;
+                Some((handle, body.linear_velocity(), body.angular_velocity()))
+            })
+            .collect();
         for &(body, impulse, point) in &pushes {
-            if let Some(mut body) = self.body_mut(body) {
-                body.apply_impulse(impulse, point)?;
+            let pushed = match self.body_mut(body) {
+                Some(mut body) => body.apply_impulse(impulse, point),
+                None => Ok(()),
+            };
+            if let Err(refused) = pushed {
+                for &(handle, linear, angular) in &before {
+                    if let Some(mut body) = self.body_mut(handle) {
+                        body.set_linear_velocity(linear)?;
+                        body.set_angular_velocity(angular)?;
+                    }
+                }
+                return Err(refused);
             }
         }
         Ok(pushes.len())
