@@ -553,6 +553,21 @@ fn values_at_the_ends_of_each_range_are_refused_or_kept_finite() {
             "normal {normal:?}, offset {offset}"
         );
     }
+    // A shape beyond 100 km is named as the shape it is.
+    for (shape, name) in [
+        (
+            Shape::capsule(vec2(2e5, 0.0), vec2(2e5 + 1.0, 0.0), 0.5),
+            "capsule coordinate",
+        ),
+        (
+            Shape::segment(vec2(0.0, 0.0), vec2(0.0, -2e5)),
+            "segment coordinate",
+        ),
+    ] {
+        let def = BodyDef::static_body(shape);
+        let error = World::new().add_body(def).unwrap_err().to_string();
+        assert!(error.contains(name), "{error}");
+    }
     // A regular polygon of more sides than any number a shape needs.
     assert!(Shape::regular(usize::MAX, 1.0).is_err());
     assert!(Shape::regular(1 << 40, 1.0).is_err());

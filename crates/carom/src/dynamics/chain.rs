@@ -117,7 +117,7 @@ impl ChainDef {
             });
         }
         for (i, &p) in points.iter().enumerate() {
-            check_point(&format!("chain point {i}"), p)?;
+            check_point((&format!("chain point {i}"), "chain coordinate"), p)?;
         }
         let links = if self.closed { n } else { n - 1 };
         for i in 0..links {
@@ -128,8 +128,8 @@ impl ChainDef {
         // chain's ends (given, or straight on).
         let (before, after) = match self.ghosts {
             Some((before, after)) if !self.closed => {
-                check_point("chain ghost before", before)?;
-                check_point("chain ghost after", after)?;
+                check_point(("chain ghost before", "chain coordinate"), before)?;
+                check_point(("chain ghost after", "chain coordinate"), after)?;
                 check_apart("chain ghost before and point 0", before, points[0])?;
                 check_apart(
                     &format!("chain point {} and ghost after", n - 1),

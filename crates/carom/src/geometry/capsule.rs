@@ -36,8 +36,8 @@ impl Capsule {
     /// # Errors
     /// The first value that is not so.
     pub fn validate(&self) -> Result<(), CaromError> {
-        check_point("capsule center1", self.center1)?;
-        check_point("capsule center2", self.center2)?;
+        check_point(("capsule center1", "capsule coordinate"), self.center1)?;
+        check_point(("capsule center2", "capsule coordinate"), self.center2)?;
         check_finite("capsule radius", self.radius)?;
         if self.radius <= 0.0 {
             return Err(CaromError::InvalidRadius {

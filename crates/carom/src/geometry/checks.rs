@@ -17,11 +17,15 @@ pub(crate) fn check_extent(what: &'static str, value: Real) -> Result<(), CaromE
     }
 }
 
-/// Checks a polygon point: finite and within [`MAX_SHAPE_EXTENT`].
-pub(crate) fn check_point(what: &str, point: Vec2) -> Result<(), CaromError> {
+/// Checks a shape's point: finite (`what` names it) and within [`MAX_SHAPE_EXTENT`]
+/// (`coordinate` names its coordinates: "capsule coordinate").
+pub(crate) fn check_point(
+    (what, coordinate): (&str, &'static str),
+    point: Vec2,
+) -> Result<(), CaromError> {
     check_finite_vec(what, point)?;
-    check_extent("polygon coordinate", point.x)?;
-    check_extent("polygon coordinate", point.y)
+    check_extent(coordinate, point.x)?;
+    check_extent(coordinate, point.y)
 }
 
 /// Checks that two points are farther apart than rounding can blur.

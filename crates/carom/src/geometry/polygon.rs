@@ -85,7 +85,7 @@ impl Polygon {
             });
         }
         for (i, p) in points.iter().enumerate() {
-            check_point(&format!("polygon vertex {i}"), *p)?;
+            check_point((&format!("polygon vertex {i}"), "polygon coordinate"), *p)?;
         }
         let weld = weld_distance(points);
         for i in 0..points.len() {
@@ -126,7 +126,7 @@ impl Polygon {
     /// A NaN or infinite coordinate, or fewer than 3 points not all on one line.
     pub fn hull(points: &[Vec2]) -> Result<Self, CaromError> {
         for (i, p) in points.iter().enumerate() {
-            check_point(&format!("hull point {i}"), *p)?;
+            check_point((&format!("hull point {i}"), "polygon coordinate"), *p)?;
         }
         let mut sorted: Vec<Vec2> = points.to_vec();
         sorted.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
@@ -271,7 +271,7 @@ impl Polygon {
         vertices: Vec<Vec2>,
         source_centroid: Vec2,
     ) -> Result<Self, CaromError> {
-        check_point("polygon centroid", source_centroid)?;
+        check_point(("polygon centroid", "polygon coordinate"), source_centroid)?;
         // Checked as Polygon::new checks points, but kept as they are: recentring may have
         // left a vertex a rounding's width inside the line of its neighbours, which
         // Polygon::new would drop.

@@ -89,8 +89,8 @@ impl Segment {
     /// # Errors
     /// The first value that is not so.
     pub fn validate(&self) -> Result<(), CaromError> {
-        check_point("segment point1", self.point1)?;
-        check_point("segment point2", self.point2)?;
+        check_point(("segment point1", "segment coordinate"), self.point1)?;
+        check_point(("segment point2", "segment coordinate"), self.point2)?;
         check_apart("segment ends", self.point1, self.point2)
     }
 
@@ -137,8 +137,8 @@ impl ChainSegment {
     /// # Errors
     /// The first value that is not so.
     pub fn validate(&self) -> Result<(), CaromError> {
-        check_point("chain ghost1", self.ghost1)?;
-        check_point("chain ghost2", self.ghost2)?;
+        check_point(("chain ghost1", "chain coordinate"), self.ghost1)?;
+        check_point(("chain ghost2", "chain coordinate"), self.ghost2)?;
         self.segment.validate()?;
         check_apart("chain ghost1 and point1", self.ghost1, self.point1())?;
         check_apart("chain point2 and ghost2", self.point2(), self.ghost2)
