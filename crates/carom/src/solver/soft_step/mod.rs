@@ -142,8 +142,8 @@ struct ContactStages {
 /// word in each pass, as contacts with the ground have among contacts: a limb struck in a pile
 /// is pulled back onto its joint before the pass ends. (Box2D solves joints first; in a pile
 /// of ragdolls that parts their joints about twice as far.) With joint trees, the relaxation
-/// solves the joints first: the trees hold exactly, and the drift they leave is projected
-/// away at the end of the substep.
+/// solves the joints first and the trees again after the contacts: the trees hold exactly,
+/// and the drift they leave is projected away by each solve that ends a substep.
 fn plan_stages(
     plan: &mut Vec<Stage>,
     params: &SolverParams,
@@ -156,17 +156,21 @@ fn plan_stages(
     // Room for as many stages as these settings can plan, whatever colours the contacts and
     // joints use, so that a step that uses one more colour than any before takes nothing
     // from the heap: in each pass every joint colour and the joints' overflow, the joint
-    // trees, every contact colour, the overflow and shock propagation; the passes of each
-    // substep and its two integrations; the restitution pass.
-    let per_pass = JOINT_COLOR_COUNT + 2 + COLOR_COUNT + 2;
+    // trees (twice in a relaxation), every contact colour, the overflow and shock
+    // propagation; the passes of each substep and its two integrations; the restitution pass.
+    let per_pass = JOINT_COLOR_COUNT + 3 + COLOR_COUNT + 2;
     let substeps = params.substeps.max(1) as usize;
     let passes = substeps * (1 + 2 * params.effective_iterations() as usize) + 1;
     plan.reserve(passes * per_pass + 2 * substeps);
     let pass = |plan: &mut Vec<Stage>, pass: Pass| {
-        // With joint trees, the relaxation solves the joints first and leaves the contacts
-        // the last word: the exact trees would otherwise end each substep on velocities that
-        // drive bodies into their contacts, which the next substep pushes back out, and a
-        // pile of ragdolls would never come to rest.
+        // With joint trees, the relaxation solves the joints first and the trees again last.
+        // First, because the exact trees alone last would end each substep on velocities that
+        // drive bodies into their contacts, which the next substep pushes back out. Last,
+        // because with the contacts' word last a limb pressed at a stop kept a velocity its
+        // hinge does not allow, which the projection took back out of its position every
+        // substep. Either way a pile of ragdolls could stay awake for good. Each tree solve
+        // that ends a substep projects its drift away: before the contacts, which see the
+        // positions, and at the end.
         let joints_first = trees && matches!(pass, Pass::Solve(bias, _) if !bias.use_bias);
         let add_joints = |plan: &mut Vec<Stage>| {
             if !matches!(pass, Pass::Restitution(_)) {
@@ -188,7 +192,9 @@ fn plan_stages(
         if contacts.shock && !matches!(pass, Pass::Restitution(_)) {
             plan.push(Stage::Shock(pass));
         }
-        if !joints_first {
+        if joints_first {
+            plan.push(Stage::JointTrees(pass));
+        } else {
             add_joints(plan);
         }
     };
