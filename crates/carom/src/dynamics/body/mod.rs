@@ -776,7 +776,11 @@ impl Body {
 
     /// Puts the body back along its path to where continuous collision found the impact
     /// (`center` is the centre of mass there); it keeps its velocity.
-    pub(crate) fn move_to_time_of_impact(&mut self, center: Vec2, rotation: Rot) {
+    pub(crate) fn move_to_time_of_impact(&mut self, center: Vec2, mut rotation: Rot) {
+        // Renormalised as a step's end is (as Box2D normalises its sweep's rotation): the
+        // next step's sweep starts from it, so a body stopped step after step would
+        // otherwise carry each product's rounding into the next and drift off the unit circle.
+        rotation.renormalize_fast();
         self.center = center;
         self.rotation = rotation;
         self.position = center - rotation * self.local_center;
@@ -905,6 +909,20 @@ mod tests {
         let collider = Collider::new(handle, 0, def.colliders[0].clone(), &body.transform());
         body.rebuild_mass(std::iter::once(&collider)).unwrap();
         body
+    }
+
+    /// Continuous collision's pose is renormalised: the next step's sweep starts from it.
+    #[test]
+    fn a_body_put_back_by_continuous_collision_keeps_a_unit_rotation() {
+        let mut b = unit_box(BodyKind::Dynamic);
+        let off = Rot::from_cos_sin_unchecked(0.6 * 1.0001, 0.8 * 1.0001);
+        b.move_to_time_of_impact(Vec2::new(1.0, 2.0), off);
+        assert!(
+            (b.rotation().norm() - 1.0).abs() < 1e-6,
+            "{:?}",
+            b.rotation()
+        );
+        assert!((b.angle() - off.angle()).abs() < 1e-6);
     }
 
     #[test]
