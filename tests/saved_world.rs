@@ -404,3 +404,19 @@ fn a_world_saved_in_another_format_is_refused_naming_both() {
     let error = ron::from_str::<World>(&edited).unwrap_err().to_string();
     assert!(error.contains("made_by_another_version"), "{error}");
 }
+
+/// A saved body's damping or sleep threshold that is negative, which no setter takes, is
+/// refused as the world is read: negative damping speeds a body up every step, to NaN.
+#[test]
+fn a_save_with_negative_damping_is_refused() {
+    let text = save(&small_world());
+    for field in ["linear_damping:", "angular_damping:", "sleep_threshold:"] {
+        let at = text.find(field).expect(field) + field.len();
+        let end = at + text[at..].find([',', ')']).expect("a number, then more");
+        let edited = format!("{}-60.0{}", &text[..at], &text[end..]);
+        let error = ron::from_str::<World>(&edited)
+            .expect_err(field)
+            .to_string();
+        assert!(error.contains("negative"), "{field} {error}");
+    }
+}

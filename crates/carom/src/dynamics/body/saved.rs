@@ -20,8 +20,8 @@ impl Body {
             && rebuilt.min_extent == self.min_extent
     }
 
-    /// Checks a body read from a saved world: its handle, finite values, a unit rotation, and
-    /// a mass that fits its kind.
+    /// Checks a body read from a saved world: its handle, finite values, damping and a sleep
+    /// threshold not negative, a unit rotation, and a mass that fits its kind.
     pub(crate) fn check_saved(&self, handle: BodyHandle) -> Result<(), CaromError> {
         if self.handle != handle {
             return Err(CaromError::bad_save("a body's handle is not its slot's"));
@@ -62,6 +62,21 @@ impl Body {
         if !finite {
             return Err(CaromError::bad_save(format!(
                 "body {} has a value that is not finite",
+                handle.index()
+            )));
+        }
+        // What the setters refuse: negative damping would speed a body up each step (and at
+        // -1/h divide by zero), a negative sleep threshold keep it awake for good.
+        if [
+            self.linear_damping,
+            self.angular_damping,
+            self.sleep_threshold,
+        ]
+        .iter()
+        .any(|&x| x < 0.0)
+        {
+            return Err(CaromError::bad_save(format!(
+                "body {} has a damping or sleep threshold that is negative",
                 handle.index()
             )));
         }
