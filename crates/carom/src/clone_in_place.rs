@@ -7,10 +7,10 @@
 /// lists whose length goes up and down from step to step (the contacts, a step's events, the
 /// proxies it moved): `clone_from` copies them with the original's capacity
 /// ([`copy_with_room`]), so copying into an old snapshot allocates only when the world's own
-/// list has grown, while a clone holds only their items. Fields
-/// after `keep` are working memory: a clone starts them empty and `clone_from` leaves them as
-/// they are. Every field is named in a pattern without `..`, so a field added later fails to
-/// compile until it is listed here.
+/// list has grown, while a clone holds only their items. Fields after `keep` are working
+/// memory: a clone starts them empty and `clone_from` leaves them as they are. Every field is
+/// named in a pattern without `..`, so a field added later fails to compile until it is
+/// listed here.
 macro_rules! clone_in_place {
     (
         $type:ident $(<$($generic:ident),*>)? { $($field:ident),* $(,)? }
