@@ -210,6 +210,26 @@ pub(crate) fn check_finite(what: &str, value: Real) -> Result<Real, CaromError> 
     }
 }
 
+/// Checks that a scalar is finite (else [`CaromError::NonFinite`]) and within `range` (else
+/// [`CaromError::OutOfRange`], saying it must be `expected`).
+pub(crate) fn check_within(
+    name: &'static str,
+    value: Real,
+    range: std::ops::RangeInclusive<Real>,
+    expected: &'static str,
+) -> Result<Real, CaromError> {
+    check_finite(name, value)?;
+    if range.contains(&value) {
+        Ok(value)
+    } else {
+        Err(CaromError::OutOfRange {
+            name,
+            expected,
+            value,
+        })
+    }
+}
+
 /// Checks that a scalar is finite and not negative (a distance, a rate).
 pub(crate) fn check_finite_not_negative(
     name: &'static str,

@@ -11,7 +11,7 @@
 
 use crate::constants::{MAX_SURFACE_COEFFICIENT, MAX_TANGENT_SPEED};
 use crate::dynamics::collider::{Collider, DEFAULT_FRICTION};
-use crate::error::{CaromError, check_finite};
+use crate::error::{CaromError, check_within};
 use crate::math::Real;
 
 /// A surface's material: how it grips, bounces, resists rolling and moves along itself, and
@@ -54,17 +54,17 @@ impl Surface {
     /// # Errors
     /// The first value that is not so.
     pub fn validate(&self) -> Result<(), CaromError> {
-        check_coefficient("friction", self.friction)?;
-        check_coefficient("restitution", self.restitution)?;
-        check_coefficient("rolling resistance", self.rolling_resistance)?;
-        check_finite("tangent speed", self.tangent_speed)?;
-        if self.tangent_speed.abs() > MAX_TANGENT_SPEED {
-            return Err(CaromError::OutOfRange {
-                name: "tangent speed",
-                expected: "within 10 km/s (1e4 m/s) either way",
-                value: self.tangent_speed,
-            });
+        let coefficients = [
+            ("friction", self.friction),
+            ("restitution", self.restitution),
+            ("rolling resistance", self.rolling_resistance),
+        ];
+        for (name, value) in coefficients {
+            check_within(name, value, 0.0..=MAX_SURFACE_COEFFICIENT, "from 0 to 1000")?;
         }
+        let speeds = -MAX_TANGENT_SPEED..=MAX_TANGENT_SPEED;
+        let either_way = "within 10 km/s (1e4 m/s) either way";
+        check_within("tangent speed", self.tangent_speed, speeds, either_way)?;
         Ok(())
     }
 }
@@ -125,20 +125,5 @@ fn sanitized(value: Real) -> Real {
         value.min(MAX_SURFACE_COEFFICIENT)
     } else {
         0.0
-    }
-}
-
-/// Checks a friction, restitution or rolling resistance: from 0 to
-/// [`MAX_SURFACE_COEFFICIENT`].
-fn check_coefficient(name: &'static str, value: Real) -> Result<(), CaromError> {
-    check_finite(name, value)?;
-    if (0.0..=MAX_SURFACE_COEFFICIENT).contains(&value) {
-        Ok(())
-    } else {
-        Err(CaromError::OutOfRange {
-            name,
-            expected: "from 0 to 1000",
-            value,
-        })
     }
 }

@@ -1,7 +1,7 @@
 //! What each kind of joint holds, and the settings the kinds share: springs, motors, limits.
 
 use crate::constants::MAX_SPRING;
-use crate::error::{CaromError, check_finite, check_finite_not_negative, check_finite_vec};
+use crate::error::{CaromError, check_finite_not_negative, check_finite_vec, check_within};
 use crate::math::{Real, Vec2, vec2};
 
 /// A soft spring: its natural frequency and damping ratio. Frequency 0 is no spring at all
@@ -469,20 +469,15 @@ fn check_spring(spring: Option<&Spring>) -> Result<(), CaromError> {
     let Some(spring) = spring else {
         return Ok(());
     };
-    let check = |name, value: Real| {
-        check_finite(name, value)?;
-        if (0.0..=MAX_SPRING).contains(&value) {
-            Ok(())
-        } else {
-            Err(CaromError::OutOfRange {
-                name,
-                expected: "from 0 to 1e6",
-                value,
-            })
-        }
-    };
-    check("spring hertz", spring.hertz)?;
-    check("spring damping ratio", spring.damping_ratio)
+    let (range, expected) = (0.0..=MAX_SPRING, "from 0 to 1e6");
+    check_within("spring hertz", spring.hertz, range.clone(), expected)?;
+    check_within(
+        "spring damping ratio",
+        spring.damping_ratio,
+        range,
+        expected,
+    )?;
+    Ok(())
 }
 
 fn check_motor(motor: Option<&Motor>) -> Result<(), CaromError> {
