@@ -11,9 +11,10 @@
 //! bits as the original.
 
 use carom::{
-    BodyDef, BodyHandle, BodyKind, Capacity, CaromError, ColliderDef, ColliderHandle,
-    CollisionFilter, Effects, ExplosionDef, JointDef, JointHandle, QueryFilter, Ray, Real, Shape,
-    SolverKind, Vec2, World, WorldShape, vec2,
+    BodyDef, BodyHandle, BodyKind, Capacity, Capsule, CaromError, Character, CharacterDef,
+    ColliderDef, ColliderHandle, CollisionFilter, CollisionPlane, Effects, ExplosionDef, JointDef,
+    JointHandle, QueryFilter, Ray, Real, Shape, SolverKind, Vec2, World, WorldShape, solve_planes,
+    vec2,
 };
 
 /// The most bodies a sequence keeps (more are not added), so each case stays quick.
@@ -23,6 +24,8 @@ const MAX_BODIES: usize = 48;
 struct Input<'a> {
     bytes: &'a [u8],
     at: usize,
+    /// The odd numbers drawn for the call being made, named when a check fails.
+    odd: Vec<Real>,
 }
 
 impl Input<'_> {
@@ -45,12 +48,10 @@ impl Input<'_> {
         self.byte() & 1 == 1
     }
 
-    /// A number: mostly within `-span..span`, now and then an extreme or not a number.
+    /// A number: mostly within `-span..span`, now and then one from the ends of the whole range
+    /// (the largest finite values, subnormals, signed zeros), not a number, or any bit pattern.
     fn real(&mut self, span: Real) -> Real {
-        // Finite values near f32's largest (3e38) are left out: an impulse or an explosion
-        // that large gives a speed near it, which the next change of mass overflows. Which
-        // bound the engine should put on them is not decided yet.
-        const ODD: [Real; 11] = [
+        const ODD: [Real; 22] = [
             0.0,
             -0.0,
             1e-30,
@@ -58,17 +59,44 @@ impl Input<'_> {
             1e6,
             -1e9,
             1e15,
+            -1e30,
+            1e38,
+            Real::MAX,
+            -Real::MAX,
+            Real::MAX / 2.0,
+            Real::EPSILON,
             Real::MIN_POSITIVE,
+            -Real::MIN_POSITIVE / 4.0,
+            Real::MIN_POSITIVE * Real::EPSILON,
+            -Real::MIN_POSITIVE * Real::EPSILON,
             Real::NAN,
+            -Real::NAN,
             Real::INFINITY,
             Real::NEG_INFINITY,
+            1.0 - Real::EPSILON / 2.0,
         ];
         let kind = self.byte();
-        if kind < 16 {
-            ODD[kind as usize % ODD.len()]
+        if kind < 24 {
+            let odd = if kind < 16 {
+                ODD[self.below(ODD.len())]
+            } else {
+                self.any_bits()
+            };
+            self.odd.push(odd);
+            odd
         } else {
             let unit = u16::from_le_bytes([self.byte(), self.byte()]) as Real / 65535.0;
             (unit * 2.0 - 1.0) * span
+        }
+    }
+
+    /// Any bit pattern of a `Real`, whichever precision carom is built in.
+    fn any_bits(&mut self) -> Real {
+        let bits = u64::from_le_bytes(std::array::from_fn(|_| self.byte()));
+        if std::mem::size_of::<Real>() == 4 {
+            f32::from_bits(bits as u32) as Real
+        } else {
+            f64::from_bits(bits) as Real
         }
     }
 
@@ -134,22 +162,28 @@ pub struct Tally {
 /// Plays the calls `bytes` spell on a new world, checking carom's promises after each
 /// (panicking on the first broken one); returns what it did.
 pub fn run(bytes: &[u8]) -> Tally {
-    let mut input = Input { bytes, at: 0 };
+    let mut input = Input {
+        bytes,
+        at: 0,
+        odd: Vec::new(),
+    };
     let mut world = World::new();
     let mut tally = Tally::default();
     let mut bodies: Vec<BodyHandle> = Vec::new();
     let mut colliders: Vec<ColliderHandle> = Vec::new();
     let mut joints: Vec<JointHandle> = Vec::new();
+    let mut character: Option<Character> = None;
     // A floor, so piles form, contacts persist and bodies sleep.
     world
         .add_body(BodyDef::static_body(Shape::rect(40.0, 0.5)).position(vec2(0.0, -0.5)))
         .expect("a floor");
-    // The calls made so far, by number, named when a check fails.
-    let mut calls: Vec<usize> = Vec::new();
+    // The calls made so far, by number, with the odd numbers each drew, named when a check
+    // fails.
+    let mut calls: Vec<(usize, Vec<Real>)> = Vec::new();
     while !input.done() && tally.calls < 400 {
         tally.calls += 1;
-        let call = input.below(24);
-        calls.push(call);
+        let call = input.below(26);
+        input.odd.clear();
         let refused = match call {
             0..=3 if bodies.len() < MAX_BODIES => {
                 let kind = [
@@ -242,6 +276,16 @@ pub fn run(bytes: &[u8]) -> Tally {
                 } else {
                     Real::INFINITY
                 });
+                // Now and then a spring, limits, a motor or a torque to break at, which kinds
+                // that have none refuse.
+                let def = match input.byte() {
+                    0..16 => def.spring(input.real(30.0), input.real(2.0)),
+                    16..32 => def.limits(input.real(3.0), input.real(3.0)),
+                    32..48 => def.motor_drive(input.real(10.0), input.real(1000.0)),
+                    48..56 => def.spring_force(input.real(1e3), input.real(1e3)),
+                    56..64 => def.break_torque(input.real(1e4)),
+                    _ => def,
+                };
                 refused_or_kept(world.add_joint(def), &mut joints)
             }
             9 => {
@@ -259,7 +303,7 @@ pub fn run(bytes: &[u8]) -> Tally {
                     tally.refused += 1;
                     continue;
                 };
-                match input.below(14) {
+                match input.below(18) {
                     0 => body.set_position(input.point(50.0)).is_err(),
                     1 => body.set_angle(input.real(10.0)).is_err(),
                     2 => body.set_linear_velocity(input.point(100.0)).is_err(),
@@ -286,6 +330,13 @@ pub fn run(bytes: &[u8]) -> Tally {
                         body.wake_up();
                         false
                     }
+                    13 => body.set_sweep_threshold(input.real(2.0)).is_err(),
+                    14 => {
+                        body.set_fixed_rotation(input.flag());
+                        false
+                    }
+                    15 => body.apply_force_at_center(input.point(1e4)).is_err(),
+                    16 => body.apply_impulse_at_center(input.point(1e3)).is_err(),
                     _ => {
                         body.clear_forces();
                         false
@@ -300,10 +351,12 @@ pub fn run(bytes: &[u8]) -> Tally {
                     tally.refused += 1;
                     continue;
                 };
-                match input.below(4) {
+                match input.below(6) {
                     0 => collider.set_friction(input.real(2.0)).is_err(),
                     1 => collider.set_restitution(input.real(2.0)).is_err(),
                     2 => collider.set_density(input.real(10.0)).is_err(),
+                    3 => collider.set_rolling_resistance(input.real(1.0)).is_err(),
+                    4 => collider.set_tangent_speed(input.real(10.0)).is_err(),
                     _ => {
                         collider.set_filter(input.filter());
                         false
@@ -332,8 +385,33 @@ pub fn run(bytes: &[u8]) -> Tally {
                     1 + input.below(8) as u32,
                     input.byte(),
                 );
+                // Now and then the solver's and the broadphase's numbers too.
+                let numbers = (input.byte() < 64).then(|| {
+                    [
+                        input.real(0.1),
+                        input.real(0.2),
+                        input.real(400.0),
+                        input.real(1.0),
+                        input.real(60.0),
+                        input.real(10.0),
+                        input.real(60.0),
+                        input.real(5.0),
+                        input.real(1.0),
+                    ]
+                });
                 world
                     .update_settings(|s| {
+                        if let Some(n) = numbers {
+                            s.speculative_distance = n[0];
+                            s.aabb_margin = n[1];
+                            s.solver.max_linear_speed = n[2];
+                            s.solver.max_rotation = n[3];
+                            s.solver.contact_hertz = n[4];
+                            s.solver.damping_ratio = n[5];
+                            s.solver.joint_hertz = n[6];
+                            s.solver.max_push_speed = n[7];
+                            s.solver.restitution_threshold = n[8];
+                        }
                         s.gravity = settings.0;
                         s.solver.kind = [
                             SolverKind::SoftStep,
@@ -361,6 +439,69 @@ pub fn run(bytes: &[u8]) -> Tally {
             }
             18 => {
                 world.wake_all();
+                false
+            }
+            24 => {
+                // A character made, moved or put somewhere.
+                match character.as_mut() {
+                    None => {
+                        let def = CharacterDef::capsule(input.real(1.0), input.real(0.5))
+                            .position(input.point(20.0) + vec2(0.0, 10.0))
+                            .up(input.point(1.0))
+                            .max_slope(input.real(1.0))
+                            .step(input.real(0.3), input.real(0.3))
+                            .snap_distance(input.real(0.3))
+                            .mass(input.real(100.0))
+                            .max_push_force(input.real(1e3));
+                        match Character::new(def) {
+                            Ok(made) => {
+                                character = Some(made);
+                                false
+                            }
+                            Err(_) => true,
+                        }
+                    }
+                    Some(walker) if input.byte() < 16 => {
+                        walker.set_position(input.point(20.0)).is_err()
+                    }
+                    Some(walker) => {
+                        let dt = if input.byte() < 12 {
+                            input.real(1.0)
+                        } else {
+                            1.0 / 60.0
+                        };
+                        let moved = world.move_character(walker, input.point(1.0), dt);
+                        if let Ok(moved) = &moved {
+                            assert!(
+                                moved.translation.iter().all(|x| x.is_finite())
+                                    && walker.position().iter().all(|x| x.is_finite()),
+                                "{moved:?}"
+                            );
+                        }
+                        moved.is_err()
+                    }
+                }
+            }
+            25 => {
+                // The mover's parts on their own: planes from any numbers.
+                let mut planes: Vec<CollisionPlane> = (0..input.below(5))
+                    .map(|_| {
+                        let normal = input.point(1.0);
+                        let offset = input.real(1.0);
+                        if input.flag() {
+                            CollisionPlane::rigid(normal, offset)
+                        } else {
+                            CollisionPlane::soft(normal, offset, input.real(1.0))
+                        }
+                    })
+                    .collect();
+                let target = input.point(1.0);
+                let solution = solve_planes(target, &mut planes);
+                assert!(
+                    !target.iter().all(|x| x.is_finite())
+                        || solution.delta.iter().all(|x| x.is_finite()),
+                    "{solution:?} from {planes:?}"
+                );
                 false
             }
             23 => {
@@ -403,12 +544,16 @@ pub fn run(bytes: &[u8]) -> Tally {
             }
         };
         tally.refused += usize::from(refused);
+        calls.push((call, std::mem::take(&mut input.odd)));
         // Handles the world dropped along with something else (a body's joints and colliders).
         colliders.retain(|&c| world.collider(c).is_some());
         joints.retain(|&j| world.joint(j).is_some());
         let checked = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| check(&world)));
         if let Err(broken) = checked {
-            eprintln!("after calls {:?}", &calls[calls.len().saturating_sub(8)..]);
+            eprintln!(
+                "after calls (number, odd values drawn) {:?}",
+                &calls[calls.len().saturating_sub(8)..]
+            );
             std::panic::resume_unwind(broken);
         }
     }
@@ -461,6 +606,24 @@ fn query(world: &World, input: &mut Input) {
         );
     }
     let _ = world.query_aabb(&shape.aabb(), filter);
+    let mover = Capsule::new(input.point(20.0), input.point(20.0), input.real(0.5));
+    for plane in world.collide_mover(&mover, filter) {
+        assert!(
+            plane
+                .normal
+                .iter()
+                .chain(plane.point.iter())
+                .all(|x| x.is_finite())
+                && plane.depth.is_finite(),
+            "{plane:?} for {mover:?}"
+        );
+    }
+    let translation = input.point(30.0);
+    let fraction = world.cast_mover(&mover, translation, filter);
+    assert!(
+        (0.0..=1.0).contains(&fraction),
+        "{fraction} casting {mover:?} along {translation:?}"
+    );
 }
 
 /// Reads every event list (they must be readable after any step).

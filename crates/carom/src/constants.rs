@@ -49,6 +49,24 @@ pub const TIME_STEP_RANGE: std::ops::RangeInclusive<Real> = 1.0e-6..=10.0;
 /// positions with forces and sizes can overflow.
 pub const MAX_POSITION: Real = 1.0e6;
 
+/// The fastest a body may be set moving, m/s, along either axis: across all of
+/// [`MAX_POSITION`] in a second, a thousand times a rifle bullet. A step's motion, and a
+/// velocity times the heaviest mass, stay well inside f32 below it; the solver's speed cap
+/// (`max_linear_speed`) is held to it too.
+pub const MAX_SPEED: Real = 1.0e6;
+
+/// The fastest a body may be set spinning, rad/s: a hundred thousand turns a second. A
+/// spin times the largest lever arm, and a step's turn, stay well inside f32 below it.
+pub const MAX_ANGULAR_SPEED: Real = 1.0e6;
+
+/// The strongest gravity a world may have, m/s², along either axis: a hundred thousand times
+/// Earth's. A body's gravity scale is held within [`MAX_GRAVITY_SCALE`] either way. Below them a
+/// step's change of velocity stays well inside f32 before the speed caps act on it.
+pub const MAX_ACCELERATION: Real = 1.0e6;
+
+/// The largest gravity scale a body may have, either way.
+pub const MAX_GRAVITY_SCALE: Real = 1.0e3;
+
 /// The least mass a dynamic body may have, kg: a grain of dust a micrometre across weighs
 /// about 1e-15. Below it the inverse mass, times the impulses and lever arms the solver
 /// multiplies it by, can overflow f32.
@@ -87,6 +105,12 @@ pub const MAX_TANGENT_SPEED: Real = 1.0e4;
 /// already, while above it a spring's softness terms, `(2π f h)²` at the longest step,
 /// overflow f32.
 pub const MAX_SPRING: Real = 1.0e6;
+
+/// The longest a joint's length, limit, translation or offset may be, m: farther than any two
+/// bodies can be placed apart. A joint's angles (limits, targets, offsets) are held within a
+/// turn either way. Past them a joint's error, times the rates the solver multiplies it by,
+/// nears f32's overflow.
+pub const MAX_JOINT_LENGTH: Real = 1.0e7;
 
 /// How far outside a shape's boundary a point may lie and still count as inside, in metres.
 ///
@@ -176,6 +200,11 @@ pub const SHAPE_CAST_TOLERANCE: Real = 0.25 * LINEAR_SLOP;
 
 /// The most sweeps of the plane solver over a mover's planes (Box2D's 20).
 pub(crate) const MAX_PLANE_ITERATIONS: usize = 20;
+
+/// How far from 1 a collision plane's normal's squared length may be and still count as a
+/// unit: normalising leaves it within a few parts in ten million; a plane whose normal is
+/// further off pushes nothing.
+pub(crate) const PLANE_UNIT_TOLERANCE: Real = 1.0e-3;
 
 /// The most rounds of collide, solve and cast in one character move (Box2D's sample uses 5).
 pub(crate) const MAX_CHARACTER_ITERATIONS: usize = 5;

@@ -19,11 +19,11 @@ use crate::character::planes::{CollisionPlane, PlaneSolution, solve_planes, solv
 use crate::collision::query_filter::QueryFilter;
 use crate::constants::{
     CHARACTER_GROUND_PROBE, CHARACTER_MOVE_TOLERANCE, LINEAR_SLOP, MAX_CHARACTER_ITERATIONS,
-    TIME_STEP_RANGE,
+    MAX_POSITION, MAX_SHAPE_EXTENT, TIME_STEP_RANGE,
 };
-use crate::dynamics::body::{Body, BodyHandle};
+use crate::dynamics::body::{Body, BodyHandle, check_position};
 use crate::dynamics::collider::ColliderHandle;
-use crate::error::{CaromError, check_finite_not_negative, check_finite_vec};
+use crate::error::{CaromError, check_finite_not_negative, check_finite_vec, check_within};
 use crate::geometry::capsule::Capsule;
 use crate::geometry::segment::closest_on_segment;
 use crate::math::{Real, Vec2, cross, perp_cw, rotation, vec2};
@@ -119,8 +119,9 @@ impl CharacterDef {
     }
 
     /// Checks every value: a sound capsule with a radius of more than two
-    /// [`crate::LINEAR_SLOP`]s, a finite position, a non-zero finite up, a slope in
-    /// `[0, π/2)` and finite, non-negative rest.
+    /// [`crate::LINEAR_SLOP`]s, a position within [`crate::MAX_POSITION`], an up from 1e-6
+    /// to 1e18 long, a slope in `[0, π/2)`, step and snap distances from 0 to
+    /// [`crate::MAX_SHAPE_EXTENT`] and a finite, non-negative mass and push force.
     ///
     /// # Errors
     /// The first value that is not so.
@@ -133,13 +134,15 @@ impl CharacterDef {
                 value: self.capsule.radius(),
             });
         }
-        check_finite_vec("character position", self.position)?;
+        check_position("character position", self.position)?;
         check_finite_vec("character up", self.up)?;
-        if self.up.norm() <= Real::EPSILON {
+        // Normalised: too short, its direction is rounding; too long, its square overflows.
+        let length = self.up.norm();
+        if !(1.0e-6..=1.0e18).contains(&length) {
             return Err(CaromError::OutOfRange {
                 name: "character up's length",
-                expected: "positive",
-                value: self.up.norm(),
+                expected: "from 1e-6 to 1e18",
+                value: length,
             });
         }
         if !(0.0..crate::math::consts::FRAC_PI_2).contains(&self.max_slope) {
@@ -149,9 +152,26 @@ impl CharacterDef {
                 value: self.max_slope,
             });
         }
-        check_finite_not_negative("character step height", self.step_height)?;
-        check_finite_not_negative("character step width", self.step_width)?;
-        check_finite_not_negative("character snap distance", self.snap_distance)?;
+        // Distances the character casts its capsule over: a shape's size at most.
+        let (distances, expected) = (0.0..=MAX_SHAPE_EXTENT, "from 0 to 1e5 m");
+        check_within(
+            "character step height",
+            self.step_height,
+            distances.clone(),
+            expected,
+        )?;
+        check_within(
+            "character step width",
+            self.step_width,
+            distances.clone(),
+            expected,
+        )?;
+        check_within(
+            "character snap distance",
+            self.snap_distance,
+            distances,
+            expected,
+        )?;
         check_finite_not_negative("character mass", self.mass)?;
         check_finite_not_negative("character push force", self.max_push_force)?;
         Ok(())
@@ -246,9 +266,10 @@ impl Character {
     /// Puts it at `position`, off whatever it stood on.
     ///
     /// # Errors
-    /// [`CaromError::NonFinite`] for a position that is not finite.
+    /// [`CaromError::NonFinite`] for a position that is not finite, and
+    /// [`CaromError::OutOfRange`] for one beyond [`crate::MAX_POSITION`].
     pub fn set_position(&mut self, position: Vec2) -> Result<(), CaromError> {
-        self.position = check_finite_vec("character position", position)?;
+        self.position = check_position("character position", position)?;
         self.ground = None;
         self.touching.clear();
         Ok(())
@@ -265,10 +286,11 @@ impl Character {
     /// Puts it back as `state` left it: where it was, on what it stood on.
     ///
     /// # Errors
-    /// [`CaromError::NonFinite`] for a position or ground that is not finite; the character
+    /// [`CaromError::NonFinite`] for a position or ground that is not finite, and
+    /// [`CaromError::OutOfRange`] for a position beyond [`crate::MAX_POSITION`]; the character
     /// is then left as it was.
     pub fn restore(&mut self, state: CharacterState) -> Result<(), CaromError> {
-        check_finite_vec("character position", state.position)?;
+        check_position("character position", state.position)?;
         if let Some(ground) = &state.ground {
             check_finite_vec("character ground normal", ground.normal)?;
             check_finite_vec("character ground point", ground.point)?;
@@ -366,7 +388,8 @@ impl World {
     ///
     /// # Errors
     /// [`CaromError::NonFinite`] for a translation that is not finite, and
-    /// [`CaromError::OutOfRange`] for a `dt` outside [`crate::TIME_STEP_RANGE`].
+    /// [`CaromError::OutOfRange`] for one beyond [`crate::MAX_POSITION`] on either axis or
+    /// a `dt` outside [`crate::TIME_STEP_RANGE`].
     pub fn move_character(
         &mut self,
         character: &mut Character,
@@ -374,6 +397,15 @@ impl World {
         dt: Real,
     ) -> Result<CharacterMove, CaromError> {
         check_finite_vec("character translation", translation)?;
+        for value in [translation.x, translation.y] {
+            let bound = MAX_POSITION;
+            check_within(
+                "character translation",
+                value,
+                -bound..=bound,
+                "within 1e6 m either way",
+            )?;
+        }
         if !TIME_STEP_RANGE.contains(&dt) {
             return Err(CaromError::OutOfRange {
                 name: "character time step",

@@ -14,7 +14,9 @@
 //! plane, from the exact separation, so that it is pushed out; Box2D drops such planes.
 
 use crate::collision::query_filter::QueryFilter;
-use crate::constants::{LINEAR_SLOP, MAX_TIME_OF_IMPACT_ITERATIONS, SHAPE_CAST_TOLERANCE};
+use crate::constants::{
+    LINEAR_SLOP, MAX_POSITION, MAX_TIME_OF_IMPACT_ITERATIONS, SHAPE_CAST_TOLERANCE,
+};
 use crate::dynamics::body::BodyHandle;
 use crate::dynamics::collider::ColliderHandle;
 use crate::geometry::capsule::Capsule;
@@ -62,8 +64,9 @@ impl MoverPlane {
 
 impl World {
     /// Every collider the capsule `mover` (in world coordinates) overlaps or touches and
-    /// that `filter` sees, with its plane, in handle order. A mover that is not finite
-    /// touches nothing.
+    /// that `filter` sees, with its plane, in handle order. A mover that is not a sound
+    /// capsule (see [`Capsule::validate`], about its middle) or whose middle lies beyond
+    /// [`crate::MAX_POSITION`] touches nothing.
     pub fn collide_mover(&self, mover: &Capsule, filter: QueryFilter) -> Vec<MoverPlane> {
         let mut planes = Vec::new();
         self.collide_mover_into(mover, filter, &mut planes);
@@ -112,7 +115,7 @@ impl World {
     /// rests. A collider it already touches lets it move along its surface and one more slop
     /// into it (so that touching is not stuck); one whose core it has entered is left to
     /// [`World::collide_mover`]'s planes to push it out of. A mover or translation that is
-    /// not finite does not move: 0.
+    /// not finite does not move: 0, as does a mover [`World::collide_mover`] passes over.
     pub fn cast_mover(&self, mover: &Capsule, translation: Vec2, filter: QueryFilter) -> Real {
         let Some(shape) = placed(mover) else {
             return 0.0;
@@ -144,8 +147,19 @@ impl World {
 
 /// The capsule as a placed shape, if it is finite and sound.
 fn placed(mover: &Capsule) -> Option<WorldShape> {
-    let shape = WorldShape::at(&Shape::Capsule(*mover), Vec2::zeros(), 0.0);
-    (shape.is_finite() && mover.radius() > 0.0).then_some(shape)
+    // A capsule in world coordinates: about its middle, a shape a collider could have (no
+    // larger, its centres apart), and its middle where a body may be placed.
+    let middle = 0.5 * (mover.center1() + mover.center2());
+    let local = Capsule::new(
+        mover.center1() - middle,
+        mover.center2() - middle,
+        mover.radius(),
+    );
+    let near = middle.x.abs() <= MAX_POSITION && middle.y.abs() <= MAX_POSITION;
+    if !near || local.validate().is_err() {
+        return None;
+    }
+    Some(WorldShape::at(&Shape::Capsule(*mover), Vec2::zeros(), 0.0))
 }
 
 /// True when `other` is a chain's link that the mover's core is not wholly in front of.

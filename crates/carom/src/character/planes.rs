@@ -6,7 +6,7 @@
 //! each plane's push accumulated and kept between 0 (a plane pushes, never pulls) and its
 //! limit (a soft obstacle, another character say, pushes only so far in one solve).
 
-use crate::constants::{LINEAR_SLOP, MAX_PLANE_ITERATIONS};
+use crate::constants::{LINEAR_SLOP, MAX_PLANE_ITERATIONS, MAX_POSITION, PLANE_UNIT_TOLERANCE};
 use crate::math::{Real, Vec2};
 
 /// A plane a mover must not cross, in the mover's displacement: a displacement `delta`
@@ -67,8 +67,9 @@ pub struct PlaneSolution {
 /// The displacement nearest `target` that satisfies every plane, each plane's `push` set to
 /// how far it pushed. A mover rests [`crate::LINEAR_SLOP`] into what it touches, as contacts
 /// do, so that touching surfaces stay in its planes from one move to the next. A plane that
-/// cannot push (a zero or non-finite normal or offset, a push limit below zero or NaN) is
-/// passed over, its `push` left at 0.
+/// cannot push (a normal that is not a unit, an offset that is not finite or lies beyond
+/// [`crate::MAX_POSITION`], a push limit below zero or NaN) is passed over, its `push` left
+/// at 0.
 pub fn solve_planes(target: Vec2, planes: &mut [CollisionPlane]) -> PlaneSolution {
     solve_planes_along(target, planes, |plane| plane.normal)
 }
@@ -95,9 +96,16 @@ pub(crate) fn solve_planes_along(
             // positive (at least the cosine of the steepest slope a character climbs).
             let rate = plane.normal.dot(&direction);
             let separation = plane.normal.dot(&delta) - plane.offset + LINEAR_SLOP;
-            // A plane that cannot push (no direction, numbers that are not finite, a limit
-            // below zero or not a number) pushes nothing, rather than panic or spread NaN.
-            if !(rate > 0.0 && separation.is_finite() && plane.push_limit >= 0.0) {
+            // A plane that cannot push (no direction, a normal that is not a unit, an offset
+            // beyond where anything can be, numbers that are not finite, a limit below zero
+            // or not a number) pushes nothing, rather than panic or spread NaN.
+            let unit = (plane.normal.norm_squared() - 1.0).abs() <= PLANE_UNIT_TOLERANCE;
+            if !(rate > 0.0
+                && unit
+                && plane.offset.abs() <= MAX_POSITION
+                && separation.is_finite()
+                && plane.push_limit >= 0.0)
+            {
                 continue;
             }
             let accumulated = plane.push;

@@ -1,7 +1,8 @@
 //! What each kind of joint holds, and the settings the kinds share: springs, motors, limits.
 
-use crate::constants::MAX_SPRING;
+use crate::constants::{MAX_ANGULAR_SPEED, MAX_JOINT_LENGTH, MAX_POSITION, MAX_SPEED, MAX_SPRING};
 use crate::error::{CaromError, check_finite_not_negative, check_finite_vec, check_within};
+use crate::math::consts::TAU;
 use crate::math::{Real, Vec2, vec2};
 
 /// A soft spring: its natural frequency and damping ratio. Frequency 0 is no spring at all
@@ -333,8 +334,9 @@ impl JointKind {
         match self {
             JointKind::Distance(j) => {
                 positive("distance joint length", j.length)?;
+                length("distance joint length", j.length)?;
                 check_spring(j.spring.as_ref())?;
-                check_motor(j.motor.as_ref())?;
+                check_motor(j.motor.as_ref(), speed)?;
                 if let Some(range) = j.spring_force
                     && (range.lower.is_nan() || range.upper.is_nan() || range.lower > range.upper)
                 {
@@ -344,24 +346,24 @@ impl JointKind {
                         value: range.lower,
                     });
                 }
-                check_limits(j.limits.as_ref(), "distance joint limits")?;
+                check_limits(j.limits.as_ref(), "distance joint limits", length)?;
                 if let Some(limits) = j.limits {
                     not_negative("distance joint lower limit", limits.lower)?;
                 }
                 Ok(())
             }
             JointKind::Revolute(j) => {
-                check_limits(j.limits.as_ref(), "revolute joint limits")?;
-                check_motor(j.motor.as_ref())?;
+                check_limits(j.limits.as_ref(), "revolute joint limits", angle)?;
+                check_motor(j.motor.as_ref(), spin)?;
                 check_spring(j.spring.as_ref())?;
-                finite("revolute joint target angle", j.target_angle)
+                angle("revolute joint target angle", j.target_angle).map(drop)
             }
             JointKind::Prismatic(j) => {
                 check_axis(j.axis)?;
-                check_limits(j.limits.as_ref(), "prismatic joint limits")?;
-                check_motor(j.motor.as_ref())?;
+                check_limits(j.limits.as_ref(), "prismatic joint limits", length)?;
+                check_motor(j.motor.as_ref(), speed)?;
                 check_spring(j.spring.as_ref())?;
-                finite("prismatic joint target translation", j.target_translation)
+                length("prismatic joint target translation", j.target_translation).map(drop)
             }
             JointKind::Weld(j) => {
                 check_spring(j.linear.as_ref())?;
@@ -370,14 +372,18 @@ impl JointKind {
             JointKind::Wheel(j) => {
                 check_axis(j.axis)?;
                 check_spring(j.spring.as_ref())?;
-                check_limits(j.limits.as_ref(), "wheel joint limits")?;
-                check_motor(j.motor.as_ref())
+                check_limits(j.limits.as_ref(), "wheel joint limits", length)?;
+                check_motor(j.motor.as_ref(), spin)
             }
             JointKind::Motor(j) => {
                 check_finite_vec("motor joint linear velocity", j.linear_velocity)?;
-                finite("motor joint angular velocity", j.angular_velocity)?;
+                speed("motor joint linear velocity", j.linear_velocity.x)?;
+                speed("motor joint linear velocity", j.linear_velocity.y)?;
+                spin("motor joint angular velocity", j.angular_velocity)?;
                 check_finite_vec("motor joint linear offset", j.linear_offset)?;
-                finite("motor joint angular offset", j.angular_offset)?;
+                length("motor joint linear offset", j.linear_offset.x)?;
+                length("motor joint linear offset", j.linear_offset.y)?;
+                angle("motor joint angular offset", j.angular_offset)?;
                 check_spring(Some(&j.linear_spring))?;
                 check_spring(Some(&j.angular_spring))?;
                 for (name, value) in [
@@ -392,18 +398,29 @@ impl JointKind {
             }
             JointKind::Mover(j) => {
                 check_finite_vec("mover joint velocity", j.velocity)?;
+                speed("mover joint velocity", j.velocity.x)?;
+                speed("mover joint velocity", j.velocity.y)?;
                 not_negative("mover joint max force", j.max_force.x)?;
                 not_negative("mover joint max force", j.max_force.y)
             }
             JointKind::Pogo(j) => {
                 check_direction("pogo joint normal", j.normal)?;
                 check_finite_not_negative("pogo joint rest length", j.rest_length)?;
+                length("pogo joint rest length", j.rest_length)?;
                 check_spring(Some(&j.spring))?;
                 not_negative("pogo joint max compression", j.max_compression)?;
                 not_negative("pogo joint max tension", j.max_tension)
             }
             JointKind::Mouse(j) => {
-                crate::error::check_finite_vec("mouse joint target", j.target)?;
+                check_finite_vec("mouse joint target", j.target)?;
+                for value in [j.target.x, j.target.y] {
+                    check_within(
+                        "mouse joint target",
+                        value,
+                        -MAX_POSITION..=MAX_POSITION,
+                        "within 1000 km (1e6 m) of the origin",
+                    )?;
+                }
                 check_spring(Some(&j.spring))?;
                 not_negative("mouse joint max force", j.max_force)
             }
@@ -425,18 +442,6 @@ impl JointKind {
             JointKind::Pogo(j) => Some(&mut j.normal),
             _ => None,
         }
-    }
-}
-
-fn finite(name: &'static str, value: Real) -> Result<(), CaromError> {
-    if value.is_finite() {
-        Ok(())
-    } else {
-        Err(CaromError::OutOfRange {
-            name,
-            expected: "finite",
-            value,
-        })
     }
 }
 
@@ -480,20 +485,29 @@ fn check_spring(spring: Option<&Spring>) -> Result<(), CaromError> {
     Ok(())
 }
 
-fn check_motor(motor: Option<&Motor>) -> Result<(), CaromError> {
+/// A motor's speed is checked by `speed`, the linear or the angular bound as the joint moves.
+fn check_motor(
+    motor: Option<&Motor>,
+    speed: fn(&'static str, Real) -> Result<Real, CaromError>,
+) -> Result<(), CaromError> {
     let Some(motor) = motor else {
         return Ok(());
     };
-    finite("motor speed", motor.speed)?;
+    speed("motor speed", motor.speed)?;
     not_negative("motor max force", motor.max_force)
 }
 
-fn check_limits(limits: Option<&Limits>, name: &'static str) -> Result<(), CaromError> {
+/// Limits, each within `bound` (a length's or an angle's), the lower not above the upper.
+fn check_limits(
+    limits: Option<&Limits>,
+    name: &'static str,
+    bound: fn(&'static str, Real) -> Result<Real, CaromError>,
+) -> Result<(), CaromError> {
     let Some(limits) = limits else {
         return Ok(());
     };
-    finite(name, limits.lower)?;
-    finite(name, limits.upper)?;
+    bound(name, limits.lower)?;
+    bound(name, limits.upper)?;
     if limits.lower > limits.upper {
         return Err(CaromError::OutOfRange {
             name,
@@ -504,17 +518,45 @@ fn check_limits(limits: Option<&Limits>, name: &'static str) -> Result<(), Carom
     Ok(())
 }
 
+/// A length, translation or offset: within [`MAX_JOINT_LENGTH`] either way.
+fn length(name: &'static str, value: Real) -> Result<Real, CaromError> {
+    let bound = MAX_JOINT_LENGTH;
+    check_within(name, value, -bound..=bound, "within 1e7 m either way")
+}
+
+/// An angle: within a turn either way.
+fn angle(name: &'static str, value: Real) -> Result<Real, CaromError> {
+    check_within(name, value, -TAU..=TAU, "within a turn (2π) either way")
+}
+
+/// A linear speed: within [`MAX_SPEED`] either way.
+fn speed(name: &'static str, value: Real) -> Result<Real, CaromError> {
+    check_within(
+        name,
+        value,
+        -MAX_SPEED..=MAX_SPEED,
+        "within 1e6 m/s either way",
+    )
+}
+
+/// An angular speed: within [`MAX_ANGULAR_SPEED`] either way.
+fn spin(name: &'static str, value: Real) -> Result<Real, CaromError> {
+    let bound = MAX_ANGULAR_SPEED;
+    check_within(name, value, -bound..=bound, "within 1e6 rad/s either way")
+}
+
 fn check_axis(axis: Vec2) -> Result<(), CaromError> {
     check_direction("joint axis", axis)
 }
 
 fn check_direction(name: &'static str, axis: Vec2) -> Result<(), CaromError> {
     check_finite_vec(name, axis)?;
+    // Normalised later: too short, its direction is rounding; too long, its square overflows.
     let length = axis.norm();
-    if length < 1.0e-6 {
+    if !(1.0e-6..=1.0e18).contains(&length) {
         return Err(CaromError::OutOfRange {
             name,
-            expected: "not zero",
+            expected: "from 1e-6 to 1e18 long",
             value: length,
         });
     }

@@ -1,7 +1,7 @@
 //! The solvers' settings: which solver runs ([`SolverKind`]), its parameters
 //! ([`SolverParams`], Box2D v3's defaults) and a soft constraint's coefficients ([`Softness`]).
 
-use crate::constants::MAX_SPRING;
+use crate::constants::{MAX_SPEED, MAX_SPRING};
 use crate::error::CaromError;
 use crate::math::Real;
 
@@ -141,10 +141,10 @@ pub struct SolverParams {
     pub baumgarte: Real,
     /// Approach speeds below this do not bounce, m/s. Default 1.
     pub restitution_threshold: Real,
-    /// Guard rail: no body moves faster, m/s. Default 400.
+    /// Guard rail: no body moves faster, m/s, at most [`crate::MAX_SPEED`]. Default 400.
     pub max_linear_speed: Real,
-    /// Guard rail: no body turns more per step, however many substeps, rad. Default π / 4
-    /// (Box2D's).
+    /// Guard rail: no body turns more per step, however many substeps, rad, at most π.
+    /// Default π / 4 (Box2D's).
     pub max_rotation: Real,
 }
 
@@ -205,17 +205,6 @@ impl SolverParams {
 
     /// Checks every value, naming the first bad one.
     pub fn validate(&self) -> Result<(), CaromError> {
-        let positive = |name: &'static str, value: Real| {
-            if value.is_finite() && value > 0.0 {
-                Ok(())
-            } else {
-                Err(CaromError::OutOfRange {
-                    name,
-                    expected: "finite and positive",
-                    value,
-                })
-            }
-        };
         let counts = [
             ("iterations", self.effective_iterations()),
             ("substeps", self.substeps),
@@ -246,7 +235,19 @@ impl SolverParams {
         spring("static stiffness", self.static_stiffness)?;
         spring("joint hertz", self.joint_hertz)?;
         spring("joint damping ratio", self.joint_damping_ratio)?;
-        positive("max push speed", self.max_push_speed)?;
+        // Speeds: positive, and no faster than a body may be set moving.
+        let speed = |name: &'static str, value: Real| {
+            if value > 0.0 && value <= MAX_SPEED {
+                Ok(())
+            } else {
+                Err(CaromError::OutOfRange {
+                    name,
+                    expected: "positive, at most 1e6 m/s",
+                    value,
+                })
+            }
+        };
+        speed("max push speed", self.max_push_speed)?;
         if !(self.baumgarte.is_finite() && (0.0..=1.0).contains(&self.baumgarte)) {
             return Err(CaromError::OutOfRange {
                 name: "baumgarte",
@@ -254,9 +255,18 @@ impl SolverParams {
                 value: self.baumgarte,
             });
         }
-        positive("restitution threshold", self.restitution_threshold)?;
-        positive("max linear speed", self.max_linear_speed)?;
-        positive("max rotation", self.max_rotation)
+        speed("restitution threshold", self.restitution_threshold)?;
+        speed("max linear speed", self.max_linear_speed)?;
+        // More than half a turn a step could not be told from a turn the other way.
+        if self.max_rotation > 0.0 && self.max_rotation <= crate::math::consts::PI {
+            Ok(())
+        } else {
+            Err(CaromError::OutOfRange {
+                name: "max rotation",
+                expected: "positive, at most π (half a turn a step)",
+                value: self.max_rotation,
+            })
+        }
     }
 }
 

@@ -27,11 +27,12 @@ use crate::collision::contact::{Contact, ContactEvent};
 use crate::collision::hits::HitEvent;
 use crate::collision::pre_solve::{PreSolveContact, PreSolveHook};
 use crate::collision::sensor::{SensorEvent, SensorOverlap};
+use crate::constants::MAX_SHAPE_EXTENT;
 use crate::dynamics::body::{Body, BodyHandle, BodyKind};
 use crate::dynamics::body_def::BodyDef;
 use crate::dynamics::collider::{Collider, ColliderDef, ColliderHandle, place_colliders};
 use crate::dynamics::surface::{MaterialMixer, Mixers};
-use crate::error::{CaromError, check_finite_not_negative, check_finite_vec};
+use crate::error::{CaromError, check_finite_not_negative, check_finite_vec, check_within};
 use crate::math::{Real, Vec2};
 use crate::solver::{self, SolverParams};
 use crate::stats::StepStats;
@@ -87,9 +88,25 @@ pub struct World {
 
 fn check_settings(settings: &WorldSettings) -> Result<(), CaromError> {
     check_finite_vec("gravity", settings.gravity)?;
+    for value in [settings.gravity.x, settings.gravity.y] {
+        let bound = crate::constants::MAX_ACCELERATION;
+        check_within(
+            "gravity",
+            value,
+            -bound..=bound,
+            "within 1e6 m/s² either way",
+        )?;
+    }
     settings.solver.validate()?;
-    check_finite_not_negative("speculative distance", settings.speculative_distance)?;
-    check_finite_not_negative("AABB margin", settings.aabb_margin)?;
+    // Every collider's box grows by these, so they are held to a shape's size.
+    let (margins, expected) = (0.0..=MAX_SHAPE_EXTENT, "from 0 to 1e5 m");
+    check_within(
+        "speculative distance",
+        settings.speculative_distance,
+        margins.clone(),
+        expected,
+    )?;
+    check_within("AABB margin", settings.aabb_margin, margins, expected)?;
     check_finite_not_negative("hit event threshold", settings.hit_event_threshold)?;
     Ok(())
 }

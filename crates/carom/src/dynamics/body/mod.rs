@@ -11,7 +11,7 @@ use crate::constants::{
 };
 use crate::dynamics::body_def::BodyDef;
 use crate::dynamics::collider::{Collider, ColliderHandle, check_non_negative};
-use crate::error::{CaromError, check_finite, check_finite_vec};
+use crate::error::{CaromError, check_finite};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::MassProperties;
 use crate::handle_map::generational_handle;
@@ -224,9 +224,9 @@ impl Body {
         }
         check_position("body position", def.position)?;
         check_finite("body angle", def.angle)?;
-        check_finite_vec("body linear velocity", def.linear_velocity)?;
-        check_finite("body angular velocity", def.angular_velocity)?;
-        check_finite("gravity scale", def.gravity_scale)?;
+        check_velocity("body linear velocity", def.linear_velocity)?;
+        check_spin("body angular velocity", def.angular_velocity)?;
+        check_gravity_scale(def.gravity_scale)?;
         let moves = def.kind != BodyKind::Static;
         Ok(Body {
             handle,
@@ -683,7 +683,7 @@ impl Body {
 
     /// Sets the linear velocity (ignored by static bodies, which never move).
     pub(crate) fn set_linear_velocity(&mut self, velocity: Vec2) -> Result<(), CaromError> {
-        check_finite_vec("linear velocity", velocity)?;
+        check_velocity("linear velocity", velocity)?;
         if self.kind != BodyKind::Static {
             self.linear_velocity = velocity;
             self.wake_up();
@@ -693,7 +693,7 @@ impl Body {
 
     /// Sets the angular velocity (ignored by static bodies).
     pub(crate) fn set_angular_velocity(&mut self, velocity: Real) -> Result<(), CaromError> {
-        check_finite("angular velocity", velocity)?;
+        check_spin("angular velocity", velocity)?;
         let locked = self.fixed_rotation && self.kind == BodyKind::Dynamic;
         if self.kind != BodyKind::Static && !locked {
             self.angular_velocity = velocity;
@@ -728,15 +728,17 @@ impl Body {
         let rotation = rotation(angle);
         let turn = angle_of(&(rotation * self.rotation.inverse()));
         let center = position + rotation * self.local_center;
-        self.linear_velocity = (center - self.center) / dt;
-        self.angular_velocity = turn / dt;
+        let velocity = check_velocity("kinematic move's velocity", (center - self.center) / dt)?;
+        let spin = check_spin("kinematic move's angular velocity", turn / dt)?;
+        self.linear_velocity = velocity;
+        self.angular_velocity = spin;
         self.wake_up();
         Ok(())
     }
 
     /// Sets the gravity scale (finite; negative makes the body rise).
     pub(crate) fn set_gravity_scale(&mut self, scale: Real) -> Result<(), CaromError> {
-        self.gravity_scale = check_finite("gravity scale", scale)?;
+        self.gravity_scale = check_gravity_scale(scale)?;
         Ok(())
     }
 
@@ -865,8 +867,9 @@ mod checks;
 #[cfg(feature = "serde")]
 mod saved;
 
-use checks::check_position;
+pub(crate) use checks::check_position;
 pub(crate) use checks::check_sweep_threshold;
+use checks::{check_gravity_scale, check_spin, check_velocity};
 
 #[cfg(test)]
 mod tests {

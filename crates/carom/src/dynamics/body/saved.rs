@@ -30,38 +30,38 @@ impl Body {
             return Err(CaromError::bad_save("a body has no collider"));
         }
         let vectors = [
-            self.position,
-            self.center,
-            self.local_center,
-            self.linear_velocity,
-            self.force,
-            self.aabb.min,
-            self.aabb.max,
+            ("position", self.position),
+            ("centre of mass", self.center),
+            ("local centre of mass", self.local_center),
+            ("linear velocity", self.linear_velocity),
+            ("force", self.force),
+            ("box", self.aabb.min),
+            ("box", self.aabb.max),
         ];
         let scalars = [
-            self.angular_velocity,
-            self.torque,
-            self.reach,
-            self.min_extent,
-            self.gravity_scale,
-            self.linear_damping,
-            self.angular_damping,
-            self.last_motion,
-            self.sleep_time,
-            self.sleep_threshold,
-            self.mass.mass,
-            self.mass.inv_mass,
-            self.mass.inertia,
-            self.mass.inv_inertia,
+            ("angular velocity", self.angular_velocity),
+            ("torque", self.torque),
+            ("reach", self.reach),
+            ("least extent", self.min_extent),
+            ("gravity scale", self.gravity_scale),
+            ("linear damping", self.linear_damping),
+            ("angular damping", self.angular_damping),
+            ("last motion", self.last_motion),
+            ("sleep time", self.sleep_time),
+            ("sleep threshold", self.sleep_threshold),
+            ("mass", self.mass.mass),
+            ("inverse mass", self.mass.inv_mass),
+            ("inertia", self.mass.inertia),
+            ("inverse inertia", self.mass.inv_inertia),
         ];
-        let finite = vectors
+        let not_finite = vectors
             .iter()
-            .flat_map(|v| v.iter())
-            .chain(&scalars)
-            .all(|x| x.is_finite());
-        if !finite {
+            .flat_map(|(name, v)| v.iter().map(move |x| (name, x)))
+            .chain(scalars.iter().map(|(name, x)| (name, x)))
+            .find(|(_, x)| !x.is_finite());
+        if let Some((name, value)) = not_finite {
             return Err(CaromError::bad_save(format!(
-                "body {} has a value that is not finite",
+                "body {}'s {name} is not finite ({value})",
                 handle.index()
             )));
         }

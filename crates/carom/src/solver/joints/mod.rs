@@ -562,8 +562,17 @@ fn relative_angle(a: &BodyState, b: &BodyState, rot_a: Rot, rot_b: Rot) -> Real 
 /// `K⁻¹ rhs` for the symmetric `K = [[k11, k12], [k12, k22]]`; zero if `K` is singular.
 #[inline]
 fn solve22([k11, k12, k22]: [Real; 3], rhs: Vec2) -> Vec2 {
-    let det = k11 * k22 - k12 * k12;
-    if det == 0.0 {
+    let mut det = k11 * k22 - k12 * k12;
+    let (mut k11, mut k12, mut k22, mut rhs) = (k11, k12, k22, rhs);
+    if det != 0.0 && !det.is_normal() {
+        // Entries past 1e19 (a light body's inverse inertia at a long lever arm) overflow the
+        // determinant, and entries under 1e-19 (two bodies heavier than a mountain) leave it
+        // too small to invert: solve the same system scaled to entries of at most one.
+        let scale = 1.0 / k11.abs().max(k22.abs()).max(k12.abs());
+        (k11, k12, k22, rhs) = (k11 * scale, k12 * scale, k22 * scale, rhs * scale);
+        det = k11 * k22 - k12 * k12;
+    }
+    if !det.is_normal() {
         return Vec2::zeros();
     }
     let inv = 1.0 / det;
