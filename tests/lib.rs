@@ -58,7 +58,7 @@ pub fn world_shape(world: &World, body: BodyHandle) -> &WorldShape {
 /// rows going down, each joined to its neighbours by hinges at the midpoints and hung from
 /// the two top corners (static): `2 n (n - 1)` joints.
 pub fn hanging_grid(world: &mut World, origin: carom::Vec2, n: usize) {
-    let at = |i: usize, k: usize| origin + carom::vec2(k as f32, -(i as f32));
+    let at = |i: usize, k: usize| origin + carom::vec2(k as carom::Real, -(i as carom::Real));
     let mut grid = Vec::with_capacity(n * n);
     for i in 0..n {
         for k in 0..n {

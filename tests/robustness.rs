@@ -442,9 +442,31 @@ fn shapes_beyond_100_km_or_with_hairline_edges_are_refused_or_repaired() {
 /// sensible, extreme and non-number values: nothing panics, every call succeeds or is refused,
 /// bodies stay finite and the world holds together after each call (`carom_tests::world_ops`,
 /// the world-operations fuzz target's own checks). `CAROM_OPS_CASES` sets how many sequences
-/// and `CAROM_OPS_CASE` runs one alone, by the number a failure names.
+/// and `CAROM_OPS_CASE` runs one alone, by the number a failure names; `CAROM_OPS_FILE` runs
+/// the bytes of a file instead (an input the fuzz target found), or of every file in a folder
+/// (a corpus), and prints how long the slowest took.
 #[test]
 fn random_sequences_of_public_calls_keep_the_world_whole() {
+    if let Ok(path) = std::env::var("CAROM_OPS_FILE") {
+        let path = std::path::PathBuf::from(path);
+        let files: Vec<_> = match std::fs::read_dir(&path) {
+            Ok(entries) => entries
+                .map(|e| e.expect("a readable entry").path())
+                .collect(),
+            Err(_) => vec![path],
+        };
+        let mut slowest = (std::time::Duration::ZERO, None);
+        for file in &files {
+            let bytes = std::fs::read(file).expect("CAROM_OPS_FILE names readable files");
+            let started = std::time::Instant::now();
+            let tally = carom_tests::world_ops::run(&bytes);
+            if started.elapsed() > slowest.0 {
+                slowest = (started.elapsed(), Some((file, tally)));
+            }
+        }
+        println!("{} sequences, the slowest {slowest:?}", files.len());
+        return;
+    }
     let cases: usize = std::env::var("CAROM_OPS_CASES")
         .ok()
         .and_then(|n| n.parse().ok())
