@@ -88,7 +88,7 @@ fn points_on_a_circle_in_any_order_of_winding() {
     for n in [3, 4, 7, 16, 64] {
         let ring: Vec<Vec2> = (0..n)
             .map(|i| {
-                let a = std::f32::consts::TAU * i as Real / n as Real;
+                let a = std::f64::consts::TAU as Real * i as Real / n as Real;
                 vec2(5.0 + 2.0 * a.cos(), -3.0 + 2.0 * a.sin())
             })
             .collect();

@@ -240,13 +240,15 @@ impl BodyDef {
         self
     }
 
-    /// Sets the linear velocity.
+    /// Sets the linear velocity, within [`crate::MAX_SPEED`] on each axis (checked when the
+    /// body is added).
     pub fn linear_velocity(mut self, velocity: Vec2) -> Self {
         self.linear_velocity = velocity;
         self
     }
 
-    /// Sets the angular velocity.
+    /// Sets the angular velocity, within [`crate::MAX_ANGULAR_SPEED`] (checked when the body
+    /// is added).
     pub fn angular_velocity(mut self, velocity: Real) -> Self {
         self.angular_velocity = velocity;
         self
@@ -308,7 +310,8 @@ impl BodyDef {
         self.for_every_collider(|every| every.pre_solve = Some(on))
     }
 
-    /// Sets the gravity scale.
+    /// Sets the gravity scale, within [`crate::MAX_GRAVITY_SCALE`] either way (checked when
+    /// the body is added).
     pub fn gravity_scale(mut self, scale: Real) -> Self {
         self.gravity_scale = scale;
         self

@@ -81,12 +81,14 @@ impl<'w> BodyMut<'w> {
         result
     }
 
-    /// Sets the linear velocity (ignored by static bodies, which never move).
+    /// Sets the linear velocity, within [`crate::MAX_SPEED`] on each axis (ignored by static
+    /// bodies, which never move).
     pub fn set_linear_velocity(&mut self, velocity: Vec2) -> Result<(), CaromError> {
         self.edit(|body| body.set_linear_velocity(velocity))
     }
 
-    /// Sets the angular velocity (ignored by static bodies).
+    /// Sets the angular velocity, within [`crate::MAX_ANGULAR_SPEED`] (ignored by static
+    /// bodies).
     pub fn set_angular_velocity(&mut self, velocity: Real) -> Result<(), CaromError> {
         self.edit(|body| body.set_angular_velocity(velocity))
     }
@@ -94,7 +96,9 @@ impl<'w> BodyMut<'w> {
     /// Gives a kinematic body the velocities that carry it to `position` and `angle` in
     /// exactly `dt` seconds, so a scripted path (a rotating drum, a lift) is followed
     /// without drift while contacts still see a velocity to push with. Other kinds are
-    /// left alone: dynamic bodies move by forces and static ones never move.
+    /// left alone: dynamic bodies move by forces and static ones never move. A move whose
+    /// velocities would exceed [`crate::MAX_SPEED`] or [`crate::MAX_ANGULAR_SPEED`] is
+    /// refused.
     pub fn move_kinematic_to(
         &mut self,
         position: Vec2,
@@ -104,7 +108,8 @@ impl<'w> BodyMut<'w> {
         self.edit(|body| body.move_kinematic_to(position, angle, dt))
     }
 
-    /// Sets the gravity scale (finite; negative makes the body rise).
+    /// Sets the gravity scale, within [`crate::MAX_GRAVITY_SCALE`] either way (negative
+    /// makes the body rise).
     pub fn set_gravity_scale(&mut self, scale: Real) -> Result<(), CaromError> {
         self.edit(|body| body.set_gravity_scale(scale))
     }

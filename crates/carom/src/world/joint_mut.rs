@@ -44,7 +44,8 @@ impl<'w> JointMut<'w> {
     /// Moves a mouse joint's target, the point its body is pulled towards.
     ///
     /// # Errors
-    /// A joint that is not a mouse joint, or a target that is not finite.
+    /// A joint that is not a mouse joint, or a target that is not finite or lies beyond
+    /// [`crate::MAX_POSITION`].
     pub fn set_mouse_target(&mut self, target: Vec2) -> Result<(), CaromError> {
         let JointKind::Mouse(mut mouse) = *self.kind() else {
             return Err(CaromError::JointKindChange {

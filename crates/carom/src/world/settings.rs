@@ -12,14 +12,17 @@ use crate::world::effects::Effects;
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[cfg_attr(feature = "serde", serde(default, deny_unknown_fields))]
 pub struct WorldSettings {
-    /// Gravitational acceleration, m/s². Default `(0, -10)`, as in Box2D.
+    /// Gravitational acceleration, m/s², within [`crate::MAX_ACCELERATION`] on each axis.
+    /// Default `(0, -10)`, as in Box2D.
     pub gravity: Vec2,
     /// The law that applies each body's drag coefficients. Default exponential damping.
     pub drag: DragModel,
     /// Shapes closer than this get contact points with positive separation, so the solver
-    /// can stop fast bodies before they overlap. Default [`SPECULATIVE_DISTANCE`].
+    /// can stop fast bodies before they overlap; 0 to [`crate::MAX_SHAPE_EXTENT`]. Default
+    /// [`SPECULATIVE_DISTANCE`].
     pub speculative_distance: Real,
-    /// Broadphase enlargement of moving bodies' boxes. Default 5 cm; static
+    /// Broadphase enlargement of moving bodies' boxes, 0 to [`crate::MAX_SHAPE_EXTENT`].
+    /// Default 5 cm; static
     /// bodies use the speculative distance, which keeps every speculative pair visible.
     pub aabb_margin: Real,
     /// Which contact solver runs, and how hard it works. Default: soft step, 4 substeps.
