@@ -1,6 +1,7 @@
 //! What each kind of joint holds, and the settings the kinds share: springs, motors, limits.
 
-use crate::constants::{MAX_ANGULAR_SPEED, MAX_JOINT_LENGTH, MAX_POSITION, MAX_SPEED, MAX_SPRING};
+use crate::constants::{MAX_ANGULAR_SPEED, MAX_JOINT_LENGTH, MAX_SPEED, MAX_SPRING};
+use crate::dynamics::body::check_position;
 use crate::error::{CaromError, check_finite_not_negative, check_finite_vec, check_within};
 use crate::math::consts::TAU;
 use crate::math::{Real, Vec2, vec2};
@@ -412,15 +413,7 @@ impl JointKind {
                 not_negative("pogo joint max tension", j.max_tension)
             }
             JointKind::Mouse(j) => {
-                check_finite_vec("mouse joint target", j.target)?;
-                for value in [j.target.x, j.target.y] {
-                    check_within(
-                        "mouse joint target",
-                        value,
-                        -MAX_POSITION..=MAX_POSITION,
-                        "within 1000 km (1e6 m) of the origin",
-                    )?;
-                }
+                check_position("mouse joint target", j.target)?;
                 check_spring(Some(&j.spring))?;
                 not_negative("mouse joint max force", j.max_force)
             }
