@@ -809,3 +809,30 @@ fn a_walker_falls_asleep_standing_and_goes_with_its_body() {
     assert_eq!(world.joint_count(), 0);
     world.step(DT).unwrap();
 }
+
+#[test]
+fn it_stays_on_the_floor_when_a_pile_falls_on_it() {
+    // Dynamic bodies do not see the character: the pile falls through it onto the floor and
+    // presses down on it from above, against the floor's push up. The floor holds.
+    let mut world = world_with_floor();
+    for x in [-1.5, 1.5] {
+        world
+            .add_body(BodyDef::static_body(Shape::rect(0.1, 10.0)).position(vec2(x, 10.0)))
+            .unwrap();
+    }
+    for i in 0..40 {
+        let at = vec2(-0.5 + 0.5 * (i % 3) as Real, 2.0 + 0.6 * i as Real);
+        world
+            .add_body(BodyDef::dynamic(Shape::rect(0.25, 0.25)).position(at))
+            .unwrap();
+    }
+    let mut player = Player::standing_at(0.0, 0.0);
+    let mut lowest: Real = 0.0;
+    for _ in 0..1200 {
+        player.step(&mut world, 0.0);
+        lowest = lowest.min(player.feet());
+    }
+    // It rests the slop into the floor, as contacts do; a little more while the pile lands.
+    assert!(lowest > -0.01, "its feet sank to {lowest} m");
+    assert!(player.character.is_grounded());
+}

@@ -21,7 +21,7 @@ use crate::constants::{
     CHARACTER_GROUND_PROBE, CHARACTER_MOVE_TOLERANCE, LINEAR_SLOP, MAX_CHARACTER_ITERATIONS,
     MAX_POSITION, MAX_SHAPE_EXTENT, TIME_STEP_RANGE,
 };
-use crate::dynamics::body::{Body, BodyHandle, check_position};
+use crate::dynamics::body::{Body, BodyHandle, BodyKind, check_position};
 use crate::dynamics::collider::ColliderHandle;
 use crate::error::{CaromError, check_finite_not_negative, check_finite_vec, check_within};
 use crate::geometry::capsule::Capsule;
@@ -517,7 +517,9 @@ impl World {
             self.collide_mover_into(&capsule, character.def.filter, &mut found);
             planes.clear();
             planes.extend(found.iter().map(|plane| self.predicted_plane(plane, dt)));
-            let solution = self.solve_character_planes(character, target - position, &mut planes);
+            let mut solution =
+                self.solve_character_planes(character, target - position, &mut planes);
+            self.keep_out_of_unyielding(character, &found, &mut planes, &mut solution);
             for plane in planes.iter().filter(|plane| plane.push > 0.0) {
                 if !character.is_ground(plane.normal) && plane.normal.dot(&character.up) >= 0.0 {
                     slide.blocked = true;
@@ -547,6 +549,51 @@ impl World {
             predicted.offset += plane.normal.dot(&carried(body, anchor, dt));
         }
         predicted
+    }
+
+    /// Where bodies that give way (dynamic ones) and bodies that do not (static and
+    /// kinematic ones) push the character opposite ways (a pile fallen on it, pressing it
+    /// into the floor), the planes cannot all hold, and a solve that ends on a dynamic body's
+    /// plane leaves the character in the floor; the cast along it then does not stop it,
+    /// since the character already rests in the floor by the slop. So when `solution` goes
+    /// into an unyielding body's plane, it is solved again, from where it ended, with those
+    /// planes alone: they hold, and the dynamic bodies are left overlapping the character,
+    /// which pushes them away. `found[i]` is the plane `planes[i]` was made from.
+    fn keep_out_of_unyielding(
+        &self,
+        character: &Character,
+        found: &[MoverPlane],
+        planes: &mut [CollisionPlane],
+        solution: &mut PlaneSolution,
+    ) {
+        let unyielding = |plane: &MoverPlane| {
+            self.body(plane.body)
+                .is_some_and(|body| body.kind() != BodyKind::Dynamic)
+        };
+        let into = |plane: &CollisionPlane| {
+            plane.normal.dot(&solution.delta) - plane.offset + LINEAR_SLOP < -LINEAR_SLOP
+        };
+        let violated = found
+            .iter()
+            .zip(planes.iter())
+            .any(|(from, plane)| unyielding(from) && into(plane));
+        if !violated {
+            return;
+        }
+        let mut held: Vec<CollisionPlane> = found
+            .iter()
+            .zip(planes.iter())
+            .filter(|(from, _)| unyielding(from))
+            .map(|(_, plane)| *plane)
+            .collect();
+        let again = self.solve_character_planes(character, solution.delta, &mut held);
+        let mut pushes = held.iter();
+        for (from, plane) in found.iter().zip(planes.iter_mut()) {
+            if unyielding(from) {
+                plane.push = pushes.next().map_or(0.0, |held| held.push);
+            }
+        }
+        *solution = again;
     }
 
     /// [`solve_planes`] with the character's push directions, or with plain normals when
