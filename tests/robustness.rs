@@ -852,6 +852,14 @@ fn values_past_the_solvers_products_are_refused_and_extreme_masses_stay_finite()
         assert!(body.set_linear_velocity(vec2(1.7e38, 0.0)).is_err());
         assert!(body.set_angular_velocity(1e38).is_err());
         assert!(body.set_gravity_scale(-1e38).is_err());
+        // An impulse may not take a body past those speeds either: in the double build one
+        // of 1e228 N·s was taken, and the step's contact impulses went infinite.
+        let before = (body.linear_velocity(), body.angular_velocity());
+        assert!(body.apply_impulse_at_center(vec2(1e30, 0.0)).is_err());
+        assert!(body.apply_impulse(vec2(0.0, 1e6), vec2(1e20, 0.0)).is_err());
+        assert!(body.apply_angular_impulse(-1e30).is_err());
+        assert_eq!((body.linear_velocity(), body.angular_velocity()), before);
+        assert!(body.apply_angular_impulse(-1.0).is_ok());
     }
     // Gravity near f32's largest overflowed a heavy body's contact impulses; margins as large
     // made every box span the world.
