@@ -67,6 +67,9 @@ const SAVE_EVERY: u64 = 600;
 const REOPENED_STEPS: u32 = 10;
 /// Joints the soak keeps at most between bodies (they break, and go with their bodies).
 const MOST_LINKS: usize = 40;
+/// Bodies drawn to find one near a body to tie it to, and how near it must be, m.
+const LINK_CANDIDATES: usize = 32;
+const LINK_REACH: Real = 3.0;
 /// The character's walking speed, m/s, and the speed a jump leaves the ground at.
 const WALK_SPEED: Real = 4.0;
 const JUMP_SPEED: Real = 7.0;
@@ -393,10 +396,19 @@ fn plan(soak: &Soak, rng: &mut Rng) -> Option<Act> {
         }
         11 => Act::ToggleBullet { body: pick(rng) },
         12 | 13 if world.joint_count() < MOST_LINKS => {
-            let (a, b) = (pick(rng), pick(rng));
+            // Two bodies near each other, as a user ties them: the nearest of a few to one.
+            let a = pick(rng);
+            let place = |h| world.body(h).map_or(vec2(0.0, 0.0), |b| b.position());
+            let b = (0..LINK_CANDIDATES)
+                .map(|_| pick(rng))
+                .filter(|&b| b != a)
+                .min_by(|&p, &q| {
+                    let (dp, dq) = ((place(p) - place(a)).norm(), (place(q) - place(a)).norm());
+                    dp.total_cmp(&dq)
+                })?;
             let weld = rng.below(2) == 0;
             let break_force = rng.range(10.0, 2000.0);
-            (a != b).then_some(Act::Link {
+            ((place(b) - place(a)).norm() < LINK_REACH).then_some(Act::Link {
                 a,
                 b,
                 weld,
