@@ -237,6 +237,8 @@ pub struct Character {
     touching: Vec<MoverPlane>,
     planes: Vec<CollisionPlane>,
     scratch: Vec<MoverPlane>,
+    /// The planes of bodies that do not give way, when they must be solved alone.
+    unyielding: Vec<CollisionPlane>,
 }
 
 impl Character {
@@ -255,6 +257,7 @@ impl Character {
             touching: Vec::new(),
             planes: Vec::new(),
             scratch: Vec::new(),
+            unyielding: Vec::new(),
         })
     }
 
@@ -512,6 +515,7 @@ impl World {
         };
         let mut found = std::mem::take(&mut character.scratch);
         let mut planes = std::mem::take(&mut character.planes);
+        let mut held = std::mem::take(&mut character.unyielding);
         for _ in 0..MAX_CHARACTER_ITERATIONS {
             let capsule = character.capsule_at(position);
             self.collide_mover_into(&capsule, character.def.filter, &mut found);
@@ -519,7 +523,7 @@ impl World {
             planes.extend(found.iter().map(|plane| self.predicted_plane(plane, dt)));
             let mut solution =
                 self.solve_character_planes(character, target - position, &mut planes);
-            self.keep_out_of_unyielding(character, &found, &mut planes, &mut solution);
+            self.keep_out_of_unyielding(character, &found, &mut planes, &mut held, &mut solution);
             for plane in planes.iter().filter(|plane| plane.push > 0.0) {
                 if !character.is_ground(plane.normal) && plane.normal.dot(&character.up) >= 0.0 {
                     slide.blocked = true;
@@ -535,6 +539,7 @@ impl World {
         }
         character.scratch = found;
         character.planes = planes;
+        character.unyielding = held;
         slide.position = position;
         slide
     }
@@ -558,12 +563,14 @@ impl World {
     /// since the character already rests in the floor by the slop. So when `solution` goes
     /// into an unyielding body's plane, it is solved again, from where it ended, with those
     /// planes alone: they hold, and the dynamic bodies are left overlapping the character,
-    /// which pushes them away. `found[i]` is the plane `planes[i]` was made from.
+    /// which pushes them away. `found[i]` is the plane `planes[i]` was made from; `held` is
+    /// room for the unyielding planes.
     fn keep_out_of_unyielding(
         &self,
         character: &Character,
         found: &[MoverPlane],
         planes: &mut [CollisionPlane],
+        held: &mut Vec<CollisionPlane>,
         solution: &mut PlaneSolution,
     ) {
         let unyielding = |plane: &MoverPlane| {
@@ -580,13 +587,15 @@ impl World {
         if !violated {
             return;
         }
-        let mut held: Vec<CollisionPlane> = found
-            .iter()
-            .zip(planes.iter())
-            .filter(|(from, _)| unyielding(from))
-            .map(|(_, plane)| *plane)
-            .collect();
-        let again = self.solve_character_planes(character, solution.delta, &mut held);
+        held.clear();
+        held.extend(
+            found
+                .iter()
+                .zip(planes.iter())
+                .filter(|(from, _)| unyielding(from))
+                .map(|(_, plane)| *plane),
+        );
+        let again = self.solve_character_planes(character, solution.delta, held);
         let mut pushes = held.iter();
         for (from, plane) in found.iter().zip(planes.iter_mut()) {
             if unyielding(from) {
