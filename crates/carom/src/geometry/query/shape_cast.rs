@@ -90,3 +90,96 @@ fn meeting(shape: &WorldShape, other: &WorldShape, fraction: Real) -> ShapeCastH
         normal,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::shape::Shape;
+    use crate::math::vec2;
+
+    fn cast(
+        shape: &WorldShape,
+        translation: Vec2,
+        other: &WorldShape,
+        max: Real,
+    ) -> Option<ShapeCastHit> {
+        cast_shape(shape, translation, other, max, &mut shape.clone())
+    }
+
+    #[test]
+    fn a_box_cast_face_on_meets_the_middle_of_the_face_and_stops_there() {
+        let mover = WorldShape::at(&Shape::rect(0.5, 0.5), vec2(0.0, 0.0), 0.0);
+        let wall = WorldShape::at(&Shape::rect(0.5, 0.5), vec2(3.0, 0.0), 0.0);
+        let hit = cast(&mover, vec2(4.0, 0.0), &wall, 1.0).expect("it meets the wall");
+        assert!(
+            (hit.fraction - 0.5).abs() <= SHAPE_CAST_TOLERANCE,
+            "{hit:?}"
+        );
+        assert!((hit.normal - vec2(-1.0, 0.0)).norm() < 1e-5, "{hit:?}");
+        // The middle of the two faces' shared patch, on the wall's face.
+        assert!(
+            (hit.point - vec2(2.5, 0.0)).norm() < 2.0 * SHAPE_CAST_TOLERANCE,
+            "{hit:?}"
+        );
+        // Moved by the fraction, it touches and does not overlap.
+        let mut moved = mover.clone();
+        moved.translate(vec2(4.0, 0.0) * hit.fraction);
+        let gap = separation(&moved, &wall).separation;
+        assert!((-1e-5..SHAPE_CAST_TOLERANCE).contains(&gap), "{gap}");
+    }
+
+    #[test]
+    fn a_cast_ends_at_its_max_fraction() {
+        let mover = WorldShape::at(&Shape::circle(0.5), vec2(0.0, 0.0), 0.0);
+        let wall = WorldShape::at(&Shape::rect(0.5, 2.0), vec2(3.0, 0.0), 0.0);
+        // Contact at half the translation.
+        assert!(cast(&mover, vec2(4.0, 0.0), &wall, 0.4).is_none());
+        assert!(cast(&mover, vec2(4.0, 0.0), &wall, 0.6).is_some());
+        // Moving away, or along the wall, it never meets it.
+        assert!(cast(&mover, vec2(-4.0, 0.0), &wall, 1.0).is_none());
+    }
+
+    #[test]
+    fn a_tilted_box_meets_the_floor_at_its_lowest_corner() {
+        let angle = 0.3;
+        let mover = WorldShape::at(&Shape::rect(0.5, 0.5), vec2(0.0, 2.0), angle);
+        let floor = WorldShape::at(&Shape::rect(5.0, 0.5), vec2(0.0, -0.5), 0.0);
+        let hit = cast(&mover, vec2(0.0, -4.0), &floor, 1.0).expect("it lands");
+        // The corner lowest when turned by `angle`: (-0.5, -0.5) turned.
+        let (s, c) = (angle.sin(), angle.cos());
+        let corner = vec2(-0.5 * c + 0.5 * s, -0.5 * s - 0.5 * c) + vec2(0.0, 2.0);
+        assert!((hit.point.x - corner.x).abs() < 1e-3, "{hit:?} {corner:?}");
+        assert!(hit.point.y.abs() < 2.0 * SHAPE_CAST_TOLERANCE, "{hit:?}");
+        assert!((hit.normal - vec2(0.0, 1.0)).norm() < 1e-5, "{hit:?}");
+        assert!((hit.fraction * 4.0 - corner.y).abs() < 2.0 * SHAPE_CAST_TOLERANCE);
+    }
+
+    #[test]
+    fn the_meeting_of_shapes_apart_faces_from_the_other_to_the_cast_one() {
+        // Apart by more than the manifold's margin: the cores' nearest points say where.
+        let a = WorldShape::at(&Shape::circle(0.5), vec2(1.0, 1.0), 0.0);
+        let b = WorldShape::at(&Shape::circle(0.5), vec2(3.0, 1.0), 0.0);
+        let hit = meeting(&a, &b, 0.25);
+        assert_eq!(hit.fraction, 0.25);
+        assert!((hit.normal - vec2(-1.0, 0.0)).norm() < 1e-6, "{hit:?}");
+        assert!((hit.point - vec2(2.5, 1.0)).norm() < 1e-6, "{hit:?}");
+    }
+
+    #[test]
+    fn the_meeting_of_overlapping_cores_pushes_back_the_way_they_overlap_least() {
+        // Crossed capsules, their cores meeting at a point: the cast one, nearer the other's
+        // left end, goes back left.
+        let a = WorldShape::at(
+            &Shape::capsule(vec2(0.0, -1.0), vec2(0.0, 1.0), 0.1),
+            vec2(0.0, 0.0),
+            0.0,
+        );
+        let b = WorldShape::at(
+            &Shape::capsule(vec2(-1.0, 0.0), vec2(1.0, 0.0), 0.1),
+            vec2(0.9, 0.0),
+            0.0,
+        );
+        let hit = meeting(&a, &b, 0.0);
+        assert!(hit.normal.x < -0.9, "{hit:?}");
+    }
+}
