@@ -166,9 +166,8 @@ mod tests {
     }
 
     #[test]
-    fn the_meeting_of_overlapping_cores_pushes_back_the_way_they_overlap_least() {
-        // Crossed capsules, their cores meeting at a point: the cast one, nearer the other's
-        // left end, goes back left.
+    fn the_meeting_of_overlapping_shapes_pushes_back_the_way_they_overlap_least() {
+        // Crossed capsules: the cast one, nearer the other's left end, goes back left.
         let a = WorldShape::at(
             &Shape::capsule(vec2(0.0, -1.0), vec2(0.0, 1.0), 0.1),
             vec2(0.0, 0.0),
