@@ -73,6 +73,8 @@ const LINK_REACH: Real = 3.0;
 /// The character's walking speed, m/s, and the speed a jump leaves the ground at.
 const WALK_SPEED: Real = 4.0;
 const JUMP_SPEED: Real = 7.0;
+/// How fast the character's fall gathers speed, m/s².
+const FALL_ACCELERATION: Real = 9.81;
 /// The fastest the character falls, m/s.
 const FASTEST_FALL: Real = 30.0;
 /// Below this height the character has left the room, and is put back at the top.
@@ -399,16 +401,15 @@ fn plan(soak: &Soak, rng: &mut Rng) -> Option<Act> {
             // Two bodies near each other, as a user ties them: the nearest of a few to one.
             let a = pick(rng);
             let place = |h| world.body(h).map_or(vec2(0.0, 0.0), |b| b.position());
-            let b = (0..LINK_CANDIDATES)
+            let from = place(a);
+            let (b, distance) = (0..LINK_CANDIDATES)
                 .map(|_| pick(rng))
                 .filter(|&b| b != a)
-                .min_by(|&p, &q| {
-                    let (dp, dq) = ((place(p) - place(a)).norm(), (place(q) - place(a)).norm());
-                    dp.total_cmp(&dq)
-                })?;
+                .map(|b| (b, (place(b) - from).norm()))
+                .min_by(|p, q| p.1.total_cmp(&q.1))?;
             let weld = rng.below(2) == 0;
             let break_force = rng.range(10.0, 2000.0);
-            ((place(b) - place(a)).norm() < LINK_REACH).then_some(Act::Link {
+            (distance < LINK_REACH).then_some(Act::Link {
                 a,
                 b,
                 weld,
@@ -639,7 +640,7 @@ impl Soak {
         if walker.character.is_grounded() {
             walker.rise = if walker.jump { JUMP_SPEED } else { 0.0 };
         } else {
-            walker.rise = (walker.rise - 9.81 * dt).max(-FASTEST_FALL);
+            walker.rise = (walker.rise - FALL_ACCELERATION * dt).max(-FASTEST_FALL);
         }
         let translation = vec2(Real::from(walker.direction) * WALK_SPEED, walker.rise) * dt;
         self.built

@@ -176,16 +176,28 @@ impl<'w> BodyMut<'w> {
 
     /// Applies an impulse at a world point: it changes the velocities at once,
     /// `Δv = J / m`, `Δω = (r × J) / I`.
+    ///
+    /// # Errors
+    /// [`CaromError::OutOfRange`] for an impulse that would take the body past
+    /// [`crate::MAX_SPEED`] or [`crate::MAX_ANGULAR_SPEED`]; the body is then left as it was.
     pub fn apply_impulse(&mut self, impulse: Vec2, world_point: Vec2) -> Result<(), CaromError> {
         self.edit(|body| body.apply_impulse(impulse, world_point))
     }
 
     /// Applies an impulse through the centre of mass.
+    ///
+    /// # Errors
+    /// [`CaromError::OutOfRange`] for an impulse that would take the body past
+    /// [`crate::MAX_SPEED`] or [`crate::MAX_ANGULAR_SPEED`]; the body is then left as it was.
     pub fn apply_impulse_at_center(&mut self, impulse: Vec2) -> Result<(), CaromError> {
         self.edit(|body| body.apply_impulse_at_center(impulse))
     }
 
     /// Applies an angular impulse, N·m·s.
+    ///
+    /// # Errors
+    /// [`CaromError::OutOfRange`] for an impulse that would take the body past
+    /// [`crate::MAX_SPEED`] or [`crate::MAX_ANGULAR_SPEED`]; the body is then left as it was.
     pub fn apply_angular_impulse(&mut self, impulse: Real) -> Result<(), CaromError> {
         self.edit(|body| body.apply_angular_impulse(impulse))
     }

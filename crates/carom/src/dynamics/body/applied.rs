@@ -1,10 +1,10 @@
 //! What a user applies to a body from outside: forces and torques, which last until the end
 //! of the next step, and impulses, which change its velocities at once. A value that would
 //! leave the body's figures not finite, or an impulse that would leave it faster than
-//! [`MAX_SPEED`] or [`MAX_ANGULAR_SPEED`], is refused, and the body is left as it was.
+//! [`crate::MAX_SPEED`] or [`crate::MAX_ANGULAR_SPEED`], is refused, and the body is left as it was.
 
 use super::Body;
-use crate::constants::{MAX_ANGULAR_SPEED, MAX_SPEED};
+use super::checks::{check_spin, check_velocity};
 use crate::error::{CaromError, check_finite, check_finite_vec};
 use crate::math::{Real, Vec2, cross, is_finite_vec};
 
@@ -91,9 +91,9 @@ impl Body {
         w: Real,
     ) -> Result<(), CaromError> {
         check_sums(name, value, v, w)?;
-        let within = |x: Real, bound: Real| (-bound..=bound).contains(&x);
-        if !(within(v.x, MAX_SPEED) && within(v.y, MAX_SPEED) && within(w, MAX_ANGULAR_SPEED)) {
-            // The speeds a body may be given at all: past them a step's motion overflows.
+        // The speeds a body may be given at all: past them a step's motion overflows. The
+        // error names the impulse, not the velocity it would give.
+        if check_velocity(name, v).is_err() || check_spin(name, w).is_err() {
             return Err(CaromError::OutOfRange {
                 name,
                 expected: "small enough that the body's velocities stay within 1e6 m/s and \
