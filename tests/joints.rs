@@ -196,6 +196,33 @@ fn hinge_limits_hold() {
     }
 }
 
+/// A hinge's angle is measured in (-π, π], so a limit beyond half a turn could never act: it is
+/// refused, naming the limits, while limits of exactly ±π (a free hinge) are accepted.
+#[test]
+fn hinge_limits_lie_within_half_a_turn() {
+    let mut world = world(SolverKind::SoftStep);
+    let pivot = anchor(&mut world, Vec2::zeros());
+    let bar = ball(&mut world, vec2(1.0, 0.0), 0.2, 1.0);
+    for (lower, upper) in [(-4.0, 0.5), (-0.5, 4.0), (-2.0 * PI, 2.0 * PI)] {
+        let def = JointDef::revolute(pivot, bar, Vec2::zeros()).limits(lower, upper);
+        let error = world.add_joint(def).unwrap_err();
+        assert!(
+            matches!(
+                error,
+                CaromError::OutOfRange {
+                    name: "revolute joint limits",
+                    ..
+                }
+            ),
+            "limits ({lower}, {upper}): {error}"
+        );
+    }
+    assert_eq!(world.joint_count(), 0);
+    world
+        .add_joint(JointDef::revolute(pivot, bar, Vec2::zeros()).limits(-PI, PI))
+        .unwrap();
+}
+
 /// A hinge motor spins a free wheel up to its speed; a weak one cannot lift a bar.
 #[test]
 fn hinge_motors_reach_their_speed_within_their_torque() {

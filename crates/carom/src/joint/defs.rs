@@ -140,7 +140,7 @@ impl RevoluteJointDef {
         Self::of(a, b, anchor, anchor, RevoluteJoint::default())
     }
 
-    /// The angles of B relative to A it stays between, rad.
+    /// The angles of B relative to A it stays between, rad, each within half a turn (±π).
     pub fn limits(mut self, lower: Real, upper: Real) -> Self {
         self.joint.limits = Some(Limits { lower, upper });
         self

@@ -3,7 +3,7 @@
 use crate::constants::{MAX_ANGULAR_SPEED, MAX_JOINT_LENGTH, MAX_SPEED, MAX_SPRING};
 use crate::dynamics::body::check_position;
 use crate::error::{CaromError, check_finite_not_negative, check_finite_vec, check_within};
-use crate::math::consts::TAU;
+use crate::math::consts::{PI, TAU};
 use crate::math::{Real, Vec2, vec2};
 
 /// A soft spring: its natural frequency and damping ratio. Frequency 0 is no spring at all
@@ -354,7 +354,7 @@ impl JointKind {
                 Ok(())
             }
             JointKind::Revolute(j) => {
-                check_limits(j.limits.as_ref(), "revolute joint limits", angle)?;
+                check_limits(j.limits.as_ref(), "revolute joint limits", half_turn)?;
                 check_motor(j.motor.as_ref(), spin)?;
                 check_spring(j.spring.as_ref())?;
                 angle("revolute joint target angle", j.target_angle).map(drop)
@@ -520,6 +520,19 @@ fn length(name: &'static str, value: Real) -> Result<Real, CaromError> {
 /// An angle: within a turn either way.
 fn angle(name: &'static str, value: Real) -> Result<Real, CaromError> {
     check_within(name, value, -TAU..=TAU, "within a turn (2π) either way")
+}
+
+/// A revolute joint's limit: within half a turn either way, since the angle it bounds is
+/// measured in (-π, π] and a limit beyond would never act. The slack takes `f32`'s π in the
+/// `f64` build.
+fn half_turn(name: &'static str, value: Real) -> Result<Real, CaromError> {
+    let bound = PI + 1.0e-6;
+    check_within(
+        name,
+        value,
+        -bound..=bound,
+        "within half a turn (π) either way",
+    )
 }
 
 /// A linear speed: within [`MAX_SPEED`] either way.
