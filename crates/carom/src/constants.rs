@@ -44,8 +44,8 @@ pub const MAX_SHAPE_EXTENT: Real = 1.0e5;
 /// refused; a game's step is thousands of times inside both.
 pub const TIME_STEP_RANGE: std::ops::RangeInclusive<Real> = 1.0e-6..=10.0;
 
-/// The farthest from the origin a body may be placed, m, along either axis: ten times the
-/// largest shape. Beyond it an f32 position resolves to no better than 6 cm, and products of
+/// The farthest from the origin a body may be placed, m, along either axis, and where a force,
+/// an impulse or an explosion may act: ten times the largest shape. Beyond it an f32 position resolves to no better than 6 cm, and products of
 /// positions with forces and sizes can overflow.
 pub const MAX_POSITION: Real = 1.0e6;
 

@@ -192,6 +192,7 @@ fn a_centre_inside_a_body_pushes_it_without_a_nan_and_bad_explosions_are_errors(
     let before = velocity(&world, crate_box);
     for bad in [
         ExplosionDef::new(vec2(Real::NAN, 0.0), 1.0, 1.0),
+        ExplosionDef::new(vec2(2e6, 0.0), 3e6, 1.0),
         ExplosionDef::new(vec2(0.0, 0.0), -1.0, 1.0),
         ExplosionDef::new(vec2(0.0, 0.0), 1.0, Real::INFINITY),
         ExplosionDef::new(vec2(0.0, 0.0), 1.0, 1.0).falloff(Real::NAN),

@@ -8,8 +8,8 @@
 //! fading linearly to nothing over the falloff beyond it. A body of several colliders takes
 //! each one's push; sensors take none (Box2D pushes a sensor's shape too).
 
-use crate::dynamics::body::{BodyHandle, BodyKind};
-use crate::error::{CaromError, check_finite, check_finite_not_negative, check_finite_vec};
+use crate::dynamics::body::{BodyHandle, BodyKind, check_position};
+use crate::error::{CaromError, check_finite, check_finite_not_negative};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::polygon_centroid;
 use crate::geometry::query::distance::{closest_points, with_core};
@@ -20,7 +20,7 @@ use crate::world::World;
 /// An explosion for [`World::explode`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ExplosionDef {
-    /// The centre, in world coordinates.
+    /// The centre, in world coordinates, within [`crate::MAX_POSITION`] of the origin.
     pub center: Vec2,
     /// Within this distance of the centre a collider takes the full impulse, m.
     pub radius: Real,
@@ -58,7 +58,7 @@ impl ExplosionDef {
     }
 
     fn validate(&self) -> Result<(), CaromError> {
-        check_finite_vec("explosion centre", self.center)?;
+        check_position("explosion centre", self.center)?;
         check_finite("explosion impulse per length", self.impulse_per_length)?;
         check_finite_not_negative("explosion radius", self.radius)?;
         check_finite_not_negative("explosion falloff", self.falloff)?;

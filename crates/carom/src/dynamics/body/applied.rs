@@ -1,10 +1,11 @@
 //! What a user applies to a body from outside: forces and torques, which last until the end
-//! of the next step, and impulses, which change its velocities at once. A value that would
+//! of the next step, and impulses, which change its velocities at once. A point they act at
+//! lies within [`crate::MAX_POSITION`], as a body's position does. A value that would
 //! leave the body's figures not finite, or an impulse that would leave it faster than
 //! [`crate::MAX_SPEED`] or [`crate::MAX_ANGULAR_SPEED`], is refused, and the body is left as it was.
 
 use super::Body;
-use super::checks::{check_spin, check_velocity};
+use super::checks::{check_position, check_spin, check_velocity};
 use crate::error::{CaromError, check_finite, check_finite_vec};
 use crate::math::{Real, Vec2, cross, is_finite_vec};
 
@@ -13,7 +14,7 @@ impl Body {
     /// centre of mass. Forces last until the end of the next step. Only dynamic bodies feel it.
     pub(crate) fn apply_force(&mut self, force: Vec2, world_point: Vec2) -> Result<(), CaromError> {
         check_finite_vec("force", force)?;
-        check_finite_vec("force application point", world_point)?;
+        check_position("force application point", world_point)?;
         let torque = cross(world_point - self.center, force);
         self.accumulate(
             "force",
@@ -43,7 +44,7 @@ impl Body {
         world_point: Vec2,
     ) -> Result<(), CaromError> {
         check_finite_vec("impulse", impulse)?;
-        check_finite_vec("impulse application point", world_point)?;
+        check_position("impulse application point", world_point)?;
         let v = self.linear_velocity + impulse * self.mass.inv_mass;
         let w = self.angular_velocity
             + self.mass.inv_inertia * cross(world_point - self.center, impulse);
