@@ -328,12 +328,16 @@ fn values_beyond_what_f32_can_carry_are_refused() {
     let mut world = World::new();
     let square = || Shape::rect(0.5, 0.5);
     let body = world.add_body(BodyDef::dynamic(square())).unwrap();
-    for dt in [0.0, 1e-9, Real::MIN_POSITIVE, 10.5, 3e38, Real::NAN] {
+    for dt in [0.0, 1e-9, Real::MIN_POSITIVE, 10.5, 3e38] {
         assert!(
             matches!(world.step(dt), Err(CaromError::OutOfRange { .. })),
             "a step of {dt} s"
         );
     }
+    assert!(matches!(
+        world.step(Real::NAN),
+        Err(CaromError::NonFinite { .. })
+    ));
     assert_eq!(world.step_count(), 0);
     for dt in [1e-6, 1.0 / 60.0, 10.0] {
         world.step(dt).unwrap();
@@ -1077,4 +1081,89 @@ fn the_ranges_page_gives_every_bound_as_the_code_has_it() {
     for ((name, written), (_, value)) in table.iter().zip(&bounds) {
         assert_eq!(written, value, "{name}");
     }
+}
+
+/// A value that is not a number (or is infinite where a finite one is needed) is refused as
+/// not finite, naming it, wherever it is handed in; a finite one outside its range is refused
+/// as out of range. Which of the two a caller gets does not depend on which check holds it.
+#[test]
+fn not_a_number_is_refused_as_not_finite_everywhere() {
+    use carom::{Character, CharacterDef, JointDef, WorldSettings};
+    let nan = Real::NAN;
+    let settings = |edit: &dyn Fn(&mut WorldSettings)| {
+        let mut settings = WorldSettings::default();
+        edit(&mut settings);
+        World::with_settings(settings).map(drop)
+    };
+    let mut world = World::new();
+    let a = world
+        .add_body(BodyDef::dynamic(Shape::circle(0.5)))
+        .unwrap();
+    let b = world
+        .add_body(BodyDef::dynamic(Shape::circle(0.5)).position(vec2(2.0, 0.0)))
+        .unwrap();
+    let kinematic = world
+        .add_body(BodyDef::kinematic(Shape::circle(0.5)).position(vec2(5.0, 0.0)))
+        .unwrap();
+    let mut calls: Vec<(&str, Result<(), CaromError>)> = vec![
+        ("step", world.clone().step(nan)),
+        ("step (infinite)", world.clone().step(Real::INFINITY)),
+        ("contact hertz", settings(&|s| s.solver.contact_hertz = nan)),
+        ("baumgarte", settings(&|s| s.solver.baumgarte = nan)),
+        ("max rotation", settings(&|s| s.solver.max_rotation = nan)),
+        (
+            "max linear speed",
+            settings(&|s| s.solver.max_linear_speed = nan),
+        ),
+    ];
+    let mut add = |name, def: BodyDef| (name, world.add_body(def).map(drop));
+    calls.push(add("radius", BodyDef::dynamic(Shape::circle(nan))));
+    calls.push(add("half height", BodyDef::dynamic(Shape::rect(1.0, nan))));
+    calls.push(add(
+        "friction",
+        BodyDef::dynamic(Shape::circle(0.5)).friction(nan),
+    ));
+    calls.push(add(
+        "sweep threshold",
+        BodyDef::dynamic(Shape::circle(0.5)).sweep_threshold(nan),
+    ));
+    let mut join = |name, def: JointDef| (name, world.add_joint(def).map(drop));
+    let revolute = || JointDef::revolute(a, b, vec2(1.0, 0.0));
+    calls.push(join("joint limits", revolute().limits(nan, 0.5)));
+    calls.push(join("joint break force", revolute().break_force(nan)));
+    calls.push(join("motor max torque", revolute().motor_drive(1.0, nan)));
+    calls.push(join("spring hertz", revolute().spring(nan, 0.5)));
+    calls.push((
+        "kinematic move's time step",
+        world
+            .body_mut(kinematic)
+            .unwrap()
+            .move_kinematic_to(vec2(5.0, 1.0), 0.0, nan),
+    ));
+    calls.push((
+        "character max slope",
+        Character::new(CharacterDef::capsule(0.5, 0.3).max_slope(nan)).map(drop),
+    ));
+    let mut character =
+        Character::new(CharacterDef::capsule(0.5, 0.3).position(vec2(0.0, 5.0))).unwrap();
+    calls.push((
+        "character time step",
+        world
+            .move_character(&mut character, vec2(0.1, 0.0), nan)
+            .map(drop),
+    ));
+    for (name, result) in calls {
+        match result {
+            Err(CaromError::NonFinite { .. }) => {}
+            other => panic!("{name}: {other:?}, expected a NonFinite error"),
+        }
+    }
+    // A finite value out of range is the other error.
+    assert!(matches!(
+        world.step(-1.0),
+        Err(CaromError::OutOfRange {
+            name: "time step",
+            ..
+        })
+    ));
 }

@@ -230,12 +230,34 @@ pub(crate) fn check_within(
     }
 }
 
-/// Checks that a scalar is finite and not negative (a distance, a rate).
+/// Checks that a scalar is finite (else [`CaromError::NonFinite`]), positive and at most `max`
+/// (else [`CaromError::OutOfRange`], saying it must be `expected`).
+pub(crate) fn check_positive_up_to(
+    name: &'static str,
+    value: Real,
+    max: Real,
+    expected: &'static str,
+) -> Result<Real, CaromError> {
+    check_finite(name, value)?;
+    if value > 0.0 && value <= max {
+        Ok(value)
+    } else {
+        Err(CaromError::OutOfRange {
+            name,
+            expected,
+            value,
+        })
+    }
+}
+
+/// Checks that a scalar is finite (else [`CaromError::NonFinite`]) and not negative (a
+/// distance, a rate).
 pub(crate) fn check_finite_not_negative(
     name: &'static str,
     value: Real,
 ) -> Result<Real, CaromError> {
-    if value.is_finite() && value >= 0.0 {
+    check_finite(name, value)?;
+    if value >= 0.0 {
         Ok(value)
     } else {
         Err(CaromError::OutOfRange {

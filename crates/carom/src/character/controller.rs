@@ -23,7 +23,9 @@ use crate::constants::{
 };
 use crate::dynamics::body::{Body, BodyHandle, BodyKind, check_position};
 use crate::dynamics::collider::ColliderHandle;
-use crate::error::{CaromError, check_finite_not_negative, check_finite_vec, check_within};
+use crate::error::{
+    CaromError, check_finite, check_finite_not_negative, check_finite_vec, check_within,
+};
 use crate::geometry::capsule::Capsule;
 use crate::geometry::segment::closest_on_segment;
 use crate::math::{Real, Vec2, cross, perp_cw, rotation, vec2};
@@ -145,6 +147,7 @@ impl CharacterDef {
                 value: length,
             });
         }
+        check_finite("character max slope", self.max_slope)?;
         if !(0.0..crate::math::consts::FRAC_PI_2).contains(&self.max_slope) {
             return Err(CaromError::OutOfRange {
                 name: "character max slope",
@@ -409,13 +412,12 @@ impl World {
                 "within 1e6 m either way",
             )?;
         }
-        if !TIME_STEP_RANGE.contains(&dt) {
-            return Err(CaromError::OutOfRange {
-                name: "character time step",
-                expected: "from 1e-6 s to 10 s, as a world step's",
-                value: dt,
-            });
-        }
+        check_within(
+            "character time step",
+            dt,
+            TIME_STEP_RANGE,
+            "from 1e-6 s to 10 s, as a world step's",
+        )?;
         let start = character.position;
         let up = character.up;
         let was_grounded = character.ground.is_some();

@@ -1,11 +1,12 @@
 //! Checks every shape constructor shares: finite values within the size carom supports.
 
 use crate::constants::{LINEAR_SLOP, MAX_SHAPE_EXTENT, WELD_TOLERANCE};
-use crate::error::{CaromError, check_finite_vec};
+use crate::error::{CaromError, check_finite, check_finite_vec};
 use crate::math::{Real, Vec2};
 
 /// Checks that a shape's coordinate or size is no larger than [`MAX_SHAPE_EXTENT`].
 pub(crate) fn check_extent(what: &'static str, value: Real) -> Result<(), CaromError> {
+    check_finite(what, value)?;
     if value.abs() <= MAX_SHAPE_EXTENT {
         Ok(())
     } else {

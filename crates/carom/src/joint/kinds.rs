@@ -2,7 +2,9 @@
 
 use crate::constants::{MAX_ANGULAR_SPEED, MAX_JOINT_LENGTH, MAX_SPEED, MAX_SPRING};
 use crate::dynamics::body::check_position;
-use crate::error::{CaromError, check_finite_not_negative, check_finite_vec, check_within};
+use crate::error::{
+    CaromError, check_finite, check_finite_not_negative, check_finite_vec, check_within,
+};
 use crate::math::consts::{PI, TAU};
 use crate::math::{Real, Vec2, vec2};
 
@@ -440,6 +442,9 @@ impl JointKind {
 
 fn not_negative(name: &'static str, value: Real) -> Result<(), CaromError> {
     // Infinite is allowed: an unbounded force or torque.
+    if value.is_nan() {
+        return Err(CaromError::non_finite(name, value));
+    }
     if value >= 0.0 {
         Ok(())
     } else {
@@ -452,7 +457,8 @@ fn not_negative(name: &'static str, value: Real) -> Result<(), CaromError> {
 }
 
 fn positive(name: &'static str, value: Real) -> Result<(), CaromError> {
-    if value.is_finite() && value > 0.0 {
+    check_finite(name, value)?;
+    if value > 0.0 {
         Ok(())
     } else {
         Err(CaromError::OutOfRange {

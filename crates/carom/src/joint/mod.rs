@@ -375,7 +375,10 @@ impl JointDef {
             ("joint break force", self.break_force),
             ("joint break torque", self.break_torque),
         ] {
-            if value.is_nan() || value < 0.0 {
+            if value.is_nan() {
+                return Err(CaromError::non_finite(name, value));
+            }
+            if value < 0.0 {
                 return Err(CaromError::OutOfRange {
                     name,
                     expected: "not negative",
@@ -631,7 +634,10 @@ impl Joint {
             ("break force", self.break_force),
             ("break torque", self.break_torque),
         ] {
-            if value.is_nan() || value < 0.0 {
+            if value.is_nan() {
+                return Err(CaromError::non_finite(name, value));
+            }
+            if value < 0.0 {
                 return Err(CaromError::OutOfRange {
                     name,
                     expected: "zero or positive",

@@ -2,7 +2,7 @@
 //! ([`SolverParams`], Box2D v3's defaults) and a soft constraint's coefficients ([`Softness`]).
 
 use crate::constants::{MAX_SPEED, MAX_SPRING};
-use crate::error::CaromError;
+use crate::error::{CaromError, check_positive_up_to, check_within};
 use crate::math::Real;
 
 /// Which contact solver runs. Scene files and the command line name it in snake case
@@ -219,54 +219,28 @@ impl SolverParams {
             }
         }
         // Springs: positive, and no stiffer or more damped than a step can carry.
-        let spring = |name: &'static str, value: Real| {
-            if value > 0.0 && value <= MAX_SPRING {
-                Ok(())
-            } else {
-                Err(CaromError::OutOfRange {
-                    name,
-                    expected: "positive, at most 1e6",
-                    value,
-                })
-            }
-        };
+        let spring =
+            |name, value| check_positive_up_to(name, value, MAX_SPRING, "positive, at most 1e6");
         spring("contact hertz", self.contact_hertz)?;
         spring("damping ratio", self.damping_ratio)?;
         spring("static stiffness", self.static_stiffness)?;
         spring("joint hertz", self.joint_hertz)?;
         spring("joint damping ratio", self.joint_damping_ratio)?;
         // Speeds: positive, and no faster than a body may be set moving.
-        let speed = |name: &'static str, value: Real| {
-            if value > 0.0 && value <= MAX_SPEED {
-                Ok(())
-            } else {
-                Err(CaromError::OutOfRange {
-                    name,
-                    expected: "positive, at most 1e6 m/s",
-                    value,
-                })
-            }
-        };
+        let speed =
+            |name, value| check_positive_up_to(name, value, MAX_SPEED, "positive, at most 1e6 m/s");
         speed("max push speed", self.max_push_speed)?;
-        if !(self.baumgarte.is_finite() && (0.0..=1.0).contains(&self.baumgarte)) {
-            return Err(CaromError::OutOfRange {
-                name: "baumgarte",
-                expected: "between 0 and 1",
-                value: self.baumgarte,
-            });
-        }
+        check_within("baumgarte", self.baumgarte, 0.0..=1.0, "between 0 and 1")?;
         speed("restitution threshold", self.restitution_threshold)?;
         speed("max linear speed", self.max_linear_speed)?;
         // More than half a turn a step could not be told from a turn the other way.
-        if self.max_rotation > 0.0 && self.max_rotation <= crate::math::consts::PI {
-            Ok(())
-        } else {
-            Err(CaromError::OutOfRange {
-                name: "max rotation",
-                expected: "positive, at most π (half a turn a step)",
-                value: self.max_rotation,
-            })
-        }
+        check_positive_up_to(
+            "max rotation",
+            self.max_rotation,
+            crate::math::consts::PI,
+            "positive, at most π (half a turn a step)",
+        )
+        .map(drop)
     }
 }
 

@@ -12,7 +12,7 @@ use crate::constants::{
 };
 use crate::dynamics::body::{Body, BodyKind};
 use crate::dynamics::collider::{Collider, ColliderHandle, place_awake_colliders};
-use crate::error::CaromError;
+use crate::error::{CaromError, check_within};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::look_ahead::Motion;
 use crate::math::{Real, Vec2};
@@ -71,13 +71,7 @@ impl World {
     /// A time step outside 1 µs to 10 s (`TIME_STEP_RANGE`), or not a number; the world is
     /// left untouched.
     pub fn step(&mut self, dt: Real) -> Result<(), CaromError> {
-        if !TIME_STEP_RANGE.contains(&dt) {
-            return Err(CaromError::OutOfRange {
-                name: "time step",
-                expected: "from 1e-6 s to 10 s",
-                value: dt,
-            });
-        }
+        check_within("time step", dt, TIME_STEP_RANGE, "from 1e-6 s to 10 s")?;
         let started = Instant::now();
         let mut stats = StepStats::default();
         let times = &mut stats.times;

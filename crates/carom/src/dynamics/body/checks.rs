@@ -59,6 +59,9 @@ pub(super) fn check_gravity_scale(scale: Real) -> Result<Real, CaromError> {
 /// A sweep threshold: not negative, and not a number's absence (infinity, never swept, is
 /// allowed).
 pub(crate) fn check_sweep_threshold(fraction: Real) -> Result<Real, CaromError> {
+    if fraction.is_nan() {
+        return Err(CaromError::non_finite("sweep threshold", fraction));
+    }
     if fraction >= 0.0 {
         Ok(fraction)
     } else {

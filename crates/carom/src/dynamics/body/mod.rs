@@ -11,7 +11,7 @@ use crate::constants::{
 };
 use crate::dynamics::body_def::BodyDef;
 use crate::dynamics::collider::{Collider, ColliderHandle, check_non_negative};
-use crate::error::{CaromError, check_finite};
+use crate::error::{CaromError, check_finite, check_within};
 use crate::geometry::aabb::Aabb;
 use crate::geometry::mass::MassProperties;
 use crate::handle_map::generational_handle;
@@ -714,13 +714,7 @@ impl Body {
     ) -> Result<(), CaromError> {
         check_position("kinematic target", position)?;
         check_finite("kinematic target angle", angle)?;
-        if !TIME_STEP_RANGE.contains(&dt) {
-            return Err(CaromError::OutOfRange {
-                name: "time step",
-                expected: "from 1e-6 s to 10 s",
-                value: dt,
-            });
-        }
+        check_within("time step", dt, TIME_STEP_RANGE, "from 1e-6 s to 10 s")?;
         if self.kind != BodyKind::Kinematic {
             return Ok(());
         }
