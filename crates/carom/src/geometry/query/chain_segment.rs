@@ -452,3 +452,438 @@ fn clip_segments(
     }
     manifold
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::query::collide::collide as two_sided;
+    use crate::geometry::shape::Shape;
+    use crate::math::vec2;
+
+    /// A link from `point1` to `point2` (solid on its right: below, for one running left)
+    /// between neighbours ending at `ghost1` and `ghost2`.
+    fn link(ghost1: Vec2, point1: Vec2, point2: Vec2, ghost2: Vec2) -> WorldShape {
+        WorldShape::ChainSegment {
+            ghost1,
+            point1,
+            point2,
+            ghost2,
+        }
+    }
+
+    /// A flat floor's link from x = 1 to x = -1 (its normal up), with flat neighbours.
+    fn flat() -> WorldShape {
+        link(
+            vec2(3.0, 0.0),
+            vec2(1.0, 0.0),
+            vec2(-1.0, 0.0),
+            vec2(-3.0, 0.0),
+        )
+    }
+
+    fn placed(shape: &Shape, x: Real, y: Real, angle: Real) -> WorldShape {
+        WorldShape::at(shape, vec2(x, y), angle)
+    }
+
+    fn meet(chain: &WorldShape, other: &WorldShape, margin: Real) -> Manifold {
+        collide(&ChainLink::of(chain), other, Margins::plain(margin))
+    }
+
+    fn close(a: Vec2, b: Vec2, tolerance: Real) -> bool {
+        (a - b).norm() <= tolerance
+    }
+
+    fn the_shapes() -> [Shape; 4] {
+        [
+            Shape::rect(0.3, 0.2),
+            Shape::circle(0.25),
+            Shape::polygon(&[vec2(-0.3, -0.1), vec2(0.3, -0.2), vec2(0.1, 0.3)]).unwrap(),
+            Shape::rounded_rect(0.2, 0.1, 0.05),
+        ]
+    }
+
+    /// Away from its ends, a link meets a shape as a two-sided segment does: the same normal,
+    /// points and separations. (A circle's point may lie up to half the overlap apart along
+    /// the normal: the link puts it midway between the surfaces, as Box2D does, the segment
+    /// in the middle of what overlaps, which for a segment is on it.)
+    #[test]
+    fn on_its_face_a_link_is_a_segment() {
+        let segment = WorldShape::at(
+            &Shape::segment(vec2(1.0, 0.0), vec2(-1.0, 0.0)),
+            Vec2::zeros(),
+            0.0,
+        );
+        let mut compared = 0;
+        for shape in the_shapes() {
+            for (x, angle) in [(0.0, 0.0), (0.2, 0.1), (-0.15, -0.3), (0.1, 0.05)] {
+                for depth in [-0.05, 0.0, 0.02] {
+                    // The shape's lowest point `depth` below the floor.
+                    let probe = placed(&shape, x, 0.0, angle);
+                    let lowest = support_height(&probe);
+                    let shape_at = placed(&shape, x, -lowest - depth, angle);
+                    let chain = meet(&flat(), &shape_at, 0.1);
+                    let plain = two_sided(&segment, &shape_at, 0.1);
+                    assert!(
+                        close(chain.normal, plain.normal, 1e-5)
+                            && chain.points().len() == plain.points().len(),
+                        "{shape:?} at {x}, {angle}: {chain:?} against {plain:?}"
+                    );
+                    assert!(chain.normal.y > 0.99, "{chain:?}");
+                    for (c, p) in chain.points().iter().zip(plain.points()) {
+                        let apart = c.point - p.point;
+                        let along = perp_cw(chain.normal).dot(&apart).abs();
+                        let across = chain.normal.dot(&apart).abs();
+                        assert!(
+                            along < 1e-5 && across <= 0.5 * c.separation.abs() + 1e-5,
+                            "{chain:?} against {plain:?}"
+                        );
+                        assert!((c.separation - p.separation).abs() < 1e-5);
+                    }
+                    let deepest = chain.min_separation().unwrap();
+                    assert!((deepest + depth).abs() < 1e-4, "{deepest} for {depth}");
+                    compared += 1;
+                }
+            }
+        }
+        assert_eq!(compared, 48);
+    }
+
+    /// How far below `shape`'s centre its lowest point lies (negative: below).
+    fn support_height(shape: &WorldShape) -> Real {
+        match shape {
+            WorldShape::Circle { center, radius } => center.y - radius,
+            WorldShape::Polygon {
+                vertices, radius, ..
+            } => vertices.iter().map(|v| v.y).fold(Real::INFINITY, Real::min) - radius,
+            _ => unreachable!(),
+        }
+    }
+
+    /// A chain is one-sided: a shape whose centre is below a floor's link is not pushed up
+    /// through it, though a two-sided segment would push it.
+    #[test]
+    fn a_shape_behind_a_link_meets_nothing() {
+        let segment = WorldShape::at(
+            &Shape::segment(vec2(1.0, 0.0), vec2(-1.0, 0.0)),
+            Vec2::zeros(),
+            0.0,
+        );
+        for shape in the_shapes() {
+            let below = placed(&shape, 0.1, -0.1, 0.0);
+            assert!(meet(&flat(), &below, 0.1).points().is_empty(), "{shape:?}");
+            assert!(!two_sided(&segment, &below, 0.1).points().is_empty());
+        }
+    }
+
+    /// A box sliding along a flat chain, a little sunk into it, is pushed straight up by
+    /// whichever link meets it, wherever it is over the join: no ghost normal along the chain,
+    /// which a lone segment gives at its end.
+    #[test]
+    fn a_box_over_a_flat_join_is_pushed_only_up() {
+        let left = link(
+            vec2(3.0, 0.0),
+            vec2(1.0, 0.0),
+            vec2(-1.0, 0.0),
+            vec2(-3.0, 0.0),
+        );
+        let right = link(
+            vec2(5.0, 0.0),
+            vec2(3.0, 0.0),
+            vec2(1.0, 0.0),
+            vec2(-1.0, 0.0),
+        );
+        let lone = WorldShape::at(
+            &Shape::segment(vec2(1.0, 0.0), vec2(-1.0, 0.0)),
+            Vec2::zeros(),
+            0.0,
+        );
+        let cube = Shape::rect(0.25, 0.25);
+        let mut ghost_normals = 0;
+        for k in 0..=100 {
+            let x = 0.5 + 0.01 * k as Real;
+            let at = placed(&cube, x, 0.24, 0.0);
+            let mut touched = false;
+            for chain in [&left, &right] {
+                let manifold = meet(chain, &at, 0.05);
+                for point in manifold.points() {
+                    touched = true;
+                    assert!(
+                        close(manifold.normal, vec2(0.0, 1.0), 1e-5),
+                        "at x = {x}: {manifold:?}"
+                    );
+                    assert!(
+                        (point.separation + 0.01).abs() < 1e-4,
+                        "at x = {x}: {point:?}"
+                    );
+                }
+            }
+            assert!(touched, "at x = {x} the box sinks into the floor unmet");
+            let alone = two_sided(&lone, &at, 0.05);
+            if !alone.points().is_empty() && alone.normal.x.abs() > 0.1 {
+                ghost_normals += 1;
+            }
+        }
+        assert!(ghost_normals > 0, "the lone segment was to catch the box");
+    }
+
+    /// A box wider than a link is clipped to the link's ends: its points lie at them.
+    #[test]
+    fn a_wide_box_is_clipped_to_the_link() {
+        let plank = placed(&Shape::rect(3.0, 0.2), 0.0, 0.19, 0.0);
+        let manifold = meet(&flat(), &plank, 0.05);
+        let mut xs: Vec<Real> = manifold.points().iter().map(|p| p.point.x).collect();
+        xs.sort_by(Real::total_cmp);
+        assert_eq!(xs.len(), 2, "{manifold:?}");
+        assert!(
+            (xs[0] + 1.0).abs() < 1e-5 && (xs[1] - 1.0).abs() < 1e-5,
+            "{xs:?}"
+        );
+        for point in manifold.points() {
+            assert!((point.separation + 0.01).abs() < 1e-5);
+            // Midway between the floor and the plank's face.
+            assert!((point.point.y + 0.005).abs() < 1e-5, "{point:?}");
+        }
+        // Tilted, the lower end is deeper, and the point at each end says so.
+        let tilted = placed(&Shape::rect(3.0, 0.2), 0.0, 0.25, 0.05);
+        let manifold = meet(&flat(), &tilted, 0.5);
+        let by_x = |x: Real| {
+            manifold
+                .points()
+                .iter()
+                .find(|p| (p.point.x - x).abs() < 1e-3)
+                .map(|p| p.separation)
+        };
+        let (right, left) = (by_x(1.0).unwrap(), by_x(-1.0).unwrap());
+        let rise = (2.0 * 0.05_f64.sin()) as Real;
+        assert!(((right - left) - rise).abs() < 1e-3, "{left} {right}");
+    }
+
+    /// Points are kept up to the margin apart, not beyond.
+    #[test]
+    fn points_are_kept_within_the_margin() {
+        for shape in the_shapes() {
+            let probe = placed(&shape, 0.0, 0.0, 0.0);
+            let above = placed(&shape, 0.0, -support_height(&probe) + 0.05, 0.0);
+            let near = meet(&flat(), &above, 0.1);
+            assert!(!near.points().is_empty(), "{shape:?}");
+            for point in near.points() {
+                assert!((point.separation - 0.05).abs() < 1e-5, "{point:?}");
+            }
+            assert!(meet(&flat(), &above, 0.04).points().is_empty(), "{shape:?}");
+        }
+    }
+
+    /// Over a hilltop (both ends turn away, convex) a circle rolling round the corner is met
+    /// at the corner, its normal along the line from the corner to its centre; in the wedge
+    /// between the two links' normals both links meet it there, alike (as Box2D's do). On
+    /// either face, only that face's link meets it.
+    #[test]
+    fn round_a_convex_end_a_circle_is_met_at_the_corner() {
+        let top = link(
+            vec2(2.0, -1.0),
+            vec2(1.0, 0.0),
+            vec2(-1.0, 0.0),
+            vec2(-2.0, -1.0),
+        );
+        // The slope beyond the end, from (2, -1) up to (1, 0), with a flat neighbour past it.
+        let slope = link(
+            vec2(3.0, -2.0),
+            vec2(2.0, -1.0),
+            vec2(1.0, 0.0),
+            vec2(-1.0, 0.0),
+        );
+        let ball = Shape::circle(0.25);
+        let corner = vec2(1.0, 0.0);
+        for k in 0..=40 {
+            // From straight up to along the slope's normal, (1, 1)/√2.
+            let turn = (k as Real / 40.0) * crate::math::consts::FRAC_PI_4;
+            let direction = vec2(turn.sin(), turn.cos());
+            let center = corner + direction * 0.24;
+            let at = placed(&ball, center.x, center.y, 0.0);
+            let met: Vec<Manifold> = [meet(&top, &at, 0.0), meet(&slope, &at, 0.0)]
+                .into_iter()
+                .filter(|m| !m.points().is_empty())
+                .collect();
+            // Inside the wedge both meet it; on its edges at least the face's link does.
+            let expected = if k == 0 || k == 40 { 1..=2 } else { 2..=2 };
+            assert!(expected.contains(&met.len()), "at {turn} rad: {met:?}");
+            for manifold in &met {
+                assert!(close(manifold.normal, direction, 1e-4), "{manifold:?}");
+                let point = manifold.points()[0];
+                assert!((point.separation + 0.01).abs() < 1e-4, "{point:?}");
+                assert!(
+                    close(point.point, corner - direction * 0.005, 1e-4),
+                    "{point:?}"
+                );
+            }
+        }
+        let on_top = placed(&ball, 0.5, 0.24, 0.0);
+        assert_eq!(meet(&top, &on_top, 0.0).points().len(), 1);
+        assert!(meet(&slope, &on_top, 0.0).points().is_empty());
+        let slope_normal = vec2(1.0, 1.0).normalize();
+        let on_slope = vec2(1.5, -0.5) + slope_normal * 0.24;
+        let on_slope = placed(&ball, on_slope.x, on_slope.y, 0.0);
+        assert!(meet(&top, &on_slope, 0.0).points().is_empty());
+        let manifold = meet(&slope, &on_slope, 0.0);
+        assert!(close(manifold.normal, slope_normal, 1e-5), "{manifold:?}");
+    }
+
+    /// The same for a box's corner over the hilltop: between the two links it is met, and
+    /// every normal lies between the two links' own.
+    #[test]
+    fn round_a_convex_end_a_box_is_met_between_the_normals() {
+        let top = link(
+            vec2(2.0, -1.0),
+            vec2(1.0, 0.0),
+            vec2(-1.0, 0.0),
+            vec2(-2.0, -1.0),
+        );
+        let slope = link(
+            vec2(3.0, -2.0),
+            vec2(2.0, -1.0),
+            vec2(1.0, 0.0),
+            vec2(-1.0, 0.0),
+        );
+        let cube = Shape::rect(0.2, 0.2);
+        let up = vec2(0.0, 1.0);
+        let along_slope = vec2(1.0, 1.0).normalize();
+        for k in 0..=20 {
+            let turn = (k as Real / 20.0) * crate::math::consts::FRAC_PI_4;
+            // The box turned with the direction, its bottom face's middle at the corner, sunk 0.01.
+            let direction = vec2(turn.sin(), turn.cos());
+            let center = vec2(1.0, 0.0) + direction * 0.19;
+            let at = placed(&cube, center.x, center.y, -turn);
+            let mut points = 0;
+            for chain in [&top, &slope] {
+                let manifold = meet(chain, &at, 0.0);
+                if manifold.points().is_empty() {
+                    continue;
+                }
+                points += manifold.points().len();
+                let n = manifold.normal;
+                assert!(
+                    cross(n, up) >= -1e-4 && cross(along_slope, n) >= -1e-4,
+                    "at {turn} rad: {manifold:?}"
+                );
+            }
+            assert!(points > 0, "at {turn} rad the box is unmet");
+        }
+    }
+
+    /// In a valley (the end turns toward the shape: concave) a shape whose nearest feature is
+    /// the link's end is pushed along the link's own normal, not toward the end.
+    #[test]
+    fn at_a_concave_end_the_normal_snaps_to_the_link() {
+        let valley = link(
+            vec2(2.0, 1.0),
+            vec2(1.0, 0.0),
+            vec2(-1.0, 0.0),
+            vec2(-3.0, 0.0),
+        );
+        let cube = Shape::rect(0.2, 0.2);
+        // Each box's lowest corner over the link, short of its end at x = 1.
+        for (x, angle) in [(0.7, 0.3), (0.75, -0.2), (0.8, 0.6)] {
+            let at = placed(&cube, x, 0.25, angle);
+            let probe = placed(&cube, x, 0.0, angle);
+            let sunk = placed(&cube, x, -support_height(&probe) - 0.01, angle);
+            for shape in [&at, &sunk] {
+                let manifold = meet(&valley, shape, 0.5);
+                if !manifold.points().is_empty() {
+                    assert!(close(manifold.normal, vec2(0.0, 1.0), 1e-5), "{manifold:?}");
+                }
+            }
+            assert!(
+                !meet(&valley, &sunk, 0.0).points().is_empty(),
+                "at {x}, {angle}"
+            );
+        }
+    }
+
+    /// The Gauss map of a link tells a convex end from a concave or flat one, and admits,
+    /// skips or snaps normals as the end's kind and the neighbour's normal say.
+    #[test]
+    fn the_gauss_map_sorts_normals() {
+        let map = |ghost1, ghost2| {
+            GaussMap::of(&ChainLink {
+                ghost1,
+                point1: vec2(1.0, 0.0),
+                point2: vec2(-1.0, 0.0),
+                ghost2,
+            })
+        };
+        let hill = map(vec2(2.0, -1.0), vec2(-2.0, -1.0));
+        assert!(hill.convex1 && hill.convex2);
+        assert!(close(hill.normal1, vec2(0.0, 1.0), 1e-6));
+        assert!(close(hill.normal0, vec2(1.0, 1.0).normalize(), 1e-6));
+        assert!(close(hill.normal2, vec2(-1.0, 1.0).normalize(), 1e-6));
+        assert!(close(hill.edge1, vec2(-1.0, 0.0), 1e-6));
+        let lean = |degrees: Real| {
+            let r = degrees.to_radians();
+            vec2(r.sin(), r.cos())
+        };
+        // Toward point1 (+x): admitted up to the neighbour's normal at 45°, skipped past it.
+        assert_eq!(hill.classify(lean(0.0)), NormalKind::Admit);
+        assert_eq!(hill.classify(lean(30.0)), NormalKind::Admit);
+        assert_eq!(hill.classify(lean(44.0)), NormalKind::Admit);
+        assert_eq!(hill.classify(lean(50.0)), NormalKind::Skip);
+        // Toward point2 (-x), the same mirrored.
+        assert_eq!(hill.classify(lean(-44.0)), NormalKind::Admit);
+        assert_eq!(hill.classify(lean(-50.0)), NormalKind::Skip);
+        // A valley on the point1 side, a hill on the other.
+        let mixed = map(vec2(2.0, 1.0), vec2(-2.0, -1.0));
+        assert!(!mixed.convex1 && mixed.convex2);
+        assert_eq!(mixed.classify(lean(30.0)), NormalKind::Snap);
+        assert_eq!(mixed.classify(lean(-30.0)), NormalKind::Admit);
+        assert_eq!(mixed.neighbour_normals().0, mixed.normal1);
+        assert_eq!(mixed.neighbour_normals().1, mixed.normal2);
+        // Flat joins are not convex: normals leaning either way snap.
+        let flat = map(vec2(3.0, 0.0), vec2(-3.0, 0.0));
+        assert!(!flat.convex1 && !flat.convex2);
+        assert_eq!(flat.classify(lean(10.0)), NormalKind::Snap);
+        assert_eq!(flat.classify(lean(-10.0)), NormalKind::Snap);
+        assert_eq!(flat.neighbour_normals(), (flat.normal1, flat.normal1));
+    }
+
+    /// A link's manifold is unchanged by moving the whole scene: it depends on where things
+    /// are relative to each other, not on the origin.
+    #[test]
+    fn a_link_meets_the_same_wherever_it_is() {
+        let moved = |p: Vec2| p + vec2(12.5, -7.25);
+        let top = link(
+            vec2(2.0, -1.0),
+            vec2(1.0, 0.0),
+            vec2(-1.0, 0.0),
+            vec2(-3.0, 0.0),
+        );
+        let far = link(
+            moved(vec2(2.0, -1.0)),
+            moved(vec2(1.0, 0.0)),
+            moved(vec2(-1.0, 0.0)),
+            moved(vec2(-3.0, 0.0)),
+        );
+        for shape in the_shapes() {
+            for x in [-1.1, -0.5, 0.9, 1.1] {
+                let here = meet(&top, &placed(&shape, x, 0.2, 0.3), 0.1);
+                let there = meet(&far, &placed(&shape, x + 12.5, 0.2 - 7.25, 0.3), 0.1);
+                assert!(close(here.normal, there.normal, 1e-5), "{here:?} {there:?}");
+                assert_eq!(here.points().len(), there.points().len());
+                for (a, b) in here.points().iter().zip(there.points()) {
+                    assert!(close(moved(a.point), b.point, 1e-4));
+                    assert!((a.separation - b.separation).abs() < 1e-5);
+                }
+            }
+        }
+    }
+
+    /// Chains do not collide with chains.
+    #[test]
+    fn links_do_not_meet_links() {
+        let other = link(
+            vec2(2.0, 0.1),
+            vec2(0.5, 0.1),
+            vec2(-0.5, -0.1),
+            vec2(-2.0, -0.1),
+        );
+        assert!(meet(&flat(), &other, 1.0).points().is_empty());
+    }
+}

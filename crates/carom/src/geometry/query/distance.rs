@@ -487,4 +487,182 @@ mod tests {
         assert!((s.separation - 0.25).abs() < 1e-6);
         assert_eq!(s.normal, vec2(0.0, 1.0));
     }
+
+    /// The shapes every kind of pair is drawn from: a circle, polygons sharp and rounded, a
+    /// capsule, a segment and a chain's link (both sides solid to a query).
+    fn kinds(x: Real, y: Real, angle: Real) -> Vec<WorldShape> {
+        let triangle = Shape::polygon(&[vec2(-0.4, -0.2), vec2(0.5, -0.3), vec2(0.0, 0.45)]);
+        let mut shapes: Vec<WorldShape> = [
+            Shape::circle(0.3),
+            Shape::rect(0.4, 0.25),
+            triangle.unwrap(),
+            Shape::capsule(vec2(-0.3, 0.0), vec2(0.3, 0.1), 0.15),
+            Shape::rounded_rect(0.25, 0.15, 0.1),
+            Shape::segment(vec2(-0.5, 0.1), vec2(0.4, -0.2)),
+        ]
+        .iter()
+        .map(|shape| WorldShape::at(shape, vec2(x, y), angle))
+        .collect();
+        let (c, s) = (angle.cos(), angle.sin());
+        let at = |px: Real, py: Real| vec2(x + c * px - s * py, y + s * px + c * py);
+        shapes.push(WorldShape::ChainSegment {
+            ghost1: at(-1.0, 0.3),
+            point1: at(-0.45, -0.1),
+            point2: at(0.45, 0.15),
+            ghost2: at(1.0, 0.0),
+        });
+        shapes
+    }
+
+    /// Signed distance from `p` to a shape: negative inside it.
+    fn signed_distance(p: Vec2, shape: &WorldShape) -> Real {
+        with_core(shape, |vertices, normals, radius| {
+            let n = vertices.len();
+            let outside = (0..n)
+                .map(|i| {
+                    let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+                    (p - closest_on_segment(p, a, b).0).norm()
+                })
+                .fold(Real::INFINITY, Real::min);
+            let inside = n > 2 && (0..n).all(|i| normals[i].dot(&(p - vertices[i])) < 0.0);
+            (if inside { -outside } else { outside }) - radius
+        })
+    }
+
+    /// Points along a shape's boundary, its corners among them: between them only faces
+    /// (measured to exactly from the other side's points) and arcs (which bend away from a
+    /// chord by the square of the spacing).
+    fn boundary(shape: &WorldShape) -> Vec<Vec2> {
+        with_core(shape, |vertices, normals, radius| {
+            let n = vertices.len();
+            let mut points = Vec::new();
+            let arc = |points: &mut Vec<Vec2>, at: Vec2, from: Real, to: Real| {
+                let steps = 200;
+                for k in 0..=steps {
+                    let t = from + (to - from) * k as Real / steps as Real;
+                    points.push(at + vec2(t.cos(), t.sin()) * radius);
+                }
+            };
+            if n == 1 {
+                arc(&mut points, vertices[0], 0.0, crate::math::consts::TAU);
+                return points;
+            }
+            for i in 0..n {
+                let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+                let normal = normals[i];
+                let steps = 100;
+                for k in 0..=steps {
+                    let t = k as Real / steps as Real;
+                    points.push(a + (b - a) * t + normal * radius);
+                }
+                if radius > 0.0 {
+                    // Round the corner at `b`, from this edge's normal to the next's.
+                    let next = normals[(i + 1) % n];
+                    let from = normal.y.atan2(normal.x);
+                    let mut to = next.y.atan2(next.x);
+                    if to < from {
+                        to += crate::math::consts::TAU;
+                    }
+                    arc(&mut points, b, from, to);
+                }
+            }
+            points
+        })
+    }
+
+    /// The distance between A and B measured by brute force: the least signed distance of
+    /// any point on either's boundary to the other (one of the two nearest points is a corner
+    /// or lies on a face, and is then sampled or measured to exactly).
+    fn measured(a: &WorldShape, b: &WorldShape) -> Real {
+        let one_way = |from: &WorldShape, to: &WorldShape| {
+            boundary(from)
+                .iter()
+                .map(|&p| signed_distance(p, to))
+                .fold(Real::INFINITY, Real::min)
+        };
+        one_way(a, b).min(one_way(b, a))
+    }
+
+    fn moved(shape: &WorldShape, by: Vec2) -> WorldShape {
+        match shape {
+            WorldShape::Circle { center, radius } => WorldShape::Circle {
+                center: center + by,
+                radius: *radius,
+            },
+            WorldShape::Polygon {
+                vertices,
+                normals,
+                radius,
+            } => WorldShape::Polygon {
+                vertices: vertices.iter().map(|v| v + by).collect(),
+                normals: normals.clone(),
+                radius: *radius,
+            },
+            WorldShape::ChainSegment {
+                ghost1,
+                point1,
+                point2,
+                ghost2,
+            } => WorldShape::ChainSegment {
+                ghost1: ghost1 + by,
+                point1: point1 + by,
+                point2: point2 + by,
+                ghost2: ghost2 + by,
+            },
+        }
+    }
+
+    /// Every kind of pair, apart and overlapping, turned and placed many ways: apart, the
+    /// separation is the shapes' distance measured by brute force, along the line between
+    /// their nearest points; overlapping, moving B by the minimum translation leaves the two
+    /// just touching. Swapping the pair keeps the separation and turns the normal round.
+    #[test]
+    fn the_separation_of_every_pair_is_the_measured_distance() {
+        let mut apart = 0;
+        let mut overlapping = 0;
+        for k in 0..8 {
+            let t = k as Real;
+            let (x, y) = ((0.9 * t).cos(), (0.9 * t).sin());
+            for reach in [0.35, 0.8, 1.3] {
+                let shapes_a = kinds(0.0, 0.0, 0.4 * t);
+                let shapes_b = kinds(reach * x, reach * y, -0.7 * t + 0.2);
+                for a in &shapes_a {
+                    for b in &shapes_b {
+                        let s = separation(a, b);
+                        let back = separation(b, a);
+                        assert!(
+                            (s.separation - back.separation).abs() < 1e-4,
+                            "{a:?} {b:?}: {s:?} but {back:?}"
+                        );
+                        assert!((s.normal.norm() - 1.0).abs() < 1e-5, "{s:?}");
+                        assert_eq!(s.is_overlapping(), s.separation <= 0.0);
+                        if s.separation > 0.0 {
+                            let distance = measured(a, b);
+                            assert!(
+                                (s.separation - distance).abs() < 2e-3,
+                                "{a:?} {b:?}: {s:?}, measured {distance}"
+                            );
+                            assert!(s.mtv() == Vec2::zeros());
+                            // B moved back along the normal by the separation touches A.
+                            let touching = moved(b, -s.normal * s.separation);
+                            let gap = measured(a, &touching);
+                            assert!(gap.abs() < 2e-3, "{a:?} {b:?}: {s:?}, then {gap}");
+                            assert!((s.normal + back.normal).norm() < 1e-3, "{s:?} {back:?}");
+                            apart += 1;
+                        } else {
+                            // Moved out by the minimum translation, B touches A and no more.
+                            let out = moved(b, s.mtv());
+                            let gap = measured(a, &out);
+                            assert!(gap.abs() < 2e-3, "{a:?} {b:?}: {s:?}, then {gap}");
+                            overlapping += 1;
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            apart > 400 && overlapping > 400,
+            "{apart} apart, {overlapping} overlapping"
+        );
+    }
 }
