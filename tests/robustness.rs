@@ -864,28 +864,22 @@ fn values_past_the_solvers_products_are_refused_and_extreme_masses_stay_finite()
         assert!(body.apply_angular_impulse(-1e30).is_err());
         // Nor act at a point farther out than a body may be placed.
         for point in [vec2(2e6, 0.0), vec2(0.0, -1e30)] {
-            let error = body.apply_impulse(vec2(0.0, 1.0), point).unwrap_err();
-            assert!(
-                matches!(
-                    error,
-                    CaromError::OutOfRange {
-                        name: "impulse application point",
-                        ..
-                    }
+            for (expected, result) in [
+                (
+                    "impulse application point",
+                    body.apply_impulse(vec2(0.0, 1.0), point),
                 ),
-                "{error}"
-            );
-            let error = body.apply_force(vec2(0.0, 1.0), point).unwrap_err();
-            assert!(
-                matches!(
-                    error,
-                    CaromError::OutOfRange {
-                        name: "force application point",
-                        ..
-                    }
+                (
+                    "force application point",
+                    body.apply_force(vec2(0.0, 1.0), point),
                 ),
-                "{error}"
-            );
+            ] {
+                let error = result.unwrap_err();
+                assert!(
+                    matches!(error, CaromError::OutOfRange { name, .. } if name == expected),
+                    "{error}"
+                );
+            }
         }
         assert_eq!((body.linear_velocity(), body.angular_velocity()), before);
         assert!(body.apply_angular_impulse(-1.0).is_ok());

@@ -673,25 +673,31 @@ mod tests {
         }
     }
 
-    /// Over a hilltop (both ends turn away, convex) a circle rolling round the corner is met
-    /// at the corner, its normal along the line from the corner to its centre; in the wedge
-    /// between the two links' normals both links meet it there, alike (as Box2D's do). On
-    /// either face, only that face's link meets it.
-    #[test]
-    fn round_a_convex_end_a_circle_is_met_at_the_corner() {
+    /// A hilltop's top link, from x = 1 to x = -1 with both ends turning down (convex), and
+    /// the slope beyond its end at x = 1, from (2, -1) up to (1, 0).
+    fn hilltop() -> (WorldShape, WorldShape) {
         let top = link(
             vec2(2.0, -1.0),
             vec2(1.0, 0.0),
             vec2(-1.0, 0.0),
             vec2(-2.0, -1.0),
         );
-        // The slope beyond the end, from (2, -1) up to (1, 0), with a flat neighbour past it.
         let slope = link(
             vec2(3.0, -2.0),
             vec2(2.0, -1.0),
             vec2(1.0, 0.0),
             vec2(-1.0, 0.0),
         );
+        (top, slope)
+    }
+
+    /// Over a hilltop (both ends turn away, convex) a circle rolling round the corner is met
+    /// at the corner, its normal along the line from the corner to its centre; in the wedge
+    /// between the two links' normals both links meet it there, alike (as Box2D's do). On
+    /// either face, only that face's link meets it.
+    #[test]
+    fn round_a_convex_end_a_circle_is_met_at_the_corner() {
+        let (top, slope) = hilltop();
         let ball = Shape::circle(0.25);
         let corner = vec2(1.0, 0.0);
         for k in 0..=40 {
@@ -732,18 +738,7 @@ mod tests {
     /// every normal lies between the two links' own.
     #[test]
     fn round_a_convex_end_a_box_is_met_between_the_normals() {
-        let top = link(
-            vec2(2.0, -1.0),
-            vec2(1.0, 0.0),
-            vec2(-1.0, 0.0),
-            vec2(-2.0, -1.0),
-        );
-        let slope = link(
-            vec2(3.0, -2.0),
-            vec2(2.0, -1.0),
-            vec2(1.0, 0.0),
-            vec2(-1.0, 0.0),
-        );
+        let (top, slope) = hilltop();
         let cube = Shape::rect(0.2, 0.2);
         let up = vec2(0.0, 1.0);
         let along_slope = vec2(1.0, 1.0).normalize();

@@ -584,32 +584,9 @@ mod tests {
     }
 
     fn moved(shape: &WorldShape, by: Vec2) -> WorldShape {
-        match shape {
-            WorldShape::Circle { center, radius } => WorldShape::Circle {
-                center: center + by,
-                radius: *radius,
-            },
-            WorldShape::Polygon {
-                vertices,
-                normals,
-                radius,
-            } => WorldShape::Polygon {
-                vertices: vertices.iter().map(|v| v + by).collect(),
-                normals: normals.clone(),
-                radius: *radius,
-            },
-            WorldShape::ChainSegment {
-                ghost1,
-                point1,
-                point2,
-                ghost2,
-            } => WorldShape::ChainSegment {
-                ghost1: ghost1 + by,
-                point1: point1 + by,
-                point2: point2 + by,
-                ghost2: ghost2 + by,
-            },
-        }
+        let mut moved = shape.clone();
+        moved.translate(by);
+        moved
     }
 
     /// Every kind of pair, apart and overlapping, turned and placed many ways: apart, the
